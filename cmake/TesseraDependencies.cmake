@@ -1,0 +1,36 @@
+# Every third-party package Tessera uses, found once. Package names and the
+# gotchas behind the workarounds are in ../shared/TOOLCHAIN.md.
+find_package(Threads REQUIRED)
+find_package(glm REQUIRED)
+find_package(spdlog REQUIRED)
+find_package(fmt REQUIRED)
+
+if(TSR_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+endif()
+if(TSR_BUILD_BENCHMARKS AND NOT TSR_ONLY_SCENEGRAPH)
+  find_package(benchmark REQUIRED)
+endif()
+
+if(NOT TSR_ONLY_SCENEGRAPH)
+  find_package(TinyGLTF REQUIRED)
+  find_package(nlohmann_json 3 REQUIRED)
+  find_package(CLI11 REQUIRED)
+  find_package(TBB REQUIRED COMPONENTS tbb)
+  find_package(embree 3 REQUIRED)
+  find_package(OpenImageIO REQUIRED)
+  # Debian 12's OpenImageIO config names /usr/include/opencv4, which is not
+  # installed; CMake refuses targets with non-existent include paths.
+  foreach(prop INTERFACE_INCLUDE_DIRECTORIES INTERFACE_SYSTEM_INCLUDE_DIRECTORIES)
+    get_target_property(dirs OpenImageIO::OpenImageIO ${prop})
+    if(dirs)
+      set(kept "")
+      foreach(d IN LISTS dirs)
+        if(EXISTS "${d}")
+          list(APPEND kept "${d}")
+        endif()
+      endforeach()
+      set_target_properties(OpenImageIO::OpenImageIO PROPERTIES ${prop} "${kept}")
+    endif()
+  endforeach()
+endif()
