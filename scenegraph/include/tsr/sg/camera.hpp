@@ -1,0 +1,46 @@
+#pragma once
+// A pinhole camera. The pose maps camera space to world space; the camera
+// looks down its -Z axis with +Y up (glTF's convention). Tiles and eyes are
+// derived from it by the mediators as off-axis frusta.
+#include "tsr/sg/container_of.hpp"
+
+namespace tsr::sg {
+
+class Camera final : public ContainerOf<Camera, ContainerType::Camera> {
+ public:
+  enum Field : FieldIndex { Pose = kFirstOwnField, VerticalFov, Near, Far, EyeSeparation, ZeroParallax };
+
+  const Mat4& pose() const { return pose_; }
+  float verticalFov() const { return verticalFov_; }  // radians
+  float nearPlane() const { return near_; }
+  float farPlane() const { return far_; }
+  float eyeSeparation() const { return eyeSeparation_; }         // scene units between the eyes
+  float zeroParallaxDistance() const { return zeroParallax_; }  // distance of the screen plane
+
+  void setPose(const Mat4& m) { assign(Pose, pose_, m); }
+  void setVerticalFov(float v) { assign(VerticalFov, verticalFov_, v); }
+  void setNearPlane(float v) { assign(Near, near_, v); }
+  void setFarPlane(float v) { assign(Far, far_, v); }
+  void setEyeSeparation(float v) { assign(EyeSeparation, eyeSeparation_, v); }
+  void setZeroParallaxDistance(float v) { assign(ZeroParallax, zeroParallax_, v); }
+
+  // Points the camera from `eye` at `target`.
+  void lookAt(const Vec3& eye, const Vec3& target, const Vec3& up = Vec3(0, 1, 0));
+
+  static constexpr auto fieldSpecs() {
+    return std::tuple{valueField("pose", &Camera::pose_),       valueField("verticalFov", &Camera::verticalFov_),
+                      valueField("near", &Camera::near_),       valueField("far", &Camera::far_),
+                      valueField("eyeSeparation", &Camera::eyeSeparation_),
+                      valueField("zeroParallaxDistance", &Camera::zeroParallax_)};
+  }
+
+ private:
+  Mat4 pose_{1.0f};
+  float verticalFov_ = 0.7853982f;
+  float near_ = 0.1f;
+  float far_ = 1000.0f;
+  float eyeSeparation_ = 0.065f;
+  float zeroParallax_ = 5.0f;
+};
+
+}  // namespace tsr::sg

@@ -1,0 +1,117 @@
+#pragma once
+// One frame's changes to a scene, immutable once built. The vocabulary, as
+// precise as it needs to be:
+//  - creation:    a container with this id and type now exists, with every
+//                 field set to the values carried. Ids are never reused.
+//  - change:      these fields (mask) of an existing container now hold the
+//                 values carried; an array field edited by range carries
+//                 only those element runs plus the length it must have.
+//                 Setting a field several times in a frame gives one change
+//                 with the last value.
+//  - destruction: the container no longer exists. Whatever referred to it
+//                 was changed in the same list to refer to it no more.
+// Entries come creations first, then changes, then destructions, each in
+// ascending id order. A snapshot is a list of creations only, describing a
+// whole scene at its version, for replicas that start empty.
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "tsr/sg/array_range.hpp"
+#include "tsr/sg/decode_limits.hpp"
+#include "tsr/sg/types.hpp"
+
+namespace tsr::sg {
+
+class Container;
+
+// A ranged array edit: the array has `length` elements, of which `ranges` changed.
+struct RangedEdit {
+  FieldIndex field = 0;
+  std::uint64_t length = 0;
+  std::vector<ArrayRange> ranges;
+};
+
+// A reference held after the change by one of the entry's fields.
+struct Reference {
+  FieldIndex field = 0;
+  ContainerId target = kNoContainer;
+};
+
+struct ChangeEntry {
+  ContainerId id = kNoContainer;
+  ContainerType type = ContainerType::Group;
+  FieldMask mask = 0;
+  std::vector<RangedEdit> rangedEdits;  // only fields edited by range
+  std::vector<Reference> references;    // of the masked reference fields
+  std::uint64_t valueOffset = 0;        // into ChangeList::values()
+  std::uint64_t valueSize = 0;
+
+  bool changed(FieldIndex f) const { return (mask & fieldBit(f)) != 0; }
+  // The ranges of field f when it was edited by range, else null (whole or unchanged).
+  const RangedEdit* rangedEdit(FieldIndex f) const;
+};
+
+struct Destruction {
+  ContainerId id = kNoContainer;
+  ContainerType type = ContainerType::Group;
+};
+
+class ChangeList {
+ public:
+  enum class Kind : std::uint8_t { Delta = 0, Snapshot = 1 };
+
+  Kind kind() const { return kind_; }
+  bool isSnapshot() const { return kind_ == Kind::Snapshot; }
+  // The scene version after this list; a delta applies to baseVersion().
+  std::uint64_t version() const { return version_; }
+  std::uint64_t baseVersion() const { return kind_ == Kind::Snapshot ? 0 : version_ - 1; }
+
+  const std::vector<ChangeEntry>& creations() const { return creations_; }
+  const std::vector<ChangeEntry>& changes() const { return changes_; }
+  const std::vector<Destruction>& destructions() const { return destructions_; }
+  std::span<const std::uint8_t> values(const ChangeEntry& e) const;
+  const std::vector<std::uint8_t>& values() const { return values_; }
+
+  bool empty() const { return creations_.empty() && changes_.empty() && destructions_.empty(); }
+  // Field changes carried by change entries (creations count each field).
+  std::uint64_t fieldChangeCount() const;
+
+  // Builds a list. Entries from live containers are trusted; entries from
+  // bytes are checked field by field, so a built list is always well formed.
+  class Builder {
+   public:
+    Builder(Kind kind, std::uint64_t version);
+    ~Builder();
+    // Serialises the masked fields of a container; `edits` gives the ranges
+    // of fields edited by range (others go whole).
+    void addCreation(const Container& c);
+    void addChange(const Container& c, FieldMask mask, const std::vector<RangedEdit>& edits);
+    void addDestruction(ContainerId id, ContainerType type);
+    // Adds an entry from untrusted serialised values; throws DecodeError
+    // (offsets relative to `baseOffset`) when they are malformed.
+    void addEncoded(bool creation, ContainerId id, std::uint64_t rawType, FieldMask mask,
+                    std::span<const std::uint8_t> values, const DecodeLimits& limits, std::size_t baseOffset);
+    std::shared_ptr<const ChangeList> finish();
+
+   private:
+    ChangeEntry& begin(bool creation, ContainerId id, ContainerType type, FieldMask mask);
+    void addEntry(bool creation, const Container& c, FieldMask mask, const std::vector<RangedEdit>& edits);
+    std::shared_ptr<ChangeList> list_;
+    std::vector<std::unique_ptr<Container>> scratch_;  // one per type, for checking encoded values
+  };
+
+ private:
+  ChangeList() = default;
+  Kind kind_ = Kind::Delta;
+  std::uint64_t version_ = 0;
+  std::vector<ChangeEntry> creations_;
+  std::vector<ChangeEntry> changes_;
+  std::vector<Destruction> destructions_;
+  std::vector<std::uint8_t> values_;
+};
+
+using ChangeListPtr = std::shared_ptr<const ChangeList>;
+
+}  // namespace tsr::sg

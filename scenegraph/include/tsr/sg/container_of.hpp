@@ -1,0 +1,182 @@
+#pragma once
+// Implements Container's reflection for a concrete type from its static
+// fieldSpecs() tuple, and gives its setters one checked way to assign.
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "tsr/sg/errors.hpp"
+#include "tsr/sg/field_spec.hpp"
+
+namespace tsr::sg {
+
+namespace detail {
+inline bool finite(float v) { return std::isfinite(v); }
+template <int N>
+bool finite(const glm::vec<N, float>& v) {
+  for (int i = 0; i < N; ++i)
+    if (!std::isfinite(v[i])) return false;
+  return true;
+}
+inline bool finite(const Mat4& m) {
+  for (int c = 0; c < 4; ++c)
+    if (!finite(m[c])) return false;
+  return true;
+}
+template <class T>
+bool finite(const T&) {
+  return true;
+}
+template <class E>
+bool finite(const std::vector<E>& v) {
+  if constexpr (std::is_floating_point_v<E> || std::is_class_v<E>) {
+    return std::all_of(v.begin(), v.end(), [](const E& e) { return finite(e); });
+  } else {
+    return true;
+  }
+}
+
+inline std::span<const ContainerId> idsOf(const ContainerId& id) {
+  return id == kNoContainer ? std::span<const ContainerId>{} : std::span<const ContainerId>(&id, 1);
+}
+inline std::span<const ContainerId> idsOf(const std::vector<ContainerId>& ids) { return ids; }
+}  // namespace detail
+
+template <class Derived, ContainerType Type>
+class ContainerOf : public Container {
+ public:
+  static constexpr ContainerType kType = Type;
+
+  FieldIndex fieldCount() const override { return static_cast<FieldIndex>(kFirstOwnField + ownFieldCount()); }
+
+  FieldInfo fieldInfo(FieldIndex f) const override {
+    if (f == kName) return {"name", FieldKind::Value, 0};
+    if (f == kAttachments) return {"attachments", FieldKind::Value, 0};
+    FieldInfo info;
+    withSpec(f, [&](const auto& spec) { info = {spec.name, spec.kind, spec.allowedTargets}; });
+    return info;
+  }
+
+  void writeField(FieldIndex f, ByteWriter& w, const std::vector<ArrayRange>* edited) const override {
+    if (f < kFirstOwnField) return writeBaseField(f, w);
+    withSpec(f, [&](const auto& spec) {
+      const auto& value = self().*spec.member;
+      if constexpr (requires { codec::writeArray(w, value, edited); }) {
+        codec::writeArray(w, value, spec.kind == FieldKind::Array ? edited : nullptr);
+      } else {
+        codec::write(w, value);
+      }
+    });
+  }
+
+  void readField(FieldIndex f, ByteReader& r, FieldReadContext& ctx) override {
+    if (f < kFirstOwnField) return readBaseField(f, r, ctx);
+    withSpec(f, [&](const auto& spec) {
+      auto& value = self().*spec.member;
+      if constexpr (requires { codec::readArray(r, value, ctx); }) {
+        codec::readArray(r, value, ctx);
+      } else {
+        codec::read(r, value, ctx);
+      }
+    });
+  }
+
+  void forEachReference(FieldIndex f, const std::function<void(ContainerId)>& fn) const override {
+    if (f < kFirstOwnField) return;
+    withSpec(f, [&](const auto& spec) {
+      if constexpr (requires { detail::idsOf(self().*spec.member); }) {
+        if (spec.kind == FieldKind::Reference)
+          for (ContainerId id : detail::idsOf(self().*spec.member)) fn(id);
+      }
+    });
+  }
+
+  std::size_t arrayLength(FieldIndex f) const override {
+    std::size_t n = 0;
+    if (f < kFirstOwnField) return 0;
+    withSpec(f, [&](const auto& spec) {
+      if constexpr (requires { (self().*spec.member).size(); }) {
+        if (spec.kind == FieldKind::Array) n = (self().*spec.member).size();
+      }
+    });
+    return n;
+  }
+
+ protected:
+  ContainerOf() : Container(Type) {}
+
+  // Assigns a plain or array value, rejecting non-finite floats.
+  template <class T>
+  void assign(FieldIndex f, T& member, T value) {
+    if (!detail::finite(value))
+      throw SceneError(std::string(typeName(Type)) + "." + std::string(fieldInfo(f).name) + ": non-finite value");
+    member = std::move(value);
+    touch(f);
+  }
+
+  // Assigns a reference field after checking what it will name.
+  template <class T>
+  void assignReference(FieldIndex f, T& member, T value) {
+    checkReferences(f, detail::idsOf(value));
+    unlinkReferences(f, detail::idsOf(member));
+    member = std::move(value);
+    linkReferences(f, detail::idsOf(member));
+    touch(f);
+  }
+
+  // Overwrites elements [begin, begin + values.size()) of an array field.
+  template <class E>
+  void assignRange(FieldIndex f, std::vector<E>& member, std::size_t begin, std::span<const E> values) {
+    if (begin > member.size() || values.size() > member.size() - begin)
+      throw SceneError(std::string(typeName(Type)) + "." + std::string(fieldInfo(f).name) + ": range [" +
+                       std::to_string(begin) + ", +" + std::to_string(values.size()) + ") outside " +
+                       std::to_string(member.size()) + " elements");
+    for (const E& v : values)
+      if (!detail::finite(v))
+        throw SceneError(std::string(typeName(Type)) + "." + std::string(fieldInfo(f).name) + ": non-finite value");
+    std::copy(values.begin(), values.end(), member.begin() + static_cast<std::ptrdiff_t>(begin));
+    touchRange(f, begin, begin + values.size());
+  }
+
+  void dropReference(FieldIndex f, ContainerId target) override {
+    withSpec(f, [&](const auto& spec) {
+      auto& value = self().*spec.member;
+      using T = std::decay_t<decltype(value)>;
+      if constexpr (std::is_same_v<T, ContainerId>) {
+        if (spec.kind == FieldKind::Reference && value == target) assignReference(f, value, kNoContainer);
+      } else if constexpr (std::is_same_v<T, std::vector<ContainerId>>) {
+        if (spec.kind == FieldKind::Reference) {
+          T kept;
+          std::copy_if(value.begin(), value.end(), std::back_inserter(kept), [&](ContainerId c) { return c != target; });
+          if (kept.size() != value.size()) assignReference(f, value, std::move(kept));
+        }
+      }
+    });
+  }
+
+ private:
+  // A function, not a constant, because Derived is incomplete while this
+  // base is instantiated.
+  static constexpr std::size_t ownFieldCount() {
+    constexpr std::size_t n = std::tuple_size_v<decltype(Derived::fieldSpecs())>;
+    static_assert(kFirstOwnField + n <= kMaxFields);
+    return n;
+  }
+
+  Derived& self() { return static_cast<Derived&>(*this); }
+  const Derived& self() const { return static_cast<const Derived&>(*this); }
+
+  template <class Fn>
+  static void withSpec(FieldIndex f, Fn&& fn) {
+    static constexpr auto specs = Derived::fieldSpecs();
+    [&]<std::size_t... I>(std::index_sequence<I...>) {
+      [[maybe_unused]] bool found = ((f == kFirstOwnField + I ? (fn(std::get<I>(specs)), true) : false) || ...);
+      assert(found && "field index out of range");
+    }(std::make_index_sequence<ownFieldCount()>{});
+  }
+};
+
+}  // namespace tsr::sg

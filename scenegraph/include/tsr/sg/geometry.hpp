@@ -1,0 +1,68 @@
+#pragma once
+// Indexed triangles with optional per-vertex normals, uvs and colours. Every
+// array can be replaced whole or edited by range; only edited ranges travel.
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "tsr/sg/container_of.hpp"
+
+namespace tsr::sg {
+
+// A hint for back-ends: static geometry can get a high-quality, merged
+// acceleration structure; animated geometry a refit-friendly one.
+enum class GeometryMotion : std::uint8_t { Static, Animated, Count };
+
+class Geometry final : public ContainerOf<Geometry, ContainerType::Geometry> {
+ public:
+  enum Field : FieldIndex { Positions = kFirstOwnField, Normals, Uvs, Colors, Indices, Material, Motion };
+
+  const std::vector<Vec3>& positions() const { return positions_; }
+  const std::vector<Vec3>& normals() const { return normals_; }
+  const std::vector<Vec2>& uvs() const { return uvs_; }
+  const std::vector<Vec4>& colors() const { return colors_; }
+  const std::vector<std::uint32_t>& indices() const { return indices_; }
+  ContainerId material() const { return material_; }
+  GeometryMotion motion() const { return motion_; }
+  std::size_t triangleCount() const { return indices_.size() / 3; }
+
+  void setPositions(std::vector<Vec3> v) { assign(Positions, positions_, std::move(v)); }
+  void setNormals(std::vector<Vec3> v) { assign(Normals, normals_, std::move(v)); }
+  void setUvs(std::vector<Vec2> v) { assign(Uvs, uvs_, std::move(v)); }
+  void setColors(std::vector<Vec4> v) { assign(Colors, colors_, std::move(v)); }
+  void setIndices(std::vector<std::uint32_t> v) { assign(Indices, indices_, std::move(v)); }
+  void setMaterial(ContainerId m) { assignReference(Material, material_, m); }
+  void setMotion(GeometryMotion m) { assign(Motion, motion_, m); }
+
+  // Range edits: overwrite elements starting at `begin`; lengths do not change.
+  void updatePositions(std::size_t begin, std::span<const Vec3> v) { assignRange(Positions, positions_, begin, v); }
+  void updateNormals(std::size_t begin, std::span<const Vec3> v) { assignRange(Normals, normals_, begin, v); }
+  void updateUvs(std::size_t begin, std::span<const Vec2> v) { assignRange(Uvs, uvs_, begin, v); }
+  void updateColors(std::size_t begin, std::span<const Vec4> v) { assignRange(Colors, colors_, begin, v); }
+  void updateIndices(std::size_t begin, std::span<const std::uint32_t> v) { assignRange(Indices, indices_, begin, v); }
+
+  // Why this geometry cannot be rendered as it stands (index out of range,
+  // attribute arrays of the wrong length), or nothing. The scene allows such
+  // states between edits; adapters check before handing data to a back-end.
+  std::optional<std::string> invalidReason() const;
+
+  static constexpr auto fieldSpecs() {
+    return std::tuple{arrayField("positions", &Geometry::positions_), arrayField("normals", &Geometry::normals_),
+                      arrayField("uvs", &Geometry::uvs_),           arrayField("colors", &Geometry::colors_),
+                      arrayField("indices", &Geometry::indices_),
+                      referenceField("material", &Geometry::material_, kMaterialTypes),
+                      valueField("motion", &Geometry::motion_)};
+  }
+
+ private:
+  std::vector<Vec3> positions_;
+  std::vector<Vec3> normals_;
+  std::vector<Vec2> uvs_;
+  std::vector<Vec4> colors_;
+  std::vector<std::uint32_t> indices_;
+  ContainerId material_ = kNoContainer;
+  GeometryMotion motion_ = GeometryMotion::Static;
+};
+
+}  // namespace tsr::sg

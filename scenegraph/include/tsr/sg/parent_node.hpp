@@ -1,0 +1,56 @@
+#pragma once
+// A node with children (Group, Transform). Children are ids of nodes; a node
+// may have several parents (instancing) but the graph must stay acyclic.
+#include <algorithm>
+#include <vector>
+
+#include "tsr/sg/container_of.hpp"
+
+namespace tsr::sg {
+
+template <class Derived, ContainerType Type>
+class ParentNode : public ContainerOf<Derived, Type> {
+ public:
+  static constexpr FieldIndex Children = Container::kFirstOwnField;
+
+  const std::vector<ContainerId>& children() const { return children_; }
+  void setChildren(std::vector<ContainerId> children) {
+    this->assignReference(Children, children_, std::move(children));
+  }
+  void addChild(ContainerId child) {
+    std::span<const ContainerId> added(&child, 1);
+    this->checkReferences(Children, added);
+    children_.push_back(child);
+    this->linkReferences(Children, added);
+    this->touch(Children);
+  }
+  // Removes every occurrence of `child`.
+  void removeChild(ContainerId child) { this->dropReference(Children, child); }
+
+ protected:
+  static constexpr auto childrenSpec() { return referenceField("children", &ParentNode::children_, kNodeTypes); }
+
+ private:
+  std::vector<ContainerId> children_;
+};
+
+class Group final : public ParentNode<Group, ContainerType::Group> {
+ public:
+  static constexpr auto fieldSpecs() { return std::tuple{childrenSpec()}; }
+};
+
+class Transform final : public ParentNode<Transform, ContainerType::Transform> {
+ public:
+  enum Field : FieldIndex { Matrix = Children + 1 };
+  const Mat4& matrix() const { return matrix_; }
+  void setMatrix(const Mat4& m) { assign(Matrix, matrix_, m); }
+
+  static constexpr auto fieldSpecs() {
+    return std::tuple{childrenSpec(), valueField("matrix", &Transform::matrix_)};
+  }
+
+ private:
+  Mat4 matrix_{1.0f};
+};
+
+}  // namespace tsr::sg

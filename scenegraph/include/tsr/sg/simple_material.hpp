@@ -1,0 +1,43 @@
+#pragma once
+// The OpenGL 1.1-style material every back-end understands.
+#include "tsr/sg/container_of.hpp"
+
+namespace tsr::sg {
+
+class SimpleMaterial final : public ContainerOf<SimpleMaterial, ContainerType::SimpleMaterial> {
+ public:
+  enum Field : FieldIndex { Diffuse = kFirstOwnField, DiffuseTexture, Specular, Shininess, Emission, Transparency };
+
+  const Vec3& diffuse() const { return diffuse_; }
+  ContainerId diffuseTexture() const { return diffuseTexture_; }
+  const Vec3& specular() const { return specular_; }
+  float shininess() const { return shininess_; }
+  const Vec3& emission() const { return emission_; }
+  float transparency() const { return transparency_; }  // 0 opaque, 1 invisible
+
+  void setDiffuse(const Vec3& v) { assign(Diffuse, diffuse_, v); }
+  void setDiffuseTexture(ContainerId image) { assignReference(DiffuseTexture, diffuseTexture_, image); }
+  void setSpecular(const Vec3& v) { assign(Specular, specular_, v); }
+  void setShininess(float v) { assign(Shininess, shininess_, v); }
+  void setEmission(const Vec3& v) { assign(Emission, emission_, v); }
+  void setTransparency(float v) { assign(Transparency, transparency_, v); }
+
+  static constexpr auto fieldSpecs() {
+    return std::tuple{valueField("diffuse", &SimpleMaterial::diffuse_),
+                      referenceField("diffuseTexture", &SimpleMaterial::diffuseTexture_, kImageTypes),
+                      valueField("specular", &SimpleMaterial::specular_),
+                      valueField("shininess", &SimpleMaterial::shininess_),
+                      valueField("emission", &SimpleMaterial::emission_),
+                      valueField("transparency", &SimpleMaterial::transparency_)};
+  }
+
+ private:
+  Vec3 diffuse_{0.8f};
+  ContainerId diffuseTexture_ = kNoContainer;
+  Vec3 specular_{0.0f};
+  float shininess_ = 32.0f;
+  Vec3 emission_{0.0f};
+  float transparency_ = 0.0f;
+};
+
+}  // namespace tsr::sg

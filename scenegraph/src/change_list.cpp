@@ -1,0 +1,119 @@
+#include "tsr/sg/change_list.hpp"
+
+#include <algorithm>
+#include <bit>
+
+#include "tsr/sg/container.hpp"
+#include "tsr/sg/container_factory.hpp"
+
+namespace tsr::sg {
+
+const RangedEdit* ChangeEntry::rangedEdit(FieldIndex f) const {
+  for (const auto& e : rangedEdits)
+    if (e.field == f) return &e;
+  return nullptr;
+}
+
+std::span<const std::uint8_t> ChangeList::values(const ChangeEntry& e) const {
+  return std::span<const std::uint8_t>(values_).subspan(e.valueOffset, e.valueSize);
+}
+
+std::uint64_t ChangeList::fieldChangeCount() const {
+  std::uint64_t n = 0;
+  for (const auto& e : creations_) n += std::popcount(e.mask);
+  for (const auto& e : changes_) n += std::popcount(e.mask);
+  return n;
+}
+
+ChangeList::Builder::Builder(Kind kind, std::uint64_t version) : list_(new ChangeList) {
+  list_->kind_ = kind;
+  list_->version_ = version;
+}
+
+ChangeList::Builder::~Builder() = default;
+
+ChangeEntry& ChangeList::Builder::begin(bool creation, ContainerId id, ContainerType type, FieldMask mask) {
+  auto& entries = creation ? list_->creations_ : list_->changes_;
+  ChangeEntry& e = entries.emplace_back();
+  e.id = id;
+  e.type = type;
+  e.mask = mask;
+  e.valueOffset = list_->values_.size();
+  return e;
+}
+
+namespace {
+void collectReferences(const Container& c, FieldMask mask, std::vector<Reference>& out) {
+  for (FieldMask refs = mask & c.referenceFields(); refs; refs &= refs - 1) {
+    auto f = static_cast<FieldIndex>(std::countr_zero(refs));
+    c.forEachReference(f, [&](ContainerId id) { out.push_back({f, id}); });
+  }
+}
+}  // namespace
+
+void ChangeList::Builder::addCreation(const Container& c) { addEntry(true, c, c.allFields(), {}); }
+
+void ChangeList::Builder::addChange(const Container& c, FieldMask mask, const std::vector<RangedEdit>& edits) {
+  addEntry(false, c, mask, edits);
+}
+
+void ChangeList::Builder::addEntry(bool creation, const Container& c, FieldMask mask,
+                                   const std::vector<RangedEdit>& edits) {
+  ChangeEntry& e = begin(creation, c.id(), c.type(), mask);
+  ByteWriter w(list_->values_);
+  for (FieldMask m = mask; m; m &= m - 1) {
+    auto f = static_cast<FieldIndex>(std::countr_zero(m));
+    auto edit = std::find_if(edits.begin(), edits.end(), [&](const RangedEdit& r) { return r.field == f; });
+    if (edit != edits.end()) {
+      c.writeField(f, w, &edit->ranges);
+      e.rangedEdits.push_back(*edit);
+    } else {
+      c.writeField(f, w, nullptr);
+    }
+  }
+  e.valueSize = list_->values_.size() - e.valueOffset;
+  collectReferences(c, mask, e.references);
+}
+
+std::shared_ptr<const ChangeList> ChangeList::Builder::finish() { return std::move(list_); }
+
+void ChangeList::Builder::addDestruction(ContainerId id, ContainerType type) {
+  list_->destructions_.push_back({id, type});
+}
+
+void ChangeList::Builder::addEncoded(bool creation, ContainerId id, std::uint64_t rawType, FieldMask mask,
+                                     std::span<const std::uint8_t> values, const DecodeLimits& limits,
+                                     std::size_t baseOffset) {
+  if (!isKnownType(rawType)) throw DecodeError(baseOffset, "unknown container type " + std::to_string(rawType));
+  auto type = static_cast<ContainerType>(rawType);
+  if (id == kNoContainer) throw DecodeError(baseOffset, "entry with container id 0");
+  if (scratch_.empty()) scratch_.resize(kContainerTypeCount + 1);
+  auto& scratch = scratch_[rawType];
+  if (!scratch) scratch = makeContainer(type);
+  FieldMask all = scratch->allFields();
+  if (mask & ~all)
+    throw DecodeError(baseOffset, "unknown field " + std::to_string(std::countr_zero(mask & ~all)) + " for " +
+                                      std::string(typeName(type)));
+  if (creation && mask != all)
+    throw DecodeError(baseOffset, "creation of " + std::string(typeName(type)) + " without every field");
+  if (!creation && mask == 0) throw DecodeError(baseOffset, "change entry without fields");
+
+  ChangeEntry& e = begin(creation, id, type, mask);
+  ByteReader r(values, baseOffset);
+  FieldReadContext ctx{limits, /*scanOnly=*/true};
+  for (FieldMask m = mask; m; m &= m - 1) {
+    auto f = static_cast<FieldIndex>(std::countr_zero(m));
+    ctx.sawRanges = false;
+    scratch->readField(f, r, ctx);
+    if (ctx.sawRanges) {
+      if (creation) r.fail("a creation carries whole arrays, not ranges");
+      e.rangedEdits.push_back({f, ctx.rangedTotal, ctx.ranges});
+    }
+  }
+  if (!r.atEnd()) r.fail(std::to_string(r.remaining()) + " bytes left over after the fields");
+  collectReferences(*scratch, mask, e.references);
+  list_->values_.insert(list_->values_.end(), values.begin(), values.end());
+  e.valueSize = values.size();
+}
+
+}  // namespace tsr::sg
