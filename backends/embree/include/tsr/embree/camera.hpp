@@ -1,0 +1,30 @@
+#pragma once
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+namespace tsr::embree {
+
+// Pinhole camera with an arbitrary off-axis frustum. In camera space the eye
+// is at the origin looking down -Z with +Y up; the image is the window
+// [left, right] x [bottom, top] on the plane z = -near. A wall tile or one
+// eye of a stereo pair is just another window.
+struct Camera {
+  glm::mat4 cameraToWorld{1.0f};
+  float left = -1.0f;
+  float right = 1.0f;
+  float bottom = -1.0f;
+  float top = 1.0f;
+  float near = 1.0f;
+
+  // Symmetric frustum; fovY is the full vertical angle in radians.
+  static Camera lookAt(const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up, float fovY,
+                       float aspect);
+
+  // Throws Error on non-finite values, an empty window or near <= 0.
+  void validate() const;
+
+  bool operator==(const Camera&) const = default;
+};
+
+}  // namespace tsr::embree

@@ -1,0 +1,90 @@
+#pragma once
+
+#include "tsr/embree/camera.hpp"
+#include "tsr/embree/region.hpp"
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace tsr::embree {
+
+// Radiance channels that keep a running mean and variance. Colour is Direct +
+// Indirect; Direct holds paths with at most one scattering event (emission
+// seen directly and light reaching the first hit), Indirect the rest.
+enum class Channel { Colour = 0, Direct = 1, Indirect = 2 };
+
+// What one camera sample produced; used by the renderer to accumulate.
+struct PixelSample {
+  glm::vec3 direct{0.0f};
+  glm::vec3 indirect{0.0f};
+  bool hit = false;
+  float depth = 0.0f;  // camera-space depth of the first hit, if hit
+  glm::vec3 albedo{0.0f};
+  glm::vec3 normal{0.0f};
+};
+
+// Accumulates samples of one region, per pixel. Each pixel keeps its own
+// sample count, so a pass interrupted midway leaves every pixel consistent.
+//
+// Outputs per pixel (x, y relative to the region):
+//  - colour: mean radiance, alpha = fraction of samples whose camera ray hit geometry
+//  - mean/variance per Channel: Welford running mean and the unbiased sample
+//    variance of one sample (divide by sampleCount for the mean's variance)
+//  - depth: camera-space depth (distance along the view axis, -Z in camera
+//    space) of the nearest first hit over the samples; +infinity if none hit
+//  - albedo, normal: mean base colour and world shading normal (facing the
+//    camera) at the first hit; zero on misses
+class FrameBuffer {
+ public:
+  FrameBuffer(std::uint32_t width, std::uint32_t height);
+
+  std::uint32_t width() const { return width_; }
+  std::uint32_t height() const { return height_; }
+
+  void reset();
+  void accumulate(std::uint32_t x, std::uint32_t y, const PixelSample& sample);
+
+  std::uint32_t sampleCount(std::uint32_t x, std::uint32_t y) const { return count_[at(x, y)]; }
+  glm::vec4 colour(std::uint32_t x, std::uint32_t y) const;
+  glm::vec3 mean(Channel c, std::uint32_t x, std::uint32_t y) const;
+  glm::vec3 variance(Channel c, std::uint32_t x, std::uint32_t y) const;
+  float depth(std::uint32_t x, std::uint32_t y) const { return depth_[at(x, y)]; }
+  glm::vec3 albedo(std::uint32_t x, std::uint32_t y) const { return albedo_[at(x, y)]; }
+  glm::vec3 normal(std::uint32_t x, std::uint32_t y) const { return normal_[at(x, y)]; }
+
+  // Whole images, row-major, for hand-off to filters and compositors.
+  std::vector<glm::vec4> colourImage() const;
+  std::vector<float> depthImage() const { return depth_; }
+
+ private:
+  friend class Renderer;
+
+  // What the accumulated samples were computed for; any difference restarts.
+  struct Key {
+    std::uint64_t sceneUid = 0;
+    std::uint64_t sceneVersion = 0;
+    Camera camera;
+    Region region;
+    std::uint64_t settingsHash = 0;
+    bool operator==(const Key&) const = default;
+  };
+
+  std::size_t at(std::uint32_t x, std::uint32_t y) const { return std::size_t(y) * width_ + x; }
+
+  std::uint32_t width_;
+  std::uint32_t height_;
+  std::vector<std::uint32_t> count_;
+  std::vector<float> alpha_;
+  std::vector<glm::vec3> mean_[3];
+  std::vector<glm::vec3> m2_[3];
+  std::vector<float> depth_;
+  std::vector<glm::vec3> albedo_;
+  std::vector<glm::vec3> normal_;
+  std::optional<Key> key_;
+};
+
+}  // namespace tsr::embree

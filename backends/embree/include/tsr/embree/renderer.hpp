@@ -1,0 +1,63 @@
+#pragma once
+
+#include "tsr/embree/camera.hpp"
+#include "tsr/embree/framebuffer.hpp"
+#include "tsr/embree/region.hpp"
+#include "tsr/embree/scene.hpp"
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+
+namespace tsr::embree {
+
+// Which estimator handles emitters and the environment. Mis is the normal
+// mode; the single-strategy modes exist to validate it (same expectation).
+enum class LightSampling { Mis, LightOnly, BsdfOnly };
+
+struct RenderSettings {
+  std::uint64_t seed = 0;
+  std::uint32_t maxDepth = 8;        // scattering events; 1 = direct lighting only
+  std::uint32_t rouletteDepth = 3;   // Russian roulette from this many events on
+  std::uint32_t samplesPerPass = 1;  // per pixel
+  std::uint32_t tileSize = 16;
+  int threads = 0;  // 0 = all hardware threads
+  LightSampling lightSampling = LightSampling::Mis;
+};
+
+struct PassResult {
+  bool completed = false;  // false if cancelled midway
+  bool restarted = false;  // accumulation was reset before this pass
+  std::uint64_t rays = 0;  // camera, bounce and shadow rays cast in this pass
+};
+
+// Progressive path tracer: each renderPass adds samplesPerPass samples to
+// every pixel of the region, in parallel over tiles.
+class Renderer {
+ public:
+  explicit Renderer(RenderSettings settings = {});
+  ~Renderer();
+
+  const RenderSettings& settings() const { return settings_; }
+  void setSettings(const RenderSettings& settings);
+
+  // Commits the scene if needed, restarts accumulation in fb when the scene
+  // version, camera, region or an image-affecting setting differ from what fb
+  // holds, then renders one pass. fb must be region-sized.
+  PassResult renderPass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb);
+
+  // Thread-safe. Stops the running pass at the next tile row, or the next
+  // pass if none runs; that pass returns completed = false.
+  void requestCancel() { cancel_.store(true, std::memory_order_relaxed); }
+
+  std::uint64_t totalRays() const { return totalRays_; }
+
+ private:
+  struct Arena;
+  RenderSettings settings_;
+  std::unique_ptr<Arena> arena_;
+  std::atomic<bool> cancel_{false};
+  std::uint64_t totalRays_ = 0;
+};
+
+}  // namespace tsr::embree

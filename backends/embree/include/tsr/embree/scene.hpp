@@ -1,0 +1,77 @@
+#pragma once
+
+#include "tsr/embree/device.hpp"
+#include "tsr/embree/environment.hpp"
+#include "tsr/embree/ids.hpp"
+#include "tsr/embree/light.hpp"
+#include "tsr/embree/material.hpp"
+#include "tsr/embree/mesh.hpp"
+#include "tsr/embree/texture.hpp"
+
+#include <glm/mat4x4.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <span>
+
+namespace tsr::embree {
+
+struct SceneState;
+
+// The back-end's own scene: meshes (one Embree scene each) instanced into a
+// top-level Embree scene. Every edit bumps version(), which is what the
+// renderer compares to decide whether accumulation must restart. Edits are
+// cheap and deferred: commit() (called by the renderer) rebuilds only what
+// changed. Not thread-safe: do not edit while a pass renders this scene.
+class Scene {
+ public:
+  explicit Scene(std::shared_ptr<Device> device);
+  ~Scene();
+  Scene(const Scene&) = delete;
+  Scene& operator=(const Scene&) = delete;
+
+  MeshId addMesh(MeshData data);
+  // Replaces positions [first, first + positions.size()) and, if given, the
+  // normals of the same range. Topology is unchanged, so animated meshes refit.
+  void updateMeshVertices(MeshId mesh, std::uint32_t first, std::span<const glm::vec3> positions,
+                          std::span<const glm::vec3> normals = {});
+  // Replaces everything, topology included (rebuilds that mesh's BVH).
+  void setMeshData(MeshId mesh, MeshData data);
+  // Throws if an instance still uses the mesh.
+  void removeMesh(MeshId mesh);
+
+  InstanceId addInstance(MeshId mesh, MaterialId material, const glm::mat4& transform);
+  void setInstanceTransform(InstanceId instance, const glm::mat4& transform);
+  void setInstanceMaterial(InstanceId instance, MaterialId material);
+  void removeInstance(InstanceId instance);
+
+  MaterialId addMaterial(const Material& material);
+  void setMaterial(MaterialId id, const Material& material);
+  void removeMaterial(MaterialId id);  // throws if an instance uses it
+
+  TextureId addTexture(Texture texture);
+  void removeTexture(TextureId id);  // throws if a material uses it
+
+  LightId addLight(const Light& light);
+  void setLight(LightId id, const Light& light);
+  void removeLight(LightId id);
+
+  void setEnvironment(Environment environment);
+
+  // Commits pending edits to Embree and rebuilds light data; idempotent.
+  void commit();
+
+  std::uint64_t version() const;
+  std::uint64_t uid() const;  // distinguishes scenes for the accumulation key
+  std::size_t instanceCount() const;
+  std::size_t meshCount() const;
+
+  // For the renderer and for benchmarks that trace raw rays; valid after commit().
+  RTCScene embreeScene() const;
+  const SceneState& state() const { return *state_; }
+
+ private:
+  std::unique_ptr<SceneState> state_;
+};
+
+}  // namespace tsr::embree

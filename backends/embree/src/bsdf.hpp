@@ -1,0 +1,36 @@
+#pragma once
+
+#include "tsr/embree/material.hpp"
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace tsr::embree {
+
+struct BsdfSample {
+  glm::vec3 wi{0.0f};
+  glm::vec3 weight{0.0f};  // f * |cos| / pdf
+  float pdf = 0.0f;        // solid angle; meaningless for delta lobes
+  bool delta = false;
+};
+
+// A material evaluated at one point, in the local shading frame (z = shading
+// normal, flipped to the side of wo, so wo.z > 0). eta is the index ratio
+// across the surface as seen from wo (inside/outside when entering).
+// Refraction does not scale radiance by eta^2; for closed objects seen from
+// outside the factors cancel.
+struct Bsdf {
+  MaterialType type = MaterialType::Diffuse;
+  glm::vec3 colour{0.0f};
+  float alpha = 0.25f;
+  float eta = 1.5f;
+
+  bool isDelta() const { return type == MaterialType::Mirror || type == MaterialType::Glass; }
+  glm::vec3 eval(const glm::vec3& wo, const glm::vec3& wi) const;  // f * |cos(wi)|
+  float pdf(const glm::vec3& wo, const glm::vec3& wi) const;
+  bool sample(const glm::vec3& wo, const glm::vec2& u, float uLobe, BsdfSample& out) const;
+};
+
+float fresnelDielectric(float cosI, float eta);
+
+}  // namespace tsr::embree

@@ -1,0 +1,449 @@
+#include "tsr/embree/renderer.hpp"
+
+#include "bsdf.hpp"
+#include "scene_state.hpp"
+#include "tsr/embree/error.hpp"
+#include "tsr/embree/rng.hpp"
+#include "tsr/embree/sampling.hpp"
+
+#include <glm/geometric.hpp>
+#include <oneapi/tbb/blocked_range.h>
+#include <oneapi/tbb/parallel_for.h>
+#include <oneapi/tbb/partitioner.h>
+#include <oneapi/tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <type_traits>
+#include <variant>
+
+namespace tsr::embree {
+
+struct Renderer::Arena {
+  explicit Arena(int threads) : arena(threads > 0 ? threads : tbb::task_arena::automatic) {}
+  tbb::task_arena arena;
+};
+
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// Offset that escapes the surface's own float error at position p.
+float rayEpsilon(const glm::vec3& p) {
+  return 1e-4f * std::max(1.0f, std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))));
+}
+
+std::uint64_t settingsHash(const RenderSettings& s) {
+  std::uint64_t h = splitmix64(s.seed);
+  h = splitmix64(h ^ s.maxDepth);
+  h = splitmix64(h ^ s.rouletteDepth);
+  return splitmix64(h ^ std::uint64_t(s.lightSampling));
+}
+
+struct SurfaceHit {
+  glm::vec3 p{0.0f};
+  glm::vec3 faceNormal{0.0f};  // from the winding, world space
+  glm::vec3 ng{0.0f};          // geometric normal on the side of ns
+  glm::vec3 ns{0.0f};
+  glm::vec2 uv{0.0f};
+  float area = 0.0f;
+  const InstanceView* instance = nullptr;
+  std::uint32_t prim = 0;
+};
+
+struct Tracer {
+  const SceneState& scene;
+  const RenderSettings& settings;
+  std::uint64_t rays = 0;
+
+  bool intersect(const glm::vec3& org, const glm::vec3& dir, RTCRayHit& rh) {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    rh.ray.org_x = org.x;
+    rh.ray.org_y = org.y;
+    rh.ray.org_z = org.z;
+    rh.ray.tnear = 0.0f;
+    rh.ray.dir_x = dir.x;
+    rh.ray.dir_y = dir.y;
+    rh.ray.dir_z = dir.z;
+    rh.ray.time = 0.0f;
+    rh.ray.tfar = kInf;
+    rh.ray.mask = ~0u;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene.top, &ctx, &rh);
+    ++rays;
+    return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+  }
+
+  bool occluded(const glm::vec3& org, const glm::vec3& dir, float tfar) {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay ray;
+    ray.org_x = org.x;
+    ray.org_y = org.y;
+    ray.org_z = org.z;
+    ray.tnear = 0.0f;
+    ray.dir_x = dir.x;
+    ray.dir_y = dir.y;
+    ray.dir_z = dir.z;
+    ray.time = 0.0f;
+    ray.tfar = tfar;
+    ray.mask = ~0u;
+    ray.id = 0;
+    ray.flags = 0;
+    rtcOccluded1(scene.top, &ctx, &ray);
+    ++rays;
+    return ray.tfar < 0.0f;
+  }
+
+  static void worldTriangle(const InstanceView& v, std::uint32_t prim, glm::vec3 (&w)[3], std::uint32_t (&idx)[3]) {
+    const MeshData& m = *v.mesh;
+    for (int k = 0; k < 3; ++k) {
+      idx[k] = m.indices[3 * std::size_t(prim) + k];
+      w[k] = glm::vec3(v.transform * glm::vec4(m.positions[idx[k]], 1.0f));
+    }
+  }
+
+  bool surface(const RTCRayHit& rh, SurfaceHit& h) const {
+    std::uint32_t inst = rh.hit.instID[0];
+    if (inst >= scene.views.size() || !scene.views[inst].mesh) return false;
+    h.instance = &scene.views[inst];
+    h.prim = rh.hit.primID;
+    const MeshData& m = *h.instance->mesh;
+    glm::vec3 w[3];
+    std::uint32_t idx[3];
+    worldTriangle(*h.instance, h.prim, w, idx);
+    float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1.0f - b1 - b2;
+    h.p = b0 * w[0] + b1 * w[1] + b2 * w[2];
+    glm::vec3 n = glm::cross(w[1] - w[0], w[2] - w[0]);
+    float len = glm::length(n);
+    if (!(len > 0.0f)) return false;
+    h.area = 0.5f * len;
+    h.faceNormal = n / len;
+    h.ns = h.faceNormal;
+    if (!m.normals.empty()) {
+      glm::vec3 ns = h.instance->normalTransform * (b0 * m.normals[idx[0]] + b1 * m.normals[idx[1]] + b2 * m.normals[idx[2]]);
+      float l = glm::length(ns);
+      if (l > 0.0f && std::isfinite(l)) h.ns = ns / l;
+    }
+    h.ng = glm::dot(h.faceNormal, h.ns) < 0.0f ? -h.faceNormal : h.faceNormal;
+    h.uv = m.uvs.empty() ? glm::vec2(b1, b2) : b0 * m.uvs[idx[0]] + b1 * m.uvs[idx[1]] + b2 * m.uvs[idx[2]];
+    return true;
+  }
+
+  static glm::vec3 baseColour(const ResolvedMaterial& m, const glm::vec2& uv) {
+    glm::vec3 c = m.material.baseColor;
+    if (m.baseColorTexture) c *= glm::vec3(m.baseColorTexture->sampleBilinear(uv));
+    return c;
+  }
+
+  static glm::vec3 emission(const ResolvedMaterial& m, const glm::vec2& uv) {
+    glm::vec3 e = m.material.emission;
+    if (m.emissionTexture) e *= glm::vec3(m.emissionTexture->sampleBilinear(uv));
+    return e;
+  }
+
+  // Solid-angle density with which emitter sampling would have produced
+  // this hit, seen from distance t.
+  float emitterPdf(const SurfaceHit& h, const glm::vec3& dir, float t) const {
+    if (h.instance->emissiveOffset == kNotEmissive || scene.emitters.empty()) return 0.0f;
+    float cosL = glm::dot(h.faceNormal, -dir);
+    if (cosL <= 0.0f) return 0.0f;
+    float prob = scene.emitters.discreteProbability(h.instance->emissiveOffset + h.prim);
+    return prob / h.area * t * t / cosL;
+  }
+
+  struct EmitterSample {
+    glm::vec3 wi{0.0f};
+    float dist = 0.0f;
+    glm::vec3 radiance{0.0f};
+    float pdf = 0.0f;
+    glm::vec3 point{0.0f};
+  };
+
+  bool sampleEmitter(const glm::vec3& p, float uSelect, const glm::vec2& u, EmitterSample& out) const {
+    float prob = 0.0f;
+    std::uint32_t i = scene.emitters.sampleDiscrete(uSelect, &prob);
+    auto it = std::upper_bound(scene.emissiveRanges.begin(), scene.emissiveRanges.end(), i,
+                               [](std::uint32_t v, const EmissiveRange& r) { return v < r.offset; });
+    const EmissiveRange& range = *(it - 1);
+    const InstanceView& v = scene.views[range.instance];
+    std::uint32_t prim = i - range.offset;
+    glm::vec3 w[3];
+    std::uint32_t idx[3];
+    worldTriangle(v, prim, w, idx);
+    glm::vec2 b = sampleTriangle(u);
+    float b0 = 1.0f - b.x - b.y;
+    out.point = b0 * w[0] + b.x * w[1] + b.y * w[2];
+    glm::vec3 n = glm::cross(w[1] - w[0], w[2] - w[0]);
+    float len = glm::length(n);
+    if (!(len > 0.0f)) return false;
+    n /= len;
+    glm::vec3 d = out.point - p;
+    float dist2 = glm::dot(d, d);
+    if (!(dist2 > 0.0f)) return false;
+    out.dist = std::sqrt(dist2);
+    out.wi = d / out.dist;
+    float cosL = glm::dot(n, -out.wi);
+    if (cosL <= 0.0f) return false;
+    const MeshData& m = *v.mesh;
+    glm::vec2 uv = m.uvs.empty() ? b : b0 * m.uvs[idx[0]] + b.x * m.uvs[idx[1]] + b.y * m.uvs[idx[2]];
+    out.radiance = emission(*v.material, uv);
+    out.pdf = prob / (0.5f * len) * dist2 / cosL;
+    return out.pdf > 0.0f && std::isfinite(out.pdf);
+  }
+
+  PixelSample tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos, const glm::vec3& forward);
+};
+
+PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos,
+                              const glm::vec3& forward) {
+  PixelSample out;
+  const Environment& env = scene.environment;
+  const bool envActive = !env.isBlack();
+  const LightSampling mode = settings.lightSampling;
+  auto add = [&out](const glm::vec3& c, std::uint32_t scatterEvents) {
+    if (!finite(c)) return;  // a NaN sample would poison the running mean forever
+    (scatterEvents <= 1 ? out.direct : out.indirect) += c;
+  };
+  // MIS weight for an emitter reached by BSDF sampling.
+  auto bsdfHitWeight = [mode](float bsdfPdf, float lightPdf) {
+    if (mode == LightSampling::BsdfOnly) return 1.0f;
+    if (mode == LightSampling::LightOnly) return 0.0f;
+    return powerHeuristic(bsdfPdf, lightPdf);
+  };
+  auto lightSampleWeight = [mode](float lightPdf, float bsdfPdf) {
+    return mode == LightSampling::LightOnly ? 1.0f : powerHeuristic(lightPdf, bsdfPdf);
+  };
+
+  glm::vec3 throughput(1.0f);
+  float prevPdf = 0.0f;
+  bool prevDelta = true;
+
+  for (std::uint32_t depth = 0;; ++depth) {
+    RTCRayHit rh;
+    if (!intersect(org, dir, rh)) {
+      if (envActive) {
+        float w = (depth == 0 || prevDelta) ? 1.0f : bsdfHitWeight(prevPdf, env.pdf(dir));
+        add(throughput * env.radiance(dir) * w, depth);
+      }
+      break;
+    }
+    SurfaceHit h;
+    if (!surface(rh, h)) break;
+    const ResolvedMaterial& mat = *h.instance->material;
+    glm::vec3 base = baseColour(mat, h.uv);
+    if (depth == 0) {
+      out.hit = true;
+      out.depth = glm::dot(h.p - camPos, forward);
+      out.albedo = base;
+      out.normal = glm::dot(h.ns, dir) > 0.0f ? -h.ns : h.ns;
+    }
+    if (mat.material.isEmissive() && glm::dot(h.faceNormal, dir) < 0.0f) {
+      float w = (depth == 0 || prevDelta) ? 1.0f : bsdfHitWeight(prevPdf, emitterPdf(h, dir, rh.ray.tfar));
+      add(throughput * emission(mat, h.uv) * w, depth);
+    }
+    if (depth >= settings.maxDepth) break;
+
+    const glm::vec3 wo = -dir;
+    const bool front = glm::dot(wo, h.ng) > 0.0f;
+    const glm::vec3 ng = front ? h.ng : -h.ng;
+    const Frame frame(front ? h.ns : -h.ns);
+    const glm::vec3 woL = frame.toLocal(wo);
+    if (woL.z <= 1e-6f) break;  // shading normal faces away from the viewer: no consistent answer
+    Bsdf bsdf;
+    bsdf.type = mat.material.type;
+    bsdf.colour = base;
+    bsdf.alpha = std::max(1e-3f, mat.material.roughness * mat.material.roughness);
+    bsdf.eta = front ? mat.material.ior : 1.0f / mat.material.ior;
+
+    const float eps = rayEpsilon(h.p);
+    auto spawn = [&](const glm::vec3& w) { return h.p + ng * (glm::dot(w, ng) > 0.0f ? eps : -eps); };
+    // f * |cos| for a world direction, zero when shading and geometry disagree.
+    auto evalWorld = [&](const glm::vec3& wi, float* pdf) {
+      glm::vec3 wiL = frame.toLocal(wi);
+      if ((glm::dot(wi, ng) > 0.0f) != (wiL.z > 0.0f)) {
+        *pdf = 0.0f;
+        return glm::vec3(0.0f);
+      }
+      *pdf = bsdf.pdf(woL, wiL);
+      return bsdf.eval(woL, wiL);
+    };
+
+    if (!bsdf.isDelta()) {
+      for (const Light& light : scene.activeLights) {
+        glm::vec3 wi, li;
+        float tfar = kInf;
+        if (const auto* pl = std::get_if<PointLight>(&light)) {
+          glm::vec3 d = pl->position - h.p;
+          float d2 = glm::dot(d, d);
+          if (!(d2 > 0.0f)) continue;
+          float dist = std::sqrt(d2);
+          wi = d / dist;
+          li = pl->intensity / d2;
+          tfar = dist * (1.0f - 1e-4f);
+        } else if (const auto* sl = std::get_if<SpotLight>(&light)) {
+          glm::vec3 d = sl->position - h.p;
+          float d2 = glm::dot(d, d);
+          if (!(d2 > 0.0f)) continue;
+          float dist = std::sqrt(d2);
+          wi = d / dist;
+          float c = glm::dot(glm::normalize(sl->direction), -wi);
+          float cosOuter = std::cos(sl->outerAngle), cosInner = std::cos(sl->innerAngle);
+          float falloff = c >= cosInner ? 1.0f
+                          : c <= cosOuter ? 0.0f
+                                          : glm::smoothstep(cosOuter, cosInner, c);
+          if (falloff <= 0.0f) continue;
+          li = sl->intensity * (falloff / d2);
+          tfar = dist * (1.0f - 1e-4f);
+        } else {
+          const auto& dl = std::get<DirectionalLight>(light);
+          wi = -glm::normalize(dl.direction);
+          li = dl.irradiance;
+        }
+        float pdf;
+        glm::vec3 f = evalWorld(wi, &pdf);
+        if (maxComponent(f) <= 0.0f) continue;
+        if (!occluded(spawn(wi), wi, tfar)) add(throughput * f * li, depth + 1);
+      }
+      if (!scene.emitters.empty() && mode != LightSampling::BsdfOnly) {
+        float uSelect = rng.uniform();
+        glm::vec2 u = rng.uniform2();
+        EmitterSample es;
+        if (sampleEmitter(h.p, uSelect, u, es)) {
+          float bsdfPdf;
+          glm::vec3 f = evalWorld(es.wi, &bsdfPdf);
+          if (maxComponent(f) > 0.0f) {
+            glm::vec3 o = spawn(es.wi);
+            float dist = glm::length(es.point - o);
+            if (!occluded(o, es.wi, dist - rayEpsilon(es.point))) {
+              add(throughput * f * es.radiance * (lightSampleWeight(es.pdf, bsdfPdf) / es.pdf), depth + 1);
+            }
+          }
+        }
+      }
+      if (envActive && mode != LightSampling::BsdfOnly) {
+        Environment::Sample es = env.sample(rng.uniform2());
+        if (es.pdf > 0.0f) {
+          float bsdfPdf;
+          glm::vec3 f = evalWorld(es.direction, &bsdfPdf);
+          if (maxComponent(f) > 0.0f && !occluded(spawn(es.direction), es.direction, kInf)) {
+            add(throughput * f * es.radiance * (lightSampleWeight(es.pdf, bsdfPdf) / es.pdf), depth + 1);
+          }
+        }
+      }
+    }
+
+    glm::vec2 u = rng.uniform2();
+    float uLobe = rng.uniform();
+    BsdfSample bs;
+    if (!bsdf.sample(woL, u, uLobe, bs)) break;
+    glm::vec3 wi = glm::normalize(frame.toWorld(bs.wi));
+    if ((glm::dot(wi, ng) > 0.0f) != (bs.wi.z > 0.0f)) break;
+    throughput *= bs.weight;
+    prevPdf = bs.pdf;
+    prevDelta = bs.delta;
+    org = spawn(wi);
+    dir = wi;
+
+    if (depth + 1 >= settings.rouletteDepth) {
+      float q = std::min(maxComponent(throughput), 0.95f);
+      if (!(q > 0.0f) || rng.uniform() >= q) break;
+      throughput /= q;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+Renderer::Renderer(RenderSettings settings) { setSettings(settings); }
+Renderer::~Renderer() = default;
+
+void Renderer::setSettings(const RenderSettings& settings) {
+  if (settings.samplesPerPass == 0) throw Error("samplesPerPass must be at least 1");
+  if (settings.tileSize == 0) throw Error("tileSize must be at least 1");
+  if (settings.threads < 0) throw Error("threads must be >= 0 (0 = all)");
+  if (!arena_ || settings.threads != settings_.threads) arena_ = std::make_unique<Arena>(settings.threads);
+  settings_ = settings;
+}
+
+PassResult Renderer::renderPass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb) {
+  camera.validate();
+  region.validate();
+  if (fb.width() != region.regionWidth() || fb.height() != region.regionHeight()) {
+    throw Error("frame buffer is " + std::to_string(fb.width()) + "x" + std::to_string(fb.height()) +
+                " but the region is " + std::to_string(region.regionWidth()) + "x" +
+                std::to_string(region.regionHeight()));
+  }
+  scene.commit();
+
+  PassResult result;
+  FrameBuffer::Key key{scene.uid(), scene.version(), camera, region, settingsHash(settings_)};
+  if (!fb.key_ || !(*fb.key_ == key)) {
+    fb.reset();
+    fb.key_ = key;
+    result.restarted = true;
+  }
+
+  const SceneState& state = scene.state();
+  const RenderSettings settings = settings_;
+  const std::uint32_t ts = settings.tileSize;
+  const std::uint32_t rw = region.regionWidth(), rh = region.regionHeight();
+  const std::uint32_t tilesX = (rw + ts - 1) / ts, tilesY = (rh + ts - 1) / ts;
+  std::vector<std::uint64_t> tileRays(std::size_t(tilesX) * tilesY, 0);
+  const glm::vec3 camPos(camera.cameraToWorld[3]);
+  const glm::vec3 forward = glm::normalize(-glm::vec3(camera.cameraToWorld[2]));
+  const glm::mat3 camRot(camera.cameraToWorld);
+  std::atomic<bool> cancelled{false};
+
+  auto renderTile = [&](std::size_t tile) {
+    Tracer tracer{state, settings};
+    std::uint32_t tx = std::uint32_t(tile % tilesX), ty = std::uint32_t(tile / tilesX);
+    std::uint32_t xb = tx * ts, xe = std::min(rw, xb + ts);
+    std::uint32_t yb = ty * ts, ye = std::min(rh, yb + ts);
+    for (std::uint32_t y = yb; y < ye; ++y) {
+      if (cancel_.load(std::memory_order_relaxed)) {
+        cancelled.store(true, std::memory_order_relaxed);
+        break;
+      }
+      std::uint32_t py = region.y0 + y;
+      for (std::uint32_t x = xb; x < xe; ++x) {
+        std::uint32_t px = region.x0 + x;
+        for (std::uint32_t s = 0; s < settings.samplesPerPass; ++s) {
+          Rng rng(settings.seed, px, py, fb.sampleCount(x, y));
+          glm::vec2 j = rng.uniform2();
+          float cx = camera.left + (camera.right - camera.left) * ((float(px) + j.x) / float(region.width));
+          float cy = camera.top - (camera.top - camera.bottom) * ((float(py) + j.y) / float(region.height));
+          glm::vec3 dir = glm::normalize(camRot * glm::vec3(cx, cy, -camera.near));
+          fb.accumulate(x, y, tracer.tracePath(rng, camPos, dir, camPos, forward));
+        }
+      }
+    }
+    tileRays[tile] = tracer.rays;
+  };
+
+  arena_->arena.execute([&] {
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, tileRays.size(), 1),
+        [&](const tbb::blocked_range<std::size_t>& r) {
+          for (std::size_t t = r.begin(); t != r.end(); ++t) renderTile(t);
+        },
+        tbb::simple_partitioner());
+  });
+
+  for (auto r : tileRays) result.rays += r;
+  totalRays_ += result.rays;
+  result.completed = !cancelled.load();
+  if (!result.completed) cancel_.store(false, std::memory_order_relaxed);
+  return result;
+}
+
+}  // namespace tsr::embree

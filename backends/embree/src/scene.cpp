@@ -1,0 +1,412 @@
+#include "tsr/embree/scene.hpp"
+
+#include "scene_state.hpp"
+#include "tsr/embree/error.hpp"
+#include "tsr/embree/sampling.hpp"
+
+#include <glm/matrix.hpp>
+#include <spdlog/spdlog.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+namespace tsr::embree {
+
+namespace {
+
+std::atomic<std::uint64_t> nextSceneUid{1};
+
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const glm::vec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+
+void validateTransform(const glm::mat4& m) {
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      if (!std::isfinite(m[i][j])) throw Error("instance transform contains NaN or infinity");
+  if (m[0][3] != 0.0f || m[1][3] != 0.0f || m[2][3] != 0.0f || m[3][3] != 1.0f) {
+    throw Error("instance transform must be affine (last row 0 0 0 1)");
+  }
+  if (std::abs(glm::determinant(glm::mat3(m))) < 1e-20f) throw Error("instance transform is singular");
+}
+
+void validateMesh(const MeshData& d) {
+  if (d.positions.empty()) throw Error("mesh has no positions");
+  if (d.indices.empty() || d.indices.size() % 3 != 0) {
+    throw Error("mesh index count " + std::to_string(d.indices.size()) + " is not a positive multiple of 3");
+  }
+  if (!d.normals.empty() && d.normals.size() != d.positions.size()) {
+    throw Error("mesh has " + std::to_string(d.normals.size()) + " normals for " + std::to_string(d.positions.size()) +
+                " positions");
+  }
+  if (!d.uvs.empty() && d.uvs.size() != d.positions.size()) {
+    throw Error("mesh has " + std::to_string(d.uvs.size()) + " uvs for " + std::to_string(d.positions.size()) +
+                " positions");
+  }
+  for (std::size_t i = 0; i < d.indices.size(); ++i) {
+    if (d.indices[i] >= d.positions.size()) {
+      throw Error("mesh index " + std::to_string(i) + " = " + std::to_string(d.indices[i]) + " is out of range (" +
+                  std::to_string(d.positions.size()) + " positions)");
+    }
+  }
+  for (const auto& p : d.positions)
+    if (!finite(p)) throw Error("mesh position contains NaN or infinity");
+  for (const auto& n : d.normals)
+    if (!finite(n)) throw Error("mesh normal contains NaN or infinity");
+  for (const auto& t : d.uvs)
+    if (!finite(t)) throw Error("mesh uv contains NaN or infinity");
+}
+
+void validateColour(const glm::vec3& c, const char* what) {
+  if (!finite(c) || c.x < 0.0f || c.y < 0.0f || c.z < 0.0f) {
+    throw Error(std::string("material ") + what + " must be finite and non-negative");
+  }
+}
+
+template <class Vec, class Id>
+auto& lookup(Vec& v, Id id, const char* what) {
+  std::uint32_t i = index(id);
+  if (i >= v.size() || !v[i]) throw Error(std::string("unknown ") + what + " id " + std::to_string(i));
+  return v[i];
+}
+
+void fillGeometry(MeshRecord& m, RTCDevice device) {
+  const MeshData& d = m.data;
+  m.geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                        3 * sizeof(float), d.positions.size()));
+  auto* i = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
+      m.geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), d.indices.size() / 3));
+  if (!v || !i) throw Error("Embree could not allocate mesh buffers");
+  std::memcpy(v, d.positions.data(), d.positions.size() * sizeof(glm::vec3));
+  std::memcpy(i, d.indices.data(), d.indices.size() * sizeof(std::uint32_t));
+  bool animated = d.usage == MeshUsage::Animated;
+  rtcSetGeometryBuildQuality(m.geometry, animated ? RTC_BUILD_QUALITY_REFIT : RTC_BUILD_QUALITY_HIGH);
+  rtcSetSceneFlags(m.scene, animated ? RTC_SCENE_FLAG_DYNAMIC : RTC_SCENE_FLAG_NONE);
+  rtcSetSceneBuildQuality(m.scene, animated ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_HIGH);
+  rtcAttachGeometryByID(m.scene, m.geometry, 0);
+  m.dirty = true;
+}
+
+}  // namespace
+
+Scene::Scene(std::shared_ptr<Device> device) : state_(std::make_unique<SceneState>()) {
+  if (!device) throw Error("scene needs a device");
+  state_->device = std::move(device);
+  state_->uid = nextSceneUid.fetch_add(1);
+  state_->top = rtcNewScene(state_->device->handle());
+  // The top level changes on every transform edit: favour fast rebuilds.
+  rtcSetSceneFlags(state_->top, RTC_SCENE_FLAG_DYNAMIC);
+  rtcSetSceneBuildQuality(state_->top, RTC_BUILD_QUALITY_LOW);
+  state_->device->check("scene creation");
+}
+
+Scene::~Scene() {
+  // Geometries must go before the scenes they belong to.
+  state_->instances.clear();
+  state_->meshes.clear();
+  rtcReleaseScene(state_->top);
+}
+
+MeshId Scene::addMesh(MeshData data) {
+  validateMesh(data);
+  auto m = std::make_unique<MeshRecord>();
+  m->data = std::move(data);
+  m->scene = rtcNewScene(state_->device->handle());
+  fillGeometry(*m, state_->device->handle());
+  state_->device->check("addMesh");
+  state_->meshes.push_back(std::move(m));
+  ++state_->version;
+  return MeshId(state_->meshes.size() - 1);
+}
+
+void Scene::updateMeshVertices(MeshId id, std::uint32_t first, std::span<const glm::vec3> positions,
+                               std::span<const glm::vec3> normals) {
+  auto& m = *lookup(state_->meshes, id, "mesh");
+  std::size_t n = m.data.positions.size();
+  if (std::size_t(first) + positions.size() > n) {
+    throw Error("vertex range [" + std::to_string(first) + ", " + std::to_string(first + positions.size()) +
+                ") exceeds the mesh's " + std::to_string(n) + " vertices");
+  }
+  if (!normals.empty() && normals.size() != positions.size()) throw Error("normal range size differs from position range");
+  if (!normals.empty() && m.data.normals.empty()) throw Error("mesh has no normals to update");
+  for (const auto& p : positions)
+    if (!finite(p)) throw Error("vertex update contains NaN or infinity");
+  for (const auto& v : normals)
+    if (!finite(v)) throw Error("normal update contains NaN or infinity");
+  std::copy(positions.begin(), positions.end(), m.data.positions.begin() + first);
+  std::copy(normals.begin(), normals.end(), m.data.normals.begin() + first);
+  auto* v = static_cast<glm::vec3*>(rtcGetGeometryBufferData(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0));
+  std::memcpy(v + first, positions.data(), positions.size() * sizeof(glm::vec3));
+  rtcUpdateGeometryBuffer(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0);
+  m.dirty = true;
+  state_->topDirty = state_->derivedDirty = true;
+  ++state_->version;
+}
+
+void Scene::setMeshData(MeshId id, MeshData data) {
+  auto& m = *lookup(state_->meshes, id, "mesh");
+  validateMesh(data);
+  rtcDetachGeometry(m.scene, 0);
+  rtcReleaseGeometry(m.geometry);
+  m.geometry = nullptr;
+  m.data = std::move(data);
+  fillGeometry(m, state_->device->handle());
+  state_->device->check("setMeshData");
+  state_->topDirty = state_->derivedDirty = true;
+  ++state_->version;
+}
+
+void Scene::removeMesh(MeshId id) {
+  auto& m = lookup(state_->meshes, id, "mesh");
+  if (m->users > 0) {
+    throw Error("mesh " + std::to_string(index(id)) + " is still used by " + std::to_string(m->users) + " instance(s)");
+  }
+  m.reset();
+  ++state_->version;
+}
+
+InstanceId Scene::addInstance(MeshId mesh, MaterialId material, const glm::mat4& transform) {
+  auto& m = *lookup(state_->meshes, mesh, "mesh");
+  lookup(state_->materials, material, "material");
+  validateTransform(transform);
+  auto inst = std::make_unique<InstanceRecord>();
+  inst->mesh = mesh;
+  inst->material = material;
+  inst->transform = transform;
+  inst->geometry = rtcNewGeometry(state_->device->handle(), RTC_GEOMETRY_TYPE_INSTANCE);
+  rtcSetGeometryInstancedScene(inst->geometry, m.scene);
+  rtcSetGeometryTimeStepCount(inst->geometry, 1);
+  rtcSetGeometryTransform(inst->geometry, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &transform[0][0]);
+  auto id = std::uint32_t(state_->instances.size());
+  rtcAttachGeometryByID(state_->top, inst->geometry, id);
+  state_->device->check("addInstance");
+  ++m.users;
+  state_->instances.push_back(std::move(inst));
+  state_->topDirty = state_->derivedDirty = true;
+  ++state_->version;
+  return InstanceId(id);
+}
+
+void Scene::setInstanceTransform(InstanceId id, const glm::mat4& transform) {
+  auto& inst = *lookup(state_->instances, id, "instance");
+  validateTransform(transform);
+  inst.transform = transform;
+  rtcSetGeometryTransform(inst.geometry, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &transform[0][0]);
+  inst.dirty = true;
+  state_->topDirty = state_->derivedDirty = true;
+  ++state_->version;
+}
+
+void Scene::setInstanceMaterial(InstanceId id, MaterialId material) {
+  auto& inst = *lookup(state_->instances, id, "instance");
+  lookup(state_->materials, material, "material");
+  inst.material = material;
+  state_->derivedDirty = true;
+  ++state_->version;
+}
+
+void Scene::removeInstance(InstanceId id) {
+  auto& inst = lookup(state_->instances, id, "instance");
+  rtcDetachGeometry(state_->top, index(id));
+  --state_->meshes[index(inst->mesh)]->users;
+  inst.reset();
+  state_->topDirty = state_->derivedDirty = true;
+  ++state_->version;
+}
+
+static void validateMaterial(const Material& m, const SceneState& s) {
+  validateColour(m.baseColor, "baseColor");
+  validateColour(m.emission, "emission");
+  if (!(m.roughness >= 0.0f && m.roughness <= 1.0f)) throw Error("material roughness must be in [0, 1]");
+  if (!(m.ior > 0.0f) || !std::isfinite(m.ior)) throw Error("material ior must be positive and finite");
+  for (const auto& t : {m.baseColorTexture, m.emissionTexture}) {
+    if (t && (index(*t) >= s.textures.size() || !s.textures[index(*t)])) {
+      throw Error("material references unknown texture id " + std::to_string(index(*t)));
+    }
+  }
+}
+
+MaterialId Scene::addMaterial(const Material& material) {
+  validateMaterial(material, *state_);
+  state_->materials.emplace_back(material);
+  state_->derivedDirty = true;
+  ++state_->version;
+  return MaterialId(state_->materials.size() - 1);
+}
+
+void Scene::setMaterial(MaterialId id, const Material& material) {
+  auto& slot = lookup(state_->materials, id, "material");
+  validateMaterial(material, *state_);
+  slot = material;
+  state_->derivedDirty = true;
+  ++state_->version;
+}
+
+void Scene::removeMaterial(MaterialId id) {
+  auto& slot = lookup(state_->materials, id, "material");
+  for (const auto& inst : state_->instances) {
+    if (inst && inst->material == id) throw Error("material " + std::to_string(index(id)) + " is still in use");
+  }
+  slot.reset();
+  state_->derivedDirty = true;
+  ++state_->version;
+}
+
+TextureId Scene::addTexture(Texture texture) {
+  state_->textures.push_back(std::make_shared<const Texture>(std::move(texture)));
+  ++state_->version;
+  return TextureId(state_->textures.size() - 1);
+}
+
+void Scene::removeTexture(TextureId id) {
+  auto& slot = lookup(state_->textures, id, "texture");
+  for (const auto& m : state_->materials) {
+    if (m && (m->baseColorTexture == id || m->emissionTexture == id)) {
+      throw Error("texture " + std::to_string(index(id)) + " is still used by a material");
+    }
+  }
+  slot.reset();
+  ++state_->version;
+}
+
+static void validateLight(const Light& light) {
+  auto check = [](const glm::vec3& v, const char* what) {
+    if (!finite(v)) throw Error(std::string("light ") + what + " contains NaN or infinity");
+  };
+  std::visit(
+      [&](const auto& l) {
+        using T = std::decay_t<decltype(l)>;
+        if constexpr (std::is_same_v<T, PointLight>) {
+          check(l.position, "position");
+          validateColour(l.intensity, "(light intensity)");
+        } else if constexpr (std::is_same_v<T, SpotLight>) {
+          check(l.position, "position");
+          check(l.direction, "direction");
+          validateColour(l.intensity, "(light intensity)");
+          if (glm::length(l.direction) <= 0.0f) throw Error("spot light direction is zero");
+          if (!(l.innerAngle >= 0.0f && l.innerAngle <= l.outerAngle && l.outerAngle < kPi)) {
+            throw Error("spot light angles must satisfy 0 <= inner <= outer < pi");
+          }
+        } else {
+          check(l.direction, "direction");
+          validateColour(l.irradiance, "(light irradiance)");
+          if (glm::length(l.direction) <= 0.0f) throw Error("directional light direction is zero");
+        }
+      },
+      light);
+}
+
+LightId Scene::addLight(const Light& light) {
+  validateLight(light);
+  state_->lights.emplace_back(light);
+  state_->derivedDirty = true;
+  ++state_->version;
+  return LightId(state_->lights.size() - 1);
+}
+
+void Scene::setLight(LightId id, const Light& light) {
+  auto& slot = lookup(state_->lights, id, "light");
+  validateLight(light);
+  slot = light;
+  state_->derivedDirty = true;
+  ++state_->version;
+}
+
+void Scene::removeLight(LightId id) {
+  lookup(state_->lights, id, "light").reset();
+  state_->derivedDirty = true;
+  ++state_->version;
+}
+
+void Scene::setEnvironment(Environment environment) {
+  state_->environment = std::move(environment);
+  ++state_->version;
+}
+
+void Scene::commit() {
+  SceneState& s = *state_;
+  for (auto& m : s.meshes) {
+    if (!m || !m->dirty) continue;
+    rtcCommitGeometry(m->geometry);
+    rtcCommitScene(m->scene);
+    m->dirty = false;
+    // Instances of a changed mesh have new bounds.
+    for (auto& inst : s.instances)
+      if (inst && s.meshes[index(inst->mesh)].get() == m.get()) inst->dirty = true;
+    s.topDirty = true;
+  }
+  for (auto& inst : s.instances) {
+    if (!inst || !inst->dirty) continue;
+    rtcCommitGeometry(inst->geometry);
+    inst->dirty = false;
+  }
+  if (s.topDirty) {
+    rtcCommitScene(s.top);
+    s.topDirty = false;
+  }
+  s.device->check("commit");
+  if (!s.derivedDirty) return;
+
+  s.resolved.assign(s.materials.size(), {});
+  for (std::size_t i = 0; i < s.materials.size(); ++i) {
+    if (!s.materials[i]) continue;
+    auto& r = s.resolved[i];
+    r.material = *s.materials[i];
+    if (r.material.baseColorTexture) r.baseColorTexture = s.textures[index(*r.material.baseColorTexture)].get();
+    if (r.material.emissionTexture) r.emissionTexture = s.textures[index(*r.material.emissionTexture)].get();
+  }
+
+  s.activeLights.clear();
+  for (const auto& l : s.lights)
+    if (l) s.activeLights.push_back(*l);
+
+  // Emitter distribution in instance-id order, so a scene rebuilt from
+  // scratch in the same order samples identically.
+  s.views.assign(s.instances.size(), {});
+  s.emissiveRanges.clear();
+  std::vector<float> power;
+  for (std::size_t i = 0; i < s.instances.size(); ++i) {
+    if (!s.instances[i]) continue;
+    const auto& inst = *s.instances[i];
+    auto& v = s.views[i];
+    v.mesh = &s.meshes[index(inst.mesh)]->data;
+    v.transform = inst.transform;
+    v.normalTransform = glm::transpose(glm::inverse(glm::mat3(inst.transform)));
+    v.material = &s.resolved[index(inst.material)];
+    if (!v.material->material.isEmissive()) continue;
+    v.emissiveOffset = std::uint32_t(power.size());
+    s.emissiveRanges.push_back({v.emissiveOffset, std::uint32_t(i)});
+    float lum = luminance(v.material->material.emission);
+    const auto& d = *v.mesh;
+    for (std::size_t t = 0; t < d.indices.size(); t += 3) {
+      glm::vec3 p0 = glm::vec3(v.transform * glm::vec4(d.positions[d.indices[t]], 1.0f));
+      glm::vec3 p1 = glm::vec3(v.transform * glm::vec4(d.positions[d.indices[t + 1]], 1.0f));
+      glm::vec3 p2 = glm::vec3(v.transform * glm::vec4(d.positions[d.indices[t + 2]], 1.0f));
+      power.push_back(lum * 0.5f * glm::length(glm::cross(p1 - p0, p2 - p0)));
+    }
+  }
+  s.emitters = Distribution1D(power);
+  s.derivedDirty = false;
+  spdlog::debug("tsr::embree: committed scene {} v{} ({} emissive triangles)", s.uid, s.version, power.size());
+}
+
+std::uint64_t Scene::version() const { return state_->version; }
+std::uint64_t Scene::uid() const { return state_->uid; }
+
+std::size_t Scene::instanceCount() const {
+  std::size_t n = 0;
+  for (const auto& i : state_->instances) n += i ? 1 : 0;
+  return n;
+}
+
+std::size_t Scene::meshCount() const {
+  std::size_t n = 0;
+  for (const auto& m : state_->meshes) n += m ? 1 : 0;
+  return n;
+}
+
+RTCScene Scene::embreeScene() const { return state_->top; }
+
+}  // namespace tsr::embree
