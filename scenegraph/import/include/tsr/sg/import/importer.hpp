@@ -1,0 +1,56 @@
+#pragma once
+// Loads a scene description into a Scene: a glTF 2.0 file (.gltf or .glb)
+// or a built-in scene ("builtin:cornell", "builtin:instances:N",
+// "builtin:animated"). Everything is parsed and validated before the first
+// container is created, so a failed import leaves the scene untouched.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "tsr/sg/import/animation.hpp"
+#include "tsr/sg/import/import_error.hpp"
+#include "tsr/sg/types.hpp"
+
+namespace tsr::sg {
+
+class Scene;
+
+struct ImportOptions {
+  // Normals generated for primitives without any: smooth (shared vertices
+  // averaged, area weighted) or flat (one normal per triangle).
+  bool flatNormals = false;
+  // Files and external buffers larger than this are refused.
+  std::uint64_t maxFileBytes = std::uint64_t{2} << 30;
+  // Accessors with more elements than this are refused.
+  std::uint64_t maxAccessorElements = std::uint64_t{1} << 28;
+  // Decoded images with more pixels than this are refused.
+  std::uint64_t maxImagePixels = std::uint64_t{1} << 28;
+};
+
+// What an import produced, in numbers.
+struct ImportCounts {
+  std::size_t nodes = 0;           // Transforms created for source nodes
+  std::size_t geometries = 0;      // Geometry containers (unique meshes' primitives)
+  std::size_t materials = 0;
+  std::size_t images = 0;
+  std::size_t uniqueTriangles = 0;  // over Geometry containers, not instances
+  std::size_t skippedPrimitives = 0;
+};
+
+struct ImportResult {
+  ContainerId root = kNoContainer;  // a Group holding the top-level nodes
+  std::vector<ContainerId> cameras;
+  std::vector<ContainerId> lights;  // unique Light containers
+  ContainerId background = kNoContainer;
+  std::vector<Animation> animations;
+  std::vector<std::string> warnings;
+  ImportCounts counts;
+};
+
+// Throws ImportError ("<source>: <reason>") for anything it cannot load.
+ImportResult importScene(Scene& scene, const std::string& source, const ImportOptions& options = {});
+
+// The names importScene accepts after "builtin:", as written in messages.
+std::vector<std::string> builtinSceneNames();
+
+}  // namespace tsr::sg

@@ -1,0 +1,12 @@
+#pragma once
+// Turns a glTF file into a checked parsed scene, or throws ImportError.
+#include <string>
+
+#include "parsed_scene.hpp"
+#include "tsr/sg/import/importer.hpp"
+
+namespace tsr::sg::gltf {
+
+parsed::Scene parseFile(const std::string& path, const ImportOptions& options);
+
+}  // namespace tsr::sg::gltf

@@ -1,0 +1,131 @@
+#include "gltf_loader.hpp"
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "gltf_validation.hpp"
+
+namespace tsr::sg::gltf {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<unsigned char> readWholeFile(const std::string& path, std::uint64_t limit, const std::string& source) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw ImportError(source, "cannot open '" + path + "': no such file");
+  const std::uint64_t size = fs::file_size(path, ec);
+  if (ec) throw ImportError(source, "cannot read '" + path + "': " + ec.message());
+  if (size > limit)
+    throw ImportError(source, "'" + path + "' is " + std::to_string(size) + " bytes, more than the limit of " +
+                                  std::to_string(limit));
+  std::ifstream in(path, std::ios::binary);
+  std::vector<unsigned char> bytes(static_cast<std::size_t>(size));
+  if (!in || !in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size)))
+    throw ImportError(source, "cannot read '" + path + "'");
+  return bytes;
+}
+
+// tinygltf's file callbacks, replaced so that external buffers obey the size
+// limit and no path goes through wordexp (its default expansion).
+struct FsContext {
+  std::uint64_t limit;
+};
+bool fileExists(const std::string& path, void*) {
+  std::error_code ec;
+  return fs::is_regular_file(path, ec);
+}
+std::string expandPath(const std::string& path, void*) { return path; }
+bool readFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+  const auto* ctx = static_cast<const FsContext*>(user);
+  try {
+    *out = readWholeFile(path, ctx->limit, path);
+    return true;
+  } catch (const ImportError& e) {
+    if (err) *err += e.reason() + "\n";
+    return false;
+  }
+}
+bool refuseWrite(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err) *err += "the importer writes no files\n";
+  return false;
+}
+
+// Keeps the encoded bytes of images given by uri; decoding happens later
+// with OpenImageIO. Images in buffer views are not touched here because
+// tinygltf hands them over without checking the view against its buffer.
+bool keepImageBytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                    const unsigned char* bytes, int size, void*) {
+  if (image->bufferView < 0 && bytes && size > 0) image->image.assign(bytes, bytes + size);
+  image->as_is = true;
+  return true;
+}
+
+std::uint32_t readU32(const unsigned char* p) {
+  std::uint32_t v;
+  std::memcpy(&v, p, 4);
+  return v;  // glTF is little-endian, as are the machines we run on
+}
+
+// The JSON chunk of a GLB container, with the header checked.
+std::string glbJson(const std::vector<unsigned char>& bytes, const std::string& source) {
+  if (bytes.size() < 20) throw ImportError(source, "GLB file too short for its header");
+  if (readU32(&bytes[4]) != 2)
+    throw ImportError(source, "GLB version " + std::to_string(readU32(&bytes[4])) + " is not supported (only 2)");
+  const std::uint64_t length = readU32(&bytes[8]);
+  if (length > bytes.size())
+    throw ImportError(source, "GLB header says " + std::to_string(length) + " bytes but the file has " +
+                                  std::to_string(bytes.size()));
+  const std::uint64_t jsonLength = readU32(&bytes[12]);
+  if (readU32(&bytes[16]) != 0x4E4F534Au) throw ImportError(source, "GLB first chunk is not JSON");
+  if (20 + jsonLength > length) throw ImportError(source, "GLB JSON chunk runs past the end of the file");
+  return std::string(reinterpret_cast<const char*>(&bytes[20]), static_cast<std::size_t>(jsonLength));
+}
+
+}  // namespace
+
+LoadedFile loadFile(const std::string& path, const ImportOptions& options) {
+  const std::uint64_t limit = std::min<std::uint64_t>(options.maxFileBytes, 0xFFFFFFFFu);
+  std::vector<unsigned char> bytes = readWholeFile(path, limit, path);
+  const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(binary ? glbJson(bytes, path)
+                                       : std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  } catch (const nlohmann::json::exception& e) {
+    throw ImportError(path, std::string("invalid JSON: ") + e.what());
+  }
+  checkJsonTypes(doc, path);
+
+  tinygltf::TinyGLTF loader;
+  FsContext ctx{limit};
+  loader.SetFsCallbacks({&fileExists, &expandPath, &readFile, &refuseWrite, &ctx});
+  loader.SetImageLoader(&keepImageBytes, nullptr);
+  loader.SetPreserveImageChannels(true);
+
+  LoadedFile out;
+  std::string err, warn;
+  const std::string baseDir = fs::path(path).parent_path().string();
+  const bool ok = binary ? loader.LoadBinaryFromMemory(&out.model, &err, &warn, bytes.data(),
+                                                       static_cast<unsigned>(bytes.size()), baseDir)
+                         : loader.LoadASCIIFromString(&out.model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                                      static_cast<unsigned>(bytes.size()), baseDir);
+  while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
+  // tinygltf may report success with an error message: either is a failure.
+  if (!ok || !err.empty()) throw ImportError(path, err.empty() ? "tinygltf could not load the file" : err);
+  std::size_t start = 0;
+  while (start < warn.size()) {
+    std::size_t end = warn.find('\n', start);
+    if (end == std::string::npos) end = warn.size();
+    if (end > start) out.warnings.push_back(warn.substr(start, end - start));
+    start = end + 1;
+  }
+  checkRequiredExtensions(out.model, path);
+  checkNodeGraph(out.model, path);
+  return out;
+}
+
+}  // namespace tsr::sg::gltf

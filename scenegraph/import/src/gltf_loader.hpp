@@ -1,0 +1,22 @@
+#pragma once
+// Reads a .gltf or .glb file and runs tinygltf on it, after the JSON has
+// passed the type checks of gltf_validation. Images are not decoded here:
+// the bytes of images given by uri are kept in tinygltf::Image::image,
+// those in buffer views are left for the importer to slice with checks.
+#include <string>
+#include <vector>
+
+#include <tiny_gltf.h>
+
+#include "tsr/sg/import/importer.hpp"
+
+namespace tsr::sg::gltf {
+
+struct LoadedFile {
+  tinygltf::Model model;
+  std::vector<std::string> warnings;
+};
+
+LoadedFile loadFile(const std::string& path, const ImportOptions& options);
+
+}  // namespace tsr::sg::gltf

@@ -1,0 +1,24 @@
+#pragma once
+// Checks on a glTF document that tinygltf does not make: JSON types of the
+// properties we read, required extensions, and a node graph that is a
+// forest. Each throws ImportError naming the offending element.
+#include <string>
+
+#include <nlohmann/json.hpp>
+#include <tiny_gltf.h>
+
+namespace tsr::sg::gltf {
+
+// The extensions the importer implements; others in extensionsRequired fail.
+bool isSupportedExtension(const std::string& name);
+
+// Types of every property the importer reads, before tinygltf (which
+// silently ignores properties of the wrong type) sees the document.
+void checkJsonTypes(const nlohmann::json& doc, const std::string& source);
+
+void checkRequiredExtensions(const tinygltf::Model& model, const std::string& source);
+
+// Child indices in range, no node with two parents, no cycles.
+void checkNodeGraph(const tinygltf::Model& model, const std::string& source);
+
+}  // namespace tsr::sg::gltf

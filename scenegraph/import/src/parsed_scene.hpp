@@ -1,0 +1,126 @@
+#pragma once
+// A scene as plain data, checked and complete, before any container exists.
+// Importers and built-in scenes fill one; buildScene turns it into
+// containers in one step that cannot fail on the data.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tsr/sg/image.hpp"
+#include "tsr/sg/import/animation.hpp"
+#include "tsr/sg/light.hpp"
+
+namespace tsr::sg::parsed {
+
+inline constexpr int kNone = -1;
+
+struct Image {
+  std::string name;
+  std::string uri;
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  std::uint32_t channels = 4;
+  std::vector<std::uint8_t> pixels;
+  ColorSpace colorSpace = ColorSpace::SRGB;
+};
+
+struct Material {
+  std::string name;
+  Vec3 baseColor{1.0f};
+  float opacity = 1.0f;
+  int baseColorImage = kNone;
+  float metallic = 1.0f;
+  float roughness = 1.0f;
+  int metallicRoughnessImage = kNone;
+  Vec3 emission{0.0f};
+  float emissionStrength = 1.0f;
+  int emissionImage = kNone;
+  float transmission = 0.0f;
+  int transmissionImage = kNone;
+  float ior = 1.5f;
+  int normalImage = kNone;
+  float normalScale = 1.0f;
+};
+
+// One triangle mesh: what a Geometry container holds.
+struct Primitive {
+  std::vector<Vec3> positions;
+  std::vector<Vec3> normals;
+  std::vector<Vec2> uvs;
+  std::vector<Vec4> colors;
+  std::vector<std::uint32_t> indices;
+  int material = kNone;  // kNone: the default material
+  bool animated = false;
+};
+
+struct Mesh {
+  std::string name;
+  std::vector<int> primitives;
+};
+
+struct Light {
+  std::string name;
+  LightKind kind = LightKind::Point;
+  Vec3 color{1.0f};
+  float intensity = 1.0f;
+  float range = 0.0f;
+  float innerCone = 0.0f;
+  float outerCone = 0.7853982f;
+};
+
+struct Camera {
+  std::string name;
+  float yfov = 0.7853982f;
+  float znear = 0.1f;
+  float zfar = 1000.0f;
+};
+
+struct Node {
+  std::string name;
+  Mat4 local{1.0f};
+  // Set when the source gave TRS; animations start from it.
+  std::optional<Animation::Pose> trs;
+  std::vector<int> children;
+  int mesh = kNone;
+  int light = kNone;
+  int camera = kNone;
+};
+
+// Channels name nodes by index; buildScene maps them to Transform ids.
+struct AnimationChannel {
+  int node = kNone;
+  Animation::Path path = Animation::Path::Translation;
+  Animation::Interpolation interpolation = Animation::Interpolation::Linear;
+  std::vector<float> times;
+  std::vector<Vec4> values;
+};
+
+struct AnimationClip {
+  std::string name;
+  bool looping = false;
+  std::vector<AnimationChannel> channels;
+};
+
+struct Scene {
+  std::vector<Image> images;
+  std::vector<Material> materials;
+  std::vector<Primitive> primitives;
+  std::vector<Mesh> meshes;
+  std::vector<Light> lights;
+  std::vector<Camera> cameras;
+  std::vector<Node> nodes;
+  std::vector<int> roots;
+  std::vector<AnimationClip> animations;
+  Vec3 background{0.0f};
+  std::vector<std::string> warnings;
+  std::size_t skippedPrimitives = 0;
+};
+
+}  // namespace tsr::sg::parsed
+
+namespace tsr::sg {
+class Scene;
+struct ImportResult;
+// Creates the containers of a checked parsed scene.
+ImportResult buildScene(Scene& scene, const parsed::Scene& data);
+}  // namespace tsr::sg
