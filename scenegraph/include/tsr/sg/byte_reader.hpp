@@ -76,6 +76,7 @@ class ByteReader {
   }
   void copy(void* out, std::size_t size, const char* what) {
     need(size, what);
+    if (size == 0) return;  // out may be null for an empty array
     std::memcpy(out, bytes_.data() + pos_, size);
     pos_ += size;
   }

@@ -108,9 +108,9 @@ bool allFinite(const E* data, std::size_t n) {
   if constexpr (std::is_integral_v<E>) {
     return true;
   } else {
-    const float* f = &data[0][0];
-    for (std::size_t i = 0; i < n * E::length(); ++i)
-      if (!std::isfinite(f[i])) return false;
+    for (std::size_t i = 0; i < n; ++i)
+      for (int k = 0; k < E::length(); ++k)
+        if (!std::isfinite(data[i][k])) return false;
     return true;
   }
 }
