@@ -19,6 +19,9 @@ class ChangeLog {
   // Appends the next delta; throws std::invalid_argument when it does not
   // follow the newest list held.
   void append(ChangeListPtr list);
+  // Forgets every list: the producer restarted at `version` (a replica that
+  // took a snapshot). Consumers at other versions are then too far behind.
+  void reset(std::uint64_t version);
 
   enum class CatchUp { UpToDate, Deltas, TooFarBehind };
   struct SinceResult {
@@ -37,6 +40,8 @@ class ChangeLog {
   mutable std::mutex mutex_;
   std::deque<ChangeListPtr> lists_;
   std::size_t capacity_;
+  std::uint64_t base_ = 0;    // version before the oldest list held
+  std::uint64_t newest_ = 0;  // version after the newest list held
 };
 
 }  // namespace tsr::sg
