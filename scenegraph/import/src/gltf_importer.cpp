@@ -22,8 +22,8 @@ class Converter {
       : m_(model), source_(std::move(source)), options_(options), out_(out), reader_(model, source_, options) {}
 
   void run() {
-    images();
     textureImages();
+    images();
     materials();
     meshes();
     lights();

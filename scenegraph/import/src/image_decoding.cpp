@@ -30,7 +30,13 @@ parsed::Image decodeImage(const std::vector<std::uint8_t>& bytes, const std::str
   if (name.empty()) throw ImportError(source, what + " is neither PNG nor JPEG");
 
   OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
-  auto input = OIIO::ImageInput::open(name, nullptr, &reader);
+  // glTF colours are straight (unassociated) alpha; keep them as stored.
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  // With a config, OpenImageIO takes the proxy from it, not from the argument.
+  OIIO::Filesystem::IOProxy* proxy = &reader;
+  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  auto input = OIIO::ImageInput::open(name, &config, &reader);
   if (!input) throw ImportError(source, what + " cannot be decoded: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = input->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.nchannels > 4)
