@@ -1,0 +1,22 @@
+#pragma once
+// Frame buffers to files through OpenImageIO, the format chosen by the
+// extension: float formats (EXR, PFM, HDR) keep radiance as it is; 8-bit
+// ones (PNG, JPEG, ...) are clamped and sRGB-encoded.
+#include <stdexcept>
+#include <string>
+
+#include "tsr/med/frame_buffer.hpp"
+
+namespace tsr::med {
+
+class ImageFileError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Writes colour, or the named output (e.g. "albedo", "depth") when given.
+void writeImage(const std::string& path, const FrameBuffer& fb, const std::string& output = "colour");
+// Reads an image back as RGBA float (linear for float files, sRGB decoded otherwise).
+FrameBuffer readImage(const std::string& path);
+
+}  // namespace tsr::med

@@ -1,0 +1,58 @@
+#pragma once
+// A region of a window rendered by one back-end: what to show (root,
+// camera, background), back-end parameters, and whether it is active. The
+// only way applications and the cluster reach a back-end.
+#include <atomic>
+#include <functional>
+#include <string>
+
+#include "tsr/med/frame_buffer.hpp"
+#include "tsr/med/parameters.hpp"
+#include "tsr/med/scene_adapter.hpp"
+#include "tsr/med/view.hpp"
+
+namespace tsr::med {
+
+struct ViewportSettings {
+  std::string backend;
+  sg::ContainerId root = sg::kNoContainer;        // none: every root of the scene
+  sg::ContainerId background = sg::kNoContainer;  // none: black
+  Parameters parameters;
+  bool active = true;
+};
+
+struct RenderControl {
+  std::function<void(double fraction)> progress;  // 0..1 as the render proceeds
+  const std::atomic<bool>* cancel = nullptr;      // stop early when set
+};
+
+struct RenderStats {
+  std::uint64_t rays = 0;     // rays cast, for ray tracers
+  std::uint32_t samples = 0;  // samples per pixel accumulated so far
+  double seconds = 0;
+  SceneAdapter::Update update = SceneAdapter::Update::None;  // what catching up took
+};
+
+class Viewport {
+ public:
+  explicit Viewport(ViewportSettings settings) : settings_(std::move(settings)) {}
+  virtual ~Viewport() = default;
+
+  const ViewportSettings& settings() const { return settings_; }
+  const std::string& backend() const { return settings_.backend; }
+  bool active() const { return settings_.active; }
+  void setActive(bool active) { settings_.active = active; }
+  // Parameters may change between renders (a progressive image restarts
+  // only when the change affects it).
+  void setParameter(const std::string& name, ParameterValue value) { settings_.parameters.set(name, std::move(value)); }
+
+  // Catches the back-end up with the replica, then renders the view's
+  // region into `out` (resized to the region).
+  virtual RenderStats render(const sg::Replica& replica, const View& view, FrameBuffer& out,
+                             const RenderControl& control = {}) = 0;
+
+ protected:
+  ViewportSettings settings_;
+};
+
+}  // namespace tsr::med

@@ -1,0 +1,32 @@
+#pragma once
+// Ordered layers of viewports over one image, composited by depth and
+// alpha, then post effects. Inactive layers are skipped without cost.
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "tsr/med/viewport.hpp"
+
+namespace tsr::med {
+
+class Window {
+ public:
+  using PostEffect = std::function<void(FrameBuffer&)>;
+
+  Viewport& addLayer(std::unique_ptr<Viewport> viewport);
+  const std::vector<std::unique_ptr<Viewport>>& layers() const { return layers_; }
+  Viewport& layer(std::size_t i) { return *layers_.at(i); }
+  void addPostEffect(PostEffect effect) { effects_.push_back(std::move(effect)); }
+
+  // Renders every active layer for `view` and composites them in order.
+  FrameBuffer render(const sg::Replica& replica, const View& view, const RenderControl& control = {});
+  // Stats of each layer from the last render (inactive layers: default).
+  const std::vector<RenderStats>& lastStats() const { return stats_; }
+
+ private:
+  std::vector<std::unique_ptr<Viewport>> layers_;
+  std::vector<PostEffect> effects_;
+  std::vector<RenderStats> stats_;
+};
+
+}  // namespace tsr::med

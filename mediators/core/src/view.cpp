@@ -1,0 +1,58 @@
+#include "tsr/med/view.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace tsr::med {
+
+View View::fromCamera(const sg::Camera& camera, std::uint32_t width, std::uint32_t height) {
+  View v;
+  v.cameraToWorld = camera.pose();
+  v.nearPlane = camera.nearPlane();
+  v.farPlane = camera.farPlane();
+  float halfHeight = v.nearPlane * std::tan(camera.verticalFov() * 0.5f);
+  float aspect = height ? static_cast<float>(width) / static_cast<float>(height) : 1.0f;
+  v.top = halfHeight;
+  v.bottom = -halfHeight;
+  v.right = halfHeight * aspect;
+  v.left = -v.right;
+  v.width = width;
+  v.height = height;
+  v.region = {0, 0, width, height};
+  return v;
+}
+
+View View::cropped(const PixelRect& rect) const {
+  View v = *this;
+  v.region = rect;
+  return v;
+}
+
+View View::eye(Eye which, float separation, float zeroParallaxDistance) const {
+  if (!(zeroParallaxDistance > 0)) throw std::invalid_argument("zero-parallax distance must be positive");
+  float offset = (which == Eye::Left ? -0.5f : 0.5f) * separation;
+  View v = *this;
+  v.cameraToWorld = cameraToWorld * glm::translate(glm::mat4(1.0f), glm::vec3(offset, 0.0f, 0.0f));
+  // Points on the zero-parallax plane project to the same pixel for both eyes.
+  float shift = offset * nearPlane / zeroParallaxDistance;
+  v.left -= shift;
+  v.right -= shift;
+  return v;
+}
+
+void View::validate() const {
+  auto fail = [](const std::string& why) { throw std::invalid_argument("view: " + why); };
+  if (width == 0 || height == 0) fail("image size is 0");
+  if (region.empty()) fail("empty region");
+  if (region.x1 > width || region.y1 > height) fail("region outside the image");
+  if (!(right > left) || !(top > bottom)) fail("empty frustum window");
+  if (!(nearPlane > 0) || !(farPlane > nearPlane)) fail("near must be positive and below far");
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(cameraToWorld[c][r])) fail("non-finite camera pose");
+}
+
+}  // namespace tsr::med
