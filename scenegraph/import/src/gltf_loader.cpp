@@ -15,7 +15,8 @@ namespace fs = std::filesystem;
 
 std::vector<unsigned char> readWholeFile(const std::string& path, std::uint64_t limit, const std::string& source) {
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw ImportError(source, "cannot open '" + path + "': no such file");
+  if (!fs::is_regular_file(path, ec))
+    throw ImportError(source, "cannot open '" + path + "': no such file" + (fs::exists(path, ec) ? " (not a regular file)" : ""));
   const std::uint64_t size = fs::file_size(path, ec);
   if (ec) throw ImportError(source, "cannot read '" + path + "': " + ec.message());
   if (size > limit)
@@ -114,6 +115,8 @@ LoadedFile loadFile(const std::string& path, const ImportOptions& options) {
                          : loader.LoadASCIIFromString(&out.model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
                                                       static_cast<unsigned>(bytes.size()), baseDir);
   while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
+  // Messages stay on one line: callers print them as one.
+  for (std::size_t p = err.find('\n'); p != std::string::npos; p = err.find('\n', p)) err.replace(p, 1, "; ");
   // tinygltf may report success with an error message: either is a failure.
   if (!ok || !err.empty()) throw ImportError(path, err.empty() ? "tinygltf could not load the file" : err);
   std::size_t start = 0;
