@@ -1,0 +1,57 @@
+#pragma once
+
+#include "tsr/vk/camera.hpp"
+#include "tsr/vk/device.hpp"
+#include "tsr/vk/framebuffer.hpp"
+#include "tsr/vk/region.hpp"
+#include "tsr/vk/scene.hpp"
+
+#include <glm/vec4.hpp>
+
+#include <cstdint>
+#include <memory>
+
+namespace tsr::vk {
+
+struct RenderSettings {
+  std::uint32_t msaaSamples = 1;  // 1 or 4
+  bool shadows = true;            // shadow maps for spot and directional lights
+  std::uint32_t shadowMapSize = 1024;
+  glm::vec4 background{0.0f};     // colour and alpha where nothing is drawn
+};
+
+struct RenderStats {
+  std::uint32_t drawCalls = 0;       // main pass
+  std::uint64_t triangles = 0;       // main pass, all instances
+  std::uint32_t shadowMaps = 0;      // shadow passes rendered
+  std::uint64_t shadowTriangles = 0;
+};
+
+// Rasterizes a Scene into a FrameBuffer: shadow passes, then opaque
+// instances grouped by (mesh, material) and drawn instanced, then
+// transparent instances back to front; MSAA resolve; readback. Each render
+// waits for the GPU, so scenes may be edited as soon as it returns.
+class Renderer {
+ public:
+  explicit Renderer(std::shared_ptr<Device> device, RenderSettings settings = {});
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  const RenderSettings& settings() const { return settings_; }
+  void setSettings(const RenderSettings& settings);  // throws on unsupported sample counts
+
+  // fb must be region-sized. Same scene and inputs give identical pixels.
+  void render(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb);
+
+  const RenderStats& lastStats() const { return stats_; }
+
+ private:
+  struct Impl;
+  std::shared_ptr<Device> device_;
+  RenderSettings settings_;
+  RenderStats stats_;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace tsr::vk

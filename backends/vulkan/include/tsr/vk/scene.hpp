@@ -1,0 +1,75 @@
+#pragma once
+
+#include "tsr/vk/device.hpp"
+#include "tsr/vk/environment.hpp"
+#include "tsr/vk/ids.hpp"
+#include "tsr/vk/light.hpp"
+#include "tsr/vk/material.hpp"
+#include "tsr/vk/mesh.hpp"
+#include "tsr/vk/texture.hpp"
+
+#include <glm/mat4x4.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <span>
+
+namespace tsr::vk {
+
+struct SceneState;
+
+// The back-end's own scene. Each mesh lives once in device memory (positions,
+// normals, uvs, indices) and is shared by all instances that use it. Instance
+// transforms live in a host-visible storage buffer, so moving an instance
+// writes 128 bytes and never touches geometry. Uploads happen inside the edit
+// call. Not thread-safe; do not edit while a render of this scene runs.
+class Scene {
+ public:
+  explicit Scene(std::shared_ptr<Device> device);
+  ~Scene();
+  Scene(const Scene&) = delete;
+  Scene& operator=(const Scene&) = delete;
+
+  MeshId addMesh(const MeshData& data);
+  // Replaces positions [first, first + positions.size()) and, if given, the
+  // normals of the same range, uploading only that range.
+  void updateMeshVertices(MeshId mesh, std::uint32_t first, std::span<const glm::vec3> positions,
+                          std::span<const glm::vec3> normals = {});
+  void removeMesh(MeshId mesh);  // throws if an instance still uses it
+
+  InstanceId addInstance(MeshId mesh, MaterialId material, const glm::mat4& transform);
+  void setInstanceTransform(InstanceId instance, const glm::mat4& transform);
+  void setInstanceMaterial(InstanceId instance, MaterialId material);
+  void removeInstance(InstanceId instance);
+
+  MaterialId addMaterial(const Material& material);
+  void setMaterial(MaterialId id, const Material& material);
+  void removeMaterial(MaterialId id);  // throws if an instance uses it
+
+  TextureId addTexture(const Texture& texture);
+  void removeTexture(TextureId id);  // throws if a material uses it
+
+  LightId addLight(const Light& light);
+  void setLight(LightId id, const Light& light);
+  void removeLight(LightId id);
+
+  void setEnvironment(const Environment& environment);
+
+  std::uint64_t version() const;  // bumped by every edit
+  std::size_t instanceCount() const;
+  std::size_t meshCount() const;
+
+  // Bytes copied into mesh buffers (vertices and indices) since creation.
+  std::uint64_t geometryBytesUploaded() const;
+  // Bytes of instance records written since creation.
+  std::uint64_t instanceBytesWritten() const;
+
+  const Device& device() const;
+  // For the renderer.
+  SceneState& state() { return *state_; }
+
+ private:
+  std::unique_ptr<SceneState> state_;
+};
+
+}  // namespace tsr::vk

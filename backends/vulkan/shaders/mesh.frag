@@ -1,0 +1,174 @@
+#version 450
+#include "common.glsl"
+
+// Direct light from point, spot and directional lights with the Embree
+// back-end's BSDFs (f * cos, same units), an ambient term from the average
+// environment radiance, and emission from the front face.
+
+layout(set = 1, binding = 0) uniform sampler2D baseColorTex;
+layout(set = 1, binding = 1) uniform sampler2D emissionTex;
+
+layout(location = 0) in vec3 worldPos;
+layout(location = 1) in vec3 worldNormal;
+layout(location = 2) in vec2 uv;
+
+layout(location = 0) out vec4 outColour;
+
+const float PI = 3.14159265358979;
+const uint DIFFUSE = 0u, CONDUCTOR = 1u, DIELECTRIC = 2u, MIRROR = 3u, GLASS = 4u;
+const uint POINT = 0u, SPOT = 1u, DIRECTIONAL = 2u;
+
+float ggxD(float nh, float a) {
+  if (nh <= 0.0) return 0.0;
+  float a2 = a * a;
+  float t = nh * nh * (a2 - 1.0) + 1.0;
+  return a2 / (PI * t * t);
+}
+
+float ggxLambda(float c, float a) {
+  float c2 = c * c;
+  if (c2 <= 0.0) return 0.0;
+  float t2 = max(0.0, 1.0 - c2) / c2;
+  return 0.5 * (-1.0 + sqrt(1.0 + a * a * t2));
+}
+
+float ggxG2(float co, float ci, float a) { return 1.0 / (1.0 + ggxLambda(co, a) + ggxLambda(ci, a)); }
+
+vec3 schlick(vec3 f0, float c) {
+  float m = clamp(1.0 - c, 0.0, 1.0);
+  float m5 = (m * m) * (m * m) * m;
+  return f0 + (vec3(1.0) - f0) * m5;
+}
+
+float fresnelDielectric(float cosI, float eta) {
+  cosI = clamp(cosI, 0.0, 1.0);
+  float sin2T = (1.0 - cosI * cosI) / (eta * eta);
+  if (sin2T >= 1.0) return 1.0;
+  float cosT = sqrt(1.0 - sin2T);
+  float rs = (cosI - eta * cosT) / (cosI + eta * cosT);
+  float rp = (eta * cosI - cosT) / (eta * cosI + cosT);
+  return 0.5 * (rs * rs + rp * rp);
+}
+
+// f * |cos(wi)| for unit vectors; n is the shading normal on wo's side.
+vec3 evalBsdf(uint type, vec3 colour, float alpha, float eta, vec3 n, vec3 wo, vec3 wi) {
+  float co = dot(n, wo);
+  float ci = dot(n, wi);
+  if (type == DIFFUSE) return ci > 0.0 ? colour * (ci / PI) : vec3(0.0);
+  if (type == CONDUCTOR) {
+    if (ci <= 0.0) return vec3(0.0);
+    vec3 h = normalize(wo + wi);
+    return schlick(colour, dot(wo, h)) * (ggxD(dot(n, h), alpha) * ggxG2(co, ci, alpha) / (4.0 * co));
+  }
+  if (type == DIELECTRIC) {
+    if (ci > 0.0) {
+      vec3 h = normalize(wo + wi);
+      float f = fresnelDielectric(dot(wo, h), eta);
+      return vec3(f * ggxD(dot(n, h), alpha) * ggxG2(co, ci, alpha) / (4.0 * co));
+    }
+    if (ci == 0.0) return vec3(0.0);
+    vec3 h = wo + eta * wi;
+    if (dot(h, h) <= 0.0) return vec3(0.0);
+    h = normalize(h);
+    if (dot(n, h) < 0.0) h = -h;
+    float oh = dot(wo, h);
+    float ih = dot(wi, h);
+    if (oh <= 0.0 || ih >= 0.0) return vec3(0.0);
+    float f = fresnelDielectric(oh, eta);
+    float denom = oh + eta * ih;
+    return colour * ((1.0 - f) * ggxD(dot(n, h), alpha) * ggxG2(co, ci, alpha) * eta * eta * abs(ih) * oh /
+                     (co * denom * denom));
+  }
+  return vec3(0.0);  // Mirror and Glass are delta BSDFs: no direct light from point-like lights
+}
+
+// Fraction of 3x3 shadow-map taps that see p lit.
+float visibility(Light l, vec3 p, vec3 ng) {
+  float offset = l.cone.z;
+  if (uint(l.position.w) == SPOT) offset *= length(l.position.xyz - p);
+  vec4 c = l.shadowMatrix * vec4(p + ng * offset, 1.0);
+  if (c.w <= 0.0) return 1.0;
+  vec3 s = c.xyz / c.w;
+  vec2 st = s.xy * 0.5 + 0.5;
+  if (any(lessThan(st, vec2(0.0))) || any(greaterThan(st, vec2(1.0))) || s.z < 0.0 || s.z > 1.0) return 1.0;
+  float texel = l.cone.w;
+  float sum = 0.0;
+  for (int y = -1; y <= 1; ++y)
+    for (int x = -1; x <= 1; ++x) sum += texture(shadowMaps, vec4(st + vec2(x, y) * texel, l.direction.w, s.z));
+  return sum / 9.0;
+}
+
+void main() {
+  Material m = materials[pc.material];
+  uint type = m.flags.x;
+  vec3 base = m.baseColor.rgb;
+  float opacity = m.baseColor.a;
+  if (m.flags.y != 0u) {
+    vec4 t = texture(baseColorTex, uv);
+    base *= t.rgb;
+    opacity *= t.a;
+  }
+
+  vec3 wo = normalize(frame.cameraPos.xyz - worldPos);
+  // Flat face normal, turned towards the viewer.
+  vec3 ng = normalize(cross(dFdx(worldPos), dFdy(worldPos)));
+  if (dot(ng, wo) < 0.0) ng = -ng;
+  // As in the path tracer, the shading normal is flipped to the side of the
+  // face (by winding) that the viewer sees.
+  float len = length(worldNormal);
+  vec3 n = len > 1e-8 ? (gl_FrontFacing ? worldNormal : -worldNormal) / len : ng;
+  float eta = gl_FrontFacing ? m.params.y : 1.0 / m.params.y;
+  float alpha = m.params.x;
+  float co = dot(n, wo);
+
+  vec3 radiance = vec3(0.0);
+  if (co > 1e-6) {
+    for (uint i = 0u; i < frame.counts.x; ++i) {
+      Light l = lights[i];
+      uint lt = uint(l.position.w);
+      vec3 wi;
+      vec3 li;
+      if (lt == DIRECTIONAL) {
+        wi = -l.direction.xyz;
+        li = l.intensity.rgb;
+      } else {
+        vec3 d = l.position.xyz - worldPos;
+        float d2 = dot(d, d);
+        if (!(d2 > 0.0)) continue;
+        wi = d / sqrt(d2);
+        li = l.intensity.rgb / d2;
+        if (lt == SPOT) {
+          float c = dot(l.direction.xyz, -wi);
+          float falloff = c >= l.cone.x ? 1.0 : (c <= l.cone.y ? 0.0 : smoothstep(l.cone.y, l.cone.x, c));
+          if (falloff <= 0.0) continue;
+          li *= falloff;
+        }
+      }
+      // Shading and geometric normal must agree on the side of wi.
+      if ((dot(wi, ng) > 0.0) != (dot(wi, n) > 0.0)) continue;
+      vec3 f = evalBsdf(type, base, alpha, eta, n, wo, wi);
+      if (max(f.r, max(f.g, f.b)) <= 0.0) continue;
+      float v = l.direction.w >= 0.0 ? visibility(l, worldPos, ng) : 1.0;
+      radiance += f * li * v;
+    }
+  }
+
+  // The environment's average radiance, reflected without occlusion:
+  // exact for Lambert, the directional albedo at normal-ish incidence otherwise.
+  vec3 ambient = frame.ambient.rgb;
+  if (type == DIFFUSE || type == MIRROR) {
+    radiance += base * ambient;
+  } else if (type == CONDUCTOR) {
+    radiance += schlick(base, max(co, 0.0)) * ambient;
+  } else {
+    float f = fresnelDielectric(max(co, 0.0), eta);
+    radiance += (f + (1.0 - f) * base) * ambient;
+  }
+
+  if (gl_FrontFacing) {
+    vec3 e = m.emission.rgb;
+    if (m.flags.z != 0u) e *= texture(emissionTex, uv).rgb;
+    radiance += e;
+  }
+  outColour = vec4(radiance, opacity);
+}

@@ -1,0 +1,50 @@
+#pragma once
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec4.hpp>
+
+#include <cstdint>
+
+namespace tsr::vk {
+
+// Layouts shared with shaders/common.glsl (std140/std430 agree here: only
+// vec4 and mat4 members). Change both together.
+
+struct GpuInstance {
+  glm::mat4 model;
+  glm::mat4 normal;  // inverse transpose of model's 3x3, padded
+};
+
+enum : std::uint32_t { kGpuDiffuse = 0, kGpuConductor = 1, kGpuDielectric = 2, kGpuMirror = 3, kGpuGlass = 4 };
+
+struct GpuMaterial {
+  glm::vec4 baseColor;  // rgb, opacity
+  glm::vec4 emission;   // rgb, unused
+  glm::vec4 params;     // GGX alpha, ior, unused, unused
+  glm::uvec4 flags;     // type, has base colour texture, has emission texture, unused
+};
+
+enum : std::uint32_t { kGpuPoint = 0, kGpuSpot = 1, kGpuDirectional = 2 };
+
+struct GpuLight {
+  glm::vec4 position;   // xyz, type
+  glm::vec4 direction;  // normalized travel direction, shadow layer (< 0: none)
+  glm::vec4 intensity;  // W/sr, or W/m^2 for directional
+  glm::vec4 cone;       // cos inner, cos outer, normal offset (world units, per unit distance for spots), 1 / map size
+  glm::mat4 shadowMatrix;
+};
+
+struct GpuFrame {
+  glm::mat4 viewProj;
+  glm::vec4 cameraPos;
+  glm::vec4 ambient;  // average environment radiance
+  glm::uvec4 counts;  // light count, unused...
+};
+
+struct PushConstants {
+  glm::mat4 lightViewProj;  // shadow pass only
+  std::uint32_t material = 0;
+  std::uint32_t pad[3] = {0, 0, 0};
+};
+
+}  // namespace tsr::vk

@@ -1,0 +1,57 @@
+#pragma once
+
+#include "tsr/vk/device.hpp"
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace tsr::vk {
+
+struct ImageDesc {
+  std::uint32_t width = 1;
+  std::uint32_t height = 1;
+  std::uint32_t layers = 1;
+  VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;
+  VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+  VkImageUsageFlags usage = 0;
+  VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
+  bool arrayView = false;  // view() is 2D_ARRAY even for one layer
+};
+
+// A 2D (array) image in device memory with a view of all layers (2D_ARRAY
+// when layers > 1 or arrayView) and one 2D view per layer for rendering into it. Move-only.
+class Image {
+ public:
+  Image() = default;
+  Image(const Device& device, const ImageDesc& desc);
+  ~Image();
+  Image(Image&& other) noexcept;
+  Image& operator=(Image&& other) noexcept;
+  Image(const Image&) = delete;
+  Image& operator=(const Image&) = delete;
+
+  VkImage handle() const { return image_; }
+  VkImageView view() const { return view_; }
+  VkImageView layerView(std::uint32_t layer) const { return layerViews_[layer]; }
+  const ImageDesc& desc() const { return desc_; }
+  explicit operator bool() const { return image_ != VK_NULL_HANDLE; }
+
+ private:
+  void release();
+
+  VkDevice device_ = VK_NULL_HANDLE;
+  ImageDesc desc_;
+  VkImage image_ = VK_NULL_HANDLE;
+  VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  VkImageView view_ = VK_NULL_HANDLE;
+  std::vector<VkImageView> layerViews_;
+};
+
+// One image memory barrier over all mips and the given layers.
+void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from,
+                  VkImageLayout to, VkPipelineStageFlags srcStage, VkAccessFlags srcAccess,
+                  VkPipelineStageFlags dstStage, VkAccessFlags dstAccess, std::uint32_t layers = 1);
+
+}  // namespace tsr::vk

@@ -1,0 +1,503 @@
+#include "tsr/vk/renderer.hpp"
+
+#include "buffer.hpp"
+#include "gpu_types.hpp"
+#include "pipeline.hpp"
+#include "render_target.hpp"
+#include "scene_state.hpp"
+#include "shadow_map.hpp"
+#include "spirv.hpp"
+
+#include "tsr/vk/error.hpp"
+#include "vk_struct.hpp"
+
+#include <glm/gtc/packing.hpp>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cstring>
+#include <map>
+#include <optional>
+#include <string>
+
+namespace tsr::vk {
+
+namespace {
+
+constexpr std::uint32_t kMaxShadowMaps = 8;
+
+VkSampleCountFlagBits sampleBits(std::uint32_t samples) {
+  switch (samples) {
+    case 1:
+      return VK_SAMPLE_COUNT_1_BIT;
+    case 4:
+      return VK_SAMPLE_COUNT_4_BIT;
+    default:
+      throw Error("msaaSamples must be 1 or 4, got " + std::to_string(samples));
+  }
+}
+
+void ensureHost(const Device& device, Buffer& buffer, VkDeviceSize needed, VkBufferUsageFlags usage) {
+  if (buffer && buffer.size() >= needed) return;
+  buffer = Buffer(device, std::max<VkDeviceSize>({needed, buffer ? 2 * buffer.size() : 0, 1024}), usage,
+                  Buffer::kHost);
+}
+
+}  // namespace
+
+struct Renderer::Impl {
+  const Device& device;
+  VkDescriptorSetLayout frameLayout = VK_NULL_HANDLE;
+  VkDescriptorSetLayout materialLayout = VK_NULL_HANDLE;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  VkDescriptorSet frameSet = VK_NULL_HANDLE;
+  VkCommandPool commandPool = VK_NULL_HANDLE;
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  VkFence fence = VK_NULL_HANDLE;
+
+  struct MainPipelines {
+    VkFormat colourFormat;
+    Pipeline opaque;
+    Pipeline transparent;
+  };
+  std::map<std::uint32_t, MainPipelines> mainPipelines;  // by sample count
+  Pipeline shadowPipeline;
+
+  Buffer frameBuffer;  // GpuFrame uniform
+  Buffer lightBuffer;
+  Buffer drawOrderBuffer;
+  std::optional<RenderTarget> target;
+  std::optional<ShadowMap> shadowMap;
+
+  std::vector<std::uint32_t> drawOrder;
+  std::vector<GpuLight> gpuLights;
+  std::vector<std::uint32_t> transparentSorted;
+
+  explicit Impl(const Device& d);
+  ~Impl();
+  MainPipelines& pipelinesFor(std::uint32_t samples);
+};
+
+Renderer::Impl::Impl(const Device& d) : device(d) {
+  VkDevice dev = device.handle();
+  VkDescriptorSetLayoutBinding b[6]{};
+  const VkDescriptorType types[6] = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+  for (std::uint32_t i = 0; i < 6; ++i) {
+    b[i].binding = i;
+    b[i].descriptorType = types[i];
+    b[i].descriptorCount = 1;
+    b[i].stageFlags = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+  }
+  VkDescriptorSetLayoutCreateInfo lci = vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
+  lci.bindingCount = 6;
+  lci.pBindings = b;
+  check(vkCreateDescriptorSetLayout(dev, &lci, nullptr, &frameLayout), "vkCreateDescriptorSetLayout (frame)");
+  materialLayout = createMaterialSetLayout(dev);
+
+  const VkDescriptorSetLayout sets[2] = {frameLayout, materialLayout};
+  VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(PushConstants)};
+  VkPipelineLayoutCreateInfo pci = vkStruct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
+  pci.setLayoutCount = 2;
+  pci.pSetLayouts = sets;
+  pci.pushConstantRangeCount = 1;
+  pci.pPushConstantRanges = &push;
+  check(vkCreatePipelineLayout(dev, &pci, nullptr, &layout), "vkCreatePipelineLayout");
+
+  VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
+                                   {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}};
+  VkDescriptorPoolCreateInfo dpci = vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
+  dpci.maxSets = 1;
+  dpci.poolSizeCount = 3;
+  dpci.pPoolSizes = sizes;
+  check(vkCreateDescriptorPool(dev, &dpci, nullptr, &pool), "vkCreateDescriptorPool (frame)");
+  VkDescriptorSetAllocateInfo ai = vkStruct<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
+  ai.descriptorPool = pool;
+  ai.descriptorSetCount = 1;
+  ai.pSetLayouts = &frameLayout;
+  check(vkAllocateDescriptorSets(dev, &ai, &frameSet), "vkAllocateDescriptorSets (frame)");
+
+  VkCommandPoolCreateInfo cpci = vkStruct<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
+  cpci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  cpci.queueFamilyIndex = device.queueFamily();
+  check(vkCreateCommandPool(dev, &cpci, nullptr, &commandPool), "vkCreateCommandPool");
+  VkCommandBufferAllocateInfo cai = vkStruct<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
+  cai.commandPool = commandPool;
+  cai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  cai.commandBufferCount = 1;
+  check(vkAllocateCommandBuffers(dev, &cai, &cmd), "vkAllocateCommandBuffers");
+  VkFenceCreateInfo fci = vkStruct<VkFenceCreateInfo>(VK_STRUCTURE_TYPE_FENCE_CREATE_INFO);
+  check(vkCreateFence(dev, &fci, nullptr, &fence), "vkCreateFence");
+
+  PipelineDesc sd;
+  sd.layout = layout;
+  sd.vertexSpirv = spirv::shadow_vert;
+  sd.vertexStreams = 1;
+  sd.depthCompare = VK_COMPARE_OP_LESS;
+  sd.depthBias = true;
+  shadowPipeline = Pipeline(device, sd);
+
+  frameBuffer = Buffer(device, sizeof(GpuFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, Buffer::kHost);
+}
+
+Renderer::Impl::~Impl() {
+  VkDevice dev = device.handle();
+  vkDeviceWaitIdle(dev);
+  vkDestroyFence(dev, fence, nullptr);
+  vkDestroyCommandPool(dev, commandPool, nullptr);
+  vkDestroyDescriptorPool(dev, pool, nullptr);
+  vkDestroyPipelineLayout(dev, layout, nullptr);
+  vkDestroyDescriptorSetLayout(dev, materialLayout, nullptr);
+  vkDestroyDescriptorSetLayout(dev, frameLayout, nullptr);
+}
+
+Renderer::Impl::MainPipelines& Renderer::Impl::pipelinesFor(std::uint32_t samples) {
+  auto it = mainPipelines.find(samples);
+  if (it != mainPipelines.end()) return it->second;
+  const VkSampleCountFlagBits bits = sampleBits(samples);
+  PipelineDesc d;
+  d.layout = layout;
+  d.vertexSpirv = spirv::mesh_vert;
+  d.fragmentSpirv = spirv::mesh_frag;
+  d.colourFormat = chooseColourFormat(device, bits);
+  d.samples = bits;
+  // Reversed depth: nearer is greater.
+  d.depthCompare = VK_COMPARE_OP_GREATER;
+  Pipeline opaque(device, d);
+  d.blend = true;
+  d.depthWrite = false;
+  Pipeline transparent(device, d);
+  return mainPipelines.emplace(samples, MainPipelines{d.colourFormat, std::move(opaque), std::move(transparent)})
+      .first->second;
+}
+
+Renderer::Renderer(std::shared_ptr<Device> device, RenderSettings settings) : device_(std::move(device)) {
+  if (!device_) throw Error("renderer needs a device");
+  impl_ = std::make_unique<Impl>(*device_);
+  setSettings(settings);
+}
+
+Renderer::~Renderer() = default;
+
+void Renderer::setSettings(const RenderSettings& settings) {
+  sampleBits(settings.msaaSamples);
+  if (settings.shadowMapSize < 16 || settings.shadowMapSize > 8192)
+    throw Error("shadowMapSize must be in [16, 8192], got " + std::to_string(settings.shadowMapSize));
+  for (int i = 0; i < 4; ++i)
+    if (!std::isfinite(settings.background[i])) throw Error("background colour contains NaN or infinity");
+  impl_->pipelinesFor(settings.msaaSamples);  // fails here, not mid-frame, if unsupported
+  settings_ = settings;
+}
+
+void Renderer::render(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb) {
+  camera.validate();
+  region.validate();
+  if (fb.width() != region.regionWidth() || fb.height() != region.regionHeight())
+    throw Error("frame buffer is " + std::to_string(fb.width()) + "x" + std::to_string(fb.height()) +
+                " but the region is " + std::to_string(region.regionWidth()) + "x" +
+                std::to_string(region.regionHeight()));
+  if (&scene.device() != device_.get()) throw Error("scene and renderer use different devices");
+
+  Impl& r = *impl_;
+  SceneState& s = scene.state();
+  s.prepare();
+  const VkDevice dev = device_->handle();
+  const std::uint32_t w = region.regionWidth(), h = region.regionHeight();
+  Impl::MainPipelines& pipes = r.pipelinesFor(settings_.msaaSamples);
+  const VkSampleCountFlagBits samples = sampleBits(settings_.msaaSamples);
+
+  // Draw order: opaque groups as the scene sorted them, then transparent
+  // instances back to front by the depth of their bounds' centre.
+  const glm::vec3 camPos(camera.cameraToWorld[3]);
+  const glm::vec3 forward = -glm::normalize(glm::vec3(camera.cameraToWorld[2]));
+  r.transparentSorted = s.transparent;
+  {
+    std::vector<std::pair<float, std::uint32_t>> keyed;
+    keyed.reserve(s.transparent.size());
+    for (std::uint32_t slot : s.transparent) {
+      glm::vec3 lo, hi;
+      s.instanceBounds(slot, lo, hi);
+      keyed.emplace_back(glm::dot(0.5f * (lo + hi) - camPos, forward), slot);
+    }
+    std::sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) {
+      return a.first != b.first ? a.first > b.first : a.second < b.second;
+    });
+    for (std::size_t i = 0; i < keyed.size(); ++i) r.transparentSorted[i] = keyed[i].second;
+  }
+  r.drawOrder.assign(s.opaqueOrder.begin(), s.opaqueOrder.end());
+  const std::uint32_t transparentBase = std::uint32_t(r.drawOrder.size());
+  r.drawOrder.insert(r.drawOrder.end(), r.transparentSorted.begin(), r.transparentSorted.end());
+  ensureHost(*device_, r.drawOrderBuffer, std::max<std::size_t>(r.drawOrder.size(), 1) * 4,
+             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  if (!r.drawOrder.empty()) std::memcpy(r.drawOrderBuffer.mapped(), r.drawOrder.data(), r.drawOrder.size() * 4);
+
+  // Lights, with a shadow layer for each shadowed spot/directional light.
+  r.gpuLights.clear();
+  std::vector<glm::mat4> shadowViewProj;
+  const bool shadows = settings_.shadows && !s.sceneEmpty && !s.opaqueOrder.empty();
+  for (const LightRecord& lr : s.lights) {
+    if (!lr.alive) continue;
+    GpuLight g{};
+    g.direction.w = -1.0f;
+    g.cone = glm::vec4(1.0f, 1.0f, 0.0f, 1.0f / float(settings_.shadowMapSize));
+    std::optional<ShadowProjection> sp;
+    if (const auto* p = std::get_if<PointLight>(&lr.light)) {
+      g.position = glm::vec4(p->position, float(kGpuPoint));
+      g.intensity = glm::vec4(p->intensity, 0.0f);
+    } else if (const auto* sl = std::get_if<SpotLight>(&lr.light)) {
+      g.position = glm::vec4(sl->position, float(kGpuSpot));
+      g.direction = glm::vec4(glm::normalize(sl->direction), -1.0f);
+      g.intensity = glm::vec4(sl->intensity, 0.0f);
+      g.cone.x = std::cos(sl->innerAngle);
+      g.cone.y = std::cos(sl->outerAngle);
+      if (shadows && sl->castShadows) sp = spotShadow(*sl, s.sceneMin, s.sceneMax, settings_.shadowMapSize);
+    } else {
+      const auto& dl = std::get<DirectionalLight>(lr.light);
+      g.position = glm::vec4(0.0f, 0.0f, 0.0f, float(kGpuDirectional));
+      g.direction = glm::vec4(glm::normalize(dl.direction), -1.0f);
+      g.intensity = glm::vec4(dl.irradiance, 0.0f);
+      if (shadows && dl.castShadows) sp = directionalShadow(dl, s.sceneMin, s.sceneMax, settings_.shadowMapSize);
+    }
+    if (sp) {
+      if (shadowViewProj.size() < kMaxShadowMaps) {
+        g.direction.w = float(shadowViewProj.size());
+        g.cone.z = sp->normalOffset;
+        g.shadowMatrix = sp->viewProj;
+        shadowViewProj.push_back(sp->viewProj);
+      } else {
+        spdlog::warn("tsr::vk: more than {} shadowed lights; the rest cast no shadows", kMaxShadowMaps);
+      }
+    }
+    r.gpuLights.push_back(g);
+  }
+  ensureHost(*device_, r.lightBuffer, std::max<std::size_t>(r.gpuLights.size(), 1) * sizeof(GpuLight),
+             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  if (!r.gpuLights.empty())
+    std::memcpy(r.lightBuffer.mapped(), r.gpuLights.data(), r.gpuLights.size() * sizeof(GpuLight));
+
+  GpuFrame frame{};
+  frame.viewProj = camera.projection(region) * camera.worldToCamera();
+  frame.cameraPos = glm::vec4(camPos, 1.0f);
+  frame.ambient = glm::vec4(s.environment.averageRadiance(), 0.0f);
+  frame.counts = glm::uvec4(std::uint32_t(r.gpuLights.size()), 0u, 0u, 0u);
+  std::memcpy(r.frameBuffer.mapped(), &frame, sizeof(frame));
+
+  if (!r.target || r.target->width != w || r.target->height != h || r.target->samples != samples)
+    r.target.emplace(*device_, w, h, pipes.colourFormat, samples);
+  const std::uint32_t layers = std::max<std::uint32_t>(1, std::uint32_t(shadowViewProj.size()));
+  if (!r.shadowMap || r.shadowMap->size() != settings_.shadowMapSize || r.shadowMap->layers() < layers) {
+    r.shadowMap.reset();
+    r.shadowMap.emplace(*device_, settings_.shadowMapSize, layers);
+  }
+  const RenderTarget& t = *r.target;
+  const ShadowMap& sm = *r.shadowMap;
+
+  {
+    VkDescriptorBufferInfo bufs[5] = {
+        {r.frameBuffer.handle(), 0, VK_WHOLE_SIZE},    {s.instanceBuffer.handle(), 0, VK_WHOLE_SIZE},
+        {r.drawOrderBuffer.handle(), 0, VK_WHOLE_SIZE}, {s.materialBuffer.handle(), 0, VK_WHOLE_SIZE},
+        {r.lightBuffer.handle(), 0, VK_WHOLE_SIZE},
+    };
+    VkDescriptorImageInfo shadowInfo{sm.sampler(), sm.image().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet writes[6]{};
+    for (std::uint32_t i = 0; i < 6; ++i) {
+      writes[i] = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+      writes[i].dstSet = r.frameSet;
+      writes[i].dstBinding = i;
+      writes[i].descriptorCount = 1;
+      if (i == 0) {
+        writes[i].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+        writes[i].pBufferInfo = &bufs[0];
+      } else if (i < 5) {
+        writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        writes[i].pBufferInfo = &bufs[i];
+      } else {
+        writes[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        writes[i].pImageInfo = &shadowInfo;
+      }
+    }
+    vkUpdateDescriptorSets(dev, 6, writes, 0, nullptr);
+  }
+
+  RenderStats stats;
+  VkCommandBuffer cmd = r.cmd;
+  check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
+  VkCommandBufferBeginInfo bi = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.layout, 0, 1, &r.frameSet, 0, nullptr);
+
+  // Shadow passes: opaque instances only, positions only.
+  imageBarrier(cmd, sm.image().handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+               shadowViewProj.empty() ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL
+                                      : VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+               VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
+               shadowViewProj.empty() ? VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT
+                                      : VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT,
+               shadowViewProj.empty() ? VK_ACCESS_SHADER_READ_BIT : VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+               sm.layers());
+  for (std::uint32_t layer = 0; layer < shadowViewProj.size(); ++layer) {
+    VkRenderingAttachmentInfo da = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
+    da.imageView = sm.image().layerView(layer);
+    da.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    da.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    da.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    da.clearValue.depthStencil = {1.0f, 0};
+    VkRenderingInfo ri = vkStruct<VkRenderingInfo>(VK_STRUCTURE_TYPE_RENDERING_INFO);
+    ri.renderArea = {{0, 0}, {sm.size(), sm.size()}};
+    ri.layerCount = 1;
+    ri.pDepthAttachment = &da;
+    vkCmdBeginRendering(cmd, &ri);
+    VkViewport vp{0.0f, 0.0f, float(sm.size()), float(sm.size()), 0.0f, 1.0f};
+    vkCmdSetViewport(cmd, 0, 1, &vp);
+    vkCmdSetScissor(cmd, 0, 1, &ri.renderArea);
+    vkCmdSetDepthBias(cmd, 1.25f, 0.0f, 1.75f);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.shadowPipeline.handle());
+    PushConstants pc;
+    pc.lightViewProj = shadowViewProj[layer];
+    vkCmdPushConstants(cmd, r.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
+    for (const DrawGroup& g : s.opaqueGroups) {
+      const MeshRecord& m = s.meshes[g.mesh];
+      VkBuffer vb = m.buffer.handle();
+      VkDeviceSize off = 0;
+      vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &off);
+      vkCmdBindIndexBuffer(cmd, vb, m.indexOffset, VK_INDEX_TYPE_UINT32);
+      vkCmdDrawIndexed(cmd, m.indexCount, g.count, 0, 0, g.first);
+      stats.shadowTriangles += std::uint64_t(m.indexCount / 3) * g.count;
+    }
+    vkCmdEndRendering(cmd);
+    ++stats.shadowMaps;
+  }
+  if (!shadowViewProj.empty())
+    imageBarrier(cmd, sm.image().handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+                 VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                 VK_ACCESS_SHADER_READ_BIT, sm.layers());
+
+  // Main pass. Previous contents are discarded (UNDEFINED) and cleared.
+  const VkPipelineStageFlags attachStages =
+      VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+  std::vector<const Image*> colourImages = {&t.colour};
+  std::vector<const Image*> depthImages = {&t.depth};
+  if (t.multisampled()) {
+    colourImages.push_back(&t.colourResolve);
+    depthImages.push_back(&t.depthResolve);
+  }
+  for (const Image* img : colourImages)
+    imageBarrier(cmd, img->handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                 VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+                 VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
+  for (const Image* img : depthImages)
+    imageBarrier(cmd, img->handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                 VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+                 attachStages | VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                 VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
+                     VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
+
+  VkRenderingAttachmentInfo ca = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
+  ca.imageView = t.colour.view();
+  ca.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  ca.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  ca.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  ca.clearValue.color = {{settings_.background.r, settings_.background.g, settings_.background.b,
+                          settings_.background.a}};
+  VkRenderingAttachmentInfo da = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
+  da.imageView = t.depth.view();
+  da.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  da.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  da.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  da.clearValue.depthStencil = {0.0f, 0};  // reversed depth: 0 is the far plane
+  if (t.multisampled()) {
+    ca.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
+    ca.resolveImageView = t.colourResolve.view();
+    ca.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    // Averaging depths across an edge would invent surfaces; keep sample 0.
+    da.resolveMode = VK_RESOLVE_MODE_SAMPLE_ZERO_BIT;
+    da.resolveImageView = t.depthResolve.view();
+    da.resolveImageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  }
+  VkRenderingInfo ri = vkStruct<VkRenderingInfo>(VK_STRUCTURE_TYPE_RENDERING_INFO);
+  ri.renderArea = {{0, 0}, {w, h}};
+  ri.layerCount = 1;
+  ri.colorAttachmentCount = 1;
+  ri.pColorAttachments = &ca;
+  ri.pDepthAttachment = &da;
+  vkCmdBeginRendering(cmd, &ri);
+  VkViewport vp{0.0f, 0.0f, float(w), float(h), 0.0f, 1.0f};
+  vkCmdSetViewport(cmd, 0, 1, &vp);
+  vkCmdSetScissor(cmd, 0, 1, &ri.renderArea);
+
+  auto draw = [&](std::uint32_t meshIndex, std::uint32_t material, std::uint32_t first, std::uint32_t count) {
+    const MeshRecord& m = s.meshes[meshIndex];
+    VkBuffer vb[3] = {m.buffer.handle(), m.buffer.handle(), m.buffer.handle()};
+    VkDeviceSize off[3] = {0, m.normalOffset, m.uvOffset};
+    vkCmdBindVertexBuffers(cmd, 0, 3, vb, off);
+    vkCmdBindIndexBuffer(cmd, m.buffer.handle(), m.indexOffset, VK_INDEX_TYPE_UINT32);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.layout, 1, 1, &s.materials[material].set, 0,
+                            nullptr);
+    PushConstants pc;
+    pc.material = material;
+    vkCmdPushConstants(cmd, r.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
+    vkCmdDrawIndexed(cmd, m.indexCount, count, 0, 0, first);
+    ++stats.drawCalls;
+    stats.triangles += std::uint64_t(m.indexCount / 3) * count;
+  };
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.opaque.handle());
+  for (const DrawGroup& g : s.opaqueGroups) draw(g.mesh, g.material, g.first, g.count);
+  if (!r.transparentSorted.empty()) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.transparent.handle());
+    for (std::uint32_t i = 0; i < r.transparentSorted.size(); ++i) {
+      const InstanceRecord& inst = s.instances[r.transparentSorted[i]];
+      draw(inst.mesh, inst.material, transparentBase + i, 1);
+    }
+  }
+  vkCmdEndRendering(cmd);
+
+  // Readback of the resolved images.
+  imageBarrier(cmd, t.resolvedColour().handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+               VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+               VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+  imageBarrier(cmd, t.resolvedDepth().handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+               VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+               attachStages | VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+               VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+               VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+  VkBufferImageCopy copy{};
+  copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  copy.imageExtent = {w, h, 1};
+  vkCmdCopyImageToBuffer(cmd, t.resolvedColour().handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                         t.colourReadback.handle(), 1, &copy);
+  copy.imageSubresource.aspectMask = VK_IMAGE_ASPECT_DEPTH_BIT;
+  vkCmdCopyImageToBuffer(cmd, t.resolvedDepth().handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                         t.depthReadback.handle(), 1, &copy);
+  VkMemoryBarrier toHost = vkStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
+  toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr, 0,
+                       nullptr);
+  check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+
+  VkSubmitInfo si = vkStruct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
+  si.commandBufferCount = 1;
+  si.pCommandBuffers = &cmd;
+  check(vkQueueSubmit(device_->queue(), 1, &si, r.fence), "vkQueueSubmit");
+  check(vkWaitForFences(dev, 1, &r.fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+  check(vkResetFences(dev, 1, &r.fence), "vkResetFences");
+
+  const std::size_t pixels = std::size_t(w) * h;
+  if (t.colourFormat == VK_FORMAT_R32G32B32A32_SFLOAT) {
+    std::memcpy(fb.colour_.data(), t.colourReadback.mapped(), pixels * sizeof(glm::vec4));
+  } else {
+    const auto* half = static_cast<const std::uint16_t*>(t.colourReadback.mapped());
+    for (std::size_t i = 0; i < pixels; ++i)
+      for (int c = 0; c < 4; ++c) fb.colour_[i][c] = glm::unpackHalf1x16(half[4 * i + c]);
+  }
+  const auto* depth = static_cast<const float*>(t.depthReadback.mapped());
+  for (std::size_t i = 0; i < pixels; ++i) fb.depth_[i] = camera.linearDepth(depth[i]);
+  stats_ = stats;
+}
+
+}  // namespace tsr::vk

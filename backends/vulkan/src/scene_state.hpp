@@ -1,0 +1,115 @@
+#pragma once
+
+#include "buffer.hpp"
+#include "gpu_types.hpp"
+#include "image.hpp"
+
+#include "tsr/vk/device.hpp"
+#include "tsr/vk/environment.hpp"
+#include "tsr/vk/light.hpp"
+#include "tsr/vk/material.hpp"
+#include "tsr/vk/mesh.hpp"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace tsr::vk {
+
+// One vertex/index buffer per mesh: positions | normals | uvs | indices.
+struct MeshRecord {
+  Buffer buffer;
+  std::uint32_t vertexCount = 0;
+  std::uint32_t indexCount = 0;
+  VkDeviceSize normalOffset = 0;
+  VkDeviceSize uvOffset = 0;
+  VkDeviceSize indexOffset = 0;
+  std::vector<glm::vec3> positions;  // CPU copy for bounds
+  glm::vec3 boundsMin{0.0f};
+  glm::vec3 boundsMax{0.0f};
+  std::uint32_t users = 0;
+  bool alive = false;
+};
+
+struct InstanceRecord {
+  std::uint32_t mesh = 0;
+  std::uint32_t material = 0;
+  glm::mat4 transform{1.0f};
+  bool alive = false;
+};
+
+struct MaterialRecord {
+  Material material;
+  VkDescriptorSet set = VK_NULL_HANDLE;  // textures, set = 1
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  std::uint32_t users = 0;
+  bool alive = false;
+};
+
+struct TextureRecord {
+  Image image;
+  std::uint32_t users = 0;
+  bool alive = false;
+};
+
+struct LightRecord {
+  Light light;
+  bool alive = false;
+};
+
+// Instances that share mesh and material, drawn with one instanced call whose
+// gl_InstanceIndex runs over drawOrder[first, first + count).
+struct DrawGroup {
+  std::uint32_t mesh = 0;
+  std::uint32_t material = 0;
+  std::uint32_t first = 0;
+  std::uint32_t count = 0;
+};
+
+// The set-1 layout for material textures. Scene and Renderer each create one
+// with this function; identically defined layouts are compatible.
+VkDescriptorSetLayout createMaterialSetLayout(VkDevice device);
+
+struct SceneState {
+  std::shared_ptr<Device> device;
+  std::uint64_t version = 0;
+
+  std::vector<MeshRecord> meshes;
+  std::vector<InstanceRecord> instances;
+  std::vector<MaterialRecord> materials;
+  std::vector<TextureRecord> textures;
+  std::vector<LightRecord> lights;
+  Environment environment;
+
+  Buffer instanceBuffer;  // GpuInstance per instance slot, host-visible
+  Buffer materialBuffer;  // GpuMaterial per material slot, host-visible
+  bool materialsDirty = true;
+
+  VkDescriptorSetLayout materialSetLayout = VK_NULL_HANDLE;
+  std::vector<VkDescriptorPool> materialPools;
+  VkSampler sampler = VK_NULL_HANDLE;
+  Image whiteTexture;
+
+  // Derived for drawing; rebuilt by prepare() when drawListDirty.
+  bool drawListDirty = true;
+  std::vector<DrawGroup> opaqueGroups;
+  std::vector<std::uint32_t> opaqueOrder;
+  std::vector<std::uint32_t> transparent;  // instance slots, unsorted
+  bool boundsDirty = true;
+  glm::vec3 sceneMin{0.0f};
+  glm::vec3 sceneMax{0.0f};
+  bool sceneEmpty = true;
+
+  std::uint64_t geometryBytes = 0;
+  std::uint64_t instanceBytes = 0;
+
+  // Brings the material buffer, draw groups and bounds up to date.
+  void prepare();
+  // World-space bounds of one instance.
+  void instanceBounds(std::uint32_t slot, glm::vec3& lo, glm::vec3& hi) const;
+};
+
+}  // namespace tsr::vk

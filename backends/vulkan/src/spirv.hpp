@@ -1,0 +1,11 @@
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+// Defined in the generated spirv.cpp (see cmake/embed_spirv.cmake).
+namespace tsr::vk::spirv {
+extern const std::span<const std::uint32_t> mesh_vert;
+extern const std::span<const std::uint32_t> mesh_frag;
+extern const std::span<const std::uint32_t> shadow_vert;
+}  // namespace tsr::vk::spirv
