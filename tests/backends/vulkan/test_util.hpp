@@ -2,10 +2,12 @@
 
 #include "tsr/vk/camera.hpp"
 #include "tsr/vk/device.hpp"
+#include "tsr/vk/error.hpp"
 #include "tsr/vk/framebuffer.hpp"
 #include "tsr/vk/mesh.hpp"
 #include "tsr/vk/region.hpp"
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/vec3.hpp>
 
 #include <algorithm>

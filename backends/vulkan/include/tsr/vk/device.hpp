@@ -18,10 +18,10 @@ struct DeviceOptions {
   bool validation = false;
   // Pick the first physical device whose name contains this; empty: the
   // first device with Vulkan 1.3 and a graphics queue.
-  std::string deviceNameContains;
+  std::string deviceNameContains{};
   // For presentation: instance extensions a window system needs (e.g. from
   // glfwGetRequiredInstanceExtensions). Non-empty also enables VK_KHR_swapchain.
-  std::vector<std::string> instanceExtensions;
+  std::vector<std::string> instanceExtensions{};
 };
 
 // Owns the Vulkan instance, the chosen physical device, the logical device,
