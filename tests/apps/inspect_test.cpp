@@ -1,65 +1,18 @@
-#include <sys/wait.h>
-
-#include <algorithm>
-#include <cstdlib>
-#include <filesystem>
 #include <fstream>
-#include <random>
-#include <sstream>
 
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+
+#include "command_runner.hpp"
 
 namespace {
 
 using ::testing::HasSubstr;
+using tsr::test::Outcome;
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int status = -1;
-  std::string out;
-  std::string err;
-};
-
-class InspectCommand : public ::testing::Test {
+class InspectCommand : public tsr::test::CommandTest {
  protected:
-  void SetUp() override {
-    std::random_device rd;
-    dir = fs::temp_directory_path() / ("tsr_inspect_" + std::to_string(rd()));
-    fs::create_directories(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
-
-  static std::string slurp(const fs::path& p) {
-    std::ifstream in(p);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
-
-  Outcome run(const std::string& args) {
-    const fs::path out = dir / "out.txt", err = dir / "err.txt";
-    const std::string cmd =
-        std::string("'") + TSR_INSPECT_PATH + "' " + args + " > '" + out.string() + "' 2> '" + err.string() + "'";
-    const int raw = std::system(cmd.c_str());
-    Outcome r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    return r;
-  }
-
-  static void expectOneErrorLine(const Outcome& r, const std::string& about) {
-    EXPECT_EQ(r.status, 2);
-    ASSERT_FALSE(r.err.empty());
-    EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << r.err;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-    EXPECT_EQ(r.err.back(), '\n');
-    EXPECT_THAT(r.err, HasSubstr(about));
-  }
-
-  fs::path dir;
+  Outcome run(const std::string& args) { return runBinary(TSR_INSPECT_PATH, args); }
 };
 
 TEST_F(InspectCommand, PrintsCountsOfTheCornellBox) {

@@ -1,0 +1,80 @@
+// tessera-render: renders a scene with the back-end a viewport names and
+// writes the image. Errors: one line on stderr, exit status 2.
+#include <chrono>
+#include <fstream>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include "backends.hpp"
+#include "progress_bar.hpp"
+#include "render_options.hpp"
+#include "scene_session.hpp"
+#include "tsr/med/image_file.hpp"
+#include "tsr/med/viewport_registry.hpp"
+
+namespace {
+
+int run(int argc, char** argv) {
+  tsr::app::RenderOptions options;
+  if (!tsr::app::parseRenderOptions(argc, argv, options)) return 0;
+  if (!options.unparsed.empty()) throw std::invalid_argument("unknown argument " + options.unparsed.front());
+
+  tsr::app::SceneSession session;
+  session.load(options.scene);
+  session.publish();
+
+  tsr::med::ViewportRegistry registry;
+  tsr::app::registerBackends(registry);
+  tsr::med::ContextPool contexts;
+  tsr::med::ViewportSettings settings;
+  settings.backend = options.backend;
+  settings.root = session.imported.root;
+  settings.background = session.imported.background;
+  settings.parameters = options.parameters;
+  auto viewport = registry.create(settings, contexts);
+
+  const auto* camera = session.replica.scene().find<tsr::sg::Camera>(session.camera);
+  auto view = tsr::med::View::fromCamera(*camera, options.width, options.height);
+  tsr::app::ProgressBar bar("rendering", !options.quiet);
+  tsr::med::RenderControl control;
+  control.progress = [&](double f) { bar.update(f); };
+  tsr::med::FrameBuffer image;
+  auto stats = viewport->render(session.replica, view, image, control);
+  bar.finish();
+
+  tsr::med::writeImage(options.output, image);
+  for (const auto& aov : options.aovs) tsr::med::writeImage(tsr::app::aovPath(options.output, aov), image, aov);
+  if (!options.statsJson.empty()) {
+    nlohmann::json j = {{"scene", options.scene},
+                        {"backend", options.backend},
+                        {"seconds", stats.seconds},
+                        {"spp", stats.samples},
+                        {"width", options.width},
+                        {"height", options.height},
+                        {"rays", stats.rays},
+                        {"rays_per_second", stats.seconds > 0 ? double(stats.rays) / stats.seconds : 0.0}};
+    std::ofstream out(options.statsJson);
+    out << j.dump(2) << "\n";
+    if (!out) throw std::runtime_error(options.statsJson + ": cannot write");
+  }
+  if (!options.quiet)
+    std::cout << "wrote " << options.output << " (" << options.width << "x" << options.height << ", "
+              << stats.samples << " spp, " << stats.seconds << " s)\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  spdlog::set_level(spdlog::level::warn);
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::string message = e.what();
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    std::cerr << "error: " << message << "\n";
+    return 2;
+  }
+}

@@ -1,0 +1,71 @@
+#include "render_options.hpp"
+
+#include <charconv>
+#include <iostream>
+#include <stdexcept>
+
+#include <CLI/CLI.hpp>
+
+namespace tsr::app {
+
+void parseSize(const std::string& text, std::uint32_t& width, std::uint32_t& height) {
+  auto x = text.find('x');
+  auto number = [&](std::string_view s) {
+    std::uint32_t v = 0;
+    auto [end, err] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (err != std::errc() || end != s.data() + s.size() || v == 0 || v > 32768)
+      throw std::invalid_argument("--size " + text + ": expected WxH with each side 1..32768");
+    return v;
+  };
+  if (x == std::string::npos) throw std::invalid_argument("--size " + text + ": expected WxH, e.g. 512x512");
+  width = number(std::string_view(text).substr(0, x));
+  height = number(std::string_view(text).substr(x + 1));
+}
+
+std::string aovPath(const std::string& output, const std::string& aov) {
+  auto dot = output.find_last_of('.');
+  auto slash = output.find_last_of('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return output + "." + aov;
+  return output.substr(0, dot) + "." + aov + output.substr(dot);
+}
+
+bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
+  CLI::App app{"Render a scene with one of Tessera's back-ends"};
+  app.allow_extras();
+  std::string size = "512x512";
+  std::int64_t spp = 16, maxDepth = 8, seed = 0, threads = 0;
+  std::vector<std::string> params;
+  app.add_option("scene", o.scene, "glTF file (.gltf/.glb) or builtin:NAME")->required();
+  app.add_option("--backend", o.backend, "embree, vulkan or coverage");
+  app.add_option("--size", size, "image size WxH");
+  auto* sppOption = app.add_option("--spp", spp, "samples per pixel")->check(CLI::Range(1, 1 << 20));
+  auto* depthOption = app.add_option("--max-depth", maxDepth, "maximum path depth")->check(CLI::Range(0, 1024));
+  auto* seedOption = app.add_option("--seed", seed, "random seed")->check(CLI::NonNegativeNumber);
+  auto* threadsOption = app.add_option("--threads", threads, "render threads (0: all)")->check(CLI::Range(0, 4096));
+  app.add_option("--output", o.output, "image file; the format follows the extension");
+  app.add_option("--aov", o.aovs, "extra outputs to write next to --output (albedo, normal, depth, direct, ...)");
+  app.add_option("--stats-json", o.statsJson, "write render statistics as JSON");
+  app.add_option("--param", params, "back-end parameter name=value (repeatable)");
+  app.add_flag("--quiet", o.quiet, "no progress bar");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    return false;
+  } catch (const CLI::ParseError& e) {
+    throw std::invalid_argument(e.what());
+  }
+  parseSize(size, o.width, o.height);
+  for (const auto& p : params) {
+    auto [name, value] = med::Parameters::parse(p);
+    o.parameters.set(name, value);
+  }
+  if (*sppOption || !o.parameters.has("spp")) o.parameters.set("spp", spp);
+  if (*depthOption || !o.parameters.has("maxDepth")) o.parameters.set("maxDepth", maxDepth);
+  if (*seedOption || !o.parameters.has("seed")) o.parameters.set("seed", seed);
+  if (*threadsOption || !o.parameters.has("threads")) o.parameters.set("threads", threads);
+  o.unparsed = app.remaining();
+  return true;
+}
+
+}  // namespace tsr::app

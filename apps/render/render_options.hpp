@@ -1,0 +1,33 @@
+#pragma once
+// tessera-render's command line, parsed and checked; nothing rendered yet.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "tsr/med/parameters.hpp"
+
+namespace tsr::app {
+
+struct RenderOptions {
+  std::string scene;
+  std::string backend = "embree";
+  std::uint32_t width = 512, height = 512;
+  std::string output = "render.png";
+  std::vector<std::string> aovs;
+  std::string statsJson;
+  med::Parameters parameters;  // spp, maxDepth, seed, threads and --param extras
+  bool quiet = false;
+  std::vector<std::string> unparsed;  // arguments for other parts (cluster, frames)
+};
+
+// Parses argv; throws std::invalid_argument with a one-line message for bad
+// input. Returns false when help was printed (exit 0).
+bool parseRenderOptions(int argc, char** argv, RenderOptions& options);
+
+// "640x480" -> width, height; throws std::invalid_argument.
+void parseSize(const std::string& text, std::uint32_t& width, std::uint32_t& height);
+
+// out.png + "albedo" -> out.albedo.png
+std::string aovPath(const std::string& output, const std::string& aov);
+
+}  // namespace tsr::app

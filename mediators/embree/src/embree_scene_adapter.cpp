@@ -1,0 +1,349 @@
+#include "embree_scene_adapter.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include "translation.hpp"
+
+namespace tsr::med::embree_mediator {
+
+namespace {
+// Geometry flagged with this attachment (non-zero) is not rendered here.
+constexpr const char* kHiddenAttachment = "embree.hidden";
+
+bool hidden(const sg::Container& c) {
+  const auto* v = c.attachment(kHiddenAttachment);
+  const auto* i = v ? std::get_if<std::int64_t>(v) : nullptr;
+  return i && *i != 0;
+}
+
+bool isNode(sg::ContainerType t) { return (sg::typeBit(t) & sg::kNodeTypes) != 0; }
+}  // namespace
+
+EmbreeSceneAdapter::EmbreeSceneAdapter(std::shared_ptr<embree::Device> device, sg::ContainerId root,
+                                       sg::ContainerId background)
+    : device_(std::move(device)), root_(root), background_(background) {}
+
+void EmbreeSceneAdapter::convert(const sg::Scene& scene) {
+  scene_ = std::make_unique<embree::Scene>(device_);
+  meshes_.clear();
+  unrenderable_.clear();
+  materials_.clear();
+  textures_.clear();
+  instances_.clear();
+  lights_.clear();
+  place(scene);
+  scene_->setEnvironment(translateBackground(scene, background_));
+}
+
+void EmbreeSceneAdapter::sync(const sg::Scene& scene, const sg::MergedChanges& changes) {
+  // Phase 0: does the shape of the graph change? Then placement is redone
+  // (a diff: surviving instances keep their back-end objects).
+  bool structural = false;
+  for (const auto& [id, e] : changes.entries()) {
+    if (!isNode(e.type)) continue;
+    if (e.created || e.destroyed || e.changed(sg::Container::kAttachments)) structural = true;
+    if (sg::isParentType(e.type) && e.changed(sg::Group::Children)) structural = true;
+  }
+  syncTextures(scene, changes);
+  syncMaterials(scene, changes);
+  if (syncMeshes(scene, changes)) structural = true;
+  if (structural)
+    place(scene);
+  else
+    syncTransforms(scene, changes);
+  auto bg = changes.entries().find(background_);
+  bool imageChanged = false;
+  if (const auto* b = scene.find<sg::Background>(background_))
+    if (auto e = changes.entries().find(b->environment()); e != changes.entries().end()) imageChanged = true;
+  if ((bg != changes.entries().end() && background_ != sg::kNoContainer) || imageChanged)
+    scene_->setEnvironment(translateBackground(scene, background_));
+  dropUnused(scene);
+}
+
+void EmbreeSceneAdapter::syncTextures(const sg::Scene& scene, const sg::MergedChanges& changes) {
+  for (const auto& [id, e] : changes.entries()) {
+    if (e.type != sg::ContainerType::Image || e.created || e.destroyed) continue;
+    auto held = textures_.find(id);
+    if (held == textures_.end()) continue;
+    // New texture first, then the materials that use it, then the old one.
+    embree::TextureId old = held->second;
+    textures_.erase(held);
+    textureFor(scene, id);
+    for (auto& [matId, handle] : materials_) {
+      const sg::Container* m = scene.find(matId);
+      if (!m) continue;
+      bool uses = false;
+      for (sg::FieldMask refs = m->referenceFields(); refs; refs &= refs - 1)
+        m->forEachReference(static_cast<sg::FieldIndex>(std::countr_zero(refs)), [&](sg::ContainerId r) { uses |= r == id; });
+      if (uses) scene_->setMaterial(handle, translateMaterial(m, [&](sg::ContainerId i) { return textureFor(scene, i); }));
+    }
+    scene_->removeTexture(old);
+  }
+}
+
+void EmbreeSceneAdapter::syncMaterials(const sg::Scene& scene, const sg::MergedChanges& changes) {
+  for (const auto& [id, e] : changes.entries()) {
+    if (e.destroyed || e.created) continue;
+    auto held = materials_.find(id);
+    if (held == materials_.end()) continue;
+    scene_->setMaterial(held->second,
+                        translateMaterial(scene.find(id), [&](sg::ContainerId i) { return textureFor(scene, i); }));
+    ++counters_.materialUpdates;
+  }
+}
+
+bool EmbreeSceneAdapter::syncMeshes(const sg::Scene& scene, const sg::MergedChanges& changes) {
+  using G = sg::Geometry;
+  bool replace = false;
+  for (const auto& [id, e] : changes.entries()) {
+    if (e.type != sg::ContainerType::Geometry || e.created || e.destroyed) continue;
+    const auto* g = scene.find<G>(id);
+    if (e.changed(G::Material)) {
+      embree::MaterialId m = materialOfGeometry(scene, id);
+      for (auto& [key, placed] : instances_)
+        if (placed.geometry == id && placed.material != m) {
+          scene_->setInstanceMaterial(placed.id, m);
+          placed.material = m;
+        }
+    }
+    const sg::FieldMask shape = sg::fieldBit(G::Positions) | sg::fieldBit(G::Normals) | sg::fieldBit(G::Uvs) |
+                                sg::fieldBit(G::Indices) | sg::fieldBit(G::Motion) | sg::fieldBit(G::Colors);
+    if (!(e.mask & shape)) continue;
+    auto held = meshes_.find(id);
+    bool wasSkipped = unrenderable_.count(id) != 0;
+    if (held == meshes_.end() && !wasSkipped) continue;  // not (yet) instanced here
+    bool renderable = !g->invalidReason() && g->triangleCount() > 0;
+    if (held == meshes_.end() || !renderable) {  // state flips between skipped and rendered
+      replace = true;
+      continue;
+    }
+    // Vertex edits by range keep the topology: refit those ranges only.
+    const sg::FieldMask ranged = sg::fieldBit(G::Positions) | sg::fieldBit(G::Normals);
+    const auto* pos = e.rangedEdit(G::Positions);
+    const auto* nrm = e.rangedEdit(G::Normals);
+    bool onlyRanges = !(e.mask & shape & ~ranged) && (!e.changed(G::Positions) || pos) && (!e.changed(G::Normals) || nrm);
+    if (onlyRanges) {
+      sg::RangeSet runs;
+      for (const auto* edit : {pos, nrm})
+        if (edit)
+          for (const auto& r : edit->ranges) runs.add(r);
+      for (const auto& r : runs.ranges()) {
+        auto first = static_cast<std::uint32_t>(r.begin);
+        std::span<const glm::vec3> p(g->positions().data() + r.begin, r.size());
+        std::span<const glm::vec3> n;
+        if (!g->normals().empty()) n = std::span<const glm::vec3>(g->normals().data() + r.begin, r.size());
+        scene_->updateMeshVertices(held->second, first, p, n);
+        ++counters_.meshRangeUpdates;
+      }
+    } else {
+      scene_->setMeshData(held->second, translateMesh(*g));
+      ++counters_.meshBuilds;
+    }
+  }
+  if (replace) {
+    // Simplest correct path for a mesh that became (un)renderable: drop its
+    // instances and mesh, and let placement rebuild them.
+    for (auto it = instances_.begin(); it != instances_.end();) {
+      auto held = meshes_.find(it->second.geometry);
+      bool affected = unrenderable_.count(it->second.geometry) ||
+                      (held != meshes_.end() && changes.entries().count(it->second.geometry));
+      if (affected) {
+        scene_->removeInstance(it->second.id);
+        it = instances_.erase(it);
+      } else {
+        ++it;
+      }
+    }
+    for (const auto& [id, e] : changes.entries())
+      if (e.type == sg::ContainerType::Geometry) {
+        if (auto m = meshes_.find(id); m != meshes_.end()) {
+          bool used = false;
+          for (const auto& [k, p] : instances_) used |= p.geometry == id;
+          if (!used) {
+            scene_->removeMesh(m->second);
+            meshes_.erase(m);
+          }
+        }
+        unrenderable_.erase(id);
+      }
+  }
+  return replace;
+}
+
+void EmbreeSceneAdapter::syncTransforms(const sg::Scene& scene, const sg::MergedChanges& changes) {
+  std::unordered_set<std::uint32_t> instancesToUpdate, lightsToUpdate;
+  for (const auto& [id, e] : changes.entries()) {
+    if (e.type == sg::ContainerType::Transform && e.changed(sg::Transform::Matrix)) {
+      if (auto it = flat_.instancesUnder.find(id); it != flat_.instancesUnder.end())
+        instancesToUpdate.insert(it->second.begin(), it->second.end());
+      if (auto it = flat_.lightsUnder.find(id); it != flat_.lightsUnder.end())
+        lightsToUpdate.insert(it->second.begin(), it->second.end());
+    }
+    if (e.type == sg::ContainerType::Light && !e.destroyed)
+      for (std::uint32_t i = 0; i < flat_.lights.size(); ++i)
+        if (flat_.lights[i].id == id) lightsToUpdate.insert(i);
+  }
+  for (std::uint32_t i : instancesToUpdate) {
+    FlatNode& node = flat_.instances[i];
+    node.world = worldMatrix(scene, node.path);
+    auto placed = instances_.find(node.key());
+    if (placed == instances_.end()) continue;  // skipped geometry
+    scene_->setInstanceTransform(placed->second.id, node.world);
+    placed->second.world = node.world;
+    ++counters_.instanceTransforms;
+  }
+  for (std::uint32_t i : lightsToUpdate) {
+    FlatNode& node = flat_.lights[i];
+    node.world = worldMatrix(scene, node.path);
+    placeLight(scene, node);
+  }
+}
+
+void EmbreeSceneAdapter::place(const sg::Scene& scene) {
+  flat_ = flatten(scene, root_);
+  ++counters_.flattenings;
+  std::unordered_set<std::string> live;
+  for (const FlatNode& node : flat_.instances) {
+    const auto* g = scene.find<sg::Geometry>(node.id);
+    if (!g || hidden(*g)) continue;
+    auto mesh = meshFor(scene, node.id);
+    if (!mesh) continue;
+    std::string key = node.key();
+    live.insert(key);
+    embree::MaterialId material = materialOfGeometry(scene, node.id);
+    auto held = instances_.find(key);
+    if (held == instances_.end()) {
+      instances_.emplace(key, PlacedInstance{scene_->addInstance(*mesh, material, node.world), node.id, node.world, material});
+      continue;
+    }
+    PlacedInstance& p = held->second;
+    if (p.world != node.world) {
+      scene_->setInstanceTransform(p.id, node.world);
+      p.world = node.world;
+      ++counters_.instanceTransforms;
+    }
+    if (p.material != material) {
+      scene_->setInstanceMaterial(p.id, material);
+      p.material = material;
+    }
+  }
+  for (auto it = instances_.begin(); it != instances_.end();) {
+    if (live.count(it->first)) {
+      ++it;
+      continue;
+    }
+    scene_->removeInstance(it->second.id);
+    it = instances_.erase(it);
+  }
+  std::unordered_set<std::string> liveLights;
+  for (const FlatNode& node : flat_.lights) {
+    liveLights.insert(node.key());
+    placeLight(scene, node);
+  }
+  for (auto it = lights_.begin(); it != lights_.end();) {
+    if (liveLights.count(it->first)) {
+      ++it;
+      continue;
+    }
+    scene_->removeLight(it->second);
+    it = lights_.erase(it);
+  }
+}
+
+void EmbreeSceneAdapter::placeLight(const sg::Scene& scene, const FlatNode& node) {
+  const auto* light = scene.find<sg::Light>(node.id);
+  if (!light) return;
+  embree::Light translated = translateLight(*light, node.world);
+  auto held = lights_.find(node.key());
+  if (held == lights_.end())
+    lights_.emplace(node.key(), scene_->addLight(translated));
+  else
+    scene_->setLight(held->second, translated);
+}
+
+void EmbreeSceneAdapter::dropUnused(const sg::Scene& scene) {
+  std::unordered_set<sg::ContainerId> usedMeshes;
+  std::unordered_set<embree::MaterialId> usedMaterials;
+  for (const auto& [key, p] : instances_) {
+    usedMeshes.insert(p.geometry);
+    usedMaterials.insert(p.material);
+  }
+  for (auto it = meshes_.begin(); it != meshes_.end();) {
+    if (usedMeshes.count(it->first) && scene.find(it->first)) {
+      ++it;
+      continue;
+    }
+    scene_->removeMesh(it->second);
+    it = meshes_.erase(it);
+  }
+  for (auto it = materials_.begin(); it != materials_.end();) {
+    if (usedMaterials.count(it->second)) {
+      ++it;
+      continue;
+    }
+    scene_->removeMaterial(it->second);
+    it = materials_.erase(it);
+  }
+  // Textures no material uses any more.
+  std::unordered_set<sg::ContainerId> usedImages;
+  for (const auto& [matId, handle] : materials_)
+    if (const sg::Container* m = scene.find(matId))
+      for (sg::FieldMask refs = m->referenceFields(); refs; refs &= refs - 1)
+        m->forEachReference(static_cast<sg::FieldIndex>(std::countr_zero(refs)), [&](sg::ContainerId r) { usedImages.insert(r); });
+  for (auto it = textures_.begin(); it != textures_.end();) {
+    if (usedImages.count(it->first)) {
+      ++it;
+      continue;
+    }
+    scene_->removeTexture(it->second);
+    it = textures_.erase(it);
+  }
+}
+
+std::optional<embree::MeshId> EmbreeSceneAdapter::meshFor(const sg::Scene& scene, sg::ContainerId id) {
+  if (auto it = meshes_.find(id); it != meshes_.end()) return it->second;
+  if (unrenderable_.count(id)) return std::nullopt;
+  const auto* g = scene.find<sg::Geometry>(id);
+  if (auto why = g->invalidReason()) {
+    spdlog::warn("embree: geometry {} '{}' skipped: {}", id, g->name(), *why);
+    unrenderable_.insert(id);
+    return std::nullopt;
+  }
+  if (g->triangleCount() == 0) {
+    unrenderable_.insert(id);
+    return std::nullopt;
+  }
+  embree::MeshId mesh = scene_->addMesh(translateMesh(*g));
+  ++counters_.meshBuilds;
+  meshes_.emplace(id, mesh);
+  return mesh;
+}
+
+embree::MaterialId EmbreeSceneAdapter::materialFor(const sg::Scene& scene, sg::ContainerId id) {
+  if (auto it = materials_.find(id); it != materials_.end()) return it->second;
+  embree::MaterialId m = scene_->addMaterial(
+      translateMaterial(scene.find(id), [&](sg::ContainerId image) { return textureFor(scene, image); }));
+  materials_.emplace(id, m);
+  return m;
+}
+
+embree::MaterialId EmbreeSceneAdapter::materialOfGeometry(const sg::Scene& scene, sg::ContainerId geometry) {
+  const auto* g = scene.find<sg::Geometry>(geometry);
+  return materialFor(scene, g ? g->material() : sg::kNoContainer);
+}
+
+std::optional<embree::TextureId> EmbreeSceneAdapter::textureFor(const sg::Scene& scene, sg::ContainerId id) {
+  if (auto it = textures_.find(id); it != textures_.end()) return it->second;
+  const auto* image = scene.find<sg::Image>(id);
+  if (!image) return std::nullopt;
+  if (auto why = image->invalidReason()) {
+    spdlog::warn("embree: image {} '{}' skipped: {}", id, image->name(), *why);
+    return std::nullopt;
+  }
+  if (image->width() == 0 || image->height() == 0) return std::nullopt;
+  embree::TextureId t = scene_->addTexture(translateImage(*image));
+  textures_.emplace(id, t);
+  return t;
+}
+
+}  // namespace tsr::med::embree_mediator

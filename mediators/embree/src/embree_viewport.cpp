@@ -1,0 +1,83 @@
+#include "embree_viewport.hpp"
+
+#include <chrono>
+
+namespace tsr::med::embree_mediator {
+
+EmbreeViewport::EmbreeViewport(ViewportSettings settings, std::shared_ptr<EmbreeContext> context)
+    : Viewport(std::move(settings)), context_(std::move(context)) {}
+
+embree::RenderSettings EmbreeViewport::renderSettings() const {
+  const Parameters& p = settings_.parameters;
+  embree::RenderSettings s;
+  s.seed = static_cast<std::uint64_t>(p.getInt("seed", 0, 0));
+  s.maxDepth = static_cast<std::uint32_t>(p.getInt("maxDepth", 8, 0, 1024));
+  if (p.getBool("directOnly", false)) s.maxDepth = 1;
+  s.samplesPerPass = static_cast<std::uint32_t>(p.getInt("samplesPerPass", 1, 1, 4096));
+  s.threads = static_cast<int>(p.getInt("threads", 0, 0, 4096));
+  return s;
+}
+
+RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view, FrameBuffer& out,
+                                   const RenderControl& control) {
+  view.validate();
+  const auto start = std::chrono::steady_clock::now();
+  const auto spp = static_cast<std::uint32_t>(settings_.parameters.getInt("spp", 16, 1, 1 << 20));
+  renderer_.setSettings(renderSettings());
+
+  std::lock_guard lock(context_->mutex);
+  RenderStats stats;
+  stats.update = context_->adapter.catchUp(replica);
+
+  embree::Camera camera{view.cameraToWorld, view.left, view.right, view.bottom, view.top, view.nearPlane};
+  embree::Region region{view.width, view.height, view.region.x0, view.region.y0, view.region.x1, view.region.y1};
+  if (!accumulation_ || accumulation_->width() != region.regionWidth() ||
+      accumulation_->height() != region.regionHeight())
+    accumulation_ = std::make_unique<embree::FrameBuffer>(region.regionWidth(), region.regionHeight());
+
+  // Progressive: passes until the target sample count. The back-end restarts
+  // accumulation by itself when the scene, camera, region or settings
+  // changed; a converged image is reused only if none of them did.
+  embree::Scene& scene = context_->adapter.scene();
+  scene.commit();
+  const embree::RenderSettings& settings = renderer_.settings();
+  Accumulated now{&scene, scene.version(), camera, region, settings.seed, settings.maxDepth};
+  bool stale = accumulated_ != now;
+  for (;;) {
+    embree::FrameBuffer& fb = *accumulation_;
+    if (!stale && fb.sampleCount(0, 0) >= spp) break;
+    if (control.cancel && control.cancel->load()) break;
+    stale = false;
+    accumulated_ = now;
+    auto pass = renderer_.renderPass(scene, camera, region, fb);
+    stats.rays += pass.rays;
+    if (control.progress) control.progress(std::min(1.0, fb.sampleCount(0, 0) / double(spp)));
+    if (!pass.completed) break;
+  }
+  stats.samples = accumulation_->sampleCount(0, 0);
+
+  const embree::FrameBuffer& fb = *accumulation_;
+  out = FrameBuffer(fb.width(), fb.height());
+  out.colour = fb.colourImage();
+  out.depth = fb.depthImage();
+  auto& albedo = out.outputs["albedo"];
+  auto& normal = out.outputs["normal"];
+  auto& direct = out.outputs["direct"];
+  auto& indirect = out.outputs["indirect"];
+  auto& variance = out.outputs["variance"];
+  const std::size_t n = out.colour.size();
+  albedo.resize(n), normal.resize(n), direct.resize(n), indirect.resize(n), variance.resize(n);
+  for (std::uint32_t y = 0; y < fb.height(); ++y)
+    for (std::uint32_t x = 0; x < fb.width(); ++x) {
+      std::size_t i = out.index(x, y);
+      albedo[i] = glm::vec4(fb.albedo(x, y), 1.0f);
+      normal[i] = glm::vec4(fb.normal(x, y), 1.0f);
+      direct[i] = glm::vec4(fb.mean(embree::Channel::Direct, x, y), 1.0f);
+      indirect[i] = glm::vec4(fb.mean(embree::Channel::Indirect, x, y), 1.0f);
+      variance[i] = glm::vec4(fb.variance(embree::Channel::Colour, x, y), 1.0f);
+    }
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return stats;
+}
+
+}  // namespace tsr::med::embree_mediator

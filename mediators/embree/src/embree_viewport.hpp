@@ -1,0 +1,50 @@
+#pragma once
+// A viewport rendered by the Embree path tracer. Viewports on one replica
+// with the same root and background share a context: one device, one
+// converted scene. Each viewport keeps its own accumulation buffer, so two
+// eyes or two tiles converge independently.
+#include <memory>
+#include <mutex>
+#include <optional>
+
+#include "embree_scene_adapter.hpp"
+#include "tsr/embree/renderer.hpp"
+#include "tsr/med/viewport.hpp"
+
+namespace tsr::med::embree_mediator {
+
+struct EmbreeContext {
+  std::shared_ptr<embree::Device> device;
+  EmbreeSceneAdapter adapter;
+  std::mutex mutex;  // viewports sharing the scene render one at a time
+  EmbreeContext(std::shared_ptr<embree::Device> d, sg::ContainerId root, sg::ContainerId background)
+      : device(d), adapter(std::move(d), root, background) {}
+};
+
+class EmbreeViewport final : public Viewport {
+ public:
+  EmbreeViewport(ViewportSettings settings, std::shared_ptr<EmbreeContext> context);
+  RenderStats render(const sg::Replica& replica, const View& view, FrameBuffer& out,
+                     const RenderControl& control) override;
+  const EmbreeContext& context() const { return *context_; }
+
+ private:
+  embree::RenderSettings renderSettings() const;
+
+  std::shared_ptr<EmbreeContext> context_;
+  embree::Renderer renderer_;
+  std::unique_ptr<embree::FrameBuffer> accumulation_;
+  // What the accumulated samples were rendered for; anything else restarts.
+  struct Accumulated {
+    const embree::Scene* scene = nullptr;
+    std::uint64_t sceneVersion = 0;
+    embree::Camera camera;
+    embree::Region region;
+    std::uint64_t seed = 0;
+    std::uint32_t maxDepth = 0;
+    bool operator==(const Accumulated&) const = default;
+  };
+  std::optional<Accumulated> accumulated_;
+};
+
+}  // namespace tsr::med::embree_mediator

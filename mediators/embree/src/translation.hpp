@@ -1,0 +1,36 @@
+#pragma once
+// Scene graph values in the path tracer's vocabulary: materials, lights,
+// the background, textures and meshes. Pure functions; the adapter decides
+// when to call them.
+#include <functional>
+#include <optional>
+
+#include "tsr/embree/environment.hpp"
+#include "tsr/embree/light.hpp"
+#include "tsr/embree/material.hpp"
+#include "tsr/embree/mesh.hpp"
+#include "tsr/embree/texture.hpp"
+#include "tsr/sg/scene.hpp"
+
+namespace tsr::med::embree_mediator {
+
+using TextureLookup = std::function<std::optional<embree::TextureId>(sg::ContainerId image)>;
+
+// SurfaceMaterial: transmission over 0.5 is glass (smooth below roughness
+// 0.05) or rough dielectric; else metallic over 0.5 is a mirror (smooth) or
+// rough conductor; else diffuse. SimpleMaterial is diffuse; its
+// transparency is not modelled by the path tracer. Emission carries over.
+embree::Material translateMaterial(const sg::Container* material, const TextureLookup& textures);
+
+// RGBA, linear; sRGB 8-bit images are decoded.
+embree::Texture translateImage(const sg::Image& image);
+
+// A light placed by its world matrix.
+embree::Light translateLight(const sg::Light& light, const glm::mat4& world);
+
+// Colour, gradient (baked into a small lat-long map) or environment image.
+embree::Environment translateBackground(const sg::Scene& scene, sg::ContainerId background);
+
+embree::MeshData translateMesh(const sg::Geometry& geometry);
+
+}  // namespace tsr::med::embree_mediator

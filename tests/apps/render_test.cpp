@@ -1,0 +1,61 @@
+// tessera-render as a user runs it: images, statistics, and one-line errors.
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "command_runner.hpp"
+#include "tsr/med/image_file.hpp"
+
+namespace {
+
+using ::testing::HasSubstr;
+using tsr::test::Outcome;
+
+class RenderCommand : public tsr::test::CommandTest {
+ protected:
+  Outcome run(const std::string& args) { return runBinary(TSR_RENDER_PATH, args); }
+};
+
+TEST_F(RenderCommand, RendersTheCornellBoxWithStatsAndOutputs) {
+  const Outcome r = run("builtin:cornell --size 40x30 --spp 2 --max-depth 3 --seed 5 --threads 1 "
+                        "--output c.exr --aov albedo --aov depth --stats-json s.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  auto image = tsr::med::readImage((dir / "c.exr").string());
+  EXPECT_EQ(image.width, 40u);
+  EXPECT_EQ(image.height, 30u);
+  float sum = 0;
+  for (const auto& p : image.colour) sum += p.r + p.g + p.b;
+  EXPECT_GT(sum, 0.0f) << "the box is lit";
+  auto albedo = tsr::med::readImage((dir / "c.albedo.exr").string());
+  EXPECT_EQ(albedo.width, 40u);
+  EXPECT_TRUE(std::filesystem::exists(dir / "c.depth.exr"));
+
+  auto stats = nlohmann::json::parse(slurp(dir / "s.json"));
+  EXPECT_EQ(stats["width"], 40);
+  EXPECT_EQ(stats["height"], 30);
+  EXPECT_EQ(stats["spp"], 2);
+  EXPECT_GE(stats["rays"].get<std::uint64_t>(), 40u * 30u * 2u) << "at least one camera ray per sample";
+  EXPECT_GT(stats["rays_per_second"].get<double>(), 0.0);
+  EXPECT_GT(stats["seconds"].get<double>(), 0.0);
+}
+
+TEST_F(RenderCommand, SameSeedSameImage) {
+  ASSERT_EQ(run("builtin:cornell --size 24x24 --spp 2 --seed 3 --threads 1 --output a.exr").status, 0);
+  ASSERT_EQ(run("builtin:cornell --size 24x24 --spp 2 --seed 3 --threads 2 --output b.exr").status, 0);
+  EXPECT_EQ(slurp(dir / "a.exr"), slurp(dir / "b.exr"));
+}
+
+TEST_F(RenderCommand, BadInputIsOneErrorLine) {
+  expectOneErrorLine(run("builtin:cornell --size 0x10"), "--size");
+  expectOneErrorLine(run("builtin:cornell --size wide"), "--size");
+  expectOneErrorLine(run("builtin:cornell --backend nosuch --size 8x8"), "unknown back-end 'nosuch'");
+  expectOneErrorLine(run("missing.gltf --size 8x8"), "missing.gltf");
+  expectOneErrorLine(run("builtin:cornell --spp 0"), "--spp");
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --output x.nosuchformat"), "x.nosuchformat");
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --param spp=lots"), "parameter spp");
+  expectOneErrorLine(run(""), "scene");
+  std::ofstream(dir / "junk.gltf") << "{ not json";
+  expectOneErrorLine(run("junk.gltf --size 8x8"), "junk.gltf");
+}
+
+}  // namespace

@@ -1,0 +1,198 @@
+// The Embree mediator through the real path tracer: incremental sync gives
+// the same bits as converting the edited scene afresh, tiles are crops,
+// contexts are shared.
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "tsr/med/embree/register.hpp"
+#include "tsr/sg/import/importer.hpp"
+
+using namespace tsr;
+
+namespace {
+constexpr std::uint32_t kSize = 48;
+
+struct Rig {
+  sg::Scene source;
+  sg::ImportResult imported;
+  med::ViewportRegistry registry;
+  Rig() {
+    imported = sg::importScene(source, "builtin:cornell");
+    med::registerEmbree(registry);
+  }
+  med::ViewportSettings settings(int spp = 4) const {
+    med::ViewportSettings s;
+    s.backend = "embree";
+    s.root = imported.root;
+    s.background = imported.background;
+    s.parameters.set("spp", std::int64_t{spp});
+    s.parameters.set("seed", std::int64_t{7});
+    s.parameters.set("maxDepth", std::int64_t{4});
+    return s;
+  }
+  med::View view(const sg::Scene& scene) const {
+    return med::View::fromCamera(*scene.find<sg::Camera>(imported.cameras.front()), kSize, kSize);
+  }
+};
+
+// A replica that follows the source, with a viewport that converted it once.
+struct Follower {
+  sg::Replica replica;
+  med::ContextPool contexts;
+  std::unique_ptr<med::Viewport> viewport;
+  med::FrameBuffer image;
+  med::RenderStats render(const Rig& rig) {
+    if (!viewport) viewport = rig.registry.create(rig.settings(), contexts);
+    return viewport->render(replica, rig.view(replica.scene()), image);
+  }
+};
+
+// The edited scene converted from scratch by a brand-new replica and viewport.
+med::FrameBuffer fresh(Rig& rig) {
+  Follower f;
+  f.replica.apply(rig.source.snapshot());
+  EXPECT_EQ(f.render(rig).update, med::SceneAdapter::Update::Converted);
+  return f.image;
+}
+
+void expectSameBits(const med::FrameBuffer& a, const med::FrameBuffer& b, const char* what) {
+  ASSERT_EQ(a.colour.size(), b.colour.size()) << what;
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < a.colour.size(); ++i) differ += a.colour[i] != b.colour[i];
+  EXPECT_EQ(differ, 0u) << what << ": pixels that differ";
+}
+
+sg::ContainerId firstOf(const sg::Scene& s, sg::ContainerType type, const std::string& name = "") {
+  for (auto id : s.ids())
+    if (s.find(id)->type() == type && (name.empty() || s.find(id)->name().find(name) != std::string::npos)) return id;
+  return sg::kNoContainer;
+}
+
+class IncrementalSync : public ::testing::Test {
+ protected:
+  Rig rig;
+  Follower follower;
+  med::FrameBuffer before;
+  void SetUp() override {
+    follower.replica.apply(rig.source.commit());
+    ASSERT_EQ(follower.render(rig).update, med::SceneAdapter::Update::Converted);
+    before = follower.image;
+  }
+  // Publishes the edit, renders incrementally, compares with a fresh conversion.
+  void check(const char* what) {
+    follower.replica.apply(rig.source.commit());
+    auto stats = follower.render(rig);
+    EXPECT_EQ(stats.update, med::SceneAdapter::Update::Synced) << what;
+    expectSameBits(follower.image, fresh(rig), what);
+    std::size_t changed = 0;
+    for (std::size_t i = 0; i < before.colour.size(); ++i) changed += before.colour[i] != follower.image.colour[i];
+    EXPECT_GT(changed, 0u) << what << ": the edit is visible";
+  }
+};
+}  // namespace
+
+TEST_F(IncrementalSync, TransformEdit) {
+  auto* t = rig.source.find<sg::Transform>(firstOf(rig.source, sg::ContainerType::Transform, "tall"));
+  if (!t) t = rig.source.find<sg::Transform>(firstOf(rig.source, sg::ContainerType::Transform));
+  ASSERT_NE(t, nullptr);
+  t->setMatrix(glm::translate(t->matrix(), glm::vec3(30, 0, 10)));
+  check("transform");
+}
+
+TEST_F(IncrementalSync, MaterialEdit) {
+  auto* m = rig.source.find<sg::SurfaceMaterial>(firstOf(rig.source, sg::ContainerType::SurfaceMaterial));
+  ASSERT_NE(m, nullptr);
+  m->setBaseColor({0.1f, 0.2f, 0.9f});
+  check("material");
+}
+
+TEST_F(IncrementalSync, GeometryRangeEdit) {
+  auto* g = rig.source.find<sg::Geometry>(firstOf(rig.source, sg::ContainerType::Geometry));
+  ASSERT_NE(g, nullptr);
+  std::vector<sg::Vec3> moved(g->positions().begin(), g->positions().begin() + 3);
+  for (auto& p : moved) p += sg::Vec3(0, 40, 0);
+  g->updatePositions(0, moved);
+  check("geometry range");
+}
+
+TEST_F(IncrementalSync, CreateAndDestroy) {
+  // A new instance of an existing mesh under the root...
+  auto& t = rig.source.create<sg::Transform>("extra");
+  t.setMatrix(glm::translate(glm::mat4(1.0f), glm::vec3(-60, 0, -40)));
+  t.addChild(firstOf(rig.source, sg::ContainerType::Geometry));
+  rig.source.find<sg::Group>(rig.imported.root)->addChild(t.id());
+  check("create");
+  // ...and then one removed.
+  before = follower.image;
+  rig.source.destroy(t.id());
+  check("destroy");
+}
+
+TEST(EmbreeMediator, TilesAreCropsAndThreadsDoNotMatter) {
+  Rig rig;
+  sg::Replica replica;
+  replica.apply(rig.source.commit());
+  med::ContextPool contexts;
+  auto full = rig.registry.create(rig.settings(), contexts);
+  auto view = rig.view(replica.scene());
+  med::FrameBuffer whole, tile;
+  full->render(replica, view, whole);
+  auto tiled = rig.registry.create(rig.settings(), contexts);
+  tiled->setParameter("threads", std::int64_t{1});
+  med::PixelRect rect{10, 20, 30, 41};
+  tiled->render(replica, view.cropped(rect), tile);
+  ASSERT_EQ(tile.width, rect.width());
+  for (std::uint32_t y = 0; y < tile.height; ++y)
+    for (std::uint32_t x = 0; x < tile.width; ++x) {
+      ASSERT_EQ(tile.colour[tile.index(x, y)], whole.colour[whole.index(x + rect.x0, y + rect.y0)]) << x << "," << y;
+      ASSERT_EQ(tile.depth[tile.index(x, y)], whole.depth[whole.index(x + rect.x0, y + rect.y0)]);
+    }
+  EXPECT_EQ(contexts.live(), 1u) << "both viewports share one converted scene";
+}
+
+TEST(EmbreeMediator, ReactivatedViewportCatchesUpWithoutReconverting) {
+  Rig rig;
+  sg::Replica replica(512);
+  replica.apply(rig.source.commit());
+  med::ContextPool contexts;
+  auto viewport = rig.registry.create(rig.settings(1), contexts);
+  med::FrameBuffer image;
+  EXPECT_EQ(viewport->render(replica, rig.view(replica.scene()), image).update, med::SceneAdapter::Update::Converted);
+  auto* t = rig.source.find<sg::Transform>(firstOf(rig.source, sg::ContainerType::Transform));
+  for (int frame = 0; frame < 100; ++frame) {  // the viewport is switched off meanwhile
+    t->setMatrix(glm::translate(glm::mat4(1.0f), glm::vec3(frame * 0.1f, 0, 0)));
+    replica.apply(rig.source.commit());
+  }
+  EXPECT_EQ(viewport->render(replica, rig.view(replica.scene()), image).update, med::SceneAdapter::Update::Synced);
+}
+
+TEST(EmbreeMediator, ConvergedImagesAreReusedUntilSomethingChanges) {
+  Rig rig;
+  sg::Replica replica;
+  replica.apply(rig.source.commit());
+  med::ContextPool contexts;
+  auto viewport = rig.registry.create(rig.settings(2), contexts);
+  med::FrameBuffer image;
+  auto view = rig.view(replica.scene());
+  EXPECT_GT(viewport->render(replica, view, image).rays, 0u);
+  EXPECT_EQ(viewport->render(replica, view, image).rays, 0u) << "nothing changed: no work";
+  viewport->setParameter("spp", std::int64_t{3});
+  auto more = viewport->render(replica, view, image);
+  EXPECT_GT(more.rays, 0u);
+  EXPECT_EQ(more.samples, 3u) << "continues from 2 samples";
+  viewport->setParameter("seed", std::int64_t{99});
+  EXPECT_EQ(viewport->render(replica, view, image).samples, 3u) << "restarted and reconverged";
+}
+
+TEST(EmbreeMediator, BadParametersAreTypedErrors) {
+  Rig rig;
+  sg::Replica replica;
+  replica.apply(rig.source.commit());
+  med::ContextPool contexts;
+  auto settings = rig.settings();
+  settings.parameters.set("spp", std::string("many"));
+  auto viewport = rig.registry.create(settings, contexts);
+  med::FrameBuffer image;
+  EXPECT_THROW(viewport->render(replica, rig.view(replica.scene()), image), med::ParameterError);
+}
