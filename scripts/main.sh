@@ -6,4 +6,4 @@ cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 cmake --preset default
 cmake --build --preset default -j"$(nproc)"
-build/default/bin/tessera-inspect builtin:cornell
+build/default/bin/tessera-render builtin:cornell --output cornell.png --stats-json cornell.json

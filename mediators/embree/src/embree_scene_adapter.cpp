@@ -39,7 +39,11 @@ void EmbreeSceneAdapter::sync(const sg::Scene& scene, const sg::MergedChanges& c
   // Phase 0: does the shape of the graph change? Then placement is redone
   // (a diff: surviving instances keep their back-end objects).
   bool structural = false;
+  bool mayOrphan = false;  // something may no longer be used: look for leftovers
   for (const auto& [id, e] : changes.entries()) {
+    if (e.destroyed || (e.type == sg::ContainerType::Geometry && e.changed(sg::Geometry::Material)) ||
+        (e.type != sg::ContainerType::Transform && e.type != sg::ContainerType::Light && e.mask != 0))
+      mayOrphan = true;
     if (!isNode(e.type)) continue;
     if (e.created || e.destroyed || e.changed(sg::Container::kAttachments)) structural = true;
     if (sg::isParentType(e.type) && e.changed(sg::Group::Children)) structural = true;
@@ -57,7 +61,7 @@ void EmbreeSceneAdapter::sync(const sg::Scene& scene, const sg::MergedChanges& c
     if (auto e = changes.entries().find(b->environment()); e != changes.entries().end()) imageChanged = true;
   if ((bg != changes.entries().end() && background_ != sg::kNoContainer) || imageChanged)
     scene_->setEnvironment(translateBackground(scene, background_));
-  dropUnused(scene);
+  if (structural || mayOrphan) dropUnused(scene);
 }
 
 void EmbreeSceneAdapter::syncTextures(const sg::Scene& scene, const sg::MergedChanges& changes) {

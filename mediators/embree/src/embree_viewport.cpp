@@ -18,6 +18,11 @@ embree::RenderSettings EmbreeViewport::renderSettings() const {
   return s;
 }
 
+SceneAdapter::Update EmbreeViewport::synchronize(const sg::Replica& replica) {
+  std::lock_guard lock(context_->mutex);
+  return context_->adapter.catchUp(replica);
+}
+
 RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view, FrameBuffer& out,
                                    const RenderControl& control) {
   view.validate();

@@ -24,6 +24,7 @@ struct EmbreeContext {
 class EmbreeViewport final : public Viewport {
  public:
   EmbreeViewport(ViewportSettings settings, std::shared_ptr<EmbreeContext> context);
+  SceneAdapter::Update synchronize(const sg::Replica& replica) override;
   RenderStats render(const sg::Replica& replica, const View& view, FrameBuffer& out,
                      const RenderControl& control) override;
   const EmbreeContext& context() const { return *context_; }

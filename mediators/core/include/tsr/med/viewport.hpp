@@ -46,6 +46,9 @@ class Viewport {
   // only when the change affects it).
   void setParameter(const std::string& name, ParameterValue value) { settings_.parameters.set(name, std::move(value)); }
 
+  // Brings the back-end's scene up to the replica's version (the mediator's
+  // part; back-ends may still build acceleration structures at render).
+  virtual SceneAdapter::Update synchronize(const sg::Replica& replica) = 0;
   // Catches the back-end up with the replica, then renders the view's
   // region into `out` (resized to the region).
   virtual RenderStats render(const sg::Replica& replica, const View& view, FrameBuffer& out,
