@@ -82,19 +82,22 @@ vec3 evalBsdf(uint type, vec3 colour, float alpha, float eta, vec3 n, vec3 wo, v
   return vec3(0.0);  // Mirror and Glass are delta BSDFs: no direct light from point-like lights
 }
 
-// Fraction of 3x3 shadow-map taps that see p lit.
-float visibility(Light l, vec3 p, vec3 ng) {
-  float offset = l.cone.z;
-  if (uint(l.position.w) == SPOT) offset *= length(l.position.xyz - p);
-  vec4 c = l.shadowMatrix * vec4(p + ng * offset, 1.0);
+// Fraction of 3x3 shadow-map taps that see p lit. Lights are read field by
+// field: copying the whole struct (with its matrix) per fragment is costly
+// on CPU rasterizers.
+float visibility(uint i, vec3 p, vec3 ng) {
+  float offset = lights[i].cone.z;
+  if (uint(lights[i].position.w) == SPOT) offset *= length(lights[i].position.xyz - p);
+  vec4 c = lights[i].shadowMatrix * vec4(p + ng * offset, 1.0);
   if (c.w <= 0.0) return 1.0;
   vec3 s = c.xyz / c.w;
   vec2 st = s.xy * 0.5 + 0.5;
   if (any(lessThan(st, vec2(0.0))) || any(greaterThan(st, vec2(1.0))) || s.z < 0.0 || s.z > 1.0) return 1.0;
-  float texel = l.cone.w;
+  float texel = lights[i].cone.w;
+  float layer = lights[i].direction.w;
   float sum = 0.0;
   for (int y = -1; y <= 1; ++y)
-    for (int x = -1; x <= 1; ++x) sum += texture(shadowMaps, vec4(st + vec2(x, y) * texel, l.direction.w, s.z));
+    for (int x = -1; x <= 1; ++x) sum += texture(shadowMaps, vec4(st + vec2(x, y) * texel, layer, s.z));
   return sum / 9.0;
 }
 
@@ -124,22 +127,24 @@ void main() {
   vec3 radiance = vec3(0.0);
   if (co > 1e-6) {
     for (uint i = 0u; i < frame.counts.x; ++i) {
-      Light l = lights[i];
-      uint lt = uint(l.position.w);
+      vec4 position = lights[i].position;
+      vec4 direction = lights[i].direction;
+      uint lt = uint(position.w);
       vec3 wi;
       vec3 li;
       if (lt == DIRECTIONAL) {
-        wi = -l.direction.xyz;
-        li = l.intensity.rgb;
+        wi = -direction.xyz;
+        li = lights[i].intensity.rgb;
       } else {
-        vec3 d = l.position.xyz - worldPos;
+        vec3 d = position.xyz - worldPos;
         float d2 = dot(d, d);
         if (!(d2 > 0.0)) continue;
         wi = d / sqrt(d2);
-        li = l.intensity.rgb / d2;
+        li = lights[i].intensity.rgb / d2;
         if (lt == SPOT) {
-          float c = dot(l.direction.xyz, -wi);
-          float falloff = c >= l.cone.x ? 1.0 : (c <= l.cone.y ? 0.0 : smoothstep(l.cone.y, l.cone.x, c));
+          vec4 cone = lights[i].cone;
+          float c = dot(direction.xyz, -wi);
+          float falloff = c >= cone.x ? 1.0 : (c <= cone.y ? 0.0 : smoothstep(cone.y, cone.x, c));
           if (falloff <= 0.0) continue;
           li *= falloff;
         }
@@ -148,7 +153,7 @@ void main() {
       if ((dot(wi, ng) > 0.0) != (dot(wi, n) > 0.0)) continue;
       vec3 f = evalBsdf(type, base, alpha, eta, n, wo, wi);
       if (max(f.r, max(f.g, f.b)) <= 0.0) continue;
-      float v = l.direction.w >= 0.0 ? visibility(l, worldPos, ng) : 1.0;
+      float v = direction.w >= 0.0 ? visibility(i, worldPos, ng) : 1.0;
       radiance += f * li * v;
     }
   }

@@ -227,7 +227,23 @@ void Renderer::render(Scene& scene, const Camera& camera, const Region& region, 
     });
     for (std::size_t i = 0; i < keyed.size(); ++i) r.transparentSorted[i] = keyed[i].second;
   }
+  // Opaque instances front to back within each group, so early depth tests
+  // skip shading of hidden fragments (fragment shading dominates on CPUs).
   r.drawOrder.assign(s.opaqueOrder.begin(), s.opaqueOrder.end());
+  {
+    std::vector<std::pair<float, std::uint32_t>> keyed;
+    for (const DrawGroup& g : s.opaqueGroups) {
+      const MeshRecord& m = s.meshes[g.mesh];
+      const glm::vec4 centre(0.5f * (m.boundsMin + m.boundsMax), 1.0f);
+      keyed.clear();
+      for (std::uint32_t i = g.first; i < g.first + g.count; ++i) {
+        const std::uint32_t slot = r.drawOrder[i];
+        keyed.emplace_back(glm::dot(glm::vec3(s.instances[slot].transform * centre) - camPos, forward), slot);
+      }
+      std::sort(keyed.begin(), keyed.end());
+      for (std::uint32_t i = 0; i < g.count; ++i) r.drawOrder[g.first + i] = keyed[i].second;
+    }
+  }
   const std::uint32_t transparentBase = std::uint32_t(r.drawOrder.size());
   r.drawOrder.insert(r.drawOrder.end(), r.transparentSorted.begin(), r.transparentSorted.end());
   ensureHost(*device_, r.drawOrderBuffer, std::max<std::size_t>(r.drawOrder.size(), 1) * 4,
