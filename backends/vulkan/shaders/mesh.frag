@@ -5,6 +5,13 @@
 // back-end's BSDFs (f * cos, same units), an ambient term from the average
 // environment radiance, and emission from the front face.
 
+// Specialised per material class: CPU rasterizers execute both sides of
+// branches, so unused BSDFs, texture fetches and shadow taps must be compiled out.
+layout(constant_id = 0) const uint MATERIAL_TYPE = 0u;
+layout(constant_id = 1) const bool BASE_TEXTURE = false;
+layout(constant_id = 2) const bool EMISSION_TEXTURE = false;
+layout(constant_id = 3) const bool SHADOWS = false;
+
 layout(set = 1, binding = 0) uniform sampler2D baseColorTex;
 layout(set = 1, binding = 1) uniform sampler2D emissionTex;
 
@@ -103,10 +110,10 @@ float visibility(uint i, vec3 p, vec3 ng) {
 
 void main() {
   Material m = materials[pc.material];
-  uint type = m.flags.x;
+  const uint type = MATERIAL_TYPE;
   vec3 base = m.baseColor.rgb;
   float opacity = m.baseColor.a;
-  if (m.flags.y != 0u) {
+  if (BASE_TEXTURE) {
     vec4 t = texture(baseColorTex, uv);
     base *= t.rgb;
     opacity *= t.a;
@@ -153,7 +160,7 @@ void main() {
       if ((dot(wi, ng) > 0.0) != (dot(wi, n) > 0.0)) continue;
       vec3 f = evalBsdf(type, base, alpha, eta, n, wo, wi);
       if (max(f.r, max(f.g, f.b)) <= 0.0) continue;
-      float v = direction.w >= 0.0 ? visibility(i, worldPos, ng) : 1.0;
+      float v = SHADOWS && direction.w >= 0.0 ? visibility(i, worldPos, ng) : 1.0;
       radiance += f * li * v;
     }
   }
@@ -172,7 +179,7 @@ void main() {
 
   if (gl_FrontFacing) {
     vec3 e = m.emission.rgb;
-    if (m.flags.z != 0u) e *= texture(emissionTex, uv).rgb;
+    if (EMISSION_TEXTURE) e *= texture(emissionTex, uv).rgb;
     radiance += e;
   }
   outColour = vec4(radiance, opacity);

@@ -43,6 +43,12 @@ Pipeline::Pipeline(const Device& device, const PipelineDesc& d) : device_(device
   stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
   stages[1].module = frag;
   stages[1].pName = "main";
+  std::vector<VkSpecializationMapEntry> entries;
+  for (std::uint32_t i = 0; i < d.fragmentConstants.size(); ++i)
+    entries.push_back({i, i * std::uint32_t(sizeof(std::uint32_t)), sizeof(std::uint32_t)});
+  VkSpecializationInfo specialization{std::uint32_t(entries.size()), entries.data(),
+                                      d.fragmentConstants.size() * sizeof(std::uint32_t), d.fragmentConstants.data()};
+  if (!entries.empty()) stages[1].pSpecializationInfo = &specialization;
 
   // Separate streams, so a vertex range edit touches one contiguous range per attribute.
   const VkVertexInputBindingDescription allBindings[3] = {

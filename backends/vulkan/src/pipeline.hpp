@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 namespace tsr::vk {
 
@@ -22,6 +23,7 @@ struct PipelineDesc {
   bool blend = false;      // "over" with straight alpha
   bool depthBias = false;  // shadow maps
   VkCullModeFlags cull = VK_CULL_MODE_NONE;
+  std::vector<std::uint32_t> fragmentConstants;  // specialisation constant i = value i
 };
 
 // A graphics pipeline for dynamic rendering with dynamic viewport/scissor

@@ -56,12 +56,8 @@ struct Renderer::Impl {
   VkCommandBuffer cmd = VK_NULL_HANDLE;
   VkFence fence = VK_NULL_HANDLE;
 
-  struct MainPipelines {
-    VkFormat colourFormat;
-    Pipeline opaque;
-    Pipeline transparent;
-  };
-  std::map<std::uint32_t, MainPipelines> mainPipelines;  // by sample count
+  std::map<std::uint32_t, VkFormat> colourFormats;  // by sample count
+  std::map<std::uint64_t, Pipeline> mainPipelines;   // by pipelineKey()
   Pipeline shadowPipeline;
 
   Buffer frameBuffer;  // GpuFrame uniform
@@ -76,7 +72,8 @@ struct Renderer::Impl {
 
   explicit Impl(const Device& d);
   ~Impl();
-  MainPipelines& pipelinesFor(std::uint32_t samples);
+  VkFormat colourFormat(std::uint32_t samples);
+  VkPipeline mainPipeline(std::uint32_t samples, const Material& material, bool shadows);
 };
 
 Renderer::Impl::Impl(const Device& d) : device(d) {
@@ -154,24 +151,35 @@ Renderer::Impl::~Impl() {
   vkDestroyDescriptorSetLayout(dev, frameLayout, nullptr);
 }
 
-Renderer::Impl::MainPipelines& Renderer::Impl::pipelinesFor(std::uint32_t samples) {
-  auto it = mainPipelines.find(samples);
-  if (it != mainPipelines.end()) return it->second;
-  const VkSampleCountFlagBits bits = sampleBits(samples);
+VkFormat Renderer::Impl::colourFormat(std::uint32_t samples) {
+  auto it = colourFormats.find(samples);
+  if (it == colourFormats.end()) it = colourFormats.emplace(samples, chooseColourFormat(device, sampleBits(samples))).first;
+  return it->second;
+}
+
+// Pipelines are specialised by what changes the fragment shader's code path:
+// material type, which textures exist, shadows; plus blending and samples.
+VkPipeline Renderer::Impl::mainPipeline(std::uint32_t samples, const Material& material, bool shadows) {
+  const std::uint32_t type = static_cast<std::uint32_t>(material.type);
+  const bool baseTex = material.baseColorTexture.has_value();
+  const bool emissionTex = material.emissionTexture.has_value();
+  const bool blend = material.isTransparent();
+  const std::uint64_t key = std::uint64_t(samples) | std::uint64_t(type) << 8 | std::uint64_t(baseTex) << 16 |
+                            std::uint64_t(emissionTex) << 17 | std::uint64_t(shadows) << 18 |
+                            std::uint64_t(blend) << 19;
+  auto it = mainPipelines.find(key);
+  if (it != mainPipelines.end()) return it->second.handle();
   PipelineDesc d;
   d.layout = layout;
   d.vertexSpirv = spirv::mesh_vert;
   d.fragmentSpirv = spirv::mesh_frag;
-  d.colourFormat = chooseColourFormat(device, bits);
-  d.samples = bits;
-  // Reversed depth: nearer is greater.
-  d.depthCompare = VK_COMPARE_OP_GREATER;
-  Pipeline opaque(device, d);
-  d.blend = true;
-  d.depthWrite = false;
-  Pipeline transparent(device, d);
-  return mainPipelines.emplace(samples, MainPipelines{d.colourFormat, std::move(opaque), std::move(transparent)})
-      .first->second;
+  d.colourFormat = colourFormat(samples);
+  d.samples = sampleBits(samples);
+  d.depthCompare = VK_COMPARE_OP_GREATER;  // reversed depth: nearer is greater
+  d.blend = blend;
+  d.depthWrite = !blend;
+  d.fragmentConstants = {type, baseTex, emissionTex, shadows};
+  return mainPipelines.emplace(key, Pipeline(device, d)).first->second.handle();
 }
 
 Renderer::Renderer(std::shared_ptr<Device> device, RenderSettings settings) : device_(std::move(device)) {
@@ -188,7 +196,7 @@ void Renderer::setSettings(const RenderSettings& settings) {
     throw Error("shadowMapSize must be in [16, 8192], got " + std::to_string(settings.shadowMapSize));
   for (int i = 0; i < 4; ++i)
     if (!std::isfinite(settings.background[i])) throw Error("background colour contains NaN or infinity");
-  impl_->pipelinesFor(settings.msaaSamples);  // fails here, not mid-frame, if unsupported
+  impl_->mainPipeline(settings.msaaSamples, Material{}, settings.shadows);  // fails here, not mid-frame
   settings_ = settings;
 }
 
@@ -206,7 +214,6 @@ void Renderer::render(Scene& scene, const Camera& camera, const Region& region, 
   s.prepare();
   const VkDevice dev = device_->handle();
   const std::uint32_t w = region.regionWidth(), h = region.regionHeight();
-  Impl::MainPipelines& pipes = r.pipelinesFor(settings_.msaaSamples);
   const VkSampleCountFlagBits samples = sampleBits(settings_.msaaSamples);
 
   // Draw order: opaque groups as the scene sorted them, then transparent
@@ -302,7 +309,7 @@ void Renderer::render(Scene& scene, const Camera& camera, const Region& region, 
   std::memcpy(r.frameBuffer.mapped(), &frame, sizeof(frame));
 
   if (!r.target || r.target->width != w || r.target->height != h || r.target->samples != samples)
-    r.target.emplace(*device_, w, h, pipes.colourFormat, samples);
+    r.target.emplace(*device_, w, h, r.colourFormat(settings_.msaaSamples), samples);
   const std::uint32_t layers = std::max<std::uint32_t>(1, std::uint32_t(shadowViewProj.size()));
   if (!r.shadowMap || r.shadowMap->size() != settings_.shadowMapSize || r.shadowMap->layers() < layers) {
     r.shadowMap.reset();
@@ -446,7 +453,13 @@ void Renderer::render(Scene& scene, const Camera& camera, const Region& region, 
   vkCmdSetViewport(cmd, 0, 1, &vp);
   vkCmdSetScissor(cmd, 0, 1, &ri.renderArea);
 
+  VkPipeline bound = VK_NULL_HANDLE;
   auto draw = [&](std::uint32_t meshIndex, std::uint32_t material, std::uint32_t first, std::uint32_t count) {
+    VkPipeline p = r.mainPipeline(settings_.msaaSamples, s.materials[material].material, !shadowViewProj.empty());
+    if (p != bound) {
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
+      bound = p;
+    }
     const MeshRecord& m = s.meshes[meshIndex];
     VkBuffer vb[3] = {m.buffer.handle(), m.buffer.handle(), m.buffer.handle()};
     VkDeviceSize off[3] = {0, m.normalOffset, m.uvOffset};
@@ -461,10 +474,8 @@ void Renderer::render(Scene& scene, const Camera& camera, const Region& region, 
     ++stats.drawCalls;
     stats.triangles += std::uint64_t(m.indexCount / 3) * count;
   };
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.opaque.handle());
   for (const DrawGroup& g : s.opaqueGroups) draw(g.mesh, g.material, g.first, g.count);
   if (!r.transparentSorted.empty()) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes.transparent.handle());
     for (std::uint32_t i = 0; i < r.transparentSorted.size(); ++i) {
       const InstanceRecord& inst = s.instances[r.transparentSorted[i]];
       draw(inst.mesh, inst.material, transparentBase + i, 1);
