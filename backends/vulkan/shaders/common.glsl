@@ -9,7 +9,6 @@ struct Material {
   vec4 baseColor;
   vec4 emission;
   vec4 params;
-  uvec4 flags;
 };
 
 struct Light {

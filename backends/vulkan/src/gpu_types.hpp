@@ -15,13 +15,11 @@ struct GpuInstance {
   glm::mat4 normal;  // inverse transpose of model's 3x3, padded
 };
 
-enum : std::uint32_t { kGpuDiffuse = 0, kGpuConductor = 1, kGpuDielectric = 2, kGpuMirror = 3, kGpuGlass = 4 };
-
+// Type and textures select a specialised pipeline instead (see mesh.frag).
 struct GpuMaterial {
   glm::vec4 baseColor;  // rgb, opacity
   glm::vec4 emission;   // rgb, unused
   glm::vec4 params;     // GGX alpha, ior, unused, unused
-  glm::uvec4 flags;     // type, has base colour texture, has emission texture, unused
 };
 
 enum : std::uint32_t { kGpuPoint = 0, kGpuSpot = 1, kGpuDirectional = 2 };

@@ -175,8 +175,6 @@ void SceneState::prepare() {
       g.baseColor = glm::vec4(m.baseColor, m.opacity);
       g.emission = glm::vec4(m.emission, 0.0f);
       g.params = glm::vec4(std::max(1e-3f, m.roughness * m.roughness), m.ior, 0.0f, 0.0f);
-      g.flags = glm::uvec4(static_cast<std::uint32_t>(m.type), m.baseColorTexture ? 1u : 0u,
-                           m.emissionTexture ? 1u : 0u, 0u);
       out[i] = g;
     }
     materialsDirty = false;
