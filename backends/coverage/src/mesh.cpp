@@ -1,0 +1,21 @@
+#include "tsr/cov/mesh.hpp"
+
+#include "tsr/cov/error.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace tsr::cov {
+
+void MeshData::validate() const {
+  if (indices.empty()) throw Error("mesh has no triangles");
+  if (indices.size() % 3 != 0) throw Error("mesh index count " + std::to_string(indices.size()) + " is not a multiple of 3");
+  for (std::uint32_t i : indices)
+    if (i >= positions.size())
+      throw Error("mesh index " + std::to_string(i) + " exceeds its " + std::to_string(positions.size()) + " vertices");
+  for (const auto& p : positions)
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw Error("mesh position contains NaN or infinity");
+}
+
+}  // namespace tsr::cov
