@@ -1,0 +1,50 @@
+// tessera-node --listen HOST:PORT [--token-file F] [--name N] [--threads N]
+// Serves render requests of Tessera clients. The first line on stdout is
+// "listening on HOST:PORT" (port 0 picks a free one), for scripts and tests.
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include "backends.hpp"
+#include "tsr/cluster/auth.hpp"
+#include "tsr/cluster/node_server.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"Tessera render node"};
+  std::string listen = "127.0.0.1:0", tokenFile, name = "node", logLevel = "info";
+  unsigned threads = 0;
+  app.add_option("--listen", listen, "HOST:PORT to listen on (port 0: a free port)");
+  app.add_option("--token-file", tokenFile, "file holding the shared token clients must prove");
+  app.add_option("--name", name, "name reported to clients");
+  app.add_option("--threads", threads, "render threads per viewport (0: all cores)");
+  app.add_option("--log-level", logLevel, "trace, debug, info, warn, error");
+  CLI11_PARSE(app, argc, argv);
+
+  try {
+    // Logs go to stderr: stdout carries only the "listening on" line.
+    spdlog::set_default_logger(spdlog::stderr_color_mt("node"));
+    spdlog::set_level(spdlog::level::from_str(logLevel));
+    spdlog::set_pattern("[node " + name + "] [%l] %v");
+    tsr::cluster::NodeOptions options;
+    options.listen = tsr::cluster::parseNodeAddress(listen.find(':') == std::string::npos ? listen + ":0" : listen);
+    options.name = name;
+    options.threads = threads;
+    if (!tokenFile.empty()) options.token = tsr::cluster::readTokenFile(tokenFile);
+
+    tsr::med::ViewportRegistry registry;
+    tsr::node::registerBackends(registry);
+    if (registry.backends().empty()) spdlog::warn("this build registers no back-end; render requests will fail");
+
+    tsr::cluster::NodeServer server(options, registry);
+    server.stopOnSignals();
+    auto bound = server.listen();
+    std::cout << "listening on " << bound.text() << std::endl;  // endl: scripts read this line at once
+    server.run();
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "tessera-node: " << e.what() << "\n";
+    return 1;
+  }
+}

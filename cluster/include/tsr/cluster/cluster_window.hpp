@@ -1,0 +1,98 @@
+#pragma once
+// The application's window onto a cluster (Schwenk 5.3.4): it mirrors the
+// scene on every node with change lists and renders a view there as the
+// config's mode says — tiled wall, cooperative tiles, or a stereo pair —
+// assembling the result here. A node that dies or stops answering never
+// blocks a frame beyond the timeouts of the config; it is retried and,
+// when back, receives a snapshot and takes part again.
+//
+// Per frame: scene.commit() -> publish(scene, list) -> render(view).
+#include <chrono>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+#include "tsr/cluster/cluster_config.hpp"
+#include "tsr/med/frame_buffer.hpp"
+#include "tsr/med/view.hpp"
+#include "tsr/sg/scene.hpp"
+
+namespace tsr::cluster {
+
+class ClusterError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct ClientOptions {
+  std::string token;  // empty only for nodes started without a token
+  std::string name = "tessera-client";
+};
+
+enum class NodeState { Offline, Connecting, Joined, Synced };
+
+struct NodeStatus {
+  NodeAddress address;
+  std::string name;       // as the node calls itself
+  NodeState state = NodeState::Offline;
+  std::uint64_t appliedVersion = 0;
+  std::uint64_t bytesSent = 0;  // messages sent to this node, heartbeats aside
+  std::string lastError;
+};
+
+struct ClusterFrame {
+  std::uint64_t frame = 0;
+  med::FrameBuffer image;        // stitched wall, composited tiles, or the composed stereo pair
+  med::FrameBuffer left, right;  // stereo only
+  std::vector<double> busySeconds;  // per node (config order); 0 where a node did nothing
+  std::size_t offlineTiles = 0;     // wall tiles shown as offline fill
+  std::size_t reassignedItems = 0;  // work taken over from nodes lost during the frame
+};
+
+struct ReplicaHash {
+  std::size_t node = 0;
+  std::uint64_t version = 0;
+  std::uint64_t hash = 0;
+};
+
+class ClusterWindow {
+ public:
+  ClusterWindow(ClusterConfig config, ClientOptions options = {});
+  ~ClusterWindow();
+  ClusterWindow(const ClusterWindow&) = delete;
+  ClusterWindow& operator=(const ClusterWindow&) = delete;
+
+  // Connects to every node, waiting at most `timeout`; returns how many
+  // joined. Nodes that did not are retried at every publish().
+  std::size_t connect(std::chrono::milliseconds timeout);
+  // A node joining mid-session; it gets a snapshot at the next publish().
+  std::size_t addNode(NodeConfig node);
+
+  // Sends `delta` (just committed, may be null) to the nodes that follow the
+  // scene and a snapshot to those that joined. The scene must have no
+  // pending edits.
+  void publish(const sg::Scene& scene, const sg::ChangeListPtr& delta);
+  // True once every synchronised node applied `version` (false on timeout).
+  bool waitApplied(std::uint64_t version, std::chrono::milliseconds timeout);
+  // The version and content hash of every synchronised node's replica.
+  std::vector<ReplicaHash> replicaHashes(std::chrono::milliseconds timeout);
+
+  // Renders `view` (the full image) on the nodes as the mode says.
+  // Throws ClusterError when no node is left to render (wall: never; its
+  // tiles show the offline fill).
+  ClusterFrame render(const med::View& view);
+  // Stereo: eye separation and zero-parallax distance (the scene camera's).
+  void setEyes(float separation, float zeroParallax);
+
+  std::vector<NodeStatus> status() const;
+  std::size_t onlineNodes() const;
+  const ClusterConfig& config() const;
+  // Imbalance (max / mean) of the cooperative balancer's load estimate.
+  double estimatedImbalance() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace tsr::cluster

@@ -1,0 +1,19 @@
+#pragma once
+// The rectangles of a display wall within its virtual frame. Bezels hide
+// pixels: the image continues behind them, so a tile's rectangle is where
+// its screen sits in the virtual frame and the gap pixels belong to no tile.
+#include <vector>
+
+#include "tsr/med/view.hpp"
+
+namespace tsr::cluster {
+
+// Tiles row by row from the top left. Throws std::invalid_argument when the
+// bezels leave no pixels for a tile.
+std::vector<med::PixelRect> wallLayout(std::uint32_t width, std::uint32_t height, std::uint32_t columns,
+                                       std::uint32_t rows, std::uint32_t bezel);
+
+// A grid of square-ish tiles of at most `tileSize` pixels covering the image.
+std::vector<med::PixelRect> tileGrid(std::uint32_t width, std::uint32_t height, std::uint32_t tileSize);
+
+}  // namespace tsr::cluster

@@ -1,0 +1,66 @@
+#pragma once
+// One framed TCP connection, used by both sides. Everything runs on the
+// io thread; other threads hand frames over with post(). Reads check the
+// header (magic, version, type, who may send it, whether it is allowed
+// before authentication, its size) before reading or allocating the
+// payload; a watchdog closes the socket when the peer goes quiet or stops
+// reading what we write.
+#include <atomic>
+#include <chrono>
+#include <deque>
+#include <memory>
+
+#include "asio.hpp"
+#include "tsr/cluster/messages.hpp"
+
+namespace tsr::cluster {
+
+class Connection : public std::enable_shared_from_this<Connection> {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  // `peer` is the side whose messages this connection receives.
+  Connection(tcp::socket socket, Sender peer);
+
+  // Reads one message; throws ProtocolError or boost::system::system_error.
+  asio::awaitable<Message> receive();
+  void setAuthenticated() { authenticated_ = true; }
+
+  void send(Frame frame);  // io thread only
+  void post(Frame frame);  // any thread
+  // Sends what is queued, then closes (a Reject before hanging up).
+  void closeAfterFlush();
+  void close();
+  bool isOpen() const { return open_; }
+
+  // Closes when nothing arrived for `idle`, or a write made no progress for `writeStall`.
+  void startWatchdog(std::chrono::milliseconds idle, std::chrono::milliseconds writeStall);
+  void setIdleLimit(std::chrono::milliseconds idle) { idle_ = idle; }
+  bool timedOut() const { return timedOut_; }
+
+  std::uint64_t bytesSent() const { return bytesSent_; }
+  std::uint64_t bytesReceived() const { return bytesReceived_; }
+  tcp::socket& socket() { return socket_; }
+  asio::any_io_executor executor() { return socket_.get_executor(); }
+
+ private:
+  void writeNext();
+  asio::awaitable<void> watchdog();
+
+  tcp::socket socket_;
+  Sender peer_;
+  bool authenticated_ = false;
+  bool open_ = true;
+  bool writing_ = false;
+  bool closeAfterFlush_ = false;
+  bool timedOut_ = false;
+  std::deque<Frame> queue_;
+  Clock::time_point lastReceived_ = Clock::now();
+  Clock::time_point lastWritten_ = Clock::now();
+  std::chrono::milliseconds idle_{0};
+  std::chrono::milliseconds writeStall_{0};
+  std::atomic<std::uint64_t> bytesSent_{0};
+  std::atomic<std::uint64_t> bytesReceived_{0};
+};
+
+}  // namespace tsr::cluster

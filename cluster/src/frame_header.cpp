@@ -1,0 +1,60 @@
+#include "tsr/cluster/frame_header.hpp"
+
+#include <algorithm>
+#include <string>
+
+#include "tsr/cluster/protocol_error.hpp"
+#include "tsr/sg/byte_reader.hpp"
+#include "tsr/sg/byte_writer.hpp"
+
+namespace tsr::cluster {
+
+using Kind = ProtocolError::Kind;
+
+FrameHeader decodeFrameHeader(std::span<const std::uint8_t> bytes, std::uint8_t expectedVersion) {
+  if (bytes.size() != kFrameHeaderBytes)
+    throw ProtocolError(Kind::Malformed, "frame header must be " + std::to_string(kFrameHeaderBytes) + " bytes");
+  if (!std::equal(kFrameMagic.begin(), kFrameMagic.end(), bytes.begin()))
+    throw ProtocolError(Kind::BadMagic, "not a Tessera node frame (bad magic)");
+  sg::ByteReader r(bytes.subspan(4), 4);
+  FrameHeader h;
+  h.version = r.u8();
+  std::uint8_t type = r.u8();
+  h.length = r.u32();
+  if (h.version != expectedVersion)
+    throw ProtocolError(Kind::VersionMismatch, "peer speaks protocol version " + std::to_string(h.version) +
+                                                   ", this build speaks " + std::to_string(expectedVersion));
+  const MessageSpec* s = findSpec(type);
+  if (!s) throw ProtocolError(Kind::UnknownType, "unknown message type " + std::to_string(type));
+  h.type = s->type;
+  if (h.length > s->maxPayload)
+    throw ProtocolError(Kind::Oversized, std::string(s->name) + " announces " + std::to_string(h.length) +
+                                             " bytes, the maximum is " + std::to_string(s->maxPayload));
+  return h;
+}
+
+void writeFrameHeader(std::vector<std::uint8_t>& out, const FrameHeader& header) {
+  sg::ByteWriter w(out);
+  w.raw(kFrameMagic.data(), kFrameMagic.size());
+  w.u8(header.version);
+  w.u8(static_cast<std::uint8_t>(header.type));
+  w.u32(header.length);
+}
+
+const char* name(ProtocolError::Kind kind) {
+  switch (kind) {
+    case Kind::BadMagic: return "bad magic";
+    case Kind::VersionMismatch: return "version mismatch";
+    case Kind::UnknownType: return "unknown type";
+    case Kind::Oversized: return "oversized";
+    case Kind::Unexpected: return "unexpected";
+    case Kind::Malformed: return "malformed";
+    case Kind::AuthFailed: return "authentication failed";
+    case Kind::Rejected: return "rejected";
+    case Kind::Timeout: return "timeout";
+    case Kind::Closed: return "closed";
+  }
+  return "unknown";
+}
+
+}  // namespace tsr::cluster

@@ -1,0 +1,90 @@
+#include "frame_round.hpp"
+
+#include "tsr/cluster/pixel_codec.hpp"
+
+namespace tsr::cluster {
+
+FrameRound::FrameRound(std::uint64_t frame, std::vector<WorkItem> items, std::vector<med::FrameBuffer>& targets,
+                       Compression compression)
+    : frame_(frame), items_(std::move(items)), targets_(targets), compression_(compression) {}
+
+Frame FrameRound::request(const std::vector<std::size_t>& items) const {
+  RenderRequest r;
+  r.frame = frame_;
+  r.compression = compression_;
+  for (std::size_t i : items) {
+    const WorkItem& it = items_.at(i);
+    auto job = std::find_if(r.jobs.begin(), r.jobs.end(),
+                            [&](const RenderJob& j) { return j.viewport == it.viewport && j.view == it.view; });
+    if (job == r.jobs.end()) {
+      r.jobs.push_back({it.viewport, it.view, {}});
+      job = std::prev(r.jobs.end());
+    }
+    job->rects.push_back(it.rect);
+  }
+  return makeFrame(r);
+}
+
+std::map<std::size_t, std::vector<std::size_t>> FrameRound::pendingByNode() const {
+  std::map<std::size_t, std::vector<std::size_t>> out;
+  for (std::size_t i = 0; i < items_.size(); ++i)
+    if (!items_[i].done && !items_[i].offline) out[items_[i].node].push_back(i);
+  return out;
+}
+
+std::vector<std::size_t> FrameRound::pendingOf(std::size_t node) const {
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < items_.size(); ++i)
+    if (!items_[i].done && !items_[i].offline && items_[i].node == node) out.push_back(i);
+  return out;
+}
+
+const WorkItem* FrameRound::onTile(std::size_t node, const RenderTile& tile) {
+  if (tile.frame != frame_) return nullptr;
+  for (auto& it : items_) {
+    if (it.done || it.offline || it.node != node || it.viewport != tile.viewport || !(it.rect == tile.rect)) continue;
+    med::FrameBuffer px = decodePixels(tile.rect.width(), tile.rect.height(), tile.compression, tile.pixels);
+    med::FrameBuffer& out = targets_.at(it.target);
+    for (std::uint32_t y = 0; y < px.height; ++y)
+      for (std::uint32_t x = 0; x < px.width; ++x) {
+        out.colour[out.index(it.rect.x0 + x, it.rect.y0 + y)] = px.colour[px.index(x, y)];
+        out.depth[out.index(it.rect.x0 + x, it.rect.y0 + y)] = px.depth[px.index(x, y)];
+      }
+    it.done = true;
+    return &it;
+  }
+  return nullptr;
+}
+
+void FrameRound::onDone(std::size_t node, const FrameDone& done) {
+  if (done.frame == frame_) busy_[node] += done.busySeconds;
+}
+
+void FrameRound::giveUp(std::size_t item, const glm::vec4& fill) {
+  WorkItem& it = items_.at(item);
+  it.offline = true;
+  med::FrameBuffer& out = targets_.at(it.target);
+  for (std::uint32_t y = it.rect.y0; y < it.rect.y1; ++y)
+    for (std::uint32_t x = it.rect.x0; x < it.rect.x1; ++x) {
+      out.colour[out.index(x, y)] = fill;
+      out.depth[out.index(x, y)] = med::kNoDepth;
+    }
+}
+
+bool FrameRound::finished() const {
+  for (const auto& it : items_)
+    if (!it.done && !it.offline) return false;
+  return true;
+}
+
+bool FrameRound::delivered(std::size_t node) const {
+  bool any = false;
+  for (const auto& it : items_)
+    if (it.node == node) {
+      if (!it.done) return false;
+      any = true;
+    }
+  return any;
+}
+
+}  // namespace tsr::cluster

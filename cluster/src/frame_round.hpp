@@ -1,0 +1,59 @@
+#pragma once
+// The bookkeeping of one frame: which rectangle of which viewport each node
+// renders, which have arrived, and where their pixels go. Items can move to
+// another node mid-frame (a node died) or be given up (a wall tile whose
+// node is gone shows the offline fill).
+#include <map>
+#include <vector>
+
+#include "tsr/cluster/messages.hpp"
+#include "tsr/med/frame_buffer.hpp"
+
+namespace tsr::cluster {
+
+struct WorkItem {
+  std::uint32_t viewport = 0;  // on the node
+  med::View view;              // the full image
+  med::PixelRect rect;
+  std::size_t target = 0;      // output buffer
+  std::size_t tile = ~std::size_t{0};  // balancer tile, in cooperative mode
+  std::size_t node = 0;
+  bool done = false;
+  bool offline = false;
+};
+
+class FrameRound {
+ public:
+  FrameRound(std::uint64_t frame, std::vector<WorkItem> items, std::vector<med::FrameBuffer>& targets,
+             Compression compression);
+
+  std::uint64_t frame() const { return frame_; }
+  // The request for the given items (all for one node).
+  Frame request(const std::vector<std::size_t>& items) const;
+  // Item indices per node, of items not yet done.
+  std::map<std::size_t, std::vector<std::size_t>> pendingByNode() const;
+  std::vector<std::size_t> pendingOf(std::size_t node) const;
+
+  // Copies a tile's pixels into place; returns the item it completed, or
+  // nothing for a stale or unasked-for tile. Throws ProtocolError for pixels
+  // that do not decode.
+  const WorkItem* onTile(std::size_t node, const RenderTile& tile);
+  void onDone(std::size_t node, const FrameDone& done);
+  void reassign(std::size_t item, std::size_t node) { items_.at(item).node = node; }
+  // Gives an item up, filling its rectangle with `fill`.
+  void giveUp(std::size_t item, const glm::vec4& fill);
+
+  bool finished() const;
+  bool delivered(std::size_t node) const;  // every item of this node arrived
+  const std::vector<WorkItem>& items() const { return items_; }
+  const std::map<std::size_t, double>& busySeconds() const { return busy_; }
+
+ private:
+  std::uint64_t frame_;
+  std::vector<WorkItem> items_;
+  std::vector<med::FrameBuffer>& targets_;
+  Compression compression_;
+  std::map<std::size_t, double> busy_;
+};
+
+}  // namespace tsr::cluster

@@ -1,0 +1,75 @@
+#include "tsr/cluster/node_server.hpp"
+
+#include <csignal>
+#include <optional>
+
+#include <spdlog/spdlog.h>
+
+#include "node_session.hpp"
+
+namespace tsr::cluster {
+
+struct NodeServer::Impl {
+  Impl(NodeOptions o, const med::ViewportRegistry& registry)
+      : context{std::move(o), registry, worker}, acceptor(io) {}
+
+  asio::awaitable<void> accept() {
+    for (;;) {
+      tcp::socket socket = co_await acceptor.async_accept(asio::use_awaitable);
+      std::make_shared<NodeSession>(std::move(socket), context)->start();
+    }
+  }
+
+  // Declared first so it is destroyed last: sessions' queued jobs refer to
+  // the io context only through their connections.
+  asio::io_context io;
+  RenderWorker worker;
+  NodeContext context;
+  tcp::acceptor acceptor;
+  std::optional<asio::signal_set> signals;
+};
+
+NodeServer::NodeServer(NodeOptions options, const med::ViewportRegistry& registry)
+    : impl_(std::make_unique<Impl>(std::move(options), registry)) {
+  if (impl_->context.options.token.empty())
+    spdlog::warn("no token file given: any client without a token may connect");
+}
+
+NodeServer::~NodeServer() = default;
+
+NodeAddress NodeServer::listen() {
+  const NodeAddress& want = impl_->context.options.listen;
+  tcp::resolver resolver(impl_->io);
+  auto results = resolver.resolve(want.host, std::to_string(want.port),
+                                  tcp::resolver::passive | tcp::resolver::numeric_service);
+  tcp::endpoint ep = results.begin()->endpoint();
+  auto& a = impl_->acceptor;
+  a.open(ep.protocol());
+  a.set_option(tcp::acceptor::reuse_address(true));
+  a.bind(ep);
+  a.listen();
+  tcp::endpoint bound = a.local_endpoint();
+  asio::co_spawn(impl_->io, impl_->accept(), [](std::exception_ptr e) {
+    if (!e) return;
+    try {
+      std::rethrow_exception(e);
+    } catch (const boost::system::system_error& err) {
+      if (err.code() != asio::error::operation_aborted) spdlog::error("accept: {}", err.what());
+    }
+  });
+  return {want.host, bound.port()};
+}
+
+void NodeServer::stopOnSignals() {
+  impl_->signals.emplace(impl_->io, SIGINT, SIGTERM);
+  impl_->signals->async_wait([this](boost::system::error_code ec, int sig) {
+    if (!ec) spdlog::info("signal {}: stopping", sig);
+    stop();
+  });
+}
+
+void NodeServer::run() { impl_->io.run(); }
+
+void NodeServer::stop() { asio::post(impl_->io, [this] { impl_->io.stop(); }); }
+
+}  // namespace tsr::cluster

@@ -1,0 +1,229 @@
+#include "node_session.hpp"
+
+#include <chrono>
+
+#include <spdlog/spdlog.h>
+
+#include "tsr/cluster/handshake.hpp"
+#include "tsr/cluster/pixel_codec.hpp"
+#include "tsr/cluster/protocol_error.hpp"
+#include "tsr/sg/errors.hpp"
+#include "tsr/sg/wire_codec.hpp"
+
+namespace tsr::cluster {
+
+using Kind = ProtocolError::Kind;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+std::string peerName(const tcp::socket& s) {
+  boost::system::error_code ec;
+  auto ep = s.remote_endpoint(ec);
+  return ec ? std::string("?") : ep.address().to_string() + ":" + std::to_string(ep.port());
+}
+}  // namespace
+
+NodeSession::NodeSession(tcp::socket socket, NodeContext& context)
+    : ctx_(context), peer_(peerName(socket)) {
+  conn_ = std::make_shared<Connection>(std::move(socket), Sender::Client);
+}
+
+NodeSession::~NodeSession() { spdlog::info("session {} ended", peer_); }
+
+void NodeSession::start() {
+  conn_->startWatchdog(ctx_.options.handshakeTimeout, ctx_.options.idleTimeout);
+  asio::co_spawn(conn_->executor(), [self = shared_from_this()] { return self->run(); }, asio::detached);
+}
+
+asio::awaitable<void> NodeSession::run() {
+  try {
+    if (!co_await handshake()) co_return;
+    conn_->setIdleLimit(ctx_.options.idleTimeout);
+    spdlog::info("session {} authenticated", peer_);
+    while (conn_->isOpen()) {
+      Message m = co_await conn_->receive();
+      dispatch(m);
+    }
+  } catch (const ProtocolError& e) {
+    spdlog::warn("session {}: {} ({}); disconnecting", peer_, e.what(), name(e.kind()));
+    conn_->close();
+  } catch (const boost::system::system_error& e) {
+    if (conn_->timedOut()) spdlog::warn("session {}: peer went quiet; disconnecting", peer_);
+    else spdlog::info("session {}: {}", peer_, e.code().message());
+    conn_->close();
+  }
+  state_->cancelled = true;  // queued work for this client is skipped
+}
+
+asio::awaitable<bool> NodeSession::handshake() {
+  Welcome welcome{ctx_.options.name, ctx_.options.threads, ctx_.registry.backends()};
+  NodeHandshake hs(ctx_.options.token, welcome);
+  NodeHandshake::Step step;
+  try {
+    Message hello = co_await conn_->receive();
+    step = hs.onHello(hello);
+  } catch (const ProtocolError& e) {
+    if (e.kind() != Kind::VersionMismatch) throw;
+    // Say why before hanging up: an old client deserves a readable reason.
+    conn_->send(makeFrame(Reject{e.what()}));
+    conn_->closeAfterFlush();
+    spdlog::warn("session {}: {}", peer_, e.what());
+    co_return false;
+  }
+  conn_->send(step.reply);
+  if (step.accepted) {
+    Message auth = co_await conn_->receive();
+    step = hs.onAuth(auth);
+    conn_->send(step.reply);
+  }
+  if (!step.accepted) {
+    spdlog::warn("session {}: {}", peer_, step.reason);
+    conn_->closeAfterFlush();
+    co_return false;
+  }
+  conn_->setAuthenticated();
+  co_return true;
+}
+
+void NodeSession::dispatch(Message& m) {
+  switch (m.type) {
+    case MessageType::Snapshot: return onReplicaBytes(m, true);
+    case MessageType::Changes: return onReplicaBytes(m, false);
+    case MessageType::SetViewports: return onSetViewports(m);
+    case MessageType::RenderRequest: return onRenderRequest(m);
+    case MessageType::Swap: return onSwap(m);
+    case MessageType::HashQuery: return onHashQuery(m);
+    case MessageType::Heartbeat: return onHeartbeat(m);
+    case MessageType::Bye: return conn_->closeAfterFlush();
+    default:
+      // Handshake messages after the handshake; node-side types are refused by receive().
+      throw ProtocolError(Kind::Unexpected, std::string(name(m.type)) + " after the handshake");
+  }
+}
+
+void NodeSession::failFromWorker(const std::string& reason) {
+  spdlog::warn("session {}: {}; disconnecting", peer_, reason);
+  state_->cancelled = true;
+  asio::post(conn_->executor(), [conn = conn_, reason] {
+    conn->send(makeFrame(ErrorReport{reason}));
+    conn->closeAfterFlush();
+  });
+}
+
+void NodeSession::onReplicaBytes(Message& m, bool snapshot) {
+  // Decoding and applying run on the worker, in order with rendering.
+  ctx_.worker.post([self = shared_from_this(), bytes = std::move(m.payload), snapshot] {
+    State& st = *self->state_;
+    if (st.cancelled) return;
+    try {
+      sg::ChangeListPtr list = sg::decode(bytes);
+      if (list->isSnapshot() != snapshot) throw sg::ApplyError("message kind and change list kind differ");
+      if (snapshot && st.replica->version() != 0) {
+        // A client that resynchronises starts us over.
+        st.viewports.clear();
+        st.replica = std::make_unique<sg::Replica>();
+      }
+      st.replica->apply(list);
+      self->conn_->post(makeFrame(Applied{st.replica->version()}));
+    } catch (const sg::DecodeError& e) {
+      self->failFromWorker(std::string("change list does not decode: ") + e.what());
+    } catch (const sg::ApplyError& e) {
+      self->failFromWorker(std::string("change list does not apply: ") + e.what());
+    }
+  });
+}
+
+void NodeSession::onSetViewports(const Message& m) {
+  SetViewports sv = parse<SetViewports>(m);
+  // An unknown back-end is the client's configuration error, not an attack:
+  // say so now; the replica keeps following, rendering that viewport fails.
+  for (const auto& v : sv.viewports)
+    if (!ctx_.registry.has(v.backend))
+      conn_->send(makeFrame(ErrorReport{"this node has no back-end '" + v.backend + "'"}));
+  ctx_.worker.post([self = shared_from_this(), sv = std::move(sv)] {
+    State& st = *self->state_;
+    st.viewports.clear();
+    st.settings.clear();
+    for (const auto& v : sv.viewports) {
+      med::ViewportSettings s;
+      s.backend = v.backend;
+      s.root = v.root;
+      s.background = v.background;
+      s.parameters = v.parameters;
+      if (self->ctx_.options.threads && !s.parameters.has("threads"))
+        s.parameters.set("threads", std::int64_t{self->ctx_.options.threads});
+      st.settings[v.id] = std::move(s);
+    }
+  });
+}
+
+void NodeSession::onRenderRequest(const Message& m) {
+  RenderRequest request = parse<RenderRequest>(m);
+  ctx_.worker.post([self = shared_from_this(), request = std::move(request)] {
+    if (self->state_->cancelled) return;
+    try {
+      render(*self->state_, self->ctx_, request, self->conn_);
+    } catch (const std::exception& e) {
+      self->failFromWorker(std::string("render failed: ") + e.what());
+    }
+  });
+}
+
+void NodeSession::render(State& st, const NodeContext& ctx, const RenderRequest& request,
+                         const std::shared_ptr<Connection>& conn) {
+  auto started = Clock::now();
+  // Viewports of rectangles not asked for again are dropped afterwards: a
+  // tile that moved away loses its samples, one that stays keeps them.
+  std::map<State::Key, std::unique_ptr<med::Viewport>> used;
+  for (const auto& job : request.jobs) {
+    auto settings = st.settings.find(job.viewport);
+    if (settings == st.settings.end()) throw std::runtime_error("no viewport " + std::to_string(job.viewport));
+    for (const auto& rect : job.rects) {
+      if (st.cancelled) return;
+      State::Key key{job.viewport, rect.x0, rect.y0, rect.x1, rect.y1};
+      auto& vp = used[key];
+      if (!vp) {
+        if (auto held = st.viewports.find(key); held != st.viewports.end()) vp = std::move(held->second);
+        else vp = ctx.registry.create(settings->second, st.contexts);
+      }
+      med::FrameBuffer fb;
+      med::RenderControl control;
+      control.cancel = &st.cancelled;
+      auto t0 = Clock::now();
+      vp->render(*st.replica, job.view.cropped(rect), fb, control);
+      RenderTile tile;
+      tile.frame = request.frame;
+      tile.viewport = job.viewport;
+      tile.rect = rect;
+      tile.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+      EncodedPixels px = encodePixels(fb, request.compression);
+      tile.compression = px.compression;
+      tile.pixels = std::move(px.bytes);
+      conn->post(makeFrame(tile));
+    }
+  }
+  if (request.frame == st.lastFrame) used.merge(st.viewports);  // a second request in one frame (tiles taken over)
+  st.viewports = std::move(used);
+  st.lastFrame = request.frame;
+  double busy = std::chrono::duration<double>(Clock::now() - started).count();
+  conn->post(makeFrame(FrameDone{request.frame, busy}));
+}
+
+void NodeSession::onSwap(const Message& m) {
+  // The wall's barrier released: a node with a display would present the
+  // tile it rendered for this frame now.
+  presented_ = parse<Swap>(m).frame;
+  spdlog::debug("session {}: presented frame {}", peer_, presented_);
+}
+
+void NodeSession::onHashQuery(const Message& m) {
+  HashQuery q = parse<HashQuery>(m);
+  ctx_.worker.post([self = shared_from_this(), q] {
+    const sg::Replica& r = *self->state_->replica;
+    self->conn_->post(makeFrame(HashReply{q.token, r.version(), r.scene().contentHash()}));
+  });
+}
+
+void NodeSession::onHeartbeat(const Message& m) { conn_->send(makeFrame(HeartbeatAck{parse<Heartbeat>(m).sequence})); }
+
+}  // namespace tsr::cluster

@@ -1,0 +1,69 @@
+#pragma once
+// One client on a node: the handshake, then one handler per message.
+// Handlers that touch the replica or render hand their work to the render
+// worker; results come back to the io thread as frames.
+#include <atomic>
+#include <map>
+#include <memory>
+#include <tuple>
+
+#include "connection.hpp"
+#include "render_worker.hpp"
+#include "tsr/cluster/node_server.hpp"
+#include "tsr/med/context_pool.hpp"
+#include "tsr/med/viewport_registry.hpp"
+#include "tsr/sg/replica.hpp"
+
+namespace tsr::cluster {
+
+struct RenderRequest;
+
+struct NodeContext {
+  NodeOptions options;
+  const med::ViewportRegistry& registry;
+  RenderWorker& worker;
+};
+
+class NodeSession : public std::enable_shared_from_this<NodeSession> {
+ public:
+  NodeSession(tcp::socket socket, NodeContext& context);
+  ~NodeSession();
+  void start();
+
+ private:
+  // What the worker thread owns. Contexts before viewports: viewports
+  // release their contexts when they go.
+  struct State {
+    std::unique_ptr<sg::Replica> replica = std::make_unique<sg::Replica>();
+    med::ContextPool contexts;
+    std::map<std::uint32_t, med::ViewportSettings> settings;
+    using Key = std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t>;
+    std::map<Key, std::unique_ptr<med::Viewport>> viewports;  // one per (viewport, rect): tiles keep their samples
+    std::uint64_t lastFrame = ~std::uint64_t{0};
+    std::atomic<bool> cancelled{false};
+  };
+
+  asio::awaitable<void> run();
+  asio::awaitable<bool> handshake();
+  void dispatch(Message& m);
+
+  void onReplicaBytes(Message& m, bool snapshot);
+  void onSetViewports(const Message& m);
+  void onRenderRequest(const Message& m);
+  void onSwap(const Message& m);
+  void onHashQuery(const Message& m);
+  void onHeartbeat(const Message& m);
+
+  // Worker side.
+  static void render(State& state, const NodeContext& ctx, const RenderRequest& request,
+                     const std::shared_ptr<Connection>& conn);
+  void failFromWorker(const std::string& reason);
+
+  NodeContext& ctx_;
+  std::shared_ptr<Connection> conn_;
+  std::shared_ptr<State> state_ = std::make_shared<State>();
+  std::string peer_;
+  std::uint64_t presented_ = 0;
+};
+
+}  // namespace tsr::cluster

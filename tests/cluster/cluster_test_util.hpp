@@ -1,0 +1,41 @@
+#pragma once
+// Shared set-up of the cluster integration tests: configs for nodes
+// started on free ports, and the animated built-in scene.
+#include <cstring>
+
+#include "node_process.hpp"
+#include "tsr/cluster/cluster_config.hpp"
+#include "tsr/med/frame_buffer.hpp"
+#include "tsr/sg/import/importer.hpp"
+#include "tsr/sg/scene.hpp"
+
+namespace tsr::cluster::test {
+
+inline ClusterConfig configFor(ClusterMode mode, const std::vector<std::unique_ptr<NodeProcess>>& nodes,
+                               med::Parameters parameters = {}) {
+  ClusterConfig c;
+  c.mode = mode;
+  for (const auto& n : nodes) c.nodes.push_back({n->address(), "embree", parameters});
+  c.timeouts.retry = std::chrono::milliseconds(100);
+  c.timeouts.connect = std::chrono::milliseconds(3000);
+  c.timeouts.frame = std::chrono::milliseconds(60000);
+  return c;
+}
+
+struct AnimatedScene {
+  sg::Scene scene;
+  sg::ImportResult imported;
+  AnimatedScene(const std::string& source = "builtin:animated") { imported = sg::importScene(scene, source); }
+  // Poses the animation at frame `i` of a 24 fps clip.
+  void pose(int i) {
+    for (const auto& a : imported.animations) a.apply(scene, static_cast<float>(i) / 24.0f);
+  }
+};
+
+inline bool bitwiseEqual(const med::FrameBuffer& a, const med::FrameBuffer& b) {
+  return a.width == b.width && a.height == b.height &&
+         std::memcmp(a.colour.data(), b.colour.data(), a.colour.size() * sizeof(glm::vec4)) == 0 &&
+         std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float)) == 0;
+}
+
+}  // namespace tsr::cluster::test

@@ -1,0 +1,211 @@
+// Real tessera-node processes on 127.0.0.1: authentication, version check,
+// hostile bytes, and replicas that follow the client's scene frame by frame.
+#include <random>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "cluster_test_util.hpp"
+#include "raw_client.hpp"
+#include "tsr/cluster/auth.hpp"
+#include "tsr/cluster/cluster_window.hpp"
+#include "tsr/cluster/handshake.hpp"
+
+namespace tsr::cluster::test {
+namespace {
+
+using namespace std::chrono_literals;
+using Outcome = RawClient::Outcome;
+
+// Publishes one animated frame and returns its version.
+std::uint64_t step(ClusterWindow& w, AnimatedScene& s, int frame) {
+  s.pose(frame);
+  auto delta = s.scene.commit();
+  w.publish(s.scene, delta);
+  return delta->version();
+}
+
+void expectReplicasMatch(ClusterWindow& w, const sg::Scene& scene, std::size_t expectedNodes) {
+  ASSERT_TRUE(w.waitApplied(scene.version(), 20s));
+  auto hashes = w.replicaHashes(20s);
+  ASSERT_EQ(hashes.size(), expectedNodes);
+  for (const auto& h : hashes) {
+    EXPECT_EQ(h.version, scene.version()) << "node " << h.node;
+    EXPECT_EQ(h.hash, scene.contentHash()) << "node " << h.node;
+  }
+}
+
+TEST(NodeProcess, ReportsItsAddressAndStopsOnSigterm) {
+  NodeProcess node;
+  EXPECT_EQ(node.address().host, "127.0.0.1");
+  EXPECT_NE(node.address().port, 0);
+  EXPECT_TRUE(node.terminate());
+}
+
+TEST(NodeAuth, WrongTokenIsRejected) {
+  TokenFile right("right token"), wrong("wrong token");
+  auto nodes = startNodes(1, {"--token-file", right.path()});
+  ClusterWindow w(configFor(ClusterMode::Cooperative, nodes), {readTokenFile(wrong.path())});
+  EXPECT_EQ(w.connect(5s), 0u);
+  EXPECT_NE(w.status()[0].lastError, "");
+
+  ClusterWindow ok(configFor(ClusterMode::Cooperative, nodes), {readTokenFile(right.path())});
+  EXPECT_EQ(ok.connect(5s), 1u);
+}
+
+TEST(NodeAuth, ForgedProofGetsRejectAndHangUp) {
+  TokenFile token("secret");
+  auto nodes = startNodes(1, {"--token-file", token.path()});
+  RawClient raw(nodes[0]->address());
+  ClientHandshake hs("not the secret", "raw");
+  ASSERT_TRUE(raw.send(hs.hello()));
+  Message m;
+  ASSERT_EQ(raw.read(m), Outcome::Message);
+  EXPECT_EQ(m.type, MessageType::Challenge);
+  ASSERT_TRUE(raw.send(makeFrame(Auth{})));  // a guess
+  ASSERT_EQ(raw.read(m), Outcome::Message);
+  EXPECT_EQ(m.type, MessageType::Reject);
+  EXPECT_EQ(raw.waitClosed(), Outcome::Closed);
+}
+
+TEST(NodeAuth, OtherProtocolVersionIsRejectedWithAReason) {
+  auto nodes = startNodes(1);
+  RawClient raw(nodes[0]->address());
+  Frame hello = makeFrame(Hello{});
+  auto bytes = *hello;
+  bytes[4] = kProtocolVersion + 1;  // the header's version byte
+  bytes[kFrameHeaderBytes] = kProtocolVersion + 1;
+  ASSERT_TRUE(raw.send(bytes));
+  Message m;
+  ASSERT_EQ(raw.read(m), Outcome::Message);
+  ASSERT_EQ(m.type, MessageType::Reject);
+  EXPECT_NE(parse<Reject>(m).reason.find("version"), std::string::npos);
+  EXPECT_EQ(raw.waitClosed(), Outcome::Closed);
+}
+
+class HostileInput : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    nodes = startNodes(1);
+    window = std::make_unique<ClusterWindow>(configFor(ClusterMode::Cooperative, nodes));
+    ASSERT_EQ(window->connect(5s), 1u);
+    for (int f = 0; f < 3; ++f) step(*window, scene, f);
+  }
+  // The honest client is served as before.
+  void expectHonestClientUnharmed() {
+    for (int f = 3; f < 8; ++f) step(*window, scene, f);
+    expectReplicasMatch(*window, scene.scene, 1);
+  }
+  std::vector<std::unique_ptr<NodeProcess>> nodes;
+  AnimatedScene scene;
+  std::unique_ptr<ClusterWindow> window;
+};
+
+TEST_F(HostileInput, RandomBytesCloseThatConnectionOnly) {
+  std::mt19937 rng(7);
+  for (int attempt = 0; attempt < 5; ++attempt) {
+    RawClient raw(nodes[0]->address());
+    std::vector<std::uint8_t> junk(4096);
+    for (auto& b : junk) b = static_cast<std::uint8_t>(rng());
+    raw.send(junk);
+    EXPECT_EQ(raw.waitClosed(), Outcome::Closed);
+  }
+  expectHonestClientUnharmed();
+}
+
+TEST_F(HostileInput, OversizedFrameClosesBeforeThePayload) {
+  RawClient raw(nodes[0]->address());
+  std::vector<std::uint8_t> header;
+  writeFrameHeader(header, {kProtocolVersion, MessageType::Hello, 1u << 30});
+  raw.send(header);  // no payload follows: the node must not wait for it
+  EXPECT_EQ(raw.waitClosed(), Outcome::Closed);
+  expectHonestClientUnharmed();
+}
+
+TEST_F(HostileInput, OversizedAfterAuthenticationCloses) {
+  RawClient raw(nodes[0]->address());
+  ClientHandshake hs("", "raw");
+  raw.send(hs.hello());
+  Message m;
+  ASSERT_EQ(raw.read(m), Outcome::Message);
+  raw.send(hs.onChallenge(m));
+  ASSERT_EQ(raw.read(m), Outcome::Message);
+  ASSERT_EQ(m.type, MessageType::Welcome);
+  std::vector<std::uint8_t> header;
+  writeFrameHeader(header, {kProtocolVersion, MessageType::RenderRequest, 64u << 20});
+  raw.send(header);
+  EXPECT_EQ(raw.waitClosed(), Outcome::Closed);
+  expectHonestClientUnharmed();
+}
+
+TEST_F(HostileInput, BulkBeforeAuthenticationCloses) {
+  RawClient raw(nodes[0]->address());
+  raw.send(frameFromPayload(MessageType::Snapshot, std::vector<std::uint8_t>(64, 1)));
+  EXPECT_EQ(raw.waitClosed(), Outcome::Closed);
+  expectHonestClientUnharmed();
+}
+
+TEST_F(HostileInput, CorruptChangeListClosesThatClientOnly) {
+  RawClient raw(nodes[0]->address());
+  ClientHandshake hs("", "raw");
+  raw.send(hs.hello());
+  Message m;
+  ASSERT_EQ(raw.read(m), Outcome::Message);
+  raw.send(hs.onChallenge(m));
+  ASSERT_EQ(raw.read(m), Outcome::Message);
+  raw.send(frameFromPayload(MessageType::Snapshot, std::vector<std::uint8_t>{'T', 'S', 'R', 'C', 1, 1, 50, 0, 0, 0, 9}));
+  ASSERT_EQ(raw.read(m), Outcome::Message);
+  EXPECT_EQ(m.type, MessageType::Error);
+  EXPECT_EQ(raw.waitClosed(), Outcome::Closed);
+  expectHonestClientUnharmed();
+}
+
+TEST(Replication, HundredAnimatedFramesLeaveEveryReplicaEqual) {
+  auto nodes = startNodes(3);
+  ClusterWindow w(configFor(ClusterMode::Cooperative, nodes));
+  ASSERT_EQ(w.connect(5s), 3u);
+  AnimatedScene s;
+  ASSERT_FALSE(s.imported.animations.empty());
+  for (int f = 0; f < 100; ++f) step(w, s, f);
+  expectReplicasMatch(w, s.scene, 3);
+}
+
+TEST(Replication, LateJoinerCatchesUpFromASnapshot) {
+  auto nodes = startNodes(2);
+  ClusterWindow w(configFor(ClusterMode::Cooperative, nodes));
+  ASSERT_EQ(w.connect(5s), 2u);
+  AnimatedScene s;
+  for (int f = 0; f < 20; ++f) step(w, s, f);
+  NodeProcess late;
+  w.addNode({late.address(), "embree", {}});
+  // The joiner connects in the background; it is in from the first publish after.
+  for (int f = 20; f < 40 && w.onlineNodes() < 3; ++f) {
+    step(w, s, f);
+    std::this_thread::sleep_for(20ms);
+  }
+  for (int f = 40; f < 45; ++f) step(w, s, f);
+  expectReplicasMatch(w, s.scene, 3);
+}
+
+TEST(Replication, RestartedNodeRejoinsWithTheCurrentScene) {
+  auto nodes = startNodes(2);
+  ClusterWindow w(configFor(ClusterMode::Cooperative, nodes));
+  ASSERT_EQ(w.connect(5s), 2u);
+  AnimatedScene s;
+  for (int f = 0; f < 10; ++f) step(w, s, f);
+  std::string address = nodes[1]->text();
+  nodes[1]->kill();
+  for (int f = 10; f < 20; ++f) step(w, s, f);
+  nodes[1] = std::make_unique<NodeProcess>(std::vector<std::string>{}, address);
+  auto until = std::chrono::steady_clock::now() + 10s;
+  int f = 20;
+  while (std::chrono::steady_clock::now() < until &&
+         !(w.status()[1].state == NodeState::Synced && w.status()[1].appliedVersion == s.scene.version())) {
+    step(w, s, f++);
+    w.waitApplied(s.scene.version(), 100ms);
+  }
+  expectReplicasMatch(w, s.scene, 2);
+}
+
+}  // namespace
+}  // namespace tsr::cluster::test
