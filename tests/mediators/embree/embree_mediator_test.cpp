@@ -129,6 +129,17 @@ TEST_F(IncrementalSync, CreateAndDestroy) {
   check("destroy");
 }
 
+TEST_F(IncrementalSync, AttachmentsItUnderstandsAndOnesItIgnores) {
+  auto* g = rig.source.find<sg::Geometry>(firstOf(rig.source, sg::ContainerType::Geometry));
+  g->setAttachment("someone.else", std::string("ignored"));
+  rig.source.find(rig.imported.root)->setAttachment("viewer.note", std::int64_t{1});
+  follower.replica.apply(rig.source.commit());
+  follower.render(rig);
+  expectSameBits(follower.image, before, "attachments the mediator does not know change nothing");
+  g->setAttachment("embree.hidden", std::int64_t{1});
+  check("hidden geometry");
+}
+
 TEST(EmbreeMediator, TilesAreCropsAndThreadsDoNotMatter) {
   Rig rig;
   sg::Replica replica;
