@@ -1,0 +1,53 @@
+#include "coverage_viewport.hpp"
+
+#include <chrono>
+
+#include "tsr/med/coverage/false_colour.hpp"
+#include "tsr/med/coverage/ranking.hpp"
+
+namespace tsr::med::coverage_mediator {
+
+CoverageViewport::CoverageViewport(ViewportSettings settings, std::shared_ptr<CoverageContext> context)
+    : Viewport(std::move(settings)), context_(std::move(context)) {}
+
+SceneAdapter::Update CoverageViewport::synchronize(const sg::Replica& replica) {
+  std::lock_guard lock(context_->mutex);
+  return context_->adapter.catchUp(replica);
+}
+
+RenderStats CoverageViewport::render(const sg::Replica& replica, const View& view, FrameBuffer& out,
+                                     const RenderControl& control) {
+  view.validate();
+  const auto start = std::chrono::steady_clock::now();
+  std::lock_guard lock(context_->mutex);
+  RenderStats stats;
+  stats.update = context_->adapter.catchUp(replica);
+
+  cov::Camera camera{view.cameraToWorld, view.left, view.right, view.bottom, view.top, view.nearPlane};
+  cov::Region region{view.width, view.height, view.region.x0, view.region.y0, view.region.x1, view.region.y1};
+  const cov::IdBuffer ids = context_->adapter.renderer().render(camera, region);
+
+  out = FrameBuffer(ids.width(), ids.height());
+  out.depth = ids.depth;
+  auto& idOut = out.outputs[kIdOutput];
+  idOut.resize(ids.ids.size());
+  // Neighbouring pixels mostly repeat an id: reuse the last colour.
+  cov::ObjectId last = cov::kBackground;
+  glm::vec4 colour(0.0f), encoded(0.0f);
+  for (std::size_t i = 0; i < ids.ids.size(); ++i) {
+    if (ids.ids[i] != last) {
+      last = ids.ids[i];
+      colour = last == cov::kBackground ? glm::vec4(0.0f) : glm::vec4(falseColour(last), 1.0f);
+      encoded = encodeObjectId(last);
+    }
+    out.colour[i] = colour;
+    idOut[i] = encoded;
+  }
+  stats.rays = ids.ids.size();
+  stats.samples = 1;
+  if (control.progress) control.progress(1.0);
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return stats;
+}
+
+}  // namespace tsr::med::coverage_mediator
