@@ -50,6 +50,7 @@ struct ClusterWindow::Impl {
   std::uint64_t hashToken = 0;
   std::uint64_t frame = 0;
   float eyeSeparation, zeroParallax;
+  sg::ContainerId root = sg::kNoContainer, background = sg::kNoContainer;
 
   Impl(ClusterConfig c, ClientOptions o) : config(std::move(c)), options(std::move(o)) {
     eyeSeparation = config.stereo.eyeSeparation;
@@ -99,6 +100,7 @@ struct ClusterWindow::Impl {
     n.state = NodeState::Offline;
     n.lastError = why;
     n.retryAt = Clock::now() + config.timeouts.retry;
+    if (round) round->forget(i);
     if (wasIn && round) takeOver(i);
   }
 
@@ -130,6 +132,7 @@ struct ClusterWindow::Impl {
     }
     for (auto& [to, items] : handed) {
       nodes[to].link->send(round->request(items));
+      round->sent(to);
       reassigned += items.size();
     }
   }
@@ -250,7 +253,7 @@ struct ClusterWindow::Impl {
   Frame viewportsFor(const Node& n) const {
     SetViewports sv;
     std::uint32_t count = config.mode == ClusterMode::Stereo ? 2 : 1;
-    for (std::uint32_t id = 0; id < count; ++id) sv.viewports.push_back({id, n.config.backend, sg::kNoContainer, sg::kNoContainer, n.config.parameters});
+    for (std::uint32_t id = 0; id < count; ++id) sv.viewports.push_back({id, n.config.backend, root, background, n.config.parameters});
     return makeFrame(sv);
   }
 };
@@ -278,6 +281,14 @@ std::size_t ClusterWindow::addNode(NodeConfig node) {
   impl_->config.nodes.push_back(impl_->nodes[i].config);
   impl_->startConnecting(i);
   return i;
+}
+
+void ClusterWindow::setContent(sg::ContainerId root, sg::ContainerId background) {
+  Impl& s = *impl_;
+  s.root = root;
+  s.background = background;
+  for (auto& n : s.nodes)
+    if (n.state == NodeState::Synced) n.link->send(s.viewportsFor(n));
 }
 
 void ClusterWindow::publish(const sg::Scene& scene, const sg::ChangeListPtr& delta) {
@@ -350,14 +361,17 @@ ClusterFrame ClusterWindow::render(const med::View& view) {
 
   for (std::size_t i = 0; i < round.items().size(); ++i)
     if (s.nodes[round.items()[i].node].state != NodeState::Synced) round.giveUp(i, s.config.wall.offlineColour);
-  for (auto& [node, its] : round.pendingByNode()) s.nodes[node].link->send(round.request(its));
+  for (auto& [node, its] : round.pendingByNode()) {
+    s.nodes[node].link->send(round.request(its));
+    round.sent(node);
+  }
 
   auto deadline = Clock::now() + s.config.timeouts.frame;
   while (!round.finished()) {
     if (s.config.mode != ClusterMode::Tiled && s.synced().empty()) throw ClusterError("every cluster node was lost during the frame");
     if (!s.pump(deadline, [&] { return round.finished(); })) {
       // Nodes that missed the frame deadline are dropped; their work moves or shows as offline.
-      for (auto& [node, its] : round.pendingByNode()) s.lose(node, "missed the frame deadline");
+      for (std::size_t node : round.awaited()) s.lose(node, "missed the frame deadline");
       deadline = Clock::now() + s.config.timeouts.frame;
     }
   }

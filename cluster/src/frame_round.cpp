@@ -57,7 +57,9 @@ const WorkItem* FrameRound::onTile(std::size_t node, const RenderTile& tile) {
 }
 
 void FrameRound::onDone(std::size_t node, const FrameDone& done) {
-  if (done.frame == frame_) busy_[node] += done.busySeconds;
+  if (done.frame != frame_) return;
+  busy_[node] += done.busySeconds;
+  if (auto it = outstanding_.find(node); it != outstanding_.end() && --it->second <= 0) outstanding_.erase(it);
 }
 
 void FrameRound::giveUp(std::size_t item, const glm::vec4& fill) {
@@ -71,7 +73,16 @@ void FrameRound::giveUp(std::size_t item, const glm::vec4& fill) {
     }
 }
 
+std::vector<std::size_t> FrameRound::awaited() const {
+  std::vector<std::size_t> out;
+  for (const auto& [node, n] : outstanding_) out.push_back(node);
+  for (const auto& [node, items] : pendingByNode())
+    if (!outstanding_.count(node)) out.push_back(node);
+  return out;
+}
+
 bool FrameRound::finished() const {
+  if (!outstanding_.empty()) return false;
   for (const auto& it : items_)
     if (!it.done && !it.offline) return false;
   return true;

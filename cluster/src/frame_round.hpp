@@ -39,6 +39,12 @@ class FrameRound {
   // that do not decode.
   const WorkItem* onTile(std::size_t node, const RenderTile& tile);
   void onDone(std::size_t node, const FrameDone& done);
+  // Requests in flight per node: a frame ends when every FrameDone is in
+  // (so busy times are complete), or the node is forgotten (lost).
+  void sent(std::size_t node) { ++outstanding_[node]; }
+  void forget(std::size_t node) { outstanding_.erase(node); }
+  // Nodes the frame still waits for.
+  std::vector<std::size_t> awaited() const;
   void reassign(std::size_t item, std::size_t node) { items_.at(item).node = node; }
   // Gives an item up, filling its rectangle with `fill`.
   void giveUp(std::size_t item, const glm::vec4& fill);
@@ -54,6 +60,7 @@ class FrameRound {
   std::vector<med::FrameBuffer>& targets_;
   Compression compression_;
   std::map<std::size_t, double> busy_;
+  std::map<std::size_t, int> outstanding_;
 };
 
 }  // namespace tsr::cluster

@@ -64,8 +64,7 @@ class NodeProcess {
 
   void kill() {
     if (pid_ <= 0) return;
-    ::kill(pid_, SIGCONT);
-    ::kill(pid_, SIGKILL);
+    ::kill(pid_, SIGKILL);  // kills a stopped process too; SIGCONT first would let it run on
     waitpid(pid_, nullptr, 0);
     pid_ = -1;
   }

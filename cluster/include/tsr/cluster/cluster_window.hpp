@@ -68,6 +68,10 @@ class ClusterWindow {
   // A node joining mid-session; it gets a snapshot at the next publish().
   std::size_t addNode(NodeConfig node);
 
+  // What the viewports show: a root node (none: every root) and a
+  // Background container (none: black), as in med::ViewportSettings.
+  void setContent(sg::ContainerId root, sg::ContainerId background);
+
   // Sends `delta` (just committed, may be null) to the nodes that follow the
   // scene and a snapshot to those that joined. The scene must have no
   // pending edits.

@@ -1,0 +1,222 @@
+// Rendering through real nodes with the Embree path tracer: with a fixed
+// seed every mode, node count and fault is bitwise equal to a local render.
+#include <future>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "cluster_test_util.hpp"
+#include "tsr/cluster/cluster_window.hpp"
+#include "tsr/cluster/wall_layout.hpp"
+#include "tsr/med/compositing.hpp"
+#include "tsr/med/embree/register.hpp"
+#include "tsr/med/viewport_registry.hpp"
+#include "tsr/sg/replica.hpp"
+
+namespace tsr::cluster::test {
+namespace {
+
+using namespace std::chrono_literals;
+constexpr std::uint32_t kSize = 64;
+
+med::Parameters pathTracer(std::int64_t spp = 2) {
+  med::Parameters p;
+  p.set("spp", spp);
+  p.set("maxDepth", std::int64_t{3});
+  p.set("seed", std::int64_t{7});
+  p.set("threads", std::int64_t{1});
+  return p;
+}
+
+// The application's side: the scene, a local replica and a local viewport
+// for the reference image, and the cluster window.
+struct Session {
+  AnimatedScene s;
+  sg::Replica replica;
+  med::ViewportRegistry registry;
+  med::ContextPool contexts;
+  std::unique_ptr<med::Viewport> local;
+  std::unique_ptr<ClusterWindow> window;
+
+  Session(const std::string& scene, ClusterConfig config, med::Parameters parameters) : s(scene) {
+    med::registerEmbree(registry);
+    med::ViewportSettings vs{"embree", s.imported.root, s.imported.background, parameters, true};
+    local = registry.create(vs, contexts);
+    window = std::make_unique<ClusterWindow>(std::move(config));
+    window->setContent(s.imported.root, s.imported.background);
+  }
+  std::size_t connect() { return window->connect(5s); }
+  void publish(int frame = -1) {
+    if (frame >= 0) s.pose(frame);
+    auto delta = s.scene.commit();
+    replica.apply(delta);
+    window->publish(s.scene, delta);
+  }
+  med::View view() const {
+    const sg::Camera* cam = nullptr;
+    if (!s.imported.cameras.empty()) cam = s.scene.find<sg::Camera>(s.imported.cameras.front());
+    sg::Camera fallback;
+    return med::View::fromCamera(cam ? *cam : fallback, kSize, kSize);
+  }
+  med::FrameBuffer reference(const med::View& v) {
+    med::FrameBuffer fb;
+    local->render(replica, v, fb);
+    return fb;
+  }
+};
+
+TEST(ClusterRender, CooperativeOnThreeNodesEqualsLocal) {
+  auto nodes = startNodes(3);
+  ClusterConfig c = configFor(ClusterMode::Cooperative, nodes, pathTracer());
+  c.cooperative.tileSize = 16;
+  Session app("builtin:cornell", c, pathTracer());
+  ASSERT_EQ(app.connect(), 3u);
+  app.publish();
+  ClusterFrame f = app.window->render(app.view());
+  EXPECT_TRUE(bitwiseEqual(f.image, app.reference(app.view())));
+  for (std::size_t n = 0; n < 3; ++n) EXPECT_GT(f.busySeconds[n], 0.0) << "node " << n << " did no work";
+}
+
+TEST(ClusterRender, AnimatedCooperativeFramesStayEqualWhileTilesMove) {
+  auto nodes = startNodes(2);
+  ClusterConfig c = configFor(ClusterMode::Cooperative, nodes, pathTracer(1));
+  c.cooperative.tileSize = 16;
+  c.cooperative.tolerance = 0.0;  // move tiles every frame: pixels must not care
+  Session app("builtin:animated", c, pathTracer(1));
+  ASSERT_EQ(app.connect(), 2u);
+  for (int frame = 0; frame < 4; ++frame) {
+    app.publish(frame * 6);
+    ClusterFrame f = app.window->render(app.view());
+    EXPECT_TRUE(bitwiseEqual(f.image, app.reference(app.view()))) << "frame " << frame;
+  }
+}
+
+TEST(ClusterRender, WallTwoByTwoStitchedEqualsLocal) {
+  auto nodes = startNodes(4);
+  ClusterConfig c = configFor(ClusterMode::Tiled, nodes, pathTracer());
+  Session app("builtin:cornell", c, pathTracer());
+  ASSERT_EQ(app.connect(), 4u);
+  app.publish();
+  ClusterFrame f = app.window->render(app.view());
+  EXPECT_EQ(f.offlineTiles, 0u);
+  EXPECT_TRUE(bitwiseEqual(f.image, app.reference(app.view())));
+}
+
+TEST(ClusterRender, WallBezelsHidePixelsButTilesStillMatch) {
+  auto nodes = startNodes(4);
+  ClusterConfig c = configFor(ClusterMode::Tiled, nodes, pathTracer());
+  c.wall.bezel = 6;
+  Session app("builtin:cornell", c, pathTracer());
+  ASSERT_EQ(app.connect(), 4u);
+  app.publish();
+  ClusterFrame f = app.window->render(app.view());
+  med::FrameBuffer ref = app.reference(app.view());
+  for (const auto& r : wallLayout(kSize, kSize, 2, 2, 6))
+    for (std::uint32_t y = r.y0; y < r.y1; ++y)
+      for (std::uint32_t x = r.x0; x < r.x1; ++x) ASSERT_EQ(f.image.colour[f.image.index(x, y)], ref.colour[ref.index(x, y)]);
+  EXPECT_EQ(f.image.colour[f.image.index(32, 5)], glm::vec4(0.0f)) << "bezel pixels are not rendered";
+}
+
+TEST(ClusterRender, WallNeverStallsOnANodeThatStopsAnswering) {
+  auto nodes = startNodes(4);
+  ClusterConfig c = configFor(ClusterMode::Tiled, nodes, pathTracer(1));
+  c.timeouts.deadAfter = 800ms;
+  c.timeouts.heartbeat = 100ms;
+  Session app("builtin:cornell", c, pathTracer(1));
+  ASSERT_EQ(app.connect(), 4u);
+  app.publish();
+  med::FrameBuffer ref = app.reference(app.view());
+  nodes[3]->pause();
+  auto started = std::chrono::steady_clock::now();
+  ClusterFrame f = app.window->render(app.view());
+  EXPECT_LT(std::chrono::steady_clock::now() - started, 10s);
+  EXPECT_EQ(f.offlineTiles, 1u);
+  auto tile = wallLayout(kSize, kSize, 2, 2, 0)[3];
+  EXPECT_EQ(f.image.colour[f.image.index(tile.x0 + 1, tile.y0 + 1)], c.wall.offlineColour);
+  EXPECT_EQ(f.image.colour[f.image.index(1, 1)], ref.colour[ref.index(1, 1)]);
+  // Back: it reconnects, receives a snapshot, and its tile is right again.
+  nodes[3]->resume();
+  ClusterFrame again;
+  for (int attempt = 0; attempt < 50; ++attempt) {
+    std::this_thread::sleep_for(100ms);
+    app.publish();
+    ref = app.reference(app.view());
+    again = app.window->render(app.view());
+    if (again.offlineTiles == 0) break;
+  }
+  EXPECT_EQ(again.offlineTiles, 0u);
+  EXPECT_TRUE(bitwiseEqual(again.image, ref));
+}
+
+TEST(ClusterRender, StereoPairComposedEqualsLocalComposition) {
+  auto nodes = startNodes(2);
+  ClusterConfig c = configFor(ClusterMode::Stereo, nodes, pathTracer());
+  Session app("builtin:cornell", c, pathTracer());
+  app.window->setEyes(0.1f, 3.0f);
+  ASSERT_EQ(app.connect(), 2u);
+  app.publish();
+  ClusterFrame f = app.window->render(app.view());
+  // Two local viewports, one per eye, as a local stereo window would have.
+  auto right = app.registry.create({"embree", app.s.imported.root, app.s.imported.background, pathTracer(), true}, app.contexts);
+  med::FrameBuffer l, r;
+  app.local->render(app.replica, app.view().eye(med::Eye::Left, 0.1f, 3.0f), l);
+  right->render(app.replica, app.view().eye(med::Eye::Right, 0.1f, 3.0f), r);
+  EXPECT_TRUE(bitwiseEqual(f.left, l));
+  EXPECT_TRUE(bitwiseEqual(f.right, r));
+  EXPECT_TRUE(bitwiseEqual(f.image, med::anaglyph(l, r)));
+  EXPECT_FALSE(bitwiseEqual(l, r)) << "the eyes must differ";
+  EXPECT_GT(f.busySeconds[0], 0.0);
+  EXPECT_GT(f.busySeconds[1], 0.0);
+}
+
+TEST(ClusterRender, KilledNodesTilesAreTakenOverAndTheImageStaysEqual) {
+  auto nodes = startNodes(3);
+  ClusterConfig c = configFor(ClusterMode::Cooperative, nodes, pathTracer(8));
+  c.cooperative.tileSize = 8;
+  Session app("builtin:animated", c, pathTracer(8));
+  ASSERT_EQ(app.connect(), 3u);
+  app.publish(0);
+  med::FrameBuffer ref = app.reference(app.view());
+  ASSERT_TRUE(bitwiseEqual(app.window->render(app.view()).image, ref));
+  // Kill one node while the next frame renders (the scene changes, so no tile is cached).
+  app.publish(3);
+  ref = app.reference(app.view());
+  // Paused, the node holds its tiles for sure when it dies.
+  nodes[1]->pause();
+  auto frame = std::async(std::launch::async, [&] { return app.window->render(app.view()); });
+  std::this_thread::sleep_for(200ms);
+  nodes[1]->kill();
+  ClusterFrame f = frame.get();
+  EXPECT_TRUE(bitwiseEqual(f.image, ref));
+  EXPECT_GT(f.reassignedItems, 0u) << "the dead node's tiles were taken over within the frame";
+  // And the frames after it, on the two left.
+  app.publish(4);
+  ClusterFrame next = app.window->render(app.view());
+  EXPECT_TRUE(bitwiseEqual(next.image, app.reference(app.view())));
+  EXPECT_EQ(next.busySeconds[1], 0.0);
+}
+
+TEST(ClusterRender, LateJoinerTakesPartAndMatches) {
+  auto nodes = startNodes(1);
+  ClusterConfig c = configFor(ClusterMode::Cooperative, nodes, pathTracer());
+  c.cooperative.tileSize = 16;
+  c.cooperative.maxMovesPerFrame = 16;
+  Session app("builtin:cornell", c, pathTracer());
+  ASSERT_EQ(app.connect(), 1u);
+  app.publish();
+  app.window->render(app.view());
+  NodeProcess late;
+  app.window->addNode({late.address(), "embree", pathTracer()});
+  for (int i = 0; i < 50 && app.window->status()[1].state != NodeState::Synced; ++i) {
+    std::this_thread::sleep_for(20ms);
+    app.publish();
+  }
+  ASSERT_EQ(app.window->status()[1].state, NodeState::Synced);
+  app.window->render(app.view());  // measures; the balancer hands the joiner tiles for the next frame
+  ClusterFrame f = app.window->render(app.view());
+  EXPECT_GT(f.busySeconds[1], 0.0);
+  EXPECT_TRUE(bitwiseEqual(f.image, app.reference(app.view())));
+}
+
+}  // namespace
+}  // namespace tsr::cluster::test
