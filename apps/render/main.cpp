@@ -8,6 +8,7 @@
 #include <spdlog/spdlog.h>
 
 #include "backends.hpp"
+#include "coverage_output.hpp"
 #include "progress_bar.hpp"
 #include "render_options.hpp"
 #include "scene_session.hpp"
@@ -44,7 +45,10 @@ int run(int argc, char** argv) {
   auto stats = viewport->render(session.replica, view, image, control);
   bar.finish();
 
-  tsr::med::writeImage(options.output, image);
+  if (tsr::app::isRankingPath(options.output))
+    tsr::app::writeRanking(options.output, image, session.replica.scene());
+  else
+    tsr::med::writeImage(options.output, image);
   for (const auto& aov : options.aovs) tsr::med::writeImage(tsr::app::aovPath(options.output, aov), image, aov);
   if (!options.statsJson.empty()) {
     nlohmann::json j = {{"scene", options.scene},
