@@ -1,0 +1,76 @@
+// What incremental sync does, counted: a moved transform touches only the
+// instance matrices below it, a material edit only transparency flags.
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "coverage_viewport.hpp"
+#include "tsr/med/coverage/register.hpp"
+#include "tsr/sg/import/importer.hpp"
+
+using namespace tsr;
+
+namespace {
+struct Rig {
+  sg::Scene source;
+  sg::ImportResult imported;
+  sg::Replica replica;
+  med::ViewportRegistry registry;
+  med::ContextPool contexts;
+  std::unique_ptr<med::Viewport> viewport;
+  Rig() {
+    imported = sg::importScene(source, "builtin:instances:200");
+    replica.apply(source.commit());
+    med::registerCoverage(registry);
+    med::ViewportSettings s;
+    s.backend = "coverage";
+    s.root = imported.root;
+    viewport = registry.create(s, contexts);
+    EXPECT_EQ(viewport->synchronize(replica), med::SceneAdapter::Update::Converted);
+  }
+  const med::coverage_mediator::CoverageSceneAdapter::Counters& counters() const {
+    return static_cast<const med::coverage_mediator::CoverageViewport&>(*viewport).context().adapter.counters();
+  }
+  void publish() {
+    replica.apply(source.commit());
+    EXPECT_EQ(viewport->synchronize(replica), med::SceneAdapter::Update::Synced);
+  }
+};
+}  // namespace
+
+TEST(SyncCost, TransformEditMovesOnlyItsInstance) {
+  Rig rig;
+  const auto before = rig.counters();
+  EXPECT_EQ(before.meshBuilds, 12u) << "3 shapes x 4 materials, each built once however often placed";
+  EXPECT_EQ(before.flattenings, 1u);
+  sg::Transform* moved = nullptr;
+  for (auto id : rig.source.ids())
+    if (auto* t = rig.source.find<sg::Transform>(id); t && t->children().size() == 1 && !moved) moved = t;
+  ASSERT_NE(moved, nullptr);
+  moved->setMatrix(glm::translate(moved->matrix(), glm::vec3(0.1f, 0, 0)));
+  rig.publish();
+  const auto after = rig.counters();
+  EXPECT_EQ(after.instanceTransforms, before.instanceTransforms + 1);
+  EXPECT_EQ(after.flattenings, before.flattenings);
+  EXPECT_EQ(after.meshBuilds, before.meshBuilds);
+}
+
+TEST(SyncCost, MaterialEditFlipsOnlyItsInstances) {
+  Rig rig;
+  const auto before = rig.counters();
+  sg::SurfaceMaterial* material = nullptr;
+  for (auto id : rig.source.ids())
+    if (auto* m = rig.source.find<sg::SurfaceMaterial>(id); m && !material) material = m;
+  ASSERT_NE(material, nullptr);
+  std::size_t users = 0;
+  for (auto id : rig.source.ids())
+    if (auto* t = rig.source.find<sg::Transform>(id); t && t->children().size() == 1)
+      if (auto* g = rig.source.find<sg::Geometry>(t->children().front()); g && g->material() == material->id()) ++users;
+  ASSERT_GT(users, 0u);
+  material->setOpacity(0.25f);
+  rig.publish();
+  const auto after = rig.counters();
+  EXPECT_EQ(after.transparencyUpdates, before.transparencyUpdates + users);
+  EXPECT_EQ(after.flattenings, before.flattenings);
+  EXPECT_EQ(after.instanceTransforms, before.instanceTransforms);
+}
