@@ -112,7 +112,9 @@ struct Tracer {
   }
 
   bool surface(const RTCRayHit& rh, SurfaceHit& h) const {
-    std::uint32_t inst = rh.hit.instID[0];
+    // A hit in the merged static scene names the instance by geometry id.
+    std::uint32_t top = rh.hit.instID[0];
+    std::uint32_t inst = top == kMergedTopId ? rh.hit.geomID : top - 1;
     if (inst >= scene.views.size() || !scene.views[inst].mesh) return false;
     h.instance = &scene.views[inst];
     h.prim = rh.hit.primID;

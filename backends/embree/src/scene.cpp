@@ -99,6 +99,14 @@ Scene::Scene(std::shared_ptr<Device> device) : state_(std::make_unique<SceneStat
   // The top level changes on every transform edit: favour fast rebuilds.
   rtcSetSceneFlags(state_->top, RTC_SCENE_FLAG_DYNAMIC);
   rtcSetSceneBuildQuality(state_->top, RTC_BUILD_QUALITY_LOW);
+  state_->merged = rtcNewScene(state_->device->handle());
+  rtcSetSceneBuildQuality(state_->merged, RTC_BUILD_QUALITY_HIGH);
+  state_->mergedInstance = rtcNewGeometry(state_->device->handle(), RTC_GEOMETRY_TYPE_INSTANCE);
+  rtcSetGeometryInstancedScene(state_->mergedInstance, state_->merged);
+  rtcSetGeometryTimeStepCount(state_->mergedInstance, 1);
+  const glm::mat4 identity(1.0f);
+  rtcSetGeometryTransform(state_->mergedInstance, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &identity[0][0]);
+  rtcAttachGeometryByID(state_->top, state_->mergedInstance, kMergedTopId);
   state_->device->check("scene creation");
 }
 
@@ -106,6 +114,8 @@ Scene::~Scene() {
   // Geometries must go before the scenes they belong to.
   state_->instances.clear();
   state_->meshes.clear();
+  rtcReleaseGeometry(state_->mergedInstance);
+  rtcReleaseScene(state_->merged);
   rtcReleaseScene(state_->top);
 }
 
@@ -180,7 +190,7 @@ InstanceId Scene::addInstance(MeshId mesh, MaterialId material, const glm::mat4&
   rtcSetGeometryTimeStepCount(inst->geometry, 1);
   rtcSetGeometryTransform(inst->geometry, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &transform[0][0]);
   auto id = std::uint32_t(state_->instances.size());
-  rtcAttachGeometryByID(state_->top, inst->geometry, id);
+  rtcAttachGeometryByID(state_->top, inst->geometry, topId(id));
   state_->device->check("addInstance");
   ++m.users;
   state_->instances.push_back(std::move(inst));
@@ -209,7 +219,12 @@ void Scene::setInstanceMaterial(InstanceId id, MaterialId material) {
 
 void Scene::removeInstance(InstanceId id) {
   auto& inst = lookup(state_->instances, id, "instance");
-  rtcDetachGeometry(state_->top, index(id));
+  if (inst->flat) {
+    rtcDetachGeometry(state_->merged, index(id));
+    state_->mergedDirty = true;
+  } else {
+    rtcDetachGeometry(state_->top, topId(index(id)));
+  }
   --state_->meshes[index(inst->mesh)]->users;
   inst.reset();
   state_->topDirty = state_->derivedDirty = true;
@@ -325,20 +340,89 @@ void Scene::setEnvironment(Environment environment) {
   ++state_->version;
 }
 
+namespace {
+// World-space copy of an instance's triangles for the merged scene.
+RTCGeometry worldGeometry(RTCDevice device, const MeshData& d, const glm::mat4& transform) {
+  RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* v = static_cast<glm::vec3*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                            sizeof(glm::vec3), d.positions.size()));
+  auto* i = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                3 * sizeof(std::uint32_t), d.indices.size() / 3));
+  if (!v || !i) {
+    rtcReleaseGeometry(g);
+    throw Error("Embree could not allocate merged mesh buffers");
+  }
+  for (std::size_t k = 0; k < d.positions.size(); ++k) v[k] = glm::vec3(transform * glm::vec4(d.positions[k], 1.0f));
+  std::memcpy(i, d.indices.data(), d.indices.size() * sizeof(std::uint32_t));
+  rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);
+  rtcCommitGeometry(g);
+  return g;
+}
+}  // namespace
+
 void Scene::commit() {
   SceneState& s = *state_;
-  for (auto& m : s.meshes) {
-    if (!m || !m->dirty) continue;
-    rtcCommitGeometry(m->geometry);
-    rtcCommitScene(m->scene);
-    m->dirty = false;
-    // Instances of a changed mesh have new bounds.
-    for (auto& inst : s.instances)
-      if (inst && s.meshes[index(inst->mesh)].get() == m.get()) inst->dirty = true;
+  // Which instances go into the merged scene: those of static meshes nobody
+  // else uses. A mesh's change or a transform edit rebuilds its copy there.
+  for (std::size_t i = 0; i < s.instances.size(); ++i) {
+    if (!s.instances[i]) continue;
+    InstanceRecord& inst = *s.instances[i];
+    const MeshRecord& m = *s.meshes[index(inst.mesh)];
+    bool wantFlat = m.data.usage == MeshUsage::Static && m.users == 1;
+    bool rebuild = wantFlat && (inst.dirty || m.dirty || !inst.flat);
+    auto id = std::uint32_t(i);
+    if (inst.flat && (!wantFlat || rebuild)) {
+      rtcDetachGeometry(s.merged, id);
+      rtcReleaseGeometry(inst.flatGeometry);
+      inst.flatGeometry = nullptr;
+      s.mergedDirty = true;
+    }
+    if (rebuild) {
+      if (!inst.flat) {
+        rtcDetachGeometry(s.top, topId(id));
+        s.topDirty = true;
+      }
+      inst.flatGeometry = worldGeometry(s.device->handle(), m.data, inst.transform);
+      rtcAttachGeometryByID(s.merged, inst.flatGeometry, id);
+      s.mergedDirty = true;
+      inst.dirty = false;
+    } else if (inst.flat && !wantFlat) {
+      rtcAttachGeometryByID(s.top, inst.geometry, topId(id));
+      inst.dirty = true;
+      s.topDirty = true;
+    }
+    inst.flat = wantFlat;
+  }
+  if (s.mergedDirty) {
+    rtcCommitScene(s.merged);
+    rtcCommitGeometry(s.mergedInstance);
+    s.mergedDirty = false;
     s.topDirty = true;
   }
+  for (auto& m : s.meshes) {
+    if (!m) continue;
+    if (m->dirty) {
+      // Instances of a changed mesh have new bounds.
+      for (auto& inst : s.instances)
+        if (inst && !inst->flat && s.meshes[index(inst->mesh)].get() == m.get()) {
+          inst->dirty = true;
+          s.topDirty = true;
+        }
+      m->sceneStale = true;
+      m->dirty = false;
+    }
+    // A mesh only merged needs no BVH of its own (until it is instanced).
+    if (!m->sceneStale) continue;
+    bool instanced = false;
+    for (const auto& inst : s.instances)
+      if (inst && !inst->flat && s.meshes[index(inst->mesh)].get() == m.get()) instanced = true;
+    if (!instanced) continue;
+    rtcCommitGeometry(m->geometry);
+    rtcCommitScene(m->scene);
+    m->sceneStale = false;
+  }
   for (auto& inst : s.instances) {
-    if (!inst || !inst->dirty) continue;
+    if (!inst || !inst->dirty || inst->flat) continue;
     rtcCommitGeometry(inst->geometry);
     inst->dirty = false;
   }

@@ -22,7 +22,8 @@ struct MeshRecord {
   RTCScene scene = nullptr;
   RTCGeometry geometry = nullptr;
   std::uint32_t users = 0;  // instances referencing this mesh
-  bool dirty = true;
+  bool dirty = true;         // data changed since the last commit
+  bool sceneStale = true;    // its own BVH not built for the current data
 
   MeshRecord() = default;
   MeshRecord(const MeshRecord&) = delete;
@@ -37,7 +38,9 @@ struct InstanceRecord {
   MeshId mesh{};
   MaterialId material{};
   glm::mat4 transform{1.0f};
-  RTCGeometry geometry = nullptr;
+  RTCGeometry geometry = nullptr;      // the instance in the top level
+  RTCGeometry flatGeometry = nullptr;  // or its triangles in world space, in the merged scene
+  bool flat = false;
   bool dirty = true;
 
   InstanceRecord() = default;
@@ -45,8 +48,15 @@ struct InstanceRecord {
   InstanceRecord& operator=(const InstanceRecord&) = delete;
   ~InstanceRecord() {
     if (geometry) rtcReleaseGeometry(geometry);
+    if (flatGeometry) rtcReleaseGeometry(flatGeometry);
   }
 };
+
+// Ids in the top-level scene: the merged static scene is instanced at 0,
+// instance i at i + 1. In the merged scene, instance i's triangles have
+// geometry id i.
+inline constexpr std::uint32_t kMergedTopId = 0;
+inline std::uint32_t topId(std::uint32_t instance) { return instance + 1; }
 
 struct ResolvedMaterial {
   Material material;
@@ -73,6 +83,12 @@ struct EmissiveRange {
 struct SceneState {
   std::shared_ptr<Device> device;
   RTCScene top = nullptr;
+  // Static meshes used by exactly one instance are merged, in world space,
+  // into one high-quality acceleration structure: no instance traversal and
+  // one BVH over interleaved objects. Shared or animated meshes stay instanced.
+  RTCScene merged = nullptr;
+  RTCGeometry mergedInstance = nullptr;
+  bool mergedDirty = true;
   std::uint64_t uid = 0;
   std::uint64_t version = 1;
 
