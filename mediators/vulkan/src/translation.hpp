@@ -1,0 +1,41 @@
+#pragma once
+// Scene graph values in the rasterizer's vocabulary: materials, lights, the
+// background, textures and meshes. Pure functions; the adapter decides when
+// to call them. Material classes follow the Embree mediator's rules so both
+// back-ends light the same scene the same way.
+#include <functional>
+#include <optional>
+
+#include <glm/vec4.hpp>
+
+#include "tsr/sg/scene.hpp"
+#include "tsr/vk/environment.hpp"
+#include "tsr/vk/light.hpp"
+#include "tsr/vk/material.hpp"
+#include "tsr/vk/mesh.hpp"
+#include "tsr/vk/texture.hpp"
+
+namespace tsr::med::vulkan_mediator {
+
+using TextureLookup = std::function<std::optional<vk::TextureId>(sg::ContainerId image)>;
+
+// SurfaceMaterial: transmission over 0.5 is glass (smooth below roughness
+// 0.05) or rough dielectric; else metallic over 0.5 is a mirror (smooth) or
+// rough conductor; else diffuse; opacity carries over. SimpleMaterial is
+// diffuse with opacity 1 - transparency. Emission carries over.
+vk::Material translateMaterial(const sg::Container* material, const TextureLookup& textures);
+
+// RGBA; 8-bit sRGB images stay 8-bit (the sampler decodes), the rest float.
+vk::Texture translateImage(const sg::Image& image);
+
+// A light placed by its world matrix.
+vk::Light translateLight(const sg::Light& light, const glm::mat4& world);
+
+// The rasterizer keeps the environment's average as ambient light.
+vk::Environment translateBackground(const sg::Scene& scene, sg::ContainerId background);
+// What pixels show where nothing is drawn: the environment's average, alpha 0.
+glm::vec4 backgroundColour(const vk::Environment& environment);
+
+vk::MeshData translateMesh(const sg::Geometry& geometry);
+
+}  // namespace tsr::med::vulkan_mediator

@@ -1,0 +1,59 @@
+#include "vulkan_viewport.hpp"
+
+#include <chrono>
+
+#include "translation.hpp"
+
+namespace tsr::med::vulkan_mediator {
+
+VulkanViewport::VulkanViewport(ViewportSettings settings, std::shared_ptr<VulkanContext> context)
+    : Viewport(std::move(settings)), context_(std::move(context)) {}
+
+vk::RenderSettings VulkanViewport::renderSettings() const {
+  const Parameters& p = settings_.parameters;
+  vk::RenderSettings s;
+  const auto msaa = p.getInt("msaa", 1, 1, 4);
+  if (msaa != 1 && msaa != 4) throw ParameterError("msaa: expected 1 or 4, got " + std::to_string(msaa));
+  s.msaaSamples = static_cast<std::uint32_t>(msaa);
+  s.shadows = p.getBool("shadows", true);
+  s.shadowMapSize = static_cast<std::uint32_t>(p.getInt("shadowMapSize", 1024, 16, 8192));
+  s.background = backgroundColour(context_->adapter.environment());
+  return s;
+}
+
+SceneAdapter::Update VulkanViewport::synchronize(const sg::Replica& replica) {
+  std::lock_guard lock(context_->shared->mutex);
+  return context_->adapter.catchUp(replica);
+}
+
+RenderStats VulkanViewport::render(const sg::Replica& replica, const View& view, FrameBuffer& out,
+                                   const RenderControl& control) {
+  view.validate();
+  const auto start = std::chrono::steady_clock::now();
+  std::lock_guard lock(context_->shared->mutex);
+  RenderStats stats;
+  stats.update = context_->adapter.catchUp(replica);
+  if (control.cancel && control.cancel->load()) return stats;
+
+  // Parameters are read after catching up: the background colour comes from the scene.
+  const vk::RenderSettings settings = renderSettings();
+  if (!renderer_)
+    renderer_ = std::make_unique<vk::Renderer>(context_->shared->device, settings);
+  else
+    renderer_->setSettings(settings);
+
+  vk::Camera camera{view.cameraToWorld, view.left, view.right, view.bottom, view.top, view.nearPlane, view.farPlane};
+  vk::Region region{view.width, view.height, view.region.x0, view.region.y0, view.region.x1, view.region.y1};
+  vk::FrameBuffer fb(region.regionWidth(), region.regionHeight());
+  renderer_->render(context_->adapter.scene(), camera, region, fb);
+
+  out = FrameBuffer(fb.width(), fb.height());
+  out.colour = fb.colourImage();
+  out.depth = fb.depthImage();
+  stats.samples = settings.msaaSamples;
+  if (control.progress) control.progress(1.0);
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return stats;
+}
+
+}  // namespace tsr::med::vulkan_mediator

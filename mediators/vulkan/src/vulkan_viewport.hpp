@@ -1,0 +1,38 @@
+#pragma once
+// A viewport rendered by the Vulkan rasterizer. Viewports on one replica
+// with the same root and background share a context (one converted scene);
+// every context uses the process's one device. Each viewport keeps its own
+// renderer, so two viewports may differ in MSAA or shadows.
+#include <memory>
+#include <mutex>
+
+#include "shared_device.hpp"
+#include "tsr/med/viewport.hpp"
+#include "tsr/vk/renderer.hpp"
+#include "vulkan_scene_adapter.hpp"
+
+namespace tsr::med::vulkan_mediator {
+
+struct VulkanContext {
+  std::shared_ptr<SharedDevice> shared;
+  VulkanSceneAdapter adapter;
+  VulkanContext(std::shared_ptr<SharedDevice> s, sg::ContainerId root, sg::ContainerId background)
+      : shared(s), adapter(s->device, root, background) {}
+};
+
+class VulkanViewport final : public Viewport {
+ public:
+  VulkanViewport(ViewportSettings settings, std::shared_ptr<VulkanContext> context);
+  SceneAdapter::Update synchronize(const sg::Replica& replica) override;
+  RenderStats render(const sg::Replica& replica, const View& view, FrameBuffer& out,
+                     const RenderControl& control) override;
+  const VulkanContext& context() const { return *context_; }
+
+ private:
+  vk::RenderSettings renderSettings() const;
+
+  std::shared_ptr<VulkanContext> context_;
+  std::unique_ptr<vk::Renderer> renderer_;  // made on first render, like the scene
+};
+
+}  // namespace tsr::med::vulkan_mediator
