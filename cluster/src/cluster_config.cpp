@@ -134,8 +134,9 @@ ClusterConfig parseClusterConfig(const std::string& text, const std::string& sou
   if (compose == "anaglyph") c.stereo.compose = StereoCompose::Anaglyph;
   else if (compose == "side-by-side") c.stereo.compose = StereoCompose::SideBySide;
   else r.fail("unknown stereo composition '" + compose + "' (anaglyph, side-by-side)");
-  c.stereo.eyeSeparation = r.get<float>(stereo, "eyeSeparation", c.stereo.eyeSeparation);
-  c.stereo.zeroParallax = r.get<float>(stereo, "zeroParallax", c.stereo.zeroParallax);
+  if (stereo.contains("eyeSeparation")) c.stereo.eyeSeparation = r.get<float>(stereo, "eyeSeparation", 0);
+  if (stereo.contains("zeroParallax")) c.stereo.zeroParallax = r.get<float>(stereo, "zeroParallax", 0);
+  if (c.stereo.zeroParallax && !(*c.stereo.zeroParallax > 0)) r.fail("'zeroParallax' must be positive");
 
   const json& t = r.object(j, "timeouts");
   c.timeouts.connect = r.millis(t, "connectMs", c.timeouts.connect);

@@ -53,8 +53,8 @@ struct ClusterWindow::Impl {
   sg::ContainerId root = sg::kNoContainer, background = sg::kNoContainer;
 
   Impl(ClusterConfig c, ClientOptions o) : config(std::move(c)), options(std::move(o)) {
-    eyeSeparation = config.stereo.eyeSeparation;
-    zeroParallax = config.stereo.zeroParallax;
+    eyeSeparation = config.stereo.eyeSeparation.value_or(0.065f);
+    zeroParallax = config.stereo.zeroParallax.value_or(5.0f);
     thread = std::thread([this] { io.run(); });
   }
   ~Impl() {
@@ -385,6 +385,8 @@ ClusterFrame ClusterWindow::render(const med::View& view) {
 
   result.busySeconds.assign(s.nodes.size(), 0.0);
   for (const auto& [node, busy] : round.busySeconds()) result.busySeconds[node] = busy;
+  result.tileSeconds.assign(s.nodes.size(), 0.0);
+  for (const auto& [node, t] : round.tileSeconds()) result.tileSeconds[node] = t;
   for (const auto& it : round.items()) result.offlineTiles += it.offline ? 1 : 0;
   result.reassignedItems = s.reassigned;
   if (s.config.mode == ClusterMode::Stereo) {
@@ -399,8 +401,9 @@ ClusterFrame ClusterWindow::render(const med::View& view) {
 }
 
 void ClusterWindow::setEyes(float separation, float zeroParallax) {
-  impl_->eyeSeparation = separation;
-  impl_->zeroParallax = zeroParallax;
+  // The config's values, where it gives them, win over the application's.
+  impl_->eyeSeparation = impl_->config.stereo.eyeSeparation.value_or(separation);
+  impl_->zeroParallax = impl_->config.stereo.zeroParallax.value_or(zeroParallax);
 }
 
 std::vector<NodeStatus> ClusterWindow::status() const {

@@ -51,6 +51,7 @@ const WorkItem* FrameRound::onTile(std::size_t node, const RenderTile& tile) {
         out.depth[out.index(it.rect.x0 + x, it.rect.y0 + y)] = px.depth[px.index(x, y)];
       }
     it.done = true;
+    tileSeconds_[node] += tile.seconds;
     return &it;
   }
   return nullptr;

@@ -53,6 +53,7 @@ class FrameRound {
   bool delivered(std::size_t node) const;  // every item of this node arrived
   const std::vector<WorkItem>& items() const { return items_; }
   const std::map<std::size_t, double>& busySeconds() const { return busy_; }
+  const std::map<std::size_t, double>& tileSeconds() const { return tileSeconds_; }
 
  private:
   std::uint64_t frame_;
@@ -60,6 +61,7 @@ class FrameRound {
   std::vector<med::FrameBuffer>& targets_;
   Compression compression_;
   std::map<std::size_t, double> busy_;
+  std::map<std::size_t, double> tileSeconds_;
   std::map<std::size_t, int> outstanding_;
 };
 

@@ -80,3 +80,18 @@ TEST(ClusterConfig, RejectsWhatCannotWork) {
 
 }  // namespace
 }  // namespace tsr::cluster
+
+namespace tsr::cluster {
+namespace {
+
+TEST(ClusterConfig, ShippedConfigsParse) {
+  for (const char* name : {"cooperative-2.json", "wall-2x2.json", "stereo-pair.json", "mixed-backends.json"}) {
+    ClusterConfig c = loadClusterConfig(std::string(TSR_CONFIG_DIR) + "/" + name);
+    EXPECT_FALSE(c.nodes.empty()) << name;
+  }
+  EXPECT_EQ(loadClusterConfig(std::string(TSR_CONFIG_DIR) + "/wall-2x2.json").mode, ClusterMode::Tiled);
+  EXPECT_THROW(loadClusterConfig("/nonexistent.json"), ConfigError);
+}
+
+}  // namespace
+}  // namespace tsr::cluster

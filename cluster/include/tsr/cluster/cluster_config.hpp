@@ -8,6 +8,7 @@
 //                { "address": "127.0.0.1:7202", "parameters": { "threads": 1 } } ],
 //     "cooperative": { "tileSize": 32 } }
 #include <chrono>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -48,8 +49,9 @@ struct WallConfig {
 
 struct StereoConfig {
   StereoCompose compose = StereoCompose::Anaglyph;
-  float eyeSeparation = 0.065f;
-  float zeroParallax = 5.0f;
+  // Unset: the application's (the scene camera's) values, via setEyes().
+  std::optional<float> eyeSeparation;
+  std::optional<float> zeroParallax;
 };
 
 struct Timeouts {

@@ -44,7 +44,8 @@ struct ClusterFrame {
   std::uint64_t frame = 0;
   med::FrameBuffer image;        // stitched wall, composited tiles, or the composed stereo pair
   med::FrameBuffer left, right;  // stereo only
-  std::vector<double> busySeconds;  // per node (config order); 0 where a node did nothing
+  std::vector<double> busySeconds;  // per node (config order): its whole requests; 0 where it did nothing
+  std::vector<double> tileSeconds;  // per node: the part spent rendering its tiles
   std::size_t offlineTiles = 0;     // wall tiles shown as offline fill
   std::size_t reassignedItems = 0;  // work taken over from nodes lost during the frame
 };
@@ -85,7 +86,8 @@ class ClusterWindow {
   // Throws ClusterError when no node is left to render (wall: never; its
   // tiles show the offline fill).
   ClusterFrame render(const med::View& view);
-  // Stereo: eye separation and zero-parallax distance (the scene camera's).
+  // Stereo: eye separation and zero-parallax distance (the scene camera's);
+  // values the config gives take precedence.
   void setEyes(float separation, float zeroParallax);
 
   std::vector<NodeStatus> status() const;
