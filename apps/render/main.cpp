@@ -12,6 +12,7 @@
 #include "progress_bar.hpp"
 #include "render_options.hpp"
 #include "scene_session.hpp"
+#include "sequence_render.hpp"
 #include "tsr/med/image_file.hpp"
 #include "tsr/med/viewport_registry.hpp"
 
@@ -20,7 +21,9 @@ namespace {
 int run(int argc, char** argv) {
   tsr::app::RenderOptions options;
   if (!tsr::app::parseRenderOptions(argc, argv, options)) return 0;
-  if (!options.unparsed.empty()) throw std::invalid_argument("unknown argument " + options.unparsed.front());
+  // --frames and --cluster render sequences, locally or on nodes (sequence_render.cpp).
+  auto sequence = tsr::app::parseSequenceOptions(options.unparsed);
+  if (sequence.active()) return tsr::app::renderSequence(options, sequence);
 
   tsr::app::SceneSession session;
   session.load(options.scene);

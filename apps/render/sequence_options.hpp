@@ -1,0 +1,30 @@
+#pragma once
+// tessera-render's frame-sequence and cluster options, parsed from the
+// arguments the base options leave over:
+//   --frames N [--fps F]         N frames of the scene's animation
+//   --cluster CONFIG.json        render through render nodes
+//   [--nodes HOST:PORT,...]      replace the config's node addresses in order
+//   [--token-file F]             the nodes' shared token
+#include <string>
+#include <vector>
+
+namespace tsr::app {
+
+struct SequenceOptions {
+  int frames = 1;
+  double fps = 24.0;
+  bool framesGiven = false;
+  std::string cluster;
+  std::string nodes;
+  std::string tokenFile;
+  bool active() const { return framesGiven || !cluster.empty(); }
+};
+
+// Throws std::invalid_argument for bad values or any argument left unknown.
+SequenceOptions parseSequenceOptions(const std::vector<std::string>& args);
+
+// "out.####.png" + 7 -> "out.0007.png"; a name without #### is returned
+// as is (a single frame).
+std::string framePath(const std::string& pattern, int frame);
+
+}  // namespace tsr::app

@@ -1,0 +1,97 @@
+// tessera-render --cluster and --frames end to end: the images written
+// through nodes equal the ones written by a local render of the same frames.
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "cluster_test_util.hpp"
+#include "tsr/med/image_file.hpp"
+
+namespace tsr::cluster::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    char name[] = "/tmp/tsr-cli-XXXXXX";
+    path = mkdtemp(name);
+  }
+  ~TempDir() { fs::remove_all(path); }
+};
+
+int run(const std::string& args) {
+  std::string command = std::string(TSR_RENDER_BINARY) + " " + args + " --quiet > /dev/null";
+  return std::system(command.c_str());
+}
+
+std::string writeConfig(const fs::path& dir, const std::string& mode, std::size_t nodes, const std::string& extra = "") {
+  std::string json = R"({"mode": ")" + mode + R"(", "backend": "embree",
+    "parameters": {"spp": 2, "maxDepth": 3, "seed": 5, "threads": 1}, "nodes": [)";
+  for (std::size_t i = 0; i < nodes; ++i) json += std::string(i ? "," : "") + R"({"address": "127.0.0.1:1"})";
+  json += "]" + extra + "}";
+  fs::path p = dir / (mode + ".json");
+  std::ofstream(p) << json;
+  return p.string();
+}
+
+std::string addresses(const std::vector<std::unique_ptr<NodeProcess>>& nodes) {
+  std::string out;
+  for (const auto& n : nodes) out += (out.empty() ? "" : ",") + n->text();
+  return out;
+}
+
+const std::string kLocal = " --spp 2 --max-depth 3 --seed 5 --threads 1 --size 48x40";
+
+TEST(RenderCli, ClusterImageEqualsLocalImage) {
+  TempDir dir;
+  TokenFile token("cli token");
+  auto nodes = startNodes(2, {"--token-file", token.path()});
+  std::string config = writeConfig(dir.path, "cooperative", 2, R"(, "cooperative": {"tileSize": 16})");
+  ASSERT_EQ(run("builtin:cornell --cluster " + config + " --nodes " + addresses(nodes) + " --token-file " + token.path() +
+                " --size 48x40 --output " + (dir.path / "cluster.exr").string()),
+            0);
+  ASSERT_EQ(run("builtin:cornell" + kLocal + " --output " + (dir.path / "local.exr").string()), 0);
+  EXPECT_TRUE(bitwiseEqual(med::readImage((dir.path / "cluster.exr").string()),
+                           med::readImage((dir.path / "local.exr").string())));
+}
+
+TEST(RenderCli, WrongTokenFailsWithAnError) {
+  TempDir dir;
+  TokenFile right("right"), wrong("wrong");
+  auto nodes = startNodes(1, {"--token-file", right.path()});
+  std::string config = writeConfig(dir.path, "cooperative", 1, R"(, "timeouts": {"connectMs": 1000})");
+  EXPECT_NE(run("builtin:cornell --cluster " + config + " --nodes " + addresses(nodes) + " --token-file " + wrong.path() +
+                " --output " + (dir.path / "x.exr").string() + " 2>/dev/null"),
+            0);
+  EXPECT_FALSE(fs::exists(dir.path / "x.exr"));
+}
+
+TEST(RenderCli, AnimatedFramesThroughAWallEqualLocalFrames) {
+  TempDir dir;
+  auto nodes = startNodes(4);
+  std::string config = writeConfig(dir.path, "tiled", 4, R"(, "wall": {"columns": 2, "rows": 2})");
+  ASSERT_EQ(run("builtin:animated --cluster " + config + " --nodes " + addresses(nodes) +
+                " --size 48x40 --frames 3 --fps 4 --output " + (dir.path / "wall.####.exr").string()),
+            0);
+  ASSERT_EQ(run("builtin:animated" + kLocal + " --frames 3 --fps 4 --output " + (dir.path / "local.####.exr").string()), 0);
+  for (const char* f : {"0000", "0001", "0002"}) {
+    auto wall = med::readImage((dir.path / ("wall." + std::string(f) + ".exr")).string());
+    auto local = med::readImage((dir.path / ("local." + std::string(f) + ".exr")).string());
+    EXPECT_TRUE(bitwiseEqual(wall, local)) << "frame " << f;
+  }
+  // The animation moves: frames differ from each other.
+  EXPECT_FALSE(bitwiseEqual(med::readImage((dir.path / "local.0000.exr").string()),
+                            med::readImage((dir.path / "local.0002.exr").string())));
+}
+
+TEST(RenderCli, FramesNeedAFrameNumberInTheOutputName) {
+  EXPECT_NE(run("builtin:animated --frames 2 --output /tmp/no-hashes.exr 2>/dev/null"), 0);
+  EXPECT_NE(run("builtin:cornell --nodes 127.0.0.1:1 2>/dev/null"), 0);
+}
+
+}  // namespace
+}  // namespace tsr::cluster::test
