@@ -1,4 +1,4 @@
-// tessera-node --listen HOST:PORT [--token-file F] [--name N] [--threads N]
+// tessera-node --listen HOST:PORT [--token-file F] [--name N] [--threads N] [--present DIR]
 // Serves render requests of Tessera clients. The first line on stdout is
 // "listening on HOST:PORT" (port 0 picks a free one), for scripts and tests.
 #include <iostream>
@@ -19,6 +19,8 @@ int main(int argc, char** argv) {
   app.add_option("--token-file", tokenFile, "file holding the shared token clients must prove");
   app.add_option("--name", name, "name reported to clients");
   app.add_option("--threads", threads, "render threads per viewport (0: all cores)");
+  std::string present;
+  app.add_option("--present", present, "write each wall tile here when its swap barrier releases (headless display)");
   app.add_option("--log-level", logLevel, "trace, debug, info, warn, error");
   CLI11_PARSE(app, argc, argv);
 
@@ -31,6 +33,7 @@ int main(int argc, char** argv) {
     options.listen = tsr::cluster::parseNodeAddress(listen.find(':') == std::string::npos ? listen + ":0" : listen);
     options.name = name;
     options.threads = threads;
+    options.presentDirectory = present;
     if (!tokenFile.empty()) options.token = tsr::cluster::readTokenFile(tokenFile);
 
     tsr::med::ViewportRegistry registry;

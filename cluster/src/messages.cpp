@@ -38,6 +38,8 @@ med::PixelRect readRect(sg::ByteReader& r, std::uint32_t width, std::uint32_t he
   rect.y1 = readU32Varint(r, kMaxImageSide, "rect y1");
   if (rect.empty()) throw sg::DecodeError(at, "empty pixel rectangle");
   if (rect.x1 > width || rect.y1 > height) throw sg::DecodeError(at, "pixel rectangle outside the image");
+  if (std::uint64_t{rect.width()} * rect.height() > kMaxRectPixels)
+    throw sg::DecodeError(at, "pixel rectangle larger than " + std::to_string(kMaxRectPixels) + " pixels");
   return rect;
 }
 

@@ -7,6 +7,7 @@
 #include "tsr/cluster/handshake.hpp"
 #include "tsr/cluster/pixel_codec.hpp"
 #include "tsr/cluster/protocol_error.hpp"
+#include "tsr/med/image_file.hpp"
 #include "tsr/sg/errors.hpp"
 #include "tsr/sg/wire_codec.hpp"
 
@@ -175,6 +176,7 @@ void NodeSession::render(State& st, const NodeContext& ctx, const RenderRequest&
   // Viewports of rectangles not asked for again are dropped afterwards: a
   // tile that moved away loses its samples, one that stays keeps them.
   std::map<State::Key, std::unique_ptr<med::Viewport>> used;
+  if (request.frame != st.lastFrame) st.backBuffer.clear();
   for (const auto& job : request.jobs) {
     auto settings = st.settings.find(job.viewport);
     if (settings == st.settings.end()) throw std::runtime_error("no viewport " + std::to_string(job.viewport));
@@ -197,6 +199,7 @@ void NodeSession::render(State& st, const NodeContext& ctx, const RenderRequest&
       tile.rect = rect;
       tile.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
       EncodedPixels px = encodePixels(fb, request.compression);
+      if (!ctx.options.presentDirectory.empty()) st.backBuffer.emplace_back(rect, fb);
       tile.compression = px.compression;
       tile.pixels = std::move(px.bytes);
       conn->post(makeFrame(tile));
@@ -210,10 +213,25 @@ void NodeSession::render(State& st, const NodeContext& ctx, const RenderRequest&
 }
 
 void NodeSession::onSwap(const Message& m) {
-  // The wall's barrier released: a node with a display would present the
-  // tile it rendered for this frame now.
-  presented_ = parse<Swap>(m).frame;
-  spdlog::debug("session {}: presented frame {}", peer_, presented_);
+  // The wall's barrier released: show the tiles rendered for this frame.
+  Swap swap = parse<Swap>(m);
+  ctx_.worker.post([self = shared_from_this(), swap] {
+    if (self->state_->lastFrame == swap.frame) present(*self->state_, self->ctx_, swap.frame, self->peer_);
+  });
+}
+
+void NodeSession::present(const State& st, const NodeContext& ctx, std::uint64_t frame, const std::string& client) {
+  spdlog::debug("session {}: presenting frame {}", client, frame);
+  if (ctx.options.presentDirectory.empty()) return;
+  for (const auto& [rect, fb] : st.backBuffer) {
+    std::string path = ctx.options.presentDirectory + "/" + ctx.options.name + "-frame" + std::to_string(frame) + "-" +
+                       std::to_string(rect.x0) + "-" + std::to_string(rect.y0) + ".exr";
+    try {
+      med::writeImage(path, fb);
+    } catch (const std::exception& e) {
+      spdlog::error("cannot present to {}: {}", path, e.what());
+    }
+  }
 }
 
 void NodeSession::onHashQuery(const Message& m) {

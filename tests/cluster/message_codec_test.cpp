@@ -193,6 +193,11 @@ TEST(MessageCodec, ValidationRejectsNonsenseValues) {
   r = sampleRequest();
   r.jobs[0].view.nearPlane = -1;  // degenerate view
   EXPECT_THROW(parse<RenderRequest>(unframe(makeFrame(r))), ProtocolError);
+  r = sampleRequest();
+  r.jobs[0].view.width = r.jobs[0].view.height = 8192;  // a valid image, but one tile of 64 M pixels is too much
+  r.jobs[0].view.region = {0, 0, 8192, 8192};
+  r.jobs[0].rects = {{0, 0, 8192, 8192}};
+  EXPECT_THROW(parse<RenderRequest>(unframe(makeFrame(r))), ProtocolError);
   SetViewports sv = sampleViewports();
   sv.viewports.push_back(sv.viewports[0]);  // the same id twice
   EXPECT_THROW(parse<SetViewports>(unframe(makeFrame(sv))), ProtocolError);

@@ -1,5 +1,6 @@
 // Rendering through real nodes with the Embree path tracer: with a fixed
 // seed every mode, node count and fault is bitwise equal to a local render.
+#include <filesystem>
 #include <future>
 #include <thread>
 
@@ -9,6 +10,7 @@
 #include "tsr/cluster/cluster_window.hpp"
 #include "tsr/cluster/wall_layout.hpp"
 #include "tsr/med/compositing.hpp"
+#include "tsr/med/image_file.hpp"
 #include "tsr/med/embree/register.hpp"
 #include "tsr/med/viewport_registry.hpp"
 #include "tsr/sg/replica.hpp"
@@ -146,6 +148,57 @@ TEST(ClusterRender, WallNeverStallsOnANodeThatStopsAnswering) {
   }
   EXPECT_EQ(again.offlineTiles, 0u);
   EXPECT_TRUE(bitwiseEqual(again.image, ref));
+}
+
+TEST(ClusterRender, WallNodesPresentTheirTilesWhenTheBarrierReleases) {
+  char dirName[] = "/tmp/tsr-present-XXXXXX";
+  std::string dir = mkdtemp(dirName);
+  std::vector<std::unique_ptr<NodeProcess>> nodes;
+  for (int i = 0; i < 4; ++i)
+    nodes.push_back(std::make_unique<NodeProcess>(std::vector<std::string>{"--present", dir, "--name", "n" + std::to_string(i)}));
+  Session app("builtin:cornell", configFor(ClusterMode::Tiled, nodes, pathTracer()), pathTracer());
+  ASSERT_EQ(app.connect(), 4u);
+  app.publish();
+  ClusterFrame f = app.window->render(app.view());
+  med::FrameBuffer ref = app.reference(app.view());
+  auto rects = wallLayout(kSize, kSize, 2, 2, 0);
+  for (int i = 0; i < 4; ++i) {
+    std::string path = dir + "/n" + std::to_string(i) + "-frame" + std::to_string(f.frame) + "-" +
+                       std::to_string(rects[i].x0) + "-" + std::to_string(rects[i].y0) + ".exr";
+    for (int wait = 0; wait < 100 && access(path.c_str(), R_OK) != 0; ++wait) std::this_thread::sleep_for(20ms);
+    med::FrameBuffer shown = med::readImage(path);
+    ASSERT_EQ(shown.width, rects[i].width());
+    for (std::uint32_t y = 0; y < shown.height; ++y)
+      for (std::uint32_t x = 0; x < shown.width; ++x)
+        ASSERT_EQ(shown.colour[shown.index(x, y)], ref.colour[ref.index(rects[i].x0 + x, rects[i].y0 + y)]) << path;
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ClusterRender, RestartedNodeRejoinsAndRendersIdenticalPixels) {
+  auto nodes = startNodes(2);
+  ClusterConfig c = configFor(ClusterMode::Cooperative, nodes, pathTracer());
+  c.cooperative.tileSize = 16;
+  c.cooperative.maxMovesPerFrame = 16;
+  Session app("builtin:animated", c, pathTracer());
+  ASSERT_EQ(app.connect(), 2u);
+  app.publish(0);
+  ASSERT_TRUE(bitwiseEqual(app.window->render(app.view()).image, app.reference(app.view())));
+  std::string address = nodes[1]->text();
+  nodes[1]->kill();
+  app.publish(1);
+  ClusterFrame alone = app.window->render(app.view());  // node 0 alone
+  EXPECT_TRUE(bitwiseEqual(alone.image, app.reference(app.view())));
+  nodes[1] = std::make_unique<NodeProcess>(std::vector<std::string>{}, address);
+  ClusterFrame back;
+  for (int frame = 2; frame < 40; ++frame) {
+    std::this_thread::sleep_for(50ms);
+    app.publish(frame);
+    back = app.window->render(app.view());
+    ASSERT_TRUE(bitwiseEqual(back.image, app.reference(app.view()))) << "frame " << frame;
+    if (back.busySeconds[1] > 0) break;
+  }
+  EXPECT_GT(back.busySeconds[1], 0.0) << "the restarted node takes part again";
 }
 
 TEST(ClusterRender, StereoPairComposedEqualsLocalComposition) {

@@ -40,6 +40,7 @@ inline constexpr std::size_t kMaxParameters = 256;
 inline constexpr std::size_t kMaxJobs = 64;
 inline constexpr std::size_t kMaxRectsPerJob = 1 << 14;
 inline constexpr std::uint32_t kMaxImageSide = 1 << 15;
+inline constexpr std::uint64_t kMaxRectPixels = std::uint64_t{1} << 24;  // one tile's result must fit a RenderTile
 
 struct Hello {
   static constexpr MessageType kType = MessageType::Hello;

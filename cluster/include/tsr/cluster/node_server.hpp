@@ -17,6 +17,9 @@ struct NodeOptions {
   std::string token;              // empty: no token file given (any client that also has none may connect)
   std::string name = "node";
   unsigned threads = 0;           // default "threads" parameter of viewports; 0 leaves it to the back-end
+  // A headless node "presents" a wall tile by writing it here when the
+  // swap barrier releases its frame (empty: presenting is a no-op).
+  std::string presentDirectory;
   std::chrono::milliseconds handshakeTimeout{5000};
   std::chrono::milliseconds idleTimeout{15000};  // clients heartbeat far more often than this
 };

@@ -11,7 +11,7 @@
 namespace tsr::cluster {
 
 inline constexpr std::size_t kBytesPerPixel = 20;
-inline constexpr std::uint64_t kMaxTilePixels = std::uint64_t{1} << 24;
+inline constexpr std::uint64_t kMaxTilePixels = kMaxRectPixels;
 
 struct EncodedPixels {
   Compression compression = Compression::None;
