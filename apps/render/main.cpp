@@ -9,6 +9,7 @@
 
 #include "backends.hpp"
 #include "coverage_output.hpp"
+#include "layers.hpp"
 #include "progress_bar.hpp"
 #include "render_options.hpp"
 #include "scene_session.hpp"
@@ -21,8 +22,10 @@ namespace {
 int run(int argc, char** argv) {
   tsr::app::RenderOptions options;
   if (!tsr::app::parseRenderOptions(argc, argv, options)) return 0;
+  const auto layers = tsr::app::takeLayers(options.unparsed);  // --layers: a layered window (layers.hpp)
   // --frames and --cluster render sequences, locally or on nodes (sequence_render.cpp).
   auto sequence = tsr::app::parseSequenceOptions(options.unparsed);
+  if (sequence.active() && !layers.empty()) throw std::invalid_argument("--layers: not with --frames or --cluster (yet)");
   if (sequence.active()) return tsr::app::renderSequence(options, sequence);
 
   tsr::app::SceneSession session;
@@ -37,7 +40,6 @@ int run(int argc, char** argv) {
   settings.root = session.imported.root;
   settings.background = session.imported.background;
   settings.parameters = options.parameters;
-  auto viewport = registry.create(settings, contexts);
 
   const auto* camera = session.replica.scene().find<tsr::sg::Camera>(session.camera);
   auto view = tsr::med::View::fromCamera(*camera, options.width, options.height);
@@ -45,7 +47,8 @@ int run(int argc, char** argv) {
   tsr::med::RenderControl control;
   control.progress = [&](double f) { bar.update(f); };
   tsr::med::FrameBuffer image;
-  auto stats = viewport->render(session.replica, view, image, control);
+  auto window = tsr::app::makeLayeredWindow(layers, session.replica.scene(), settings, registry, contexts);
+  auto stats = tsr::app::renderLayered(window, session.replica, view, image, control);
   bar.finish();
 
   if (tsr::app::isRankingPath(options.output))

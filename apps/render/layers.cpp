@@ -1,0 +1,133 @@
+#include "layers.hpp"
+
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+namespace tsr::app {
+
+namespace {
+bool endsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+LayerSpec parseLayer(const std::string& text) {
+  LayerSpec layer;
+  auto colon = text.find(':');
+  layer.backend = text.substr(0, colon);
+  if (colon != std::string::npos) {
+    layer.root = text.substr(colon + 1);
+    if (layer.root.empty()) throw std::invalid_argument("--layers: '" + text + "' names no node after ':'");
+  }
+  if (layer.backend.empty()) throw std::invalid_argument("--layers: a layer without a back-end in '" + text + "'");
+  return layer;
+}
+
+med::ParameterValue parameterValue(const std::string& layer, const std::string& name, const nlohmann::json& v) {
+  if (v.is_boolean()) return v.get<bool>();
+  if (v.is_number_integer()) return v.get<std::int64_t>();
+  if (v.is_number()) return v.get<double>();
+  if (v.is_string()) return v.get<std::string>();
+  throw std::invalid_argument("--layers: layer " + layer + ": parameter " + name + " must be a boolean, number or string");
+}
+
+std::vector<LayerSpec> readLayerFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument("--layers: cannot read " + path);
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw std::invalid_argument("--layers: " + path + ": " + e.what());
+  }
+  if (!doc.is_array() || doc.empty()) throw std::invalid_argument("--layers: " + path + ": expected a non-empty array of layers");
+  std::vector<LayerSpec> layers;
+  for (std::size_t i = 0; i < doc.size(); ++i) {
+    const auto& j = doc[i];
+    const std::string where = path + " layer " + std::to_string(i);
+    if (!j.is_object() || !j.contains("backend") || !j["backend"].is_string())
+      throw std::invalid_argument("--layers: " + where + ": expected an object with a \"backend\" string");
+    LayerSpec layer;
+    layer.backend = j["backend"].get<std::string>();
+    if (j.contains("root")) {
+      if (!j["root"].is_string()) throw std::invalid_argument("--layers: " + where + ": \"root\" must be a string");
+      layer.root = j["root"].get<std::string>();
+    }
+    if (j.contains("parameters")) {
+      if (!j["parameters"].is_object()) throw std::invalid_argument("--layers: " + where + ": \"parameters\" must be an object");
+      for (const auto& [name, value] : j["parameters"].items()) layer.parameters.set(name, parameterValue(where, name, value));
+    }
+    layers.push_back(std::move(layer));
+  }
+  return layers;
+}
+}  // namespace
+
+std::vector<LayerSpec> parseLayers(const std::string& value) {
+  if (endsWith(value, ".json")) return readLayerFile(value);
+  std::vector<LayerSpec> layers;
+  std::stringstream in(value);
+  for (std::string item; std::getline(in, item, ',');) layers.push_back(parseLayer(item));
+  if (layers.empty() || value.back() == ',') throw std::invalid_argument("--layers: expected BACKEND[:NODE],... got '" + value + "'");
+  return layers;
+}
+
+std::vector<LayerSpec> takeLayers(std::vector<std::string>& args) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--layers") {
+      if (i + 1 == args.size()) throw std::invalid_argument("--layers: expected BACKEND[:NODE],... or a .json file");
+      auto layers = parseLayers(args[i + 1]);
+      args.erase(args.begin() + static_cast<std::ptrdiff_t>(i), args.begin() + static_cast<std::ptrdiff_t>(i) + 2);
+      return layers;
+    }
+    if (args[i].rfind("--layers=", 0) == 0) {
+      auto layers = parseLayers(args[i].substr(9));
+      args.erase(args.begin() + static_cast<std::ptrdiff_t>(i));
+      return layers;
+    }
+  }
+  return {};
+}
+
+sg::ContainerId findLayerRoot(const sg::Scene& scene, const std::string& name) {
+  sg::ContainerId found = sg::kNoContainer;
+  for (auto id : scene.ids()) {
+    const sg::Container* c = scene.find(id);
+    if (c->name() != name || !sg::isParentType(c->type())) continue;
+    if (found != sg::kNoContainer) throw std::invalid_argument("--layers: several groups or transforms are named '" + name + "'");
+    found = id;
+  }
+  if (found == sg::kNoContainer) throw std::invalid_argument("--layers: no group or transform is named '" + name + "'");
+  return found;
+}
+
+med::Window makeLayeredWindow(const std::vector<LayerSpec>& layers, const sg::Scene& scene,
+                              const med::ViewportSettings& defaults, const med::ViewportRegistry& registry,
+                              med::ContextPool& contexts) {
+  med::Window window;
+  if (layers.empty()) window.addLayer(registry.create(defaults, contexts));
+  for (const LayerSpec& layer : layers) {
+    med::ViewportSettings settings = defaults;
+    settings.backend = layer.backend;
+    if (!layer.root.empty()) settings.root = findLayerRoot(scene, layer.root);
+    for (const auto& [name, value] : layer.parameters.all()) settings.parameters.set(name, value);
+    window.addLayer(registry.create(settings, contexts));
+  }
+  return window;
+}
+
+med::RenderStats renderLayered(med::Window& window, const sg::Replica& replica, const med::View& view,
+                               med::FrameBuffer& out, const med::RenderControl& control) {
+  out = window.render(replica, view, control);
+  med::RenderStats total;
+  for (const auto& s : window.lastStats()) {
+    total.rays += s.rays;
+    total.samples = std::max(total.samples, s.samples);
+    total.seconds += s.seconds;
+  }
+  return total;
+}
+
+}  // namespace tsr::app
