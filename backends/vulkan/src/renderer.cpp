@@ -1,6 +1,7 @@
 #include "tsr/vk/renderer.hpp"
 
 #include "buffer.hpp"
+#include "id_pass.hpp"
 #include "gpu_types.hpp"
 #include "pipeline.hpp"
 #include "render_target.hpp"
@@ -65,6 +66,7 @@ struct Renderer::Impl {
   Buffer drawOrderBuffer;
   std::optional<RenderTarget> target;
   std::optional<ShadowMap> shadowMap;
+  std::unique_ptr<IdPass> idPass;  // made on first renderIds
 
   std::vector<std::uint32_t> drawOrder;
   std::vector<GpuLight> gpuLights;
@@ -525,6 +527,20 @@ void Renderer::render(Scene& scene, const Camera& camera, const Region& region, 
   const auto* depth = static_cast<const float*>(t.depthReadback.mapped());
   for (std::size_t i = 0; i < pixels; ++i) fb.depth_[i] = camera.linearDepth(depth[i]);
   stats_ = stats;
+}
+
+void Renderer::renderIds(Scene& scene, const Camera& camera, const Region& region, IdBuffer& ids) {
+  camera.validate();
+  region.validate();
+  if (ids.width != region.regionWidth() || ids.height != region.regionHeight() ||
+      ids.ids.size() != std::size_t(ids.width) * ids.height || ids.depth.size() != ids.ids.size())
+    throw Error("id buffer is " + std::to_string(ids.width) + "x" + std::to_string(ids.height) +
+                " but the region is " + std::to_string(region.regionWidth()) + "x" +
+                std::to_string(region.regionHeight()));
+  if (&scene.device() != device_.get()) throw Error("scene and renderer use different devices");
+  if (!impl_->idPass) impl_->idPass = std::make_unique<IdPass>(*device_);
+  stats_ = RenderStats{};
+  stats_.drawCalls = impl_->idPass->render(scene.state(), camera, region, ids);
 }
 
 }  // namespace tsr::vk

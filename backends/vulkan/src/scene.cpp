@@ -364,8 +364,10 @@ InstanceId Scene::addInstance(MeshId mesh, MaterialId material, const glm::mat4&
   const std::uint32_t slot = std::uint32_t(s.instances.size());
   ensureHostCapacity(*s.device, s.instanceBuffer, (slot + 1) * sizeof(GpuInstance),
                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  s.instances.push_back({index(mesh), index(material), transform, true});
+  ensureHostCapacity(*s.device, s.objectBuffer, (slot + 1) * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  s.instances.push_back({index(mesh), index(material), transform, true, slot + 1});
   static_cast<GpuInstance*>(s.instanceBuffer.mapped())[slot] = makeInstance(transform);
+  static_cast<std::uint32_t*>(s.objectBuffer.mapped())[slot] = slot + 1;
   s.instanceBytes += sizeof(GpuInstance);
   ++m.users;
   ++mat.users;
@@ -383,6 +385,18 @@ void Scene::setInstanceTransform(InstanceId instance, const glm::mat4& transform
   s.instanceBytes += sizeof(GpuInstance);
   s.boundsDirty = true;
   ++s.version;
+}
+
+void Scene::setInstanceObject(InstanceId instance, std::uint32_t object) {
+  SceneState& s = *state_;
+  InstanceRecord& r = lookup(s.instances, index(instance), "instance");
+  r.object = object;
+  static_cast<std::uint32_t*>(s.objectBuffer.mapped())[index(instance)] = object;
+  ++s.version;
+}
+
+std::uint32_t Scene::instanceObject(InstanceId instance) const {
+  return lookup(state_->instances, index(instance), "instance").object;
 }
 
 void Scene::setInstanceMaterial(InstanceId instance, MaterialId material) {

@@ -39,6 +39,7 @@ struct InstanceRecord {
   std::uint32_t material = 0;
   glm::mat4 transform{1.0f};
   bool alive = false;
+  std::uint32_t object = 0;  // what the id pass writes
 };
 
 struct MaterialRecord {
@@ -86,6 +87,7 @@ struct SceneState {
 
   Buffer instanceBuffer;  // GpuInstance per instance slot, host-visible
   Buffer materialBuffer;  // GpuMaterial per material slot, host-visible
+  Buffer objectBuffer;    // uint32 object id per instance slot, host-visible (id pass)
   bool materialsDirty = true;
 
   VkDescriptorSetLayout materialSetLayout = VK_NULL_HANDLE;

@@ -3,6 +3,7 @@
 #include "tsr/vk/camera.hpp"
 #include "tsr/vk/device.hpp"
 #include "tsr/vk/framebuffer.hpp"
+#include "tsr/vk/id_buffer.hpp"
 #include "tsr/vk/region.hpp"
 #include "tsr/vk/scene.hpp"
 
@@ -43,6 +44,13 @@ class Renderer {
 
   // fb must be region-sized. Same scene and inputs give identical pixels.
   void render(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb);
+
+  // The id pass for coverage: each opaque instance's object id
+  // (Scene::setInstanceObject) through every pixel centre, no MSAA, no
+  // shading; transparent instances (material opacity < 1) are left out, so
+  // pixels behind them show what lies further back. `ids` must be
+  // region-sized. Independent of the settings.
+  void renderIds(Scene& scene, const Camera& camera, const Region& region, IdBuffer& ids);
 
   const RenderStats& lastStats() const { return stats_; }
 

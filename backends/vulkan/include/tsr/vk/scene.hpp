@@ -40,6 +40,10 @@ class Scene {
   InstanceId addInstance(MeshId mesh, MaterialId material, const glm::mat4& transform);
   void setInstanceTransform(InstanceId instance, const glm::mat4& transform);
   void setInstanceMaterial(InstanceId instance, MaterialId material);
+  // The id the id pass (Renderer::renderIds) writes for this instance;
+  // index(instance) + 1 until set. Writes 4 bytes.
+  void setInstanceObject(InstanceId instance, std::uint32_t object);
+  std::uint32_t instanceObject(InstanceId instance) const;
   void removeInstance(InstanceId instance);
 
   MaterialId addMaterial(const Material& material);

@@ -1,0 +1,217 @@
+#include "id_pass.hpp"
+
+#include "scene_state.hpp"
+#include "spirv.hpp"
+#include "vk_struct.hpp"
+
+#include "tsr/vk/error.hpp"
+
+#include <cstring>
+
+namespace tsr::vk {
+
+namespace {
+constexpr VkFormat kIdFormat = VK_FORMAT_R32_UINT;
+constexpr VkFormat kIdDepthFormat = VK_FORMAT_D32_SFLOAT;
+}  // namespace
+
+IdPass::IdPass(const Device& device) : device_(device) {
+  VkDevice dev = device.handle();
+  VkDescriptorSetLayoutBinding b[4]{};
+  for (std::uint32_t i = 0; i < 4; ++i) {
+    b[i].binding = i;
+    b[i].descriptorType = i == 0 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    b[i].descriptorCount = 1;
+    b[i].stageFlags = VK_SHADER_STAGE_VERTEX_BIT;
+  }
+  VkDescriptorSetLayoutCreateInfo lci = vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
+  lci.bindingCount = 4;
+  lci.pBindings = b;
+  check(vkCreateDescriptorSetLayout(dev, &lci, nullptr, &setLayout_), "vkCreateDescriptorSetLayout (ids)");
+  VkPipelineLayoutCreateInfo pci = vkStruct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
+  pci.setLayoutCount = 1;
+  pci.pSetLayouts = &setLayout_;
+  check(vkCreatePipelineLayout(dev, &pci, nullptr, &layout_), "vkCreatePipelineLayout (ids)");
+
+  VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3}};
+  VkDescriptorPoolCreateInfo dpci = vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
+  dpci.maxSets = 1;
+  dpci.poolSizeCount = 2;
+  dpci.pPoolSizes = sizes;
+  check(vkCreateDescriptorPool(dev, &dpci, nullptr, &pool_), "vkCreateDescriptorPool (ids)");
+  VkDescriptorSetAllocateInfo ai = vkStruct<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
+  ai.descriptorPool = pool_;
+  ai.descriptorSetCount = 1;
+  ai.pSetLayouts = &setLayout_;
+  check(vkAllocateDescriptorSets(dev, &ai, &set_), "vkAllocateDescriptorSets (ids)");
+
+  VkCommandPoolCreateInfo cpci = vkStruct<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
+  cpci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  cpci.queueFamilyIndex = device.queueFamily();
+  check(vkCreateCommandPool(dev, &cpci, nullptr, &commandPool_), "vkCreateCommandPool (ids)");
+  VkCommandBufferAllocateInfo cai = vkStruct<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
+  cai.commandPool = commandPool_;
+  cai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  cai.commandBufferCount = 1;
+  check(vkAllocateCommandBuffers(dev, &cai, &cmd_), "vkAllocateCommandBuffers (ids)");
+  VkFenceCreateInfo fci = vkStruct<VkFenceCreateInfo>(VK_STRUCTURE_TYPE_FENCE_CREATE_INFO);
+  check(vkCreateFence(dev, &fci, nullptr, &fence_), "vkCreateFence (ids)");
+
+  PipelineDesc d;
+  d.layout = layout_;
+  d.vertexSpirv = spirv::ids_vert;
+  d.fragmentSpirv = spirv::ids_frag;
+  d.vertexStreams = 1;
+  d.colourFormat = kIdFormat;
+  d.depthFormat = kIdDepthFormat;
+  d.depthCompare = VK_COMPARE_OP_GREATER;  // reversed depth, as in the colour pass
+  pipeline_ = Pipeline(device, d);
+  frame_ = Buffer(device, sizeof(glm::mat4), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, Buffer::kHost);
+}
+
+IdPass::~IdPass() {
+  VkDevice dev = device_.handle();
+  vkDeviceWaitIdle(dev);
+  vkDestroyFence(dev, fence_, nullptr);
+  vkDestroyCommandPool(dev, commandPool_, nullptr);
+  vkDestroyDescriptorPool(dev, pool_, nullptr);
+  vkDestroyPipelineLayout(dev, layout_, nullptr);
+  vkDestroyDescriptorSetLayout(dev, setLayout_, nullptr);
+}
+
+std::uint32_t IdPass::render(SceneState& s, const Camera& camera, const Region& region, IdBuffer& out) {
+  const VkDevice dev = device_.handle();
+  const std::uint32_t w = region.regionWidth(), h = region.regionHeight();
+  s.prepare();
+
+  // Opaque instances only: transparent ones neither occlude nor count.
+  const std::size_t drawn = std::max<std::size_t>(s.opaqueOrder.size(), 1);
+  if (!drawOrder_ || drawOrder_.size() < drawn * 4)
+    drawOrder_ = Buffer(device_, std::max<VkDeviceSize>(drawn * 4, 1024), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, Buffer::kHost);
+  if (!s.opaqueOrder.empty()) std::memcpy(drawOrder_.mapped(), s.opaqueOrder.data(), s.opaqueOrder.size() * 4);
+  const glm::mat4 viewProj = camera.projection(region) * camera.worldToCamera();
+  std::memcpy(frame_.mapped(), &viewProj, sizeof viewProj);
+  if (!s.objectBuffer)  // a scene that never had an instance
+    s.objectBuffer = Buffer(device_, 4096, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, Buffer::kHost);
+
+  if (!target_ || target_->width != w || target_->height != h) {
+    target_.reset();
+    Target t;
+    t.width = w;
+    t.height = h;
+    ImageDesc c;
+    c.width = w;
+    c.height = h;
+    c.format = kIdFormat;
+    c.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    t.ids = Image(device_, c);
+    ImageDesc d = c;
+    d.format = kIdDepthFormat;
+    d.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
+    d.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    t.depth = Image(device_, d);
+    t.idReadback = Buffer(device_, VkDeviceSize(w) * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, Buffer::kHost);
+    t.depthReadback = Buffer(device_, VkDeviceSize(w) * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, Buffer::kHost);
+    target_.emplace(std::move(t));
+  }
+  const Target& t = *target_;
+
+  VkDescriptorBufferInfo bufs[4] = {{frame_.handle(), 0, VK_WHOLE_SIZE},
+                                    {s.instanceBuffer.handle(), 0, VK_WHOLE_SIZE},
+                                    {drawOrder_.handle(), 0, VK_WHOLE_SIZE},
+                                    {s.objectBuffer.handle(), 0, VK_WHOLE_SIZE}};
+  VkWriteDescriptorSet writes[4]{};
+  for (std::uint32_t i = 0; i < 4; ++i) {
+    writes[i] = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+    writes[i].dstSet = set_;
+    writes[i].dstBinding = i;
+    writes[i].descriptorCount = 1;
+    writes[i].descriptorType = i == 0 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[i].pBufferInfo = &bufs[i];
+  }
+  vkUpdateDescriptorSets(dev, 4, writes, 0, nullptr);
+
+  VkCommandBuffer cmd = cmd_;
+  check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer (ids)");
+  VkCommandBufferBeginInfo bi = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer (ids)");
+  const VkPipelineStageFlags depthStages =
+      VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+  imageBarrier(cmd, t.ids.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+               VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+               VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
+  imageBarrier(cmd, t.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+               VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, depthStages,
+               VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+
+  VkRenderingAttachmentInfo ca = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
+  ca.imageView = t.ids.view();
+  ca.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  ca.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  ca.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  ca.clearValue.color.uint32[0] = kNoObject;
+  VkRenderingAttachmentInfo da = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
+  da.imageView = t.depth.view();
+  da.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  da.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  da.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  da.clearValue.depthStencil = {0.0f, 0};  // reversed depth: 0 is the far plane
+  VkRenderingInfo ri = vkStruct<VkRenderingInfo>(VK_STRUCTURE_TYPE_RENDERING_INFO);
+  ri.renderArea = {{0, 0}, {w, h}};
+  ri.layerCount = 1;
+  ri.colorAttachmentCount = 1;
+  ri.pColorAttachments = &ca;
+  ri.pDepthAttachment = &da;
+  vkCmdBeginRendering(cmd, &ri);
+  VkViewport vp{0.0f, 0.0f, float(w), float(h), 0.0f, 1.0f};
+  vkCmdSetViewport(cmd, 0, 1, &vp);
+  vkCmdSetScissor(cmd, 0, 1, &ri.renderArea);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.handle());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
+  std::uint32_t draws = 0;
+  for (const DrawGroup& g : s.opaqueGroups) {  // grouped by (mesh, material); here only the mesh matters
+    const MeshRecord& m = s.meshes[g.mesh];
+    VkBuffer vb = m.buffer.handle();
+    VkDeviceSize off = 0;
+    vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &off);
+    vkCmdBindIndexBuffer(cmd, vb, m.indexOffset, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(cmd, m.indexCount, g.count, 0, 0, g.first);
+    ++draws;
+  }
+  vkCmdEndRendering(cmd);
+
+  imageBarrier(cmd, t.ids.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+               VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+               VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+  imageBarrier(cmd, t.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+               VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, depthStages, VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+               VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+  VkBufferImageCopy copy{};
+  copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  copy.imageExtent = {w, h, 1};
+  vkCmdCopyImageToBuffer(cmd, t.ids.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, t.idReadback.handle(), 1, &copy);
+  copy.imageSubresource.aspectMask = VK_IMAGE_ASPECT_DEPTH_BIT;
+  vkCmdCopyImageToBuffer(cmd, t.depth.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, t.depthReadback.handle(), 1,
+                         &copy);
+  VkMemoryBarrier toHost = vkStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
+  toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr, 0,
+                       nullptr);
+  check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer (ids)");
+  VkSubmitInfo si = vkStruct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
+  si.commandBufferCount = 1;
+  si.pCommandBuffers = &cmd;
+  check(vkQueueSubmit(device_.queue(), 1, &si, fence_), "vkQueueSubmit (ids)");
+  check(vkWaitForFences(dev, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences (ids)");
+  check(vkResetFences(dev, 1, &fence_), "vkResetFences (ids)");
+
+  const std::size_t pixels = std::size_t(w) * h;
+  std::memcpy(out.ids.data(), t.idReadback.mapped(), pixels * 4);
+  const auto* depth = static_cast<const float*>(t.depthReadback.mapped());
+  for (std::size_t i = 0; i < pixels; ++i) out.depth[i] = camera.linearDepth(depth[i]);
+  return draws;
+}
+
+}  // namespace tsr::vk
