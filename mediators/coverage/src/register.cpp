@@ -2,16 +2,29 @@
 
 #include "coverage_viewport.hpp"
 #include "tsr/cov/embree_id_renderer.hpp"
+#if TSR_COVERAGE_HAVE_VULKAN
+#include "vulkan_id_renderer.hpp"
+#endif
 
 namespace tsr::med {
 
 void registerCoverage(ViewportRegistry& registry) {
   registry.add("coverage", [](ViewportSettings settings, ContextPool& contexts) -> std::unique_ptr<Viewport> {
     const int threads = static_cast<int>(settings.parameters.getInt("threads", 0, 0, 4096));
-    const std::string key = "coverage:" + std::to_string(settings.root) + ":" + std::to_string(threads);
+    const std::string engine = settings.parameters.getString("engine", "embree");
+    if (engine != "embree" && engine != "vulkan")
+      throw ParameterError("engine: expected embree or vulkan, got '" + engine + "'");
+#if !TSR_COVERAGE_HAVE_VULKAN
+    if (engine == "vulkan") throw ParameterError("engine: this build has no Vulkan id pass");
+#endif
+    const std::string key =
+        "coverage:" + engine + ":" + std::to_string(settings.root) + ":" + std::to_string(threads);
     const sg::ContainerId root = settings.root;
     auto context = contexts.acquire<coverage_mediator::CoverageContext>(key, [&] {
-      auto make = [threads]() -> std::unique_ptr<cov::IdRenderer> {
+      auto make = [threads, engine]() -> std::unique_ptr<cov::IdRenderer> {
+#if TSR_COVERAGE_HAVE_VULKAN
+        if (engine == "vulkan") return std::make_unique<coverage_mediator::VulkanIdRenderer>();
+#endif
         cov::EmbreeIdSettings s;
         s.threads = threads;
         return std::make_unique<cov::EmbreeIdRenderer>(s);

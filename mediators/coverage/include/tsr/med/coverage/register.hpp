@@ -16,8 +16,10 @@
 // Frame buffer: colour = a stable false colour per id (alpha 1), black with
 // alpha 0 on the background; depth = camera-space depth of the visible
 // surface (+inf on the background); outputs["id"] = the id, see ranking.hpp.
-// Viewport parameter: threads (0 = all; viewports with the same root and
-// thread count share one converted scene).
+// Viewport parameters: threads (0 = all; viewports with the same root and
+// thread count share one converted scene); engine: "embree" (default, rays
+// through pixel centres) or "vulkan" (the rasterizer's id pass, sampled at
+// the same pixel centres; in builds with backends/vulkan).
 #include "tsr/med/viewport_registry.hpp"
 
 namespace tsr::med {
