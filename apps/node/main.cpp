@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
     if (!tokenFile.empty()) options.token = tsr::cluster::readTokenFile(tokenFile);
 
     tsr::med::ViewportRegistry registry;
-    tsr::node::registerBackends(registry);
+    tsr::app::registerBackends(registry);
     if (registry.backends().empty()) spdlog::warn("this build registers no back-end; render requests will fail");
 
     tsr::cluster::NodeServer server(options, registry);

@@ -1,28 +1,28 @@
 #include "backends.hpp"
 
-#ifdef TSR_NODE_HAS_EMBREE
+#if TSR_HAVE_EMBREE
 #include "tsr/med/embree/register.hpp"
 #endif
-#ifdef TSR_NODE_HAS_VULKAN
+#if TSR_HAVE_VULKAN
 #include "tsr/med/vulkan/register.hpp"
 #endif
-#ifdef TSR_NODE_HAS_COVERAGE
+#if TSR_HAVE_COVERAGE
 #include "tsr/med/coverage/register.hpp"
 #endif
 
-namespace tsr::node {
+namespace tsr::app {
 
 void registerBackends(med::ViewportRegistry& registry) {
-#ifdef TSR_NODE_HAS_EMBREE
+#if TSR_HAVE_EMBREE
   med::registerEmbree(registry);
 #endif
-#ifdef TSR_NODE_HAS_VULKAN
+#if TSR_HAVE_VULKAN
   med::registerVulkan(registry);
 #endif
-#ifdef TSR_NODE_HAS_COVERAGE
+#if TSR_HAVE_COVERAGE
   med::registerCoverage(registry);
 #endif
   (void)registry;
 }
 
-}  // namespace tsr::node
+}  // namespace tsr::app
