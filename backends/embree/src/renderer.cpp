@@ -77,7 +77,7 @@ struct Tracer {
     rh.ray.flags = 0;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene.top, &ctx, &rh);
+    rtcIntersect1(scene.traversable, &ctx, &rh);
     ++rays;
     return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
   }
@@ -98,7 +98,7 @@ struct Tracer {
     ray.mask = ~0u;
     ray.id = 0;
     ray.flags = 0;
-    rtcOccluded1(scene.top, &ctx, &ray);
+    rtcOccluded1(scene.traversable, &ctx, &ray);
     ++rays;
     return ray.tfar < 0.0f;
   }
@@ -112,9 +112,10 @@ struct Tracer {
   }
 
   bool surface(const RTCRayHit& rh, SurfaceHit& h) const {
-    // A hit in the merged static scene names the instance by geometry id.
+    // A hit in the merged static scene names the instance by geometry id
+    // (traced directly, or through its instance at top-level id 0).
     std::uint32_t top = rh.hit.instID[0];
-    std::uint32_t inst = top == kMergedTopId ? rh.hit.geomID : top - 1;
+    std::uint32_t inst = top == RTC_INVALID_GEOMETRY_ID || top == kMergedTopId ? rh.hit.geomID : top - 1;
     if (inst >= scene.views.size() || !scene.views[inst].mesh) return false;
     h.instance = &scene.views[inst];
     h.prim = rh.hit.primID;

@@ -430,6 +430,9 @@ void Scene::commit() {
     rtcCommitScene(s.top);
     s.topDirty = false;
   }
+  bool anyInstanced = false;
+  for (const auto& inst : s.instances) anyInstanced |= inst && !inst->flat;
+  s.traversable = anyInstanced ? s.top : s.merged;
   s.device->check("commit");
   if (!s.derivedDirty) return;
 
@@ -491,6 +494,6 @@ std::size_t Scene::meshCount() const {
   return n;
 }
 
-RTCScene Scene::embreeScene() const { return state_->top; }
+RTCScene Scene::embreeScene() const { return state_->traversable ? state_->traversable : state_->top; }
 
 }  // namespace tsr::embree

@@ -89,6 +89,9 @@ struct SceneState {
   RTCScene merged = nullptr;
   RTCGeometry mergedInstance = nullptr;
   bool mergedDirty = true;
+  // What rays traverse, set at commit: the merged scene itself when nothing
+  // is instanced (no top level to cross), else the top level.
+  RTCScene traversable = nullptr;
   std::uint64_t uid = 0;
   std::uint64_t version = 1;
 
