@@ -9,8 +9,8 @@
 #include <unordered_set>
 
 #include "tsr/embree/scene.hpp"
+#include "tsr/med/instance_placement.hpp"
 #include "tsr/med/scene_adapter.hpp"
-#include "tsr/med/scene_flattening.hpp"
 
 namespace tsr::med::embree_mediator {
 
@@ -28,43 +28,41 @@ class EmbreeSceneAdapter final : public SceneAdapter {
   EmbreeSceneAdapter(std::shared_ptr<embree::Device> device, sg::ContainerId root, sg::ContainerId background);
 
   embree::Scene& scene() { return *scene_; }
-  const Counters& counters() const { return counters_; }
+  Counters counters() const;
 
  protected:
   void convert(const sg::Scene& scene) override;
   void sync(const sg::Scene& scene, const sg::MergedChanges& changes) override;
 
  private:
-  struct PlacedInstance {
-    embree::InstanceId id;
-    sg::ContainerId geometry;
-    glm::mat4 world;
-    embree::MaterialId material;
+  struct Types {
+    using Scene = embree::Scene;
+    using MeshId = embree::MeshId;
+    using MaterialId = embree::MaterialId;
+    using InstanceId = embree::InstanceId;
+    using LightId = embree::LightId;
+    using Light = embree::Light;
   };
 
   void syncTextures(const sg::Scene& scene, const sg::MergedChanges& changes);
   void syncMaterials(const sg::Scene& scene, const sg::MergedChanges& changes);
   bool syncMeshes(const sg::Scene& scene, const sg::MergedChanges& changes);  // true: placement must be redone
-  void syncTransforms(const sg::Scene& scene, const sg::MergedChanges& changes);
-  void place(const sg::Scene& scene);  // flatten and diff instances and lights
+  InstancePlacement<Types>::Hooks hooks(const sg::Scene& scene);
   void dropUnused(const sg::Scene& scene);
 
   std::optional<embree::MeshId> meshFor(const sg::Scene& scene, sg::ContainerId geometry);
   embree::MaterialId materialFor(const sg::Scene& scene, sg::ContainerId material);
   std::optional<embree::TextureId> textureFor(const sg::Scene& scene, sg::ContainerId image);
   embree::MaterialId materialOfGeometry(const sg::Scene& scene, sg::ContainerId geometry);
-  void placeLight(const sg::Scene& scene, const FlatNode& node);
 
   std::shared_ptr<embree::Device> device_;
   sg::ContainerId root_, background_;
   std::unique_ptr<embree::Scene> scene_;
-  FlatScene flat_;
+  InstancePlacement<Types> placement_;
   std::unordered_map<sg::ContainerId, embree::MeshId> meshes_;
   std::unordered_set<sg::ContainerId> unrenderable_;  // invalid or empty geometry, skipped
   std::unordered_map<sg::ContainerId, embree::MaterialId> materials_;  // kNoContainer: the default
   std::unordered_map<sg::ContainerId, embree::TextureId> textures_;
-  std::unordered_map<std::string, PlacedInstance> instances_;  // by flattened path key
-  std::unordered_map<std::string, embree::LightId> lights_;
   Counters counters_;
 };
 

@@ -39,10 +39,9 @@ void VulkanSceneAdapter::convert(const sg::Scene& scene) {
   unrenderable_.clear();
   materials_.clear();
   textures_.clear();
-  instances_.clear();
-  lights_.clear();
+  placement_.clear();
   scene_ = std::make_unique<vk::Scene>(device_);
-  place(scene);
+  placement_.place(scene, root_, *scene_, hooks(scene));
   setEnvironment(scene);
 }
 
@@ -63,9 +62,9 @@ void VulkanSceneAdapter::sync(const sg::Scene& scene, const sg::MergedChanges& c
   syncMaterials(scene, changes);  // phase 2
   if (syncMeshes(scene, changes)) structural = true;  // phase 3
   if (structural)  // phase 4
-    place(scene);
+    placement_.place(scene, root_, *scene_, hooks(scene));
   else
-    syncTransforms(scene, changes);
+    placement_.moveEdited(scene, changes, *scene_, hooks(scene));
   bool backgroundChanged = background_ != sg::kNoContainer && changes.entries().count(background_);
   if (const auto* b = scene.find<sg::Background>(background_))
     backgroundChanged |= changes.entries().count(b->environment()) != 0;
@@ -111,7 +110,7 @@ bool VulkanSceneAdapter::syncMeshes(const sg::Scene& scene, const sg::MergedChan
     const auto* g = scene.find<G>(id);
     if (e.changed(G::Material)) {
       vk::MaterialId m = materialOfGeometry(scene, id);
-      for (auto& [key, placed] : instances_)
+      for (auto& [key, placed] : placement_.instances())
         if (placed.geometry == id && placed.material != m) {
           scene_->setInstanceMaterial(placed.id, m);
           placed.material = m;
@@ -150,10 +149,11 @@ bool VulkanSceneAdapter::syncMeshes(const sg::Scene& scene, const sg::MergedChan
 }
 
 void VulkanSceneAdapter::dropMeshes(const std::unordered_set<sg::ContainerId>& geometries) {
-  for (auto it = instances_.begin(); it != instances_.end();) {
+  auto& instances = placement_.instances();
+  for (auto it = instances.begin(); it != instances.end();) {
     if (geometries.count(it->second.geometry)) {
       scene_->removeInstance(it->second.id);
-      it = instances_.erase(it);
+      it = instances.erase(it);
     } else {
       ++it;
     }
@@ -167,95 +167,27 @@ void VulkanSceneAdapter::dropMeshes(const std::unordered_set<sg::ContainerId>& g
   }
 }
 
-void VulkanSceneAdapter::syncTransforms(const sg::Scene& scene, const sg::MergedChanges& changes) {
-  std::unordered_set<std::uint32_t> instancesToUpdate, lightsToUpdate;
-  for (const auto& [id, e] : changes.entries()) {
-    if (e.type == sg::ContainerType::Transform && e.changed(sg::Transform::Matrix)) {
-      if (auto it = flat_.instancesUnder.find(id); it != flat_.instancesUnder.end())
-        instancesToUpdate.insert(it->second.begin(), it->second.end());
-      if (auto it = flat_.lightsUnder.find(id); it != flat_.lightsUnder.end())
-        lightsToUpdate.insert(it->second.begin(), it->second.end());
-    }
-    if (e.type == sg::ContainerType::Light && !e.destroyed)
-      for (std::uint32_t i = 0; i < flat_.lights.size(); ++i)
-        if (flat_.lights[i].id == id) lightsToUpdate.insert(i);
-  }
-  for (std::uint32_t i : instancesToUpdate) {
-    FlatNode& node = flat_.instances[i];
-    node.world = worldMatrix(scene, node.path);
-    auto placed = instances_.find(node.key());
-    if (placed == instances_.end()) continue;  // skipped geometry
-    scene_->setInstanceTransform(placed->second.id, node.world);
-    placed->second.world = node.world;
-    ++counters_.instanceTransforms;
-  }
-  for (std::uint32_t i : lightsToUpdate) {
-    FlatNode& node = flat_.lights[i];
-    node.world = worldMatrix(scene, node.path);
-    placeLight(scene, node);
-  }
+InstancePlacement<VulkanSceneAdapter::Types>::Hooks VulkanSceneAdapter::hooks(const sg::Scene& scene) {
+  InstancePlacement<Types>::Hooks h;
+  h.mesh = [this, &scene](sg::ContainerId geometry) -> std::optional<vk::MeshId> {
+    const auto* g = scene.find<sg::Geometry>(geometry);
+    if (!g || hidden(*g)) return std::nullopt;
+    return meshFor(scene, geometry);
+  };
+  h.material = [this, &scene](sg::ContainerId geometry) { return materialOfGeometry(scene, geometry); };
+  h.light = [&scene](const FlatNode& node) -> std::optional<vk::Light> {
+    const auto* light = scene.find<sg::Light>(node.id);
+    if (!light) return std::nullopt;
+    return translateLight(*light, node.world);
+  };
+  return h;
 }
 
-void VulkanSceneAdapter::place(const sg::Scene& scene) {
-  flat_ = flatten(scene, root_);
-  ++counters_.flattenings;
-  std::unordered_set<std::string> live;
-  for (const FlatNode& node : flat_.instances) {
-    const auto* g = scene.find<sg::Geometry>(node.id);
-    if (!g || hidden(*g)) continue;
-    auto mesh = meshFor(scene, node.id);
-    if (!mesh) continue;
-    std::string key = node.key();
-    live.insert(key);
-    vk::MaterialId material = materialOfGeometry(scene, node.id);
-    auto held = instances_.find(key);
-    if (held == instances_.end()) {
-      instances_.emplace(key, PlacedInstance{scene_->addInstance(*mesh, material, node.world), node.id, node.world, material});
-      continue;
-    }
-    PlacedInstance& p = held->second;
-    if (p.world != node.world) {
-      scene_->setInstanceTransform(p.id, node.world);
-      p.world = node.world;
-      ++counters_.instanceTransforms;
-    }
-    if (p.material != material) {
-      scene_->setInstanceMaterial(p.id, material);
-      p.material = material;
-    }
-  }
-  for (auto it = instances_.begin(); it != instances_.end();) {
-    if (live.count(it->first)) {
-      ++it;
-      continue;
-    }
-    scene_->removeInstance(it->second.id);
-    it = instances_.erase(it);
-  }
-  std::unordered_set<std::string> liveLights;
-  for (const FlatNode& node : flat_.lights) {
-    liveLights.insert(node.key());
-    placeLight(scene, node);
-  }
-  for (auto it = lights_.begin(); it != lights_.end();) {
-    if (liveLights.count(it->first)) {
-      ++it;
-      continue;
-    }
-    scene_->removeLight(it->second);
-    it = lights_.erase(it);
-  }
-}
-
-void VulkanSceneAdapter::placeLight(const sg::Scene& scene, const FlatNode& node) {
-  const auto* light = scene.find<sg::Light>(node.id);
-  if (!light) return;
-  vk::Light translated = translateLight(*light, node.world);
-  auto held = lights_.find(node.key());
-  if (held == lights_.end())
-    lights_.emplace(node.key(), scene_->addLight(translated));
-  else
-    scene_->setLight(held->second, translated);
+VulkanSceneAdapter::Counters VulkanSceneAdapter::counters() const {
+  Counters c = counters_;
+  c.instanceTransforms = placement_.transformUpdates;
+  c.flattenings = placement_.flattenings;
+  return c;
 }
 
 void VulkanSceneAdapter::setEnvironment(const sg::Scene& scene) {
@@ -266,7 +198,7 @@ void VulkanSceneAdapter::setEnvironment(const sg::Scene& scene) {
 void VulkanSceneAdapter::dropUnused(const sg::Scene& scene) {
   std::unordered_set<sg::ContainerId> usedMeshes;
   std::unordered_set<std::uint32_t> usedMaterials;
-  for (const auto& [key, p] : instances_) {
+  for (const auto& [key, p] : placement_.instances()) {
     usedMeshes.insert(p.geometry);
     usedMaterials.insert(vk::index(p.material));
   }

@@ -10,8 +10,8 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "tsr/med/instance_placement.hpp"
 #include "tsr/med/scene_adapter.hpp"
-#include "tsr/med/scene_flattening.hpp"
 #include "tsr/vk/scene.hpp"
 
 namespace tsr::med::vulkan_mediator {
@@ -32,27 +32,27 @@ class VulkanSceneAdapter final : public SceneAdapter {
   vk::Scene& scene() { return *scene_; }
   bool converted() const { return scene_ != nullptr; }
   const vk::Environment& environment() const { return environment_; }
-  const Counters& counters() const { return counters_; }
+  Counters counters() const;
 
  protected:
   void convert(const sg::Scene& scene) override;
   void sync(const sg::Scene& scene, const sg::MergedChanges& changes) override;
 
  private:
-  struct PlacedInstance {
-    vk::InstanceId id;
-    sg::ContainerId geometry;
-    glm::mat4 world;
-    vk::MaterialId material;
+  struct Types {
+    using Scene = vk::Scene;
+    using MeshId = vk::MeshId;
+    using MaterialId = vk::MaterialId;
+    using InstanceId = vk::InstanceId;
+    using LightId = vk::LightId;
+    using Light = vk::Light;
   };
 
   void syncTextures(const sg::Scene& scene, const sg::MergedChanges& changes);
   void syncMaterials(const sg::Scene& scene, const sg::MergedChanges& changes);
   bool syncMeshes(const sg::Scene& scene, const sg::MergedChanges& changes);  // true: placement must be redone
   void dropMeshes(const std::unordered_set<sg::ContainerId>& geometries);
-  void syncTransforms(const sg::Scene& scene, const sg::MergedChanges& changes);
-  void place(const sg::Scene& scene);  // flatten and diff instances and lights
-  void placeLight(const sg::Scene& scene, const FlatNode& node);
+  InstancePlacement<Types>::Hooks hooks(const sg::Scene& scene);
   void setEnvironment(const sg::Scene& scene);
   void dropUnused(const sg::Scene& scene);
 
@@ -65,13 +65,11 @@ class VulkanSceneAdapter final : public SceneAdapter {
   sg::ContainerId root_, background_;
   std::unique_ptr<vk::Scene> scene_;
   vk::Environment environment_;
-  FlatScene flat_;
+  InstancePlacement<Types> placement_;
   std::unordered_map<sg::ContainerId, vk::MeshId> meshes_;
   std::unordered_set<sg::ContainerId> unrenderable_;  // invalid or empty geometry, skipped
   std::unordered_map<sg::ContainerId, vk::MaterialId> materials_;  // kNoContainer: the default
   std::unordered_map<sg::ContainerId, vk::TextureId> textures_;
-  std::unordered_map<std::string, PlacedInstance> instances_;  // by flattened path key
-  std::unordered_map<std::string, vk::LightId> lights_;
   Counters counters_;
 };
 
