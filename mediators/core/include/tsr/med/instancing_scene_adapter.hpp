@@ -1,0 +1,328 @@
+#pragma once
+// The scene adapter of back-ends that share one shape of scene API: meshes,
+// per-instance transforms and materials, textures, lights and an
+// environment (the Embree path tracer and the Vulkan rasterizer). Sync runs
+// in phases — textures, materials, meshes, placement, environment — each
+// guarded by what the merged changes name, so a moved transform updates
+// only the instances below it and a ranged vertex edit touches only that
+// range. A back-end plugs in through a Types struct:
+//
+//   struct Types {
+//     using Device, Scene, MeshId, MaterialId, InstanceId, TextureId, LightId, Light, Environment;
+//     static constexpr const char* kName;            // logs; attachment "<kName>.hidden" hides geometry
+//     static constexpr bool kResizableMeshes;        // setMeshData may change a mesh's size
+//     static auto mesh(const sg::Geometry&);         // the back-end's MeshData
+//     static auto material(const sg::Container*, const std::function<std::optional<TextureId>(sg::ContainerId)>&);
+//     static auto texture(const sg::Image&);
+//     static Light light(const sg::Light&, const glm::mat4& world);
+//     static Environment background(const sg::Scene&, sg::ContainerId background);
+//   };
+#include <bit>
+#include <memory>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+
+#include <spdlog/spdlog.h>
+
+#include "tsr/med/instance_placement.hpp"
+#include "tsr/med/scene_adapter.hpp"
+
+namespace tsr::med {
+
+template <class Types>
+class InstancingSceneAdapter final : public SceneAdapter {
+ public:
+  using BackendScene = typename Types::Scene;
+
+  // What the adapter has done, for tests and benchmarks of incremental sync.
+  struct Counters {
+    std::uint64_t meshBuilds = 0;        // whole meshes handed to the back-end
+    std::uint64_t meshRangeUpdates = 0;  // vertex ranges updated in place
+    std::uint64_t instanceTransforms = 0;
+    std::uint64_t materialUpdates = 0;
+    std::uint64_t flattenings = 0;
+  };
+
+  InstancingSceneAdapter(std::shared_ptr<typename Types::Device> device, sg::ContainerId root, sg::ContainerId background)
+      : device_(std::move(device)), root_(root), background_(background) {}
+
+  BackendScene& scene() { return *scene_; }
+  bool converted() const { return scene_ != nullptr; }
+  const typename Types::Environment& environment() const { return environment_; }
+  Counters counters() const {
+    Counters c = counters_;
+    c.instanceTransforms = placement_.transformUpdates;
+    c.flattenings = placement_.flattenings;
+    return c;
+  }
+
+ protected:
+  void convert(const sg::Scene& scene) override {
+    // Handles die with the old scene; clear the maps before anything is added.
+    scene_.reset();
+    meshes_.clear();
+    unrenderable_.clear();
+    materials_.clear();
+    textures_.clear();
+    placement_.clear();
+    scene_ = std::make_unique<BackendScene>(device_);
+    placement_.place(scene, root_, *scene_, hooks(scene));
+    setEnvironment(scene);
+  }
+
+  void sync(const sg::Scene& scene, const sg::MergedChanges& changes) override {
+    // Phase 0: does the shape of the graph change? Then placement is redone
+    // (a diff: surviving instances keep their back-end objects).
+    bool structural = false;
+    bool mayOrphan = false;  // something may no longer be used: look for leftovers
+    for (const auto& [id, e] : changes.entries()) {
+      if (e.destroyed || (e.type == sg::ContainerType::Geometry && e.changed(sg::Geometry::Material)) ||
+          (e.type != sg::ContainerType::Transform && e.type != sg::ContainerType::Light && e.mask != 0))
+        mayOrphan = true;
+      if (!(sg::typeBit(e.type) & sg::kNodeTypes)) continue;
+      if (e.created || e.destroyed || e.changed(sg::Container::kAttachments)) structural = true;
+      if (sg::isParentType(e.type) && e.changed(sg::Group::Children)) structural = true;
+    }
+    syncTextures(scene, changes);                       // phase 1
+    syncMaterials(scene, changes);                      // phase 2
+    if (syncMeshes(scene, changes)) structural = true;  // phase 3
+    if (structural)                                     // phase 4
+      placement_.place(scene, root_, *scene_, hooks(scene));
+    else
+      placement_.moveEdited(scene, changes, *scene_, hooks(scene));
+    bool backgroundChanged = background_ != sg::kNoContainer && changes.entries().count(background_);
+    if (const auto* b = scene.find<sg::Background>(background_))
+      backgroundChanged |= changes.entries().count(b->environment()) != 0;
+    if (backgroundChanged) setEnvironment(scene);  // phase 5
+    if (structural || mayOrphan) dropUnused(scene);
+  }
+
+ private:
+  static bool references(const sg::Container& c, sg::ContainerId target) {
+    bool uses = false;
+    forEachReference(c, [&](sg::ContainerId r) { uses |= r == target; });
+    return uses;
+  }
+  template <class Fn>
+  static void forEachReference(const sg::Container& c, Fn&& fn) {
+    for (sg::FieldMask refs = c.referenceFields(); refs; refs &= refs - 1)
+      c.forEachReference(static_cast<sg::FieldIndex>(std::countr_zero(refs)), fn);
+  }
+  bool hidden(const sg::Container& c) const {
+    const auto* v = c.attachment(std::string(Types::kName) + ".hidden");
+    const auto* i = v ? std::get_if<std::int64_t>(v) : nullptr;
+    return i && *i != 0;
+  }
+  auto textures(const sg::Scene& scene) {
+    return [this, &scene](sg::ContainerId image) { return textureFor(scene, image); };
+  }
+
+  void syncTextures(const sg::Scene& scene, const sg::MergedChanges& changes) {
+    for (const auto& [id, e] : changes.entries()) {
+      if (e.type != sg::ContainerType::Image || e.created || e.destroyed) continue;
+      auto held = textures_.find(id);
+      if (held == textures_.end()) continue;
+      // New texture first, then the materials that use it, then the old one.
+      auto old = held->second;
+      textures_.erase(held);
+      textureFor(scene, id);
+      for (auto& [matId, handle] : materials_)
+        if (const sg::Container* m = scene.find(matId); m && references(*m, id))
+          scene_->setMaterial(handle, Types::material(m, textures(scene)));
+      scene_->removeTexture(old);
+    }
+  }
+
+  void syncMaterials(const sg::Scene& scene, const sg::MergedChanges& changes) {
+    for (const auto& [id, e] : changes.entries()) {
+      if (e.destroyed || e.created) continue;
+      auto held = materials_.find(id);
+      if (held == materials_.end()) continue;
+      scene_->setMaterial(held->second, Types::material(scene.find(id), textures(scene)));
+      ++counters_.materialUpdates;
+    }
+  }
+
+  // Returns true when placement must be redone (meshes were dropped).
+  bool syncMeshes(const sg::Scene& scene, const sg::MergedChanges& changes) {
+    using G = sg::Geometry;
+    const sg::FieldMask shape = sg::fieldBit(G::Positions) | sg::fieldBit(G::Normals) | sg::fieldBit(G::Uvs) |
+                                sg::fieldBit(G::Indices) | sg::fieldBit(G::Motion) | sg::fieldBit(G::Colors);
+    const sg::FieldMask ranged = sg::fieldBit(G::Positions) | sg::fieldBit(G::Normals);
+    std::unordered_set<sg::ContainerId> rebuild;
+    for (const auto& [id, e] : changes.entries()) {
+      if (e.type != sg::ContainerType::Geometry || e.created || e.destroyed) continue;
+      const auto* g = scene.find<G>(id);
+      if (e.changed(G::Material)) {
+        auto m = materialOfGeometry(scene, id);
+        for (auto& [key, placed] : placement_.instances())
+          if (placed.geometry == id && placed.material != m) {
+            scene_->setInstanceMaterial(placed.id, m);
+            placed.material = m;
+          }
+      }
+      if (!(e.mask & shape)) continue;
+      auto held = meshes_.find(id);
+      if (held == meshes_.end() && !unrenderable_.count(id)) continue;  // not (yet) instanced here
+      bool renderable = !g->invalidReason() && g->triangleCount() > 0;
+      const auto* pos = e.rangedEdit(G::Positions);
+      const auto* nrm = e.rangedEdit(G::Normals);
+      bool onlyRanges = !(e.mask & shape & ~ranged) && (!e.changed(G::Positions) || pos) && (!e.changed(G::Normals) || nrm);
+      if (held == meshes_.end() || !renderable) {  // flips between skipped and rendered
+        rebuild.insert(id);
+        continue;
+      }
+      if (!onlyRanges) {
+        // New topology: in place where the back-end allows, else the mesh
+        // and its instances are built again.
+        if constexpr (Types::kResizableMeshes) {
+          scene_->setMeshData(held->second, Types::mesh(*g));
+          ++counters_.meshBuilds;
+        } else {
+          rebuild.insert(id);
+        }
+        continue;
+      }
+      // Vertex edits by range keep the topology: update those ranges only.
+      sg::RangeSet runs;
+      for (const auto* edit : {pos, nrm})
+        if (edit)
+          for (const auto& r : edit->ranges) runs.add(r);
+      for (const auto& r : runs.ranges()) {
+        std::span<const glm::vec3> p(g->positions().data() + r.begin, r.size());
+        std::span<const glm::vec3> n;
+        // Normals travel only when they were edited; the back-end keeps the rest.
+        if (nrm && !g->normals().empty()) n = std::span<const glm::vec3>(g->normals().data() + r.begin, r.size());
+        scene_->updateMeshVertices(held->second, static_cast<std::uint32_t>(r.begin), p, n);
+        ++counters_.meshRangeUpdates;
+      }
+    }
+    if (rebuild.empty()) return false;
+    auto& instances = placement_.instances();
+    for (auto it = instances.begin(); it != instances.end();) {
+      if (rebuild.count(it->second.geometry)) {
+        scene_->removeInstance(it->second.id);
+        it = instances.erase(it);
+      } else {
+        ++it;
+      }
+    }
+    for (sg::ContainerId id : rebuild) {
+      if (auto m = meshes_.find(id); m != meshes_.end()) {
+        scene_->removeMesh(m->second);
+        meshes_.erase(m);
+      }
+      unrenderable_.erase(id);
+    }
+    return true;
+  }
+
+  typename InstancePlacement<Types>::Hooks hooks(const sg::Scene& scene) {
+    typename InstancePlacement<Types>::Hooks h;
+    h.mesh = [this, &scene](sg::ContainerId geometry) -> std::optional<typename Types::MeshId> {
+      const auto* g = scene.find<sg::Geometry>(geometry);
+      if (!g || hidden(*g)) return std::nullopt;
+      return meshFor(scene, geometry);
+    };
+    h.material = [this, &scene](sg::ContainerId geometry) { return materialOfGeometry(scene, geometry); };
+    h.light = [&scene](const FlatNode& node) -> std::optional<typename Types::Light> {
+      const auto* light = scene.find<sg::Light>(node.id);
+      if (!light) return std::nullopt;
+      return Types::light(*light, node.world);
+    };
+    return h;
+  }
+
+  void setEnvironment(const sg::Scene& scene) {
+    environment_ = Types::background(scene, background_);
+    scene_->setEnvironment(environment_);
+  }
+
+  // Removes back-end meshes, materials and textures nothing uses any more.
+  void dropUnused(const sg::Scene& scene) {
+    std::unordered_set<sg::ContainerId> usedMeshes;
+    std::unordered_set<typename Types::MaterialId> usedMaterials;
+    for (const auto& [key, p] : placement_.instances()) {
+      usedMeshes.insert(p.geometry);
+      usedMaterials.insert(p.material);
+    }
+    std::erase_if(meshes_, [&](const auto& kv) {
+      if (usedMeshes.count(kv.first) && scene.find(kv.first)) return false;
+      scene_->removeMesh(kv.second);
+      return true;
+    });
+    std::erase_if(materials_, [&](const auto& kv) {
+      if (usedMaterials.count(kv.second)) return false;
+      scene_->removeMaterial(kv.second);
+      return true;
+    });
+    std::unordered_set<sg::ContainerId> usedImages;
+    for (const auto& [matId, handle] : materials_)
+      if (const sg::Container* m = scene.find(matId)) forEachReference(*m, [&](sg::ContainerId r) { usedImages.insert(r); });
+    std::erase_if(textures_, [&](const auto& kv) {
+      if (usedImages.count(kv.first)) return false;
+      scene_->removeTexture(kv.second);
+      return true;
+    });
+  }
+
+  std::optional<typename Types::MeshId> meshFor(const sg::Scene& scene, sg::ContainerId id) {
+    if (auto it = meshes_.find(id); it != meshes_.end()) return it->second;
+    if (unrenderable_.count(id)) return std::nullopt;
+    const auto* g = scene.find<sg::Geometry>(id);
+    if (auto why = g->invalidReason()) {
+      spdlog::warn("{}: geometry {} '{}' skipped: {}", Types::kName, id, g->name(), *why);
+      unrenderable_.insert(id);
+      return std::nullopt;
+    }
+    if (g->triangleCount() == 0) {
+      unrenderable_.insert(id);
+      return std::nullopt;
+    }
+    auto mesh = scene_->addMesh(Types::mesh(*g));
+    ++counters_.meshBuilds;
+    meshes_.emplace(id, mesh);
+    return mesh;
+  }
+
+  typename Types::MaterialId materialFor(const sg::Scene& scene, sg::ContainerId id) {
+    if (auto it = materials_.find(id); it != materials_.end()) return it->second;
+    auto m = scene_->addMaterial(Types::material(scene.find(id), textures(scene)));
+    materials_.emplace(id, m);
+    return m;
+  }
+
+  typename Types::MaterialId materialOfGeometry(const sg::Scene& scene, sg::ContainerId geometry) {
+    const auto* g = scene.find<sg::Geometry>(geometry);
+    return materialFor(scene, g ? g->material() : sg::kNoContainer);
+  }
+
+  std::optional<typename Types::TextureId> textureFor(const sg::Scene& scene, sg::ContainerId id) {
+    if (auto it = textures_.find(id); it != textures_.end()) return it->second;
+    const auto* image = scene.find<sg::Image>(id);
+    if (!image) return std::nullopt;
+    if (auto why = image->invalidReason()) {
+      spdlog::warn("{}: image {} '{}' skipped: {}", Types::kName, id, image->name(), *why);
+      return std::nullopt;
+    }
+    if (image->width() == 0 || image->height() == 0) return std::nullopt;
+    auto t = scene_->addTexture(Types::texture(*image));
+    textures_.emplace(id, t);
+    return t;
+  }
+
+  std::shared_ptr<typename Types::Device> device_;
+  sg::ContainerId root_, background_;
+  std::unique_ptr<BackendScene> scene_;
+  typename Types::Environment environment_;
+  InstancePlacement<Types> placement_;
+  std::unordered_map<sg::ContainerId, typename Types::MeshId> meshes_;
+  std::unordered_set<sg::ContainerId> unrenderable_;  // invalid or empty geometry, skipped
+  std::unordered_map<sg::ContainerId, typename Types::MaterialId> materials_;  // kNoContainer: the default
+  std::unordered_map<sg::ContainerId, typename Types::TextureId> textures_;
+  Counters counters_;
+};
+
+}  // namespace tsr::med
