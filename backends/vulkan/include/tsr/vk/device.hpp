@@ -22,6 +22,12 @@ struct DeviceOptions {
   // For presentation: instance extensions a window system needs (e.g. from
   // glfwGetRequiredInstanceExtensions). Non-empty also enables VK_KHR_swapchain.
   std::vector<std::string> instanceExtensions{};
+
+  // Options for presenting with SwapchainTarget: instanceExtensions from
+  // glfwGetRequiredInstanceExtensions. glfwInit() must have succeeded;
+  // throws Error if GLFW finds no Vulkan support. (Defined in
+  // swapchain_target.cpp; headless code never calls into GLFW.)
+  static DeviceOptions forWindows(bool validation = false);
 };
 
 // Owns the Vulkan instance, the chosen physical device, the logical device,
