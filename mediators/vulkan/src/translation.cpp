@@ -1,33 +1,22 @@
 #include "translation.hpp"
 
+#include "tsr/med/scene_values.hpp"
+
 #include <cmath>
 #include <cstring>
 
 namespace tsr::med::vulkan_mediator {
 
 namespace {
-float srgbToLinear(float v) { return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f); }
-
-// Linear RGBA texels of any image (1 to 4 channels, 8-bit or float).
-std::vector<glm::vec4> linearTexels(const sg::Image& image) {
-  const std::uint32_t n = image.channels();
-  std::vector<glm::vec4> texels(std::size_t{image.width()} * image.height(), glm::vec4(0, 0, 0, 1));
-  const bool srgb = image.colorSpace() == sg::ColorSpace::SRGB;
-  for (std::size_t i = 0; i < texels.size(); ++i) {
-    for (std::uint32_t c = 0; c < n; ++c) {
-      float v;
-      if (image.format() == sg::PixelFormat::Float32) {
-        std::memcpy(&v, image.pixels().data() + (i * n + c) * 4, 4);
-      } else {
-        v = static_cast<float>(image.pixels()[i * n + c]) / 255.0f;
-        if (srgb && c < 3) v = srgbToLinear(v);
-      }
-      texels[i][static_cast<int>(c)] = v;
-    }
-    if (n == 1) texels[i] = glm::vec4(texels[i].r, texels[i].r, texels[i].r, 1.0f);
-    if (n == 2) texels[i] = glm::vec4(texels[i].r, texels[i].r, texels[i].r, texels[i].g);
+// The material models the rasterizer and the path tracer share.
+vk::MaterialType typeOf(SurfaceClass c) {
+  switch (c) {
+    case SurfaceClass::Glass: return vk::MaterialType::Glass;
+    case SurfaceClass::Dielectric: return vk::MaterialType::Dielectric;
+    case SurfaceClass::Mirror: return vk::MaterialType::Mirror;
+    case SurfaceClass::Conductor: return vk::MaterialType::Conductor;
+    default: return vk::MaterialType::Diffuse;
   }
-  return texels;
 }
 }  // namespace
 
@@ -51,10 +40,7 @@ vk::Material translateMaterial(const sg::Container* material, const TextureLooku
   m.emission = s.emittedRadiance();
   m.emissionTexture = s.emissionTexture() ? textures(s.emissionTexture()) : std::nullopt;
   m.opacity = std::clamp(s.opacity(), 0.0f, 1.0f);
-  if (s.transmission() > 0.5f)
-    m.type = s.roughness() < 0.05f ? vk::MaterialType::Glass : vk::MaterialType::Dielectric;
-  else if (s.metallic() > 0.5f)
-    m.type = s.roughness() < 0.02f ? vk::MaterialType::Mirror : vk::MaterialType::Conductor;
+  m.type = typeOf(classify(s));
   return m;
 }
 
@@ -82,14 +68,11 @@ vk::Texture translateImage(const sg::Image& image) {
 }
 
 vk::Light translateLight(const sg::Light& light, const glm::mat4& world) {
-  glm::vec3 power = light.color() * light.intensity();
-  glm::vec3 position = glm::vec3(world * glm::vec4(light.position(), 1.0f));
-  glm::vec3 direction = glm::normalize(glm::vec3(world * glm::vec4(light.direction(), 0.0f)));
-  switch (light.kind()) {
-    case sg::LightKind::Spot:
-      return vk::SpotLight{position, direction, power, light.innerConeAngle(), light.outerConeAngle()};
-    case sg::LightKind::Directional: return vk::DirectionalLight{direction, power};
-    default: return vk::PointLight{position, power};
+  const PlacedLight l = placeLight(light, world);
+  switch (l.kind) {
+    case sg::LightKind::Spot: return vk::SpotLight{l.position, l.direction, l.power, l.innerCone, l.outerCone};
+    case sg::LightKind::Directional: return vk::DirectionalLight{l.direction, l.power};
+    default: return vk::PointLight{l.position, l.power};
   }
 }
 
@@ -99,15 +82,8 @@ vk::Environment translateBackground(const sg::Scene& scene, sg::ContainerId id) 
   const float k = bg->intensity();
   switch (bg->kind()) {
     case sg::BackgroundKind::Gradient: {
-      // The same bake as the path tracer's, so the averages agree.
-      constexpr std::uint32_t w = 8, h = 64;
-      std::vector<glm::vec4> texels(w * h);
-      for (std::uint32_t y = 0; y < h; ++y) {
-        float t = (static_cast<float>(y) + 0.5f) / h;  // 0 at the zenith
-        glm::vec3 c = glm::mix(bg->gradientTop(), bg->gradientBottom(), t);
-        for (std::uint32_t x = 0; x < w; ++x) texels[y * w + x] = glm::vec4(c, 1.0f);
-      }
-      return vk::Environment::latLong(w, h, texels, k);
+      BakedSky sky = bakeGradient(*bg);  // the same bake as the path tracer's, so the averages agree
+      return vk::Environment::latLong(sky.width, sky.height, sky.texels, k);
     }
     case sg::BackgroundKind::Environment:
       if (const auto* image = scene.find<sg::Image>(bg->environment());
