@@ -59,11 +59,16 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
   for (const auto& p : params) {
     auto [name, value] = med::Parameters::parse(p);
     o.parameters.set(name, value);
+    o.explicitParameters.insert(name);
   }
-  if (*sppOption || !o.parameters.has("spp")) o.parameters.set("spp", spp);
-  if (*depthOption || !o.parameters.has("maxDepth")) o.parameters.set("maxDepth", maxDepth);
-  if (*seedOption || !o.parameters.has("seed")) o.parameters.set("seed", seed);
-  if (*threadsOption || !o.parameters.has("threads")) o.parameters.set("threads", threads);
+  auto flag = [&](CLI::Option* option, const std::string& name, std::int64_t value) {
+    if (*option) o.explicitParameters.insert(name);
+    if (*option || !o.parameters.has(name)) o.parameters.set(name, value);
+  };
+  flag(sppOption, "spp", spp);
+  flag(depthOption, "maxDepth", maxDepth);
+  flag(seedOption, "seed", seed);
+  flag(threadsOption, "threads", threads);
   o.unparsed = app.remaining();
   return true;
 }

@@ -1,6 +1,7 @@
 #pragma once
 // tessera-render's command line, parsed and checked; nothing rendered yet.
 #include <cstdint>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@ struct RenderOptions {
   std::vector<std::string> aovs;
   std::string statsJson;
   med::Parameters parameters;  // spp, maxDepth, seed, threads and --param extras
+  std::set<std::string> explicitParameters;  // those the command line named (they beat a config's)
   bool quiet = false;
   std::vector<std::string> unparsed;  // arguments for other parts (cluster, frames)
 };

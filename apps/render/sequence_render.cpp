@@ -34,10 +34,11 @@ FrameRenderer localRenderer(const RenderOptions& options, const SceneSession& se
 FrameRenderer clusterRenderer(const RenderOptions& options, const SequenceOptions& sequence, const SceneSession& session) {
   cluster::ClusterConfig config = cluster::loadClusterConfig(sequence.cluster);
   if (!sequence.nodes.empty()) config.replaceAddresses(cluster::parseNodeList(sequence.nodes));
-  // The config's parameters win; the command line fills in what it leaves open.
+  // What the command line names beats the config; the config beats the
+  // command line's defaults.
   for (auto& node : config.nodes)
     for (const auto& [name, value] : options.parameters.all())
-      if (!node.parameters.has(name)) node.parameters.set(name, value);
+      if (options.explicitParameters.count(name) || !node.parameters.has(name)) node.parameters.set(name, value);
   config.validate();
   cluster::ClientOptions client;
   if (!sequence.tokenFile.empty()) client.token = cluster::readTokenFile(sequence.tokenFile);

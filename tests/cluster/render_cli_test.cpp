@@ -59,6 +59,21 @@ TEST(RenderCli, ClusterImageEqualsLocalImage) {
                            med::readImage((dir.path / "local.exr").string())));
 }
 
+TEST(RenderCli, CommandLineParametersBeatTheConfigs) {
+  TempDir dir;
+  TokenFile token("cli token");
+  auto nodes = startNodes(1, {"--token-file", token.path()});
+  std::string config = writeConfig(dir.path, "cooperative", 1);  // says spp 2, seed 5
+  ASSERT_EQ(run("builtin:cornell --cluster " + config + " --nodes " + addresses(nodes) + " --token-file " + token.path() +
+                " --size 32x24 --spp 3 --seed 9 --output " + (dir.path / "cluster.exr").string()),
+            0);
+  ASSERT_EQ(run("builtin:cornell --spp 3 --max-depth 3 --seed 9 --threads 1 --size 32x24 --output " +
+                (dir.path / "local.exr").string()),
+            0);
+  EXPECT_TRUE(bitwiseEqual(med::readImage((dir.path / "cluster.exr").string()),
+                           med::readImage((dir.path / "local.exr").string())));
+}
+
 TEST(RenderCli, WrongTokenFailsWithAnError) {
   TempDir dir;
   TokenFile right("right"), wrong("wrong");
