@@ -33,29 +33,10 @@ IdPass::IdPass(const Device& device) : device_(device) {
   pci.pSetLayouts = &setLayout_;
   check(vkCreatePipelineLayout(dev, &pci, nullptr, &layout_), "vkCreatePipelineLayout (ids)");
 
-  VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3}};
-  VkDescriptorPoolCreateInfo dpci = vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
-  dpci.maxSets = 1;
-  dpci.poolSizeCount = 2;
-  dpci.pPoolSizes = sizes;
-  check(vkCreateDescriptorPool(dev, &dpci, nullptr, &pool_), "vkCreateDescriptorPool (ids)");
-  VkDescriptorSetAllocateInfo ai = vkStruct<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
-  ai.descriptorPool = pool_;
-  ai.descriptorSetCount = 1;
-  ai.pSetLayouts = &setLayout_;
-  check(vkAllocateDescriptorSets(dev, &ai, &set_), "vkAllocateDescriptorSets (ids)");
-
-  VkCommandPoolCreateInfo cpci = vkStruct<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
-  cpci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-  cpci.queueFamilyIndex = device.queueFamily();
-  check(vkCreateCommandPool(dev, &cpci, nullptr, &commandPool_), "vkCreateCommandPool (ids)");
-  VkCommandBufferAllocateInfo cai = vkStruct<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
-  cai.commandPool = commandPool_;
-  cai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  cai.commandBufferCount = 1;
-  check(vkAllocateCommandBuffers(dev, &cai, &cmd_), "vkAllocateCommandBuffers (ids)");
-  VkFenceCreateInfo fci = vkStruct<VkFenceCreateInfo>(VK_STRUCTURE_TYPE_FENCE_CREATE_INFO);
-  check(vkCreateFence(dev, &fci, nullptr, &fence_), "vkCreateFence (ids)");
+  const VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3}};
+  descriptors_.emplace(device, sizes, setLayout_, "ids");
+  set_ = descriptors_->set();
+  commands_.emplace(device, "ids");
 
   PipelineDesc d;
   d.layout = layout_;
@@ -72,9 +53,8 @@ IdPass::IdPass(const Device& device) : device_(device) {
 IdPass::~IdPass() {
   VkDevice dev = device_.handle();
   vkDeviceWaitIdle(dev);
-  vkDestroyFence(dev, fence_, nullptr);
-  vkDestroyCommandPool(dev, commandPool_, nullptr);
-  vkDestroyDescriptorPool(dev, pool_, nullptr);
+  commands_.reset();
+  descriptors_.reset();
   vkDestroyPipelineLayout(dev, layout_, nullptr);
   vkDestroyDescriptorSetLayout(dev, setLayout_, nullptr);
 }
@@ -131,7 +111,7 @@ std::uint32_t IdPass::render(SceneState& s, const Camera& camera, const Region& 
   }
   vkUpdateDescriptorSets(dev, 4, writes, 0, nullptr);
 
-  VkCommandBuffer cmd = cmd_;
+  VkCommandBuffer cmd = commands_->buffer();
   check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer (ids)");
   VkCommandBufferBeginInfo bi = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
@@ -200,12 +180,7 @@ std::uint32_t IdPass::render(SceneState& s, const Camera& camera, const Region& 
   vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr, 0,
                        nullptr);
   check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer (ids)");
-  VkSubmitInfo si = vkStruct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
-  si.commandBufferCount = 1;
-  si.pCommandBuffers = &cmd;
-  check(vkQueueSubmit(device_.queue(), 1, &si, fence_), "vkQueueSubmit (ids)");
-  check(vkWaitForFences(dev, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences (ids)");
-  check(vkResetFences(dev, 1, &fence_), "vkResetFences (ids)");
+  commands_->submitAndWait("ids");
 
   const std::size_t pixels = std::size_t(w) * h;
   std::memcpy(out.ids.data(), t.idReadback.mapped(), pixels * 4);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "buffer.hpp"
+#include "command_slot.hpp"
 #include "image.hpp"
 #include "pipeline.hpp"
 
@@ -38,11 +39,9 @@ class IdPass {
   const Device& device_;
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
-  VkDescriptorPool pool_ = VK_NULL_HANDLE;
+  std::optional<DescriptorSlot> descriptors_;  // made once the layout exists
   VkDescriptorSet set_ = VK_NULL_HANDLE;
-  VkCommandPool commandPool_ = VK_NULL_HANDLE;
-  VkCommandBuffer cmd_ = VK_NULL_HANDLE;
-  VkFence fence_ = VK_NULL_HANDLE;
+  std::optional<CommandSlot> commands_;
   Pipeline pipeline_;
   Buffer frame_;      // viewProj
   Buffer drawOrder_;  // opaque instance slots, in draw-group order

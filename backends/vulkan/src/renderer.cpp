@@ -1,6 +1,7 @@
 #include "tsr/vk/renderer.hpp"
 
 #include "buffer.hpp"
+#include "command_slot.hpp"
 #include "id_pass.hpp"
 #include "gpu_types.hpp"
 #include "pipeline.hpp"
@@ -51,11 +52,9 @@ struct Renderer::Impl {
   VkDescriptorSetLayout frameLayout = VK_NULL_HANDLE;
   VkDescriptorSetLayout materialLayout = VK_NULL_HANDLE;
   VkPipelineLayout layout = VK_NULL_HANDLE;
-  VkDescriptorPool pool = VK_NULL_HANDLE;
+  std::optional<DescriptorSlot> frameDescriptors;  // made once the layout exists
   VkDescriptorSet frameSet = VK_NULL_HANDLE;
-  VkCommandPool commandPool = VK_NULL_HANDLE;
-  VkCommandBuffer cmd = VK_NULL_HANDLE;
-  VkFence fence = VK_NULL_HANDLE;
+  std::optional<CommandSlot> commands;
 
   std::map<std::uint32_t, VkFormat> colourFormats;  // by sample count
   std::map<std::uint64_t, Pipeline> mainPipelines;   // by pipelineKey()
@@ -105,31 +104,12 @@ Renderer::Impl::Impl(const Device& d) : device(d) {
   pci.pPushConstantRanges = &push;
   check(vkCreatePipelineLayout(dev, &pci, nullptr, &layout), "vkCreatePipelineLayout");
 
-  VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
-                                   {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}};
-  VkDescriptorPoolCreateInfo dpci = vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
-  dpci.maxSets = 1;
-  dpci.poolSizeCount = 3;
-  dpci.pPoolSizes = sizes;
-  check(vkCreateDescriptorPool(dev, &dpci, nullptr, &pool), "vkCreateDescriptorPool (frame)");
-  VkDescriptorSetAllocateInfo ai = vkStruct<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
-  ai.descriptorPool = pool;
-  ai.descriptorSetCount = 1;
-  ai.pSetLayouts = &frameLayout;
-  check(vkAllocateDescriptorSets(dev, &ai, &frameSet), "vkAllocateDescriptorSets (frame)");
-
-  VkCommandPoolCreateInfo cpci = vkStruct<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
-  cpci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-  cpci.queueFamilyIndex = device.queueFamily();
-  check(vkCreateCommandPool(dev, &cpci, nullptr, &commandPool), "vkCreateCommandPool");
-  VkCommandBufferAllocateInfo cai = vkStruct<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
-  cai.commandPool = commandPool;
-  cai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  cai.commandBufferCount = 1;
-  check(vkAllocateCommandBuffers(dev, &cai, &cmd), "vkAllocateCommandBuffers");
-  VkFenceCreateInfo fci = vkStruct<VkFenceCreateInfo>(VK_STRUCTURE_TYPE_FENCE_CREATE_INFO);
-  check(vkCreateFence(dev, &fci, nullptr, &fence), "vkCreateFence");
+  const VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
+                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}};
+  frameDescriptors.emplace(device, sizes, frameLayout, "frame");
+  frameSet = frameDescriptors->set();
+  commands.emplace(device, "frame");
 
   PipelineDesc sd;
   sd.layout = layout;
@@ -145,9 +125,8 @@ Renderer::Impl::Impl(const Device& d) : device(d) {
 Renderer::Impl::~Impl() {
   VkDevice dev = device.handle();
   vkDeviceWaitIdle(dev);
-  vkDestroyFence(dev, fence, nullptr);
-  vkDestroyCommandPool(dev, commandPool, nullptr);
-  vkDestroyDescriptorPool(dev, pool, nullptr);
+  commands.reset();
+  frameDescriptors.reset();
   vkDestroyPipelineLayout(dev, layout, nullptr);
   vkDestroyDescriptorSetLayout(dev, materialLayout, nullptr);
   vkDestroyDescriptorSetLayout(dev, frameLayout, nullptr);
@@ -348,7 +327,7 @@ void Renderer::render(Scene& scene, const Camera& camera, const Region& region, 
   }
 
   RenderStats stats;
-  VkCommandBuffer cmd = r.cmd;
+  VkCommandBuffer cmd = r.commands->buffer();
   check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
   VkCommandBufferBeginInfo bi = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
@@ -509,12 +488,7 @@ void Renderer::render(Scene& scene, const Camera& camera, const Region& region, 
                        nullptr);
   check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
 
-  VkSubmitInfo si = vkStruct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
-  si.commandBufferCount = 1;
-  si.pCommandBuffers = &cmd;
-  check(vkQueueSubmit(device_->queue(), 1, &si, r.fence), "vkQueueSubmit");
-  check(vkWaitForFences(dev, 1, &r.fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
-  check(vkResetFences(dev, 1, &r.fence), "vkResetFences");
+  r.commands->submitAndWait("frame");
 
   const std::size_t pixels = std::size_t(w) * h;
   if (t.colourFormat == VK_FORMAT_R32G32B32A32_SFLOAT) {
