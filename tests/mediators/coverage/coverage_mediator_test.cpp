@@ -11,48 +11,20 @@
 #include "tsr/med/coverage/ranking.hpp"
 #include "tsr/med/coverage/register.hpp"
 #include "tsr/sg/import/importer.hpp"
+#include "../viewport_rig.hpp"
 
 using namespace tsr;
 
 namespace {
 constexpr std::uint32_t kSize = 64;
 
-struct Rig {
-  sg::Scene source;
-  sg::ImportResult imported;
-  med::ViewportRegistry registry;
-  Rig() {
-    imported = sg::importScene(source, "builtin:cornell");
-    med::registerCoverage(registry);
-  }
-  med::ViewportSettings settings() const {
-    med::ViewportSettings s;
-    s.backend = "coverage";
-    s.root = imported.root;
-    return s;
-  }
-  med::View view(const sg::Scene& scene) const {
-    return med::View::fromCamera(*scene.find<sg::Camera>(imported.cameras.front()), kSize, kSize);
-  }
+struct Rig : test::ViewportRig {
+  Rig() : ViewportRig("coverage", med::registerCoverage, "builtin:cornell", kSize) {}
 };
 
-struct Follower {
-  sg::Replica replica;
-  med::ContextPool contexts;
-  std::unique_ptr<med::Viewport> viewport;
-  med::FrameBuffer image;
-  med::RenderStats render(const Rig& rig) {
-    if (!viewport) viewport = rig.registry.create(rig.settings(), contexts);
-    return viewport->render(replica, rig.view(replica.scene()), image);
-  }
-};
+using test::Follower;
 
-med::FrameBuffer fresh(const Rig& rig) {
-  Follower f;
-  f.replica.apply(rig.source.snapshot());
-  EXPECT_EQ(f.render(rig).update, med::SceneAdapter::Update::Converted);
-  return f.image;
-}
+med::FrameBuffer fresh(const Rig& rig) { return test::freshRender(rig); }
 
 const std::vector<glm::vec4>& ids(const med::FrameBuffer& fb) { return fb.outputs.at(med::kIdOutput); }
 

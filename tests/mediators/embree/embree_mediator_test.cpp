@@ -7,54 +7,29 @@
 
 #include "tsr/med/embree/register.hpp"
 #include "tsr/sg/import/importer.hpp"
+#include "../viewport_rig.hpp"
 
 using namespace tsr;
 
 namespace {
 constexpr std::uint32_t kSize = 48;
 
-struct Rig {
-  sg::Scene source;
-  sg::ImportResult imported;
-  med::ViewportRegistry registry;
-  Rig() {
-    imported = sg::importScene(source, "builtin:cornell");
-    med::registerEmbree(registry);
+struct Rig : test::ViewportRig {
+  Rig() : ViewportRig("embree", med::registerEmbree, "builtin:cornell", kSize) {
+    parameters.set("spp", std::int64_t{4});
+    parameters.set("seed", std::int64_t{7});
+    parameters.set("maxDepth", std::int64_t{4});
   }
   med::ViewportSettings settings(int spp = 4) const {
-    med::ViewportSettings s;
-    s.backend = "embree";
-    s.root = imported.root;
-    s.background = imported.background;
+    med::ViewportSettings s = ViewportRig::settings();
     s.parameters.set("spp", std::int64_t{spp});
-    s.parameters.set("seed", std::int64_t{7});
-    s.parameters.set("maxDepth", std::int64_t{4});
     return s;
   }
-  med::View view(const sg::Scene& scene) const {
-    return med::View::fromCamera(*scene.find<sg::Camera>(imported.cameras.front()), kSize, kSize);
-  }
 };
 
-// A replica that follows the source, with a viewport that converted it once.
-struct Follower {
-  sg::Replica replica;
-  med::ContextPool contexts;
-  std::unique_ptr<med::Viewport> viewport;
-  med::FrameBuffer image;
-  med::RenderStats render(const Rig& rig) {
-    if (!viewport) viewport = rig.registry.create(rig.settings(), contexts);
-    return viewport->render(replica, rig.view(replica.scene()), image);
-  }
-};
+using test::Follower;
 
-// The edited scene converted from scratch by a brand-new replica and viewport.
-med::FrameBuffer fresh(Rig& rig) {
-  Follower f;
-  f.replica.apply(rig.source.snapshot());
-  EXPECT_EQ(f.render(rig).update, med::SceneAdapter::Update::Converted);
-  return f.image;
-}
+med::FrameBuffer fresh(const Rig& rig) { return test::freshRender(rig); }
 
 void expectSameBits(const med::FrameBuffer& a, const med::FrameBuffer& b, const char* what) {
   ASSERT_EQ(a.colour.size(), b.colour.size()) << what;

@@ -6,6 +6,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "../viewport_rig.hpp"
 #include "test_scenes.hpp"
 #include "tsr/med/vulkan/register.hpp"
 #include "tsr/sg/import/importer.hpp"
@@ -18,47 +19,18 @@ constexpr std::uint32_t kSize = 64;
 
 // The animated Cornell box: a point light and a cube, so material and
 // geometry edits show under direct light.
-struct Rig {
-  sg::Scene source;
-  sg::ImportResult imported;
-  med::ViewportRegistry registry;
-  Rig() {
-    imported = sg::importScene(source, "builtin:animated");
-    med::registerVulkan(registry);
-  }
-  med::ViewportSettings settings() const {
-    med::ViewportSettings s;
-    s.backend = "vulkan";
-    s.root = imported.root;
-    s.background = imported.background;
-    return s;
-  }
-  med::View view(const sg::Scene& scene) const {
-    return med::View::fromCamera(*scene.find<sg::Camera>(imported.cameras.front()), kSize, kSize);
-  }
+struct Rig : test::ViewportRig {
+  Rig() : ViewportRig("vulkan", med::registerVulkan, "builtin:animated", kSize) {}
 };
 
-struct Follower {
-  sg::Replica replica;
-  med::ContextPool contexts;
-  std::unique_ptr<med::Viewport> viewport;
-  med::FrameBuffer image;
-  med::RenderStats render(const Rig& rig) {
-    if (!viewport) viewport = rig.registry.create(rig.settings(), contexts);
-    return viewport->render(replica, rig.view(replica.scene()), image);
-  }
+struct Follower : test::Follower {
   med::vulkan_mediator::VulkanContext& context() {
     return const_cast<med::vulkan_mediator::VulkanContext&>(
         dynamic_cast<med::vulkan_mediator::VulkanViewport&>(*viewport).context());
   }
 };
 
-med::FrameBuffer fresh(Rig& rig) {
-  Follower f;
-  f.replica.apply(rig.source.snapshot());
-  EXPECT_EQ(f.render(rig).update, med::SceneAdapter::Update::Converted);
-  return f.image;
-}
+med::FrameBuffer fresh(const Rig& rig) { return test::freshRender(rig); }
 
 sg::ContainerId cubeGeometry(const Rig& rig) {
   const auto* t = rig.source.find<sg::Transform>(test::findNamed(rig.source, sg::ContainerType::Transform, "moving cube"));

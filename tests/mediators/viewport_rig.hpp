@@ -1,0 +1,65 @@
+#pragma once
+// What every mediator suite needs to drive a back-end through its real
+// viewport: a source scene imported from a built-in, a registry holding one
+// back-end, a replica that follows the source with a viewport on it, and a
+// fresh conversion of the source's current state to compare against.
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+
+#include "tsr/med/viewport_registry.hpp"
+#include "tsr/sg/import/importer.hpp"
+#include "tsr/sg/replica.hpp"
+
+namespace tsr::test {
+
+struct ViewportRig {
+  ViewportRig(std::string backendName, void (*registerBackend)(med::ViewportRegistry&), const std::string& scene,
+              std::uint32_t imageSize)
+      : backend(std::move(backendName)), size(imageSize) {
+    imported = sg::importScene(source, scene);
+    registerBackend(registry);
+  }
+
+  med::ViewportSettings settings() const {
+    med::ViewportSettings s;
+    s.backend = backend;
+    s.root = imported.root;
+    s.background = imported.background;
+    s.parameters = parameters;
+    return s;
+  }
+  med::View view(const sg::Scene& scene) const {
+    return med::View::fromCamera(*scene.find<sg::Camera>(imported.cameras.front()), size, size);
+  }
+
+  sg::Scene source;
+  sg::ImportResult imported;
+  med::ViewportRegistry registry;
+  std::string backend;
+  std::uint32_t size;
+  med::Parameters parameters;
+};
+
+// A replica that follows the source, with a viewport created on first render.
+struct Follower {
+  sg::Replica replica;
+  med::ContextPool contexts;
+  std::unique_ptr<med::Viewport> viewport;
+  med::FrameBuffer image;
+  med::RenderStats render(const ViewportRig& rig) {
+    if (!viewport) viewport = rig.registry.create(rig.settings(), contexts);
+    return viewport->render(replica, rig.view(replica.scene()), image);
+  }
+};
+
+// The source's current state converted from scratch by a brand-new replica and viewport.
+inline med::FrameBuffer freshRender(const ViewportRig& rig) {
+  Follower f;
+  f.replica.apply(rig.source.snapshot());
+  EXPECT_EQ(f.render(rig).update, med::SceneAdapter::Update::Converted);
+  return f.image;
+}
+
+}  // namespace tsr::test
