@@ -126,6 +126,7 @@ med::RenderStats renderLayered(med::Window& window, const sg::Replica& replica, 
     total.rays += s.rays;
     total.samples = std::max(total.samples, s.samples);
     total.seconds += s.seconds;
+    total.syncSeconds += s.syncSeconds;
   }
   return total;
 }

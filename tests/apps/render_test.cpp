@@ -37,6 +37,13 @@ TEST_F(RenderCommand, RendersTheCornellBoxWithStatsAndOutputs) {
   EXPECT_GE(stats["rays"].get<std::uint64_t>(), 40u * 30u * 2u) << "at least one camera ray per sample";
   EXPECT_GT(stats["rays_per_second"].get<double>(), 0.0);
   EXPECT_GT(stats["seconds"].get<double>(), 0.0);
+  // The first render converts the scene: that time is reported apart and
+  // rays per second count only the rendering.
+  const double sync = stats["sync_seconds"].get<double>(), render = stats["render_seconds"].get<double>();
+  EXPECT_GT(sync, 0.0);
+  EXPECT_GT(render, 0.0);
+  EXPECT_NEAR(sync + render, stats["seconds"].get<double>(), 1e-9);
+  EXPECT_NEAR(stats["rays_per_second"].get<double>(), stats["rays"].get<double>() / render, 1e-6 * stats["rays_per_second"].get<double>());
 }
 
 TEST_F(RenderCommand, SameSeedSameImage) {

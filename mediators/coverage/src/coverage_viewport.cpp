@@ -22,6 +22,7 @@ RenderStats CoverageViewport::render(const sg::Replica& replica, const View& vie
   std::lock_guard lock(context_->mutex);
   RenderStats stats;
   stats.update = context_->adapter.catchUp(replica);
+  stats.syncSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   cov::Camera camera{view.cameraToWorld, view.left, view.right, view.bottom, view.top, view.nearPlane};
   cov::Region region{view.width, view.height, view.region.x0, view.region.y0, view.region.x1, view.region.y1};

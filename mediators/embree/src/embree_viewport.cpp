@@ -44,7 +44,8 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
   // accumulation by itself when the scene, camera, region or settings
   // changed; a converged image is reused only if none of them did.
   embree::Scene& scene = context_->adapter.scene();
-  scene.commit();
+  scene.commit();  // builds the acceleration structures the catch-up touched
+  stats.syncSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const embree::RenderSettings& settings = renderer_.settings();
   Accumulated now{&scene, scene.version(), camera, region, settings.seed, settings.maxDepth};
   bool stale = accumulated_ != now;

@@ -33,6 +33,7 @@ RenderStats VulkanViewport::render(const sg::Replica& replica, const View& view,
   std::lock_guard lock(context_->shared->mutex);
   RenderStats stats;
   stats.update = context_->adapter.catchUp(replica);
+  stats.syncSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (control.cancel && control.cancel->load()) return stats;
 
   // Parameters are read after catching up: the background colour comes from the scene.

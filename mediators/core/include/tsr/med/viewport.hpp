@@ -29,7 +29,8 @@ struct RenderControl {
 struct RenderStats {
   std::uint64_t rays = 0;     // rays cast, for ray tracers
   std::uint32_t samples = 0;  // samples per pixel accumulated so far
-  double seconds = 0;
+  double seconds = 0;      // the whole render call
+  double syncSeconds = 0;  // of which catching up: conversion and acceleration structures
   SceneAdapter::Update update = SceneAdapter::Update::None;  // what catching up took
 };
 
