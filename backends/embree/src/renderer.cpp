@@ -49,8 +49,7 @@ struct SurfaceHit {
   glm::vec3 faceNormal{0.0f};  // from the winding, world space
   glm::vec3 ng{0.0f};          // geometric normal on the side of ns
   glm::vec3 ns{0.0f};
-  glm::vec2 uv{0.0f};
-  float area = 0.0f;
+  glm::vec2 uv{0.0f};  // texture coordinates where a texture is bound, else barycentrics
   const InstanceView* instance = nullptr;
   std::uint32_t prim = 0;
 };
@@ -103,41 +102,40 @@ struct Tracer {
     return ray.tfar < 0.0f;
   }
 
-  static void worldTriangle(const InstanceView& v, std::uint32_t prim, glm::vec3 (&w)[3], std::uint32_t (&idx)[3]) {
-    const MeshData& m = *v.mesh;
-    for (int k = 0; k < 3; ++k) {
-      idx[k] = m.indices[3 * std::size_t(prim) + k];
-      w[k] = glm::vec3(v.transform * glm::vec4(m.positions[idx[k]], 1.0f));
-    }
-  }
-
-  bool surface(const RTCRayHit& rh, SurfaceHit& h) const {
+  // What shading needs about a hit. Position and face normal come from the
+  // ray and Embree's geometric normal; the mesh is read only for what it
+  // adds: shading normals, and texture coordinates where a texture is bound.
+  bool surface(const glm::vec3& org, const glm::vec3& dir, const RTCRayHit& rh, SurfaceHit& h) const {
     // A hit in the merged static scene names the instance by geometry id
     // (traced directly, or through its instance at top-level id 0).
-    std::uint32_t top = rh.hit.instID[0];
-    std::uint32_t inst = top == RTC_INVALID_GEOMETRY_ID || top == kMergedTopId ? rh.hit.geomID : top - 1;
+    const std::uint32_t top = rh.hit.instID[0];
+    const bool merged = top == RTC_INVALID_GEOMETRY_ID || top == kMergedTopId;
+    const std::uint32_t inst = merged ? rh.hit.geomID : top - 1;
     if (inst >= scene.views.size() || !scene.views[inst].mesh) return false;
-    h.instance = &scene.views[inst];
+    const InstanceView& v = scene.views[inst];
+    const MeshData& m = *v.mesh;
+    h.instance = &v;
     h.prim = rh.hit.primID;
-    const MeshData& m = *h.instance->mesh;
-    glm::vec3 w[3];
-    std::uint32_t idx[3];
-    worldTriangle(*h.instance, h.prim, w, idx);
-    float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1.0f - b1 - b2;
-    h.p = b0 * w[0] + b1 * w[1] + b2 * w[2];
-    glm::vec3 n = glm::cross(w[1] - w[0], w[2] - w[0]);
-    float len = glm::length(n);
-    if (!(len > 0.0f)) return false;
-    h.area = 0.5f * len;
+    h.p = org + rh.ray.tfar * dir;
+    glm::vec3 n(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+    if (!merged) n = v.faceNormalTransform * n;  // instances report object-space normals
+    const float len = glm::length(n);
+    if (!(len > 0.0f) || !std::isfinite(len)) return false;
     h.faceNormal = n / len;
     h.ns = h.faceNormal;
-    if (!m.normals.empty()) {
-      glm::vec3 ns = h.instance->normalTransform * (b0 * m.normals[idx[0]] + b1 * m.normals[idx[1]] + b2 * m.normals[idx[2]]);
-      float l = glm::length(ns);
-      if (l > 0.0f && std::isfinite(l)) h.ns = ns / l;
+    const float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1.0f - b1 - b2;
+    h.uv = glm::vec2(b1, b2);
+    const bool textured = (v.material->baseColorTexture || v.material->emissionTexture) && !m.uvs.empty();
+    if (!m.normals.empty() || textured) {
+      const std::uint32_t* idx = &m.indices[3 * std::size_t(h.prim)];
+      if (!m.normals.empty()) {
+        glm::vec3 ns = v.normalTransform * (b0 * m.normals[idx[0]] + b1 * m.normals[idx[1]] + b2 * m.normals[idx[2]]);
+        float l = glm::length(ns);
+        if (l > 0.0f && std::isfinite(l)) h.ns = ns / l;
+      }
+      if (textured) h.uv = b0 * m.uvs[idx[0]] + b1 * m.uvs[idx[1]] + b2 * m.uvs[idx[2]];
     }
     h.ng = glm::dot(h.faceNormal, h.ns) < 0.0f ? -h.faceNormal : h.faceNormal;
-    h.uv = m.uvs.empty() ? glm::vec2(b1, b2) : b0 * m.uvs[idx[0]] + b1 * m.uvs[idx[1]] + b2 * m.uvs[idx[2]];
     return true;
   }
 
@@ -159,8 +157,8 @@ struct Tracer {
     if (h.instance->emissiveOffset == kNotEmissive || scene.emitters.empty()) return 0.0f;
     float cosL = glm::dot(h.faceNormal, -dir);
     if (cosL <= 0.0f) return 0.0f;
-    float prob = scene.emitters.discreteProbability(h.instance->emissiveOffset + h.prim);
-    return prob / h.area * t * t / cosL;
+    const std::uint32_t i = h.instance->emissiveOffset + h.prim;
+    return scene.emitters.discreteProbability(i) / scene.emitterTriangles[i].area * t * t / cosL;
   }
 
   struct EmitterSample {
@@ -178,28 +176,25 @@ struct Tracer {
                                [](std::uint32_t v, const EmissiveRange& r) { return v < r.offset; });
     const EmissiveRange& range = *(it - 1);
     const InstanceView& v = scene.views[range.instance];
-    std::uint32_t prim = i - range.offset;
-    glm::vec3 w[3];
-    std::uint32_t idx[3];
-    worldTriangle(v, prim, w, idx);
+    const EmitterTriangle& tri = scene.emitterTriangles[i];
+    if (!(tri.area > 0.0f)) return false;
     glm::vec2 b = sampleTriangle(u);
-    float b0 = 1.0f - b.x - b.y;
-    out.point = b0 * w[0] + b.x * w[1] + b.y * w[2];
-    glm::vec3 n = glm::cross(w[1] - w[0], w[2] - w[0]);
-    float len = glm::length(n);
-    if (!(len > 0.0f)) return false;
-    n /= len;
+    out.point = tri.p0 + b.x * tri.e1 + b.y * tri.e2;
     glm::vec3 d = out.point - p;
     float dist2 = glm::dot(d, d);
     if (!(dist2 > 0.0f)) return false;
     out.dist = std::sqrt(dist2);
     out.wi = d / out.dist;
-    float cosL = glm::dot(n, -out.wi);
+    float cosL = glm::dot(tri.normal, -out.wi);
     if (cosL <= 0.0f) return false;
     const MeshData& m = *v.mesh;
-    glm::vec2 uv = m.uvs.empty() ? b : b0 * m.uvs[idx[0]] + b.x * m.uvs[idx[1]] + b.y * m.uvs[idx[2]];
+    glm::vec2 uv = b;
+    if (v.material->emissionTexture && !m.uvs.empty()) {
+      const std::uint32_t* idx = &m.indices[3 * std::size_t(i - range.offset)];
+      uv = (1.0f - b.x - b.y) * m.uvs[idx[0]] + b.x * m.uvs[idx[1]] + b.y * m.uvs[idx[2]];
+    }
     out.radiance = emission(*v.material, uv);
-    out.pdf = prob / (0.5f * len) * dist2 / cosL;
+    out.pdf = prob / tri.area * dist2 / cosL;
     return out.pdf > 0.0f && std::isfinite(out.pdf);
   }
 
@@ -240,7 +235,7 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
       break;
     }
     SurfaceHit h;
-    if (!surface(rh, h)) break;
+    if (!surface(org, dir, rh, h)) break;
     const ResolvedMaterial& mat = *h.instance->material;
     glm::vec3 base = baseColour(mat, h.uv);
     if (depth == 0) {

@@ -453,6 +453,7 @@ void Scene::commit() {
   // scratch in the same order samples identically.
   s.views.assign(s.instances.size(), {});
   s.emissiveRanges.clear();
+  s.emitterTriangles.clear();
   std::vector<float> power;
   for (std::size_t i = 0; i < s.instances.size(); ++i) {
     if (!s.instances[i]) continue;
@@ -461,6 +462,7 @@ void Scene::commit() {
     v.mesh = &s.meshes[index(inst.mesh)]->data;
     v.transform = inst.transform;
     v.normalTransform = glm::transpose(glm::inverse(glm::mat3(inst.transform)));
+    v.faceNormalTransform = glm::determinant(glm::mat3(inst.transform)) * v.normalTransform;
     v.material = &s.resolved[index(inst.material)];
     if (!v.material->material.isEmissive()) continue;
     v.emissiveOffset = std::uint32_t(power.size());
@@ -471,7 +473,13 @@ void Scene::commit() {
       glm::vec3 p0 = glm::vec3(v.transform * glm::vec4(d.positions[d.indices[t]], 1.0f));
       glm::vec3 p1 = glm::vec3(v.transform * glm::vec4(d.positions[d.indices[t + 1]], 1.0f));
       glm::vec3 p2 = glm::vec3(v.transform * glm::vec4(d.positions[d.indices[t + 2]], 1.0f));
-      power.push_back(lum * 0.5f * glm::length(glm::cross(p1 - p0, p2 - p0)));
+      EmitterTriangle tri{p0, p1 - p0, p2 - p0, glm::vec3(0.0f), 0.0f};
+      glm::vec3 n = glm::cross(tri.e1, tri.e2);
+      float len = glm::length(n);
+      tri.area = 0.5f * len;
+      if (len > 0.0f) tri.normal = n / len;
+      s.emitterTriangles.push_back(tri);
+      power.push_back(lum * tri.area);
     }
   }
   s.emitters = Distribution1D(power);

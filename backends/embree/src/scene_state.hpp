@@ -70,9 +70,19 @@ inline constexpr std::uint32_t kNotEmissive = std::numeric_limits<std::uint32_t>
 struct InstanceView {
   const MeshData* mesh = nullptr;
   glm::mat4 transform{1.0f};
-  glm::mat3 normalTransform{1.0f};
+  glm::mat3 normalTransform{1.0f};  // inverse transpose, for shading normals
+  // Cofactor matrix (det * inverse transpose): takes an object-space face
+  // normal to world space keeping the winding's orientation under mirroring.
+  glm::mat3 faceNormalTransform{1.0f};
   const ResolvedMaterial* material = nullptr;
   std::uint32_t emissiveOffset = kNotEmissive;  // first triangle in the emitter distribution
+};
+
+// An emissive triangle in world space, prepared at commit for light sampling.
+struct EmitterTriangle {
+  glm::vec3 p0, e1, e2;  // vertex 0 and the edges to vertices 1 and 2
+  glm::vec3 normal;      // unit face normal, from the winding
+  float area;
 };
 
 struct EmissiveRange {
@@ -110,6 +120,7 @@ struct SceneState {
   std::vector<InstanceView> views;
   std::vector<Light> activeLights;
   Distribution1D emitters;
+  std::vector<EmitterTriangle> emitterTriangles;  // indexed like emitters
   std::vector<EmissiveRange> emissiveRanges;
 };
 
