@@ -13,51 +13,51 @@ FrameBuffer::FrameBuffer(std::uint32_t width, std::uint32_t height) : width_(wid
 }
 
 void FrameBuffer::reset() {
-  std::size_t n = std::size_t(width_) * height_;
-  count_.assign(n, 0);
-  alpha_.assign(n, 0.0f);
-  for (int c = 0; c < 3; ++c) {
-    mean_[c].assign(n, glm::vec3(0.0f));
-    m2_[c].assign(n, glm::vec3(0.0f));
-  }
-  depth_.assign(n, std::numeric_limits<float>::infinity());
-  albedo_.assign(n, glm::vec3(0.0f));
-  normal_.assign(n, glm::vec3(0.0f));
+  Pixel empty;
+  empty.depth = std::numeric_limits<float>::infinity();
+  pixels_.assign(std::size_t(width_) * height_, empty);
   key_.reset();
 }
 
 void FrameBuffer::accumulate(std::uint32_t x, std::uint32_t y, const PixelSample& s) {
-  std::size_t i = at(x, y);
-  float n = float(++count_[i]);
-  float inv = 1.0f / n;
+  Pixel& p = pixels_[at(x, y)];
+  const float inv = 1.0f / float(++p.count);
   const glm::vec3 values[3] = {s.direct + s.indirect, s.direct, s.indirect};
   for (int c = 0; c < 3; ++c) {
     // Welford: numerically stable running mean and sum of squared deviations.
-    glm::vec3 delta = values[c] - mean_[c][i];
-    mean_[c][i] += delta * inv;
-    m2_[c][i] += delta * (values[c] - mean_[c][i]);
+    glm::vec3 delta = values[c] - p.mean[c];
+    p.mean[c] += delta * inv;
+    p.m2[c] += delta * (values[c] - p.mean[c]);
   }
-  alpha_[i] += ((s.hit ? 1.0f : 0.0f) - alpha_[i]) * inv;
-  albedo_[i] += (s.albedo - albedo_[i]) * inv;
-  normal_[i] += (s.normal - normal_[i]) * inv;
-  if (s.hit) depth_[i] = std::min(depth_[i], s.depth);
+  p.alpha += ((s.hit ? 1.0f : 0.0f) - p.alpha) * inv;
+  p.albedo += (s.albedo - p.albedo) * inv;
+  p.normal += (s.normal - p.normal) * inv;
+  if (s.hit) p.depth = std::min(p.depth, s.depth);
 }
 
 glm::vec4 FrameBuffer::colour(std::uint32_t x, std::uint32_t y) const {
-  std::size_t i = at(x, y);
-  return glm::vec4(mean_[0][i], alpha_[i]);
+  const Pixel& p = pixels_[at(x, y)];
+  return glm::vec4(p.mean[0], p.alpha);
 }
 
-glm::vec3 FrameBuffer::mean(Channel c, std::uint32_t x, std::uint32_t y) const { return mean_[int(c)][at(x, y)]; }
+glm::vec3 FrameBuffer::mean(Channel c, std::uint32_t x, std::uint32_t y) const {
+  return pixels_[at(x, y)].mean[int(c)];
+}
 
 glm::vec3 FrameBuffer::variance(Channel c, std::uint32_t x, std::uint32_t y) const {
-  std::size_t i = at(x, y);
-  return count_[i] > 1 ? m2_[int(c)][i] / float(count_[i] - 1) : glm::vec3(0.0f);
+  const Pixel& p = pixels_[at(x, y)];
+  return p.count > 1 ? p.m2[int(c)] / float(p.count - 1) : glm::vec3(0.0f);
 }
 
 std::vector<glm::vec4> FrameBuffer::colourImage() const {
-  std::vector<glm::vec4> out(count_.size());
-  for (std::size_t i = 0; i < out.size(); ++i) out[i] = glm::vec4(mean_[0][i], alpha_[i]);
+  std::vector<glm::vec4> out(pixels_.size());
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = glm::vec4(pixels_[i].mean[0], pixels_[i].alpha);
+  return out;
+}
+
+std::vector<float> FrameBuffer::depthImage() const {
+  std::vector<float> out(pixels_.size());
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = pixels_[i].depth;
   return out;
 }
 

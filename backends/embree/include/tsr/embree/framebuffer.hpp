@@ -48,17 +48,17 @@ class FrameBuffer {
   void reset();
   void accumulate(std::uint32_t x, std::uint32_t y, const PixelSample& sample);
 
-  std::uint32_t sampleCount(std::uint32_t x, std::uint32_t y) const { return count_[at(x, y)]; }
+  std::uint32_t sampleCount(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].count; }
   glm::vec4 colour(std::uint32_t x, std::uint32_t y) const;
   glm::vec3 mean(Channel c, std::uint32_t x, std::uint32_t y) const;
   glm::vec3 variance(Channel c, std::uint32_t x, std::uint32_t y) const;
-  float depth(std::uint32_t x, std::uint32_t y) const { return depth_[at(x, y)]; }
-  glm::vec3 albedo(std::uint32_t x, std::uint32_t y) const { return albedo_[at(x, y)]; }
-  glm::vec3 normal(std::uint32_t x, std::uint32_t y) const { return normal_[at(x, y)]; }
+  float depth(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].depth; }
+  glm::vec3 albedo(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].albedo; }
+  glm::vec3 normal(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].normal; }
 
   // Whole images, row-major, for hand-off to filters and compositors.
   std::vector<glm::vec4> colourImage() const;
-  std::vector<float> depthImage() const { return depth_; }
+  std::vector<float> depthImage() const;
 
  private:
   friend class Renderer;
@@ -75,15 +75,21 @@ class FrameBuffer {
 
   std::size_t at(std::uint32_t x, std::uint32_t y) const { return std::size_t(y) * width_ + x; }
 
+  // One pixel's running state, kept together: a sample updates all of it,
+  // and samples arrive pixel by pixel.
+  struct Pixel {
+    std::uint32_t count = 0;
+    float alpha = 0.0f;
+    float depth;
+    glm::vec3 mean[3]{glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
+    glm::vec3 m2[3]{glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
+    glm::vec3 albedo{0.0f};
+    glm::vec3 normal{0.0f};
+  };
+
   std::uint32_t width_;
   std::uint32_t height_;
-  std::vector<std::uint32_t> count_;
-  std::vector<float> alpha_;
-  std::vector<glm::vec3> mean_[3];
-  std::vector<glm::vec3> m2_[3];
-  std::vector<float> depth_;
-  std::vector<glm::vec3> albedo_;
-  std::vector<glm::vec3> normal_;
+  std::vector<Pixel> pixels_;
   std::optional<Key> key_;
 };
 
