@@ -1,8 +1,13 @@
 #include "embree_viewport.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 namespace tsr::med::embree_mediator {
+
+namespace {
+constexpr std::uint32_t kLargestGrownPass = 8;
+}
 
 EmbreeViewport::EmbreeViewport(ViewportSettings settings, std::shared_ptr<EmbreeContext> context)
     : Viewport(std::move(settings)), context_(std::move(context)) {}
@@ -46,15 +51,28 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
   embree::Scene& scene = context_->adapter.scene();
   scene.commit();  // builds the acceleration structures the catch-up touched
   stats.syncSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const embree::RenderSettings& settings = renderer_.settings();
+  embree::RenderSettings settings = renderer_.settings();
   Accumulated now{&scene, scene.version(), camera, region, settings.seed, settings.maxDepth};
   bool stale = accumulated_ != now;
+  // Unless samplesPerPass is given, passes grow 1, 2, 4, 8 samples per pixel:
+  // the first image is ready after one sample, and later passes keep a
+  // pixel's samples back to back (its paths find the same BVH nodes in
+  // cache) and pay the per-pass costs less often. Which pass a sample falls
+  // in does not change it: samples are seeded by their index.
+  const bool growPasses = !settings_.parameters.has("samplesPerPass");
+  std::uint32_t passSize = settings.samplesPerPass;
   for (;;) {
     embree::FrameBuffer& fb = *accumulation_;
-    if (!stale && fb.sampleCount(0, 0) >= spp) break;
+    const std::uint32_t done = stale ? 0 : fb.sampleCount(0, 0);
+    if (done >= spp) break;
     if (control.cancel && control.cancel->load()) break;
     stale = false;
     accumulated_ = now;
+    if (growPasses) {
+      settings.samplesPerPass = std::min(passSize, spp - done);
+      renderer_.setSettings(settings);
+      passSize = std::min(passSize * 2, kLargestGrownPass);
+    }
     auto pass = renderer_.renderPass(scene, camera, region, fb);
     stats.rays += pass.rays;
     if (control.progress) control.progress(std::min(1.0, fb.sampleCount(0, 0) / double(spp)));

@@ -171,6 +171,25 @@ TEST(EmbreeMediator, ConvergedImagesAreReusedUntilSomethingChanges) {
   EXPECT_EQ(viewport->render(replica, view, image).samples, 3u) << "restarted and reconverged";
 }
 
+TEST(EmbreeMediator, GrowingPassesGiveTheSameImageAsSingleSamplePasses) {
+  Rig rig;
+  sg::Replica replica;
+  replica.apply(rig.source.commit());
+  med::ContextPool contexts;
+  auto view = rig.view(replica.scene());
+  std::vector<double> progress;
+  med::RenderControl control;
+  control.progress = [&](double f) { progress.push_back(f); };
+  auto grown = rig.registry.create(rig.settings(11), contexts);  // passes of 1, 2, 4, 4 samples
+  med::FrameBuffer a, b;
+  EXPECT_EQ(grown->render(replica, view, a, control).samples, 11u);
+  EXPECT_EQ(progress.size(), 4u) << "one progress report per pass";
+  auto single = rig.registry.create(rig.settings(11), contexts);
+  single->setParameter("samplesPerPass", std::int64_t{1});
+  EXPECT_EQ(single->render(replica, view, b).samples, 11u);
+  expectSameBits(a, b, "grown passes");
+}
+
 TEST(EmbreeMediator, BadParametersAreTypedErrors) {
   Rig rig;
   sg::Replica replica;

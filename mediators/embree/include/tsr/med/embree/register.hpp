@@ -2,7 +2,8 @@
 // Registers the Embree path tracer under the back-end name "embree".
 // Viewport parameters: spp (samples per pixel to reach, default 16),
 // maxDepth (scattering events, default 8), seed (default 0), threads
-// (0 = all), samplesPerPass (default 1), directOnly (bool: maxDepth 1).
+// (0 = all), samplesPerPass (default: passes of 1, 2, 4, then 8 samples),
+// directOnly (bool: maxDepth 1).
 #include "tsr/med/viewport_registry.hpp"
 
 namespace tsr::med {
