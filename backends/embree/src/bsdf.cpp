@@ -80,10 +80,10 @@ float fresnelDielectric(float cosI, float eta) {
   return 0.5f * (rs * rs + rp * rp);
 }
 
-glm::vec3 Bsdf::eval(const glm::vec3& wo, const glm::vec3& wi) const {
+glm::vec3 Bsdf::evalOther(const glm::vec3& wo, const glm::vec3& wi) const {
   switch (type) {
-    case MaterialType::Diffuse:
-      return wi.z > 0.0f ? colour * (kInvPi * wi.z) : glm::vec3(0.0f);
+    case MaterialType::Diffuse:  // inline in bsdf.hpp
+      return eval(wo, wi);
     case MaterialType::Conductor: {
       if (wi.z <= 0.0f) return glm::vec3(0.0f);
       glm::vec3 h = glm::normalize(wo + wi);
@@ -117,10 +117,10 @@ glm::vec3 Bsdf::eval(const glm::vec3& wo, const glm::vec3& wi) const {
   return glm::vec3(0.0f);
 }
 
-float Bsdf::pdf(const glm::vec3& wo, const glm::vec3& wi) const {
+float Bsdf::pdfOther(const glm::vec3& wo, const glm::vec3& wi) const {
   switch (type) {
-    case MaterialType::Diffuse:
-      return wi.z > 0.0f ? wi.z * kInvPi : 0.0f;
+    case MaterialType::Diffuse:  // inline in bsdf.hpp
+      return pdf(wo, wi);
     case MaterialType::Conductor: {
       if (wi.z <= 0.0f) return 0.0f;
       glm::vec3 h = glm::normalize(wo + wi);
@@ -151,15 +151,10 @@ float Bsdf::pdf(const glm::vec3& wo, const glm::vec3& wi) const {
   return 0.0f;
 }
 
-bool Bsdf::sample(const glm::vec3& wo, const glm::vec2& u, float uLobe, BsdfSample& out) const {
+bool Bsdf::sampleOther(const glm::vec3& wo, const glm::vec2& u, float uLobe, BsdfSample& out) const {
   switch (type) {
-    case MaterialType::Diffuse: {
-      out.wi = sampleCosineHemisphere(u);
-      out.pdf = out.wi.z * kInvPi;
-      out.weight = colour;
-      out.delta = false;
-      return out.pdf > 0.0f;
-    }
+    case MaterialType::Diffuse:  // inline in bsdf.hpp
+      return sample(wo, u, uLobe, out);
     case MaterialType::Conductor: {
       glm::vec3 h = sampleGgxVisible(wo, alpha, u);
       out.wi = reflect(wo, h);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "tsr/embree/material.hpp"
+#include "tsr/embree/sampling.hpp"
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -26,9 +27,29 @@ struct Bsdf {
   float eta = 1.5f;
 
   bool isDelta() const { return type == MaterialType::Mirror || type == MaterialType::Glass; }
-  glm::vec3 eval(const glm::vec3& wo, const glm::vec3& wi) const;  // f * |cos(wi)|
-  float pdf(const glm::vec3& wo, const glm::vec3& wi) const;
-  bool sample(const glm::vec3& wo, const glm::vec2& u, float uLobe, BsdfSample& out) const;
+  // Diffuse, the common case, is inlined into the integrator; the rest
+  // goes through the out-of-line *Other functions.
+  glm::vec3 eval(const glm::vec3& wo, const glm::vec3& wi) const {  // f * |cos(wi)|
+    if (type != MaterialType::Diffuse) return evalOther(wo, wi);
+    return wi.z > 0.0f ? colour * (kInvPi * wi.z) : glm::vec3(0.0f);
+  }
+  float pdf(const glm::vec3& wo, const glm::vec3& wi) const {
+    if (type != MaterialType::Diffuse) return pdfOther(wo, wi);
+    return wi.z > 0.0f ? wi.z * kInvPi : 0.0f;
+  }
+  bool sample(const glm::vec3& wo, const glm::vec2& u, float uLobe, BsdfSample& out) const {
+    if (type != MaterialType::Diffuse) return sampleOther(wo, u, uLobe, out);
+    out.wi = sampleCosineHemisphere(u);
+    out.pdf = out.wi.z * kInvPi;
+    out.weight = colour;
+    out.delta = false;
+    return out.pdf > 0.0f;
+  }
+
+ private:
+  glm::vec3 evalOther(const glm::vec3& wo, const glm::vec3& wi) const;
+  float pdfOther(const glm::vec3& wo, const glm::vec3& wi) const;
+  bool sampleOther(const glm::vec3& wo, const glm::vec2& u, float uLobe, BsdfSample& out) const;
 };
 
 float fresnelDielectric(float cosI, float eta);

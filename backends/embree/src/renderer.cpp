@@ -264,14 +264,15 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
 
     const float eps = rayEpsilon(h.p);
     auto spawn = [&](const glm::vec3& w) { return h.p + ng * (glm::dot(w, ng) > 0.0f ? eps : -eps); };
-    // f * |cos| for a world direction, zero when shading and geometry disagree.
+    // f * |cos| for a world direction, zero when shading and geometry
+    // disagree; and the BSDF's sampling density where MIS needs it.
     auto evalWorld = [&](const glm::vec3& wi, float* pdf) {
       glm::vec3 wiL = frame.toLocal(wi);
       if ((glm::dot(wi, ng) > 0.0f) != (wiL.z > 0.0f)) {
-        *pdf = 0.0f;
+        if (pdf) *pdf = 0.0f;
         return glm::vec3(0.0f);
       }
-      *pdf = bsdf.pdf(woL, wiL);
+      if (pdf) *pdf = bsdf.pdf(woL, wiL);
       return bsdf.eval(woL, wiL);
     };
 
@@ -306,8 +307,7 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
           wi = -glm::normalize(dl.direction);
           li = dl.irradiance;
         }
-        float pdf;
-        glm::vec3 f = evalWorld(wi, &pdf);
+        glm::vec3 f = evalWorld(wi, nullptr);  // delta lights: no MIS
         if (maxComponent(f) <= 0.0f) continue;
         if (!occluded(spawn(wi), wi, tfar)) add(throughput * f * li, depth + 1);
       }

@@ -39,12 +39,13 @@ inline glm::vec2 cosSin2Pi(float u) {
   const float x2 = x * x;  // |x| <= pi/4: short Taylor series suffice
   const float s = x * (1.0f + x2 * (-1.0f / 6 + x2 * (1.0f / 120 + x2 * (-1.0f / 5040 + x2 * (1.0f / 362880)))));
   const float c = 1.0f + x2 * (-0.5f + x2 * (1.0f / 24 + x2 * (-1.0f / 720 + x2 * (1.0f / 40320))));
-  switch (q & 3) {
-    case 0: return {c, s};
-    case 1: return {-s, c};
-    case 2: return {-c, -s};
-    default: return {s, -c};
-  }
+  // Rotate by q quarter turns without branching (the quadrant is random, so
+  // a branch would be mispredicted one time in four or more).
+  const float cs[2] = {c, s};
+  const int odd = q & 1;
+  constexpr float kCosSign[4] = {1.0f, -1.0f, -1.0f, 1.0f};
+  constexpr float kSinSign[4] = {1.0f, 1.0f, -1.0f, -1.0f};
+  return {kCosSign[q & 3] * cs[odd], kSinSign[q & 3] * cs[odd ^ 1]};
 }
 
 inline glm::vec3 sampleCosineHemisphere(const glm::vec2& u) {
