@@ -3,13 +3,18 @@
 # same Cornell box (plain, and with a ~1M-triangle sphere): same size, spp
 # and path length. Prints rays/s of both and their ratio (ours / Embree's),
 # and seconds per sample per pixel of both and their ratio (Embree's / ours:
-# above 1 means we are faster), from one run. Both sides exclude loading the
-# scene and building its acceleration structures (Embree's --benchmark times
+# above 1 means we are faster). Both sides exclude loading the scene and
+# building its acceleration structures (Embree's --benchmark times
 # device_render only; ours reports render_seconds apart from sync_seconds).
-#   tests/bench/compare_pathtracer.sh [build/default/bin] [spp]
+#
+# The machine is shared and noisy, so the two renderers run alternately for
+# ROUNDS rounds and each column is the median over rounds; the ratios are
+# medians of the per-round ratios (each round's pair ran back to back).
+#   tests/bench/compare_pathtracer.sh [build/default/bin] [spp] [rounds]
 set -euo pipefail
 bin=${1:-build/default/bin}
 spp=${2:-16}
+rounds=${3:-5}
 here=$(cd "$(dirname "$0")/../.." && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -19,17 +24,24 @@ printf '%-8s %14s %14s %8s %12s %12s %8s\n' scene "embree Mray/s" "tessera Mray/
 for variant in plain heavy; do
   extra=(); [ "$variant" = heavy ] && extra=(--sphere-tris 1000000)
   python3 "$here/../shared/scenes/make_cornell.py" "$work/$variant" "${extra[@]}" >/dev/null
-  ref=$(cd "$work" && pathtracer -c "$work/$variant/cornell.ecs" --size 512 512 --spp "$spp" --max-path-length 8 \
-          --benchmark 1 4 -o "$work/ref.pfm" 2>&1)
-  ref_mrays=$(sed -n 's/^BENCHMARK_RENDER_MRAYPS_AVG //p' <<<"$ref")
-  # Embree's benchmark reports frames per second; a frame is --spp samples per pixel.
-  ref_fps=$(sed -n 's/^BENCHMARK_RENDER_AVG //p' <<<"$ref")
-  ref_frame=$(python3 -c "print(1.0/($ref_fps*$spp))")
-  "$bin/tessera-render" "$work/$variant/cornell.gltf" --size 512x512 --spp "$spp" --max-depth 8 --quiet \
-      --output "$work/ours.exr" --stats-json "$work/ours.json"
-  ours=$(python3 -c "import json;d=json.load(open('$work/ours.json'));print(d['rays_per_second']/1e6, d['render_seconds']/d['spp'])")
-  read -r our_mrays our_spp_s <<<"$ours"
-  ratio=$(python3 -c "print(round($our_mrays/$ref_mrays,3))")
-  spp_ratio=$(python3 -c "print(round($ref_frame/$our_spp_s,3))")
-  printf '%-8s %14.2f %14.2f %8s %12.4f %12.4f %8s\n' "$variant" "$ref_mrays" "$our_mrays" "$ratio" "$ref_frame" "$our_spp_s" "$spp_ratio"
+  : >"$work/rounds"
+  for _ in $(seq "$rounds"); do
+    ref=$(cd "$work" && pathtracer -c "$work/$variant/cornell.ecs" --size 512 512 --spp "$spp" --max-path-length 8 \
+            --benchmark 1 4 -o "$work/ref.pfm" 2>&1)
+    ref_mrays=$(sed -n 's/^BENCHMARK_RENDER_MRAYPS_AVG //p' <<<"$ref")
+    # Embree's benchmark reports frames per second; a frame is --spp samples per pixel.
+    ref_fps=$(sed -n 's/^BENCHMARK_RENDER_AVG //p' <<<"$ref")
+    "$bin/tessera-render" "$work/$variant/cornell.gltf" --size 512x512 --spp "$spp" --max-depth 8 --quiet \
+        --output "$work/ours.exr" --stats-json "$work/ours.json"
+    python3 -c "import json;d=json.load(open('$work/ours.json'));print($ref_mrays, 1.0/($ref_fps*$spp), d['rays_per_second']/1e6, d['render_seconds']/d['spp'])" >>"$work/rounds"
+  done
+  python3 - "$variant" "$work/rounds" <<'PY'
+import statistics, sys
+rows = [list(map(float, l.split())) for l in open(sys.argv[2])]
+med = lambda xs: statistics.median(xs)
+ref_m, ref_s, our_m, our_s = (med([r[i] for r in rows]) for i in range(4))
+ratio = med([r[2] / r[0] for r in rows])
+spp_ratio = med([r[1] / r[3] for r in rows])
+print(f"{sys.argv[1]:<8} {ref_m:14.2f} {our_m:14.2f} {ratio:8.3f} {ref_s:12.4f} {our_s:12.4f} {spp_ratio:8.3f}")
+PY
 done
