@@ -12,7 +12,12 @@
 #include <oneapi/tbb/partitioner.h>
 #include <oneapi/tbb/task_arena.h>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -54,6 +59,22 @@ struct SurfaceHit {
   std::uint32_t prim = 0;
 };
 
+// Fills a ray with three 16-byte stores. Embree reads origin+tnear,
+// direction+time and tfar+mask+id+flags as 16-byte vectors; filled field by
+// field, each of those loads waits for four small stores to retire (no store
+// forwarding), on every ray.
+inline void setRay(RTCRay& ray, const glm::vec3& org, const glm::vec3& dir, float tfar) {
+#if defined(__SSE2__)
+  _mm_store_ps(&ray.org_x, _mm_setr_ps(org.x, org.y, org.z, 0.0f));
+  _mm_store_ps(&ray.dir_x, _mm_setr_ps(dir.x, dir.y, dir.z, 0.0f));
+  _mm_store_ps(&ray.tfar, _mm_castsi128_ps(_mm_setr_epi32(std::bit_cast<int>(tfar), -1, 0, 0)));
+#else
+  ray.org_x = org.x, ray.org_y = org.y, ray.org_z = org.z, ray.tnear = 0.0f;
+  ray.dir_x = dir.x, ray.dir_y = dir.y, ray.dir_z = dir.z, ray.time = 0.0f;
+  ray.tfar = tfar, ray.mask = ~0u, ray.id = 0, ray.flags = 0;
+#endif
+}
+
 struct Tracer {
   const SceneState& scene;
   const RenderSettings& settings;
@@ -62,18 +83,7 @@ struct Tracer {
   bool intersect(const glm::vec3& org, const glm::vec3& dir, RTCRayHit& rh) {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
-    rh.ray.org_x = org.x;
-    rh.ray.org_y = org.y;
-    rh.ray.org_z = org.z;
-    rh.ray.tnear = 0.0f;
-    rh.ray.dir_x = dir.x;
-    rh.ray.dir_y = dir.y;
-    rh.ray.dir_z = dir.z;
-    rh.ray.time = 0.0f;
-    rh.ray.tfar = kInf;
-    rh.ray.mask = ~0u;
-    rh.ray.id = 0;
-    rh.ray.flags = 0;
+    setRay(rh.ray, org, dir, kInf);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene.traversable, &ctx, &rh);
@@ -85,18 +95,7 @@ struct Tracer {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRay ray;
-    ray.org_x = org.x;
-    ray.org_y = org.y;
-    ray.org_z = org.z;
-    ray.tnear = 0.0f;
-    ray.dir_x = dir.x;
-    ray.dir_y = dir.y;
-    ray.dir_z = dir.z;
-    ray.time = 0.0f;
-    ray.tfar = tfar;
-    ray.mask = ~0u;
-    ray.id = 0;
-    ray.flags = 0;
+    setRay(ray, org, dir, tfar);
     rtcOccluded1(scene.traversable, &ctx, &ray);
     ++rays;
     return ray.tfar < 0.0f;
