@@ -41,9 +41,9 @@ glm::vec3 sampleGgxVisible(const glm::vec3& wo, float a, const glm::vec2& u) {
   glm::vec3 t1 = lensq > 0.0f ? glm::vec3(-vh.y, vh.x, 0.0f) / std::sqrt(lensq) : glm::vec3(1.0f, 0.0f, 0.0f);
   glm::vec3 t2 = glm::cross(vh, t1);
   float r = std::sqrt(u.x);
-  glm::vec2 cs = cosSin2Pi(u.y);
-  float p1 = r * cs.x;
-  float p2 = r * cs.y;
+  float phi = 2.0f * kPi * u.y;
+  float p1 = r * std::cos(phi);
+  float p2 = r * std::sin(phi);
   float s = 0.5f * (1.0f + vh.z);
   p2 = (1.0f - s) * std::sqrt(std::max(0.0f, 1.0f - p1 * p1)) + s * p2;
   glm::vec3 nh = p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;

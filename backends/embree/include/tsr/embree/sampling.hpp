@@ -30,35 +30,17 @@ struct Frame {
   glm::vec3 toWorld(const glm::vec3& v) const { return v.x * t + v.y * b + v.z * n; }
 };
 
-// (cos, sin) of 2*pi*u for u in [0, 1], within 4e-7 of the library's
-// values: every bounce samples an azimuth, and sincosf's general argument
-// reduction cost more than the rest of a diffuse bounce's sampling.
-inline glm::vec2 cosSin2Pi(float u) {
-  const int q = int(4.0f * u + 0.5f);  // nearest quadrant: 2*pi*u = q*pi/2 + x
-  const float x = (4.0f * u - float(q)) * (0.5f * kPi);
-  const float x2 = x * x;  // |x| <= pi/4: short Taylor series suffice
-  const float s = x * (1.0f + x2 * (-1.0f / 6 + x2 * (1.0f / 120 + x2 * (-1.0f / 5040 + x2 * (1.0f / 362880)))));
-  const float c = 1.0f + x2 * (-0.5f + x2 * (1.0f / 24 + x2 * (-1.0f / 720 + x2 * (1.0f / 40320))));
-  // Rotate by q quarter turns without branching (the quadrant is random, so
-  // a branch would be mispredicted one time in four or more).
-  const float cs[2] = {c, s};
-  const int odd = q & 1;
-  constexpr float kCosSign[4] = {1.0f, -1.0f, -1.0f, 1.0f};
-  constexpr float kSinSign[4] = {1.0f, 1.0f, -1.0f, -1.0f};
-  return {kCosSign[q & 3] * cs[odd], kSinSign[q & 3] * cs[odd ^ 1]};
-}
-
 inline glm::vec3 sampleCosineHemisphere(const glm::vec2& u) {
   float r = std::sqrt(u.x);
-  glm::vec2 cs = cosSin2Pi(u.y);
-  return {r * cs.x, r * cs.y, std::sqrt(std::max(0.0f, 1.0f - u.x))};
+  float phi = 2.0f * kPi * u.y;
+  return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1.0f - u.x))};
 }
 
 inline glm::vec3 sampleUniformSphere(const glm::vec2& u) {
   float z = 1.0f - 2.0f * u.x;
   float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-  glm::vec2 cs = cosSin2Pi(u.y);
-  return {r * cs.x, r * cs.y, z};
+  float phi = 2.0f * kPi * u.y;
+  return {r * std::cos(phi), r * std::sin(phi), z};
 }
 inline constexpr float kUniformSpherePdf = 1.0f / (4.0f * std::numbers::pi_v<float>);
 
