@@ -5,6 +5,7 @@
 // fresh conversion of the source's current state to compare against.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 #include <string>
 
@@ -60,6 +61,22 @@ inline med::FrameBuffer freshRender(const ViewportRig& rig) {
   f.replica.apply(rig.source.snapshot());
   EXPECT_EQ(f.render(rig).update, med::SceneAdapter::Update::Converted);
   return f.image;
+}
+
+// The first container of `type` whose name contains `name`.
+inline sg::ContainerId findNamed(const sg::Scene& scene, sg::ContainerType type, const std::string& name = "") {
+  for (auto id : scene.ids())
+    if (scene.find(id)->type() == type && (name.empty() || scene.find(id)->name().find(name) != std::string::npos))
+      return id;
+  return sg::kNoContainer;
+}
+
+// Pixels whose colour is not bitwise the same (all of them if the sizes differ).
+inline std::size_t differingPixels(const med::FrameBuffer& a, const med::FrameBuffer& b) {
+  if (a.colour.size() != b.colour.size()) return std::max(a.colour.size(), b.colour.size());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < a.colour.size(); ++i) differ += a.colour[i] != b.colour[i];
+  return differ;
 }
 
 }  // namespace tsr::test

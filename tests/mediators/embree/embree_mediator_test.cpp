@@ -32,17 +32,10 @@ using test::Follower;
 med::FrameBuffer fresh(const Rig& rig) { return test::freshRender(rig); }
 
 void expectSameBits(const med::FrameBuffer& a, const med::FrameBuffer& b, const char* what) {
-  ASSERT_EQ(a.colour.size(), b.colour.size()) << what;
-  std::size_t differ = 0;
-  for (std::size_t i = 0; i < a.colour.size(); ++i) differ += a.colour[i] != b.colour[i];
-  EXPECT_EQ(differ, 0u) << what << ": pixels that differ";
+  EXPECT_EQ(test::differingPixels(a, b), 0u) << what << ": pixels that differ";
 }
 
-sg::ContainerId firstOf(const sg::Scene& s, sg::ContainerType type, const std::string& name = "") {
-  for (auto id : s.ids())
-    if (s.find(id)->type() == type && (name.empty() || s.find(id)->name().find(name) != std::string::npos)) return id;
-  return sg::kNoContainer;
-}
+using test::findNamed;
 
 class IncrementalSync : public ::testing::Test {
  protected:
@@ -68,22 +61,22 @@ class IncrementalSync : public ::testing::Test {
 }  // namespace
 
 TEST_F(IncrementalSync, TransformEdit) {
-  auto* t = rig.source.find<sg::Transform>(firstOf(rig.source, sg::ContainerType::Transform, "tall"));
-  if (!t) t = rig.source.find<sg::Transform>(firstOf(rig.source, sg::ContainerType::Transform));
+  auto* t = rig.source.find<sg::Transform>(findNamed(rig.source, sg::ContainerType::Transform, "tall"));
+  if (!t) t = rig.source.find<sg::Transform>(findNamed(rig.source, sg::ContainerType::Transform));
   ASSERT_NE(t, nullptr);
   t->setMatrix(glm::translate(t->matrix(), glm::vec3(30, 0, 10)));
   check("transform");
 }
 
 TEST_F(IncrementalSync, MaterialEdit) {
-  auto* m = rig.source.find<sg::SurfaceMaterial>(firstOf(rig.source, sg::ContainerType::SurfaceMaterial));
+  auto* m = rig.source.find<sg::SurfaceMaterial>(findNamed(rig.source, sg::ContainerType::SurfaceMaterial));
   ASSERT_NE(m, nullptr);
   m->setBaseColor({0.1f, 0.2f, 0.9f});
   check("material");
 }
 
 TEST_F(IncrementalSync, GeometryRangeEdit) {
-  auto* g = rig.source.find<sg::Geometry>(firstOf(rig.source, sg::ContainerType::Geometry));
+  auto* g = rig.source.find<sg::Geometry>(findNamed(rig.source, sg::ContainerType::Geometry));
   ASSERT_NE(g, nullptr);
   std::vector<sg::Vec3> moved(g->positions().begin(), g->positions().begin() + 3);
   for (auto& p : moved) p += sg::Vec3(0, 40, 0);
@@ -95,7 +88,7 @@ TEST_F(IncrementalSync, CreateAndDestroy) {
   // A new instance of an existing mesh under the root...
   auto& t = rig.source.create<sg::Transform>("extra");
   t.setMatrix(glm::translate(glm::mat4(1.0f), glm::vec3(-60, 0, -40)));
-  t.addChild(firstOf(rig.source, sg::ContainerType::Geometry));
+  t.addChild(findNamed(rig.source, sg::ContainerType::Geometry));
   rig.source.find<sg::Group>(rig.imported.root)->addChild(t.id());
   check("create");
   // ...and then one removed.
@@ -105,7 +98,7 @@ TEST_F(IncrementalSync, CreateAndDestroy) {
 }
 
 TEST_F(IncrementalSync, AttachmentsItUnderstandsAndOnesItIgnores) {
-  auto* g = rig.source.find<sg::Geometry>(firstOf(rig.source, sg::ContainerType::Geometry));
+  auto* g = rig.source.find<sg::Geometry>(findNamed(rig.source, sg::ContainerType::Geometry));
   g->setAttachment("someone.else", std::string("ignored"));
   rig.source.find(rig.imported.root)->setAttachment("viewer.note", std::int64_t{1});
   follower.replica.apply(rig.source.commit());
@@ -145,7 +138,7 @@ TEST(EmbreeMediator, ReactivatedViewportCatchesUpWithoutReconverting) {
   auto viewport = rig.registry.create(rig.settings(1), contexts);
   med::FrameBuffer image;
   EXPECT_EQ(viewport->render(replica, rig.view(replica.scene()), image).update, med::SceneAdapter::Update::Converted);
-  auto* t = rig.source.find<sg::Transform>(firstOf(rig.source, sg::ContainerType::Transform));
+  auto* t = rig.source.find<sg::Transform>(findNamed(rig.source, sg::ContainerType::Transform));
   for (int frame = 0; frame < 100; ++frame) {  // the viewport is switched off meanwhile
     t->setMatrix(glm::translate(glm::mat4(1.0f), glm::vec3(frame * 0.1f, 0, 0)));
     replica.apply(rig.source.commit());

@@ -72,20 +72,6 @@ sg::Geometry& addSphere(sg::Scene& scene, sg::ContainerId parent, const std::str
   return addMesh(scene, parent, name, std::move(p), std::move(n), std::move(idx), material);
 }
 
-sg::ContainerId findNamed(const sg::Scene& scene, sg::ContainerType type, const std::string& name) {
-  for (auto id : scene.ids())
-    if (scene.find(id)->type() == type && (name.empty() || scene.find(id)->name().find(name) != std::string::npos))
-      return id;
-  return sg::kNoContainer;
-}
-
-std::size_t differingPixels(const med::FrameBuffer& a, const med::FrameBuffer& b) {
-  if (a.colour.size() != b.colour.size()) return std::max(a.colour.size(), b.colour.size());
-  std::size_t differ = 0;
-  for (std::size_t i = 0; i < a.colour.size(); ++i) differ += a.colour[i] != b.colour[i];
-  return differ;
-}
-
 void keepImage(const std::string& name, const med::FrameBuffer& image) {
   if (const char* dir = std::getenv("TSR_TEST_IMAGE_DIR")) med::writeImage(std::string(dir) + "/" + name + ".png", image);
 }

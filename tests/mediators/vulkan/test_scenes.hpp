@@ -2,6 +2,7 @@
 // Scenes and helpers shared by the Vulkan mediator tests.
 #include <string>
 
+#include "../viewport_rig.hpp"
 #include "tsr/med/frame_buffer.hpp"
 #include "tsr/sg/scene.hpp"
 
@@ -16,12 +17,6 @@ sg::Geometry& addBox(sg::Scene& scene, sg::ContainerId parent, const std::string
 // A UV sphere with smooth normals.
 sg::Geometry& addSphere(sg::Scene& scene, sg::ContainerId parent, const std::string& name, sg::Vec3 centre,
                         float radius, int segments, sg::ContainerId material);
-
-// The first container of `type` whose name contains `name`.
-sg::ContainerId findNamed(const sg::Scene& scene, sg::ContainerType type, const std::string& name = "");
-
-// Pixels whose colours differ at all.
-std::size_t differingPixels(const med::FrameBuffer& a, const med::FrameBuffer& b);
 
 // Writes `image` as DIR/NAME.png when TSR_TEST_IMAGE_DIR is set, to look at.
 void keepImage(const std::string& name, const med::FrameBuffer& image);
