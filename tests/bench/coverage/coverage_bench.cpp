@@ -8,35 +8,14 @@
 
 #include "tsr/med/coverage/ranking.hpp"
 #include "tsr/med/coverage/register.hpp"
-#include "tsr/sg/import/importer.hpp"
+#include "../instances_fixture.hpp"
 
 using namespace tsr;
 
 namespace {
-struct Instances {
-  sg::Scene source;
-  sg::ImportResult imported;
-  med::ViewportRegistry registry;
-  std::vector<sg::Transform*> transforms;
-  Instances() {
-    imported = sg::importScene(source, "builtin:instances:10000");
-    source.commit();
-    med::registerCoverage(registry);
-    for (auto id : source.ids())
-      if (auto* t = source.find<sg::Transform>(id); t && t->children().size() == 1) transforms.push_back(t);
-  }
-  med::ViewportSettings settings() const {
-    med::ViewportSettings s;
-    s.backend = "coverage";
-    s.root = imported.root;
-    return s;
-  }
-  med::View view(const sg::Scene& scene, std::uint32_t w, std::uint32_t h) const {
-    return med::View::fromCamera(*scene.find<sg::Camera>(imported.cameras.front()), w, h);
-  }
-};
+using Instances = bench::InstancesFixture;
 Instances& scene() {
-  static Instances instances;
+  static Instances instances("coverage", med::registerCoverage);
   return instances;
 }
 
@@ -86,7 +65,7 @@ static void BM_ConvertInstances10000(benchmark::State& state) {
   Instances& s = scene();
   sg::Replica replica;
   replica.apply(s.source.snapshot());
-  const med::View pixel = s.view(replica.scene(), 64, 64).cropped({32, 32, 33, 33});
+  const med::View pixel = s.onePixel(replica.scene());
   med::FrameBuffer out;
   for (auto _ : state) {
     med::ContextPool contexts;  // a new context: conversion from nothing
@@ -100,7 +79,7 @@ BENCHMARK(BM_ConvertInstances10000)->Unit(benchmark::kMillisecond)->UseRealTime(
 static void BM_SyncOneTransformEdit(benchmark::State& state) {
   Instances& s = scene();
   Converted c(s);
-  const med::View pixel = s.view(c.replica.scene(), 64, 64).cropped({32, 32, 33, 33});
+  const med::View pixel = s.onePixel(c.replica.scene());
   med::FrameBuffer out;
   c.viewport->render(c.replica, pixel, out);
   float x = 0;

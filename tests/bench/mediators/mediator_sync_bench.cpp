@@ -9,38 +9,18 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "tsr/med/embree/register.hpp"
-#include "tsr/sg/import/importer.hpp"
+#include "../instances_fixture.hpp"
 
 using namespace tsr;
 
 namespace {
-struct Instances {
-  sg::Scene source;
-  sg::ImportResult imported;
-  med::ViewportRegistry registry;
-  std::vector<sg::Transform*> transforms;
-  Instances() {
-    imported = sg::importScene(source, "builtin:instances:10000");
-    source.commit();
-    med::registerEmbree(registry);
-    for (auto id : source.ids())
-      if (auto* t = source.find<sg::Transform>(id); t && t->children().size() == 1) transforms.push_back(t);
-  }
-  med::ViewportSettings settings() const {
-    med::ViewportSettings s;
-    s.backend = "embree";
-    s.root = imported.root;
-    s.background = imported.background;
-    s.parameters.set("spp", std::int64_t{1});
-    return s;
-  }
-  med::View onePixel(const sg::Scene& scene) const {
-    auto v = med::View::fromCamera(*scene.find<sg::Camera>(imported.cameras.front()), 64, 64);
-    return v.cropped({32, 32, 33, 33});
-  }
-};
+using Instances = bench::InstancesFixture;
 Instances& scene() {
-  static Instances instances;
+  static Instances instances("embree", med::registerEmbree, [] {
+    med::Parameters p;
+    p.set("spp", std::int64_t{1});
+    return p;
+  }());
   return instances;
 }
 }  // namespace
