@@ -93,8 +93,7 @@ TEST_F(RichScene, ReadsAttributesOfEveryLayout) {
   EXPECT_EQ(quad->indices(), (std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3}));
   ASSERT_EQ(quad->uvs().size(), 4u);
   EXPECT_EQ(quad->uvs()[1], Vec2(1, 1));  // from the interleaved view
-  ASSERT_EQ(quad->normals().size(), 4u);   // generated
-  for (const Vec3& n : quad->normals()) expectNear(n, Vec3(0, 0, 1));
+  EXPECT_TRUE(quad->normals().empty());  // none in the file: shaded flat
   EXPECT_FALSE(quad->invalidReason());
 
   auto* m = byName<Transform>(scene, "matrix");
@@ -223,7 +222,7 @@ TEST(GltfImport, ImagesInBufferViewsDecodeFromMemory) {
     }
 }
 
-TEST(GltfImport, FlatNormalsOptionSplitsVertices) {
+TEST(GltfImport, MissingNormalsStayFlatUnlessSmoothingIsAsked) {
   test::TempDir dir;
   test::GltfBuilder b;
   // Two triangles folded along x: smooth normals would blend them.
@@ -232,22 +231,26 @@ TEST(GltfImport, FlatNormalsOptionSplitsVertices) {
   b.doc["meshes"] = {{{"primitives", {{{"attributes", {{"POSITION", pos}}}, {"indices", idx}}}}}};
   b.doc["nodes"] = {{{"mesh", 0}}};
   b.writeGltf(dir.file("fold.gltf"));
-  Scene smooth, flat;
-  const ImportResult rs = importScene(smooth, dir.file("fold.gltf"));
-  const ImportResult rf = importScene(flat, dir.file("fold.gltf"), ImportOptions{.flatNormals = true});
+  Scene flat, smooth;
+  const ImportResult rf = importScene(flat, dir.file("fold.gltf"));
+  const ImportResult rs = importScene(smooth, dir.file("fold.gltf"), ImportOptions{.smoothNormals = true});
   auto geometry = [](const Scene& s) {
     for (ContainerId id : s.ids())
       if (const Geometry* g = s.find<Geometry>(id)) return g;
     return static_cast<const Geometry*>(nullptr);
   };
-  const Geometry* gs = geometry(smooth);
   const Geometry* gf = geometry(flat);
-  ASSERT_TRUE(gs && gf);
-  EXPECT_EQ(gs->positions().size(), 4u);
+  const Geometry* gs = geometry(smooth);
+  ASSERT_TRUE(gf && gs);
+  // glTF: no normals means flat shading, which back-ends take from the
+  // triangle itself; vertices stay shared.
+  EXPECT_EQ(gf->positions().size(), 4u);
+  EXPECT_TRUE(gf->normals().empty());
+  ASSERT_EQ(gs->positions().size(), 4u);
+  ASSERT_EQ(gs->normals().size(), 4u);
   expectNear(gs->normals()[0], glm::normalize(Vec3(0, 1, 1)));
-  ASSERT_EQ(gf->positions().size(), 6u);
-  expectNear(gf->normals()[0], Vec3(0, 0, 1));
-  expectNear(gf->normals()[3], Vec3(0, 1, 0));
+  expectNear(gs->normals()[2], Vec3(0, 0, 1));
+  expectNear(gs->normals()[3], Vec3(0, 1, 0));
   EXPECT_EQ(rs.counts.uniqueTriangles, rf.counts.uniqueTriangles);
 }
 

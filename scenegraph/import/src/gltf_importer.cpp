@@ -237,10 +237,7 @@ class Converter {
           ++out_.skippedPrimitives;
           continue;
         }
-        if (p.normals.empty()) {
-          if (options_.flatNormals) generateFlatNormals(p);
-          else generateSmoothNormals(p);
-        }
+        if (p.normals.empty() && options_.smoothNormals) generateSmoothNormals(p);
         out_.primitives.push_back(std::move(p));
         mesh.primitives.push_back(static_cast<int>(out_.primitives.size()) - 1);
       }

@@ -29,23 +29,4 @@ void generateSmoothNormals(parsed::Primitive& p) {
   for (std::size_t i = 0; i < sum.size(); ++i) p.normals[i] = safeNormalize(sum[i]);
 }
 
-void generateFlatNormals(parsed::Primitive& p) {
-  parsed::Primitive out;
-  out.material = p.material;
-  out.animated = p.animated;
-  const bool uvs = !p.uvs.empty(), colors = !p.colors.empty();
-  for (std::size_t t = 0; t + 2 < p.indices.size(); t += 3) {
-    const std::uint32_t v[3] = {p.indices[t], p.indices[t + 1], p.indices[t + 2]};
-    const Vec3 n = safeNormalize(glm::cross(p.positions[v[1]] - p.positions[v[0]], p.positions[v[2]] - p.positions[v[0]]));
-    for (std::uint32_t k : v) {
-      out.indices.push_back(static_cast<std::uint32_t>(out.positions.size()));
-      out.positions.push_back(p.positions[k]);
-      out.normals.push_back(n);
-      if (uvs) out.uvs.push_back(p.uvs[k]);
-      if (colors) out.colors.push_back(p.colors[k]);
-    }
-  }
-  p = std::move(out);
-}
-
 }  // namespace tsr::sg

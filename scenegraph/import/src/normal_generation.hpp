@@ -6,7 +6,5 @@ namespace tsr::sg {
 
 // Averages the area-weighted normals of the triangles sharing each vertex.
 void generateSmoothNormals(parsed::Primitive& p);
-// Gives every triangle its own three vertices and the triangle's normal.
-void generateFlatNormals(parsed::Primitive& p);
 
 }  // namespace tsr::sg

@@ -16,9 +16,11 @@ namespace tsr::sg {
 class Scene;
 
 struct ImportOptions {
-  // Normals generated for primitives without any: smooth (shared vertices
-  // averaged, area weighted) or flat (one normal per triangle).
-  bool flatNormals = false;
+  // glTF requires primitives without normals to be shaded flat, so by
+  // default they keep none and every back-end shades them with the
+  // triangle's own normal. smoothNormals instead generates per-vertex normals
+  // (the triangles sharing a vertex averaged, weighted by area).
+  bool smoothNormals = false;
   // Files and external buffers larger than this are refused.
   std::uint64_t maxFileBytes = std::uint64_t{2} << 30;
   // Accessors with more elements than this are refused.
