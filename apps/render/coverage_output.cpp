@@ -4,6 +4,7 @@
 #include <cctype>
 #include <fstream>
 #include <stdexcept>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -22,6 +23,7 @@ bool isRankingPath(const std::string& path) {
 
 void writeRanking(const std::string& path, const med::FrameBuffer& image, const sg::Scene& scene) {
 #if TSR_HAVE_COVERAGE
+  static_assert(std::string_view(kRankingOutput) == med::kIdOutput);
   if (!image.outputs.count(med::kIdOutput))
     throw std::runtime_error(path + ": a .json ranking needs a back-end with an id output (--backend coverage)");
   nlohmann::json objects = nlohmann::json::array();

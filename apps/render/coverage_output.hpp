@@ -10,6 +10,7 @@
 namespace tsr::app {
 
 bool isRankingPath(const std::string& path);  // ends in .json (any case)
+inline constexpr const char* kRankingOutput = "id";  // the output writeRanking reads
 
 // Writes {"width", "height", "background", "objects": [{"id", "name",
 // "pixels", "fraction"}]} sorted by pixels. Throws std::runtime_error when

@@ -1,5 +1,6 @@
 #include "layers.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -116,6 +117,18 @@ med::Window makeLayeredWindow(const std::vector<LayerSpec>& layers, const sg::Sc
     window.addLayer(registry.create(settings, contexts));
   }
   return window;
+}
+
+void checkOutputsOffered(const std::vector<std::string>& outputs, const med::Window& window) {
+  std::vector<std::string> offered = {"colour", "color", "depth"};
+  for (const auto& layer : window.layers())
+    for (auto& name : layer->outputNames()) offered.push_back(std::move(name));
+  for (const std::string& output : outputs) {
+    if (std::find(offered.begin(), offered.end(), output) != offered.end()) continue;
+    std::string list = "colour, depth";
+    for (std::size_t i = 3; i < offered.size(); ++i) list += ", " + offered[i];
+    throw std::invalid_argument("--aov " + output + ": no such output here (offered: " + list + ")");
+  }
 }
 
 med::RenderStats renderLayered(med::Window& window, const sg::Replica& replica, const med::View& view,

@@ -47,6 +47,9 @@ sg::ContainerId findLayerRoot(const sg::Scene& scene, const std::string& name);
 med::Window makeLayeredWindow(const std::vector<LayerSpec>& layers, const sg::Scene& scene,
                               const med::ViewportSettings& defaults, const med::ViewportRegistry& registry,
                               med::ContextPool& contexts);
+// Throws std::invalid_argument naming what is offered when no layer of the
+// window can fill one of `outputs` (colour and depth always can).
+void checkOutputsOffered(const std::vector<std::string>& outputs, const med::Window& window);
 // Renders the window; stats add up over the layers.
 med::RenderStats renderLayered(med::Window& window, const sg::Replica& replica, const med::View& view,
                                med::FrameBuffer& out, const med::RenderControl& control);

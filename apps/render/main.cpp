@@ -48,6 +48,9 @@ int run(int argc, char** argv) {
   control.progress = [&](double f) { bar.update(f); };
   tsr::med::FrameBuffer image;
   auto window = tsr::app::makeLayeredWindow(layers, session.replica.scene(), settings, registry, contexts);
+  tsr::app::checkOutputsOffered(options.aovs, window);  // before the render, not after it
+  control.outputs = options.aovs;
+  if (tsr::app::isRankingPath(options.output)) control.outputs->push_back(tsr::app::kRankingOutput);
   auto stats = tsr::app::renderLayered(window, session.replica, view, image, control);
   bar.finish();
 

@@ -64,6 +64,9 @@ TEST_F(RenderCommand, BadInputIsOneErrorLine) {
   expectOneErrorLine(run("builtin:cornell --size 8x8 --output x.nosuchformat"), "x.nosuchformat");
   expectOneErrorLine(run("builtin:cornell --size 8x8 --param spp=lots"), "parameter spp");
   expectOneErrorLine(run(""), "scene");
+  // Refused before rendering, naming what the back-end offers; nothing written.
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --output u.png --aov bogus"), "offered: colour, depth, albedo");
+  EXPECT_FALSE(std::filesystem::exists(dir / "u.png"));
   std::ofstream(dir / "junk.gltf") << "{ not json";
   expectOneErrorLine(run("junk.gltf --size 8x8"), "junk.gltf");
 }

@@ -10,6 +10,8 @@ namespace tsr::med::coverage_mediator {
 CoverageViewport::CoverageViewport(ViewportSettings settings, std::shared_ptr<CoverageContext> context)
     : Viewport(std::move(settings)), context_(std::move(context)) {}
 
+std::vector<std::string> CoverageViewport::outputNames() const { return {kIdOutput}; }
+
 SceneAdapter::Update CoverageViewport::synchronize(const sg::Replica& replica) {
   std::lock_guard lock(context_->mutex);
   return context_->adapter.catchUp(replica);

@@ -23,6 +23,7 @@ class CoverageViewport final : public Viewport {
   // pass is a single step).
   RenderStats render(const sg::Replica& replica, const View& view, FrameBuffer& out,
                      const RenderControl& control) override;
+  std::vector<std::string> outputNames() const override;
   const CoverageContext& context() const { return *context_; }
 
  private:

@@ -27,6 +27,7 @@ class EmbreeViewport final : public Viewport {
   SceneAdapter::Update synchronize(const sg::Replica& replica) override;
   RenderStats render(const sg::Replica& replica, const View& view, FrameBuffer& out,
                      const RenderControl& control) override;
+  std::vector<std::string> outputNames() const override;
   const EmbreeContext& context() const { return *context_; }
 
  private:

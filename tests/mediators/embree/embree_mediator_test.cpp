@@ -183,6 +183,24 @@ TEST(EmbreeMediator, GrowingPassesGiveTheSameImageAsSingleSamplePasses) {
   expectSameBits(a, b, "grown passes");
 }
 
+TEST(EmbreeMediator, FillsOnlyTheOutputsTheCallerReads) {
+  Rig rig;
+  sg::Replica replica;
+  replica.apply(rig.source.commit());
+  med::ContextPool contexts;
+  auto view = rig.view(replica.scene());
+  med::FrameBuffer all, some;
+  rig.registry.create(rig.settings(), contexts)->render(replica, view, all);
+  EXPECT_EQ(all.outputs.size(), 5u) << "albedo, normal, direct, indirect, variance";
+  med::RenderControl control;
+  control.outputs = std::vector<std::string>{"normal", "no-such-output"};
+  rig.registry.create(rig.settings(), contexts)->render(replica, view, some, control);
+  ASSERT_EQ(some.outputs.size(), 1u);
+  EXPECT_EQ(some.outputs.at("normal"), all.outputs.at("normal"));
+  expectSameBits(some, all, "colour with fewer outputs");
+  EXPECT_EQ(some.depth, all.depth);
+}
+
 TEST(EmbreeMediator, BadParametersAreTypedErrors) {
   Rig rig;
   sg::Replica replica;

@@ -3,8 +3,11 @@
 // camera, background), back-end parameters, and whether it is active. The
 // only way applications and the cluster reach a back-end.
 #include <atomic>
+#include <algorithm>
 #include <functional>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "tsr/med/frame_buffer.hpp"
 #include "tsr/med/parameters.hpp"
@@ -24,6 +27,14 @@ struct ViewportSettings {
 struct RenderControl {
   std::function<void(double fraction)> progress;  // 0..1 as the render proceeds
   const std::atomic<bool>* cancel = nullptr;      // stop early when set
+  // The named outputs (FrameBuffer::outputs) the caller will read; a
+  // back-end may then skip filling the others. Unset: all it offers.
+  // Colour and depth are always filled.
+  std::optional<std::vector<std::string>> outputs;
+
+  bool wants(const std::string& output) const {
+    return !outputs || std::find(outputs->begin(), outputs->end(), output) != outputs->end();
+  }
 };
 
 struct RenderStats {
@@ -54,6 +65,8 @@ class Viewport {
   // region into `out` (resized to the region).
   virtual RenderStats render(const sg::Replica& replica, const View& view, FrameBuffer& out,
                              const RenderControl& control = {}) = 0;
+  // The named outputs render() can fill, besides colour and depth.
+  virtual std::vector<std::string> outputNames() const { return {}; }
 
  protected:
   ViewportSettings settings_;
