@@ -275,7 +275,42 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
       return bsdf.eval(woL, wiL);
     };
 
-    if (!bsdf.isDelta()) {
+    // Random numbers are drawn in a fixed order: emitter, environment, BSDF,
+    // roulette. The continuation is computed before the shadow rays are
+    // traced: it does not depend on them, and its chain of square roots,
+    // divisions and sincos then runs while Embree traverses, instead of
+    // after it (out-of-order execution does not reach past the mispredicted
+    // branches of a traversal into the code that follows the call).
+    const bool nextEvent = !bsdf.isDelta();
+    const bool sampleEmitters = nextEvent && !scene.emitters.empty() && mode != LightSampling::BsdfOnly;
+    const bool sampleEnvironment = nextEvent && envActive && mode != LightSampling::BsdfOnly;
+    float uSelect = 0.0f;
+    glm::vec2 uPoint(0.0f), uEnvironment(0.0f);
+    if (sampleEmitters) {
+      uSelect = rng.uniform();
+      uPoint = rng.uniform2();
+    }
+    if (sampleEnvironment) uEnvironment = rng.uniform2();
+    const glm::vec2 u = rng.uniform2();
+    const float uLobe = rng.uniform();
+    BsdfSample bs;
+    glm::vec3 nextDir(0.0f);
+    bool continues = bsdf.sample(woL, u, uLobe, bs);
+    if (continues) {
+      nextDir = glm::normalize(frame.toWorld(bs.wi));
+      continues = (glm::dot(nextDir, ng) > 0.0f) == (bs.wi.z > 0.0f);
+    }
+    glm::vec3 nextThroughput = throughput;
+    if (continues) {
+      nextThroughput *= bs.weight;
+      if (depth + 1 >= settings.rouletteDepth) {
+        float q = std::min(maxComponent(nextThroughput), 0.95f);
+        if (!(q > 0.0f) || rng.uniform() >= q) continues = false;
+        else nextThroughput /= q;
+      }
+    }
+
+    if (nextEvent) {
       for (const Light& light : scene.activeLights) {
         glm::vec3 wi, li;
         float tfar = kInf;
@@ -310,11 +345,9 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
         if (maxComponent(f) <= 0.0f) continue;
         if (!occluded(spawn(wi), wi, tfar)) add(throughput * f * li, depth + 1);
       }
-      if (!scene.emitters.empty() && mode != LightSampling::BsdfOnly) {
-        float uSelect = rng.uniform();
-        glm::vec2 u = rng.uniform2();
+      if (sampleEmitters) {
         EmitterSample es;
-        if (sampleEmitter(h.p, uSelect, u, es)) {
+        if (sampleEmitter(h.p, uSelect, uPoint, es)) {
           float bsdfPdf;
           glm::vec3 f = evalWorld(es.wi, &bsdfPdf);
           if (maxComponent(f) > 0.0f) {
@@ -326,8 +359,8 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
           }
         }
       }
-      if (envActive && mode != LightSampling::BsdfOnly) {
-        Environment::Sample es = env.sample(rng.uniform2());
+      if (sampleEnvironment) {
+        Environment::Sample es = env.sample(uEnvironment);
         if (es.pdf > 0.0f) {
           float bsdfPdf;
           glm::vec3 f = evalWorld(es.direction, &bsdfPdf);
@@ -338,23 +371,12 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
       }
     }
 
-    glm::vec2 u = rng.uniform2();
-    float uLobe = rng.uniform();
-    BsdfSample bs;
-    if (!bsdf.sample(woL, u, uLobe, bs)) break;
-    glm::vec3 wi = glm::normalize(frame.toWorld(bs.wi));
-    if ((glm::dot(wi, ng) > 0.0f) != (bs.wi.z > 0.0f)) break;
-    throughput *= bs.weight;
+    if (!continues) break;
+    throughput = nextThroughput;
     prevPdf = bs.pdf;
     prevDelta = bs.delta;
-    org = spawn(wi);
-    dir = wi;
-
-    if (depth + 1 >= settings.rouletteDepth) {
-      float q = std::min(maxComponent(throughput), 0.95f);
-      if (!(q > 0.0f) || rng.uniform() >= q) break;
-      throughput /= q;
-    }
+    org = spawn(nextDir);
+    dir = nextDir;
   }
   return out;
 }
