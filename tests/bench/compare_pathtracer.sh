@@ -8,8 +8,9 @@
 # device_render only; ours reports render_seconds apart from sync_seconds).
 #
 # The machine is shared and noisy, so the two renderers run alternately for
-# ROUNDS rounds and each column is the median over rounds; the ratios are
-# medians of the per-round ratios (each round's pair ran back to back).
+# ROUNDS rounds, in ABBA order, and each column is the median over rounds;
+# the ratios are medians of the per-round ratios (each round's pair ran back
+# to back).
 #   tests/bench/compare_pathtracer.sh [build/default/bin] [spp] [rounds]
 set -euo pipefail
 bin=${1:-build/default/bin}
@@ -25,14 +26,21 @@ for variant in plain heavy; do
   extra=(); [ "$variant" = heavy ] && extra=(--sphere-tris 1000000)
   python3 "$here/../shared/scenes/make_cornell.py" "$work/$variant" "${extra[@]}" >/dev/null
   : >"$work/rounds"
-  for _ in $(seq "$rounds"); do
-    ref=$(cd "$work" && pathtracer -c "$work/$variant/cornell.ecs" --size 512 512 --spp "$spp" --max-path-length 8 \
-            --benchmark 1 4 -o "$work/ref.pfm" 2>&1)
+  for round in $(seq "$rounds"); do
+    run_ref() {
+      ref=$(cd "$work" && pathtracer -c "$work/$variant/cornell.ecs" --size 512 512 --spp "$spp" --max-path-length 8 \
+              --benchmark 1 4 -o "$work/ref.pfm" 2>&1)
+    }
+    run_ours() {
+      "$bin/tessera-render" "$work/$variant/cornell.gltf" --size 512x512 --spp "$spp" --max-depth 8 --quiet \
+          --output "$work/ours.exr" --stats-json "$work/ours.json"
+    }
+    # Which renderer goes first alternates (ABBA): on this machine the first
+    # of two back-to-back runs tends to be a little faster.
+    if ((round % 2)); then run_ref; run_ours; else run_ours; run_ref; fi
     ref_mrays=$(sed -n 's/^BENCHMARK_RENDER_MRAYPS_AVG //p' <<<"$ref")
     # Embree's benchmark reports frames per second; a frame is --spp samples per pixel.
     ref_fps=$(sed -n 's/^BENCHMARK_RENDER_AVG //p' <<<"$ref")
-    "$bin/tessera-render" "$work/$variant/cornell.gltf" --size 512x512 --spp "$spp" --max-depth 8 --quiet \
-        --output "$work/ours.exr" --stats-json "$work/ours.json"
     python3 -c "import json;d=json.load(open('$work/ours.json'));print($ref_mrays, 1.0/($ref_fps*$spp), d['rays_per_second']/1e6, d['render_seconds']/d['spp'])" >>"$work/rounds"
   done
   python3 - "$variant" "$work/rounds" <<'PY'
