@@ -309,6 +309,7 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
         else nextThroughput /= q;
       }
     }
+    const glm::vec3 nextOrg = spawn(nextDir);
 
     if (nextEvent) {
       for (const Light& light : scene.activeLights) {
@@ -375,7 +376,7 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
     throughput = nextThroughput;
     prevPdf = bs.pdf;
     prevDelta = bs.delta;
-    org = spawn(nextDir);
+    org = nextOrg;
     dir = nextDir;
   }
   return out;
@@ -436,8 +437,10 @@ PassResult Renderer::renderPass(Scene& scene, const Camera& camera, const Region
       std::uint32_t py = region.y0 + y;
       for (std::uint32_t x = xb; x < xe; ++x) {
         std::uint32_t px = region.x0 + x;
+        const std::uint64_t pixelKey = Rng::pixelKey(settings.seed, px, py);
+        const std::uint32_t firstSample = fb.sampleCount(x, y);
         for (std::uint32_t s = 0; s < settings.samplesPerPass; ++s) {
-          Rng rng(settings.seed, px, py, fb.sampleCount(x, y));
+          Rng rng(pixelKey, firstSample + s);
           glm::vec2 j = rng.uniform2();
           float cx = camera.left + (camera.right - camera.left) * ((float(px) + j.x) / float(region.width));
           float cy = camera.top - (camera.top - camera.bottom) * ((float(py) + j.y) / float(region.height));
