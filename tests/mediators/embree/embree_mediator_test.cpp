@@ -108,11 +108,17 @@ TEST_F(IncrementalSync, AttachmentsItUnderstandsAndOnesItIgnores) {
   check("hidden geometry");
 }
 
-TEST(EmbreeMediator, TilesAreCropsAndThreadsDoNotMatter) {
+// A replica of the built-in Cornell box and a pool of contexts for the
+// viewports a test creates.
+class EmbreeMediator : public ::testing::Test {
+ protected:
+  void SetUp() override { replica.apply(rig.source.commit()); }
   Rig rig;
   sg::Replica replica;
-  replica.apply(rig.source.commit());
   med::ContextPool contexts;
+};
+
+TEST_F(EmbreeMediator, TilesAreCropsAndThreadsDoNotMatter) {
   auto full = rig.registry.create(rig.settings(), contexts);
   auto view = rig.view(replica.scene());
   med::FrameBuffer whole, tile;
@@ -130,7 +136,7 @@ TEST(EmbreeMediator, TilesAreCropsAndThreadsDoNotMatter) {
   EXPECT_EQ(contexts.live(), 1u) << "both viewports share one converted scene";
 }
 
-TEST(EmbreeMediator, ReactivatedViewportCatchesUpWithoutReconverting) {
+TEST(EmbreeMediatorCatchUp, ReactivatedViewportCatchesUpWithoutReconverting) {
   Rig rig;
   sg::Replica replica(512);
   replica.apply(rig.source.commit());
@@ -146,11 +152,7 @@ TEST(EmbreeMediator, ReactivatedViewportCatchesUpWithoutReconverting) {
   EXPECT_EQ(viewport->render(replica, rig.view(replica.scene()), image).update, med::SceneAdapter::Update::Synced);
 }
 
-TEST(EmbreeMediator, ConvergedImagesAreReusedUntilSomethingChanges) {
-  Rig rig;
-  sg::Replica replica;
-  replica.apply(rig.source.commit());
-  med::ContextPool contexts;
+TEST_F(EmbreeMediator, ConvergedImagesAreReusedUntilSomethingChanges) {
   auto viewport = rig.registry.create(rig.settings(2), contexts);
   med::FrameBuffer image;
   auto view = rig.view(replica.scene());
@@ -164,11 +166,7 @@ TEST(EmbreeMediator, ConvergedImagesAreReusedUntilSomethingChanges) {
   EXPECT_EQ(viewport->render(replica, view, image).samples, 3u) << "restarted and reconverged";
 }
 
-TEST(EmbreeMediator, GrowingPassesGiveTheSameImageAsSingleSamplePasses) {
-  Rig rig;
-  sg::Replica replica;
-  replica.apply(rig.source.commit());
-  med::ContextPool contexts;
+TEST_F(EmbreeMediator, GrowingPassesGiveTheSameImageAsSingleSamplePasses) {
   auto view = rig.view(replica.scene());
   std::vector<double> progress;
   med::RenderControl control;
@@ -183,11 +181,7 @@ TEST(EmbreeMediator, GrowingPassesGiveTheSameImageAsSingleSamplePasses) {
   expectSameBits(a, b, "grown passes");
 }
 
-TEST(EmbreeMediator, FillsOnlyTheOutputsTheCallerReads) {
-  Rig rig;
-  sg::Replica replica;
-  replica.apply(rig.source.commit());
-  med::ContextPool contexts;
+TEST_F(EmbreeMediator, FillsOnlyTheOutputsTheCallerReads) {
   auto view = rig.view(replica.scene());
   med::FrameBuffer all, some;
   rig.registry.create(rig.settings(), contexts)->render(replica, view, all);
@@ -201,11 +195,7 @@ TEST(EmbreeMediator, FillsOnlyTheOutputsTheCallerReads) {
   EXPECT_EQ(some.depth, all.depth);
 }
 
-TEST(EmbreeMediator, BadParametersAreTypedErrors) {
-  Rig rig;
-  sg::Replica replica;
-  replica.apply(rig.source.commit());
-  med::ContextPool contexts;
+TEST_F(EmbreeMediator, BadParametersAreTypedErrors) {
   auto settings = rig.settings();
   settings.parameters.set("spp", std::string("many"));
   auto viewport = rig.registry.create(settings, contexts);
