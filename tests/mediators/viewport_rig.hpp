@@ -9,38 +9,20 @@
 #include <memory>
 #include <string>
 
-#include "tsr/med/viewport_registry.hpp"
-#include "tsr/sg/import/importer.hpp"
+#include "imported_scene.hpp"
 #include "tsr/sg/replica.hpp"
 
 namespace tsr::test {
 
-struct ViewportRig {
+struct ViewportRig : ImportedScene {
   ViewportRig(std::string backendName, void (*registerBackend)(med::ViewportRegistry&), const std::string& scene,
               std::uint32_t imageSize)
-      : backend(std::move(backendName)), size(imageSize) {
-    imported = sg::importScene(source, scene);
-    registerBackend(registry);
-  }
+      : ImportedScene(std::move(backendName), registerBackend, scene), size(imageSize) {}
 
-  med::ViewportSettings settings() const {
-    med::ViewportSettings s;
-    s.backend = backend;
-    s.root = imported.root;
-    s.background = imported.background;
-    s.parameters = parameters;
-    return s;
-  }
-  med::View view(const sg::Scene& scene) const {
-    return med::View::fromCamera(*scene.find<sg::Camera>(imported.cameras.front()), size, size);
-  }
+  using ImportedScene::view;
+  med::View view(const sg::Scene& scene) const { return view(scene, size, size); }
 
-  sg::Scene source;
-  sg::ImportResult imported;
-  med::ViewportRegistry registry;
-  std::string backend;
   std::uint32_t size;
-  med::Parameters parameters;
 };
 
 // A replica that follows the source, with a viewport created on first render.
