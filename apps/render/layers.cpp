@@ -120,13 +120,15 @@ med::Window makeLayeredWindow(const std::vector<LayerSpec>& layers, const sg::Sc
 }
 
 void checkOutputsOffered(const std::vector<std::string>& outputs, const med::Window& window) {
-  std::vector<std::string> offered = {"colour", "color", "depth"};
+  std::vector<std::string> offered;
   for (const auto& layer : window.layers())
     for (auto& name : layer->outputNames()) offered.push_back(std::move(name));
   for (const std::string& output : outputs) {
-    if (std::find(offered.begin(), offered.end(), output) != offered.end()) continue;
+    if (med::isColourOutput(output) || med::isDepthOutput(output) ||
+        std::find(offered.begin(), offered.end(), output) != offered.end())
+      continue;
     std::string list = "colour, depth";
-    for (std::size_t i = 3; i < offered.size(); ++i) list += ", " + offered[i];
+    for (const std::string& name : offered) list += ", " + name;
     throw std::invalid_argument("--aov " + output + ": no such output here (offered: " + list + ")");
   }
 }

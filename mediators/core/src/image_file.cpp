@@ -24,8 +24,8 @@ std::uint8_t encodeSrgb(float linear) {
 float decodeSrgb(float s) { return s <= 0.04045f ? s / 12.92f : std::pow((s + 0.055f) / 1.055f, 2.4f); }
 
 std::vector<glm::vec4> pixelsOf(const FrameBuffer& fb, const std::string& output) {
-  if (output == "colour" || output == "color") return fb.colour;
-  if (output == "depth") {
+  if (isColourOutput(output)) return fb.colour;
+  if (isDepthOutput(output)) {
     std::vector<glm::vec4> d(fb.depth.size());
     for (std::size_t i = 0; i < d.size(); ++i) {
       float z = std::isfinite(fb.depth[i]) ? fb.depth[i] : 0.0f;

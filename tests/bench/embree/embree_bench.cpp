@@ -57,7 +57,7 @@ void BM_RawIntersect1(benchmark::State& state) {
   const std::size_t n = 1 << 20;
   std::vector<RTCRayHit> rays(n);
   for (std::size_t i = 0; i < n; ++i) {
-    Rng rng(1, std::uint32_t(i), 0, 0);
+    Rng rng(Rng::pixelKey(1, std::uint32_t(i), 0), 0);
     glm::vec3 o(5.0f + 540.0f * rng.uniform(), 5.0f + 540.0f * rng.uniform(), 5.0f + 550.0f * rng.uniform());
     glm::vec3 d = sampleUniformSphere(rng.uniform2());
     RTCRayHit& r = rays[i];

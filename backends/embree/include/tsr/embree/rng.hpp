@@ -18,8 +18,7 @@ constexpr std::uint64_t splitmix64(std::uint64_t x) {
 // thread count, the tiling or the region that was rendered.
 class Rng {
  public:
-  Rng(std::uint64_t seed, std::uint32_t x, std::uint32_t y, std::uint64_t sample) : Rng(pixelKey(seed, x, y), sample) {}
-  // The same stream, from a pixel's key computed once for all its samples.
+  // A pixel's key is computed once for all its samples.
   Rng(std::uint64_t pixelKey, std::uint64_t sample) : key_(splitmix64(pixelKey ^ sample)) {}
   static std::uint64_t pixelKey(std::uint64_t seed, std::uint32_t x, std::uint32_t y) {
     return splitmix64(splitmix64(seed) ^ ((std::uint64_t(x) << 32) | y));

@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -13,6 +14,11 @@
 namespace tsr::med {
 
 inline constexpr float kNoDepth = std::numeric_limits<float>::infinity();
+
+// Output names that mean a frame buffer's own colour and depth rather than
+// one of its named `outputs`: every back-end fills these.
+inline bool isColourOutput(std::string_view name) { return name == "colour" || name == "color"; }
+inline bool isDepthOutput(std::string_view name) { return name == "depth"; }
 
 struct FrameBuffer {
   FrameBuffer() = default;
