@@ -22,8 +22,8 @@ void FrameBuffer::reset() {
 void FrameBuffer::accumulate(std::uint32_t x, std::uint32_t y, const PixelSample& s) {
   Pixel& p = pixels_[at(x, y)];
   const float inv = 1.0f / float(++p.count);
-  const glm::vec3 values[3] = {s.direct + s.indirect, s.direct, s.indirect};
-  for (int c = 0; c < 3; ++c) {
+  const glm::vec3 values[kChannels] = {s.direct + s.indirect, s.direct, s.indirect, s.caustic};
+  for (int c = 0; c < kChannels; ++c) {
     // Welford: numerically stable running mean and sum of squared deviations.
     glm::vec3 delta = values[c] - p.mean[c];
     p.mean[c] += delta * inv;
@@ -33,6 +33,11 @@ void FrameBuffer::accumulate(std::uint32_t x, std::uint32_t y, const PixelSample
   p.albedo += (s.albedo - p.albedo) * inv;
   p.normal += (s.normal - p.normal) * inv;
   if (s.hit) p.depth = std::min(p.depth, s.depth);
+}
+
+void FrameBuffer::accumulateRange(std::uint32_t x, std::uint32_t y, const glm::vec3& flash) {
+  Pixel& p = pixels_[at(x, y)];
+  p.range += (flash - p.range) / float(++p.rangeCount);
 }
 
 glm::vec4 FrameBuffer::colour(std::uint32_t x, std::uint32_t y) const {

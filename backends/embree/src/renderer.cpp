@@ -1,25 +1,13 @@
 #include "tsr/embree/renderer.hpp"
 
-#include "bsdf.hpp"
-#include "scene_state.hpp"
+#include "tracer.hpp"
 #include "tsr/embree/error.hpp"
-#include "tsr/embree/rng.hpp"
-#include "tsr/embree/sampling.hpp"
 
-#include <glm/geometric.hpp>
 #include <oneapi/tbb/blocked_range.h>
 #include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/partitioner.h>
 #include <oneapi/tbb/task_arena.h>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
-#include <algorithm>
-#include <bit>
-#include <cmath>
-#include <limits>
 #include <string>
 #include <type_traits>
 #include <variant>
@@ -33,15 +21,6 @@ struct Renderer::Arena {
 
 namespace {
 
-constexpr float kInf = std::numeric_limits<float>::infinity();
-
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
-// Offset that escapes the surface's own float error at position p.
-float rayEpsilon(const glm::vec3& p) {
-  return 1e-4f * std::max(1.0f, std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))));
-}
-
 std::uint64_t settingsHash(const RenderSettings& s) {
   std::uint64_t h = splitmix64(s.seed);
   h = splitmix64(h ^ s.maxDepth);
@@ -49,156 +28,7 @@ std::uint64_t settingsHash(const RenderSettings& s) {
   return splitmix64(h ^ std::uint64_t(s.lightSampling));
 }
 
-struct SurfaceHit {
-  glm::vec3 p{0.0f};
-  glm::vec3 faceNormal{0.0f};  // from the winding, world space
-  glm::vec3 ng{0.0f};          // geometric normal on the side of ns
-  glm::vec3 ns{0.0f};
-  glm::vec2 uv{0.0f};  // texture coordinates where a texture is bound, else barycentrics
-  const InstanceView* instance = nullptr;
-  std::uint32_t prim = 0;
-};
-
-// Fills a ray with three 16-byte stores. Embree reads origin+tnear,
-// direction+time and tfar+mask+id+flags as 16-byte vectors; filled field by
-// field, each of those loads waits for four small stores to retire (no store
-// forwarding), on every ray.
-inline void setRay(RTCRay& ray, const glm::vec3& org, const glm::vec3& dir, float tfar) {
-#if defined(__SSE2__)
-  _mm_store_ps(&ray.org_x, _mm_setr_ps(org.x, org.y, org.z, 0.0f));
-  _mm_store_ps(&ray.dir_x, _mm_setr_ps(dir.x, dir.y, dir.z, 0.0f));
-  _mm_store_ps(&ray.tfar, _mm_castsi128_ps(_mm_setr_epi32(std::bit_cast<int>(tfar), -1, 0, 0)));
-#else
-  ray.org_x = org.x, ray.org_y = org.y, ray.org_z = org.z, ray.tnear = 0.0f;
-  ray.dir_x = dir.x, ray.dir_y = dir.y, ray.dir_z = dir.z, ray.time = 0.0f;
-  ray.tfar = tfar, ray.mask = ~0u, ray.id = 0, ray.flags = 0;
-#endif
-}
-
-struct Tracer {
-  const SceneState& scene;
-  const RenderSettings& settings;
-  std::uint64_t rays = 0;
-
-  bool intersect(const glm::vec3& org, const glm::vec3& dir, RTCRayHit& rh) {
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    setRay(rh.ray, org, dir, kInf);
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene.traversable, &ctx, &rh);
-    ++rays;
-    return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-  }
-
-  bool occluded(const glm::vec3& org, const glm::vec3& dir, float tfar) {
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    RTCRay ray;
-    setRay(ray, org, dir, tfar);
-    rtcOccluded1(scene.traversable, &ctx, &ray);
-    ++rays;
-    return ray.tfar < 0.0f;
-  }
-
-  // What shading needs about a hit. Position and face normal come from the
-  // ray and Embree's geometric normal; the mesh is read only for what it
-  // adds: shading normals, and texture coordinates where a texture is bound.
-  bool surface(const glm::vec3& org, const glm::vec3& dir, const RTCRayHit& rh, SurfaceHit& h) const {
-    // A hit in the merged static scene names the instance by geometry id
-    // (traced directly, or through its instance at top-level id 0).
-    const std::uint32_t top = rh.hit.instID[0];
-    const bool merged = top == RTC_INVALID_GEOMETRY_ID || top == kMergedTopId;
-    const std::uint32_t inst = merged ? rh.hit.geomID : top - 1;
-    if (inst >= scene.views.size() || !scene.views[inst].mesh) return false;
-    const InstanceView& v = scene.views[inst];
-    const MeshData& m = *v.mesh;
-    h.instance = &v;
-    h.prim = rh.hit.primID;
-    h.p = org + rh.ray.tfar * dir;
-    glm::vec3 n(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
-    if (!merged) n = v.faceNormalTransform * n;  // instances report object-space normals
-    const float len = glm::length(n);
-    if (!(len > 0.0f) || !std::isfinite(len)) return false;
-    h.faceNormal = n / len;
-    h.ns = h.faceNormal;
-    const float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1.0f - b1 - b2;
-    h.uv = glm::vec2(b1, b2);
-    const bool textured = (v.material->baseColorTexture || v.material->emissionTexture) && !m.uvs.empty();
-    if (!m.normals.empty() || textured) {
-      const std::uint32_t* idx = &m.indices[3 * std::size_t(h.prim)];
-      if (!m.normals.empty()) {
-        glm::vec3 ns = v.normalTransform * (b0 * m.normals[idx[0]] + b1 * m.normals[idx[1]] + b2 * m.normals[idx[2]]);
-        float l = glm::length(ns);
-        if (l > 0.0f && std::isfinite(l)) h.ns = ns / l;
-      }
-      if (textured) h.uv = b0 * m.uvs[idx[0]] + b1 * m.uvs[idx[1]] + b2 * m.uvs[idx[2]];
-    }
-    h.ng = glm::dot(h.faceNormal, h.ns) < 0.0f ? -h.faceNormal : h.faceNormal;
-    return true;
-  }
-
-  static glm::vec3 baseColour(const ResolvedMaterial& m, const glm::vec2& uv) {
-    glm::vec3 c = m.material.baseColor;
-    if (m.baseColorTexture) c *= glm::vec3(m.baseColorTexture->sampleBilinear(uv));
-    return c;
-  }
-
-  static glm::vec3 emission(const ResolvedMaterial& m, const glm::vec2& uv) {
-    glm::vec3 e = m.material.emission;
-    if (m.emissionTexture) e *= glm::vec3(m.emissionTexture->sampleBilinear(uv));
-    return e;
-  }
-
-  // Solid-angle density with which emitter sampling would have produced
-  // this hit, seen from distance t.
-  float emitterPdf(const SurfaceHit& h, const glm::vec3& dir, float t) const {
-    if (h.instance->emissiveOffset == kNotEmissive || scene.emitters.empty()) return 0.0f;
-    float cosL = glm::dot(h.faceNormal, -dir);
-    if (cosL <= 0.0f) return 0.0f;
-    const std::uint32_t i = h.instance->emissiveOffset + h.prim;
-    return scene.emitters.discreteProbability(i) / scene.emitterTriangles[i].area * t * t / cosL;
-  }
-
-  struct EmitterSample {
-    glm::vec3 wi{0.0f};
-    float dist = 0.0f;
-    glm::vec3 radiance{0.0f};
-    float pdf = 0.0f;
-    glm::vec3 point{0.0f};
-  };
-
-  bool sampleEmitter(const glm::vec3& p, float uSelect, const glm::vec2& u, EmitterSample& out) const {
-    float prob = 0.0f;
-    std::uint32_t i = scene.emitters.sampleDiscrete(uSelect, &prob);
-    auto it = std::upper_bound(scene.emissiveRanges.begin(), scene.emissiveRanges.end(), i,
-                               [](std::uint32_t v, const EmissiveRange& r) { return v < r.offset; });
-    const EmissiveRange& range = *(it - 1);
-    const InstanceView& v = scene.views[range.instance];
-    const EmitterTriangle& tri = scene.emitterTriangles[i];
-    if (!(tri.area > 0.0f)) return false;
-    glm::vec2 b = sampleTriangle(u);
-    out.point = tri.p0 + b.x * tri.e1 + b.y * tri.e2;
-    glm::vec3 d = out.point - p;
-    float dist2 = glm::dot(d, d);
-    if (!(dist2 > 0.0f)) return false;
-    out.dist = std::sqrt(dist2);
-    out.wi = d / out.dist;
-    float cosL = glm::dot(tri.normal, -out.wi);
-    if (cosL <= 0.0f) return false;
-    const MeshData& m = *v.mesh;
-    glm::vec2 uv = b;
-    if (v.material->emissionTexture && !m.uvs.empty()) {
-      const std::uint32_t* idx = &m.indices[3 * std::size_t(i - range.offset)];
-      uv = (1.0f - b.x - b.y) * m.uvs[idx[0]] + b.x * m.uvs[idx[1]] + b.y * m.uvs[idx[2]];
-    }
-    out.radiance = emission(*v.material, uv);
-    out.pdf = prob / tri.area * dist2 / cosL;
-    return out.pdf > 0.0f && std::isfinite(out.pdf);
-  }
-
-  PixelSample tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos, const glm::vec3& forward);
-};
+}  // namespace
 
 PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos,
                               const glm::vec3& forward) {
@@ -206,9 +36,21 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
   const Environment& env = scene.environment;
   const bool envActive = !env.isBlack();
   const LightSampling mode = settings.lightSampling;
-  auto add = [&out](const glm::vec3& c, std::uint32_t scatterEvents) {
+  // Classification relative to the first non-specular vertex, as pixel
+  // filtering needs it: direct is light reaching that vertex straight from
+  // an emitter (or emission seen through perfect specular chains); a path
+  // that passes a specular surface after a non-specular one is a caustic,
+  // the hardest to sample, and is indirect however few vertices it has.
+  std::uint32_t nonSpecular = 0;       // non-specular scattering vertices so far
+  bool specularAfterDiffuse = false;   // a specular vertex followed one of them
+  auto add = [&](const glm::vec3& c, std::uint32_t nonSpecularVertices) {
     if (!finite(c)) return;  // a NaN sample would poison the running mean forever
-    (scatterEvents <= 1 ? out.direct : out.indirect) += c;
+    if (specularAfterDiffuse) {
+      out.indirect += c;
+      out.caustic += c;
+    } else {
+      (nonSpecularVertices <= 1 ? out.direct : out.indirect) += c;
+    }
   };
   // MIS weight for an emitter reached by BSDF sampling.
   auto bsdfHitWeight = [mode](float bsdfPdf, float lightPdf) {
@@ -229,7 +71,7 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
     if (!intersect(org, dir, rh)) {
       if (envActive) {
         float w = (depth == 0 || prevDelta) ? 1.0f : bsdfHitWeight(prevPdf, env.pdf(dir));
-        add(throughput * env.radiance(dir) * w, depth);
+        add(throughput * env.radiance(dir) * w, nonSpecular);
       }
       break;
     }
@@ -245,7 +87,7 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
     }
     if (mat.material.isEmissive() && glm::dot(h.faceNormal, dir) < 0.0f) {
       float w = (depth == 0 || prevDelta) ? 1.0f : bsdfHitWeight(prevPdf, emitterPdf(h, dir, rh.ray.tfar));
-      add(throughput * emission(mat, h.uv) * w, depth);
+      add(throughput * emission(mat, h.uv) * w, nonSpecular);
     }
     if (depth >= settings.maxDepth) break;
 
@@ -344,7 +186,7 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
         }
         glm::vec3 f = evalWorld(wi, nullptr);  // delta lights: no MIS
         if (maxComponent(f) <= 0.0f) continue;
-        if (!occluded(spawn(wi), wi, tfar)) add(throughput * f * li, depth + 1);
+        if (!occluded(spawn(wi), wi, tfar)) add(throughput * f * li, nonSpecular + 1);
       }
       if (sampleEmitters) {
         EmitterSample es;
@@ -355,7 +197,7 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
             glm::vec3 o = spawn(es.wi);
             float dist = glm::length(es.point - o);
             if (!occluded(o, es.wi, dist - rayEpsilon(es.point))) {
-              add(throughput * f * es.radiance * (lightSampleWeight(es.pdf, bsdfPdf) / es.pdf), depth + 1);
+              add(throughput * f * es.radiance * (lightSampleWeight(es.pdf, bsdfPdf) / es.pdf), nonSpecular + 1);
             }
           }
         }
@@ -366,13 +208,15 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
           float bsdfPdf;
           glm::vec3 f = evalWorld(es.direction, &bsdfPdf);
           if (maxComponent(f) > 0.0f && !occluded(spawn(es.direction), es.direction, kInf)) {
-            add(throughput * f * es.radiance * (lightSampleWeight(es.pdf, bsdfPdf) / es.pdf), depth + 1);
+            add(throughput * f * es.radiance * (lightSampleWeight(es.pdf, bsdfPdf) / es.pdf), nonSpecular + 1);
           }
         }
       }
     }
 
     if (!continues) break;
+    if (bs.delta) specularAfterDiffuse = specularAfterDiffuse || nonSpecular > 0;
+    else ++nonSpecular;
     throughput = nextThroughput;
     prevPdf = bs.pdf;
     prevDelta = bs.delta;
@@ -381,8 +225,6 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
   }
   return out;
 }
-
-}  // namespace
 
 Renderer::Renderer(RenderSettings settings) { setSettings(settings); }
 Renderer::~Renderer() = default;
@@ -395,7 +237,9 @@ void Renderer::setSettings(const RenderSettings& settings) {
   settings_ = settings;
 }
 
-PassResult Renderer::renderPass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb) {
+template <class PerPixel>
+PassResult Renderer::runTiles(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
+                              PerPixel&& perPixel) {
   camera.validate();
   region.validate();
   if (fb.width() != region.regionWidth() || fb.height() != region.regionHeight()) {
@@ -419,9 +263,6 @@ PassResult Renderer::renderPass(Scene& scene, const Camera& camera, const Region
   const std::uint32_t rw = region.regionWidth(), rh = region.regionHeight();
   const std::uint32_t tilesX = (rw + ts - 1) / ts, tilesY = (rh + ts - 1) / ts;
   std::vector<std::uint64_t> tileRays(std::size_t(tilesX) * tilesY, 0);
-  const glm::vec3 camPos(camera.cameraToWorld[3]);
-  const glm::vec3 forward = glm::normalize(-glm::vec3(camera.cameraToWorld[2]));
-  const glm::mat3 camRot(camera.cameraToWorld);
   std::atomic<bool> cancelled{false};
 
   auto renderTile = [&](std::size_t tile) {
@@ -434,20 +275,7 @@ PassResult Renderer::renderPass(Scene& scene, const Camera& camera, const Region
         cancelled.store(true, std::memory_order_relaxed);
         break;
       }
-      std::uint32_t py = region.y0 + y;
-      for (std::uint32_t x = xb; x < xe; ++x) {
-        std::uint32_t px = region.x0 + x;
-        const std::uint64_t pixelKey = Rng::pixelKey(settings.seed, px, py);
-        const std::uint32_t firstSample = fb.sampleCount(x, y);
-        for (std::uint32_t s = 0; s < settings.samplesPerPass; ++s) {
-          Rng rng(pixelKey, firstSample + s);
-          glm::vec2 j = rng.uniform2();
-          float cx = camera.left + (camera.right - camera.left) * ((float(px) + j.x) / float(region.width));
-          float cy = camera.top - (camera.top - camera.bottom) * ((float(py) + j.y) / float(region.height));
-          glm::vec3 dir = glm::normalize(camRot * glm::vec3(cx, cy, -camera.near));
-          fb.accumulate(x, y, tracer.tracePath(rng, camPos, dir, camPos, forward));
-        }
-      }
+      for (std::uint32_t x = xb; x < xe; ++x) perPixel(tracer, x, y, region.x0 + x, region.y0 + y);
     }
     tileRays[tile] = tracer.rays;
   };
@@ -466,6 +294,56 @@ PassResult Renderer::renderPass(Scene& scene, const Camera& camera, const Region
   result.completed = !cancelled.load();
   if (!result.completed) cancel_.store(false, std::memory_order_relaxed);
   return result;
+}
+
+namespace {
+
+// A camera ray through a jittered point of full-image pixel (px, py).
+glm::vec3 cameraRay(const Camera& camera, const glm::mat3& camRot, const Region& region, std::uint32_t px,
+                    std::uint32_t py, const glm::vec2& jitter) {
+  float cx = camera.left + (camera.right - camera.left) * ((float(px) + jitter.x) / float(region.width));
+  float cy = camera.top - (camera.top - camera.bottom) * ((float(py) + jitter.y) / float(region.height));
+  return glm::normalize(camRot * glm::vec3(cx, cy, -camera.near));
+}
+
+// The flash samples' random stream, apart from the path samples'.
+constexpr std::uint64_t kFlashStream = 0x6A09E667F3BCC909ull;
+
+}  // namespace
+
+PassResult Renderer::renderPass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb) {
+  const glm::vec3 camPos(camera.cameraToWorld[3]);
+  const glm::vec3 forward = glm::normalize(-glm::vec3(camera.cameraToWorld[2]));
+  const glm::mat3 camRot(camera.cameraToWorld);
+  const std::uint64_t seed = settings_.seed;
+  const std::uint32_t samples = settings_.samplesPerPass;
+  return runTiles(scene, camera, region, fb,
+                  [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
+                    const std::uint64_t pixelKey = Rng::pixelKey(seed, px, py);
+                    const std::uint32_t firstSample = fb.sampleCount(x, y);
+                    for (std::uint32_t s = 0; s < samples; ++s) {
+                      Rng rng(pixelKey, firstSample + s);
+                      glm::vec3 dir = cameraRay(camera, camRot, region, px, py, rng.uniform2());
+                      fb.accumulate(x, y, tracer.tracePath(rng, camPos, dir, camPos, forward));
+                    }
+                  });
+}
+
+PassResult Renderer::renderFlashPass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
+                                     std::uint32_t samples) {
+  const glm::vec3 camPos(camera.cameraToWorld[3]);
+  const glm::mat3 camRot(camera.cameraToWorld);
+  const std::uint64_t seed = settings_.seed ^ kFlashStream;
+  return runTiles(scene, camera, region, fb,
+                  [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
+                    const std::uint64_t pixelKey = Rng::pixelKey(seed, px, py);
+                    const std::uint32_t first = fb.rangeSamples(x, y);
+                    for (std::uint32_t s = 0; s < samples; ++s) {
+                      Rng rng(pixelKey, first + s);
+                      glm::vec3 dir = cameraRay(camera, camRot, region, px, py, rng.uniform2());
+                      fb.accumulateRange(x, y, tracer.traceFlash(camPos, dir, camPos));
+                    }
+                  });
 }
 
 }  // namespace tsr::embree

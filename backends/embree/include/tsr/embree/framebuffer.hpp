@@ -13,14 +13,19 @@
 namespace tsr::embree {
 
 // Radiance channels that keep a running mean and variance. Colour is Direct +
-// Indirect; Direct holds paths with at most one scattering event (emission
-// seen directly and light reaching the first hit), Indirect the rest.
-enum class Channel { Colour = 0, Direct = 1, Indirect = 2 };
+// Indirect. Direct is emission seen directly or through perfect specular
+// surfaces, and light that reaches the first non-specular surface straight
+// from an emitter; Indirect is the rest. Caustic is the part of Indirect
+// that passed a perfect specular surface after a non-specular one (LS+D..E
+// read from the light): the paths that make fireflies.
+enum class Channel { Colour = 0, Direct = 1, Indirect = 2, Caustic = 3 };
+inline constexpr int kChannels = 4;
 
 // What one camera sample produced; used by the renderer to accumulate.
 struct PixelSample {
   glm::vec3 direct{0.0f};
   glm::vec3 indirect{0.0f};
+  glm::vec3 caustic{0.0f};  // part of indirect
   bool hit = false;
   float depth = 0.0f;  // camera-space depth of the first hit, if hit
   glm::vec3 albedo{0.0f};
@@ -38,6 +43,8 @@ struct PixelSample {
 //    space) of the nearest first hit over the samples; +infinity if none hit
 //  - albedo, normal: mean base colour and world shading normal (facing the
 //    camera) at the first hit; zero on misses
+//  - range colour: mean "virtual flash" colour (Renderer::renderFlashPass),
+//    the edge-stopping image of pixel filtering; zero until a flash pass ran
 class FrameBuffer {
  public:
   FrameBuffer(std::uint32_t width, std::uint32_t height);
@@ -55,6 +62,9 @@ class FrameBuffer {
   float depth(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].depth; }
   glm::vec3 albedo(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].albedo; }
   glm::vec3 normal(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].normal; }
+  glm::vec3 rangeColour(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].range; }
+  std::uint32_t rangeSamples(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].rangeCount; }
+  void accumulateRange(std::uint32_t x, std::uint32_t y, const glm::vec3& flash);
 
   // Whole images, row-major, for hand-off to filters and compositors.
   std::vector<glm::vec4> colourImage() const;
@@ -81,10 +91,12 @@ class FrameBuffer {
     std::uint32_t count = 0;
     float alpha = 0.0f;
     float depth;
-    glm::vec3 mean[3]{glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
-    glm::vec3 m2[3]{glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
+    glm::vec3 mean[kChannels]{glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
+    glm::vec3 m2[kChannels]{glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
     glm::vec3 albedo{0.0f};
     glm::vec3 normal{0.0f};
+    std::uint32_t rangeCount = 0;
+    glm::vec3 range{0.0f};
   };
 
   std::uint32_t width_;

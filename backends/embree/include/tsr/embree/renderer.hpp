@@ -46,6 +46,14 @@ class Renderer {
   // holds, then renders one pass. fb must be region-sized.
   PassResult renderPass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb);
 
+  // Adds `samples` jittered "virtual flash" samples per pixel to fb's range
+  // colour (pixel filtering's edge-stopping image, Schwenk 3.3.3): the
+  // reflectivity of the first non-specular surface, perfect specular
+  // surfaces followed Whitted-style, lit by ambient light and an unoccluded
+  // head light. Restarts fb as renderPass does when what it holds is stale.
+  PassResult renderFlashPass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
+                             std::uint32_t samples = 4);
+
   // Thread-safe. Stops the running pass at the next tile row, or the next
   // pass if none runs; that pass returns completed = false.
   void requestCancel() { cancel_.store(true, std::memory_order_relaxed); }
@@ -54,6 +62,11 @@ class Renderer {
 
  private:
   struct Arena;
+  // Validates, commits, restarts fb if stale, then calls
+  // perPixel(tracer, x, y, fullImageX, fullImageY) over parallel tiles.
+  template <class PerPixel>
+  PassResult runTiles(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
+                      PerPixel&& perPixel);
   RenderSettings settings_;
   std::unique_ptr<Arena> arena_;
   std::atomic<bool> cancel_{false};

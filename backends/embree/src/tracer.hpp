@@ -1,0 +1,191 @@
+#pragma once
+// The ray-casting core shared by the renderer's passes: rays filled for
+// Embree, hit records turned into surface points, emitter sampling. The
+// path tracer (renderer.cpp) and the range-buffer pass (flash_pass.cpp)
+// build on it. Private to the back-end.
+#include "bsdf.hpp"
+#include "scene_state.hpp"
+#include "tsr/embree/framebuffer.hpp"
+#include "tsr/embree/renderer.hpp"
+#include "tsr/embree/rng.hpp"
+#include "tsr/embree/sampling.hpp"
+
+#include <glm/geometric.hpp>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+
+namespace tsr::embree {
+
+inline constexpr float kInf = std::numeric_limits<float>::infinity();
+
+inline bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// Offset that escapes the surface's own float error at position p.
+inline float rayEpsilon(const glm::vec3& p) {
+  return 1e-4f * std::max(1.0f, std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))));
+}
+
+struct SurfaceHit {
+  glm::vec3 p{0.0f};
+  glm::vec3 faceNormal{0.0f};  // from the winding, world space
+  glm::vec3 ng{0.0f};          // geometric normal on the side of ns
+  glm::vec3 ns{0.0f};
+  glm::vec2 uv{0.0f};  // texture coordinates where a texture is bound, else barycentrics
+  const InstanceView* instance = nullptr;
+  std::uint32_t prim = 0;
+};
+
+// Fills a ray with three 16-byte stores. Embree reads origin+tnear,
+// direction+time and tfar+mask+id+flags as 16-byte vectors; filled field by
+// field, each of those loads waits for four small stores to retire (no store
+// forwarding), on every ray.
+inline void setRay(RTCRay& ray, const glm::vec3& org, const glm::vec3& dir, float tfar) {
+#if defined(__SSE2__)
+  _mm_store_ps(&ray.org_x, _mm_setr_ps(org.x, org.y, org.z, 0.0f));
+  _mm_store_ps(&ray.dir_x, _mm_setr_ps(dir.x, dir.y, dir.z, 0.0f));
+  _mm_store_ps(&ray.tfar, _mm_castsi128_ps(_mm_setr_epi32(std::bit_cast<int>(tfar), -1, 0, 0)));
+#else
+  ray.org_x = org.x, ray.org_y = org.y, ray.org_z = org.z, ray.tnear = 0.0f;
+  ray.dir_x = dir.x, ray.dir_y = dir.y, ray.dir_z = dir.z, ray.time = 0.0f;
+  ray.tfar = tfar, ray.mask = ~0u, ray.id = 0, ray.flags = 0;
+#endif
+}
+
+struct Tracer {
+  const SceneState& scene;
+  const RenderSettings& settings;
+  std::uint64_t rays = 0;
+
+  bool intersect(const glm::vec3& org, const glm::vec3& dir, RTCRayHit& rh) {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    setRay(rh.ray, org, dir, kInf);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene.traversable, &ctx, &rh);
+    ++rays;
+    return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+  }
+
+  bool occluded(const glm::vec3& org, const glm::vec3& dir, float tfar) {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay ray;
+    setRay(ray, org, dir, tfar);
+    rtcOccluded1(scene.traversable, &ctx, &ray);
+    ++rays;
+    return ray.tfar < 0.0f;
+  }
+
+  // What shading needs about a hit. Position and face normal come from the
+  // ray and Embree's geometric normal; the mesh is read only for what it
+  // adds: shading normals, and texture coordinates where a texture is bound.
+  bool surface(const glm::vec3& org, const glm::vec3& dir, const RTCRayHit& rh, SurfaceHit& h) const {
+    // A hit in the merged static scene names the instance by geometry id
+    // (traced directly, or through its instance at top-level id 0).
+    const std::uint32_t top = rh.hit.instID[0];
+    const bool merged = top == RTC_INVALID_GEOMETRY_ID || top == kMergedTopId;
+    const std::uint32_t inst = merged ? rh.hit.geomID : top - 1;
+    if (inst >= scene.views.size() || !scene.views[inst].mesh) return false;
+    const InstanceView& v = scene.views[inst];
+    const MeshData& m = *v.mesh;
+    h.instance = &v;
+    h.prim = rh.hit.primID;
+    h.p = org + rh.ray.tfar * dir;
+    glm::vec3 n(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+    if (!merged) n = v.faceNormalTransform * n;  // instances report object-space normals
+    const float len = glm::length(n);
+    if (!(len > 0.0f) || !std::isfinite(len)) return false;
+    h.faceNormal = n / len;
+    h.ns = h.faceNormal;
+    const float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1.0f - b1 - b2;
+    h.uv = glm::vec2(b1, b2);
+    const bool textured = (v.material->baseColorTexture || v.material->emissionTexture) && !m.uvs.empty();
+    if (!m.normals.empty() || textured) {
+      const std::uint32_t* idx = &m.indices[3 * std::size_t(h.prim)];
+      if (!m.normals.empty()) {
+        glm::vec3 ns = v.normalTransform * (b0 * m.normals[idx[0]] + b1 * m.normals[idx[1]] + b2 * m.normals[idx[2]]);
+        float l = glm::length(ns);
+        if (l > 0.0f && std::isfinite(l)) h.ns = ns / l;
+      }
+      if (textured) h.uv = b0 * m.uvs[idx[0]] + b1 * m.uvs[idx[1]] + b2 * m.uvs[idx[2]];
+    }
+    h.ng = glm::dot(h.faceNormal, h.ns) < 0.0f ? -h.faceNormal : h.faceNormal;
+    return true;
+  }
+
+  static glm::vec3 baseColour(const ResolvedMaterial& m, const glm::vec2& uv) {
+    glm::vec3 c = m.material.baseColor;
+    if (m.baseColorTexture) c *= glm::vec3(m.baseColorTexture->sampleBilinear(uv));
+    return c;
+  }
+
+  static glm::vec3 emission(const ResolvedMaterial& m, const glm::vec2& uv) {
+    glm::vec3 e = m.material.emission;
+    if (m.emissionTexture) e *= glm::vec3(m.emissionTexture->sampleBilinear(uv));
+    return e;
+  }
+
+  // Solid-angle density with which emitter sampling would have produced
+  // this hit, seen from distance t.
+  float emitterPdf(const SurfaceHit& h, const glm::vec3& dir, float t) const {
+    if (h.instance->emissiveOffset == kNotEmissive || scene.emitters.empty()) return 0.0f;
+    float cosL = glm::dot(h.faceNormal, -dir);
+    if (cosL <= 0.0f) return 0.0f;
+    const std::uint32_t i = h.instance->emissiveOffset + h.prim;
+    return scene.emitters.discreteProbability(i) / scene.emitterTriangles[i].area * t * t / cosL;
+  }
+
+  struct EmitterSample {
+    glm::vec3 wi{0.0f};
+    float dist = 0.0f;
+    glm::vec3 radiance{0.0f};
+    float pdf = 0.0f;
+    glm::vec3 point{0.0f};
+  };
+
+  bool sampleEmitter(const glm::vec3& p, float uSelect, const glm::vec2& u, EmitterSample& out) const {
+    float prob = 0.0f;
+    std::uint32_t i = scene.emitters.sampleDiscrete(uSelect, &prob);
+    auto it = std::upper_bound(scene.emissiveRanges.begin(), scene.emissiveRanges.end(), i,
+                               [](std::uint32_t v, const EmissiveRange& r) { return v < r.offset; });
+    const EmissiveRange& range = *(it - 1);
+    const InstanceView& v = scene.views[range.instance];
+    const EmitterTriangle& tri = scene.emitterTriangles[i];
+    if (!(tri.area > 0.0f)) return false;
+    glm::vec2 b = sampleTriangle(u);
+    out.point = tri.p0 + b.x * tri.e1 + b.y * tri.e2;
+    glm::vec3 d = out.point - p;
+    float dist2 = glm::dot(d, d);
+    if (!(dist2 > 0.0f)) return false;
+    out.dist = std::sqrt(dist2);
+    out.wi = d / out.dist;
+    float cosL = glm::dot(tri.normal, -out.wi);
+    if (cosL <= 0.0f) return false;
+    const MeshData& m = *v.mesh;
+    glm::vec2 uv = b;
+    if (v.material->emissionTexture && !m.uvs.empty()) {
+      const std::uint32_t* idx = &m.indices[3 * std::size_t(i - range.offset)];
+      uv = (1.0f - b.x - b.y) * m.uvs[idx[0]] + b.x * m.uvs[idx[1]] + b.y * m.uvs[idx[2]];
+    }
+    out.radiance = emission(*v.material, uv);
+    out.pdf = prob / tri.area * dist2 / cosL;
+    return out.pdf > 0.0f && std::isfinite(out.pdf);
+  }
+
+  PixelSample tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos, const glm::vec3& forward);
+  // The "virtual flash" colour of one camera ray (Schwenk 3.3.3): the
+  // reflectivity of the first non-specular surface, perfect specular
+  // surfaces followed Whitted-style, lit by ambient light plus an
+  // unoccluded head light at the eye.
+  glm::vec3 traceFlash(glm::vec3 org, glm::vec3 dir, const glm::vec3& eye);
+};
+
+}  // namespace tsr::embree
