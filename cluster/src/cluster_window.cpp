@@ -51,6 +51,10 @@ struct ClusterWindow::Impl {
   std::uint64_t frame = 0;
   float eyeSeparation, zeroParallax;
   sg::ContainerId root = sg::kNoContainer, background = sg::kNoContainer;
+  // The local viewport that resolves assembled frames, and what it needs.
+  med::ContextPool resolverContexts;
+  std::unique_ptr<med::Viewport> resolver;
+  std::vector<std::string> resolveInputs;
 
   Impl(ClusterConfig c, ClientOptions o) : config(std::move(c)), options(std::move(o)) {
     eyeSeparation = config.stereo.eyeSeparation.value_or(0.065f);
@@ -250,6 +254,33 @@ struct ClusterWindow::Impl {
     return items;
   }
 
+  // A resolver exists when every node runs the same back-end with the same
+  // parameters (their frames are then one image) and that back-end has
+  // whole-frame steps; made once, on the first frame.
+  void makeResolver() {
+    if (resolver || !options.registry || nodes.empty()) return;
+    const NodeConfig& first = nodes.front().config;
+    for (const auto& n : nodes)
+      if (n.config.backend != first.backend || !(n.config.parameters == first.parameters)) return;
+    if (!options.registry->has(first.backend)) return;
+    resolver = options.registry->create({first.backend, root, background, first.parameters, true}, resolverContexts);
+    resolveInputs = resolver->resolveInputs();
+    if (resolveInputs.empty()) resolver.reset();
+  }
+
+  // What each work item asks the nodes for.
+  void askOutputs(std::vector<WorkItem>& items, std::vector<med::FrameBuffer>& targets) const {
+    std::vector<std::string> outputs = options.outputs;
+    for (const auto& name : resolveInputs)
+      if (std::find(outputs.begin(), outputs.end(), name) == outputs.end()) outputs.push_back(name);
+    for (auto& it : items) {
+      it.outputs = outputs;
+      it.resolve = resolver == nullptr;
+    }
+    for (auto& t : targets)
+      for (const auto& name : outputs) t.outputs[name].assign(t.colour.size(), glm::vec4(0.0f));
+  }
+
   Frame viewportsFor(const Node& n) const {
     SetViewports sv;
     std::uint32_t count = config.mode == ClusterMode::Stereo ? 2 : 1;
@@ -351,6 +382,8 @@ ClusterFrame ClusterWindow::render(const med::View& view) {
   result.frame = ++s.frame;
   std::vector<med::FrameBuffer> targets;
   std::vector<WorkItem> items = s.plan(view, targets, live);
+  s.makeResolver();
+  s.askOutputs(items, targets);
   FrameRound round(result.frame, std::move(items), targets, s.config.compression);
   s.round = &round;
   s.reassigned = 0;
@@ -389,6 +422,14 @@ ClusterFrame ClusterWindow::render(const med::View& view) {
   for (const auto& [node, t] : round.tileSeconds()) result.tileSeconds[node] = t;
   for (const auto& it : round.items()) result.offlineTiles += it.offline ? 1 : 0;
   result.reassignedItems = s.reassigned;
+  if (s.resolver) {
+    for (auto& t : targets) {
+      s.resolver->resolve(t);
+      for (const auto& name : s.resolveInputs)
+        if (std::find(s.options.outputs.begin(), s.options.outputs.end(), name) == s.options.outputs.end())
+          t.outputs.erase(name);
+    }
+  }
   if (s.config.mode == ClusterMode::Stereo) {
     result.left = std::move(targets[0]);
     result.right = std::move(targets[1]);

@@ -1,6 +1,9 @@
 #include "frame_round.hpp"
 
+#include <algorithm>
+
 #include "tsr/cluster/pixel_codec.hpp"
+#include "tsr/cluster/protocol_error.hpp"
 
 namespace tsr::cluster {
 
@@ -14,10 +17,11 @@ Frame FrameRound::request(const std::vector<std::size_t>& items) const {
   r.compression = compression_;
   for (std::size_t i : items) {
     const WorkItem& it = items_.at(i);
-    auto job = std::find_if(r.jobs.begin(), r.jobs.end(),
-                            [&](const RenderJob& j) { return j.viewport == it.viewport && j.view == it.view; });
+    auto job = std::find_if(r.jobs.begin(), r.jobs.end(), [&](const RenderJob& j) {
+      return j.viewport == it.viewport && j.view == it.view && j.outputs == it.outputs && j.resolve == it.resolve;
+    });
     if (job == r.jobs.end()) {
-      r.jobs.push_back({it.viewport, it.view, {}});
+      r.jobs.push_back({it.viewport, it.view, {}, it.outputs, it.resolve});
       job = std::prev(r.jobs.end());
     }
     job->rects.push_back(it.rect);
@@ -43,13 +47,21 @@ const WorkItem* FrameRound::onTile(std::size_t node, const RenderTile& tile) {
   if (tile.frame != frame_) return nullptr;
   for (auto& it : items_) {
     if (it.done || it.offline || it.node != node || it.viewport != tile.viewport || !(it.rect == tile.rect)) continue;
-    med::FrameBuffer px = decodePixels(tile.rect.width(), tile.rect.height(), tile.compression, tile.pixels);
+    if (tile.outputs != it.outputs)
+      throw ProtocolError(ProtocolError::Kind::Malformed, "RenderTile outputs differ from the ones asked for");
+    med::FrameBuffer px = decodePixels(tile.rect.width(), tile.rect.height(), tile.compression, tile.pixels, tile.outputs);
     med::FrameBuffer& out = targets_.at(it.target);
-    for (std::uint32_t y = 0; y < px.height; ++y)
-      for (std::uint32_t x = 0; x < px.width; ++x) {
-        out.colour[out.index(it.rect.x0 + x, it.rect.y0 + y)] = px.colour[px.index(x, y)];
-        out.depth[out.index(it.rect.x0 + x, it.rect.y0 + y)] = px.depth[px.index(x, y)];
-      }
+    auto place = [&](auto& to, const auto& from) {
+      for (std::uint32_t y = 0; y < px.height; ++y)
+        std::copy_n(from.begin() + px.index(0, y), px.width, to.begin() + out.index(it.rect.x0, it.rect.y0 + y));
+    };
+    place(out.colour, px.colour);
+    place(out.depth, px.depth);
+    for (const auto& name : it.outputs) {
+      auto& image = out.outputs[name];
+      if (image.empty()) image.assign(out.colour.size(), glm::vec4(0.0f));
+      place(image, px.outputs[name]);
+    }
     it.done = true;
     tileSeconds_[node] += tile.seconds;
     return &it;

@@ -20,6 +20,8 @@ struct WorkItem {
   std::size_t node = 0;
   bool done = false;
   bool offline = false;
+  std::vector<std::string> outputs = {};  // named outputs asked for with the pixels
+  bool resolve = true;                    // false: the client resolves the assembled frame
 };
 
 class FrameRound {

@@ -1,5 +1,6 @@
 #include "tsr/cluster/messages.hpp"
 
+#include <algorithm>
 #include <exception>
 #include <stdexcept>
 
@@ -116,6 +117,28 @@ Compression readCompression(sg::ByteReader& r) {
   return static_cast<Compression>(c);
 }
 
+bool readBool(sg::ByteReader& r, const char* what) {
+  std::uint8_t b = r.u8();
+  if (b > 1) r.fail(std::string(what) + " not 0 or 1");
+  return b == 1;
+}
+
+void writeOutputNames(sg::ByteWriter& w, const std::vector<std::string>& names) {
+  w.varint(names.size());
+  for (const auto& n : names) w.string(n);
+}
+
+// Distinct, non-empty names: each is one image in the tile's pixels.
+std::vector<std::string> readOutputNames(sg::ByteReader& r) {
+  std::vector<std::string> names(r.count(kMaxOutputs, 2, "output name"));
+  for (auto& n : names) {
+    n = r.string(kMaxNameBytes);
+    if (n.empty()) r.fail("empty output name");
+    if (std::count(names.data(), &n, n) != 0) r.fail("output '" + n + "' named twice");
+  }
+  return names;
+}
+
 double readSeconds(sg::ByteReader& r) {
   std::size_t at = r.offset();
   double s = r.f64();
@@ -214,6 +237,8 @@ void RenderRequest::write(sg::ByteWriter& w) const {
     writeView(w, j.view);
     w.varint(j.rects.size());
     for (const auto& rect : j.rects) writeRect(w, rect);
+    writeOutputNames(w, j.outputs);
+    w.u8(j.resolve ? 1 : 0);
   }
 }
 RenderRequest RenderRequest::read(sg::ByteReader& r) {
@@ -227,6 +252,8 @@ RenderRequest RenderRequest::read(sg::ByteReader& r) {
     j.view = readView(r);
     std::size_t rects = r.count(kMaxRectsPerJob, 4, "rectangle");
     for (std::size_t k = 0; k < rects; ++k) j.rects.push_back(readRect(r, j.view.width, j.view.height));
+    j.outputs = readOutputNames(r);
+    j.resolve = readBool(r, "resolve flag");
     m.jobs.push_back(std::move(j));
   }
   return m;
@@ -237,6 +264,7 @@ void RenderTile::write(sg::ByteWriter& w) const {
   w.varint(viewport);
   writeRect(w, rect);
   w.f64(seconds);
+  writeOutputNames(w, outputs);
   w.u8(static_cast<std::uint8_t>(compression));
   w.raw(pixels.data(), pixels.size());
 }
@@ -246,6 +274,7 @@ RenderTile RenderTile::read(sg::ByteReader& r) {
   m.viewport = readU32Varint(r, kMaxViewports * 1024, "viewport id");
   m.rect = readRect(r, kMaxImageSide, kMaxImageSide);
   m.seconds = readSeconds(r);
+  m.outputs = readOutputNames(r);
   m.compression = readCompression(r);
   auto rest = r.take(r.remaining(), "pixels");
   m.pixels.assign(rest.begin(), rest.end());  // sizes are checked by decodePixels

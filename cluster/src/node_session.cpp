@@ -191,6 +191,8 @@ void NodeSession::render(State& st, const NodeContext& ctx, const RenderRequest&
       med::FrameBuffer fb;
       med::RenderControl control;
       control.cancel = &st.cancelled;
+      control.outputs = job.outputs;
+      control.resolve = job.resolve;
       auto t0 = Clock::now();
       vp->render(*st.replica, job.view.cropped(rect), fb, control);
       RenderTile tile;
@@ -198,7 +200,8 @@ void NodeSession::render(State& st, const NodeContext& ctx, const RenderRequest&
       tile.viewport = job.viewport;
       tile.rect = rect;
       tile.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-      EncodedPixels px = encodePixels(fb, request.compression);
+      tile.outputs = job.outputs;
+      EncodedPixels px = encodePixels(fb, request.compression, job.outputs);
       if (!ctx.options.presentDirectory.empty()) st.backBuffer.emplace_back(rect, fb);
       tile.compression = px.compression;
       tile.pixels = std::move(px.bytes);

@@ -1,6 +1,7 @@
 #include "tsr/cluster/pixel_codec.hpp"
 
 #include <cstring>
+#include <stdexcept>
 #include <string>
 
 #include <lz4.h>
@@ -12,11 +13,19 @@ namespace tsr::cluster {
 
 namespace {
 
-std::vector<std::uint8_t> raw(const med::FrameBuffer& fb) {
+std::vector<std::uint8_t> raw(const med::FrameBuffer& fb, const std::vector<std::string>& outputs) {
   std::size_t n = std::size_t{fb.width} * fb.height;
-  std::vector<std::uint8_t> out(n * kBytesPerPixel);
+  std::vector<std::uint8_t> out(n * (kBytesPerPixel + outputs.size() * kBytesPerOutputPixel));
   std::memcpy(out.data(), fb.colour.data(), n * 16);
   std::memcpy(out.data() + n * 16, fb.depth.data(), n * 4);
+  std::size_t at = n * kBytesPerPixel;
+  for (const auto& name : outputs) {
+    auto it = fb.outputs.find(name);
+    if (it == fb.outputs.end() || it->second.size() != n)
+      throw std::invalid_argument("the back-end did not fill output '" + name + "'");
+    std::memcpy(out.data() + at, it->second.data(), n * kBytesPerOutputPixel);
+    at += n * kBytesPerOutputPixel;
+  }
   return out;
 }
 
@@ -26,8 +35,8 @@ std::vector<std::uint8_t> raw(const med::FrameBuffer& fb) {
 
 }  // namespace
 
-EncodedPixels encodePixels(const med::FrameBuffer& fb, Compression preferred) {
-  std::vector<std::uint8_t> plain = raw(fb);
+EncodedPixels encodePixels(const med::FrameBuffer& fb, Compression preferred, const std::vector<std::string>& outputs) {
+  std::vector<std::uint8_t> plain = raw(fb, outputs);
   EncodedPixels out;
   if (preferred == Compression::Lz4 && plain.size() <= LZ4_MAX_INPUT_SIZE) {
     std::vector<std::uint8_t> packed(LZ4_compressBound(static_cast<int>(plain.size())));
@@ -50,10 +59,13 @@ EncodedPixels encodePixels(const med::FrameBuffer& fb, Compression preferred) {
 }
 
 med::FrameBuffer decodePixels(std::uint32_t width, std::uint32_t height, Compression compression,
-                              const std::vector<std::uint8_t>& bytes) {
+                              const std::vector<std::uint8_t>& bytes, const std::vector<std::string>& outputs) {
   std::uint64_t pixels = std::uint64_t{width} * height;
   if (pixels == 0 || pixels > kMaxTilePixels) malformed("tile of " + std::to_string(pixels) + " pixels");
-  std::size_t expected = static_cast<std::size_t>(pixels) * kBytesPerPixel;
+  if (outputs.size() > kMaxOutputs) malformed(std::to_string(outputs.size()) + " named outputs");
+  std::size_t expected = static_cast<std::size_t>(pixels) * (kBytesPerPixel + outputs.size() * kBytesPerOutputPixel);
+  // As large as a RenderTile may be: a tile's header cannot make us allocate more.
+  if (expected > kMaxDecodedTileBytes) malformed(std::to_string(expected) + " bytes of pixels, more than a tile may hold");
   std::vector<std::uint8_t> plain;
   const std::vector<std::uint8_t>* src = &bytes;
   switch (compression) {
@@ -82,6 +94,13 @@ med::FrameBuffer decodePixels(std::uint32_t width, std::uint32_t height, Compres
   med::FrameBuffer fb(width, height);
   std::memcpy(static_cast<void*>(fb.colour.data()), src->data(), static_cast<std::size_t>(pixels) * 16);
   std::memcpy(fb.depth.data(), src->data() + pixels * 16, static_cast<std::size_t>(pixels) * 4);
+  std::size_t at = static_cast<std::size_t>(pixels) * kBytesPerPixel;
+  for (const auto& name : outputs) {
+    auto& image = fb.outputs[name];
+    image.resize(static_cast<std::size_t>(pixels));
+    std::memcpy(static_cast<void*>(image.data()), src->data() + at, image.size() * kBytesPerOutputPixel);
+    at += image.size() * kBytesPerOutputPixel;
+  }
   return fb;
 }
 

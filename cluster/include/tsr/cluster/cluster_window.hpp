@@ -15,6 +15,7 @@
 #include "tsr/cluster/cluster_config.hpp"
 #include "tsr/med/frame_buffer.hpp"
 #include "tsr/med/view.hpp"
+#include "tsr/med/viewport_registry.hpp"
 #include "tsr/sg/scene.hpp"
 
 namespace tsr::cluster {
@@ -27,6 +28,12 @@ class ClusterError : public std::runtime_error {
 struct ClientOptions {
   std::string token;  // empty only for nodes started without a token
   std::string name = "tessera-client";
+  // Named outputs (AOVs) to assemble besides colour and depth.
+  std::vector<std::string> outputs;
+  // Where the nodes' back-end has whole-frame image steps (pixel filtering),
+  // a viewport of it made from this registry resolves the assembled frame
+  // here, so tiles show no seams. Null: every node resolves its own tiles.
+  const med::ViewportRegistry* registry = nullptr;
 };
 
 enum class NodeState { Offline, Connecting, Joined, Synced };

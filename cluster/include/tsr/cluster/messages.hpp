@@ -39,6 +39,7 @@ inline constexpr std::size_t kMaxViewports = 64;
 inline constexpr std::size_t kMaxParameters = 256;
 inline constexpr std::size_t kMaxJobs = 64;
 inline constexpr std::size_t kMaxRectsPerJob = 1 << 14;
+inline constexpr std::size_t kMaxOutputs = 32;  // named outputs per job
 inline constexpr std::uint32_t kMaxImageSide = 1 << 15;
 inline constexpr std::uint64_t kMaxRectPixels = std::uint64_t{1} << 24;  // one tile's result must fit a RenderTile
 
@@ -111,6 +112,8 @@ struct RenderJob {
   std::uint32_t viewport = 0;
   med::View view;                      // the full image; region unused
   std::vector<med::PixelRect> rects;   // the pixels to render, each a crop of view
+  std::vector<std::string> outputs = {};  // named outputs to return with each tile, in this order
+  bool resolve = true;                // false: the client resolves the assembled frame (med::Viewport::resolve)
   bool operator==(const RenderJob&) const = default;
 };
 
@@ -123,8 +126,9 @@ struct RenderRequest {
   static RenderRequest read(sg::ByteReader& r);
 };
 
-// One rendered rectangle. The pixels (RGBA float then depth float, row by
-// row) follow the fields, compressed as `compression` says.
+// One rendered rectangle. The pixels (RGBA float, then depth float, then
+// RGBA float per named output in `outputs` order, each row by row) follow
+// the fields, compressed as `compression` says.
 struct RenderTile {
   static constexpr MessageType kType = MessageType::RenderTile;
   std::uint64_t frame = 0;
@@ -133,6 +137,7 @@ struct RenderTile {
   double seconds = 0;
   Compression compression = Compression::None;
   std::vector<std::uint8_t> pixels;
+  std::vector<std::string> outputs = {};
   void write(sg::ByteWriter& w) const;
   static RenderTile read(sg::ByteReader& r);
 };

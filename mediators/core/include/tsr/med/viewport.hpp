@@ -31,6 +31,10 @@ struct RenderControl {
   // back-end may then skip filling the others. Unset: all it offers.
   // Colour and depth are always filled.
   std::optional<std::vector<std::string>> outputs;
+  // False where the frame is assembled from regions rendered apart (cluster
+  // tiles): the viewport then leaves its whole-frame image steps undone and
+  // returns their inputs (resolveInputs()) as named outputs instead.
+  bool resolve = true;
 
   bool wants(const std::string& output) const {
     return !outputs || std::find(outputs->begin(), outputs->end(), output) != outputs->end();
@@ -67,6 +71,15 @@ class Viewport {
                              const RenderControl& control = {}) = 0;
   // The named outputs render() can fill, besides colour and depth.
   virtual std::vector<std::string> outputNames() const { return {}; }
+
+  // Image-space steps that need the whole frame at once (pixel filtering
+  // gathers from neighbours up to many pixels away). Whoever assembles a
+  // frame from regions rendered elsewhere asks render() for these outputs
+  // with RenderControl::resolve false, then calls resolve() on the
+  // assembled frame: the result equals a whole-frame render's. Empty: the
+  // back-end's regions are final as rendered.
+  virtual std::vector<std::string> resolveInputs() const { return {}; }
+  virtual void resolve(FrameBuffer& /*frame*/) {}
 
  protected:
   ViewportSettings settings_;
