@@ -154,6 +154,7 @@ FilteredBuffer filterHighVariance(const PixelFilterInput& in, const PixelFilterS
   st.vx.assign(n, 0.0f);
   st.my.assign(n, 0.0f);
   st.vy.assign(n, 0.0f);
+  st.q.assign(n, 1.0f);
 
   pf::Plane sigma = settings.adaptiveWidth ? adaptiveSigma(in, settings, st) : pf::Plane(n, settings.sigmaS);
   const pf::KernelParams params{settings.threads, settings.iterations, settings.antialiasRecovery};

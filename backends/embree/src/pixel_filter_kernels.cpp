@@ -69,12 +69,12 @@ void transpose(const Range& in, int w, int h, Range& out, int threads) {
 }
 
 void transpose(const State& in, int w, int h, State& out, int threads) {
-  for (auto m : {&State::lr, &State::lg, &State::lb, &State::v, &State::mx, &State::vx, &State::my, &State::vy})
+  for (auto m : {&State::lr, &State::lg, &State::lb, &State::v, &State::mx, &State::vx, &State::my, &State::vy, &State::q})
     transpose(in.*m, w, h, out.*m, threads);
 }
 
 void resize(State& s, std::size_t n) {
-  for (auto m : {&State::lr, &State::lg, &State::lb, &State::v, &State::mx, &State::vx, &State::my, &State::vy})
+  for (auto m : {&State::lr, &State::lg, &State::lb, &State::v, &State::mx, &State::vx, &State::my, &State::vy, &State::q})
     (s.*m).resize(n);
 }
 
@@ -148,12 +148,12 @@ namespace {
 // One window of a 1-D pass: sums of w * (value_i - centre value) and the
 // raw moments (about the centre pixel) of the composite kernel.
 struct Acc {
-  float a = 0, lr = 0, lg = 0, lb = 0, v = 0, m1a = 0, m2a = 0, m1o = 0, m2o = 0;
+  float a = 0, lr = 0, lg = 0, lb = 0, v = 0, m1a = 0, m2a = 0, m1o = 0, m2o = 0, q = 0;
 };
 
 // Pointers to one row of the pass input; "a" = the pass axis, "o" = the other.
 struct Row {
-  const float *cr, *cg, *cb, *cd, *lr, *lg, *lb, *v, *ma, *va, *mo, *vo;
+  const float *cr, *cg, *cb, *cd, *lr, *lg, *lb, *v, *ma, *va, *mo, *vo, *q;
 };
 
 struct Centre {
@@ -178,11 +178,14 @@ Acc window(const Row& rw, int x, int lo, int hi, const float* sp, float cr, floa
     s.m2a += wt * (rw.va[i] + ma * ma);
     s.m1o += wt * rw.mo[i];
     s.m2o += wt * (rw.vo[i] + rw.mo[i] * rw.mo[i]);
+    s.q += wt * wt * rw.q[i];
   }
   return s;
 }
 
-// Adds coefficient * (normalised window) to `sum`.
+// Adds coefficient * (normalised window) to `sum`. For q the windows are
+// treated as disjoint (the centre window overlaps the side ones; the cross
+// terms are dropped, which only lowers q, see the r note in the header).
 void addNormalised(Acc& sum, const Acc& s, float coefficient) {
   const float k = coefficient / s.a;
   sum.lr += k * s.lr;
@@ -193,6 +196,7 @@ void addNormalised(Acc& sum, const Acc& s, float coefficient) {
   sum.m2a += k * s.m2a;
   sum.m1o += k * s.m1o;
   sum.m2o += k * s.m2o;
+  sum.q += k * k * s.q;
 }
 
 struct AntialiasModel {
@@ -254,7 +258,8 @@ void pass(int w, int h, const Range& rg, const Plane& sigma, float factor, const
       const std::size_t row = std::size_t(y) * w;
       const Row rw{rg.r.data() + row, rg.g.data() + row, rg.b.data() + row, rg.d.data() + row,
                    in.lr.data() + row, in.lg.data() + row, in.lb.data() + row, in.v.data() + row,
-                   ma.data() + row,    va.data() + row,    mo.data() + row,    vo.data() + row};
+                   ma.data() + row,    va.data() + row,    mo.data() + row,    vo.data() + row,
+                   in.q.data() + row};
       for (int x = 0; x < w; ++x) {
         const std::size_t j = row + x;
         const float* sp = table.centre(sigma[j] * factor, w);
@@ -290,6 +295,7 @@ void pass(int w, int h, const Range& rg, const Plane& sigma, float factor, const
         ova[j] = std::max(0.0f, sum.m2a - sum.m1a * sum.m1a);
         omo[j] = sum.m1o;
         ovo[j] = std::max(0.0f, sum.m2o - sum.m1o * sum.m1o);
+        out.q[j] = std::min(1.0f, sum.q);
       }
     }
   });
@@ -316,7 +322,7 @@ void separable(const Image& im, const Range& rg, const Plane& sigma, State& s, P
     transpose(tmp, h, w, s, p.threads);
   }
   r.resize(s.lr.size());
-  for (std::size_t i = 0; i < r.size(); ++i) r[i] = momentReduction(s.vx[i], s.vy[i]);
+  for (std::size_t i = 0; i < r.size(); ++i) r[i] = std::max(s.q[i], momentReduction(s.vx[i], s.vy[i]));
 }
 
 // ---------------------------------------------------------------- a-trous
@@ -341,7 +347,7 @@ void atrous(const Image& im, const Range& rg, const Plane& sigma, State& s, Plan
           for (int t = 0; t < 5; ++t) off[t] = static_cast<int>(std::lround(float(t - 2) * step));
           const float cr = rg.r[j], cg = rg.g[j], cb = rg.b[j], cd = rg.d[j];
           const float lr = s.lr[j], lg = s.lg[j], lb = s.lb[j], lv = s.v[j];
-          float a = 0, sr = 0, sgn = 0, sb = 0, sv = 0, m1x = 0, m2x = 0, m1y = 0, m2y = 0;
+          float a = 0, sr = 0, sgn = 0, sb = 0, sv = 0, m1x = 0, m2x = 0, m1y = 0, m2y = 0, q = 0;
           for (int ty = 0; ty < 5; ++ty) {
             const int yy = y + off[ty];
             if (yy < 0 || yy >= h) continue;
@@ -361,6 +367,7 @@ void atrous(const Image& im, const Range& rg, const Plane& sigma, State& s, Plan
               m2x += wt * (s.vx[i] + mx * mx);
               m1y += wt * my;
               m2y += wt * (s.vy[i] + my * my);
+              q += wt * wt * s.q[i];
             }
           }
           const float inv = 1.0f / a;  // the centre tap alone gives a >= 9/64
@@ -372,13 +379,14 @@ void atrous(const Image& im, const Range& rg, const Plane& sigma, State& s, Plan
           tmp.vx[j] = std::max(0.0f, m2x * inv - tmp.mx[j] * tmp.mx[j]);
           tmp.my[j] = m1y * inv;
           tmp.vy[j] = std::max(0.0f, m2y * inv - tmp.my[j] * tmp.my[j]);
+          tmp.q[j] = std::min(1.0f, q * inv * inv);
         }
       }
     });
     std::swap(s, tmp);
   }
   r.resize(s.lr.size());
-  for (std::size_t i = 0; i < r.size(); ++i) r[i] = momentReduction(s.vx[i], s.vy[i]);
+  for (std::size_t i = 0; i < r.size(); ++i) r[i] = std::max(s.q[i], momentReduction(s.vx[i], s.vy[i]));
 }
 
 }  // namespace tsr::embree::pf
