@@ -41,9 +41,9 @@ std::size_t checkInput(const PixelFilterInput& in) {
 }
 
 void checkSettings(const PixelFilterSettings& s) {
-  if (!(s.sigmaS > 0.0f) || !std::isfinite(s.sigmaS)) throw Error("pixel filter: sigmaS must be positive and finite");
-  if (!(s.sigmaC > 0.0f)) throw Error("pixel filter: sigmaC must be positive");
-  if (!(s.sigmaD > 0.0f)) throw Error("pixel filter: sigmaD must be positive (infinity ignores depth)");
+  if (!(s.sigmaS > 0.0f && s.sigmaS <= 1e4f)) throw Error("pixel filter: sigmaS must be in (0, 1e4] pixels");
+  if (!(s.sigmaC >= 1e-6f)) throw Error("pixel filter: sigmaC must be at least 1e-6");
+  if (!(s.sigmaD >= 1e-6f)) throw Error("pixel filter: sigmaD must be at least 1e-6 (infinity ignores depth)");
   if (!(s.threshold >= 0.0f)) throw Error("pixel filter: threshold must be >= 0");
   if (!(s.minBackground > 0.0f)) throw Error("pixel filter: minBackground must be positive");
   if (s.iterations < 1 || s.iterations > 8) throw Error("pixel filter: iterations must be in [1, 8]");
@@ -59,7 +59,7 @@ pf::Range scaledRange(const PixelFilterInput& in, const PixelFilterSettings& s, 
   const float kc = 1.0f / (std::sqrt(2.0f) * s.sigmaC);
   const float kd = std::isfinite(s.sigmaD) ? 1.0f / (std::sqrt(2.0f) * s.sigmaD) : 0.0f;
   for (std::size_t i = 0; i < n; ++i) {
-    const glm::vec3 c = sane(in.rangeColour[i]) * kc;
+    const glm::vec3 c = glm::clamp(sane(in.rangeColour[i]) * kc, -pf::kMaxScaledDepth, pf::kMaxScaledDepth);
     r.r[i] = c.x;
     r.g[i] = c.y;
     r.b[i] = c.z;

@@ -21,7 +21,7 @@ struct Range {
   Plane r, g, b, d;
 };
 inline constexpr float kBackground = 1e15f;  // squared: 1e30, finite; exp(-1e30) = 0
-inline constexpr float kMaxScaledDepth = 1e12f;
+inline constexpr float kMaxScaledDepth = 1e12f;  // clamp of scaled finite colours and depths
 
 // The data that is filtered, plus the first and second moments of each
 // pixel's composite kernel per image axis (offsets relative to the pixel).

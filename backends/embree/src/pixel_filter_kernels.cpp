@@ -342,7 +342,7 @@ void atrous(const Image& im, const Range& rg, const Plane& sigma, State& s, Plan
       for (int y = y0; y < y1; ++y) {
         for (int x = 0; x < w; ++x) {
           const std::size_t j = std::size_t(y) * w + x;
-          const float step = sigma[j] * factor;
+          const float step = std::min(sigma[j] * factor, float(std::max(w, h)));
           int off[5];
           for (int t = 0; t < 5; ++t) off[t] = static_cast<int>(std::lround(float(t - 2) * step));
           const float cr = rg.r[j], cg = rg.g[j], cb = rg.b[j], cd = rg.d[j];

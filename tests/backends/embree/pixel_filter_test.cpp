@@ -191,8 +191,18 @@ TEST(PixelFilterInputCheck, WrongSizesAndSettingsThrow) {
   s.sigmaS = 0.0f;
   EXPECT_THROW(filterHighVariance(im.input(), s), Error);
   s = {};
+  s.sigmaC = 0.0f;
+  EXPECT_THROW(filterHighVariance(im.input(), s), Error);
+  s = {};
   s.iterations = 0;
   EXPECT_THROW(filterHighVariance(im.input(), s), Error);
+  // Absurd but finite range values are clamped, not propagated as NaN.
+  Images huge(4, 4);
+  huge.colour[3] = vec3(1e30f);
+  huge.depth[5] = -1e30f;
+  huge.lu[7] = vec3(std::nanf(""));
+  for (FilterKernel k : kKernels)
+    for (const vec3& l : filterHighVariance(huge.input(), settingsFor(k)).radiance) EXPECT_TRUE(std::isfinite(l.x));
   const FilteredBuffer fb = filterHighVariance(im.input(), {});
   Images other(5, 4);
   EXPECT_THROW(blend(other.input(), fb, {}), Error);
