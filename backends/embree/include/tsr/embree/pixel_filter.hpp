@@ -17,7 +17,7 @@ namespace tsr::embree {
 // Which edge-preserving filter computes Lf.
 enum class FilterKernel {
   Bilateral,  // brute-force cross bilateral (3.6), exact r = sum (a_i/A)^2
-  Separable,  // iterated 1-D passes with shrinking sigma (3.14), r from the composite kernel's moments
+  Separable,  // iterated 1-D passes with shrinking sigma (3.14); r estimated (README: "r through several passes")
   Atrous,     // a-trous wavelet (Dammertz et al.) with the range buffer as edge stop (3.5.1.2)
 };
 
