@@ -1,0 +1,212 @@
+#include "tsr/embree/pixel_filter.hpp"
+
+#include "pixel_filter_detail.hpp"
+#include "tsr/embree/error.hpp"
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace tsr::embree {
+
+namespace {
+
+constexpr glm::vec3 kLuma{0.2126f, 0.7152f, 0.0722f};
+
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// NaN or inf samples would poison every neighbour of the pixel: read as 0.
+glm::vec3 sane(const glm::vec3& v) { return finite(v) ? v : glm::vec3(0.0f); }
+
+void checkSize(std::size_t got, std::size_t want, const char* name) {
+  if (got != want)
+    throw Error(std::string("pixel filter: ") + name + " has " + std::to_string(got) + " entries, expected width*height = " +
+                std::to_string(want));
+}
+
+std::size_t checkInput(const PixelFilterInput& in) {
+  if (in.width == 0 || in.height == 0) throw Error("pixel filter: empty image");
+  if (in.width > 1u << 15 || in.height > 1u << 15) throw Error("pixel filter: image wider or taller than 32768 pixels");
+  const std::size_t n = std::size_t(in.width) * in.height;
+  checkSize(in.highVariance.size(), n, "highVariance");
+  checkSize(in.highVarianceVar.size(), n, "highVarianceVar");
+  checkSize(in.lowVariance.size(), n, "lowVariance");
+  checkSize(in.rangeColour.size(), n, "rangeColour");
+  checkSize(in.rangeDepth.size(), n, "rangeDepth");
+  return n;
+}
+
+void checkSettings(const PixelFilterSettings& s) {
+  if (!(s.sigmaS > 0.0f && s.sigmaS <= 1e4f)) throw Error("pixel filter: sigmaS must be in (0, 1e4] pixels");
+  if (!(s.sigmaC >= 1e-6f)) throw Error("pixel filter: sigmaC must be at least 1e-6");
+  if (!(s.sigmaD >= 1e-6f)) throw Error("pixel filter: sigmaD must be at least 1e-6 (infinity ignores depth)");
+  if (!(s.threshold >= 0.0f)) throw Error("pixel filter: threshold must be >= 0");
+  if (!(s.minBackground > 0.0f)) throw Error("pixel filter: minBackground must be positive");
+  if (s.iterations < 1 || s.iterations > 8) throw Error("pixel filter: iterations must be in [1, 8]");
+  if (s.adaptiveWidth && !(s.adaptiveTarget > 0.0f)) throw Error("pixel filter: adaptiveTarget must be positive");
+}
+
+pf::Range scaledRange(const PixelFilterInput& in, const PixelFilterSettings& s, std::size_t n) {
+  pf::Range r;
+  r.r.resize(n);
+  r.g.resize(n);
+  r.b.resize(n);
+  r.d.resize(n);
+  const float kc = 1.0f / (std::sqrt(2.0f) * s.sigmaC);
+  const float kd = std::isfinite(s.sigmaD) ? 1.0f / (std::sqrt(2.0f) * s.sigmaD) : 0.0f;
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::vec3 c = glm::clamp(sane(in.rangeColour[i]) * kc, -pf::kMaxScaledDepth, pf::kMaxScaledDepth);
+    r.r[i] = c.x;
+    r.g[i] = c.y;
+    r.b[i] = c.z;
+    const float d = in.rangeDepth[i];
+    r.d[i] = std::isfinite(d) ? std::clamp(d * kd, -pf::kMaxScaledDepth, pf::kMaxScaledDepth) : pf::kBackground;
+  }
+  return r;
+}
+
+// Box mean of radius 2 (clamped at the borders), separable.
+pf::Plane boxBlur(const pf::Plane& in, int w, int h) {
+  constexpr int R = 2;
+  pf::Plane tmp(in.size()), out(in.size());
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      float s = 0;
+      const int x0 = std::max(x - R, 0), x1 = std::min(x + R, w - 1);
+      for (int i = x0; i <= x1; ++i) s += in[std::size_t(y) * w + i];
+      tmp[std::size_t(y) * w + x] = s / float(x1 - x0 + 1);
+    }
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      float s = 0;
+      const int y0 = std::max(y - R, 0), y1 = std::min(y + R, h - 1);
+      for (int i = y0; i <= y1; ++i) s += tmp[std::size_t(i) * w + x];
+      out[std::size_t(y) * w + x] = s / float(y1 - y0 + 1);
+    }
+  return out;
+}
+
+// 3.15-3.17: the box extent e that would bring u down to the target f,
+// sigma = 1.5 e, clamped to [g/c, c g] around the guide g = sigmaS / sqrt(n),
+// c = 4, and never wider than sigmaS. u is estimated before filtering from
+// 5x5 box means of the variance and of Lu (Lb = lum(mean Lu + Llv)).
+pf::Plane adaptiveSigma(const PixelFilterInput& in, const PixelFilterSettings& s, const pf::State& st) {
+  const int w = int(in.width), h = int(in.height);
+  const std::size_t n = st.v.size();
+  pf::Plane lum(n);
+  for (std::size_t i = 0; i < n; ++i) lum[i] = kLuma.x * st.lr[i] + kLuma.y * st.lg[i] + kLuma.z * st.lb[i];
+  const pf::Plane meanVar = boxBlur(st.v, w, h);
+  const pf::Plane meanLum = boxBlur(lum, w, h);
+  constexpr float c = 4.0f;
+  const float guide = s.sigmaS / std::sqrt(float(std::max(in.samples, 1u)));
+  const float lo = guide / c, hi = std::min(guide * c, s.sigmaS);
+  const float target = s.adaptiveTarget * s.threshold;
+  pf::Plane sigma(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const float lb = std::max(meanLum[i] + luminance(sane(in.lowVariance[i])), s.minBackground);
+    const float u = meanVar[i] / (lb * lb);
+    float sg = hi;
+    if (target > 0.0f) sg = 1.5f * std::max(0.0f, 0.5f * std::sqrt(u / target) - 0.5f);
+    sigma[i] = std::clamp(sg, std::min(lo, hi), hi);
+  }
+  return sigma;
+}
+
+}  // namespace
+
+float luminance(const glm::vec3& c) { return glm::dot(kLuma, c); }
+
+float blendFactor(float u, float f, float t) {
+  if (!(u >= 0.0f) || !std::isfinite(u)) return 0.0f;  // no trustworthy variance: filtered only
+  if (u <= t) return 1.0f;                              // case 2 (also u = f = 0)
+  const float d = t * u + t * f - u * f;
+  if (!(d >= 0.0f)) return 0.0f;                        // case 1 (also t = 0, u > 0)
+  return std::clamp((f + std::sqrt(d)) / (u + f), 0.0f, 1.0f);  // case 3, 3.12
+}
+
+bool isFilterFrame(std::uint32_t frame) { return frame >= 4 && (frame & (frame - 1)) == 0; }
+
+FilteredBuffer filterHighVariance(const PixelFilterInput& in, const PixelFilterSettings& settings) {
+  const std::size_t n = checkInput(in);
+  checkSettings(settings);
+  const pf::Image im{int(in.width), int(in.height)};
+  const pf::Range range = scaledRange(in, settings, n);
+
+  pf::State st;
+  st.lr.resize(n);
+  st.lg.resize(n);
+  st.lb.resize(n);
+  st.v.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::vec3 l = sane(in.highVariance[i]);
+    st.lr[i] = l.x;
+    st.lg[i] = l.y;
+    st.lb[i] = l.z;
+    // Var[lum] <= sum_c w_c Var_c for any correlation between channels
+    // (Cauchy-Schwarz, sum w_c = 1): a conservative scalar.
+    st.v[i] = std::max(0.0f, luminance(sane(in.highVarianceVar[i])));
+  }
+  st.mx.assign(n, 0.0f);
+  st.vx.assign(n, 0.0f);
+  st.my.assign(n, 0.0f);
+  st.vy.assign(n, 0.0f);
+  st.q.assign(n, 1.0f);
+
+  pf::Plane sigma = settings.adaptiveWidth ? adaptiveSigma(in, settings, st) : pf::Plane(n, settings.sigmaS);
+  const pf::KernelParams params{settings.threads, settings.iterations, settings.antialiasRecovery};
+  pf::Plane r;
+  switch (settings.kernel) {
+    case FilterKernel::Bilateral: pf::bilateral(im, range, sigma, st, r, params); break;
+    case FilterKernel::Separable: pf::separable(im, range, sigma, st, r, params); break;
+    case FilterKernel::Atrous: pf::atrous(im, range, sigma, st, r, params); break;
+  }
+
+  FilteredBuffer out;
+  out.width = in.width;
+  out.height = in.height;
+  out.samples = in.samples;
+  out.radiance.resize(n);
+  for (std::size_t i = 0; i < n; ++i) out.radiance[i] = glm::vec3(st.lr[i], st.lg[i], st.lb[i]);
+  out.variance = std::move(st.v);
+  out.reduction = std::move(r);
+  out.sigma = std::move(sigma);
+  return out;
+}
+
+BlendResult blend(const PixelFilterInput& in, const FilteredBuffer& fb, const PixelFilterSettings& settings) {
+  const std::size_t n = checkInput(in);
+  checkSettings(settings);
+  if (fb.width != in.width || fb.height != in.height) throw Error("pixel filter: filtered buffer has another size");
+  checkSize(fb.radiance.size(), n, "filtered radiance");
+  checkSize(fb.variance.size(), n, "filtered variance");
+  checkSize(fb.reduction.size(), n, "filtered reduction");
+  // The filtered buffer may be older than Lu: Var[Lu] scales as 1/n, while Lf
+  // keeps the variance it had when it was filtered.
+  const float age = (fb.samples > 0 && in.samples > 0) ? float(fb.samples) / float(in.samples) : 1.0f;
+  const float t = settings.threshold;
+  BlendResult out;
+  out.radiance.resize(n);
+  out.blendFactor.resize(n);
+  pf::parallelRows(settings.threads, int(in.height), [&](int y0, int y1) {
+    for (std::size_t i = std::size_t(y0) * in.width; i < std::size_t(y1) * in.width; ++i) {
+      const glm::vec3 lf = fb.radiance[i];
+      const glm::vec3 llv = sane(in.lowVariance[i]);
+      glm::vec3 lu = sane(in.highVariance[i]);
+      const float lb = std::max(luminance(lf + llv), settings.minBackground);  // 3.10
+      const float varF = fb.reduction[i] * fb.variance[i];                      // 3.5
+      const float u = fb.variance[i] * age / (lb * lb);
+      const float f = varF / (lb * lb);
+      const float s = blendFactor(u, f, t);
+      if (settings.spikeRemoval) lu = glm::clamp(lu, 0.5f * lf, 2.0f * lf);  // 3.18, c = 2
+      out.radiance[i] = llv + s * lu + (1.0f - s) * lf;                        // 3.1
+      out.blendFactor[i] = s;
+    }
+  });
+  return out;
+}
+
+}  // namespace tsr::embree
