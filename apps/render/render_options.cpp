@@ -47,6 +47,35 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
   app.add_option("--stats-json", o.statsJson, "write render statistics as JSON");
   app.add_option("--param", params, "back-end parameter name=value (repeatable)");
   app.add_flag("--quiet", o.quiet, "no progress bar");
+  // Noise filtering of the path tracer: each option sets the viewport
+  // parameter named after it (see the embree back-end's README).
+  std::vector<std::pair<CLI::Option*, std::string>> filterOptions;
+  std::string filter, pathClass, filterKernel;
+  double threshold = 0, sigmaS = 0, sigmaC = 0, sigmaD = 0;
+  auto* filterGroup = app.add_option_group("Filtering (embree)", "low-noise previews: Schwenk, chapters 3 and 4");
+  filterOptions.emplace_back(
+      filterGroup->add_option("--filter", filter, "none, pixel, atrous, radiance or hybrid")
+          ->check(CLI::IsMember({"none", "pixel", "atrous", "radiance", "hybrid"})),
+      "filter");
+  filterOptions.emplace_back(filterGroup->add_option("--threshold", threshold, "perceived variance kept under (default 0.002)")
+                                 ->check(CLI::NonNegativeNumber),
+                             "threshold");
+  filterOptions.emplace_back(filterGroup->add_option("--sigma-s", sigmaS, "spatial std. dev., pixels (default 8)")
+                                 ->check(CLI::PositiveNumber),
+                             "sigmaS");
+  filterOptions.emplace_back(filterGroup->add_option("--sigma-c", sigmaC, "range colour std. dev. (default 0.02)")
+                                 ->check(CLI::PositiveNumber),
+                             "sigmaC");
+  filterOptions.emplace_back(
+      filterGroup->add_option("--sigma-d", sigmaD, "range depth std. dev., fraction of the frame's depth extent (default 0.1)")
+          ->check(CLI::PositiveNumber),
+      "sigmaD");
+  filterOptions.emplace_back(filterGroup->add_option("--path-class", pathClass, "paths filtered: indirect, caustic or all")
+                                 ->check(CLI::IsMember({"indirect", "caustic", "all"})),
+                             "pathClass");
+  filterOptions.emplace_back(filterGroup->add_option("--filter-kernel", filterKernel, "bilateral or separable (with --filter pixel)")
+                                 ->check(CLI::IsMember({"bilateral", "separable"})),
+                             "filterKernel");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -69,6 +98,12 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
   flag(depthOption, "maxDepth", maxDepth);
   flag(seedOption, "seed", seed);
   flag(threadsOption, "threads", threads);
+  for (const auto& [option, name] : filterOptions) {
+    if (!*option) continue;
+    o.explicitParameters.insert(name);
+    auto [unused, value] = med::Parameters::parse(name + "=" + option->as<std::string>());
+    o.parameters.set(name, value);
+  }
   o.unparsed = app.remaining();
   return true;
 }

@@ -28,11 +28,47 @@ embree::RenderSettings EmbreeViewport::renderSettings() const {
   return s;
 }
 
-std::vector<std::string> EmbreeViewport::outputNames() const { return {kAlbedo, kNormal, kDirect, kIndirect, kVariance}; }
+std::vector<std::string> EmbreeViewport::outputNames() const {
+  std::vector<std::string> names{kAlbedo, kNormal, kDirect, kIndirect, kVariance};
+  if (FilterSettings::from(settings_.parameters).usesPixelFilter()) names.push_back(kBlendOutput);
+  return names;
+}
+
+std::vector<std::string> EmbreeViewport::resolveInputs() const {
+  return FilterSettings::from(settings_.parameters).usesPixelFilter() ? pixelFilterInputs() : std::vector<std::string>{};
+}
+
+void EmbreeViewport::resolve(FrameBuffer& frame) {
+  const FilterSettings filter = FilterSettings::from(settings_.parameters);
+  if (filter.usesPixelFilter()) pixelFilter_.resolve(frame, filter, true, frame.outputs.count(kBlendOutput) != 0);
+}
 
 SceneAdapter::Update EmbreeViewport::synchronize(const sg::Replica& replica) {
   std::lock_guard lock(context_->mutex);
   return context_->adapter.catchUp(replica);
+}
+
+// Pixel filtering of a finished pass: flash samples topped up, inputs
+// written as outputs; resolved here unless the caller assembles the frame
+// from regions (then it resolves, and the inputs go to it).
+void EmbreeViewport::filterPixels(embree::Scene& scene, const embree::Camera& camera, const embree::Region& region,
+                                  const FilterSettings& filter, std::uint32_t spp, FrameBuffer& out,
+                                  const RenderControl& control) {
+  embree::FrameBuffer& fb = *accumulation_;
+  const std::uint32_t samples = fb.sampleCount(0, 0);
+  const std::uint32_t flash = flashSamplesFor(samples);
+  if (fb.rangeSamples(0, 0) < flash) renderer_.renderFlashPass(scene, camera, region, fb, flash - fb.rangeSamples(0, 0));
+  writePixelFilterInputs(fb, filter.pathClass, out);
+  if (!control.resolve) return;
+  // Filter on the 4, 8, 16, ... schedule and when the image is complete;
+  // frames in between blend new samples with the last filtered buffer.
+  const bool due = (embree::isFilterFrame(samples) || samples >= spp) && pixelFilter_.filteredAt() != samples;
+  pixelFilter_.resolve(out, filter, due, control.wants(kBlendOutput));
+  auto explicitlyWanted = [&](const std::string& name) {
+    return control.outputs && std::find(control.outputs->begin(), control.outputs->end(), name) != control.outputs->end();
+  };
+  for (const auto& name : pixelFilterInputs())
+    if (!explicitlyWanted(name)) out.outputs.erase(name);
 }
 
 RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view, FrameBuffer& out,
@@ -41,6 +77,9 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
   const auto start = std::chrono::steady_clock::now();
   const auto spp = static_cast<std::uint32_t>(settings_.parameters.getInt("spp", 16, 1, 1 << 20));
   renderer_.setSettings(renderSettings());
+  const FilterSettings filter = FilterSettings::from(settings_.parameters);
+  if (filter.mode == FilterMode::Radiance || filter.mode == FilterMode::Hybrid)
+    throw ParameterError("parameter filter: radiance filtering is not available yet");
 
   std::lock_guard lock(context_->mutex);
   RenderStats stats;
@@ -61,6 +100,7 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
   embree::RenderSettings settings = renderer_.settings();
   Accumulated now{&scene, scene.version(), camera, region, settings.seed, settings.maxDepth};
   bool stale = accumulated_ != now;
+  if (stale) pixelFilter_.forget();
   // Unless samplesPerPass is given, passes grow 1, 2, 4, 8 samples per pixel:
   // the first image is ready after one sample, and later passes keep a
   // pixel's samples back to back (its paths find the same BVH nodes in
@@ -105,6 +145,7 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
   fill(kDirect, [&](std::uint32_t x, std::uint32_t y) { return fb.mean(embree::Channel::Direct, x, y); });
   fill(kIndirect, [&](std::uint32_t x, std::uint32_t y) { return fb.mean(embree::Channel::Indirect, x, y); });
   fill(kVariance, [&](std::uint32_t x, std::uint32_t y) { return fb.variance(embree::Channel::Colour, x, y); });
+  if (filter.usesPixelFilter() && stats.samples > 0) filterPixels(scene, camera, region, filter, spp, out, control);
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
 }

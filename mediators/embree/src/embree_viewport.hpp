@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "embree_scene_adapter.hpp"
+#include "pixel_filtering.hpp"
 #include "tsr/embree/renderer.hpp"
 #include "tsr/med/viewport.hpp"
 
@@ -28,10 +29,14 @@ class EmbreeViewport final : public Viewport {
   RenderStats render(const sg::Replica& replica, const View& view, FrameBuffer& out,
                      const RenderControl& control) override;
   std::vector<std::string> outputNames() const override;
+  std::vector<std::string> resolveInputs() const override;
+  void resolve(FrameBuffer& frame) override;
   const EmbreeContext& context() const { return *context_; }
 
  private:
   embree::RenderSettings renderSettings() const;
+  void filterPixels(embree::Scene& scene, const embree::Camera& camera, const embree::Region& region,
+                    const FilterSettings& filter, std::uint32_t spp, FrameBuffer& out, const RenderControl& control);
 
   std::shared_ptr<EmbreeContext> context_;
   embree::Renderer renderer_;
@@ -47,6 +52,7 @@ class EmbreeViewport final : public Viewport {
     bool operator==(const Accumulated&) const = default;
   };
   std::optional<Accumulated> accumulated_;
+  PixelFilterResolver pixelFilter_;
 };
 
 }  // namespace tsr::med::embree_mediator

@@ -1,0 +1,59 @@
+#include "filter_settings.hpp"
+
+#include <cmath>
+#include <vector>
+
+namespace tsr::med::embree_mediator {
+
+namespace {
+
+template <class Enum>
+Enum choose(const Parameters& p, const std::string& name, const std::string& fallback,
+            const std::vector<std::pair<std::string, Enum>>& choices) {
+  const std::string value = p.getString(name, fallback);
+  std::string known;
+  for (const auto& [text, e] : choices) {
+    if (text == value) return e;
+    known += (known.empty() ? "" : ", ") + text;
+  }
+  throw ParameterError("parameter " + name + ": '" + value + "' is not one of " + known);
+}
+
+float positive(const Parameters& p, const std::string& name, double fallback, bool zeroAllowed = false) {
+  const double v = p.getReal(name, fallback);
+  if (!std::isfinite(v) || v < 0.0 || (!zeroAllowed && v == 0.0) || v > 1e6)
+    throw ParameterError("parameter " + name + ": " + std::to_string(v) + " must be " +
+                         (zeroAllowed ? "at least 0" : "above 0") + " and at most 1e6");
+  return static_cast<float>(v);
+}
+
+}  // namespace
+
+FilterSettings FilterSettings::from(const Parameters& p) {
+  FilterSettings s;
+  s.mode = choose<FilterMode>(p, "filter", "none",
+                              {{"none", FilterMode::None},
+                               {"pixel", FilterMode::Pixel},
+                               {"atrous", FilterMode::Atrous},
+                               {"radiance", FilterMode::Radiance},
+                               {"hybrid", FilterMode::Hybrid}});
+  s.pathClass = choose<PathClass>(p, "pathClass", "indirect",
+                                  {{"indirect", PathClass::Indirect}, {"caustic", PathClass::Caustic}, {"all", PathClass::All}});
+  s.pixel.kernel = choose<embree::FilterKernel>(
+      p, "filterKernel", "bilateral", {{"bilateral", embree::FilterKernel::Bilateral}, {"separable", embree::FilterKernel::Separable}});
+  if (s.mode == FilterMode::Atrous) s.pixel.kernel = embree::FilterKernel::Atrous;
+  s.pixel.threshold = positive(p, "threshold", 0.002, true);
+  s.pixel.sigmaS = positive(p, "sigmaS", 8.0);
+  if (s.pixel.sigmaS > 64.0f) throw ParameterError("parameter sigmaS: at most 64 pixels");
+  s.pixel.sigmaC = positive(p, "sigmaC", 0.02);
+  s.sigmaDRelative = positive(p, "sigmaD", 0.1);
+  s.pixel.adaptiveWidth = p.getBool("adaptiveWidth", false);
+  s.pixel.spikeRemoval = p.getBool("spikeRemoval", true);
+  s.pixel.antialiasRecovery = p.getBool("antialiasRecovery", false);
+  if (s.pixel.antialiasRecovery && s.pixel.kernel != embree::FilterKernel::Separable)
+    throw ParameterError("parameter antialiasRecovery: works with filterKernel=separable only");
+  s.pixel.threads = static_cast<int>(p.getInt("threads", 0, 0, 4096));
+  return s;
+}
+
+}  // namespace tsr::med::embree_mediator

@@ -1,0 +1,36 @@
+#pragma once
+// Noise-filter settings of an Embree viewport, read from its parameters.
+// All of them may change while an image converges: none restarts
+// accumulation, they only change how the accumulated samples are shown.
+//
+//   filter      none | pixel | atrous | radiance | hybrid     (none)
+//   threshold   t: perceived variance the blend keeps under  (0.002)
+//   sigmaS      spatial std. dev., pixels                     (8)
+//   sigmaC      range colour std. dev.                        (0.02)
+//   sigmaD      range depth std. dev., as a fraction of the
+//               frame's depth extent (nearest to farthest hit) (0.1)
+//   pathClass   indirect | caustic | all: the paths filtered  (indirect)
+//   filterKernel  bilateral | separable, for filter=pixel      (bilateral)
+//   adaptiveWidth, spikeRemoval, antialiasRecovery  (false, true, false)
+#include <string>
+
+#include "tsr/embree/pixel_filter.hpp"
+#include "tsr/med/parameters.hpp"
+
+namespace tsr::med::embree_mediator {
+
+enum class FilterMode { None, Pixel, Atrous, Radiance, Hybrid };
+enum class PathClass { Indirect, Caustic, All };
+
+struct FilterSettings {
+  FilterMode mode = FilterMode::None;
+  PathClass pathClass = PathClass::Indirect;
+  float sigmaDRelative = 0.1f;
+  embree::PixelFilterSettings pixel;  // sigmaD is set per frame from sigmaDRelative
+
+  // Throws ParameterError naming the parameter and what it accepts.
+  static FilterSettings from(const Parameters& parameters);
+  bool usesPixelFilter() const { return mode == FilterMode::Pixel || mode == FilterMode::Atrous || mode == FilterMode::Hybrid; }
+};
+
+}  // namespace tsr::med::embree_mediator

@@ -1,0 +1,111 @@
+#include "pixel_filtering.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace tsr::med::embree_mediator {
+
+std::vector<std::string> pixelFilterInputs() {
+  return {kLowVarianceOutput, kHighVarianceOutput, kHighVarianceVarOutput, kRangeOutput};
+}
+
+std::uint32_t flashSamplesFor(std::uint32_t samples) {
+  std::uint32_t passes = 1;
+  for (std::uint32_t n = 8; n <= samples && n != 0; n *= 2) ++passes;
+  return 4 * passes;
+}
+
+void writePixelFilterInputs(const embree::FrameBuffer& fb, PathClass pathClass, FrameBuffer& out) {
+  const std::size_t n = std::size_t{fb.width()} * fb.height();
+  auto& low = out.outputs[kLowVarianceOutput];
+  auto& high = out.outputs[kHighVarianceOutput];
+  auto& var = out.outputs[kHighVarianceVarOutput];
+  auto& range = out.outputs[kRangeOutput];
+  for (auto* image : {&low, &high, &var, &range}) image->assign(n, glm::vec4(0.0f));
+  const embree::Channel hv = pathClass == PathClass::Indirect  ? embree::Channel::Indirect
+                             : pathClass == PathClass::Caustic ? embree::Channel::Caustic
+                                                               : embree::Channel::Colour;
+  for (std::uint32_t y = 0; y < fb.height(); ++y)
+    for (std::uint32_t x = 0; x < fb.width(); ++x) {
+      const std::size_t i = out.index(x, y);
+      const std::uint32_t count = fb.sampleCount(x, y);
+      const glm::vec3 h = fb.mean(hv, x, y);
+      high[i] = glm::vec4(h, 0.0f);
+      low[i] = glm::vec4(fb.mean(embree::Channel::Colour, x, y) - h, 0.0f);
+      var[i] = glm::vec4(count > 0 ? fb.variance(hv, x, y) / float(count) : glm::vec3(0.0f), 0.0f);
+      range[i] = glm::vec4(fb.rangeColour(x, y), float(count));
+    }
+}
+
+namespace {
+
+// sigmaD in world units: a fraction of the depth extent of what the frame shows.
+float depthSigma(const std::vector<float>& depth, float relative) {
+  float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+  for (float d : depth)
+    if (std::isfinite(d)) lo = std::min(lo, d), hi = std::max(hi, d);
+  if (!(hi >= lo)) return 1.0f;  // nothing was hit: depth plays no part
+  const float extent = hi - lo > 0.0f ? hi - lo : std::max(hi, 1.0f);
+  return relative * extent;
+}
+
+}  // namespace
+
+std::optional<std::uint32_t> PixelFilterResolver::filteredAt() const {
+  if (!filtered_) return std::nullopt;
+  return filtered_->samples;
+}
+
+void PixelFilterResolver::resolve(FrameBuffer& frame, const FilterSettings& settings, bool refilter, bool blendOutput) {
+  const std::size_t n = frame.colour.size();
+  std::vector<glm::vec3> low(n), high(n), var(n), range(n);
+  const std::vector<glm::vec4>* images[4] = {};
+  const char* names[4] = {kLowVarianceOutput, kHighVarianceOutput, kHighVarianceVarOutput, kRangeOutput};
+  for (int k = 0; k < 4; ++k) {
+    auto it = frame.outputs.find(names[k]);
+    if (it == frame.outputs.end() || it->second.size() != n)
+      throw std::invalid_argument(std::string("pixel filtering: the frame has no '") + names[k] + "' output");
+    images[k] = &it->second;
+  }
+  std::uint32_t samples = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    low[i] = glm::vec3((*images[0])[i]);
+    high[i] = glm::vec3((*images[1])[i]);
+    var[i] = glm::vec3((*images[2])[i]);
+    range[i] = glm::vec3((*images[3])[i]);
+    samples = std::max(samples, static_cast<std::uint32_t>((*images[3])[i].w));
+  }
+  embree::PixelFilterInput input;
+  input.width = frame.width;
+  input.height = frame.height;
+  input.lowVariance = low;
+  input.highVariance = high;
+  input.highVarianceVar = var;
+  input.rangeColour = range;
+  input.rangeDepth = frame.depth;
+  input.samples = samples;
+  embree::PixelFilterSettings pixel = settings.pixel;
+  pixel.sigmaD = depthSigma(frame.depth, settings.sigmaDRelative);
+  const bool stale = !filtered_ || filtered_->width != frame.width || filtered_->height != frame.height ||
+                     filtered_->samples > samples;
+  auto sameFilter = [](const embree::PixelFilterSettings& a, const embree::PixelFilterSettings& b) {
+    return a.kernel == b.kernel && a.sigmaS == b.sigmaS && a.sigmaC == b.sigmaC && a.sigmaD == b.sigmaD &&
+           a.adaptiveWidth == b.adaptiveWidth && a.antialiasRecovery == b.antialiasRecovery &&
+           a.iterations == b.iterations && (!a.adaptiveWidth || a.threshold == b.threshold);
+  };
+  if (refilter || stale || !sameFilter(pixel, filteredWith_)) {
+    filtered_ = embree::filterHighVariance(input, pixel);
+    filteredWith_ = pixel;
+  }
+  embree::BlendResult blended = embree::blend(input, *filtered_, pixel);
+  for (std::size_t i = 0; i < n; ++i) frame.colour[i] = glm::vec4(blended.radiance[i], frame.colour[i].a);
+  if (blendOutput) {
+    auto& s = frame.outputs[kBlendOutput];
+    s.resize(n);
+    for (std::size_t i = 0; i < n; ++i) s[i] = glm::vec4(glm::vec3(blended.blendFactor[i]), 1.0f);
+  }
+}
+
+}  // namespace tsr::med::embree_mediator

@@ -1,0 +1,49 @@
+#pragma once
+// Pixel filtering (Schwenk ch. 3) on a viewport's frame. Its inputs travel
+// as named outputs, so the same resolve runs on a whole local frame and on
+// a frame a cluster client assembled from tiles: both give one image.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "filter_settings.hpp"
+#include "tsr/embree/framebuffer.hpp"
+#include "tsr/embree/pixel_filter.hpp"
+#include "tsr/med/frame_buffer.hpp"
+
+namespace tsr::med::embree_mediator {
+
+inline constexpr const char* kLowVarianceOutput = "filter.lowVariance";      // rgb: Llv
+inline constexpr const char* kHighVarianceOutput = "filter.highVariance";    // rgb: Lu
+inline constexpr const char* kHighVarianceVarOutput = "filter.variance";     // rgb: Var[Lu] of the mean
+inline constexpr const char* kRangeOutput = "filter.range";                  // rgb: flash colour, a: samples n
+inline constexpr const char* kBlendOutput = "blend";                         // r: blend factor s
+
+std::vector<std::string> pixelFilterInputs();
+
+// Flash samples a frame of n path samples is filtered with: 4 per filter
+// pass of the 4, 8, 16, ... schedule (3.3.3), so the count depends on n
+// alone and a tile rendered on a node matches the whole-frame render.
+std::uint32_t flashSamplesFor(std::uint32_t samples);
+
+// Writes the filter's inputs from the accumulated samples into `out`.
+void writePixelFilterInputs(const embree::FrameBuffer& fb, PathClass pathClass, FrameBuffer& out);
+
+// Filters and blends frames from their filter outputs; keeps the last
+// filtered buffer, so that frames between two filter passes only blend.
+class PixelFilterResolver {
+ public:
+  // Replaces frame's colour (rgb) with the blended image; filters anew when
+  // `refilter`, when nothing was filtered yet, or when the settings or the
+  // frame's size changed. Fills the "blend" output when `blendOutput`.
+  void resolve(FrameBuffer& frame, const FilterSettings& settings, bool refilter, bool blendOutput);
+  void forget() { filtered_.reset(); }
+  // The sample count the kept filtered buffer was made from.
+  std::optional<std::uint32_t> filteredAt() const;
+
+ private:
+  std::optional<embree::FilteredBuffer> filtered_;
+  embree::PixelFilterSettings filteredWith_;
+};
+
+}  // namespace tsr::med::embree_mediator
