@@ -207,9 +207,12 @@ void RadianceFilterStep::run(const FrameBuffer& fb, RadianceAccumulator& acc, co
               const glm::vec3 dp = q.position - own.position;
               const float height = glm::dot(dp, n);
               const float dist2 = glm::dot(dp, dp);
-              if (dist2 > 0.0f && dist2 < occlusionReach * occlusionReach) {
-                occluded += std::max(0.0f, height / std::sqrt(dist2));
+              if (dist2 < occlusionReach * occlusionReach) {
+                // Screen-space occlusion: the sine of the elevation of
+                // neighbours above the tangent plane (those inside the prism
+                // count as 0, sparing the square root).
                 neighbours += 1.0f;
+                if (height > delta) occluded += height / std::sqrt(dist2);
               }
               if (std::abs(height) > delta) continue;
               const float u = glm::dot(dp, aS) * invS, v = glm::dot(dp, aD) * invD;
