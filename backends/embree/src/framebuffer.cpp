@@ -3,6 +3,7 @@
 #include "tsr/embree/error.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <limits>
 
 namespace tsr::embree {
@@ -17,6 +18,8 @@ void FrameBuffer::reset() {
   empty.depth = std::numeric_limits<float>::infinity();
   pixels_.assign(std::size_t(width_) * height_, empty);
   key_.reset();
+  static std::atomic<std::uint64_t> epochs{0};
+  epoch_ = epochs.fetch_add(1, std::memory_order_relaxed) + 1;
 }
 
 void FrameBuffer::accumulate(std::uint32_t x, std::uint32_t y, const PixelSample& s) {

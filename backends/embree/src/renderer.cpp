@@ -1,5 +1,6 @@
 #include "tsr/embree/renderer.hpp"
 
+#include "radiance_filter_step.hpp"
 #include "tracer.hpp"
 #include "tsr/embree/error.hpp"
 
@@ -31,7 +32,7 @@ std::uint64_t settingsHash(const RenderSettings& s) {
 }  // namespace
 
 PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos,
-                              const glm::vec3& forward) {
+                              const glm::vec3& forward, RadianceSample* record) {
   PixelSample out;
   const Environment& env = scene.environment;
   const bool envActive = !env.isBlack();
@@ -43,13 +44,22 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
   // the hardest to sample, and is indirect however few vertices it has.
   std::uint32_t nonSpecular = 0;       // non-specular scattering vertices so far
   bool specularAfterDiffuse = false;   // a specular vertex followed one of them
+  // With a radiance record, throughput restarts at 1 after the first
+  // non-specular vertex, so that indirect contributions arrive as the
+  // incident radiance there; scale carries the weight from the eye to that
+  // vertex's outgoing ray (exactly 1 otherwise).
+  glm::vec3 scale(1.0f);
+  float pathLength = 0.0f;
+  std::uint8_t mask = 0;
   auto add = [&](const glm::vec3& c, std::uint32_t nonSpecularVertices) {
     if (!finite(c)) return;  // a NaN sample would poison the running mean forever
-    if (specularAfterDiffuse) {
-      out.indirect += c;
-      out.caustic += c;
+    const glm::vec3 v = c * scale;
+    if (specularAfterDiffuse || nonSpecularVertices > 1) {
+      out.indirect += v;
+      if (specularAfterDiffuse) out.caustic += v;
+      if (record) record->radiance += c;
     } else {
-      (nonSpecularVertices <= 1 ? out.direct : out.indirect) += c;
+      out.direct += v;
     }
   };
   // MIS weight for an emitter reached by BSDF sampling.
@@ -77,6 +87,7 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
     }
     SurfaceHit h;
     if (!surface(org, dir, rh, h)) break;
+    if (nonSpecular == 0) pathLength += rh.ray.tfar;
     const ResolvedMaterial& mat = *h.instance->material;
     glm::vec3 base = baseColour(mat, h.uv);
     if (depth == 0) {
@@ -142,11 +153,33 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
       nextDir = glm::normalize(frame.toWorld(bs.wi));
       continues = (glm::dot(nextDir, ng) > 0.0f) == (bs.wi.z > 0.0f);
     }
+    const bool recordHere = record && nextEvent && nonSpecular == 0;
+    if (recordHere) {
+      RadianceSample& r = *record;
+      r.valid = true;
+      r.position = h.p;
+      r.normal = frame.n;
+      r.wo = wo;
+      r.wi = continues ? nextDir : glm::vec3(0.0f);
+      r.pdf = continues ? bs.pdf : 0.0f;
+      r.throughput = throughput;
+      r.distance = pathLength;
+      r.type = bsdf.type;
+      r.colour = bsdf.colour;
+      r.alpha = bsdf.alpha;
+      r.eta = bsdf.eta;
+    }
     glm::vec3 nextThroughput = throughput;
+    glm::vec3 nextScale = scale;
     if (continues) {
-      nextThroughput *= bs.weight;
+      if (recordHere) {
+        nextScale = throughput * bs.weight;
+        nextThroughput = glm::vec3(1.0f);
+      } else {
+        nextThroughput *= bs.weight;
+      }
       if (depth + 1 >= settings.rouletteDepth) {
-        float q = std::min(maxComponent(nextThroughput), 0.95f);
+        float q = std::min(maxComponent(nextThroughput * nextScale), 0.95f);
         if (!(q > 0.0f) || rng.uniform() >= q) continues = false;
         else nextThroughput /= q;
       }
@@ -215,14 +248,20 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
     }
 
     if (!continues) break;
+    if (bs.delta && nonSpecular == 0) {
+      mask |= kMaskSpecular;
+      if (bsdf.type == MaterialType::Glass) mask |= kMaskReflectRefract;
+    }
     if (bs.delta) specularAfterDiffuse = specularAfterDiffuse || nonSpecular > 0;
     else ++nonSpecular;
     throughput = nextThroughput;
+    scale = nextScale;
     prevPdf = bs.pdf;
     prevDelta = bs.delta;
     org = nextOrg;
     dir = nextDir;
   }
+  if (record) record->mask = mask;
   return out;
 }
 
@@ -327,6 +366,38 @@ PassResult Renderer::renderPass(Scene& scene, const Camera& camera, const Region
                       fb.accumulate(x, y, tracer.tracePath(rng, camPos, dir, camPos, forward));
                     }
                   });
+}
+
+PassResult Renderer::renderRadiancePass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
+                                        RadianceAccumulator& acc, const RadianceFilterSettings& filter) {
+  filter.validate();
+  if (acc.width() != region.regionWidth() || acc.height() != region.regionHeight()) {
+    throw Error("radiance accumulator is " + std::to_string(acc.width()) + "x" + std::to_string(acc.height()) +
+                " but the region is " + std::to_string(region.regionWidth()) + "x" +
+                std::to_string(region.regionHeight()));
+  }
+  const glm::vec3 camPos(camera.cameraToWorld[3]);
+  const glm::vec3 forward = glm::normalize(-glm::vec3(camera.cameraToWorld[2]));
+  const glm::mat3 camRot(camera.cameraToWorld);
+  const std::uint64_t seed = settings_.seed;
+  // Angle of one pixel on the axis; off the axis it shrinks with cos^1.5.
+  const float pixelAngle = std::sqrt((camera.right - camera.left) / float(region.width) *
+                                     (camera.top - camera.bottom) / float(region.height)) / camera.near;
+  PassResult result =
+      runTiles(scene, camera, region, fb,
+               [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
+                 Rng rng(Rng::pixelKey(seed, px, py), fb.sampleCount(x, y));
+                 glm::vec3 dir = cameraRay(camera, camRot, region, px, py, rng.uniform2());
+                 RadianceSample& record = acc.samples_[acc.at(x, y)];
+                 record = RadianceSample{};
+                 PixelSample sample = tracer.tracePath(rng, camPos, dir, camPos, forward, &record);
+                 const float c = glm::dot(dir, forward);
+                 record.pixelAngle = pixelAngle * c * std::sqrt(c);
+                 record.unfiltered = sample.indirect;
+                 fb.accumulate(x, y, sample);
+               });
+  if (result.completed) arena_->arena.execute([&] { RadianceFilterStep::run(fb, acc, filter); });
+  return result;
 }
 
 PassResult Renderer::renderFlashPass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,

@@ -6,6 +6,7 @@
 #include "bsdf.hpp"
 #include "scene_state.hpp"
 #include "tsr/embree/framebuffer.hpp"
+#include "tsr/embree/radiance_filter.hpp"
 #include "tsr/embree/renderer.hpp"
 #include "tsr/embree/rng.hpp"
 #include "tsr/embree/sampling.hpp"
@@ -180,7 +181,11 @@ struct Tracer {
     return out.pdf > 0.0f && std::isfinite(out.pdf);
   }
 
-  PixelSample tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos, const glm::vec3& forward);
+  // One path. With a record (zero-initialised by the caller), also fills
+  // the radiance sample at the first non-specular vertex: Ľ_i collects
+  // exactly the contributions classified indirect.
+  PixelSample tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos, const glm::vec3& forward,
+                        RadianceSample* record = nullptr);
   // The "virtual flash" colour of one camera ray (Schwenk 3.3.3): the
   // reflectivity of the first non-specular surface, perfect specular
   // surfaces followed Whitted-style, lit by ambient light plus an

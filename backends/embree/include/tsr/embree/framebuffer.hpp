@@ -53,6 +53,9 @@ class FrameBuffer {
   std::uint32_t height() const { return height_; }
 
   void reset();
+  // Changes whenever the buffer restarts, unique across buffers: state kept
+  // alongside (RadianceAccumulator) compares it to know it is stale.
+  std::uint64_t epoch() const { return epoch_; }
   void accumulate(std::uint32_t x, std::uint32_t y, const PixelSample& sample);
 
   std::uint32_t sampleCount(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].count; }
@@ -103,6 +106,7 @@ class FrameBuffer {
   std::uint32_t height_;
   std::vector<Pixel> pixels_;
   std::optional<Key> key_;
+  std::uint64_t epoch_ = 0;
 };
 
 }  // namespace tsr::embree

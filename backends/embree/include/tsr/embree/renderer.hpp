@@ -2,6 +2,7 @@
 
 #include "tsr/embree/camera.hpp"
 #include "tsr/embree/framebuffer.hpp"
+#include "tsr/embree/radiance_filter.hpp"
 #include "tsr/embree/region.hpp"
 #include "tsr/embree/scene.hpp"
 
@@ -53,6 +54,15 @@ class Renderer {
   // head light. Restarts fb as renderPass does when what it holds is stale.
   PassResult renderFlashPass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
                              std::uint32_t samples = 4);
+
+  // Radiance filtering (radiance_filter.hpp): traces one path per pixel
+  // (samplesPerPass is ignored), accumulating it into fb as renderPass does
+  // and storing its radiance sample in acc; then filters the samples into
+  // acc's indirect, in parallel and deterministically. acc restarts with fb.
+  // The image is acc.radiance(fb, x, y). A cancelled pass leaves acc as it
+  // was (its samples still reach fb).
+  PassResult renderRadiancePass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
+                                RadianceAccumulator& acc, const RadianceFilterSettings& filter = {});
 
   // Thread-safe. Stops the running pass at the next tile row, or the next
   // pass if none runs; that pass returns completed = false.
