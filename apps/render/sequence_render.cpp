@@ -24,9 +24,11 @@ FrameRenderer localRenderer(const RenderOptions& options, const SceneSession& se
   auto contexts = std::make_shared<med::ContextPool>();
   med::ViewportSettings settings{options.backend, session.imported.root, session.imported.background, options.parameters, true};
   std::shared_ptr<med::Viewport> viewport = registry->create(settings, *contexts);
-  return [registry, contexts, viewport](SceneSession& s, const sg::ChangeListPtr&, const med::View& view) {
+  med::RenderControl control;
+  control.outputs = options.aovs;
+  return [registry, contexts, viewport, control](SceneSession& s, const sg::ChangeListPtr&, const med::View& view) {
     med::FrameBuffer image;
-    viewport->render(s.replica, view, image);
+    viewport->render(s.replica, view, image, control);
     return image;
   };
 }
@@ -42,7 +44,14 @@ FrameRenderer clusterRenderer(const RenderOptions& options, const SequenceOption
   config.validate();
   cluster::ClientOptions client;
   if (!sequence.tokenFile.empty()) client.token = cluster::readTokenFile(sequence.tokenFile);
-  auto window = std::make_shared<cluster::ClusterWindow>(config, client);
+  client.outputs = options.aovs;
+  // Whole-frame image steps of the nodes' back-end (pixel filtering) run
+  // here on the assembled frame, so tiles show no seams.
+  auto registry = std::make_shared<med::ViewportRegistry>();
+  registerBackends(*registry);
+  client.registry = registry.get();
+  auto window = std::shared_ptr<cluster::ClusterWindow>(new cluster::ClusterWindow(config, client),
+                                                        [registry](cluster::ClusterWindow* w) { delete w; });
   window->setContent(session.imported.root, session.imported.background);
   std::size_t online = window->connect(config.timeouts.connect);
   if (online == 0 && config.mode != cluster::ClusterMode::Tiled)
@@ -77,6 +86,7 @@ int renderSequence(const RenderOptions& options, const SequenceOptions& sequence
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     std::string path = framePath(options.output, frame);
     med::writeImage(path, image);
+    for (const auto& aov : options.aovs) med::writeImage(aovPath(path, aov), image, aov);
     if (!options.quiet)
       std::cout << "wrote " << path << " (" << image.width << "x" << image.height << ", " << seconds << " s)\n";
   }

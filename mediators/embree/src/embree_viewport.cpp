@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 namespace tsr::med::embree_mediator {
 
@@ -35,7 +36,11 @@ std::vector<std::string> EmbreeViewport::outputNames() const {
 }
 
 std::vector<std::string> EmbreeViewport::resolveInputs() const {
-  return FilterSettings::from(settings_.parameters).usesPixelFilter() ? pixelFilterInputs() : std::vector<std::string>{};
+  const FilterSettings filter = FilterSettings::from(settings_.parameters);
+  std::vector<std::string> inputs;
+  if (filter.usesPixelFilter()) inputs = pixelFilterInputs();
+  if (filter.mode == FilterMode::Hybrid) inputs.push_back(kMaskOutput);
+  return inputs;
 }
 
 void EmbreeViewport::resolve(FrameBuffer& frame) {
@@ -48,28 +53,52 @@ SceneAdapter::Update EmbreeViewport::synchronize(const sg::Replica& replica) {
   return context_->adapter.catchUp(replica);
 }
 
-// Pixel filtering of a finished pass: flash samples topped up, inputs
-// written as outputs; resolved here unless the caller assembles the frame
-// from regions (then it resolves, and the inputs go to it).
-void EmbreeViewport::filterPixels(embree::Scene& scene, const embree::Camera& camera, const embree::Region& region,
-                                  const FilterSettings& filter, std::uint32_t spp, FrameBuffer& out,
-                                  const RenderControl& control) {
+// Pixel filtering's inputs of a finished render: flash samples topped up,
+// the buffers written as outputs.
+void EmbreeViewport::writeFilterInputs(embree::Scene& scene, const embree::Camera& camera, const embree::Region& traced,
+                                       FrameBuffer& full) {
   embree::FrameBuffer& fb = *accumulation_;
-  const std::uint32_t samples = fb.sampleCount(0, 0);
-  const std::uint32_t flash = flashSamplesFor(samples);
-  if (fb.rangeSamples(0, 0) < flash) renderer_.renderFlashPass(scene, camera, region, fb, flash - fb.rangeSamples(0, 0));
-  writePixelFilterInputs(fb, filter.pathClass, out);
+  const FilterSettings filter = FilterSettings::from(settings_.parameters);
+  const std::uint32_t flash = flashSamplesFor(fb.sampleCount(0, 0));
+  if (fb.rangeSamples(0, 0) < flash) renderer_.renderFlashPass(scene, camera, traced, fb, flash - fb.rangeSamples(0, 0));
+  writePixelFilterInputs(fb, filter.pathClass, full);
+}
+
+// Resolved here unless the caller assembles the frame from regions (then
+// it resolves, and the inputs go to it).
+void EmbreeViewport::resolveLocally(const FilterSettings& filter, std::uint32_t spp, FrameBuffer& out,
+                                    const RenderControl& control) {
   if (!control.resolve) return;
   // Filter on the 4, 8, 16, ... schedule and when the image is complete;
   // frames in between blend new samples with the last filtered buffer.
+  const std::uint32_t samples = accumulation_->sampleCount(0, 0);
   const bool due = (embree::isFilterFrame(samples) || samples >= spp) && pixelFilter_.filteredAt() != samples;
   pixelFilter_.resolve(out, filter, due, control.wants(kBlendOutput));
   auto explicitlyWanted = [&](const std::string& name) {
     return control.outputs && std::find(control.outputs->begin(), control.outputs->end(), name) != control.outputs->end();
   };
-  for (const auto& name : pixelFilterInputs())
+  for (const auto& name : resolveInputs())
     if (!explicitlyWanted(name)) out.outputs.erase(name);
 }
+
+namespace {
+
+// The pixels [x0, x0 + w) x [y0, y0 + h) of `full`, every output included.
+FrameBuffer crop(FrameBuffer full, std::uint32_t x0, std::uint32_t y0, std::uint32_t w, std::uint32_t h) {
+  if (x0 == 0 && y0 == 0 && w == full.width && h == full.height) return full;
+  FrameBuffer out(w, h);
+  auto copy = [&](auto& to, const auto& from) {
+    to.resize(std::size_t{w} * h);
+    for (std::uint32_t y = 0; y < h; ++y)
+      std::copy_n(from.begin() + full.index(x0, y0 + y), w, to.begin() + out.index(0, y));
+  };
+  copy(out.colour, full.colour);
+  copy(out.depth, full.depth);
+  for (const auto& [name, image] : full.outputs) copy(out.outputs[name], image);
+  return out;
+}
+
+}  // namespace
 
 RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view, FrameBuffer& out,
                                    const RenderControl& control) {
@@ -78,8 +107,7 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
   const auto spp = static_cast<std::uint32_t>(settings_.parameters.getInt("spp", 16, 1, 1 << 20));
   renderer_.setSettings(renderSettings());
   const FilterSettings filter = FilterSettings::from(settings_.parameters);
-  if (filter.mode == FilterMode::Radiance || filter.mode == FilterMode::Hybrid)
-    throw ParameterError("parameter filter: radiance filtering is not available yet");
+  const bool radiance = filter.usesRadianceFilter();
 
   std::lock_guard lock(context_->mutex);
   RenderStats stats;
@@ -87,9 +115,22 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
 
   embree::Camera camera{view.cameraToWorld, view.left, view.right, view.bottom, view.top, view.nearPlane};
   embree::Region region{view.width, view.height, view.region.x0, view.region.y0, view.region.x1, view.region.y1};
-  if (!accumulation_ || accumulation_->width() != region.regionWidth() ||
-      accumulation_->height() != region.regionHeight())
-    accumulation_ = std::make_unique<embree::FrameBuffer>(region.regionWidth(), region.regionHeight());
+  // Radiance filtering gathers samples up to maxRadius pixels away in every
+  // frame: a region (a cluster tile) is traced with a halo that wide, so
+  // its pixels match the whole frame's (within the README's tolerance).
+  embree::Region traced = region;
+  if (radiance) {
+    const auto halo = static_cast<std::uint32_t>(std::ceil(filter.radiance.maxRadius));
+    traced.x0 = region.x0 > halo ? region.x0 - halo : 0;
+    traced.y0 = region.y0 > halo ? region.y0 - halo : 0;
+    traced.x1 = std::min(region.width, region.x1 + halo);
+    traced.y1 = std::min(region.height, region.y1 + halo);
+  }
+  if (!accumulation_ || accumulation_->width() != traced.regionWidth() ||
+      accumulation_->height() != traced.regionHeight())
+    accumulation_ = std::make_unique<embree::FrameBuffer>(traced.regionWidth(), traced.regionHeight());
+  if (radiance && (!radiance_ || radiance_->width() != traced.regionWidth() || radiance_->height() != traced.regionHeight()))
+    radiance_ = std::make_unique<embree::RadianceAccumulator>(traced.regionWidth(), traced.regionHeight());
 
   // Progressive: passes until the target sample count. The back-end restarts
   // accumulation by itself when the scene, camera, region or settings
@@ -98,14 +139,15 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
   scene.commit();  // builds the acceleration structures the catch-up touched
   stats.syncSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   embree::RenderSettings settings = renderer_.settings();
-  Accumulated now{&scene, scene.version(), camera, region, settings.seed, settings.maxDepth};
+  Accumulated now{&scene, scene.version(), camera, traced, settings.seed, settings.maxDepth, radiance};
   bool stale = accumulated_ != now;
   if (stale) pixelFilter_.forget();
   // Unless samplesPerPass is given, passes grow 1, 2, 4, 8 samples per pixel:
   // the first image is ready after one sample, and later passes keep a
   // pixel's samples back to back (its paths find the same BVH nodes in
   // cache) and pay the per-pass costs less often. Which pass a sample falls
-  // in does not change it: samples are seeded by their index.
+  // in does not change it: samples are seeded by their index. A radiance
+  // pass is one sample: its filter step works on one sample per pixel.
   const bool growPasses = !settings_.parameters.has("samplesPerPass");
   std::uint32_t passSize = settings.samplesPerPass;
   for (;;) {
@@ -115,12 +157,13 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
     if (control.cancel && control.cancel->load()) break;
     stale = false;
     accumulated_ = now;
-    if (growPasses) {
+    if (growPasses && !radiance) {
       settings.samplesPerPass = std::min(passSize, spp - done);
       renderer_.setSettings(settings);
       passSize = std::min(passSize * 2, kLargestGrownPass);
     }
-    auto pass = renderer_.renderPass(scene, camera, region, fb);
+    auto pass = radiance ? renderer_.renderRadiancePass(scene, camera, traced, fb, *radiance_, filter.radiance)
+                         : renderer_.renderPass(scene, camera, traced, fb);
     stats.rays += pass.rays;
     if (control.progress) control.progress(std::min(1.0, fb.sampleCount(0, 0) / double(spp)));
     if (!pass.completed) break;
@@ -128,24 +171,37 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
   stats.samples = accumulation_->sampleCount(0, 0);
 
   const embree::FrameBuffer& fb = *accumulation_;
-  out = FrameBuffer(fb.width(), fb.height());
-  out.colour = fb.colourImage();
-  out.depth = fb.depthImage();
+  FrameBuffer full(fb.width(), fb.height());
+  full.colour = fb.colourImage();
+  full.depth = fb.depthImage();
+  if (radiance) {
+    const auto shown = radiance_->radianceImage(fb);
+    for (std::size_t i = 0; i < shown.size(); ++i) full.colour[i] = glm::vec4(shown[i], full.colour[i].a);
+  }
   // Named outputs are filled only where the caller reads them: all five
   // cost about a tenth of a 16-spp pass at 512x512.
   auto fill = [&](const char* name, auto read) {
     if (!control.wants(name)) return;
-    auto& pixels = out.outputs[name];
-    pixels.resize(out.colour.size());
+    auto& pixels = full.outputs[name];
+    pixels.resize(full.colour.size());
     for (std::uint32_t y = 0; y < fb.height(); ++y)
-      for (std::uint32_t x = 0; x < fb.width(); ++x) pixels[out.index(x, y)] = glm::vec4(read(x, y), 1.0f);
+      for (std::uint32_t x = 0; x < fb.width(); ++x) pixels[full.index(x, y)] = glm::vec4(read(x, y), 1.0f);
   };
   fill(kAlbedo, [&](std::uint32_t x, std::uint32_t y) { return fb.albedo(x, y); });
   fill(kNormal, [&](std::uint32_t x, std::uint32_t y) { return fb.normal(x, y); });
   fill(kDirect, [&](std::uint32_t x, std::uint32_t y) { return fb.mean(embree::Channel::Direct, x, y); });
   fill(kIndirect, [&](std::uint32_t x, std::uint32_t y) { return fb.mean(embree::Channel::Indirect, x, y); });
   fill(kVariance, [&](std::uint32_t x, std::uint32_t y) { return fb.variance(embree::Channel::Colour, x, y); });
-  if (filter.usesPixelFilter() && stats.samples > 0) filterPixels(scene, camera, region, filter, spp, out, control);
+  if (filter.mode == FilterMode::Hybrid) {
+    auto& mask = full.outputs[kMaskOutput];
+    mask.resize(full.colour.size());
+    for (std::uint32_t y = 0; y < fb.height(); ++y)
+      for (std::uint32_t x = 0; x < fb.width(); ++x)
+        mask[full.index(x, y)] = glm::vec4((radiance_->mask(x, y) & embree::kMaskReflectRefract) ? 1.0f : 0.0f);
+  }
+  if (filter.usesPixelFilter() && stats.samples > 0) writeFilterInputs(scene, camera, traced, full);
+  out = crop(std::move(full), region.x0 - traced.x0, region.y0 - traced.y0, region.regionWidth(), region.regionHeight());
+  if (filter.usesPixelFilter() && stats.samples > 0) resolveLocally(filter, spp, out, control);
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
 }

@@ -9,6 +9,7 @@
 
 #include "embree_scene_adapter.hpp"
 #include "pixel_filtering.hpp"
+#include "tsr/embree/radiance_filter.hpp"
 #include "tsr/embree/renderer.hpp"
 #include "tsr/med/viewport.hpp"
 
@@ -35,8 +36,9 @@ class EmbreeViewport final : public Viewport {
 
  private:
   embree::RenderSettings renderSettings() const;
-  void filterPixels(embree::Scene& scene, const embree::Camera& camera, const embree::Region& region,
-                    const FilterSettings& filter, std::uint32_t spp, FrameBuffer& out, const RenderControl& control);
+  void writeFilterInputs(embree::Scene& scene, const embree::Camera& camera, const embree::Region& traced,
+                         FrameBuffer& full);
+  void resolveLocally(const FilterSettings& filter, std::uint32_t spp, FrameBuffer& out, const RenderControl& control);
 
   std::shared_ptr<EmbreeContext> context_;
   embree::Renderer renderer_;
@@ -49,10 +51,12 @@ class EmbreeViewport final : public Viewport {
     embree::Region region;
     std::uint64_t seed = 0;
     std::uint32_t maxDepth = 0;
+    bool radiance = false;  // radiance filtering accumulates apart
     bool operator==(const Accumulated&) const = default;
   };
   std::optional<Accumulated> accumulated_;
   PixelFilterResolver pixelFilter_;
+  std::unique_ptr<embree::RadianceAccumulator> radiance_;
 };
 
 }  // namespace tsr::med::embree_mediator

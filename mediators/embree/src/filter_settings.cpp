@@ -53,6 +53,20 @@ FilterSettings FilterSettings::from(const Parameters& p) {
   if (s.pixel.antialiasRecovery && s.pixel.kernel != embree::FilterKernel::Separable)
     throw ParameterError("parameter antialiasRecovery: works with filterKernel=separable only");
   s.pixel.threads = static_cast<int>(p.getInt("threads", 0, 0, 4096));
+  s.radiance.threshold = positive(p, "threshold", 0.01, true);
+  s.radiance.warmupRadius = positive(p, "warmupRadius", 8.0);
+  s.radiance.warmupFrames = static_cast<std::uint32_t>(p.getInt("warmupFrames", 4, 1, 1 << 20));
+  s.radiance.maxRadius = positive(p, "maxRadius", 12.0);
+  if (s.radiance.maxRadius > 64.0f) throw ParameterError("parameter maxRadius: at most 64 pixels");
+  s.radiance.ambientOcclusion = p.getBool("ambientOcclusion", true);
+  s.radiance.bilateral = p.getBool("bilateral", false);
+  s.radiance.blend = positive(p, "radianceBlend", 0.0, true);
+  s.radiance.hybrid = s.mode == FilterMode::Hybrid;
+  try {
+    s.radiance.validate();
+  } catch (const std::exception& e) {
+    throw ParameterError(std::string("radiance filter parameters: ") + e.what());
+  }
   return s;
 }
 

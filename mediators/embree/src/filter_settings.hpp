@@ -12,9 +12,15 @@
 //   pathClass   indirect | caustic | all: the paths filtered  (indirect)
 //   filterKernel  bilateral | separable, for filter=pixel      (bilateral)
 //   adaptiveWidth, spikeRemoval, antialiasRecovery  (false, true, false)
+// Radiance filtering (filter=radiance|hybrid) reads threshold too (its
+// default there is 0.01, T_u of 4.3.3), and:
+//   warmupRadius (8 px), warmupFrames (4), maxRadius (12 px: cluster tiles
+//   are traced with a halo this wide), ambientOcclusion (true),
+//   bilateral (false), radianceBlend (0)
 #include <string>
 
 #include "tsr/embree/pixel_filter.hpp"
+#include "tsr/embree/radiance_filter.hpp"
 #include "tsr/med/parameters.hpp"
 
 namespace tsr::med::embree_mediator {
@@ -27,10 +33,12 @@ struct FilterSettings {
   PathClass pathClass = PathClass::Indirect;
   float sigmaDRelative = 0.1f;
   embree::PixelFilterSettings pixel;  // sigmaD is set per frame from sigmaDRelative
+  embree::RadianceFilterSettings radiance;
 
   // Throws ParameterError naming the parameter and what it accepts.
   static FilterSettings from(const Parameters& parameters);
   bool usesPixelFilter() const { return mode == FilterMode::Pixel || mode == FilterMode::Atrous || mode == FilterMode::Hybrid; }
+  bool usesRadianceFilter() const { return mode == FilterMode::Radiance || mode == FilterMode::Hybrid; }
 };
 
 }  // namespace tsr::med::embree_mediator

@@ -100,7 +100,10 @@ void PixelFilterResolver::resolve(FrameBuffer& frame, const FilterSettings& sett
     filteredWith_ = pixel;
   }
   embree::BlendResult blended = embree::blend(input, *filtered_, pixel);
-  for (std::size_t i = 0; i < n; ++i) frame.colour[i] = glm::vec4(blended.radiance[i], frame.colour[i].a);
+  auto mask = frame.outputs.find(kMaskOutput);
+  const bool hybrid = mask != frame.outputs.end() && mask->second.size() == n;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!hybrid || mask->second[i].r > 0.0f) frame.colour[i] = glm::vec4(blended.radiance[i], frame.colour[i].a);
   if (blendOutput) {
     auto& s = frame.outputs[kBlendOutput];
     s.resize(n);

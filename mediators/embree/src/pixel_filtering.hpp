@@ -18,6 +18,7 @@ inline constexpr const char* kHighVarianceOutput = "filter.highVariance";    // 
 inline constexpr const char* kHighVarianceVarOutput = "filter.variance";     // rgb: Var[Lu] of the mean
 inline constexpr const char* kRangeOutput = "filter.range";                  // rgb: flash colour, a: samples n
 inline constexpr const char* kBlendOutput = "blend";                         // r: blend factor s
+inline constexpr const char* kMaskOutput = "filter.mask";  // r: 1 where hybrid filtering pixel-filters (4.6.1)
 
 std::vector<std::string> pixelFilterInputs();
 
@@ -36,6 +37,7 @@ class PixelFilterResolver {
   // Replaces frame's colour (rgb) with the blended image; filters anew when
   // `refilter`, when nothing was filtered yet, or when the settings or the
   // frame's size changed. Fills the "blend" output when `blendOutput`.
+  // With a "filter.mask" output (hybrid), only masked pixels change.
   void resolve(FrameBuffer& frame, const FilterSettings& settings, bool refilter, bool blendOutput);
   void forget() { filtered_.reset(); }
   // The sample count the kept filtered buffer was made from.
