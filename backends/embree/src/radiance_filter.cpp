@@ -40,7 +40,7 @@ void RadianceAccumulator::reset() {
 }
 
 glm::vec3 RadianceAccumulator::radiance(const FrameBuffer& fb, std::uint32_t x, std::uint32_t y) const {
-  return fb.mean(Channel::Direct, x, y) + pixels_[at(x, y)].indirect;
+  return fb.mean(Channel::Direct, x, y) + pixels_[at(x, y)].indirect + fb.mean(Channel::Caustic, x, y);
 }
 
 std::vector<glm::vec3> RadianceAccumulator::radianceImage(const FrameBuffer& fb) const {
@@ -269,7 +269,7 @@ void RadianceFilterStep::run(const FrameBuffer& fb, RadianceAccumulator& acc, co
         px.frames = k;
         // A pixel left to pixel filtering holds the unfiltered mean of all its
         // paths, also of frames filtered before the mask showed up.
-        if (masked) px.indirect = fb.mean(Channel::Indirect, x, y);
+        if (masked) px.indirect = fb.mean(Channel::Indirect, x, y) - fb.mean(Channel::Caustic, x, y);
         else px.indirect += (estimate - px.indirect) / float(k);
       }
   });

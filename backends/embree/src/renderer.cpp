@@ -57,7 +57,7 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
     if (specularAfterDiffuse || nonSpecularVertices > 1) {
       out.indirect += v;
       if (specularAfterDiffuse) out.caustic += v;
-      if (record) record->radiance += c;
+      if (record && !specularAfterDiffuse) record->radiance += c;
     } else {
       out.direct += v;
     }
@@ -393,7 +393,7 @@ PassResult Renderer::renderRadiancePass(Scene& scene, const Camera& camera, cons
                  PixelSample sample = tracer.tracePath(rng, camPos, dir, camPos, forward, &record);
                  const float c = glm::dot(dir, forward);
                  record.pixelAngle = pixelAngle * c * std::sqrt(c);
-                 record.unfiltered = sample.indirect;
+                 record.unfiltered = sample.indirect - sample.caustic;
                  fb.accumulate(x, y, sample);
                });
   if (result.completed) arena_->arena.execute([&] { RadianceFilterStep::run(fb, acc, filter); });

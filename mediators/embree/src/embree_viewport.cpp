@@ -39,7 +39,6 @@ std::vector<std::string> EmbreeViewport::resolveInputs() const {
   const FilterSettings filter = FilterSettings::from(settings_.parameters);
   std::vector<std::string> inputs;
   if (filter.usesPixelFilter()) inputs = pixelFilterInputs();
-  if (filter.mode == FilterMode::Hybrid) inputs.push_back(kMaskOutput);
   return inputs;
 }
 
@@ -61,7 +60,7 @@ void EmbreeViewport::writeFilterInputs(embree::Scene& scene, const embree::Camer
   const FilterSettings filter = FilterSettings::from(settings_.parameters);
   const std::uint32_t flash = flashSamplesFor(fb.sampleCount(0, 0));
   if (fb.rangeSamples(0, 0) < flash) renderer_.renderFlashPass(scene, camera, traced, fb, flash - fb.rangeSamples(0, 0));
-  writePixelFilterInputs(fb, filter.pathClass, full);
+  writePixelFilterInputs(fb, filter.pathClass, full, filter.mode == FilterMode::Hybrid ? radiance_.get() : nullptr);
 }
 
 // Resolved here unless the caller assembles the frame from regions (then
@@ -192,13 +191,6 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
   fill(kDirect, [&](std::uint32_t x, std::uint32_t y) { return fb.mean(embree::Channel::Direct, x, y); });
   fill(kIndirect, [&](std::uint32_t x, std::uint32_t y) { return fb.mean(embree::Channel::Indirect, x, y); });
   fill(kVariance, [&](std::uint32_t x, std::uint32_t y) { return fb.variance(embree::Channel::Colour, x, y); });
-  if (filter.mode == FilterMode::Hybrid) {
-    auto& mask = full.outputs[kMaskOutput];
-    mask.resize(full.colour.size());
-    for (std::uint32_t y = 0; y < fb.height(); ++y)
-      for (std::uint32_t x = 0; x < fb.width(); ++x)
-        mask[full.index(x, y)] = glm::vec4((radiance_->mask(x, y) & embree::kMaskReflectRefract) ? 1.0f : 0.0f);
-  }
   if (filter.usesPixelFilter() && stats.samples > 0) writeFilterInputs(scene, camera, traced, full);
   out = crop(std::move(full), region.x0 - traced.x0, region.y0 - traced.y0, region.regionWidth(), region.regionHeight());
   if (filter.usesPixelFilter() && stats.samples > 0) resolveLocally(filter, spp, out, control);

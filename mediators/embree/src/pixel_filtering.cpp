@@ -17,7 +17,8 @@ std::uint32_t flashSamplesFor(std::uint32_t samples) {
   return 4 * passes;
 }
 
-void writePixelFilterInputs(const embree::FrameBuffer& fb, PathClass pathClass, FrameBuffer& out) {
+void writePixelFilterInputs(const embree::FrameBuffer& fb, PathClass pathClass, FrameBuffer& out,
+                            const embree::RadianceAccumulator* hybrid) {
   const std::size_t n = std::size_t{fb.width()} * fb.height();
   auto& low = out.outputs[kLowVarianceOutput];
   auto& high = out.outputs[kHighVarianceOutput];
@@ -31,10 +32,17 @@ void writePixelFilterInputs(const embree::FrameBuffer& fb, PathClass pathClass, 
     for (std::uint32_t x = 0; x < fb.width(); ++x) {
       const std::size_t i = out.index(x, y);
       const std::uint32_t count = fb.sampleCount(x, y);
-      const glm::vec3 h = fb.mean(hv, x, y);
+      // Hybrid (4.6.1): pixels seen through glass get all their indirect
+      // light pixel-filtered; elsewhere radiance filtering took the rest
+      // and only the caustics are left, which it leaves unfiltered.
+      const embree::Channel c = !hybrid ? hv
+                                : (hybrid->mask(x, y) & embree::kMaskReflectRefract) ? embree::Channel::Indirect
+                                                                                      : embree::Channel::Caustic;
+      const glm::vec3 h = fb.mean(c, x, y);
+      const glm::vec3 shown = hybrid ? glm::vec3(out.colour[i]) : fb.mean(embree::Channel::Colour, x, y);
       high[i] = glm::vec4(h, 0.0f);
-      low[i] = glm::vec4(fb.mean(embree::Channel::Colour, x, y) - h, 0.0f);
-      var[i] = glm::vec4(count > 0 ? fb.variance(hv, x, y) / float(count) : glm::vec3(0.0f), 0.0f);
+      low[i] = glm::vec4(shown - h, 0.0f);
+      var[i] = glm::vec4(count > 0 ? fb.variance(c, x, y) / float(count) : glm::vec3(0.0f), 0.0f);
       range[i] = glm::vec4(fb.rangeColour(x, y), float(count));
     }
 }
@@ -100,10 +108,7 @@ void PixelFilterResolver::resolve(FrameBuffer& frame, const FilterSettings& sett
     filteredWith_ = pixel;
   }
   embree::BlendResult blended = embree::blend(input, *filtered_, pixel);
-  auto mask = frame.outputs.find(kMaskOutput);
-  const bool hybrid = mask != frame.outputs.end() && mask->second.size() == n;
-  for (std::size_t i = 0; i < n; ++i)
-    if (!hybrid || mask->second[i].r > 0.0f) frame.colour[i] = glm::vec4(blended.radiance[i], frame.colour[i].a);
+  for (std::size_t i = 0; i < n; ++i) frame.colour[i] = glm::vec4(blended.radiance[i], frame.colour[i].a);
   if (blendOutput) {
     auto& s = frame.outputs[kBlendOutput];
     s.resize(n);

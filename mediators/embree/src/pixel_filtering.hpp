@@ -9,6 +9,7 @@
 #include "filter_settings.hpp"
 #include "tsr/embree/framebuffer.hpp"
 #include "tsr/embree/pixel_filter.hpp"
+#include "tsr/embree/radiance_filter.hpp"
 #include "tsr/med/frame_buffer.hpp"
 
 namespace tsr::med::embree_mediator {
@@ -18,7 +19,6 @@ inline constexpr const char* kHighVarianceOutput = "filter.highVariance";    // 
 inline constexpr const char* kHighVarianceVarOutput = "filter.variance";     // rgb: Var[Lu] of the mean
 inline constexpr const char* kRangeOutput = "filter.range";                  // rgb: flash colour, a: samples n
 inline constexpr const char* kBlendOutput = "blend";                         // r: blend factor s
-inline constexpr const char* kMaskOutput = "filter.mask";  // r: 1 where hybrid filtering pixel-filters (4.6.1)
 
 std::vector<std::string> pixelFilterInputs();
 
@@ -27,8 +27,11 @@ std::vector<std::string> pixelFilterInputs();
 // alone and a tile rendered on a node matches the whole-frame render.
 std::uint32_t flashSamplesFor(std::uint32_t samples);
 
-// Writes the filter's inputs from the accumulated samples into `out`.
-void writePixelFilterInputs(const embree::FrameBuffer& fb, PathClass pathClass, FrameBuffer& out);
+// Writes the filter's inputs from the accumulated samples into `out`. With
+// `hybrid`, out's colour is radiance filtering's image and what is left to
+// pixel filtering is per pixel: see hybrid filtering in the README.
+void writePixelFilterInputs(const embree::FrameBuffer& fb, PathClass pathClass, FrameBuffer& out,
+                            const embree::RadianceAccumulator* hybrid = nullptr);
 
 // Filters and blends frames from their filter outputs; keeps the last
 // filtered buffer, so that frames between two filter passes only blend.
@@ -37,7 +40,6 @@ class PixelFilterResolver {
   // Replaces frame's colour (rgb) with the blended image; filters anew when
   // `refilter`, when nothing was filtered yet, or when the settings or the
   // frame's size changed. Fills the "blend" output when `blendOutput`.
-  // With a "filter.mask" output (hybrid), only masked pixels change.
   void resolve(FrameBuffer& frame, const FilterSettings& settings, bool refilter, bool blendOutput);
   void forget() { filtered_.reset(); }
   // The sample count the kept filtered buffer was made from.

@@ -75,10 +75,15 @@ class RadianceAccumulator {
 
   // Frames accumulated into pixel (x, y) (region coordinates).
   std::uint32_t frames(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].frames; }
-  // Accumulated filtered indirect radiance (unfiltered for masked pixels with
-  // hybrid on, and for pixels whose path hit no non-specular surface).
+  // Accumulated filtered indirect radiance, caustics excluded (unfiltered
+  // for masked pixels with hybrid on, and for pixels whose path hit no
+  // non-specular surface). Caustic paths (LS+D..E) are never filtered
+  // here: a neighbour's rare caustic sample, re-used by every pixel in
+  // its kernel, would print a disc-shaped splotch; they stay in the frame
+  // buffer's Caustic channel, for pixel filtering to handle (hybrid).
   glm::vec3 indirect(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].indirect; }
-  // The pixel's value: direct (from the frame buffer it belongs to) + indirect.
+  // The pixel's value: direct and caustics (from the frame buffer it
+  // belongs to, unfiltered) + indirect.
   // Read through radiance(fb, x, y), or radianceImage(fb).
   glm::vec3 radiance(const FrameBuffer& fb, std::uint32_t x, std::uint32_t y) const;
   std::vector<glm::vec3> radianceImage(const FrameBuffer& fb) const;
