@@ -3,6 +3,7 @@
 #include "bsdf.hpp"
 #include "scene_state.hpp"
 #include "tsr/embree/error.hpp"
+#include "tsr/embree/limits.hpp"
 #include "tsr/embree/rng.hpp"
 #include "tsr/embree/sampling.hpp"
 
@@ -11,6 +12,7 @@
 #include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/partitioner.h>
 #include <oneapi/tbb/task_arena.h>
+#include <spdlog/spdlog.h>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -75,10 +77,20 @@ inline void setRay(RTCRay& ray, const glm::vec3& org, const glm::vec3& dir, floa
 #endif
 }
 
+// Embree's own ray.valid(): origin and direction components within
+// FLT_LARGE, a segment that is not NaN. Embree aborts on anything else, so
+// such a ray is refused here (NaN fails every comparison).
+inline bool traceable(const glm::vec3& org, const glm::vec3& dir, float tfar) {
+  return std::abs(org.x) <= kMaxRayComponent && std::abs(org.y) <= kMaxRayComponent &&
+         std::abs(org.z) <= kMaxRayComponent && std::abs(dir.x) <= kMaxRayComponent &&
+         std::abs(dir.y) <= kMaxRayComponent && std::abs(dir.z) <= kMaxRayComponent && std::abs(tfar) <= kInf;
+}
+
 struct Tracer {
   const SceneState& scene;
   const RenderSettings& settings;
   std::uint64_t rays = 0;
+  std::uint64_t refused = 0;  // rays Embree cannot trace: paths end there, shadow rays count as blocked
 
   bool intersect(const glm::vec3& org, const glm::vec3& dir, RTCRayHit& rh) {
     RTCIntersectContext ctx;
@@ -92,6 +104,10 @@ struct Tracer {
   }
 
   bool occluded(const glm::vec3& org, const glm::vec3& dir, float tfar) {
+    if (!traceable(org, dir, tfar)) {
+      ++refused;
+      return true;
+    }
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRay ray;
@@ -225,6 +241,10 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
   bool prevDelta = true;
 
   for (std::uint32_t depth = 0;; ++depth) {
+    if (!traceable(org, dir, kInf)) {
+      ++refused;
+      break;
+    }
     RTCRayHit rh;
     if (!intersect(org, dir, rh)) {
       if (envActive) {
@@ -419,6 +439,7 @@ PassResult Renderer::renderPass(Scene& scene, const Camera& camera, const Region
   const std::uint32_t rw = region.regionWidth(), rh = region.regionHeight();
   const std::uint32_t tilesX = (rw + ts - 1) / ts, tilesY = (rh + ts - 1) / ts;
   std::vector<std::uint64_t> tileRays(std::size_t(tilesX) * tilesY, 0);
+  std::vector<std::uint64_t> tileRefused(tileRays.size(), 0);
   const glm::vec3 camPos(camera.cameraToWorld[3]);
   const glm::vec3 forward = glm::normalize(-glm::vec3(camera.cameraToWorld[2]));
   const glm::mat3 camRot(camera.cameraToWorld);
@@ -450,6 +471,7 @@ PassResult Renderer::renderPass(Scene& scene, const Camera& camera, const Region
       }
     }
     tileRays[tile] = tracer.rays;
+    tileRefused[tile] = tracer.refused;
   };
 
   arena_->arena.execute([&] {
@@ -462,6 +484,10 @@ PassResult Renderer::renderPass(Scene& scene, const Camera& camera, const Region
   });
 
   for (auto r : tileRays) result.rays += r;
+  for (auto r : tileRefused) result.refusedRays += r;
+  if (result.refusedRays)
+    spdlog::warn("tsr::embree: {} rays could not be traced (coordinates beyond {} or NaN) and were dropped",
+                 result.refusedRays, kMaxRayComponent);
   totalRays_ += result.rays;
   result.completed = !cancelled.load();
   if (!result.completed) cancel_.store(false, std::memory_order_relaxed);
