@@ -1,5 +1,6 @@
-// tessera-inspect SCENE [--json]: loads a scene (a glTF file or a built-in)
-// and prints what it holds. Errors: one line on stderr, exit status 2.
+// tessera-inspect SCENE [--json] [--max-file-mb N] [--max-elements N]: loads
+// a scene (a glTF file or a built-in) and prints what it holds. Errors: one
+// line on stderr, exit status 2.
 #include <cstdio>
 #include <iostream>
 
@@ -77,6 +78,13 @@ int main(int argc, char** argv) {
       ->required();
   app.add_flag("--json", json, "print a JSON object instead of text");
   app.add_flag("-v,--verbose", verbose, "log the importer's progress to stderr");
+  tsr::sg::ImportOptions options;
+  std::uint64_t maxFileMb = options.maxFileBytes >> 20;
+  app.add_option("--max-file-mb", maxFileMb, "largest scene file (.gltf, .glb, buffer, image) read, in MiB")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 20));
+  app.add_option("--max-elements", options.maxJsonValues,
+                 "most values a glTF's JSON may hold; larger files are refused before parsing")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40));
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -85,6 +93,7 @@ int main(int argc, char** argv) {
     std::cerr << "error: " << oneLine(e.what()) << "\n";
     return kErrorExit;
   }
+  options.maxFileBytes = maxFileMb << 20;
 
   // stdout carries only the report, so logs go to stderr, and only on request.
   spdlog::set_default_logger(spdlog::stderr_color_mt("tessera-inspect"));
@@ -92,7 +101,7 @@ int main(int argc, char** argv) {
 
   try {
     tsr::sg::Scene scene;
-    const tsr::sg::ImportResult result = tsr::sg::importScene(scene, source);
+    const tsr::sg::ImportResult result = tsr::sg::importScene(scene, source, options);
     const tsr::sg::SceneStats stats = tsr::sg::computeSceneStats(scene, result.root);
     if (json)
       std::cout << toJson(source, result, stats).dump(2) << "\n";
@@ -100,6 +109,10 @@ int main(int argc, char** argv) {
       printText(source, result, stats);
     std::cout.flush();
     return std::cout ? 0 : kErrorExit;
+  } catch (const tsr::sg::ImportLimitError& e) {
+    const bool file = e.limit() == tsr::sg::ImportLimitError::Limit::FileBytes;
+    std::cerr << "error: " << oneLine(e.what()) << " (raise it with " << (file ? "--max-file-mb" : "--max-elements")
+              << ")\n";
   } catch (const tsr::sg::ImportError& e) {
     std::cerr << "error: " << oneLine(e.what()) << "\n";
   } catch (const std::exception& e) {

@@ -1,6 +1,8 @@
-// tessera-node --listen HOST:PORT [--token-file F] [--name N] [--threads N] [--present DIR]
+// tessera-node --listen HOST:PORT [--token-file F | --insecure] [--name N] [--threads N] [--present DIR]
 // Serves render requests of Tessera clients. The first line on stdout is
 // "listening on HOST:PORT" (port 0 picks a free one), for scripts and tests.
+// Without a token file it listens only on loopback, unless --insecure.
+// Start-up errors: one "error:" line on stderr, exit status 2.
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -16,7 +18,10 @@ int main(int argc, char** argv) {
   std::string listen = "127.0.0.1:0", tokenFile, name = "node", logLevel = "info";
   unsigned threads = 0;
   app.add_option("--listen", listen, "HOST:PORT to listen on (port 0: a free port)");
-  app.add_option("--token-file", tokenFile, "file holding the shared token clients must prove");
+  app.add_option("--token-file", tokenFile,
+                 "file holding the shared token clients must prove (required to listen beyond loopback)");
+  bool insecure = false;
+  app.add_flag("--insecure", insecure, "without --token-file, listen on a non-loopback address anyway: anyone may connect");
   app.add_option("--name", name, "name reported to clients");
   app.add_option("--threads", threads, "render threads per viewport (0: all cores)");
   std::string present;
@@ -35,6 +40,7 @@ int main(int argc, char** argv) {
     options.threads = threads;
     options.presentDirectory = present;
     if (!tokenFile.empty()) options.token = tsr::cluster::readTokenFile(tokenFile);
+    options.insecure = insecure;
 
     tsr::med::ViewportRegistry registry;
     tsr::app::registerBackends(registry);
@@ -47,7 +53,10 @@ int main(int argc, char** argv) {
     server.run();
     return 0;
   } catch (const std::exception& e) {
-    std::cerr << "tessera-node: " << e.what() << "\n";
-    return 1;
+    std::string message = e.what();
+    for (char& c : message)
+      if (c == '\n') c = ' ';
+    std::cerr << "error: " << message << "\n";
+    return 2;
   }
 }

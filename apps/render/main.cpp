@@ -29,7 +29,7 @@ int run(int argc, char** argv) {
   if (sequence.active()) return tsr::app::renderSequence(options, sequence);
 
   tsr::app::SceneSession session;
-  session.load(options.scene);
+  session.load(options.scene, options.import);
   session.publish();
 
   tsr::med::ViewportRegistry registry;
@@ -89,6 +89,11 @@ int main(int argc, char** argv) {
   spdlog::set_level(spdlog::level::warn);
   try {
     return run(argc, argv);
+  } catch (const tsr::sg::ImportLimitError& e) {
+    std::string message = e.what();
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    std::cerr << "error: " << message << " (raise it with " << tsr::app::importLimitOption(e) << ")\n";
+    return 2;
   } catch (const std::exception& e) {
     std::string message = e.what();
     std::replace(message.begin(), message.end(), '\n', ' ');

@@ -29,6 +29,10 @@ std::string aovPath(const std::string& output, const std::string& aov) {
   return output.substr(0, dot) + "." + aov + output.substr(dot);
 }
 
+std::string importLimitOption(const sg::ImportLimitError& e) {
+  return e.limit() == sg::ImportLimitError::Limit::FileBytes ? "--max-file-mb" : "--max-elements";
+}
+
 bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
   CLI::App app{"Render a scene with one of Tessera's back-ends"};
   app.allow_extras();
@@ -47,6 +51,12 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
   app.add_option("--stats-json", o.statsJson, "write render statistics as JSON");
   app.add_option("--param", params, "back-end parameter name=value (repeatable)");
   app.add_flag("--quiet", o.quiet, "no progress bar");
+  std::uint64_t maxFileMb = o.import.maxFileBytes >> 20;
+  app.add_option("--max-file-mb", maxFileMb, "largest scene file (.gltf, .glb, buffer, image) read, in MiB")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 20));
+  app.add_option("--max-elements", o.import.maxJsonValues,
+                 "most values a glTF's JSON may hold; larger files are refused before parsing")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40));
   // Noise filtering of the path tracer: each option sets the viewport
   // parameter named after it (see the embree back-end's README).
   std::vector<std::pair<CLI::Option*, std::string>> filterOptions;
@@ -85,6 +95,7 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
     throw std::invalid_argument(e.what());
   }
   parseSize(size, o.width, o.height);
+  o.import.maxFileBytes = maxFileMb << 20;
   for (const auto& p : params) {
     auto [name, value] = med::Parameters::parse(p);
     o.parameters.set(name, value);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "tsr/med/parameters.hpp"
+#include "tsr/sg/import/importer.hpp"
 
 namespace tsr::app {
 
@@ -19,6 +20,7 @@ struct RenderOptions {
   med::Parameters parameters;  // spp, maxDepth, seed, threads and --param extras
   std::set<std::string> explicitParameters;  // those the command line named (they beat a config's)
   bool quiet = false;
+  sg::ImportOptions import;  // --max-file-mb, --max-elements
   std::vector<std::string> unparsed;  // arguments for other parts (cluster, frames)
 };
 
@@ -28,6 +30,9 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& options);
 
 // "640x480" -> width, height; throws std::invalid_argument.
 void parseSize(const std::string& text, std::uint32_t& width, std::uint32_t& height);
+
+// The option that raises the import limit an error names, for its message.
+std::string importLimitOption(const sg::ImportLimitError& e);
 
 // out.png + "albedo" -> out.albedo.png
 std::string aovPath(const std::string& output, const std::string& aov);

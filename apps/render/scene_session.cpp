@@ -6,8 +6,8 @@
 
 namespace tsr::app {
 
-void SceneSession::load(const std::string& scene) {
-  imported = sg::importScene(source, scene);
+void SceneSession::load(const std::string& scene, const sg::ImportOptions& options) {
+  imported = sg::importScene(source, scene, options);
   if (!imported.cameras.empty()) {
     camera = imported.cameras.front();
     return;

@@ -18,7 +18,7 @@ struct SceneSession {
 
   // Imports `scene`; adds a camera framing the bounds when it has none.
   // Throws sg::ImportError.
-  void load(const std::string& scene);
+  void load(const std::string& scene, const sg::ImportOptions& options = {});
   // Commits the frame's edits and applies them to the replica.
   sg::ChangeListPtr publish();
 };

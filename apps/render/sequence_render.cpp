@@ -71,7 +71,7 @@ int renderSequence(const RenderOptions& options, const SequenceOptions& sequence
   if (sequence.frames > 1 && options.output.find("####") == std::string::npos)
     throw std::invalid_argument("--frames " + std::to_string(sequence.frames) + " needs #### in --output for the frame number");
   SceneSession session;
-  session.load(options.scene);
+  session.load(options.scene, options.import);
   FrameRenderer render = sequence.cluster.empty() ? localRenderer(options, session) : clusterRenderer(options, sequence, session);
   for (int frame = 0; frame < sequence.frames; ++frame) {
     // Frame 0 is the scene as loaded; later ones pose the animation at frame / fps.

@@ -25,6 +25,7 @@ class Connection : public std::enable_shared_from_this<Connection> {
   // Reads one message; throws ProtocolError or boost::system::system_error.
   asio::awaitable<Message> receive();
   void setAuthenticated() { authenticated_ = true; }
+  bool authenticated() const { return authenticated_; }
 
   void send(Frame frame);  // io thread only
   void post(Frame frame);  // any thread

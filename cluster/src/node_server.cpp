@@ -30,10 +30,7 @@ struct NodeServer::Impl {
 };
 
 NodeServer::NodeServer(NodeOptions options, const med::ViewportRegistry& registry)
-    : impl_(std::make_unique<Impl>(std::move(options), registry)) {
-  if (impl_->context.options.token.empty())
-    spdlog::warn("no token file given: any client without a token may connect");
-}
+    : impl_(std::make_unique<Impl>(std::move(options), registry)) {}
 
 NodeServer::~NodeServer() = default;
 
@@ -43,6 +40,14 @@ NodeAddress NodeServer::listen() {
   auto results = resolver.resolve(want.host, std::to_string(want.port),
                                   tcp::resolver::passive | tcp::resolver::numeric_service);
   tcp::endpoint ep = results.begin()->endpoint();
+  const NodeOptions& o = impl_->context.options;
+  if (o.token.empty() && !o.insecure && !ep.address().is_loopback())
+    throw InsecureListenError("refusing to listen on " + want.host + " (" + ep.address().to_string() +
+                              ") without --token-file: any client that reaches it could render on this node; "
+                              "give --token-file FILE, or --insecure to accept that");
+  if (o.token.empty())
+    spdlog::warn("no token file given: any client {} without a token may connect",
+                 ep.address().is_loopback() ? "on this machine" : "that reaches " + ep.address().to_string());
   auto& a = impl_->acceptor;
   a.open(ep.protocol());
   a.set_option(tcp::acceptor::reuse_address(true));

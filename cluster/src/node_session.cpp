@@ -47,7 +47,14 @@ asio::awaitable<void> NodeSession::run() {
     }
   } catch (const ProtocolError& e) {
     spdlog::warn("session {}: {} ({}); disconnecting", peer_, e.what(), name(e.kind()));
-    conn_->close();
+    if (conn_->authenticated()) {
+      // A client we know gets the reason (a view it cannot render, say);
+      // strangers only get the hang-up.
+      conn_->send(makeFrame(ErrorReport{std::string(e.what()).substr(0, kMaxReasonBytes)}));
+      conn_->closeAfterFlush();
+    } else {
+      conn_->close();
+    }
   } catch (const boost::system::system_error& e) {
     if (conn_->timedOut()) spdlog::warn("session {}: peer went quiet; disconnecting", peer_);
     else spdlog::info("session {}: {}", peer_, e.code().message());

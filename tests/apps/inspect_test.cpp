@@ -64,4 +64,47 @@ TEST_F(InspectCommand, MissingFileAndBadUsageExitWithTwo) {
   expectOneErrorLine(run("builtin:nope --json"), "builtin:nope: unknown built-in scene");
 }
 
+TEST_F(InspectCommand, CameraBeyondTheCoordinateLimitIsOneErrorLine) {
+  const fs::path far = writeFarCameraGltf();
+  expectOneErrorLine(run("'" + far.string() + "'"), far.string() + ": node 0 translation -1e+20 is beyond 1e+12");
+}
+
+// A 300 MB .gltf of 100 million array elements took 4 GB and 17 s before it
+// was refused. 20 million elements (40 MB) are refused by the scan before
+// parsing: the process needs the file's bytes more than a tiny file does,
+// not the 3.9 GB that parsing them takes (measured with --max-elements 3e7).
+TEST_F(InspectCommand, TooManyJsonValuesAreRefusedBeforeParsing) {
+  const fs::path big = dir / "big.gltf";
+  {
+    std::string text = R"({"asset": {"version": "2.0"}, "extras": [0)";
+    text.reserve(text.size() + 40'000'000);
+    for (int i = 1; i < 20'000'000; ++i) text += ",0";
+    text += "]}";
+    std::ofstream(big, std::ios::binary) << text;
+  }
+  Outcome r = run("'" + big.string() + "'");
+  expectOneErrorLine(r, "the JSON holds more than 4194304 values");
+  EXPECT_THAT(r.err, HasSubstr("refused before parsing"));
+  EXPECT_THAT(r.err, HasSubstr("(raise it with --max-elements)"));
+  const fs::path tiny = dir / "tiny.gltf";
+  std::ofstream(tiny) << R"({"asset": {"version": "2.0"}})";
+  const long base = peakKilobytes(TSR_INSPECT_PATH, {tiny.string()});
+  const long refusing = peakKilobytes(TSR_INSPECT_PATH, {big.string()});
+  ASSERT_GT(base, 0);
+  EXPECT_LT(refusing - base, 100 * 1024) << "peak kilobytes: " << refusing << ", for a tiny file " << base;
+
+  r = run("'" + big.string() + "' --max-elements 1000");
+  expectOneErrorLine(r, "more than 1000 values");
+  r = run("'" + big.string() + "' --max-file-mb 10");
+  expectOneErrorLine(r, "more than the limit of 10485760 bytes (10 MiB)");
+  EXPECT_THAT(r.err, HasSubstr("(raise it with --max-file-mb)"));
+}
+
+TEST_F(InspectCommand, ImportLimitsCanBeRaised) {
+  const fs::path small = dir / "small.gltf";
+  std::ofstream(small) << R"({"asset": {"version": "2.0"}, "extras": [1, 2, 3, 4, 5, 6, 7, 8, 9, 10]})";
+  expectOneErrorLine(run("'" + small.string() + "' --max-elements 5"), "more than 5 values");
+  EXPECT_EQ(run("'" + small.string() + "' --max-elements 50").status, 0);
+}
+
 }  // namespace

@@ -71,4 +71,20 @@ TEST_F(RenderCommand, BadInputIsOneErrorLine) {
   expectOneErrorLine(run("junk.gltf --size 8x8"), "junk.gltf");
 }
 
+TEST_F(RenderCommand, CameraBeyondTheCoordinateLimitIsOneErrorLineAndNoImage) {
+  writeFarCameraGltf();
+  expectOneErrorLine(run("far.gltf --size 8x8 --spp 1 --output far.png"), "node 0 translation -1e+20 is beyond 1e+12");
+  EXPECT_FALSE(std::filesystem::exists(dir / "far.png"));
+}
+
+TEST_F(RenderCommand, ImportLimitsNameTheirOption) {
+  std::ofstream(dir / "values.gltf") << R"({"asset": {"version": "2.0"}, "extras": [1, 2, 3, 4, 5, 6, 7, 8, 9, 10]})";
+  Outcome r = run("values.gltf --size 8x8 --spp 1 --output v.png --max-elements 8");
+  expectOneErrorLine(r, "more than 8 values");
+  EXPECT_THAT(r.err, HasSubstr("--max-elements"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "v.png"));
+  EXPECT_EQ(run("values.gltf --size 8x8 --spp 1 --output v.png --quiet").status, 0);
+  expectOneErrorLine(run("values.gltf --max-file-mb 0"), "--max-file-mb");
+}
+
 }  // namespace

@@ -193,6 +193,25 @@ TEST(MessageCodec, ValidationRejectsNonsenseValues) {
   r = sampleRequest();
   r.jobs[0].view.nearPlane = -1;  // degenerate view
   EXPECT_THROW(parse<RenderRequest>(unframe(makeFrame(r))), ProtocolError);
+  // Found by mutating recorded traffic: a finite eye at -2.7e38 aborted the
+  // node in Embree. Views must stay within sg::kMaxCoordinate.
+  for (float eye : {-2.7e38f, 1e20f, 1.1e12f}) {
+    r = sampleRequest();
+    r.jobs[0].view.cameraToWorld[3][2] = eye;
+    try {
+      parse<RenderRequest>(unframe(makeFrame(r)));
+      ADD_FAILURE() << "eye " << eye << " accepted";
+    } catch (const ProtocolError& e) {
+      EXPECT_EQ(e.kind(), ProtocolError::Kind::Malformed);
+      EXPECT_NE(std::string(e.what()).find("beyond the coordinate limit"), std::string::npos) << e.what();
+    }
+  }
+  r = sampleRequest();
+  r.jobs[0].view.top = 2e12f;
+  EXPECT_THROW(parse<RenderRequest>(unframe(makeFrame(r))), ProtocolError);
+  r = sampleRequest();
+  r.jobs[0].view.farPlane = 1e30f;  // an infinite projection, as glTF says: fine
+  EXPECT_NO_THROW(parse<RenderRequest>(unframe(makeFrame(r))));
   r = sampleRequest();
   r.jobs[0].view.width = r.jobs[0].view.height = 8192;  // a valid image, but one tile of 64 M pixels is too much
   r.jobs[0].view.region = {0, 0, 8192, 8192};

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../apps/command_runner.hpp"
 #include "cluster_test_util.hpp"
 #include "raw_client.hpp"
 #include "tsr/cluster/auth.hpp"
@@ -40,6 +41,20 @@ TEST(NodeProcess, ReportsItsAddressAndStopsOnSigterm) {
   EXPECT_EQ(node.address().host, "127.0.0.1");
   EXPECT_NE(node.address().port, 0);
   EXPECT_TRUE(node.terminate());
+}
+
+// Without a token any client may connect: only loopback, unless --insecure.
+// Only the refusal is tested: no traffic goes to a non-loopback address.
+class NodeStartup : public tsr::test::CommandTest {};
+
+TEST_F(NodeStartup, NoTokenOnANonLoopbackAddressIsRefused) {
+  for (const char* address : {"0.0.0.0:0", "0.0.0.0"}) {
+    const tsr::test::Outcome r = runBinary(TSR_NODE_BINARY, std::string("--listen ") + address);
+    expectOneErrorLine(r, "refusing to listen on 0.0.0.0");
+    EXPECT_THAT(r.err, ::testing::HasSubstr("--token-file"));
+    EXPECT_THAT(r.err, ::testing::HasSubstr("--insecure"));
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
 }
 
 TEST(NodeAuth, WrongTokenIsRejected) {

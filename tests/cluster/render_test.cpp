@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include "cluster_test_util.hpp"
+#include "raw_client.hpp"
+#include "tsr/cluster/handshake.hpp"
 #include "tsr/cluster/cluster_window.hpp"
 #include "tsr/cluster/wall_layout.hpp"
 #include "tsr/med/compositing.hpp"
@@ -14,6 +16,7 @@
 #include "tsr/med/embree/register.hpp"
 #include "tsr/med/viewport_registry.hpp"
 #include "tsr/sg/replica.hpp"
+#include "tsr/sg/wire_codec.hpp"
 
 namespace tsr::cluster::test {
 namespace {
@@ -269,6 +272,53 @@ TEST(ClusterRender, LateJoinerTakesPartAndMatches) {
   ClusterFrame f = app.window->render(app.view());
   EXPECT_GT(f.busySeconds[1], 0.0);
   EXPECT_TRUE(bitwiseEqual(f.image, app.reference(app.view())));
+}
+
+// Found by replaying recorded traffic with mutations: a RenderRequest whose
+// eye is at -2.7e38 (finite) passed every check and aborted the node inside
+// Embree, for all its clients. That client now gets an error; the node
+// renders the next client's frame exactly as before.
+TEST(ClusterRender, EyeBeyondTheCoordinateLimitIsRefusedAndTheNodeServesOn) {
+  auto nodes = startNodes(1);
+  Session app("builtin:cornell", configFor(ClusterMode::Cooperative, nodes, pathTracer(1)), pathTracer(1));
+  ASSERT_EQ(app.connect(), 1u);
+  app.publish();
+  const med::FrameBuffer before = app.window->render(app.view()).image;
+  ASSERT_TRUE(bitwiseEqual(before, app.reference(app.view())));
+
+  for (float eye : {-2.7e38f, 1e20f, 2e12f}) {
+    // An authenticated client with a scene and a viewport, as a real one has.
+    RawClient raw(nodes[0]->address());
+    ClientHandshake hs("", "mutated replay");
+    ASSERT_TRUE(raw.send(hs.hello()));
+    Message m;
+    ASSERT_EQ(raw.read(m), RawClient::Outcome::Message);
+    ASSERT_TRUE(raw.send(hs.onChallenge(m)));
+    ASSERT_EQ(raw.read(m), RawClient::Outcome::Message);
+    ASSERT_EQ(m.type, MessageType::Welcome);
+    ASSERT_TRUE(raw.send(frameFromPayload(MessageType::Snapshot, sg::encode(*app.s.scene.snapshot()))));
+    ASSERT_EQ(raw.read(m), RawClient::Outcome::Message);
+    ASSERT_EQ(m.type, MessageType::Applied);
+    ASSERT_TRUE(raw.send(makeFrame(SetViewports{{{0, "embree", app.s.imported.root, app.s.imported.background, pathTracer(1)}}})));
+
+    med::View view = app.view();
+    view.cameraToWorld[3][2] = eye;
+    RenderRequest request;
+    request.frame = 1;
+    request.jobs.push_back({0, view, {view.region}});
+    // The codec's writer does not validate: bytes as an attacker sends them.
+    ASSERT_TRUE(raw.send(makeFrame(request)));
+    ASSERT_EQ(raw.read(m), RawClient::Outcome::Message) << "eye " << eye;
+    ASSERT_EQ(m.type, MessageType::Error) << "eye " << eye;
+    EXPECT_NE(parse<ErrorReport>(m).reason.find("beyond the coordinate limit"), std::string::npos)
+        << parse<ErrorReport>(m).reason;
+    EXPECT_EQ(raw.waitClosed(), RawClient::Outcome::Closed);
+
+    EXPECT_TRUE(nodes[0]->alive());
+    const ClusterFrame after = app.window->render(app.view());
+    EXPECT_EQ(after.offlineTiles, 0u);
+    EXPECT_TRUE(bitwiseEqual(after.image, before)) << "after eye " << eye;
+  }
 }
 
 }  // namespace

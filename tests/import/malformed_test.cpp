@@ -35,9 +35,9 @@ class MalformedFiles : public ::testing::Test {
 
   // Imports `path`, expecting an ImportError naming the file and containing
   // `problem`, and the scene untouched.
-  void expectRejected(const std::string& path, const std::string& problem) {
+  void expectRejected(const std::string& path, const std::string& problem, const ImportOptions& options = {}) {
     try {
-      importScene(scene, path);
+      importScene(scene, path, options);
       ADD_FAILURE() << path << " was accepted; expected: " << problem;
     } catch (const ImportError& e) {
       EXPECT_THAT(e.what(), HasSubstr(path));
@@ -140,6 +140,82 @@ TEST_F(MalformedFiles, NonFiniteNumbers) {
   b.doc["animations"] = {{{"samplers", {{{"input", times}, {"output", values}}}},
                           {"channels", {{{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}}}}}};
   expectRejected(b, "anim.gltf", "animation 0 channel 0 output");
+}
+
+// Found by mutating real files: finite but huge coordinates passed every
+// check and aborted Embree ("Assertion 'ray.valid()' failed").
+TEST_F(MalformedFiles, CoordinatesBeyondWhatRenderersTrace) {
+  test::GltfBuilder b = test::tinyScene();
+  b.doc["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.1}}}}};
+  b.doc["nodes"].push_back({{"camera", 0}, {"translation", {0.0, 0.0, -1e20}}});
+  b.doc["scenes"][0]["nodes"].push_back(1);
+  expectRejected(b, "far-camera.gltf", "node 1 translation -1e+20 is beyond 1e+12");
+
+  b = test::tinyScene();
+  b.doc["nodes"][0].erase("translation");
+  b.doc["nodes"][0]["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -2.7e38, 1};
+  expectRejected(b, "far-matrix.gltf", "node 0 matrix -2.7e+38 is beyond 1e+12");
+
+  b = test::GltfBuilder();
+  const int pos = b.addFloats({0, 0, 0, 5e12f, 0, 0, 0, 1, 0}, "VEC3");
+  b.doc["meshes"] = {{{"primitives", {{{"attributes", {{"POSITION", pos}}}}}}}};
+  b.doc["nodes"] = {{{"mesh", 0}}};
+  expectRejected(b, "far-vertex.gltf", "mesh 0 primitive 0 POSITION 1 coordinate 5e+12 is beyond 1e+12");
+
+  // Each matrix within the limit, their composition not.
+  b = test::tinyScene();
+  b.doc["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.1}}}}};
+  b.doc["nodes"][0]["scale"] = {1e7, 1e7, 1e7};
+  b.doc["nodes"][0]["children"] = {1};
+  b.doc["nodes"].push_back({{"camera", 0}, {"translation", {0.0, 0.0, 1e6}}});
+  expectRejected(b, "composed.gltf", "node 1 places its camera at 1e+13");
+
+  b = test::tinyScene();
+  const int times = b.addFloats({0, 1}, "SCALAR");
+  const int values = b.addFloats({0, 0, 0, 0, 3e15f, 0}, "VEC3");
+  b.doc["animations"] = {{{"samplers", {{{"input", times}, {"output", values}}}},
+                          {"channels", {{{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}}}}}};
+  expectRejected(b, "far-animation.gltf", "animation 0 channel 0 output value 3e+15 is beyond 1e+12");
+
+  // At the limit is fine.
+  b = test::tinyScene();
+  b.doc["nodes"][0]["translation"] = {0.0, 1e12, 0.0};
+  b.writeGltf(dir.file("edge.gltf"));
+  EXPECT_NO_THROW(importScene(scene, dir.file("edge.gltf")));
+}
+
+// A 300 MB file of 100 million array elements took 4 GB and 17 s to refuse.
+// Limits refuse it before anything is parsed; both name what they count.
+TEST_F(MalformedFiles, OversizedInputsAreRefusedBeforeParsing) {
+  test::GltfBuilder b = test::tinyScene();
+  b.doc["extras"] = json::array();
+  for (int i = 0; i < 1000; ++i) b.doc["extras"].push_back(i);
+  const std::string gltf = dir.file("many.gltf"), glb = dir.file("many.glb");
+  b.writeGltf(gltf);
+  b.writeGlb(glb);
+  ImportOptions few;
+  few.maxJsonValues = 500;
+  for (const std::string& path : {gltf, glb}) {
+    expectRejected(path, "the JSON holds more than 500 values", few);
+    try {
+      importScene(scene, path, few);
+    } catch (const ImportLimitError& e) {
+      EXPECT_EQ(e.limit(), ImportLimitError::Limit::JsonValues);
+    }
+  }
+  ImportOptions small;
+  small.maxFileBytes = 1000;
+  expectRejected(gltf, "bytes, more than the limit of 1000 bytes", small);
+  try {
+    importScene(scene, gltf, small);
+  } catch (const ImportLimitError& e) {
+    EXPECT_EQ(e.limit(), ImportLimitError::Limit::FileBytes);
+  }
+  // Malformed JSON is still reported as such by the scan.
+  test::writeText(dir.file("broken.gltf"), R"({"asset": {"version": "2.0"}, "nodes": [1, 2,)");
+  expectRejected(dir.file("broken.gltf"), "invalid JSON", few);
+  // The defaults take it.
+  EXPECT_NO_THROW(importScene(scene, gltf));
 }
 
 TEST_F(MalformedFiles, WrongJsonTypes) {

@@ -2,9 +2,12 @@
 // errors, never crashes (this suite also runs under ASan + UBSan).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstring>
 #include <random>
 
 #include "random_edits.hpp"
+#include "tsr/sg/coordinate_limit.hpp"
 #include "tsr/sg/scene.hpp"
 #include "tsr/sg/wire_codec.hpp"
 
@@ -120,6 +123,50 @@ TEST(WireCodec, RandomByteFlipsNeverCrash) {
         decodeAndApplyHostile(bytes, replica);
       }
     }
+  }
+}
+
+// Matrices and vertex arrays place what back-ends trace: beyond
+// kMaxCoordinate they are refused by setters and by the decoder alike.
+TEST(WireCodec, CoordinatesBeyondTheLimitAreRefused) {
+  Scene s;
+  auto& t = s.create<Transform>();
+  auto& c = s.create<Camera>();
+  auto& g = s.create<Geometry>();
+  Mat4 far(1.0f);
+  far[3][2] = -1e20f;
+  EXPECT_THROW(t.setMatrix(far), SceneError);
+  EXPECT_THROW(c.setPose(far), SceneError);
+  EXPECT_THROW(g.setPositions({Vec3(0), Vec3(0, 2e12f, 0)}), SceneError);
+  g.setPositions({Vec3(0), Vec3(1, 0, 0), Vec3(0, kMaxCoordinate, 0)});  // the limit itself is fine
+  EXPECT_THROW(g.updatePositions(0, std::vector<Vec3>{Vec3(3e38f)}), SceneError);
+  c.setFarPlane(1e30f);  // planes are no coordinates: an infinite projection stays allowed
+  t.setMatrix(Mat4(2.0f));
+  auto bytes = encode(*s.commit());
+
+  // The same values patched into the bytes, as a hostile peer would send them.
+  auto patched = [&](float from, float to) {
+    auto out = bytes;
+    std::uint8_t a[4], b[4];
+    std::memcpy(a, &from, 4);
+    std::memcpy(b, &to, 4);
+    auto it = std::search(out.begin(), out.end(), a, a + 4);
+    EXPECT_NE(it, out.end());
+    if (it != out.end()) std::copy(b, b + 4, it);
+    return out;
+  };
+  EXPECT_NO_THROW(decode(bytes));
+  try {
+    decode(patched(2.0f, -2.7e38f));
+    ADD_FAILURE() << "matrix entry accepted";
+  } catch (const DecodeError& e) {
+    EXPECT_NE(std::string(e.what()).find("beyond the coordinate limit"), std::string::npos) << e.what();
+  }
+  try {
+    decode(patched(kMaxCoordinate, 1e20f));
+    ADD_FAILURE() << "position accepted";
+  } catch (const DecodeError& e) {
+    EXPECT_NE(std::string(e.what()).find("beyond 1e12"), std::string::npos) << e.what();
   }
 }
 

@@ -1,10 +1,12 @@
 #include "tsr/embree/camera.hpp"
 
 #include "tsr/embree/error.hpp"
+#include "tsr/embree/limits.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
+#include <string>
 
 namespace tsr::embree {
 
@@ -25,10 +27,12 @@ Camera Camera::lookAt(const glm::vec3& eye, const glm::vec3& target, const glm::
 void Camera::validate() const {
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j)
-      if (!std::isfinite(cameraToWorld[i][j])) throw Error("camera transform contains NaN or infinity");
-  if (!std::isfinite(left) || !std::isfinite(right) || !std::isfinite(bottom) || !std::isfinite(top) ||
-      !std::isfinite(near)) {
-    throw Error("camera frustum contains NaN or infinity");
+      if (!withinCoordinateLimit(cameraToWorld[i][j]))
+        throw Error("camera transform entry " + std::to_string(cameraToWorld[i][j]) +
+                    " is NaN, infinite or beyond 1e12 (kMaxCoordinate)" + (i == 3 ? ": the eye cannot be traced" : ""));
+  if (!withinCoordinateLimit(left) || !withinCoordinateLimit(right) || !withinCoordinateLimit(bottom) ||
+      !withinCoordinateLimit(top) || !withinCoordinateLimit(near)) {
+    throw Error("camera frustum contains NaN, infinity or a value beyond 1e12 (kMaxCoordinate)");
   }
   if (!(left < right) || !(bottom < top)) throw Error("camera window is empty (need left < right, bottom < top)");
   if (!(near > 0.0f)) throw Error("camera near must be positive");

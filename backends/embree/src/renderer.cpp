@@ -8,6 +8,7 @@
 #include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/partitioner.h>
 #include <oneapi/tbb/task_arena.h>
+#include <spdlog/spdlog.h>
 
 #include <string>
 #include <type_traits>
@@ -77,6 +78,10 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
   bool prevDelta = true;
 
   for (std::uint32_t depth = 0;; ++depth) {
+    if (!traceable(org, dir, kInf)) {
+      ++refused;
+      break;
+    }
     RTCRayHit rh;
     if (!intersect(org, dir, rh)) {
       if (envActive) {
@@ -302,6 +307,7 @@ PassResult Renderer::runTiles(Scene& scene, const Camera& camera, const Region& 
   const std::uint32_t rw = region.regionWidth(), rh = region.regionHeight();
   const std::uint32_t tilesX = (rw + ts - 1) / ts, tilesY = (rh + ts - 1) / ts;
   std::vector<std::uint64_t> tileRays(std::size_t(tilesX) * tilesY, 0);
+  std::vector<std::uint64_t> tileRefused(tileRays.size(), 0);
   std::atomic<bool> cancelled{false};
 
   auto renderTile = [&](std::size_t tile) {
@@ -317,6 +323,7 @@ PassResult Renderer::runTiles(Scene& scene, const Camera& camera, const Region& 
       for (std::uint32_t x = xb; x < xe; ++x) perPixel(tracer, x, y, region.x0 + x, region.y0 + y);
     }
     tileRays[tile] = tracer.rays;
+    tileRefused[tile] = tracer.refused;
   };
 
   arena_->arena.execute([&] {
@@ -329,6 +336,10 @@ PassResult Renderer::runTiles(Scene& scene, const Camera& camera, const Region& 
   });
 
   for (auto r : tileRays) result.rays += r;
+  for (auto r : tileRefused) result.refusedRays += r;
+  if (result.refusedRays)
+    spdlog::warn("tsr::embree: {} rays could not be traced (coordinates beyond {} or NaN) and were dropped",
+                 result.refusedRays, kMaxRayComponent);
   totalRays_ += result.rays;
   result.completed = !cancelled.load();
   if (!result.completed) cancel_.store(false, std::memory_order_relaxed);

@@ -2,6 +2,7 @@
 
 #include "scene_state.hpp"
 #include "tsr/embree/error.hpp"
+#include "tsr/embree/limits.hpp"
 #include "tsr/embree/sampling.hpp"
 
 #include <glm/matrix.hpp>
@@ -20,11 +21,15 @@ std::atomic<std::uint64_t> nextSceneUid{1};
 
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 bool finite(const glm::vec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+bool traceable(const glm::vec3& p) {
+  return withinCoordinateLimit(p.x) && withinCoordinateLimit(p.y) && withinCoordinateLimit(p.z);
+}
 
 void validateTransform(const glm::mat4& m) {
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j)
-      if (!std::isfinite(m[i][j])) throw Error("instance transform contains NaN or infinity");
+      if (!withinCoordinateLimit(m[i][j]))
+        throw Error("instance transform contains NaN, infinity or a value beyond 1e12 (kMaxCoordinate)");
   if (m[0][3] != 0.0f || m[1][3] != 0.0f || m[2][3] != 0.0f || m[3][3] != 1.0f) {
     throw Error("instance transform must be affine (last row 0 0 0 1)");
   }
@@ -51,7 +56,8 @@ void validateMesh(const MeshData& d) {
     }
   }
   for (const auto& p : d.positions)
-    if (!finite(p)) throw Error("mesh position contains NaN or infinity");
+    if (!traceable(p))
+      throw Error("mesh position contains NaN, infinity or a value beyond 1e12 (kMaxCoordinate)");
   for (const auto& n : d.normals)
     if (!finite(n)) throw Error("mesh normal contains NaN or infinity");
   for (const auto& t : d.uvs)
@@ -142,7 +148,7 @@ void Scene::updateMeshVertices(MeshId id, std::uint32_t first, std::span<const g
   if (!normals.empty() && normals.size() != positions.size()) throw Error("normal range size differs from position range");
   if (!normals.empty() && m.data.normals.empty()) throw Error("mesh has no normals to update");
   for (const auto& p : positions)
-    if (!finite(p)) throw Error("vertex update contains NaN or infinity");
+    if (!traceable(p)) throw Error("vertex update contains NaN, infinity or a value beyond 1e12 (kMaxCoordinate)");
   for (const auto& v : normals)
     if (!finite(v)) throw Error("normal update contains NaN or infinity");
   std::copy(positions.begin(), positions.end(), m.data.positions.begin() + first);

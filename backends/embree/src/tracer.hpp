@@ -6,6 +6,7 @@
 #include "bsdf.hpp"
 #include "scene_state.hpp"
 #include "tsr/embree/framebuffer.hpp"
+#include "tsr/embree/limits.hpp"
 #include "tsr/embree/radiance_filter.hpp"
 #include "tsr/embree/renderer.hpp"
 #include "tsr/embree/rng.hpp"
@@ -59,12 +60,28 @@ inline void setRay(RTCRay& ray, const glm::vec3& org, const glm::vec3& dir, floa
 #endif
 }
 
+// Embree's own ray.valid(): origin and direction components within
+// FLT_LARGE, a segment that is not NaN. Embree aborts on anything else, so
+// such a ray is refused here (NaN fails every comparison).
+inline bool traceable(const glm::vec3& org, const glm::vec3& dir, float tfar) {
+  return std::abs(org.x) <= kMaxRayComponent && std::abs(org.y) <= kMaxRayComponent &&
+         std::abs(org.z) <= kMaxRayComponent && std::abs(dir.x) <= kMaxRayComponent &&
+         std::abs(dir.y) <= kMaxRayComponent && std::abs(dir.z) <= kMaxRayComponent && std::abs(tfar) <= kInf;
+}
+
 struct Tracer {
   const SceneState& scene;
   const RenderSettings& settings;
   std::uint64_t rays = 0;
+  std::uint64_t refused = 0;  // rays Embree cannot trace: paths end there, shadow rays count as blocked
 
+  // An untraceable ray is refused and counts as a miss; the path tracer
+  // checks first and ends the path instead.
   bool intersect(const glm::vec3& org, const glm::vec3& dir, RTCRayHit& rh) {
+    if (!traceable(org, dir, kInf)) {
+      ++refused;
+      return false;
+    }
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     setRay(rh.ray, org, dir, kInf);
@@ -76,6 +93,10 @@ struct Tracer {
   }
 
   bool occluded(const glm::vec3& org, const glm::vec3& dir, float tfar) {
+    if (!traceable(org, dir, tfar)) {
+      ++refused;
+      return true;
+    }
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRay ray;

@@ -1,10 +1,13 @@
 #include "tsr/med/view.hpp"
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
+
+#include "tsr/sg/coordinate_limit.hpp"
 
 namespace tsr::med {
 
@@ -50,9 +53,20 @@ void View::validate() const {
   if (region.x1 > width || region.y1 > height) fail("region outside the image");
   if (!(right > left) || !(top > bottom)) fail("empty frustum window");
   if (!(nearPlane > 0) || !(farPlane > nearPlane)) fail("near must be positive and below far");
+  // A pose or window beyond sg::kMaxCoordinate gives rays no back-end can trace.
+  auto number = [](float v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+  };
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r)
-      if (!std::isfinite(cameraToWorld[c][r])) fail("non-finite camera pose");
+      if (!sg::withinCoordinateLimit(cameraToWorld[c][r]))
+        fail("camera pose entry " + number(cameraToWorld[c][r]) + " is not finite or beyond the coordinate limit of " +
+             number(sg::kMaxCoordinate) + (c == 3 ? " (the eye position)" : ""));
+  for (float v : {left, right, bottom, top, nearPlane})
+    if (!sg::withinCoordinateLimit(v))
+      fail("frustum value " + number(v) + " is beyond the coordinate limit of " + number(sg::kMaxCoordinate));
 }
 
 }  // namespace tsr::med

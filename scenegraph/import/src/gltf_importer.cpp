@@ -1,6 +1,7 @@
 #include "gltf_importer.hpp"
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -10,11 +11,17 @@
 #include "gltf_loader.hpp"
 #include "image_decoding.hpp"
 #include "normal_generation.hpp"
+#include "tsr/sg/coordinate_limit.hpp"
 
 namespace tsr::sg::gltf {
 namespace {
 
 std::string str(std::size_t v) { return std::to_string(v); }
+std::string number(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
 
 class Converter {
  public:
@@ -30,6 +37,7 @@ class Converter {
     cameras();
     nodes();
     roots();
+    placements();
     animations();
   }
 
@@ -52,12 +60,31 @@ class Converter {
     if (!std::isfinite(f)) fail(what + " is not finite");
     return f;
   }
+  // A value that places something (a vertex, a node, a camera): finite and
+  // within sg::kMaxCoordinate, beyond which no back-end can trace it.
+  float coordinate(double v, const std::string& what) const {
+    const float f = finite(v, what);
+    if (!withinCoordinateLimit(f))
+      fail(what + " " + number(v) + " is beyond " + number(kMaxCoordinate) +
+           ", the largest coordinate Tessera renders");
+    return f;
+  }
+  void checkCoordinates(const Mat4& m, const std::string& what) const {
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) coordinate(m[c][r], what);
+  }
+
   template <int N>
   glm::vec<N, float> vec(const std::vector<double>& v, const std::string& what) const {
     if (v.size() != N) fail(what + " must have " + std::to_string(N) + " numbers");
     glm::vec<N, float> out;
     for (int i = 0; i < N; ++i) out[i] = finite(v[static_cast<std::size_t>(i)], what);
     return out;
+  }
+
+  Vec3 position(const std::vector<double>& v, const std::string& what) const {
+    if (v.size() != 3) fail(what + " must have 3 numbers");
+    return {coordinate(v[0], what), coordinate(v[1], what), coordinate(v[2], what)};
   }
 
   void images() {
@@ -201,6 +228,8 @@ class Converter {
         if (attr("POSITION") < 0) fail(what + " has no POSITION attribute");
         p.positions = attribute<3>(attr("POSITION"), false, what + " POSITION");
         const std::size_t n = p.positions.size();
+        for (std::size_t v = 0; v < n; ++v)
+          for (int c = 0; c < 3; ++c) coordinate(p.positions[v][c], what + " POSITION " + str(v) + " coordinate");
         auto sameCount = [&](std::size_t count, const char* name) {
           if (count != n) fail(what + " " + name + " has " + str(count) + " elements but POSITION has " + str(n));
         };
@@ -303,12 +332,12 @@ class Converter {
           fail(what + " has both a matrix and translation/rotation/scale");
         if (src.matrix.size() != 16) fail(what + " matrix must have 16 numbers");
         float m[16];
-        for (std::size_t k = 0; k < 16; ++k) m[k] = finite(src.matrix[k], what + " matrix");
+        for (std::size_t k = 0; k < 16; ++k) m[k] = coordinate(src.matrix[k], what + " matrix");
         node.local = glm::make_mat4(m);
       } else {
         Animation::Pose pose;
-        if (!src.translation.empty()) pose.translation = vec<3>(src.translation, what + " translation");
-        if (!src.scale.empty()) pose.scale = vec<3>(src.scale, what + " scale");
+        if (!src.translation.empty()) pose.translation = position(src.translation, what + " translation");
+        if (!src.scale.empty()) pose.scale = position(src.scale, what + " scale");
         if (!src.rotation.empty()) {
           const Vec4 q = vec<4>(src.rotation, what + " rotation");
           const float len = glm::length(q);
@@ -349,6 +378,27 @@ class Converter {
     }
   }
 
+  // Nodes compose their matrices: check where each one ends up in the world
+  // (cameras above all: their position is every primary ray's origin).
+  void placements() {
+    std::vector<std::pair<int, Mat4>> stack;
+    for (int r : out_.roots) stack.emplace_back(r, Mat4(1.0f));
+    while (!stack.empty()) {
+      auto [index, parent] = stack.back();
+      stack.pop_back();
+      const parsed::Node& n = out_.nodes[static_cast<std::size_t>(index)];
+      const Mat4 world = parent * n.local;
+      const bool camera = n.camera != parsed::kNone;
+      for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+          if (!withinCoordinateLimit(world[c][r]))
+            fail("node " + str(static_cast<std::size_t>(index)) + (camera && c == 3 ? " places its camera at " : " has world transform entry ") +
+                 number(world[c][r]) + ", beyond " + number(kMaxCoordinate) +
+                 ", the largest coordinate Tessera renders (the node hierarchy composes to it)");
+      for (int child : n.children) stack.emplace_back(child, world);
+    }
+  }
+
   void animations() {
     for (std::size_t ai = 0; ai < m_.animations.size(); ++ai) {
       const tinygltf::Animation& src = m_.animations[ai];
@@ -377,6 +427,8 @@ class Converter {
         out.times = reader_.floats(sampler.input, 1, false, what + " input");
         const int comps = out.path == Animation::Path::Rotation ? 4 : 3;
         const std::vector<float> v = reader_.floats(sampler.output, comps, true, what + " output");
+        if (out.path != Animation::Path::Rotation)
+          for (std::size_t k = 0; k < v.size(); ++k) coordinate(v[k], what + " output value");
         for (std::size_t k = 0; k < v.size(); k += static_cast<std::size_t>(comps))
           out.values.emplace_back(v[k], v[k + 1], v[k + 2], comps == 4 ? v[k + 3] : 0.0f);
         try {

@@ -3,6 +3,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -20,8 +21,10 @@ std::vector<unsigned char> readWholeFile(const std::string& path, std::uint64_t 
   const std::uint64_t size = fs::file_size(path, ec);
   if (ec) throw ImportError(source, "cannot read '" + path + "': " + ec.message());
   if (size > limit)
-    throw ImportError(source, "'" + path + "' is " + std::to_string(size) + " bytes, more than the limit of " +
-                                  std::to_string(limit));
+    throw ImportLimitError(source,
+                           "'" + path + "' is " + std::to_string(size) + " bytes, more than the limit of " +
+                               std::to_string(limit) + " bytes (" + std::to_string(limit >> 20) + " MiB)",
+                           ImportLimitError::Limit::FileBytes);
   std::ifstream in(path, std::ios::binary);
   std::vector<unsigned char> bytes(static_cast<std::size_t>(size));
   if (!in || !in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size)))
@@ -33,6 +36,7 @@ std::vector<unsigned char> readWholeFile(const std::string& path, std::uint64_t 
 // limit and no path goes through wordexp (its default expansion).
 struct FsContext {
   std::uint64_t limit;
+  std::optional<ImportLimitError> refused;  // rethrown with its kind after tinygltf gives up
 };
 bool fileExists(const std::string& path, void*) {
   std::error_code ec;
@@ -40,10 +44,14 @@ bool fileExists(const std::string& path, void*) {
 }
 std::string expandPath(const std::string& path, void*) { return path; }
 bool readFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
-  const auto* ctx = static_cast<const FsContext*>(user);
+  auto* ctx = static_cast<FsContext*>(user);
   try {
     *out = readWholeFile(path, ctx->limit, path);
     return true;
+  } catch (const ImportLimitError& e) {
+    if (!ctx->refused) ctx->refused = e;
+    if (err) *err += e.reason() + "\n";
+    return false;
   } catch (const ImportError& e) {
     if (err) *err += e.reason() + "\n";
     return false;
@@ -85,6 +93,52 @@ std::string glbJson(const std::vector<unsigned char>& bytes, const std::string& 
   return std::string(reinterpret_cast<const char*>(&bytes[20]), static_cast<std::size_t>(jsonLength));
 }
 
+// Counts JSON values without building them and stops at the limit, so a
+// document of 100 million array elements costs a scan, not gigabytes.
+class ValueCounter : public nlohmann::json_sax<nlohmann::json> {
+ public:
+  explicit ValueCounter(std::uint64_t limit) : limit_(limit) {}
+  bool overLimit() const { return count_ > limit_; }
+  const std::string& error() const { return error_; }
+
+  bool null() override { return value(); }
+  bool boolean(bool) override { return value(); }
+  bool number_integer(number_integer_t) override { return value(); }
+  bool number_unsigned(number_unsigned_t) override { return value(); }
+  bool number_float(number_float_t, const string_t&) override { return value(); }
+  bool string(string_t&) override { return value(); }
+  bool binary(binary_t&) override { return value(); }
+  bool start_object(std::size_t) override { return value(); }
+  bool key(string_t&) override { return true; }
+  bool end_object() override { return true; }
+  bool start_array(std::size_t) override { return value(); }
+  bool end_array() override { return true; }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception& e) override {
+    error_ = e.what();
+    return false;
+  }
+
+ private:
+  bool value() { return ++count_ <= limit_; }
+  std::uint64_t limit_;
+  std::uint64_t count_ = 0;
+  std::string error_;
+};
+
+// Refuses JSON with more values than the limit (or malformed JSON) before
+// anything is parsed into memory.
+void scanJson(const char* first, const char* last, std::uint64_t limit, const std::string& source) {
+  ValueCounter counter(limit);
+  if (nlohmann::json::sax_parse(first, last, &counter)) return;
+  if (counter.overLimit())
+    throw ImportLimitError(source,
+                           "the JSON holds more than " + std::to_string(limit) +
+                               " values (numbers, strings, array elements, object members), the limit; "
+                               "refused before parsing",
+                           ImportLimitError::Limit::JsonValues);
+  throw ImportError(source, "invalid JSON: " + counter.error());
+}
+
 }  // namespace
 
 LoadedFile loadFile(const std::string& path, const ImportOptions& options) {
@@ -92,17 +146,23 @@ LoadedFile loadFile(const std::string& path, const ImportOptions& options) {
   std::vector<unsigned char> bytes = readWholeFile(path, limit, path);
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
 
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(binary ? glbJson(bytes, path)
-                                       : std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
-  } catch (const nlohmann::json::exception& e) {
-    throw ImportError(path, std::string("invalid JSON: ") + e.what());
+  const std::string glb = binary ? glbJson(bytes, path) : std::string();
+  const char* first = binary ? glb.data() : reinterpret_cast<const char*>(bytes.data());
+  const char* last = first + (binary ? glb.size() : bytes.size());
+  scanJson(first, last, options.maxJsonValues, path);
+
+  {
+    nlohmann::json doc;  // freed before tinygltf builds its own
+    try {
+      doc = nlohmann::json::parse(first, last);
+    } catch (const nlohmann::json::exception& e) {
+      throw ImportError(path, std::string("invalid JSON: ") + e.what());
+    }
+    checkJsonTypes(doc, path);
   }
-  checkJsonTypes(doc, path);
 
   tinygltf::TinyGLTF loader;
-  FsContext ctx{limit};
+  FsContext ctx{limit, std::nullopt};
   loader.SetFsCallbacks({&fileExists, &expandPath, &readFile, &refuseWrite, &ctx});
   loader.SetImageLoader(&keepImageBytes, nullptr);
   loader.SetPreserveImageChannels(true);
@@ -118,6 +178,7 @@ LoadedFile loadFile(const std::string& path, const ImportOptions& options) {
   // Messages stay on one line: callers print them as one.
   for (std::size_t p = err.find('\n'); p != std::string::npos; p = err.find('\n', p)) err.replace(p, 1, "; ");
   // tinygltf may report success with an error message: either is a failure.
+  if (ctx.refused) throw *ctx.refused;
   if (!ok || !err.empty()) throw ImportError(path, err.empty() ? "tinygltf could not load the file" : err);
   std::size_t start = 0;
   while (start < warn.size()) {

@@ -95,5 +95,45 @@ TEST(EmbreeBadInput, ImagesCamerasAndSettings) {
   EXPECT_TRUE(renderer.renderPass(scene, camera, Region::full(8, 8), fb).completed);  // still usable
 }
 
+// Found by mutating real files: a camera at z = -1e20 is finite, yet Embree
+// aborted the process on its rays ("Assertion 'ray.valid()' failed").
+TEST(EmbreeBadInput, CoordinatesBeyondWhatEmbreeTraces) {
+  Scene scene(sharedDevice());
+  Camera camera = cornellBox(scene, 0);
+  Renderer renderer;
+  FrameBuffer fb(8, 8);
+  for (float eye : {-1e20f, -2.7e38f, 2e12f}) {
+    Camera far = camera;
+    far.cameraToWorld[3][2] = eye;
+    EXPECT_THAT(errorOf([&] { renderer.renderPass(scene, far, Region::full(8, 8), fb); }),
+                HasSubstr("the eye cannot be traced"))
+        << eye;
+  }
+  Camera wide = camera;
+  wide.right = 3e38f;
+  wide.left = -3e38f;
+  EXPECT_THAT(errorOf([&] { renderer.renderPass(scene, wide, Region::full(8, 8), fb); }), HasSubstr("beyond 1e12"));
+
+  MeshId mesh = scene.addMesh(quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}));
+  MeshData m = quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0});
+  m.positions[1].x = 5e12f;
+  EXPECT_THAT(errorOf([&] { scene.addMesh(m); }), HasSubstr("beyond 1e12"));
+  std::vector<glm::vec3> v(1, glm::vec3(0, 0, -1e20f));
+  EXPECT_THAT(errorOf([&] { scene.updateMeshVertices(mesh, 0, v); }), HasSubstr("beyond 1e12"));
+  glm::mat4 far(1.0f);
+  far[3][0] = 1e20f;
+  EXPECT_THAT(errorOf([&] { scene.addInstance(mesh, scene.addMaterial({}), far); }), HasSubstr("beyond 1e12"));
+
+  // Rays that still cannot be traced (here: a frustum so small its ray
+  // directions underflow to NaN) are dropped, never handed to Embree.
+  Camera tiny = camera;
+  tiny.near = tiny.right = tiny.top = 1e-30f;
+  tiny.left = tiny.bottom = -1e-30f;
+  PassResult r = renderer.renderPass(scene, tiny, Region::full(8, 8), fb);
+  EXPECT_TRUE(r.completed);
+  EXPECT_GT(r.refusedRays, 0u);
+  EXPECT_TRUE(renderer.renderPass(scene, camera, Region::full(8, 8), fb).completed);  // still usable
+}
+
 }  // namespace
 }  // namespace tsr::embree::test

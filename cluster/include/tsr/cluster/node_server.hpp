@@ -5,6 +5,7 @@
 // a peer that misbehaves is disconnected without touching the others.
 #include <chrono>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "tsr/cluster/node_address.hpp"
@@ -15,6 +16,9 @@ namespace tsr::cluster {
 struct NodeOptions {
   NodeAddress listen;             // port 0 picks a free port
   std::string token;              // empty: no token file given (any client that also has none may connect)
+  // Without a token a node serves anyone who can reach it, so it listens
+  // only on loopback addresses unless this is set (--insecure).
+  bool insecure = false;
   std::string name = "node";
   unsigned threads = 0;           // default "threads" parameter of viewports; 0 leaves it to the back-end
   // A headless node "presents" a wall tile by writing it here when the
@@ -22,6 +26,12 @@ struct NodeOptions {
   std::string presentDirectory;
   std::chrono::milliseconds handshakeTimeout{5000};
   std::chrono::milliseconds idleTimeout{15000};  // clients heartbeat far more often than this
+};
+
+// A node asked to listen on a non-loopback address without a token.
+class InsecureListenError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 class NodeServer {
@@ -32,7 +42,8 @@ class NodeServer {
   NodeServer& operator=(const NodeServer&) = delete;
 
   // Binds and listens; returns the address actually bound. Throws
-  // std::system_error (e.g. address in use).
+  // InsecureListenError for a non-loopback address without a token (unless
+  // options.insecure), std::system_error (e.g. address in use).
   NodeAddress listen();
   // Makes SIGINT and SIGTERM stop run(); call before listen() so a signal
   // that follows the "listening on" line is never lost.

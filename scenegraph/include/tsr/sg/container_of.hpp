@@ -8,35 +8,49 @@
 #include <utility>
 #include <vector>
 
+#include "tsr/sg/coordinate_limit.hpp"
 #include "tsr/sg/errors.hpp"
 #include "tsr/sg/field_spec.hpp"
 
 namespace tsr::sg {
 
 namespace detail {
-inline bool finite(float v) { return std::isfinite(v); }
+// Plain values (colours, angles, planes) must be finite; matrices and
+// vertex arrays place what back-ends trace, so they obey kMaxCoordinate too.
+inline bool acceptable(float v) { return std::isfinite(v); }
 template <int N>
-bool finite(const glm::vec<N, float>& v) {
+bool acceptable(const glm::vec<N, float>& v) {
   for (int i = 0; i < N; ++i)
     if (!std::isfinite(v[i])) return false;
   return true;
 }
-inline bool finite(const Mat4& m) {
+template <int N>
+bool traceable(const glm::vec<N, float>& v) {
+  for (int i = 0; i < N; ++i)
+    if (!withinCoordinateLimit(v[i])) return false;
+  return true;
+}
+inline bool acceptable(const Mat4& m) {
   for (int c = 0; c < 4; ++c)
-    if (!finite(m[c])) return false;
+    if (!traceable(m[c])) return false;
   return true;
 }
 template <class T>
-bool finite(const T&) {
+bool acceptable(const T&) {
   return true;
 }
 template <class E>
-bool finite(const std::vector<E>& v) {
-  if constexpr (std::is_floating_point_v<E> || std::is_class_v<E>) {
-    return std::all_of(v.begin(), v.end(), [](const E& e) { return finite(e); });
+bool acceptable(const std::vector<E>& v) {
+  if constexpr (requires(const E& e) { traceable(e); }) {
+    return std::all_of(v.begin(), v.end(), [](const E& e) { return traceable(e); });
   } else {
     return true;
   }
+}
+template <class E>
+bool acceptableElement(const E& e) {
+  if constexpr (requires { traceable(e); }) return traceable(e);
+  else return true;
 }
 
 inline std::span<const ContainerId> idsOf(const ContainerId& id) {
@@ -108,11 +122,11 @@ class ContainerOf : public Container {
  protected:
   ContainerOf() : Container(Type) {}
 
-  // Assigns a plain or array value, rejecting non-finite floats.
+  // Assigns a plain or array value, rejecting non-finite floats and
+  // coordinates beyond kMaxCoordinate.
   template <class T>
   void assign(FieldIndex f, T& member, T value) {
-    if (!detail::finite(value))
-      throw SceneError(std::string(typeName(Type)) + "." + std::string(fieldInfo(f).name) + ": non-finite value");
+    if (!detail::acceptable(value)) throw SceneError(invalidValue(f));
     member = std::move(value);
     touch(f);
   }
@@ -135,8 +149,7 @@ class ContainerOf : public Container {
                        std::to_string(begin) + ", +" + std::to_string(values.size()) + ") outside " +
                        std::to_string(member.size()) + " elements");
     for (const E& v : values)
-      if (!detail::finite(v))
-        throw SceneError(std::string(typeName(Type)) + "." + std::string(fieldInfo(f).name) + ": non-finite value");
+      if (!detail::acceptableElement(v)) throw SceneError(invalidValue(f));
     std::copy(values.begin(), values.end(), member.begin() + static_cast<std::ptrdiff_t>(begin));
     touchRange(f, begin, begin + values.size());
   }
@@ -164,6 +177,11 @@ class ContainerOf : public Container {
     constexpr std::size_t n = std::tuple_size_v<decltype(Derived::fieldSpecs())>;
     static_assert(kFirstOwnField + n <= kMaxFields);
     return n;
+  }
+
+  std::string invalidValue(FieldIndex f) const {
+    return std::string(typeName(Type)) + "." + std::string(fieldInfo(f).name) +
+           ": non-finite value or a coordinate beyond 1e12 (sg::kMaxCoordinate)";
   }
 
   Derived& self() { return static_cast<Derived&>(*this); }

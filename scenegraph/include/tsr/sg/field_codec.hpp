@@ -12,6 +12,7 @@
 #include "tsr/sg/attachment.hpp"
 #include "tsr/sg/byte_reader.hpp"
 #include "tsr/sg/byte_writer.hpp"
+#include "tsr/sg/coordinate_limit.hpp"
 #include "tsr/sg/decode_limits.hpp"
 #include "tsr/sg/types.hpp"
 
@@ -76,9 +77,15 @@ void read(ByteReader& r, glm::vec<N, float>& v, FieldReadContext&) {
 }
 
 inline void write(ByteWriter& w, const Mat4& m) { w.raw(&m[0][0], sizeof(float) * 16); }
+// Matrices place geometry and cameras, so their entries obey kMaxCoordinate.
 inline void read(ByteReader& r, Mat4& m, FieldReadContext&) {
   for (int c = 0; c < 4; ++c)
-    for (int i = 0; i < 4; ++i) m[c][i] = r.f32();
+    for (int i = 0; i < 4; ++i) {
+      m[c][i] = r.f32();
+      if (!withinCoordinateLimit(m[c][i]))
+        throw DecodeError(r.offset() - sizeof(float), "matrix entry " + std::to_string(m[c][i]) +
+                                                           " is beyond the coordinate limit of 1e12");
+    }
 }
 
 inline void write(ByteWriter& w, const std::string& s) { w.string(s); }
@@ -98,19 +105,20 @@ inline void read(ByteReader& r, std::vector<ContainerId>& ids, FieldReadContext&
 void write(ByteWriter& w, const Attachments& a);
 void read(ByteReader& r, Attachments& a, FieldReadContext& ctx);
 
-// Plain-old-data array elements: copied as bytes; float ones must be finite.
+// Plain-old-data array elements: copied as bytes; float ones (positions,
+// normals, uvs, colours) must be finite and within kMaxCoordinate.
 template <class E>
 concept ArrayElement = std::is_same_v<E, std::uint8_t> || std::is_same_v<E, std::uint32_t> ||
                        std::is_same_v<E, Vec2> || std::is_same_v<E, Vec3> || std::is_same_v<E, Vec4>;
 
 template <ArrayElement E>
-bool allFinite(const E* data, std::size_t n) {
+bool allWithinLimit(const E* data, std::size_t n) {
   if constexpr (std::is_integral_v<E>) {
     return true;
   } else {
     for (std::size_t i = 0; i < n; ++i)
       for (int k = 0; k < E::length(); ++k)
-        if (!std::isfinite(data[i][k])) return false;
+        if (!withinCoordinateLimit(data[i][k])) return false;
     return true;
   }
 }
@@ -143,7 +151,7 @@ void readArray(ByteReader& r, std::vector<E>& a, FieldReadContext& ctx) {
     std::size_t at = r.offset();
     a.resize(n);
     r.copy(a.data(), n * sizeof(E), "array data");
-    if (!allFinite(a.data(), n)) throw DecodeError(at, "array holds a non-finite float");
+    if (!allWithinLimit(a.data(), n)) throw DecodeError(at, "array holds a float that is not finite or beyond 1e12");
     return;
   }
   if (encoding != static_cast<std::uint8_t>(ArrayEncoding::Ranges))
@@ -173,7 +181,8 @@ void readArray(ByteReader& r, std::vector<E>& a, FieldReadContext& ctx) {
     if constexpr (!std::is_integral_v<E>) {
       std::vector<E> check(bytes.size() / sizeof(E));
       std::memcpy(static_cast<void*>(check.data()), bytes.data(), bytes.size());
-      if (!allFinite(check.data(), check.size())) throw DecodeError(at, "range holds a non-finite float");
+      if (!allWithinLimit(check.data(), check.size()))
+        throw DecodeError(at, "range holds a float that is not finite or beyond 1e12");
       if (!ctx.scanOnly) std::copy(check.begin(), check.end(), a.begin() + static_cast<std::ptrdiff_t>(begin));
     } else if (!ctx.scanOnly) {
       std::memcpy(a.data() + begin, src, bytes.size());

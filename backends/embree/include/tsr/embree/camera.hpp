@@ -21,7 +21,8 @@ struct Camera {
   static Camera lookAt(const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up, float fovY,
                        float aspect);
 
-  // Throws Error on non-finite values, an empty window or near <= 0.
+  // Throws Error on non-finite values or ones beyond kMaxCoordinate
+  // (limits.hpp), an empty window or near <= 0.
   void validate() const;
 
   bool operator==(const Camera&) const = default;

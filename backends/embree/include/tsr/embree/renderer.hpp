@@ -30,6 +30,7 @@ struct PassResult {
   bool completed = false;  // false if cancelled midway
   bool restarted = false;  // accumulation was reset before this pass
   std::uint64_t rays = 0;  // camera, bounce and shadow rays cast in this pass
+  std::uint64_t refusedRays = 0;  // rays not traceable (limits.hpp), dropped instead of cast
 };
 
 // Progressive path tracer: each renderPass adds samplesPerPass samples to

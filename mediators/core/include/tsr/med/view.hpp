@@ -38,7 +38,8 @@ struct View {
   View eye(Eye which, float separation, float zeroParallaxDistance) const;
 
   // Throws std::invalid_argument on an empty image or region, a region
-  // outside the image, or a degenerate frustum.
+  // outside the image, a degenerate frustum, or a pose or window with a
+  // value beyond sg::kMaxCoordinate (the far plane may be larger).
   void validate() const;
   bool operator==(const View&) const = default;
 };

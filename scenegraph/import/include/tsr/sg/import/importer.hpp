@@ -21,8 +21,16 @@ struct ImportOptions {
   // triangle's own normal. smoothNormals instead generates per-vertex normals
   // (the triangles sharing a vertex averaged, weighted by area).
   bool smoothNormals = false;
-  // Files and external buffers larger than this are refused.
-  std::uint64_t maxFileBytes = std::uint64_t{2} << 30;
+  // Files (.gltf, .glb, external buffers and images) larger than this are
+  // refused before they are read: 256 MiB holds any scene a glTF's JSON
+  // describes by hand and most binary ones; raise it for bigger scans.
+  std::uint64_t maxFileBytes = std::uint64_t{256} << 20;
+  // A glTF whose JSON holds more values than this (every number, string,
+  // array element and object member counts) is refused by a cheap scan
+  // before it is parsed: a parsed value costs 16 to 100 bytes, twice over
+  // (our checks and tinygltf), so 4 Mi values stay within about 1 GB while
+  // a scene with 200,000 nodes needs well under that count.
+  std::uint64_t maxJsonValues = std::uint64_t{1} << 22;
   // Accessors with more elements than this are refused.
   std::uint64_t maxAccessorElements = std::uint64_t{1} << 28;
   // Decoded images with more pixels than this are refused.
