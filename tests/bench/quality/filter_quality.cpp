@@ -370,7 +370,7 @@ int main(int argc, char** argv) {
   app.add_flag("--quick", o.quick, "fewer spp points: a few minutes once references are cached");
   CLI11_PARSE(app, argc, argv);
   o.fitSpp = o.quick ? std::vector<std::uint32_t>{4, 8, 16, 32} : std::vector<std::uint32_t>{4, 8, 16, 32, 64};
-  o.timedSpp = o.quick ? std::vector<std::uint32_t>{4, 8, 16} : std::vector<std::uint32_t>{4, 8, 16, 32};
+  o.timedSpp = o.quick ? std::vector<std::uint32_t>{4, 8, 16, 32} : std::vector<std::uint32_t>{4, 8, 16, 32, 64};
   for (const auto& e : o.extra)
     if (e.find('=') == std::string::npos) {
       std::cerr << "--set " << e << ": expected name=value\n";
