@@ -1,0 +1,67 @@
+#include "quality_scene.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "tsr/med/view.hpp"
+#include "tsr/med/viewport.hpp"
+#include "tsr/sg/camera.hpp"
+#include "tsr/sg/surface_material.hpp"
+
+namespace tsr::quality {
+
+namespace {
+
+// make_cornell.py gives the right wall the only pure red material.
+void makeRedWallGlossy(sg::Scene& scene) {
+  for (auto id : scene.ids()) {
+    auto* m = scene.find<sg::SurfaceMaterial>(id);
+    if (!m) continue;
+    const sg::Vec3 c = m->baseColor();
+    if (c.r > 0.9f && c.g < 0.1f && c.b < 0.1f) {
+      m->setBaseColor({0.9f, 0.9f, 0.9f});
+      m->setMetallic(1.0f);
+      m->setRoughness(0.2f);
+      return;
+    }
+  }
+  throw std::runtime_error("glossy variant: the scene has no red surface material to make glossy");
+}
+
+}  // namespace
+
+QualityScene::QualityScene(std::string key, std::string label, const std::string& source, bool glossy,
+                           const med::ViewportRegistry& registry)
+    : key_(std::move(key)), label_(std::move(label)), registry_(registry) {
+  imported_ = sg::importScene(source_, source);
+  if (imported_.cameras.empty()) throw std::runtime_error(source + ": the scene has no camera");
+  if (glossy) makeRedWallGlossy(source_);
+  replica_.apply(source_.commit());
+  med::Parameters p;
+  p.set("spp", std::int64_t{1});
+  anchor_ = viewport(p);
+  render(*anchor_, 8);  // converts the scene once for all later viewports
+}
+
+std::unique_ptr<med::Viewport> QualityScene::viewport(const med::Parameters& parameters) {
+  med::ViewportSettings s;
+  s.backend = "embree";
+  s.root = imported_.root;
+  s.background = imported_.background;
+  s.parameters = parameters;
+  return registry_.create(s, contexts_);
+}
+
+Shot QualityScene::render(med::Viewport& viewport, std::uint32_t size, bool wantBlend) {
+  const auto view = med::View::fromCamera(*replica_.scene().find<sg::Camera>(imported_.cameras.front()), size, size);
+  med::RenderControl control;
+  control.outputs = std::vector<std::string>{};
+  if (wantBlend) control.outputs->push_back("blend");
+  Shot shot;
+  const auto stats = viewport.render(replica_, view, shot.image, control);
+  shot.seconds = stats.seconds - stats.syncSeconds;
+  shot.samples = stats.samples;
+  return shot;
+}
+
+}  // namespace tsr::quality

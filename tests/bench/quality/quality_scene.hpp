@@ -1,0 +1,49 @@
+#pragma once
+// A scene the quality harness renders: imported once, followed by a replica,
+// with a pool of contexts kept alive by an anchor viewport so that every
+// fresh viewport on it reuses one converted scene (conversion and BVH build
+// stay out of the timings).
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "tsr/med/frame_buffer.hpp"
+#include "tsr/med/viewport_registry.hpp"
+#include "tsr/sg/import/importer.hpp"
+#include "tsr/sg/replica.hpp"
+#include "tsr/sg/scene.hpp"
+
+namespace tsr::quality {
+
+struct Shot {
+  med::FrameBuffer image;
+  double seconds = 0;  // the render call without catching up (conversion, BVH)
+  std::uint32_t samples = 0;
+};
+
+class QualityScene {
+ public:
+  // key: file-name-safe name for caches; source: a path or builtin:NAME.
+  // glossy: the red wall's material becomes a GGX conductor (roughness 0.2).
+  QualityScene(std::string key, std::string label, const std::string& source, bool glossy,
+               const med::ViewportRegistry& registry);
+
+  const std::string& key() const { return key_; }
+  const std::string& label() const { return label_; }
+
+  // A fresh viewport over the scene with `parameters` (backend embree).
+  std::unique_ptr<med::Viewport> viewport(const med::Parameters& parameters);
+  // Renders `viewport` at size x size; throws what the viewport throws.
+  Shot render(med::Viewport& viewport, std::uint32_t size, bool wantBlend = false);
+
+ private:
+  std::string key_, label_;
+  const med::ViewportRegistry& registry_;
+  sg::Scene source_;
+  sg::ImportResult imported_;
+  sg::Replica replica_;
+  med::ContextPool contexts_;
+  std::unique_ptr<med::Viewport> anchor_;
+};
+
+}  // namespace tsr::quality
