@@ -67,7 +67,7 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
       filterGroup->add_option("--filter", filter, "none, pixel, atrous, radiance or hybrid")
           ->check(CLI::IsMember({"none", "pixel", "atrous", "radiance", "hybrid"})),
       "filter");
-  filterOptions.emplace_back(filterGroup->add_option("--threshold", threshold, "perceived variance kept under (default 0.002)")
+  filterOptions.emplace_back(filterGroup->add_option("--threshold", threshold, "perceived variance kept under (default 0.01)")
                                  ->check(CLI::NonNegativeNumber),
                              "threshold");
   filterOptions.emplace_back(filterGroup->add_option("--sigma-s", sigmaS, "spatial std. dev., pixels (default 8)")

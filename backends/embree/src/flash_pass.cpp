@@ -14,6 +14,10 @@ constexpr int kStack = 16;
 // Emitters look like their own colour in the flash image (clamped to the
 // flash's range), so a lamp and the ceiling around it are told apart.
 constexpr float kEmissionShare = 0.5f;
+// Glossy surfaces smoother than this GGX alpha also show, in part, what
+// they reflect (3.6.2's extended range buffer): without it the filter has
+// no edge to stop at in a glossy reflection and blurs it away.
+constexpr float kGlossyAlpha = 0.25f;
 
 struct FlashRay {
   glm::vec3 org;
@@ -41,16 +45,20 @@ glm::vec3 Tracer::traceFlash(glm::vec3 org, glm::vec3 dir, const glm::vec3& eye)
     const glm::vec3 n = front ? h.ns : -h.ns;
     const MaterialType type = mat.material.type;
     const bool specular = type == MaterialType::Mirror || type == MaterialType::Glass;
+    const float alpha = mat.material.roughness * mat.material.roughness;
+    const bool glossy = (type == MaterialType::Conductor || type == MaterialType::Dielectric) && alpha < kGlossyAlpha;
+    const float eps = rayEpsilon(h.p);
+    const glm::vec3 ng = front ? h.ng : -h.ng;
     if (!specular || r.depth >= kMaxSpecularDepth) {
       const glm::vec3 toEye = glm::normalize(eye - h.p);
       const float head = std::max(0.0f, glm::dot(n, toEye));
       glm::vec3 c = base * (kAmbient + (1.0f - kAmbient) * head);
       if (mat.material.isEmissive()) c += kEmissionShare * glm::min(emission(mat, h.uv), glm::vec3(1.0f));
-      result += r.weight * c;
+      const float mirrored = glossy && r.depth < kMaxSpecularDepth && top < kStack ? 1.0f - alpha / kGlossyAlpha : 0.0f;
+      result += r.weight * (1.0f - mirrored) * c;
+      if (mirrored > 0.0f) stack[top++] = {h.p + ng * eps, glm::reflect(r.dir, n), r.weight * mirrored * base, r.depth + 1};
       continue;
     }
-    const float eps = rayEpsilon(h.p);
-    const glm::vec3 ng = front ? h.ng : -h.ng;
     const glm::vec3 reflected = glm::reflect(r.dir, n);
     glm::vec3 reflectWeight = r.weight * base;
     glm::vec3 refractWeight(0.0f);

@@ -201,7 +201,10 @@ BlendResult blend(const PixelFilterInput& in, const FilteredBuffer& fb, const Pi
       const float u = fb.variance[i] * age / (lb * lb);
       const float f = varF / (lb * lb);
       const float s = blendFactor(u, f, t);
-      if (settings.spikeRemoval) lu = glm::clamp(lu, 0.5f * lf, 2.0f * lf);  // 3.18, c = 2
+      // 3.18, c = 2, only while the filtered buffer is blended in: once the
+      // unfiltered pixel meets the threshold (s = 1) it is shown as it is,
+      // or the clamp's bias would never vanish.
+      if (settings.spikeRemoval && s < 1.0f) lu = glm::clamp(lu, 0.5f * lf, 2.0f * lf);
       out.radiance[i] = llv + s * lu + (1.0f - s) * lf;                        // 3.1
       out.blendFactor[i] = s;
     }

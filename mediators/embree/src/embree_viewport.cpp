@@ -68,11 +68,17 @@ void EmbreeViewport::writeFilterInputs(embree::Scene& scene, const embree::Camer
 void EmbreeViewport::resolveLocally(const FilterSettings& filter, std::uint32_t spp, FrameBuffer& out,
                                     const RenderControl& control) {
   if (!control.resolve) return;
-  // Filter on the 4, 8, 16, ... schedule and when the image is complete;
-  // frames in between blend new samples with the last filtered buffer.
+  // Filter on the 4, 8, 16, ... schedule, and when the image is complete
+  // at another count (a batch render of 12 spp) if that at least doubles
+  // the samples of the last filtered buffer; frames in between blend new
+  // samples with it. A viewer that asks for one more sample each frame so
+  // filters at 2, 4, 8, 16, ... and not at every frame. One sample has no
+  // variance estimate to filter by.
   const std::uint32_t samples = accumulation_->sampleCount(0, 0);
-  const bool due = (embree::isFilterFrame(samples) || samples >= spp) && pixelFilter_.filteredAt() != samples;
-  pixelFilter_.resolve(out, filter, due, control.wants(kBlendOutput));
+  const auto last = pixelFilter_.filteredAt();
+  const bool complete = samples >= spp && (!last || samples >= 2 * *last);
+  const bool due = samples >= 2 && (embree::isFilterFrame(samples) || complete) && last != samples;
+  if (due || last) pixelFilter_.resolve(out, filter, due, control.wants(kBlendOutput));
   auto explicitlyWanted = [&](const std::string& name) {
     return control.outputs && std::find(control.outputs->begin(), control.outputs->end(), name) != control.outputs->end();
   };

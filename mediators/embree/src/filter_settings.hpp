@@ -4,7 +4,7 @@
 // accumulation, they only change how the accumulated samples are shown.
 //
 //   filter      none | pixel | atrous | radiance | hybrid     (none)
-//   threshold   t: perceived variance the blend keeps under  (0.002)
+//   threshold   t: perceived variance the blend keeps under  (0.01)
 //   sigmaS      spatial std. dev., pixels                     (8)
 //   sigmaC      range colour std. dev.                        (0.02)
 //   sigmaD      range depth std. dev., as a fraction of the
@@ -12,8 +12,8 @@
 //   pathClass   indirect | caustic | all: the paths filtered  (indirect)
 //   filterKernel  bilateral | separable, for filter=pixel      (bilateral)
 //   adaptiveWidth, spikeRemoval, antialiasRecovery  (false, true, false)
-// Radiance filtering (filter=radiance|hybrid) reads threshold too (its
-// default there is 0.01, T_u of 4.3.3), and:
+// Radiance filtering (filter=radiance|hybrid) reads threshold too (T_u of
+// 4.3.3), and:
 //   warmupRadius (8 px), warmupFrames (4), maxRadius (12 px: cluster tiles
 //   are traced with a halo this wide), ambientOcclusion (true),
 //   bilateral (false), radianceBlend (0)

@@ -29,7 +29,7 @@ struct ClientOptions {
   std::string token;  // empty only for nodes started without a token
   std::string name = "tessera-client";
   // Named outputs (AOVs) to assemble besides colour and depth.
-  std::vector<std::string> outputs;
+  std::vector<std::string> outputs = {};
   // Where the nodes' back-end has whole-frame image steps (pixel filtering),
   // a viewport of it made from this registry resolves the assembled frame
   // here, so tiles show no seams. Null: every node resolves its own tiles.
