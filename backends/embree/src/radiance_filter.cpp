@@ -27,6 +27,11 @@ void RadianceFilterSettings::validate() const {
   if (!(std::isfinite(blend) && blend >= 0.0f && blend < 1.0f)) throw Error("radiance filter blend must be in [0, 1)");
 }
 
+namespace {
+// As kBackgroundFloor below: black pixels do not divide by zero.
+constexpr float kBlendBackgroundFloor = 1e-4f;
+}  // namespace
+
 RadianceAccumulator::RadianceAccumulator(std::uint32_t width, std::uint32_t height)
     : width_(width), height_(height) {
   if (width == 0 || height == 0) throw Error("radiance accumulator size must be non-zero");
@@ -40,7 +45,23 @@ void RadianceAccumulator::reset() {
 }
 
 glm::vec3 RadianceAccumulator::radiance(const FrameBuffer& fb, std::uint32_t x, std::uint32_t y) const {
-  return fb.mean(Channel::Direct, x, y) + pixels_[at(x, y)].indirect + fb.mean(Channel::Caustic, x, y);
+  const Pixel& p = pixels_[at(x, y)];
+  const glm::vec3 direct = fb.mean(Channel::Direct, x, y), caustic = fb.mean(Channel::Caustic, x, y);
+  // The accumulated filtered estimate keeps the bias of its early, wide
+  // kernels (it fades only as 1/frames), so the unfiltered mean of the
+  // same paths takes over as its perceived variance u falls from twice
+  // the threshold to the threshold: the filtered estimate was built to
+  // meet t, so it is kept while the unfiltered one is far noisier, and the
+  // image converges to the path tracer's.
+  const glm::vec3 unfiltered = fb.mean(Channel::Indirect, x, y) - caustic;
+  const std::uint32_t n = fb.sampleCount(x, y);
+  float s = 0.0f;
+  if (n > 1 && threshold_ > 0.0f) {
+    const float lb = luminance(direct + p.indirect + caustic);
+    const float u = luminance(fb.variance(Channel::Indirect, x, y)) / float(n) / (lb * lb + kBlendBackgroundFloor);
+    s = std::clamp(2.0f - u / threshold_, 0.0f, 1.0f);
+  }
+  return direct + caustic + s * unfiltered + (1.0f - s) * p.indirect;
 }
 
 std::vector<glm::vec3> RadianceAccumulator::radianceImage(const FrameBuffer& fb) const {
@@ -106,6 +127,7 @@ float blendFactor(float u, float f, float t) {
 }  // namespace
 
 void RadianceFilterStep::run(const FrameBuffer& fb, RadianceAccumulator& acc, const RadianceFilterSettings& cfg) {
+  acc.threshold_ = cfg.threshold;
   if (acc.epoch_ != fb.epoch()) {
     acc.pixels_.assign(acc.pixels_.size(), RadianceAccumulator::Pixel{});
     acc.epoch_ = fb.epoch();

@@ -83,7 +83,10 @@ class RadianceAccumulator {
   // buffer's Caustic channel, for pixel filtering to handle (hybrid).
   glm::vec3 indirect(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].indirect; }
   // The pixel's value: direct and caustics (from the frame buffer it
-  // belongs to, unfiltered) + indirect.
+  // belongs to, unfiltered) + indirect, the accumulated filtered estimate
+  // blended with the frame buffer's unfiltered one by their perceived
+  // variance against the threshold (3.12 with f = 0): converges to the
+  // unfiltered image.
   // Read through radiance(fb, x, y), or radianceImage(fb).
   glm::vec3 radiance(const FrameBuffer& fb, std::uint32_t x, std::uint32_t y) const;
   std::vector<glm::vec3> radianceImage(const FrameBuffer& fb) const;
@@ -117,6 +120,7 @@ class RadianceAccumulator {
   std::uint32_t width_;
   std::uint32_t height_;
   std::uint64_t epoch_ = 0;  // FrameBuffer::epoch() of the buffer the state belongs to
+  float threshold_ = 0.0f;   // T_u of the last filter step, for the blend in radiance()
   std::vector<Pixel> pixels_;
   std::vector<RadianceSample> samples_;  // this frame's, written by the tracing step
 };
