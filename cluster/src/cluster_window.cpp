@@ -55,6 +55,8 @@ struct ClusterWindow::Impl {
   med::ContextPool resolverContexts;
   std::unique_ptr<med::Viewport> resolver;
   std::vector<std::string> resolveInputs;
+  std::vector<std::string> resolveOutputs;
+  std::string renderError;  // a node's report that it cannot render this frame
 
   Impl(ClusterConfig c, ClientOptions o) : config(std::move(c)), options(std::move(o)) {
     eyeSeparation = config.stereo.eyeSeparation.value_or(0.065f);
@@ -195,6 +197,10 @@ struct ClusterWindow::Impl {
       case MessageType::Error:
         nodes[i].lastError = parse<ErrorReport>(m).reason;
         spdlog::warn("node {}: {}", nodes[i].config.address.text(), nodes[i].lastError);
+        // A node that cannot render the frame (a bad parameter, an output its
+        // back-end lacks) would fail the same way on every node it moves to.
+        if (round && nodes[i].lastError.rfind("render failed", 0) == 0 && renderError.empty())
+          renderError = "node " + nodes[i].config.address.text() + ": " + nodes[i].lastError;
         return;
       default: throw ProtocolError(ProtocolError::Kind::Unexpected, std::string(name(m.type)) + " after the handshake");
     }
@@ -265,18 +271,28 @@ struct ClusterWindow::Impl {
     if (!options.registry->has(first.backend)) return;
     resolver = options.registry->create({first.backend, root, background, first.parameters, true}, resolverContexts);
     resolveInputs = resolver->resolveInputs();
+    resolveOutputs = resolver->resolveOutputs();
     if (resolveInputs.empty()) resolver.reset();
   }
 
   // What each work item asks the nodes for.
+  // Nodes fill what the application reads and the resolver needs; what the
+  // resolver makes itself is left out of their work.
   void askOutputs(std::vector<WorkItem>& items, std::vector<med::FrameBuffer>& targets) const {
-    std::vector<std::string> outputs = options.outputs;
-    for (const auto& name : resolveInputs)
-      if (std::find(outputs.begin(), outputs.end(), name) == outputs.end()) outputs.push_back(name);
+    auto has = [](const std::vector<std::string>& v, const std::string& name) {
+      return std::find(v.begin(), v.end(), name) != v.end();
+    };
+    std::vector<std::string> outputs;
+    for (const auto& name : options.outputs)
+      if (!resolver || !has(resolveOutputs, name)) outputs.push_back(name);
+    for (const auto& name : resolver ? resolveInputs : std::vector<std::string>{})
+      if (!has(outputs, name)) outputs.push_back(name);
     for (auto& it : items) {
       it.outputs = outputs;
       it.resolve = resolver == nullptr;
     }
+    for (auto& t : targets)
+      for (const auto& name : options.outputs) t.outputs[name].assign(t.colour.size(), glm::vec4(0.0f));
     for (auto& t : targets)
       for (const auto& name : outputs) t.outputs[name].assign(t.colour.size(), glm::vec4(0.0f));
   }
@@ -400,9 +416,11 @@ ClusterFrame ClusterWindow::render(const med::View& view) {
   }
 
   auto deadline = Clock::now() + s.config.timeouts.frame;
+  s.renderError.clear();
   while (!round.finished()) {
+    if (!s.renderError.empty()) throw ClusterError(s.renderError);
     if (s.config.mode != ClusterMode::Tiled && s.synced().empty()) throw ClusterError("every cluster node was lost during the frame");
-    if (!s.pump(deadline, [&] { return round.finished(); })) {
+    if (!s.pump(deadline, [&] { return round.finished() || !s.renderError.empty(); })) {
       // Nodes that missed the frame deadline are dropped; their work moves or shows as offline.
       for (std::size_t node : round.awaited()) s.lose(node, "missed the frame deadline");
       deadline = Clock::now() + s.config.timeouts.frame;

@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <sys/wait.h>
+
 #include <gtest/gtest.h>
 
 #include "cluster_test_util.hpp"
@@ -59,6 +61,26 @@ TEST(RenderCli, ClusterImageEqualsLocalImage) {
                            med::readImage((dir.path / "local.exr").string())));
 }
 
+TEST(RenderCli, PixelFilteredClusterImageAndItsAovsEqualTheLocalOnes) {
+  // The filter runs on the client after the tiles are assembled: no seams
+  // at tile borders, and the blend factor output comes through too.
+  TempDir dir;
+  TokenFile token("cli token");
+  auto nodes = startNodes(2, {"--token-file", token.path()});
+  std::string config = writeConfig(dir.path, "cooperative", 2, R"(, "cooperative": {"tileSize": 16})");
+  const std::string filter = " --spp 4 --filter pixel --aov blend --aov indirect";
+  ASSERT_EQ(run("builtin:cornell --cluster " + config + " --nodes " + addresses(nodes) + " --token-file " + token.path() +
+                " --size 48x40" + filter + " --output " + (dir.path / "cluster.exr").string()),
+            0);
+  ASSERT_EQ(run("builtin:cornell --max-depth 3 --seed 5 --threads 1 --size 48x40" + filter + " --output " +
+                (dir.path / "local.exr").string()),
+            0);
+  for (const char* image : {"", ".blend", ".indirect"})
+    EXPECT_TRUE(bitwiseEqual(med::readImage((dir.path / ("cluster" + std::string(image) + ".exr")).string()),
+                             med::readImage((dir.path / ("local" + std::string(image) + ".exr")).string())))
+        << "image " << image;
+}
+
 TEST(RenderCli, CommandLineParametersBeatTheConfigs) {
   TempDir dir;
   TokenFile token("cli token");
@@ -82,6 +104,24 @@ TEST(RenderCli, WrongTokenFailsWithAnError) {
   EXPECT_NE(run("builtin:cornell --cluster " + config + " --nodes " + addresses(nodes) + " --token-file " + wrong.path() +
                 " --output " + (dir.path / "x.exr").string() + " 2>/dev/null"),
             0);
+  EXPECT_FALSE(fs::exists(dir.path / "x.exr"));
+}
+
+TEST(RenderCli, AnOutputTheNodesCannotFillFailsTheFrameWithTheirReason) {
+  // Every node would fail the same way: the client says why at once
+  // instead of moving the work around until the frame deadline.
+  TempDir dir;
+  TokenFile token("cli token");
+  auto nodes = startNodes(2, {"--token-file", token.path()});
+  std::string config = writeConfig(dir.path, "cooperative", 2);
+  const fs::path err = dir.path / "err.txt";
+  const int status = run("builtin:cornell --cluster " + config + " --nodes " + addresses(nodes) + " --token-file " +
+                         token.path() + " --size 32x24 --aov nosuch --output " + (dir.path / "x.exr").string() + " 2>" +
+                         err.string());
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+  std::ifstream in(err);
+  std::string message((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(message.find("nosuch"), std::string::npos) << message;
   EXPECT_FALSE(fs::exists(dir.path / "x.exr"));
 }
 

@@ -168,7 +168,7 @@ TEST(ClusterRender, WallNodesPresentTheirTilesWhenTheBarrierReleases) {
   for (int i = 0; i < 4; ++i) {
     std::string path = dir + "/n" + std::to_string(i) + "-frame" + std::to_string(f.frame) + "-" +
                        std::to_string(rects[i].x0) + "-" + std::to_string(rects[i].y0) + ".exr";
-    for (int wait = 0; wait < 100 && access(path.c_str(), R_OK) != 0; ++wait) std::this_thread::sleep_for(20ms);
+    for (int wait = 0; wait < 500 && access(path.c_str(), R_OK) != 0; ++wait) std::this_thread::sleep_for(20ms);
     med::FrameBuffer shown = med::readImage(path);
     ASSERT_EQ(shown.width, rects[i].width());
     for (std::uint32_t y = 0; y < shown.height; ++y)

@@ -42,6 +42,11 @@ std::vector<std::string> EmbreeViewport::resolveInputs() const {
   return inputs;
 }
 
+std::vector<std::string> EmbreeViewport::resolveOutputs() const {
+  if (!FilterSettings::from(settings_.parameters).usesPixelFilter()) return {};
+  return {kBlendOutput};
+}
+
 void EmbreeViewport::resolve(FrameBuffer& frame) {
   const FilterSettings filter = FilterSettings::from(settings_.parameters);
   if (filter.usesPixelFilter()) pixelFilter_.resolve(frame, filter, true, frame.outputs.count(kBlendOutput) != 0);

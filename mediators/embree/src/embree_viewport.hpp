@@ -31,6 +31,7 @@ class EmbreeViewport final : public Viewport {
                      const RenderControl& control) override;
   std::vector<std::string> outputNames() const override;
   std::vector<std::string> resolveInputs() const override;
+  std::vector<std::string> resolveOutputs() const override;
   void resolve(FrameBuffer& frame) override;
   const EmbreeContext& context() const { return *context_; }
 

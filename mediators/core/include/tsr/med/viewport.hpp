@@ -79,6 +79,9 @@ class Viewport {
   // assembled frame: the result equals a whole-frame render's. Empty: the
   // back-end's regions are final as rendered.
   virtual std::vector<std::string> resolveInputs() const { return {}; }
+  // Named outputs that resolve() makes (e.g. a filter's blend factors):
+  // the assembler asks nodes for the others only.
+  virtual std::vector<std::string> resolveOutputs() const { return {}; }
   virtual void resolve(FrameBuffer& /*frame*/) {}
 
  protected:
