@@ -356,15 +356,22 @@ glm::vec3 cameraRay(const Camera& camera, const glm::mat3& camRot, const Region&
   return glm::normalize(camRot * glm::vec3(cx, cy, -camera.near));
 }
 
+// Where camera rays start and how they are turned into world space.
+struct Eye {
+  glm::vec3 position;
+  glm::vec3 forward;
+  glm::mat3 rotation;
+  explicit Eye(const Camera& c)
+      : position(c.cameraToWorld[3]), forward(glm::normalize(-glm::vec3(c.cameraToWorld[2]))), rotation(c.cameraToWorld) {}
+};
+
 // The flash samples' random stream, apart from the path samples'.
 constexpr std::uint64_t kFlashStream = 0x6A09E667F3BCC909ull;
 
 }  // namespace
 
 PassResult Renderer::renderPass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb) {
-  const glm::vec3 camPos(camera.cameraToWorld[3]);
-  const glm::vec3 forward = glm::normalize(-glm::vec3(camera.cameraToWorld[2]));
-  const glm::mat3 camRot(camera.cameraToWorld);
+  const Eye eye(camera);
   const std::uint64_t seed = settings_.seed;
   const std::uint32_t samples = settings_.samplesPerPass;
   return runTiles(scene, camera, region, fb,
@@ -373,8 +380,8 @@ PassResult Renderer::renderPass(Scene& scene, const Camera& camera, const Region
                     const std::uint32_t firstSample = fb.sampleCount(x, y);
                     for (std::uint32_t s = 0; s < samples; ++s) {
                       Rng rng(pixelKey, firstSample + s);
-                      glm::vec3 dir = cameraRay(camera, camRot, region, px, py, rng.uniform2());
-                      fb.accumulate(x, y, tracer.tracePath(rng, camPos, dir, camPos, forward));
+                      glm::vec3 dir = cameraRay(camera, eye.rotation, region, px, py, rng.uniform2());
+                      fb.accumulate(x, y, tracer.tracePath(rng, eye.position, dir, eye.position, eye.forward));
                     }
                   });
 }
@@ -387,9 +394,7 @@ PassResult Renderer::renderRadiancePass(Scene& scene, const Camera& camera, cons
                 " but the region is " + std::to_string(region.regionWidth()) + "x" +
                 std::to_string(region.regionHeight()));
   }
-  const glm::vec3 camPos(camera.cameraToWorld[3]);
-  const glm::vec3 forward = glm::normalize(-glm::vec3(camera.cameraToWorld[2]));
-  const glm::mat3 camRot(camera.cameraToWorld);
+  const Eye eye(camera);
   const std::uint64_t seed = settings_.seed;
   // Angle of one pixel on the axis; off the axis it shrinks with cos^1.5.
   const float pixelAngle = std::sqrt((camera.right - camera.left) / float(region.width) *
@@ -398,11 +403,11 @@ PassResult Renderer::renderRadiancePass(Scene& scene, const Camera& camera, cons
       runTiles(scene, camera, region, fb,
                [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
                  Rng rng(Rng::pixelKey(seed, px, py), fb.sampleCount(x, y));
-                 glm::vec3 dir = cameraRay(camera, camRot, region, px, py, rng.uniform2());
+                 glm::vec3 dir = cameraRay(camera, eye.rotation, region, px, py, rng.uniform2());
                  RadianceSample& record = acc.samples_[acc.at(x, y)];
                  record = RadianceSample{};
-                 PixelSample sample = tracer.tracePath(rng, camPos, dir, camPos, forward, &record);
-                 const float c = glm::dot(dir, forward);
+                 PixelSample sample = tracer.tracePath(rng, eye.position, dir, eye.position, eye.forward, &record);
+                 const float c = glm::dot(dir, eye.forward);
                  record.pixelAngle = pixelAngle * c * std::sqrt(c);
                  record.unfiltered = sample.indirect - sample.caustic;
                  fb.accumulate(x, y, sample);
@@ -413,8 +418,7 @@ PassResult Renderer::renderRadiancePass(Scene& scene, const Camera& camera, cons
 
 PassResult Renderer::renderFlashPass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
                                      std::uint32_t samples) {
-  const glm::vec3 camPos(camera.cameraToWorld[3]);
-  const glm::mat3 camRot(camera.cameraToWorld);
+  const Eye eye(camera);
   const std::uint64_t seed = settings_.seed ^ kFlashStream;
   return runTiles(scene, camera, region, fb,
                   [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
@@ -422,8 +426,8 @@ PassResult Renderer::renderFlashPass(Scene& scene, const Camera& camera, const R
                     const std::uint32_t first = fb.rangeSamples(x, y);
                     for (std::uint32_t s = 0; s < samples; ++s) {
                       Rng rng(pixelKey, first + s);
-                      glm::vec3 dir = cameraRay(camera, camRot, region, px, py, rng.uniform2());
-                      fb.accumulateRange(x, y, tracer.traceFlash(camPos, dir, camPos));
+                      glm::vec3 dir = cameraRay(camera, eye.rotation, region, px, py, rng.uniform2());
+                      fb.accumulateRange(x, y, tracer.traceFlash(eye.position, dir, eye.position));
                     }
                   });
 }

@@ -16,15 +16,7 @@ struct CausticScene {
   Scene scene{sharedDevice()};
   Camera camera = Camera::lookAt({0, 6, 6}, {0, 0, 0}, {0, 1, 0}, glm::radians(45.0f), 1.0f);
   CausticScene(bool withGlass) {
-    Material grey;
-    grey.baseColor = glm::vec3(0.5f);
-    scene.addInstance(scene.addMesh(quad({-5, 0, 5}, {5, 0, 5}, {5, 0, -5}, {-5, 0, -5})), scene.addMaterial(grey),
-                      glm::mat4(1.0f));
-    Material lamp;
-    lamp.baseColor = glm::vec3(0.0f);
-    lamp.emission = glm::vec3(20.0f);
-    scene.addInstance(scene.addMesh(quad({-1, 5, -1}, {1, 5, -1}, {1, 5, 1}, {-1, 5, 1})), scene.addMaterial(lamp),
-                      glm::mat4(1.0f));
+    floorUnderLamp(scene);
     if (withGlass) {
       Material glass;
       glass.type = MaterialType::Glass;

@@ -262,15 +262,7 @@ TEST(EmbreeRadianceFilter, HybridMaskMarksPixelsSeenThroughMirrorAndGlass) {
   // Floor under a lamp; a glass sphere on it and a mirror standing at the
   // back, facing the camera at a slant.
   Scene scene(sharedDevice());
-  Material grey;
-  grey.baseColor = glm::vec3(0.5f);
-  scene.addInstance(scene.addMesh(quad({-5, 0, 5}, {5, 0, 5}, {5, 0, -5}, {-5, 0, -5})), scene.addMaterial(grey),
-                    glm::mat4(1.0f));
-  Material lamp;
-  lamp.baseColor = glm::vec3(0.0f);
-  lamp.emission = glm::vec3(20.0f);
-  scene.addInstance(scene.addMesh(quad({-1, 5, -1}, {1, 5, -1}, {1, 5, 1}, {-1, 5, 1})), scene.addMaterial(lamp),
-                    glm::mat4(1.0f));
+  floorUnderLamp(scene);
   Material glass;
   glass.type = MaterialType::Glass;
   glass.baseColor = glm::vec3(1.0f);

@@ -44,6 +44,18 @@ MeshData quad(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, con
   return m;
 }
 
+void floorUnderLamp(Scene& scene) {
+  Material grey;
+  grey.baseColor = glm::vec3(0.5f);
+  scene.addInstance(scene.addMesh(quad({-5, 0, 5}, {5, 0, 5}, {5, 0, -5}, {-5, 0, -5})), scene.addMaterial(grey),
+                    glm::mat4(1.0f));
+  Material lamp;
+  lamp.baseColor = glm::vec3(0.0f);
+  lamp.emission = glm::vec3(20.0f);
+  scene.addInstance(scene.addMesh(quad({-1, 5, -1}, {1, 5, -1}, {1, 5, 1}, {-1, 5, 1})), scene.addMaterial(lamp),
+                    glm::mat4(1.0f));
+}
+
 Camera cornellBox(Scene& scene, int sphereTris, float aspect) {
   struct Q {
     int colour;

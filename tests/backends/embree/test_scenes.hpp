@@ -25,6 +25,9 @@ MeshData quad(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, con
 // light), optionally with its tessellated sphere; returns its camera.
 Camera cornellBox(Scene& scene, int sphereTris, float aspect = 1.0f);
 
+// A grey 10x10 floor at y = 0 under a 2x2 lamp (emission 20) at y = 5.
+void floorUnderLamp(Scene& scene);
+
 // Renders `passes` passes and returns the last result.
 PassResult render(Renderer& renderer, Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
                   int passes);
