@@ -28,8 +28,11 @@ void RadianceFilterSettings::validate() const {
 }
 
 namespace {
-// As kBackgroundFloor below: black pixels do not divide by zero.
-constexpr float kBlendBackgroundFloor = 1e-4f;
+// Added to the squared background of the hand-over's perceived variance.
+// Weber's law fails in the dark (de Vries-Rose): below a background of
+// about 0.1 noise is judged in absolute terms, so dark pixels do not keep
+// the filtered estimate, and its bias, long after the rest let go.
+constexpr float kBlendBackgroundFloor = 0.01f;
 }  // namespace
 
 RadianceAccumulator::RadianceAccumulator(std::uint32_t width, std::uint32_t height)
