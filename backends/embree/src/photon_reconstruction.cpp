@@ -79,10 +79,7 @@ std::pair<std::size_t, std::size_t> fiveFrames(std::size_t k, std::size_t lo, st
 Reconstruction PhotonSequence::reconstruct(std::int64_t frame, PhotonHalf half) const {
   const State& s = *s_;
   const PhotonSettings& cfg = s.settings;
-  const State::Slot* centreSlot = s.started ? s.slot(frame) : nullptr;
-  if (!centreSlot)
-    throw Error("photon frame " + std::to_string(frame) + " is not buffered (the last " + std::to_string(cfg.tMax) +
-                " added frames are)");
+  const State::Slot* centreSlot = &s.buffered(frame);
   const ElementSet& set = *s.elements;
   const std::size_t elements = set.elementCount();
   const std::int64_t h = lookahead();

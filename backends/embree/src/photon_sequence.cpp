@@ -62,7 +62,7 @@ void PhotonSettings::validate() const {
 PhotonSequence::PhotonSequence(PhotonSettings settings) : s_(std::make_unique<State>()) {
   settings.validate();
   s_->settings = settings;
-  s_->arena = std::make_unique<tbb::task_arena>(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
+  s_->arena = std::make_unique<tbb::task_arena>(settings.threads > 0 ? settings.threads : int(tbb::task_arena::automatic));
   s_->ring.resize(settings.tMax);
 }
 PhotonSequence::~PhotonSequence() = default;
@@ -74,6 +74,14 @@ std::uint32_t PhotonSequence::photonsPerFrame() const { return s_->photonsPerFra
 float PhotonSequence::pilotError() const { return s_->pilotError; }
 std::size_t PhotonSequence::elementCount() const { return s_->elements ? s_->elements->elementCount() : 0; }
 const PhotonSettings& PhotonSequence::settings() const { return s_->settings; }
+
+std::vector<glm::vec3> PhotonSequence::rawIrradiance(std::int64_t frame) const {
+  const State::Slot* slot = &s_->buffered(frame);
+  std::vector<glm::vec3> out(slot->geometry.area.size(), glm::vec3(0.0f));
+  for (std::size_t e = 0; e < out.size(); ++e)
+    if (slot->geometry.area[e] > 0.0f) out[e] = (slot->energy[2 * e] + slot->energy[2 * e + 1]) / slot->geometry.area[e];
+  return out;
+}
 
 FrameStats PhotonSequence::addFrame(Scene& scene, std::int64_t frame) {
   State& s = *s_;

@@ -2,11 +2,13 @@
 // PhotonSequence's state: the elements and the ring buffer of per-frame
 // counters (Weber et al. 2004 §4). Private.
 #include "photon_elements.hpp"
+#include "tsr/embree/error.hpp"
 #include "tsr/embree/photon_sequence.hpp"
 
 #include <oneapi/tbb/task_arena.h>
 
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace tsr::embree {
@@ -35,6 +37,13 @@ struct PhotonSequence::State {
     const Slot& s = ring[std::size_t(((frame % std::int64_t(ring.size())) + std::int64_t(ring.size())) %
                                      std::int64_t(ring.size()))];
     return s.used && s.frame == frame ? &s : nullptr;
+  }
+  const Slot& buffered(std::int64_t frame) const {
+    const Slot* s = started ? slot(frame) : nullptr;
+    if (!s)
+      throw Error("photon frame " + std::to_string(frame) + " is not buffered (the last " +
+                  std::to_string(ring.size()) + " added frames are)");
+    return *s;
   }
 };
 

@@ -83,6 +83,10 @@ class PhotonSequence {
   // buffered frames around it. Deterministic for any thread count.
   Reconstruction reconstruct(std::int64_t frame, PhotonHalf half = PhotonHalf::All) const;
 
+  // One buffered frame's unfiltered element irradiance (energy / area):
+  // what density estimation without any filtering would give.
+  std::vector<glm::vec3> rawIrradiance(std::int64_t frame) const;
+
   std::uint32_t photonsPerFrame() const;  // N_frame, after the first addFrame
   float pilotError() const;               // E_pilot, 0 without a pilot pass
   std::size_t elementCount() const;
