@@ -111,6 +111,14 @@ Reconstruction PhotonSequence::reconstruct(std::int64_t frame, PhotonHalf half) 
   }
 
   const ElementGeometry& geo = centreSlot->geometry;
+  // Eq. 5 over the whole window, the common case, computed once.
+  std::vector<glm::vec3> wholeWindow(w.frames * elements);
+  for (std::size_t k = 0; k < w.frames; ++k)
+    for (std::size_t e = 0; e < elements; ++e) {
+      const auto [a, b] = fiveFrames(k, 0, w.frames - 1);
+      wholeWindow[k * elements + e] =
+          geo.area[e] > 0.0f ? w.energy(a, b, e) / (float(b - a + 1) * geo.area[e]) : glm::vec3(0.0f);
+    }
   const float sigmaT = 0.5f * float(cfg.tMax);
   const float cosCrease = std::cos(cfg.creaseAngle);
   const float target = 1.0f / (cfg.accuracy * cfg.accuracy);  // eq. 4: photons in the support
@@ -181,7 +189,9 @@ Reconstruction PhotonSequence::reconstruct(std::int64_t frame, PhotonHalf half) 
         ringRadius = std::max(ringRadius, glm::length(geo.centroid[sc.members[m]] - geo.centroid[q]));
     const float sigmaS = 0.5f * ringRadius;
 
+    const bool whole = lo == 0 && hi + 1 == w.frames;
     auto irradiance = [&](std::size_t k, std::size_t p) {  // Weber eq. 5
+      if (whole) return wholeWindow[k * elements + p];
       const auto [a, b] = fiveFrames(k, lo, hi);
       const float area = geo.area[p];
       return area > 0.0f ? w.energy(a, b, p) / (float(b - a + 1) * area) : glm::vec3(0.0f);
@@ -196,16 +206,20 @@ Reconstruction PhotonSequence::reconstruct(std::int64_t frame, PhotonHalf half) 
     const float invS = sigmaS > 0.0f ? 1.0f / (2.0f * sigmaS * sigmaS) : 0.0f;
     const float invI = sigmaI > 0.0f ? 1.0f / (2.0f * sigmaI * sigmaI) : 0.0f;
     const float invT = 1.0f / (2.0f * sigmaT * sigmaT);
-    glm::vec3 sum(0.0f);
-    float weights = 0.0f;
+    float wT[256];
     for (std::size_t k = lo; k <= hi; ++k) {
       const float dt = float(k) - float(w.centre);
-      const float wT = std::exp(-dt * dt * invT);
-      for (std::uint32_t p : sc.members) {
-        const glm::vec3 d = geo.centroid[p] - geo.centroid[q];
+      wT[k] = std::exp(-dt * dt * invT);
+    }
+    glm::vec3 sum(0.0f);
+    float weights = 0.0f;
+    for (std::uint32_t p : sc.members) {
+      const glm::vec3 d = geo.centroid[p] - geo.centroid[q];
+      const float wS = std::exp(-glm::dot(d, d) * invS);
+      for (std::size_t k = lo; k <= hi; ++k) {
         const glm::vec3 value = irradiance(k, p);
         const float di = luminance(value) - ref;
-        const float wgt = wT * std::exp(-glm::dot(d, d) * invS - (sigmaI > 0.0f ? di * di * invI : 0.0f));
+        const float wgt = wS * wT[k] * (sigmaI > 0.0f ? std::exp(-di * di * invI) : 1.0f);
         sum += wgt * value;
         weights += wgt;
       }
