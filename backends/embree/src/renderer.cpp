@@ -159,6 +159,7 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
       continues = (glm::dot(nextDir, ng) > 0.0f) == (bs.wi.z > 0.0f);
     }
     const bool recordHere = record && nextEvent && nonSpecular == 0;
+    const bool fromField = irradiance && nonSpecular == 0 && bsdf.type == MaterialType::Diffuse;
     if (recordHere) {
       RadianceSample& r = *record;
       r.valid = true;
@@ -235,7 +236,8 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
             glm::vec3 o = spawn(es.wi);
             float dist = glm::length(es.point - o);
             if (!occluded(o, es.wi, dist - rayEpsilon(es.point))) {
-              add(throughput * f * es.radiance * (lightSampleWeight(es.pdf, bsdfPdf) / es.pdf), nonSpecular + 1);
+              const float w = fromField ? 1.0f : lightSampleWeight(es.pdf, bsdfPdf);
+              add(throughput * f * es.radiance * (w / es.pdf), nonSpecular + 1);
             }
           }
         }
@@ -246,10 +248,16 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
           float bsdfPdf;
           glm::vec3 f = evalWorld(es.direction, &bsdfPdf);
           if (maxComponent(f) > 0.0f && !occluded(spawn(es.direction), es.direction, kInf)) {
-            add(throughput * f * es.radiance * (lightSampleWeight(es.pdf, bsdfPdf) / es.pdf), nonSpecular + 1);
+            const float w = fromField ? 1.0f : lightSampleWeight(es.pdf, bsdfPdf);
+            add(throughput * f * es.radiance * (w / es.pdf), nonSpecular + 1);
           }
         }
       }
+    }
+    if (fromField) {
+      const auto inst = std::uint32_t(h.instance - scene.views.data());
+      add(throughput * base * kInvPi * irradiance->at(inst, h.prim, rh.hit.u, rh.hit.v), nonSpecular + 2);
+      break;
     }
 
     if (!continues) break;
@@ -283,7 +291,7 @@ void Renderer::setSettings(const RenderSettings& settings) {
 
 template <class PerPixel>
 PassResult Renderer::runTiles(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
-                              PerPixel&& perPixel) {
+                              PerPixel&& perPixel, std::uint64_t keySalt) {
   camera.validate();
   region.validate();
   if (fb.width() != region.regionWidth() || fb.height() != region.regionHeight()) {
@@ -294,7 +302,7 @@ PassResult Renderer::runTiles(Scene& scene, const Camera& camera, const Region& 
   scene.commit();
 
   PassResult result;
-  FrameBuffer::Key key{scene.uid(), scene.version(), camera, region, settingsHash(settings_)};
+  FrameBuffer::Key key{scene.uid(), scene.version(), camera, region, settingsHash(settings_) ^ keySalt};
   if (!fb.key_ || !(*fb.key_ == key)) {
     fb.reset();
     fb.key_ = key;
@@ -371,19 +379,34 @@ constexpr std::uint64_t kFlashStream = 0x6A09E667F3BCC909ull;
 }  // namespace
 
 PassResult Renderer::renderPass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb) {
+  return renderPaths(scene, camera, region, fb, nullptr);
+}
+
+PassResult Renderer::renderPaths(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
+                                 const IrradianceField* field) {
   const Eye eye(camera);
   const std::uint64_t seed = settings_.seed;
   const std::uint32_t samples = settings_.samplesPerPass;
-  return runTiles(scene, camera, region, fb,
-                  [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
-                    const std::uint64_t pixelKey = Rng::pixelKey(seed, px, py);
-                    const std::uint32_t firstSample = fb.sampleCount(x, y);
-                    for (std::uint32_t s = 0; s < samples; ++s) {
-                      Rng rng(pixelKey, firstSample + s);
-                      glm::vec3 dir = cameraRay(camera, eye.rotation, region, px, py, rng.uniform2());
-                      fb.accumulate(x, y, tracer.tracePath(rng, eye.position, dir, eye.position, eye.forward));
-                    }
-                  });
+  return runTiles(
+      scene, camera, region, fb,
+      [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
+        tracer.irradiance = field;
+        const std::uint64_t pixelKey = Rng::pixelKey(seed, px, py);
+        const std::uint32_t firstSample = fb.sampleCount(x, y);
+        for (std::uint32_t s = 0; s < samples; ++s) {
+          Rng rng(pixelKey, firstSample + s);
+          glm::vec3 dir = cameraRay(camera, eye.rotation, region, px, py, rng.uniform2());
+          fb.accumulate(x, y, tracer.tracePath(rng, eye.position, dir, eye.position, eye.forward));
+        }
+      },
+      field ? splitmix64(field->uid()) : 0);
+}
+
+PassResult Renderer::renderWithIrradiance(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
+                                          const IrradianceField& field) {
+  if (field.empty() || field.sceneUid() != scene.uid())
+    throw Error("the irradiance field was not reconstructed for this scene");
+  return renderPaths(scene, camera, region, fb, &field);
 }
 
 PassResult Renderer::renderRadiancePass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,

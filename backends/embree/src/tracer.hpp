@@ -6,6 +6,7 @@
 #include "bsdf.hpp"
 #include "scene_state.hpp"
 #include "tsr/embree/framebuffer.hpp"
+#include "tsr/embree/irradiance_field.hpp"
 #include "tsr/embree/limits.hpp"
 #include "tsr/embree/radiance_filter.hpp"
 #include "tsr/embree/renderer.hpp"
@@ -74,6 +75,10 @@ struct Tracer {
   const RenderSettings& settings;
   std::uint64_t rays = 0;
   std::uint64_t refused = 0;  // rays Embree cannot trace: paths end there, shadow rays count as blocked
+  // With a field, a path ends at its first Diffuse vertex after direct
+  // lighting there (emitters by light sampling alone), and the indirect
+  // light there is albedo / pi x the field's irradiance.
+  const IrradianceField* irradiance = nullptr;
 
   // An untraceable ray is refused and counts as a miss; the path tracer
   // checks first and ends the path instead.

@@ -2,6 +2,7 @@
 
 #include "tsr/embree/camera.hpp"
 #include "tsr/embree/framebuffer.hpp"
+#include "tsr/embree/irradiance_field.hpp"
 #include "tsr/embree/radiance_filter.hpp"
 #include "tsr/embree/region.hpp"
 #include "tsr/embree/scene.hpp"
@@ -65,6 +66,16 @@ class Renderer {
   PassResult renderRadiancePass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
                                 RadianceAccumulator& acc, const RadianceFilterSettings& filter = {});
 
+  // Direct light per pixel, indirect light from a photon reconstruction
+  // (photon_sequence.hpp): paths are traced as in renderPass through
+  // perfect specular surfaces; at the first Diffuse surface they take
+  // direct light by light sampling and add albedo / pi x field.at(...) as
+  // Indirect, then end. Other materials trace their indirect light as usual.
+  // The field must come from this scene (throws otherwise); a new field
+  // restarts accumulation in fb.
+  PassResult renderWithIrradiance(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
+                                  const IrradianceField& field);
+
   // Thread-safe. Stops the running pass at the next tile row, or the next
   // pass if none runs; that pass returns completed = false.
   void requestCancel() { cancel_.store(true, std::memory_order_relaxed); }
@@ -77,7 +88,10 @@ class Renderer {
   // perPixel(tracer, x, y, fullImageX, fullImageY) over parallel tiles.
   template <class PerPixel>
   PassResult runTiles(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
-                      PerPixel&& perPixel);
+                      PerPixel&& perPixel, std::uint64_t keySalt = 0);
+  // Path samples for renderPass; with a field, for renderWithIrradiance.
+  PassResult renderPaths(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
+                         const IrradianceField* field);
   RenderSettings settings_;
   std::unique_ptr<Arena> arena_;
   std::atomic<bool> cancel_{false};

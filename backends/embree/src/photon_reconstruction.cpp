@@ -1,0 +1,283 @@
+// PhotonSequence::reconstruct: the validity test of Myszkowski et al. 2001
+// (eq. 1) bounds each element's temporal window, then the space-time
+// bilateral filter of Weber et al. 2004 (eq. 2) runs inside it.
+#include "photon_sequence_state.hpp"
+#include "tsr/embree/error.hpp"
+#include "tsr/embree/rng.hpp"
+#include "tsr/embree/sampling.hpp"
+
+#include <glm/geometric.hpp>
+#include <oneapi/tbb/blocked_range.h>
+#include <oneapi/tbb/enumerable_thread_specific.h>
+#include <oneapi/tbb/parallel_for.h>
+
+#include <atomic>
+#include <cmath>
+#include <string>
+
+namespace tsr::embree {
+
+namespace {
+
+std::atomic<std::uint64_t> nextFieldUid{1};
+
+// The buffered frames around t0, oldest first, as the reconstruction reads
+// them: counts and energies of the chosen photons, with prefix sums over time.
+struct Window {
+  std::size_t frames = 0, centre = 0, elements = 0;
+  std::vector<std::uint32_t> count;  // [k * elements + e]
+  std::vector<glm::vec3> energyPrefix;  // [k * elements + e]: frames < k; k in [0, frames]
+  std::vector<std::uint32_t> countPrefix;
+
+  std::uint32_t n(std::size_t k, std::size_t e) const { return count[k * elements + e]; }
+  // Energy and photons of element e over frames [a, b].
+  glm::vec3 energy(std::size_t a, std::size_t b, std::size_t e) const {
+    return energyPrefix[(b + 1) * elements + e] - energyPrefix[a * elements + e];
+  }
+  std::uint32_t photons(std::size_t a, std::size_t b, std::size_t e) const {
+    return countPrefix[(b + 1) * elements + e] - countPrefix[a * elements + e];
+  }
+  float meanCount(std::ptrdiff_t a, std::ptrdiff_t b, std::size_t e) const {
+    a = std::max<std::ptrdiff_t>(a, 0);
+    b = std::min<std::ptrdiff_t>(b, std::ptrdiff_t(frames) - 1);
+    return float(photons(std::size_t(a), std::size_t(b), e)) / float(b - a + 1);
+  }
+};
+
+// 002 eq. 1 outward from the centre: mu over the three frames around t0, x
+// over the three frames ending at the tested one (so a step is caught at
+// the first frame after it); at least `minSide` frames each way.
+std::pair<std::size_t, std::size_t> validExtent(const Window& w, std::size_t e, float k, std::size_t minSide) {
+  const std::ptrdiff_t c = std::ptrdiff_t(w.centre);
+  const float mu = w.meanCount(c - 1, c + 1, e);
+  const float sigma = mu > 0.0f ? std::sqrt(mu) : 1.0f;
+  auto valid = [&](float x) { return x >= mu - k * sigma && x <= mu + k * sigma; };
+  std::size_t back = 0, fwd = 0;
+  while (back < w.centre) {
+    const std::ptrdiff_t d = c - std::ptrdiff_t(back) - 1;
+    if (back >= minSide && !valid(w.meanCount(d, d + 2, e))) break;
+    ++back;
+  }
+  while (w.centre + fwd + 1 < w.frames) {
+    const std::ptrdiff_t d = c + std::ptrdiff_t(fwd) + 1;
+    if (fwd >= minSide && !valid(w.meanCount(d - 2, d, e))) break;
+    ++fwd;
+  }
+  return {back, fwd};
+}
+
+// Weber eq. 5: the five frames nearest k inside [lo, hi].
+std::pair<std::size_t, std::size_t> fiveFrames(std::size_t k, std::size_t lo, std::size_t hi) {
+  const std::size_t span = std::min<std::size_t>(5, hi - lo + 1);
+  std::size_t a = k >= lo + 2 ? k - 2 : lo;
+  if (a + span - 1 > hi) a = hi + 1 - span;
+  return {a, a + span - 1};
+}
+
+}  // namespace
+
+Reconstruction PhotonSequence::reconstruct(std::int64_t frame, PhotonHalf half) const {
+  const State& s = *s_;
+  const PhotonSettings& cfg = s.settings;
+  const State::Slot* centreSlot = &s.buffered(frame);
+  const ElementSet& set = *s.elements;
+  const std::size_t elements = set.elementCount();
+  const std::int64_t h = lookahead();
+
+  Window w;
+  w.elements = elements;
+  std::vector<const State::Slot*> slots;
+  for (std::int64_t f = frame - h; f <= frame + h; ++f)
+    if (const State::Slot* sl = s.slot(f)) {
+      if (f == frame) w.centre = slots.size();
+      slots.push_back(sl);
+    }
+  w.frames = slots.size();
+  w.count.resize(w.frames * elements);
+  w.countPrefix.assign((w.frames + 1) * elements, 0);
+  w.energyPrefix.assign((w.frames + 1) * elements, glm::vec3(0.0f));
+  // A half-set's energy counts twice: it stands for all photons.
+  const float scale = half == PhotonHalf::All ? 1.0f : 2.0f;
+  for (std::size_t k = 0; k < w.frames; ++k) {
+    for (std::size_t e = 0; e < elements; ++e) {
+      const std::uint32_t* c = &slots[k]->count[2 * e];
+      const glm::vec3* en = &slots[k]->energy[2 * e];
+      std::uint32_t n = half == PhotonHalf::All ? c[0] + c[1] : half == PhotonHalf::Even ? c[0] : c[1];
+      glm::vec3 energy = half == PhotonHalf::All ? en[0] + en[1] : scale * (half == PhotonHalf::Even ? en[0] : en[1]);
+      w.count[k * elements + e] = n;
+      w.countPrefix[(k + 1) * elements + e] = w.countPrefix[k * elements + e] + n;
+      w.energyPrefix[(k + 1) * elements + e] = w.energyPrefix[k * elements + e] + energy;
+    }
+  }
+
+  const ElementGeometry& geo = centreSlot->geometry;
+  // Eq. 5 over the whole window, the common case, computed once.
+  std::vector<glm::vec3> wholeWindow(w.frames * elements);
+  for (std::size_t k = 0; k < w.frames; ++k)
+    for (std::size_t e = 0; e < elements; ++e) {
+      const auto [a, b] = fiveFrames(k, 0, w.frames - 1);
+      wholeWindow[k * elements + e] =
+          geo.area[e] > 0.0f ? w.energy(a, b, e) / (float(b - a + 1) * geo.area[e]) : glm::vec3(0.0f);
+    }
+  const float sigmaT = 0.5f * float(cfg.tMax);
+  const float cosCrease = std::cos(cfg.creaseAngle);
+  const float target = 1.0f / (cfg.accuracy * cfg.accuracy);  // eq. 4: photons in the support
+  const std::size_t minSide = (std::max(cfg.minFrames, 1u) - 1) / 2;
+  const float quantum = scale * s.photonEnergy;  // one photon's energy in this half-set
+
+  Reconstruction out;
+  out.backward.resize(elements);
+  out.forward.resize(elements);
+  out.rings.resize(elements);
+  std::vector<glm::vec3> filtered(elements, glm::vec3(0.0f));
+  std::vector<std::uint8_t> cut(elements, 0);
+
+  // Per thread: visit stamps for the ring search.
+  struct Scratch {
+    std::vector<std::uint32_t> stamp;
+    std::uint32_t current = 0;
+    std::vector<std::uint32_t> members;
+    std::vector<std::uint32_t> ringEnd;
+  };
+  tbb::enumerable_thread_specific<Scratch> scratch;
+
+  auto element = [&](std::size_t q) {
+    Scratch& sc = scratch.local();
+    if (sc.stamp.size() != elements) sc.stamp.assign(elements, 0), sc.current = 0;
+    if (++sc.current == 0) std::fill(sc.stamp.begin(), sc.stamp.end(), 0), sc.current = 1;
+    const auto [back, fwd] = validExtent(w, q, cfg.validityK, minSide);
+    out.backward[q] = std::uint8_t(back);
+    out.forward[q] = std::uint8_t(fwd);
+    const std::size_t lo = w.centre - back, hi = w.centre + fwd;
+    cut[q] = (lo > 0 || hi + 1 < w.frames) ? 1 : 0;
+
+    // Ring neighbourhoods (BFS layers over shared corners, not across
+    // creases) until the support holds `target` photons, plus one ring.
+    sc.members.assign(1, std::uint32_t(q));
+    sc.ringEnd.assign(1, 1);
+    sc.stamp[q] = sc.current;
+    float photons = float(w.photons(lo, hi, q));
+    std::size_t rings = 0, extra = 0;
+    while (rings < cfg.maxRings + 1) {
+      if (photons >= target || rings == cfg.maxRings) {
+        if (extra == 1) break;
+        extra = 1;
+      }
+      const std::size_t from = rings == 0 ? 0 : sc.ringEnd[rings - 1], to = sc.ringEnd[rings];
+      for (std::size_t m = from; m < to; ++m) {
+        const std::uint32_t* c = &set.corners[3 * std::size_t(sc.members[m])];
+        for (int k = 0; k < 3; ++k) {
+          for (std::uint32_t i = set.vertexStart[c[k]]; i < set.vertexStart[c[k] + 1]; ++i) {
+            const std::uint32_t p = set.vertexElements[i];
+            if (sc.stamp[p] == sc.current) continue;
+            sc.stamp[p] = sc.current;
+            if (glm::dot(geo.normal[p], geo.normal[q]) < cosCrease) continue;
+            sc.members.push_back(p);
+            photons += float(w.photons(lo, hi, p));
+          }
+        }
+      }
+      if (sc.members.size() == to) break;  // nothing more to reach
+      sc.ringEnd.push_back(std::uint32_t(sc.members.size()));
+      ++rings;
+      if (extra == 1) break;
+    }
+    out.rings[q] = std::uint8_t(rings);
+    float ringRadius = 0.0f;
+    if (rings > 0)
+      for (std::size_t m = sc.ringEnd[rings - 1]; m < sc.members.size(); ++m)
+        ringRadius = std::max(ringRadius, glm::length(geo.centroid[sc.members[m]] - geo.centroid[q]));
+    const float sigmaS = 0.5f * ringRadius;
+
+    const bool whole = lo == 0 && hi + 1 == w.frames;
+    auto irradiance = [&](std::size_t k, std::size_t p) {  // Weber eq. 5
+      if (whole) return wholeWindow[k * elements + p];
+      const auto [a, b] = fiveFrames(k, lo, hi);
+      const float area = geo.area[p];
+      return area > 0.0f ? w.energy(a, b, p) / (float(b - a + 1) * area) : glm::vec3(0.0f);
+    };
+    const auto [a0, b0] = fiveFrames(w.centre, lo, hi);
+    const float ref = luminance(irradiance(w.centre, q));
+    // sigma_I = l * I_t0(q) (§5.1.3), but never below the reference's own
+    // Poisson noise, nor, where q saw no photon, below one photon's worth.
+    const float n5 = float(w.photons(a0, b0, q));
+    const float floorI = geo.area[q] > 0.0f ? quantum / (float(b0 - a0 + 1) * geo.area[q]) : 0.0f;
+    const float sigmaI = std::max(cfg.influence, 1.0f / std::sqrt(std::max(n5, 1.0f))) * std::max(ref, floorI);
+    const float invS = sigmaS > 0.0f ? 1.0f / (2.0f * sigmaS * sigmaS) : 0.0f;
+    const float invI = sigmaI > 0.0f ? 1.0f / (2.0f * sigmaI * sigmaI) : 0.0f;
+    const float invT = 1.0f / (2.0f * sigmaT * sigmaT);
+    float wT[256];
+    for (std::size_t k = lo; k <= hi; ++k) {
+      const float dt = float(k) - float(w.centre);
+      wT[k] = std::exp(-dt * dt * invT);
+    }
+    glm::vec3 sum(0.0f);
+    float weights = 0.0f;
+    for (std::uint32_t p : sc.members) {
+      const glm::vec3 d = geo.centroid[p] - geo.centroid[q];
+      const float wS = std::exp(-glm::dot(d, d) * invS);
+      for (std::size_t k = lo; k <= hi; ++k) {
+        const glm::vec3 value = irradiance(k, p);
+        const float di = luminance(value) - ref;
+        const float wgt = wS * wT[k] * (sigmaI > 0.0f ? std::exp(-di * di * invI) : 1.0f);
+        sum += wgt * value;
+        weights += wgt;
+      }
+    }
+    filtered[q] = weights > 0.0f ? sum / weights : glm::vec3(0.0f);
+  };
+
+  s.arena->execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, elements, 256),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t q = r.begin(); q != r.end(); ++q) element(q);
+                      });
+  });
+
+  // Corner values: area-weighted means over the elements at each corner
+  // that lie within the crease angle of this one.
+  std::vector<glm::vec3> corner(3 * elements);
+  s.arena->execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, elements, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t e = r.begin(); e != r.end(); ++e) {
+        for (int k = 0; k < 3; ++k) {
+          const std::uint32_t v = set.corners[3 * e + k];
+          glm::vec3 sum(0.0f);
+          float area = 0.0f;
+          for (std::uint32_t i = set.vertexStart[v]; i < set.vertexStart[v + 1]; ++i) {
+            const std::uint32_t p = set.vertexElements[i];
+            if (glm::dot(geo.normal[p], geo.normal[e]) < cosCrease) continue;
+            sum += geo.area[p] * filtered[p];
+            area += geo.area[p];
+          }
+          corner[3 * e + k] = area > 0.0f ? sum / area : filtered[e];
+        }
+      }
+    });
+  });
+
+  std::size_t lit = 0, cutLit = 0;
+  for (std::size_t e = 0; e < elements; ++e) {
+    if (w.photons(0, w.frames - 1, e) == 0) continue;
+    ++lit;
+    cutLit += cut[e];
+  }
+  out.spatialFallback = lit ? float(cutLit) / float(lit) : 0.0f;
+  out.field.elements_ = s.elements;
+  out.field.element_ = std::move(filtered);
+  out.field.corner_ = std::move(corner);
+  out.field.sceneUid_ = s.sceneUid;
+  out.field.uid_ = nextFieldUid.fetch_add(1);
+  return out;
+}
+
+glm::vec3 IrradianceField::at(std::uint32_t instance, std::uint32_t prim, float b1, float b2) const {
+  if (!elements_) return glm::vec3(0.0f);
+  glm::vec3 wgt;
+  const std::uint32_t e = elements_->locate(instance, prim, b1, b2, &wgt);
+  if (e == kNoElement) return glm::vec3(0.0f);
+  const glm::vec3* c = &corner_[3 * std::size_t(e)];
+  return wgt.x * c[0] + wgt.y * c[1] + wgt.z * c[2];
+}
+
+}  // namespace tsr::embree
