@@ -57,6 +57,11 @@ FilterSettings FilterSettings::from(const Parameters& p) {
   s.pixel.antialiasRecovery = p.getBool("antialiasRecovery", false);
   if (s.pixel.antialiasRecovery && s.pixel.kernel != embree::FilterKernel::Separable)
     throw ParameterError("parameter antialiasRecovery: works with filterKernel=separable only");
+  // Weber's law fails in the dark (de Vries-Rose): below a background of
+  // about 0.1, noise is judged in absolute terms, so dark pixels are not
+  // held to a far stricter threshold than the rest, nor kept filtered long
+  // after the rest of the image let go.
+  s.pixel.minBackground = positive(p, "minBackground", 0.1);
   s.pixel.threads = static_cast<int>(p.getInt("threads", 0, 0, 4096));
   s.radiance.threshold = positive(p, "threshold", kDefaultThreshold, true);
   s.radiance.warmupRadius = positive(p, "warmupRadius", 8.0);
