@@ -49,7 +49,9 @@ std::vector<float> truncationMap(const PcaBasis& basis, const TruncationRule& ru
   const std::size_t pixels = std::size_t{basis.width()} * basis.height();
   std::vector<float> map(pixels);
   for (std::size_t p = 0; p < pixels; ++p) map[p] = static_cast<float>(truncationFor(basis.pixelUnexplained(p), rule));
-  return blur(map, basis.width(), basis.height(), sigma);
+  map = blur(map, basis.width(), basis.height(), sigma);
+  for (float& m : map) m = std::clamp(m, 1.0f, static_cast<float>(basis.modes()));  // rounding of the blur
+  return map;
 }
 
 Frame blendHighSamples(const Frame& reconstructed, const Frame& highSamples, const std::vector<float>& truncation,

@@ -77,7 +77,9 @@ TEST(Truncation, PerPixelMapSpendsModesWhereTheSequenceChanges) {
   EXPECT_GT(mRight, 4 * mLeft);
   // Smoothed: no jump between neighbours larger than a fraction of the range.
   for (std::size_t p = 0; p + 1 < r.truncation.size(); ++p)
-    if ((p + 1) % kSize != 0) EXPECT_LT(std::abs(r.truncation[p + 1] - r.truncation[p]), 0.5f * (mRight - mLeft));
+    if ((p + 1) % kSize != 0) {
+      EXPECT_LT(std::abs(r.truncation[p + 1] - r.truncation[p]), 0.5f * (mRight - mLeft));
+    }
   // Where one mode suffices, the map's reconstruction beats the global M.
   PcaSettings global;
   global.fixedModes = r.globalModes;

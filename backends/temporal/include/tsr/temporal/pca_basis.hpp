@@ -5,10 +5,15 @@
 // The frames are the columns of X (rows: every pixel's R, G and B, one
 // temporal basis shared by the three channels: indirect colour changes
 // with the light in all channels at once, and one basis sees three times
-// the samples). Not mean-centred, as eq. 2: the first mode carries the
-// sequence's average. X^T X = V diag(lambda) V^T with lambda descending;
-// mode i is the image U_i = X v_i with temporal weights v_i(t), and the
-// first M modes reconstruct frame t as sum_{i<M} U_i v_i(t).
+// the samples). Mode 0 is each row's temporal mean; modes 1..N-1 are the
+// principal components of X minus that mean: X'^T X' = V diag(lambda) V^T,
+// lambda descending, mode i the image U_i = X' v_i with temporal weights
+// v_i(t). Frame t from the first M modes is mean + sum_{i<M-1} U_i v_i(t).
+// Centring per pixel (eq. 2 does not) is what lets a static pixel stop at
+// one mode in 3.2's per-pixel truncation: uncentred, the first mode's
+// temporal weight carries whatever changes elsewhere in the frame. Energies
+// stay uncentred fractions (the mean's energy counts), so 2.3's epsilon
+// keeps its meaning: mode 0 is the paper's first mode.
 #include <cstddef>
 #include <vector>
 
@@ -24,7 +29,8 @@ class PcaBasis {
   int modes() const { return modes_; }
   std::uint32_t width() const { return width_; }
   std::uint32_t height() const { return height_; }
-  // Eigenvalues of the Gram matrix, descending (the energy of each mode).
+  // The energy of each mode: the mean's, then the centred Gram matrix's
+  // eigenvalues, descending.
   const std::vector<double>& energies() const { return energies_; }
 
   // percentVar(x) of 2.3 as a fraction: the energy the first x modes leave
@@ -41,14 +47,16 @@ class PcaBasis {
   Frame reconstruct(int t, const std::vector<float>& truncation) const;
 
  private:
-  float mode(std::size_t row, int i) const { return images_[row * static_cast<std::size_t>(modes_) + i]; }
-  double weight(int t, int i) const { return weights_[static_cast<std::size_t>(t) * modes_ + i]; }
+  // Mode i >= 1 of a row.
+  float mode(std::size_t row, int i) const { return images_[row * static_cast<std::size_t>(modes_ - 1) + static_cast<std::size_t>(i - 1)]; }
+  double weight(int t, int i) const { return weights_[static_cast<std::size_t>(t) * modes_ + static_cast<std::size_t>(i)]; }
 
   std::uint32_t width_ = 0, height_ = 0;
   int modes_ = 0;
   std::vector<double> energies_;
   std::vector<double> weights_;  // v_i(t), row t
-  std::vector<float> images_;    // U_i, row = pixel * 3 + channel
+  std::vector<float> mean_;      // mode 0, per row
+  std::vector<float> images_;    // U_i of modes 1..N-1 (index i - 1), row = pixel * 3 + channel
 };
 
 }  // namespace tsr::temporal
