@@ -116,8 +116,6 @@ int renderSequence(const RenderOptions& options, const SequenceOptions& sequence
   if (sequence.frames > 1 && options.output.find("####") == std::string::npos)
     throw std::invalid_argument("--frames " + std::to_string(sequence.frames) + " needs #### in --output for the frame number");
   if (options.temporal.method == "photons") return renderPhotonSequence(options, sequence);
-  if (options.temporal.active() && !sequence.framesGiven)
-    throw std::invalid_argument("--temporal " + options.temporal.method + " needs --frames N");
   SceneSession session;
   session.load(options.scene, options.import);
   FrameRenderer render = sequence.cluster.empty() ? localRenderer(options, session) : clusterRenderer(options, sequence, session);

@@ -48,6 +48,7 @@ struct Options {
   int threads = 0;
   std::string cache = "build/quality-cache";
   std::string out, pngDir;
+  std::vector<int> modes{2, 1, 3, 5};  // extra rows with a fixed truncation
 };
 
 void note(const std::string& s) { std::cerr << "[temporal_quality] " << s << std::endl; }
@@ -161,6 +162,7 @@ int main(int argc, char** argv) {
   app.add_option("--fit-spp", o.fitSpp, "frame-by-frame sample counts for the relMSE = a/spp fit");
   app.add_option("--ref-spp", o.refSpp, "reference samples per pixel");
   app.add_option("--switch-frame", o.switchFrame, "frame at which the lights switch (0: none; default frames/2)");
+  app.add_option("--modes", o.modes, "fixed truncations to compare (--temporal-modes)");
   app.add_option("--threads", o.threads, "render threads (0: all)");
   app.add_option("--cache", o.cache, "reference cache directory");
   app.add_option("--out", o.out, "also write the table here");
@@ -243,6 +245,11 @@ int main(int argc, char** argv) {
     global.perPixel = false;
     methods.push_back(pca("PCA, per-pixel map, " + kName, perPixel));
     methods.push_back(pca("PCA, global M, " + kName, global));
+    for (int m : o.modes) {
+      temporal::PcaSettings fixed;
+      fixed.fixedModes = m;
+      methods.push_back(pca(fmt::format("PCA, M = {}, {}", m, kName), fixed));
+    }
 
     // Per method: relMSE per frame (beauty and indirect), flicker.
     struct Scores {
@@ -284,9 +291,12 @@ int main(int argc, char** argv) {
     }
     table << fmt::format("| reference, {} spp | 0 | 0 | 0 | | | | |\n\n", o.refSpp);
 
-    table << fmt::format("relMSE per frame (beauty / indirect), frame by frame at {} spp vs PCA with the per-pixel map:\n\n", o.k);
+    table << fmt::format("relMSE per frame (beauty / indirect), frame by frame at {} spp vs {}:\n\n", o.k,
+                         methods[byFrame.size() + (o.modes.empty() ? 0 : 2)].name);
     table << "| frame | frame by frame | PCA | mean indirect luminance: reference | frame by frame | PCA |\n|---|---|---|---|---|---|\n";
-    const std::size_t pcaIndex = byFrame.size();
+    // Per frame, the switch and the PNGs: the first fixed truncation (with
+    // path-traced noise 2.3's rule keeps every mode; see the README).
+    const std::size_t pcaIndex = byFrame.size() + (o.modes.empty() ? 0 : 2);
     for (int t = 0; t < o.frames; ++t) {
       const auto u = std::size_t(t);
       table << fmt::format("| {}{} | {} / {} | {} / {} | {} | {} | {} |\n", t, t == o.switchFrame ? " (switch)" : "",
