@@ -18,6 +18,7 @@ if(NOT TSR_ONLY_SCENEGRAPH)
   find_package(CLI11 REQUIRED)
   find_package(TBB REQUIRED COMPONENTS tbb)
   find_package(embree 3 REQUIRED)
+  find_package(Eigen3 3.3 REQUIRED NO_MODULE)  # temporal PCA (backends/temporal)
   find_package(OpenImageIO REQUIRED)
   # Debian 12's OpenImageIO config names /usr/include/opencv4, which is not
   # installed; CMake refuses targets with non-existent include paths.

@@ -13,6 +13,7 @@ packages=(
   libboost-dev liblz4-dev libzstd-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libspdlog-dev libfmt-dev libglm-dev libimgui-dev
+  libeigen3-dev
 )
 
 if [ "$(id -u)" -ne 0 ]; then

@@ -26,6 +26,8 @@ int run(int argc, char** argv) {
   // --frames and --cluster render sequences, locally or on nodes (sequence_render.cpp).
   auto sequence = tsr::app::parseSequenceOptions(options.unparsed);
   if (sequence.active() && !layers.empty()) throw std::invalid_argument("--layers: not with --frames or --cluster (yet)");
+  if (options.temporal.active() && !sequence.framesGiven)
+    throw std::invalid_argument("--temporal " + options.temporal.method + " needs --frames N");
   if (sequence.active()) return tsr::app::renderSequence(options, sequence);
 
   tsr::app::SceneSession session;

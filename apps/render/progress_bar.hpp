@@ -22,6 +22,7 @@ class ProgressBar {
                  std::string(kWidth - filled, ' ').c_str(), static_cast<int>(fraction * 100 + 0.5));
     std::fflush(stderr);
   }
+  bool active() const { return enabled_; }
   void finish() {
     if (enabled_ && drawn_ >= 0) std::fputc('\n', stderr);
     drawn_ = -1;

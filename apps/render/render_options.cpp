@@ -86,6 +86,7 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
   filterOptions.emplace_back(filterGroup->add_option("--filter-kernel", filterKernel, "bilateral or separable (with --filter pixel)")
                                  ->check(CLI::IsMember({"bilateral", "separable"})),
                              "filterKernel");
+  addTemporalOptions(app, o.temporal);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -95,6 +96,7 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
     throw std::invalid_argument(e.what());
   }
   parseSize(size, o.width, o.height);
+  checkTemporalOptions(o.temporal, static_cast<int>(spp));
   o.import.maxFileBytes = maxFileMb << 20;
   for (const auto& p : params) {
     auto [name, value] = med::Parameters::parse(p);

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "temporal_options.hpp"
 #include "tsr/med/parameters.hpp"
 #include "tsr/sg/import/importer.hpp"
 
@@ -21,6 +22,7 @@ struct RenderOptions {
   std::set<std::string> explicitParameters;  // those the command line named (they beat a config's)
   bool quiet = false;
   sg::ImportOptions import;  // --max-file-mb, --max-elements
+  TemporalOptions temporal;  // --temporal and its settings (with --frames)
   std::vector<std::string> unparsed;  // arguments for other parts (cluster, frames)
 };
 

@@ -1,12 +1,15 @@
 #include "sequence_render.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <functional>
 #include <iostream>
 #include <stdexcept>
 
 #include "backends.hpp"
+#include "progress_bar.hpp"
 #include "scene_session.hpp"
+#include "temporal_pca_sequence.hpp"
 #include "tsr/cluster/auth.hpp"
 #include "tsr/cluster/cluster_window.hpp"
 #include "tsr/med/image_file.hpp"
@@ -16,8 +19,24 @@ namespace tsr::app {
 
 namespace {
 
-using FrameRenderer = std::function<med::FrameBuffer(SceneSession&, const sg::ChangeListPtr&, const med::View&)>;
+using FrameRenderer =
+    std::function<med::FrameBuffer(SceneSession&, const sg::ChangeListPtr&, const med::View&, int frame)>;
 
+// The outputs every frame needs: the --aov ones, and with --temporal the
+// split the temporal step works on.
+std::vector<std::string> frameOutputs(const RenderOptions& options) {
+  std::vector<std::string> outputs = options.aovs;
+  if (options.temporal.active())
+    for (const char* name : {"direct", "indirect"})
+      if (std::find(outputs.begin(), outputs.end(), name) == outputs.end()) outputs.push_back(name);
+  return outputs;
+}
+
+// With --temporal, each frame gets its own seed (frame-by-frame renders
+// share one, so a static pixel's noise would repeat in every frame and look
+// like signal to the temporal step), and direct light, when --direct-spp
+// asks for more, continues the same progressive accumulation past --spp:
+// the indirect output is read at --spp, the direct one at --direct-spp.
 FrameRenderer localRenderer(const RenderOptions& options, const SceneSession& session) {
   auto registry = std::make_shared<med::ViewportRegistry>();
   registerBackends(*registry);
@@ -25,10 +44,26 @@ FrameRenderer localRenderer(const RenderOptions& options, const SceneSession& se
   med::ViewportSettings settings{options.backend, session.imported.root, session.imported.background, options.parameters, true};
   std::shared_ptr<med::Viewport> viewport = registry->create(settings, *contexts);
   med::RenderControl control;
-  control.outputs = options.aovs;
-  return [registry, contexts, viewport, control](SceneSession& s, const sg::ChangeListPtr&, const med::View& view) {
+  control.outputs = frameOutputs(options);
+  const bool temporal = options.temporal.active();
+  const std::int64_t seed = options.parameters.getInt("seed", 0, 0);
+  const std::int64_t spp = options.parameters.getInt("spp", 16, 1, 1 << 20);
+  const std::int64_t directSpp = std::max<std::int64_t>(spp, options.temporal.directSpp);
+  return [=](SceneSession& s, const sg::ChangeListPtr&, const med::View& view, int frame) {
     med::FrameBuffer image;
+    if (temporal) {
+      viewport->setParameter("seed", seed + frame);
+      viewport->setParameter("spp", spp);
+    }
     viewport->render(s.replica, view, image, control);
+    if (temporal && directSpp > spp) {
+      viewport->setParameter("spp", directSpp);
+      med::FrameBuffer more;
+      med::RenderControl direct = control;
+      direct.outputs = std::vector<std::string>{"direct"};
+      viewport->render(s.replica, view, more, direct);
+      image.outputs["direct"] = std::move(more.outputs["direct"]);
+    }
     return image;
   };
 }
@@ -44,7 +79,10 @@ FrameRenderer clusterRenderer(const RenderOptions& options, const SequenceOption
   config.validate();
   cluster::ClientOptions client;
   if (!sequence.tokenFile.empty()) client.token = cluster::readTokenFile(sequence.tokenFile);
-  client.outputs = options.aovs;
+  client.outputs = frameOutputs(options);
+  if (options.temporal.active() && options.temporal.directSpp > options.parameters.getInt("spp", 16, 1, 1 << 20))
+    throw std::invalid_argument("--direct-spp: with --cluster the nodes render direct and indirect light in the same "
+                                "paths, at --spp (raise --spp or leave --direct-spp out)");
   // Whole-frame image steps of the nodes' back-end (pixel filtering) run
   // here on the assembled frame, so tiles show no seams.
   auto registry = std::make_shared<med::ViewportRegistry>();
@@ -57,7 +95,7 @@ FrameRenderer clusterRenderer(const RenderOptions& options, const SequenceOption
   if (online == 0 && config.mode != cluster::ClusterMode::Tiled)
     throw std::runtime_error("no cluster node could be reached: " + window->status().front().lastError);
   if (!options.quiet) std::cout << online << " of " << config.nodes.size() << " nodes online\n";
-  return [window](SceneSession& s, const sg::ChangeListPtr& delta, const med::View& view) {
+  return [window](SceneSession& s, const sg::ChangeListPtr& delta, const med::View& view, int) {
     const auto* camera = s.source.find<sg::Camera>(s.camera);
     window->setEyes(camera->eyeSeparation(), camera->zeroParallaxDistance());
     window->publish(s.source, delta);
@@ -67,12 +105,33 @@ FrameRenderer clusterRenderer(const RenderOptions& options, const SequenceOption
 
 }  // namespace
 
+// `--temporal photons` (spatio-temporal photon density estimation) renders
+// through the Embree back-end's photon pass: the one place to connect it.
+int renderPhotonSequence(const RenderOptions&, const SequenceOptions&) {
+  throw std::invalid_argument("--temporal photons: not available yet (the photon pass of the Embree back-end is not in "
+                              "this build); use --temporal pca");
+}
+
 int renderSequence(const RenderOptions& options, const SequenceOptions& sequence) {
   if (sequence.frames > 1 && options.output.find("####") == std::string::npos)
     throw std::invalid_argument("--frames " + std::to_string(sequence.frames) + " needs #### in --output for the frame number");
+  if (options.temporal.method == "photons") return renderPhotonSequence(options, sequence);
   SceneSession session;
   session.load(options.scene, options.import);
   FrameRenderer render = sequence.cluster.empty() ? localRenderer(options, session) : clusterRenderer(options, sequence, session);
+  auto write = [&](int frame, const med::FrameBuffer& image) {
+    std::string path = framePath(options.output, frame);
+    med::writeImage(path, image);
+    for (const auto& aov : options.aovs) med::writeImage(aovPath(path, aov), image, aov);
+    return path;
+  };
+  ProgressBar bar(options.temporal.active() ? "rendering + " + options.temporal.method : "rendering", !options.quiet);
+  std::unique_ptr<TemporalPcaSequence> pca;
+  if (options.temporal.method == "pca")
+    pca = std::make_unique<TemporalPcaSequence>(options.temporal, [&](int frame, const med::FrameBuffer& image) {
+      write(frame, image);
+    });
+  double renderSeconds = 0;
   for (int frame = 0; frame < sequence.frames; ++frame) {
     // Frame 0 is the scene as loaded; later ones pose the animation at frame / fps.
     if (sequence.framesGiven)
@@ -82,13 +141,25 @@ int renderSequence(const RenderOptions& options, const SequenceOptions& sequence
     const auto* camera = session.replica.scene().find<sg::Camera>(session.camera);
     auto view = med::View::fromCamera(*camera, options.width, options.height);
     auto started = std::chrono::steady_clock::now();
-    med::FrameBuffer image = render(session, delta, view);
+    med::FrameBuffer image = render(session, delta, view, frame);
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    std::string path = framePath(options.output, frame);
-    med::writeImage(path, image);
-    for (const auto& aov : options.aovs) med::writeImage(aovPath(path, aov), image, aov);
+    renderSeconds += seconds;
+    if (pca) {
+      pca->add(frame, std::move(image));
+    } else {
+      std::string path = write(frame, image);
+      if (!options.quiet && !bar.active())
+        std::cout << "wrote " << path << " (" << image.width << "x" << image.height << ", " << seconds << " s)\n";
+    }
+    bar.update(double(frame + 1) / sequence.frames);
+  }
+  if (pca) {
+    pca->finish();
+    bar.finish();
     if (!options.quiet)
-      std::cout << "wrote " << path << " (" << image.width << "x" << image.height << ", " << seconds << " s)\n";
+      std::cout << "wrote " << sequence.frames << " frames " << framePath(options.output, 0) << ".. (rendering "
+                << renderSeconds << " s, pca " << pca->denoiseSeconds() << " s in " << pca->windows()
+                << " window(s), " << pca->meanModes() << " modes on average)\n";
   }
   return 0;
 }

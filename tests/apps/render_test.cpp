@@ -88,3 +88,25 @@ TEST_F(RenderCommand, ImportLimitsNameTheirOption) {
 }
 
 }  // namespace
+
+// --temporal pca: every frame's beauty is its direct output plus the
+// denoised indirect one, and both parts are written beside it.
+TEST_F(RenderCommand, TemporalPcaWritesDirectPlusDenoisedIndirect) {
+  ASSERT_EQ(run("builtin:animated --size 16x16 --spp 2 --threads 1 --frames 4 --fps 4 --temporal pca "
+                "--temporal-modes 1 --aov direct --aov indirect --output t.####.exr")
+                .status,
+            0);
+  std::vector<std::vector<glm::vec4>> indirect;
+  for (int f = 0; f < 4; ++f) {
+    const std::string stem = (dir / ("t.000" + std::to_string(f))).string();
+    const auto beauty = tsr::med::readImage(stem + ".exr");
+    const auto direct = tsr::med::readImage(stem + ".direct.exr");
+    indirect.push_back(tsr::med::readImage(stem + ".indirect.exr").colour);
+    for (std::size_t p = 0; p < beauty.colour.size(); ++p)
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(beauty.colour[p][c], direct.colour[p][c] + indirect.back()[p][c], 1e-3f);
+  }
+  // One mode is the temporal mean: the denoised indirect light is static.
+  for (std::size_t p = 0; p < indirect[0].size(); ++p) EXPECT_NEAR(indirect[3][p].g, indirect[0][p].g, 1e-4f);
+  expectOneErrorLine(run("builtin:animated --frames 2 --temporal photons --output p.####.png"), "not available yet");
+  expectOneErrorLine(run("builtin:animated --temporal pca --output p.png"), "--frames");
+}

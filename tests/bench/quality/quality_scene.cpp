@@ -6,6 +6,7 @@
 #include "tsr/med/view.hpp"
 #include "tsr/med/viewport.hpp"
 #include "tsr/sg/camera.hpp"
+#include "tsr/sg/light.hpp"
 #include "tsr/sg/surface_material.hpp"
 
 namespace tsr::quality {
@@ -52,10 +53,20 @@ std::unique_ptr<med::Viewport> QualityScene::viewport(const med::Parameters& par
   return registry_.create(s, contexts_);
 }
 
-Shot QualityScene::render(med::Viewport& viewport, std::uint32_t size, bool wantBlend) {
+void QualityScene::pose(float seconds, float lightScale) {
+  if (lightIntensities_.empty())
+    for (auto id : source_.ids())
+      if (const auto* light = source_.find<sg::Light>(id)) lightIntensities_.emplace_back(id, light->intensity());
+  for (const auto& animation : imported_.animations) animation.apply(source_, seconds);
+  for (const auto& [id, intensity] : lightIntensities_) source_.find<sg::Light>(id)->setIntensity(intensity * lightScale);
+  replica_.apply(source_.commit());
+}
+
+Shot QualityScene::render(med::Viewport& viewport, std::uint32_t size, bool wantBlend,
+                          const std::vector<std::string>& outputs) {
   const auto view = med::View::fromCamera(*replica_.scene().find<sg::Camera>(imported_.cameras.front()), size, size);
   med::RenderControl control;
-  control.outputs = std::vector<std::string>{};
+  control.outputs = outputs;
   if (wantBlend) control.outputs->push_back("blend");
   Shot shot;
   const auto stats = viewport.render(replica_, view, shot.image, control);

@@ -34,7 +34,13 @@ class QualityScene {
   // A fresh viewport over the scene with `parameters` (backend embree).
   std::unique_ptr<med::Viewport> viewport(const med::Parameters& parameters);
   // Renders `viewport` at size x size; throws what the viewport throws.
-  Shot render(med::Viewport& viewport, std::uint32_t size, bool wantBlend = false);
+  // `outputs`: named outputs to fill besides colour (and "blend" if asked).
+  Shot render(med::Viewport& viewport, std::uint32_t size, bool wantBlend = false,
+              const std::vector<std::string>& outputs = {});
+
+  // Poses the scene's animations at `seconds` and scales every light's
+  // intensity by `lightScale` (a light switch), then commits.
+  void pose(float seconds, float lightScale = 1.0f);
 
  private:
   std::string key_, label_;
@@ -44,6 +50,7 @@ class QualityScene {
   sg::Replica replica_;
   med::ContextPool contexts_;
   std::unique_ptr<med::Viewport> anchor_;
+  std::vector<std::pair<sg::ContainerId, float>> lightIntensities_;  // as imported
 };
 
 }  // namespace tsr::quality

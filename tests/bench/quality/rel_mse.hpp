@@ -29,6 +29,29 @@ inline double relMse(const std::vector<glm::vec4>& image, const std::vector<glm:
   return sum / (3.0 * double(image.size()));
 }
 
+// Flicker, the temporal issue's tRelMSE: the mean over pixels and RGB of
+// ((y_hat_t - y_hat_{t-1}) - (y_t - y_{t-1}))^2 / (y_t^2 + eps), averaged
+// over t = 1..N-1. Throws std::invalid_argument for mismatched sequences.
+inline double temporalRelMse(const std::vector<std::vector<glm::vec4>>& images,
+                             const std::vector<std::vector<glm::vec4>>& references) {
+  if (images.size() != references.size() || images.size() < 2)
+    throw std::invalid_argument("temporalRelMse: needs two or more frames on each side, equally many");
+  double total = 0;
+  for (std::size_t t = 1; t < images.size(); ++t) {
+    const auto &a = images[t], &a0 = images[t - 1], &y = references[t], &y0 = references[t - 1];
+    if (a.size() != y.size() || a0.size() != y.size() || y0.size() != y.size() || y.empty())
+      throw std::invalid_argument("temporalRelMse: frames of different sizes");
+    double sum = 0;
+    for (std::size_t i = 0; i < y.size(); ++i)
+      for (int c = 0; c < 3; ++c) {
+        const double d = (double(a[i][c]) - a0[i][c]) - (double(y[i][c]) - y0[i][c]);
+        sum += d * d / (double(y[i][c]) * y[i][c] + kRelMseEpsilon);
+      }
+    total += sum / (3.0 * double(y.size()));
+  }
+  return total / double(images.size() - 1);
+}
+
 // The mean of channel r of an output (e.g. the blend factor s).
 inline double meanRed(const std::vector<glm::vec4>& image) {
   if (image.empty()) return 0;

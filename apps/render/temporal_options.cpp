@@ -1,0 +1,46 @@
+#include "temporal_options.hpp"
+
+#include <stdexcept>
+
+namespace tsr::app {
+
+void addTemporalOptions(CLI::App& app, TemporalOptions& o) {
+  auto* g = app.add_option_group("Temporal (with --frames)", "flicker-free animations: indirect light denoised over time");
+  g->add_option("--temporal", o.method,
+                "pca: project the indirect light onto its temporal PCA basis (Meyer & Anderson); photons: "
+                "spatio-temporal photon density estimation. --spp is then the indirect sample count")
+      ->check(CLI::IsMember({"pca", "photons"}));
+  g->add_option("--direct-spp", o.directSpp,
+                "direct-light samples per pixel and frame (default: --spp; direct light has the lower variance, "
+                "so its noise stays under the denoised indirect's)")
+      ->check(CLI::Range(1, 1 << 20));
+  g->add_option("--temporal-modes", o.modes, "keep this many PCA modes (default: chosen by --temporal-epsilon)")
+      ->check(CLI::Range(1, 1 << 20));
+  g->add_option("--temporal-epsilon", o.epsilon, "energy fraction the kept modes may leave unexplained (default 0.005)")
+      ->check(CLI::Range(0.0, 1.0));
+  g->add_option("--temporal-epsilon-change", o.epsilonChange,
+                "stop adding modes when one more explains less than this (default 0.001)")
+      ->check(CLI::Range(0.0, 1.0));
+  g->add_flag("--temporal-global", o.global, "one truncation for the whole frame, not a smoothed per-pixel map");
+  g->add_option("--temporal-map-sigma", o.mapSigma, "Gaussian smoothing of the per-pixel truncation map, pixels (default 2)")
+      ->check(CLI::Range(0.0, 64.0));
+  g->add_option("--temporal-window", o.window, "frames denoised together; longer sequences run in overlapping windows (default 64)")
+      ->check(CLI::Range(2, 100000));
+  g->add_option("--temporal-overlap", o.overlap, "frames two windows share, cross-faded (default 16)")
+      ->check(CLI::Range(0, 100000));
+}
+
+void checkTemporalOptions(const TemporalOptions& o, int spp) {
+  if (!o.active()) {
+    if (o.directSpp || o.modes) throw std::invalid_argument("--direct-spp and --temporal-modes need --temporal");
+    return;
+  }
+  if (o.overlap >= o.window)
+    throw std::invalid_argument("--temporal-overlap " + std::to_string(o.overlap) + " must be smaller than --temporal-window " +
+                                std::to_string(o.window));
+  if (o.directSpp && o.directSpp < spp)
+    throw std::invalid_argument("--direct-spp " + std::to_string(o.directSpp) + " is below --spp " + std::to_string(spp) +
+                                ": direct light comes from the same paths as the indirect, so it gets at least --spp");
+}
+
+}  // namespace tsr::app

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Runs the temporal quality harness (frame by frame vs --temporal pca) on
+# builtin:animated and stitches a before/after strip for docs/.
+#
+#   tests/bench/quality/temporal_quality.sh BUILD_BIN_DIR [temporal_quality options...]
+#
+# The default run is short (96x96, 16 frames). References are cached in
+# build/quality-cache and never recomputed; the first run renders them.
+# The table goes to build/quality-cache/temporal_quality.md unless --out
+# is given; frames go to build/quality-png/temporal and, with oiiotool,
+# the strip to build/quality-png/temporal_strip.png.
+set -euo pipefail
+if [[ $# -lt 1 || ! -x "$1/temporal_quality" ]]; then
+  echo "usage: $0 BUILD_BIN_DIR [temporal_quality options]  (BUILD_BIN_DIR holds temporal_quality)" >&2
+  exit 2
+fi
+bin=$(cd "$1" && pwd)
+shift
+repo=$(cd "$(dirname "$0")/../../.." && pwd)
+cd "$repo"
+args=("$@")
+have() { local o; for o in "${args[@]}"; do [[ "$o" == "$1" || "$o" == "$1="* ]] && return 0; done; return 1; }
+have --cache || args+=(--cache build/quality-cache)
+have --out || args+=(--out build/quality-cache/temporal_quality.md)
+pngs=build/quality-png/temporal
+have --png-dir || args+=(--png-dir "$pngs")
+"$bin/temporal_quality" "${args[@]}"
+
+# Strip: rows frame by frame (16 spp), PCA, reference; every 3rd frame.
+if command -v oiiotool > /dev/null && [[ -d "$pngs" ]]; then
+  picks=()
+  for row in frame_by_frame_16spp pca reference; do
+    for t in 0003 0006 0007 0008 0009 0012; do
+      [[ -f "$pngs/${row}_$t.png" ]] && picks+=("$pngs/${row}_$t.png")
+    done
+  done
+  if [[ ${#picks[@]} -eq 18 ]]; then
+    oiiotool "${picks[@]}" --mosaic:pad=2 6x3 -o build/quality-png/temporal_strip.png
+    echo "strip: build/quality-png/temporal_strip.png (rows: frame by frame 16 spp, PCA 16 spp, reference; frames 3 6 7 8 9 12)"
+  fi
+fi
