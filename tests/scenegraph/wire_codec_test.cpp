@@ -31,19 +31,22 @@ std::vector<std::vector<std::uint8_t>> randomSession(std::uint64_t seed, int fra
 
 // Decoding must end in a list or a DecodeError; applying a decoded list to a
 // replica must end in success or an ApplyError that leaves it untouched.
-void decodeAndApplyHostile(std::span<const std::uint8_t> bytes, Scene& replica) {
+// True when the list decoded and applied; refusals must leave the replica as it was.
+bool decodeAndApplyHostile(std::span<const std::uint8_t> bytes, Scene& replica) {
   ChangeListPtr list;
   try {
     list = decode(bytes);
   } catch (const DecodeError& e) {
     EXPECT_LE(e.offset(), bytes.size());
-    return;
+    return false;
   }
   std::uint64_t before = replica.contentHash();
   try {
     replica.apply(*list);
+    return true;
   } catch (const ApplyError&) {
     EXPECT_EQ(replica.contentHash(), before);
+    return false;
   }
 }
 }  // namespace
@@ -110,20 +113,28 @@ TEST(WireCodec, EveryTruncationIsATypedError) {
 
 TEST(WireCodec, RandomByteFlipsNeverCrash) {
   std::mt19937_64 rng(5);
+  std::size_t applied = 0, pairs = 0;
   for (std::uint64_t seed = 1; seed <= 6; ++seed) {
     auto session = randomSession(seed, 5);
-    for (std::size_t k = 0; k < session.size(); ++k) {
-      // A replica that followed the session up to the list being corrupted.
-      Scene replica;
-      for (std::size_t j = 0; j < k; ++j) replica.apply(*decode(session[j]));
+    std::vector<ChangeListPtr> lists;
+    for (const auto& bytes : session) lists.push_back(decode(bytes));
+    for (std::size_t k = 0; k < session.size(); ++k, ++pairs) {
       for (int trial = 0; trial < 300; ++trial) {
+        // A fresh replica that followed the session up to the list being
+        // corrupted: one that applied an earlier corrupted list would stop
+        // every later trial at the version check.
+        Scene replica;
+        for (std::size_t j = 0; j < k; ++j) replica.apply(*lists[j]);
         auto bytes = session[k];
         int flips = 1 + static_cast<int>(rng() % 4);
         for (int i = 0; i < flips; ++i) bytes[rng() % bytes.size()] ^= static_cast<std::uint8_t>(1u << (rng() % 8));
-        decodeAndApplyHostile(bytes, replica);
+        applied += decodeAndApplyHostile(bytes, replica);
       }
     }
   }
+  // Flips in values decode and apply; with a shared replica at most one
+  // trial per list could.
+  EXPECT_GT(applied, pairs) << "corrupted lists must reach apply's checks past the version";
 }
 
 // Matrices and vertex arrays place what back-ends trace: beyond

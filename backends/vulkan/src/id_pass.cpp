@@ -2,6 +2,7 @@
 
 #include "scene_state.hpp"
 #include "spirv.hpp"
+#include "readback.hpp"
 #include "vk_struct.hpp"
 
 #include "tsr/vk/error.hpp"
@@ -161,31 +162,13 @@ std::uint32_t IdPass::render(SceneState& s, const Camera& camera, const Region& 
   }
   vkCmdEndRendering(cmd);
 
-  imageBarrier(cmd, t.ids.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-               VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
-               VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-  imageBarrier(cmd, t.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-               VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, depthStages, VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-               VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-  VkBufferImageCopy copy{};
-  copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  copy.imageExtent = {w, h, 1};
-  vkCmdCopyImageToBuffer(cmd, t.ids.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, t.idReadback.handle(), 1, &copy);
-  copy.imageSubresource.aspectMask = VK_IMAGE_ASPECT_DEPTH_BIT;
-  vkCmdCopyImageToBuffer(cmd, t.depth.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, t.depthReadback.handle(), 1,
-                         &copy);
-  VkMemoryBarrier toHost = vkStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
-  toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-  toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr, 0,
-                       nullptr);
+  recordReadback(cmd, t.ids, t.depth, t.idReadback, t.depthReadback, w, h);
   check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer (ids)");
   commands_->submitAndWait("ids");
 
   const std::size_t pixels = std::size_t(w) * h;
   std::memcpy(out.ids.data(), t.idReadback.mapped(), pixels * 4);
-  const auto* depth = static_cast<const float*>(t.depthReadback.mapped());
-  for (std::size_t i = 0; i < pixels; ++i) out.depth[i] = camera.linearDepth(depth[i]);
+  readLinearDepth(t.depthReadback, camera, out.depth);
   return draws;
 }
 

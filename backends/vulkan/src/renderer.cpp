@@ -5,6 +5,7 @@
 #include "id_pass.hpp"
 #include "gpu_types.hpp"
 #include "pipeline.hpp"
+#include "readback.hpp"
 #include "render_target.hpp"
 #include "scene_state.hpp"
 #include "shadow_map.hpp"
@@ -75,6 +76,19 @@ struct Renderer::Impl {
   ~Impl();
   VkFormat colourFormat(std::uint32_t samples);
   VkPipeline mainPipeline(std::uint32_t samples, const Material& material, bool shadows);
+
+  // The passes of one frame, in order. Returns where transparent instances
+  // start in the draw order.
+  std::uint32_t sortDrawOrder(const SceneState& s, const Camera& camera);
+  // Fills the light buffer; returns the shadowed lights' view-projections.
+  std::vector<glm::mat4> gatherLights(const SceneState& s, const RenderSettings& settings);
+  void prepareFrame(const SceneState& s, const Camera& camera, const Region& region, const RenderSettings& settings,
+                    std::uint32_t shadowLayers);
+  void recordShadows(VkCommandBuffer cmd, const SceneState& s, const std::vector<glm::mat4>& shadowViewProj,
+                     RenderStats& stats);
+  void recordMain(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
+                  std::uint32_t transparentBase, RenderStats& stats);
+  void readColour(FrameBuffer& fb) const;
 };
 
 Renderer::Impl::Impl(const Device& d) : device(d) {
@@ -193,15 +207,36 @@ void Renderer::render(Scene& scene, const Camera& camera, const Region& region, 
   Impl& r = *impl_;
   SceneState& s = scene.state();
   s.prepare();
-  const VkDevice dev = device_->handle();
-  const std::uint32_t w = region.regionWidth(), h = region.regionHeight();
-  const VkSampleCountFlagBits samples = sampleBits(settings_.msaaSamples);
+  const std::uint32_t transparentBase = r.sortDrawOrder(s, camera);
+  const std::vector<glm::mat4> shadowViewProj = r.gatherLights(s, settings_);
+  r.prepareFrame(s, camera, region, settings_, std::uint32_t(shadowViewProj.size()));
 
-  // Draw order: opaque groups as the scene sorted them, then transparent
-  // instances back to front by the depth of their bounds' centre.
+  RenderStats stats;
+  VkCommandBuffer cmd = r.commands->buffer();
+  check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
+  VkCommandBufferBeginInfo bi = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.layout, 0, 1, &r.frameSet, 0, nullptr);
+  r.recordShadows(cmd, s, shadowViewProj, stats);
+  r.recordMain(cmd, s, settings_, !shadowViewProj.empty(), transparentBase, stats);
+  const RenderTarget& t = *r.target;
+  recordReadback(cmd, t.resolvedColour(), t.resolvedDepth(), t.colourReadback, t.depthReadback, t.width, t.height);
+  check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+  r.commands->submitAndWait("frame");
+
+  r.readColour(fb);
+  readLinearDepth(t.depthReadback, camera, fb.depth_);
+  stats_ = stats;
+}
+
+// Sort: opaque groups as the scene sorted them, each front to back (early
+// depth tests then skip shading hidden fragments, which dominates on CPUs),
+// then transparent instances back to front by their bounds' centre.
+std::uint32_t Renderer::Impl::sortDrawOrder(const SceneState& s, const Camera& camera) {
   const glm::vec3 camPos(camera.cameraToWorld[3]);
   const glm::vec3 forward = -glm::normalize(glm::vec3(camera.cameraToWorld[2]));
-  r.transparentSorted = s.transparent;
+  transparentSorted = s.transparent;
   {
     std::vector<std::pair<float, std::uint32_t>> keyed;
     keyed.reserve(s.transparent.size());
@@ -213,11 +248,9 @@ void Renderer::render(Scene& scene, const Camera& camera, const Region& region, 
     std::sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) {
       return a.first != b.first ? a.first > b.first : a.second < b.second;
     });
-    for (std::size_t i = 0; i < keyed.size(); ++i) r.transparentSorted[i] = keyed[i].second;
+    for (std::size_t i = 0; i < keyed.size(); ++i) transparentSorted[i] = keyed[i].second;
   }
-  // Opaque instances front to back within each group, so early depth tests
-  // skip shading of hidden fragments (fragment shading dominates on CPUs).
-  r.drawOrder.assign(s.opaqueOrder.begin(), s.opaqueOrder.end());
+  drawOrder.assign(s.opaqueOrder.begin(), s.opaqueOrder.end());
   {
     std::vector<std::pair<float, std::uint32_t>> keyed;
     for (const DrawGroup& g : s.opaqueGroups) {
@@ -225,28 +258,32 @@ void Renderer::render(Scene& scene, const Camera& camera, const Region& region, 
       const glm::vec4 centre(0.5f * (m.boundsMin + m.boundsMax), 1.0f);
       keyed.clear();
       for (std::uint32_t i = g.first; i < g.first + g.count; ++i) {
-        const std::uint32_t slot = r.drawOrder[i];
+        const std::uint32_t slot = drawOrder[i];
         keyed.emplace_back(glm::dot(glm::vec3(s.instances[slot].transform * centre) - camPos, forward), slot);
       }
       std::sort(keyed.begin(), keyed.end());
-      for (std::uint32_t i = 0; i < g.count; ++i) r.drawOrder[g.first + i] = keyed[i].second;
+      for (std::uint32_t i = 0; i < g.count; ++i) drawOrder[g.first + i] = keyed[i].second;
     }
   }
-  const std::uint32_t transparentBase = std::uint32_t(r.drawOrder.size());
-  r.drawOrder.insert(r.drawOrder.end(), r.transparentSorted.begin(), r.transparentSorted.end());
-  ensureHost(*device_, r.drawOrderBuffer, std::max<std::size_t>(r.drawOrder.size(), 1) * 4,
+  const std::uint32_t transparentBase = std::uint32_t(drawOrder.size());
+  drawOrder.insert(drawOrder.end(), transparentSorted.begin(), transparentSorted.end());
+  ensureHost(device, drawOrderBuffer, std::max<std::size_t>(drawOrder.size(), 1) * 4,
              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  if (!r.drawOrder.empty()) std::memcpy(r.drawOrderBuffer.mapped(), r.drawOrder.data(), r.drawOrder.size() * 4);
+  if (!drawOrder.empty()) std::memcpy(drawOrderBuffer.mapped(), drawOrder.data(), drawOrder.size() * 4);
 
-  // Lights, with a shadow layer for each shadowed spot/directional light.
-  r.gpuLights.clear();
+  return transparentBase;
+}
+
+// Lights, with a shadow layer for each shadowed spot/directional light.
+std::vector<glm::mat4> Renderer::Impl::gatherLights(const SceneState& s, const RenderSettings& settings) {
+  gpuLights.clear();
   std::vector<glm::mat4> shadowViewProj;
-  const bool shadows = settings_.shadows && !s.sceneEmpty && !s.opaqueOrder.empty();
+  const bool shadows = settings.shadows && !s.sceneEmpty && !s.opaqueOrder.empty();
   for (const LightRecord& lr : s.lights) {
     if (!lr.alive) continue;
     GpuLight g{};
     g.direction.w = -1.0f;
-    g.cone = glm::vec4(1.0f, 1.0f, 0.0f, 1.0f / float(settings_.shadowMapSize));
+    g.cone = glm::vec4(1.0f, 1.0f, 0.0f, 1.0f / float(settings.shadowMapSize));
     std::optional<ShadowProjection> sp;
     if (const auto* p = std::get_if<PointLight>(&lr.light)) {
       g.position = glm::vec4(p->position, float(kGpuPoint));
@@ -257,13 +294,13 @@ void Renderer::render(Scene& scene, const Camera& camera, const Region& region, 
       g.intensity = glm::vec4(sl->intensity, 0.0f);
       g.cone.x = std::cos(sl->innerAngle);
       g.cone.y = std::cos(sl->outerAngle);
-      if (shadows && sl->castShadows) sp = spotShadow(*sl, s.sceneMin, s.sceneMax, settings_.shadowMapSize);
+      if (shadows && sl->castShadows) sp = spotShadow(*sl, s.sceneMin, s.sceneMax, settings.shadowMapSize);
     } else {
       const auto& dl = std::get<DirectionalLight>(lr.light);
       g.position = glm::vec4(0.0f, 0.0f, 0.0f, float(kGpuDirectional));
       g.direction = glm::vec4(glm::normalize(dl.direction), -1.0f);
       g.intensity = glm::vec4(dl.irradiance, 0.0f);
-      if (shadows && dl.castShadows) sp = directionalShadow(dl, s.sceneMin, s.sceneMax, settings_.shadowMapSize);
+      if (shadows && dl.castShadows) sp = directionalShadow(dl, s.sceneMin, s.sceneMax, settings.shadowMapSize);
     }
     if (sp) {
       if (shadowViewProj.size() < kMaxShadowMaps) {
@@ -275,41 +312,49 @@ void Renderer::render(Scene& scene, const Camera& camera, const Region& region, 
         spdlog::warn("tsr::vk: more than {} shadowed lights; the rest cast no shadows", kMaxShadowMaps);
       }
     }
-    r.gpuLights.push_back(g);
+    gpuLights.push_back(g);
   }
-  ensureHost(*device_, r.lightBuffer, std::max<std::size_t>(r.gpuLights.size(), 1) * sizeof(GpuLight),
+  ensureHost(device, lightBuffer, std::max<std::size_t>(gpuLights.size(), 1) * sizeof(GpuLight),
              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  if (!r.gpuLights.empty())
-    std::memcpy(r.lightBuffer.mapped(), r.gpuLights.data(), r.gpuLights.size() * sizeof(GpuLight));
+  if (!gpuLights.empty())
+    std::memcpy(lightBuffer.mapped(), gpuLights.data(), gpuLights.size() * sizeof(GpuLight));
 
+  return shadowViewProj;
+}
+
+// The frame's uniforms, targets sized for the region, and the frame's descriptors.
+void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, const Region& region,
+                                  const RenderSettings& settings, std::uint32_t shadowLayers) {
+  const std::uint32_t w = region.regionWidth(), h = region.regionHeight();
+  const VkSampleCountFlagBits samples = sampleBits(settings.msaaSamples);
+  const glm::vec3 camPos(camera.cameraToWorld[3]);
   GpuFrame frame{};
   frame.viewProj = camera.projection(region) * camera.worldToCamera();
   frame.cameraPos = glm::vec4(camPos, 1.0f);
   frame.ambient = glm::vec4(s.environment.averageRadiance(), 0.0f);
-  frame.counts = glm::uvec4(std::uint32_t(r.gpuLights.size()), 0u, 0u, 0u);
-  std::memcpy(r.frameBuffer.mapped(), &frame, sizeof(frame));
+  frame.counts = glm::uvec4(std::uint32_t(gpuLights.size()), 0u, 0u, 0u);
+  std::memcpy(frameBuffer.mapped(), &frame, sizeof(frame));
 
-  if (!r.target || r.target->width != w || r.target->height != h || r.target->samples != samples)
-    r.target.emplace(*device_, w, h, r.colourFormat(settings_.msaaSamples), samples);
-  const std::uint32_t layers = std::max<std::uint32_t>(1, std::uint32_t(shadowViewProj.size()));
-  if (!r.shadowMap || r.shadowMap->size() != settings_.shadowMapSize || r.shadowMap->layers() < layers) {
-    r.shadowMap.reset();
-    r.shadowMap.emplace(*device_, settings_.shadowMapSize, layers);
+  if (!target || target->width != w || target->height != h || target->samples != samples)
+    target.emplace(device, w, h, colourFormat(settings.msaaSamples), samples);
+  const std::uint32_t layers = std::max<std::uint32_t>(1, shadowLayers);
+  if (!shadowMap || shadowMap->size() != settings.shadowMapSize || shadowMap->layers() < layers) {
+    shadowMap.reset();
+    shadowMap.emplace(device, settings.shadowMapSize, layers);
   }
-  const RenderTarget& t = *r.target;
-  const ShadowMap& sm = *r.shadowMap;
+  const ShadowMap& sm = *shadowMap;
 
   {
     VkDescriptorBufferInfo bufs[5] = {
-        {r.frameBuffer.handle(), 0, VK_WHOLE_SIZE},    {s.instanceBuffer.handle(), 0, VK_WHOLE_SIZE},
-        {r.drawOrderBuffer.handle(), 0, VK_WHOLE_SIZE}, {s.materialBuffer.handle(), 0, VK_WHOLE_SIZE},
-        {r.lightBuffer.handle(), 0, VK_WHOLE_SIZE},
+        {frameBuffer.handle(), 0, VK_WHOLE_SIZE},    {s.instanceBuffer.handle(), 0, VK_WHOLE_SIZE},
+        {drawOrderBuffer.handle(), 0, VK_WHOLE_SIZE}, {s.materialBuffer.handle(), 0, VK_WHOLE_SIZE},
+        {lightBuffer.handle(), 0, VK_WHOLE_SIZE},
     };
     VkDescriptorImageInfo shadowInfo{sm.sampler(), sm.image().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkWriteDescriptorSet writes[6]{};
     for (std::uint32_t i = 0; i < 6; ++i) {
       writes[i] = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
-      writes[i].dstSet = r.frameSet;
+      writes[i].dstSet = frameSet;
       writes[i].dstBinding = i;
       writes[i].descriptorCount = 1;
       if (i == 0) {
@@ -323,18 +368,14 @@ void Renderer::render(Scene& scene, const Camera& camera, const Region& region, 
         writes[i].pImageInfo = &shadowInfo;
       }
     }
-    vkUpdateDescriptorSets(dev, 6, writes, 0, nullptr);
+    vkUpdateDescriptorSets(device.handle(), 6, writes, 0, nullptr);
   }
+}
 
-  RenderStats stats;
-  VkCommandBuffer cmd = r.commands->buffer();
-  check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
-  VkCommandBufferBeginInfo bi = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
-  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.layout, 0, 1, &r.frameSet, 0, nullptr);
-
-  // Shadow passes: opaque instances only, positions only.
+// Shadow passes: opaque instances only, positions only.
+void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s, const std::vector<glm::mat4>& shadowViewProj,
+                                   RenderStats& stats) {
+  const ShadowMap& sm = *shadowMap;
   imageBarrier(cmd, sm.image().handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                shadowViewProj.empty() ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL
                                       : VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
@@ -359,10 +400,10 @@ void Renderer::render(Scene& scene, const Camera& camera, const Region& region, 
     vkCmdSetViewport(cmd, 0, 1, &vp);
     vkCmdSetScissor(cmd, 0, 1, &ri.renderArea);
     vkCmdSetDepthBias(cmd, 1.25f, 0.0f, 1.75f);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.shadowPipeline.handle());
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadowPipeline.handle());
     PushConstants pc;
     pc.lightViewProj = shadowViewProj[layer];
-    vkCmdPushConstants(cmd, r.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
+    vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
     for (const DrawGroup& g : s.opaqueGroups) {
       const MeshRecord& m = s.meshes[g.mesh];
       VkBuffer vb = m.buffer.handle();
@@ -380,8 +421,13 @@ void Renderer::render(Scene& scene, const Camera& camera, const Region& region, 
                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
                  VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
                  VK_ACCESS_SHADER_READ_BIT, sm.layers());
+}
 
-  // Main pass. Previous contents are discarded (UNDEFINED) and cleared.
+// Main pass. Previous contents are discarded (UNDEFINED) and cleared.
+void Renderer::Impl::recordMain(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
+                                std::uint32_t transparentBase, RenderStats& stats) {
+  const RenderTarget& t = *target;
+  const std::uint32_t w = t.width, h = t.height;
   const VkPipelineStageFlags attachStages =
       VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
   std::vector<const Image*> colourImages = {&t.colour};
@@ -406,8 +452,8 @@ void Renderer::render(Scene& scene, const Camera& camera, const Region& region, 
   ca.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   ca.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
   ca.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  ca.clearValue.color = {{settings_.background.r, settings_.background.g, settings_.background.b,
-                          settings_.background.a}};
+  ca.clearValue.color = {{settings.background.r, settings.background.g, settings.background.b,
+                          settings.background.a}};
   VkRenderingAttachmentInfo da = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
   da.imageView = t.depth.view();
   da.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
@@ -436,7 +482,7 @@ void Renderer::render(Scene& scene, const Camera& camera, const Region& region, 
 
   VkPipeline bound = VK_NULL_HANDLE;
   auto draw = [&](std::uint32_t meshIndex, std::uint32_t material, std::uint32_t first, std::uint32_t count) {
-    VkPipeline p = r.mainPipeline(settings_.msaaSamples, s.materials[material].material, !shadowViewProj.empty());
+    VkPipeline p = mainPipeline(settings.msaaSamples, s.materials[material].material, shadows);
     if (p != bound) {
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
       bound = p;
@@ -446,51 +492,28 @@ void Renderer::render(Scene& scene, const Camera& camera, const Region& region, 
     VkDeviceSize off[3] = {0, m.normalOffset, m.uvOffset};
     vkCmdBindVertexBuffers(cmd, 0, 3, vb, off);
     vkCmdBindIndexBuffer(cmd, m.buffer.handle(), m.indexOffset, VK_INDEX_TYPE_UINT32);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.layout, 1, 1, &s.materials[material].set, 0,
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &s.materials[material].set, 0,
                             nullptr);
     PushConstants pc;
     pc.material = material;
-    vkCmdPushConstants(cmd, r.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
+    vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
     vkCmdDrawIndexed(cmd, m.indexCount, count, 0, 0, first);
     ++stats.drawCalls;
     stats.triangles += std::uint64_t(m.indexCount / 3) * count;
   };
   for (const DrawGroup& g : s.opaqueGroups) draw(g.mesh, g.material, g.first, g.count);
-  if (!r.transparentSorted.empty()) {
-    for (std::uint32_t i = 0; i < r.transparentSorted.size(); ++i) {
-      const InstanceRecord& inst = s.instances[r.transparentSorted[i]];
+  if (!transparentSorted.empty()) {
+    for (std::uint32_t i = 0; i < transparentSorted.size(); ++i) {
+      const InstanceRecord& inst = s.instances[transparentSorted[i]];
       draw(inst.mesh, inst.material, transparentBase + i, 1);
     }
   }
   vkCmdEndRendering(cmd);
+}
 
-  // Readback of the resolved images.
-  imageBarrier(cmd, t.resolvedColour().handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-               VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
-               VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-  imageBarrier(cmd, t.resolvedDepth().handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-               VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-               attachStages | VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
-               VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
-               VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-  VkBufferImageCopy copy{};
-  copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  copy.imageExtent = {w, h, 1};
-  vkCmdCopyImageToBuffer(cmd, t.resolvedColour().handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                         t.colourReadback.handle(), 1, &copy);
-  copy.imageSubresource.aspectMask = VK_IMAGE_ASPECT_DEPTH_BIT;
-  vkCmdCopyImageToBuffer(cmd, t.resolvedDepth().handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                         t.depthReadback.handle(), 1, &copy);
-  VkMemoryBarrier toHost = vkStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
-  toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-  toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr, 0,
-                       nullptr);
-  check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
-
-  r.commands->submitAndWait("frame");
-
-  const std::size_t pixels = std::size_t(w) * h;
+void Renderer::Impl::readColour(FrameBuffer& fb) const {
+  const RenderTarget& t = *target;
+  const std::size_t pixels = std::size_t(t.width) * t.height;
   if (t.colourFormat == VK_FORMAT_R32G32B32A32_SFLOAT) {
     std::memcpy(fb.colour_.data(), t.colourReadback.mapped(), pixels * sizeof(glm::vec4));
   } else {
@@ -498,9 +521,6 @@ void Renderer::render(Scene& scene, const Camera& camera, const Region& region, 
     for (std::size_t i = 0; i < pixels; ++i)
       for (int c = 0; c < 4; ++c) fb.colour_[i][c] = glm::unpackHalf1x16(half[4 * i + c]);
   }
-  const auto* depth = static_cast<const float*>(t.depthReadback.mapped());
-  for (std::size_t i = 0; i < pixels; ++i) fb.depth_[i] = camera.linearDepth(depth[i]);
-  stats_ = stats;
 }
 
 void Renderer::renderIds(Scene& scene, const Camera& camera, const Region& region, IdBuffer& ids) {

@@ -1,14 +1,8 @@
 #include "tsr/med/scene_flattening.hpp"
 
-#include <map>
+#include <unordered_set>
 
 namespace tsr::med {
-
-std::string FlatNode::key() const {
-  std::string k;
-  for (sg::ContainerId p : path) k += std::to_string(p) + "/";
-  return k + std::to_string(id) + "#" + std::to_string(occurrence);
-}
 
 glm::mat4 worldMatrix(const sg::Scene& scene, const std::vector<sg::ContainerId>& path) {
   glm::mat4 m(1.0f);
@@ -18,6 +12,19 @@ glm::mat4 worldMatrix(const sg::Scene& scene, const std::vector<sg::ContainerId>
 }
 
 namespace {
+// splitmix64's finaliser: ids are small and dense, the hash must spread them.
+std::uint64_t mix(std::uint64_t x) {
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+
+FlatKey pathHash(const std::vector<sg::ContainerId>& path, sg::ContainerId id) {
+  std::uint64_t h = mix(path.size());
+  for (sg::ContainerId p : path) h = mix(h ^ p);
+  return mix(h ^ id);
+}
+
 const std::vector<sg::ContainerId>* childrenOf(const sg::Container& c) {
   if (c.type() == sg::ContainerType::Group) return &static_cast<const sg::Group&>(c).children();
   if (c.type() == sg::ContainerType::Transform) return &static_cast<const sg::Transform&>(c).children();
@@ -37,10 +44,10 @@ FlatScene flatten(const sg::Scene& scene, sg::ContainerId root, std::size_t maxI
   };
   std::vector<Frame> stack;
   std::vector<sg::ContainerId> path;
-  std::map<std::string, std::uint32_t> seen;  // path key -> occurrences, for repeated children
+  std::unordered_set<FlatKey> taken;
   auto record = [&](const sg::Container& c, const glm::mat4& world) {
-    FlatNode node{c.id(), path, 0, world};
-    node.occurrence = seen[node.key()]++;
+    FlatNode node{c.id(), path, pathHash(path, c.id()), world};
+    while (!taken.insert(node.key).second) ++node.key;  // the occurrence
     auto& list = c.type() == sg::ContainerType::Geometry ? flat.instances : flat.lights;
     auto& under = c.type() == sg::ContainerType::Geometry ? flat.instancesUnder : flat.lightsUnder;
     if (&list == &flat.instances && list.size() >= maxInstances)

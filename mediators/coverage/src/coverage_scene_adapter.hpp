@@ -1,70 +1,53 @@
 #pragma once
-// Keeps an id pass's scene in step with a replica. Sync runs in phases —
-// meshes, placement (instances), transparency, transforms — each guarded by
-// what the merged changes name, so a moved transform updates only the
-// instance matrices below it and a material edit only the transparency of
-// the instances that use it.
-#include <functional>
-#include <memory>
-#include <string>
-#include <unordered_map>
-#include <unordered_set>
+// The coverage pass's scene adapter: the shared instancing adapter with the
+// id renderer (seen as an IdScene) and the id pass's translations. Meshes
+// hold positions and topology only, so normal, uv and colour edits cost
+// nothing here; a material matters only as "transparent or not".
+#include <limits>
+#include <optional>
 
-#include "tsr/cov/id_renderer.hpp"
-#include "tsr/med/scene_adapter.hpp"
-#include "tsr/med/scene_flattening.hpp"
+#include <spdlog/spdlog.h>
+
+#include "id_scene.hpp"
+#include "translation.hpp"
+#include "tsr/cov/error.hpp"
+#include "tsr/med/instancing_scene_adapter.hpp"
 
 namespace tsr::med::coverage_mediator {
 
-class CoverageSceneAdapter final : public SceneAdapter {
- public:
-  // Makes an empty back-end scene; called for every conversion.
-  using RendererFactory = std::function<std::unique_ptr<cov::IdRenderer>()>;
-
-  // What the adapter has done, for tests and benchmarks of incremental sync.
-  struct Counters {
-    std::uint64_t meshBuilds = 0;        // whole meshes handed to the back-end
-    std::uint64_t meshRangeUpdates = 0;  // vertex ranges updated in place
-    std::uint64_t instanceTransforms = 0;
-    std::uint64_t transparencyUpdates = 0;
-    std::uint64_t flattenings = 0;
-  };
-
-  CoverageSceneAdapter(RendererFactory make, sg::ContainerId root);
-
-  cov::IdRenderer& renderer() { return *renderer_; }
-  const Counters& counters() const { return counters_; }
-
- protected:
-  void convert(const sg::Scene& scene) override;
-  void sync(const sg::Scene& scene, const sg::MergedChanges& changes) override;
-
- private:
-  struct PlacedInstance {
-    cov::InstanceId id;
-    sg::ContainerId geometry;
-    glm::mat4 world;
-    bool transparent;
-  };
-
-  bool syncMeshes(const sg::Scene& scene, const sg::MergedChanges& changes);  // true: placement must be redone
-  void syncTransparency(const sg::Scene& scene, const sg::MergedChanges& changes);
-  void syncTransforms(const sg::Scene& scene, const sg::MergedChanges& changes);
-  void place(const sg::Scene& scene);  // flatten and diff instances
-  void dropUnusedMeshes(const sg::Scene& scene);
-  void removeInstancesOf(const std::unordered_set<sg::ContainerId>& geometries);
-
-  std::optional<cov::MeshId> meshFor(const sg::Scene& scene, sg::ContainerId geometry);
-  bool transparentGeometry(const sg::Scene& scene, sg::ContainerId geometry) const;
-
-  RendererFactory make_;
-  sg::ContainerId root_;
-  std::unique_ptr<cov::IdRenderer> renderer_;
-  FlatScene flat_;
-  std::unordered_map<sg::ContainerId, cov::MeshId> meshes_;
-  std::unordered_set<sg::ContainerId> unrenderable_;  // invalid or empty geometry, skipped
-  std::unordered_map<std::string, PlacedInstance> instances_;  // by flattened path key
-  Counters counters_;
+struct CoverageTypes {
+  using Device = IdRendererSource;
+  using Scene = IdScene;
+  using MeshId = cov::MeshId;
+  using MaterialId = coverage_mediator::MaterialId;
+  using InstanceId = cov::InstanceId;
+  using TextureId = coverage_mediator::TextureId;
+  using LightId = coverage_mediator::LightId;
+  using Light = NoLight;
+  using Environment = NoEnvironment;
+  using Error = cov::Error;
+  static constexpr const char* kName = "coverage";
+  static constexpr sg::FieldMask kMeshFields = sg::fieldBit(sg::Geometry::Positions) |
+                                               sg::fieldBit(sg::Geometry::Indices) |
+                                               sg::fieldBit(sg::Geometry::Motion);
+  static constexpr bool kResizableMeshes = true;
+  static cov::MeshData mesh(const sg::Geometry& g) { return translateMesh(g); }
+  template <class Textures>
+  static Transparency material(const sg::Container* m, const Textures&) { return {isTransparent(m)}; }
+  static NoTexture texture(const sg::Image&) { return {}; }
+  static NoLight light(const sg::Light&, const glm::mat4&) { return {}; }
+  static NoEnvironment background(const sg::Scene&, sg::ContainerId) { return {}; }
+  // What the instance's pixels report: see objectOf.
+  static std::optional<cov::ObjectId> object(const sg::Scene& scene, const FlatNode& node) {
+    const sg::ContainerId object = objectOf(scene, node);
+    if (object > std::numeric_limits<cov::ObjectId>::max()) {
+      spdlog::warn("coverage: object id {} does not fit 32 bits; skipped", object);
+      return std::nullopt;
+    }
+    return static_cast<cov::ObjectId>(object);
+  }
 };
+
+using CoverageSceneAdapter = InstancingSceneAdapter<CoverageTypes>;
 
 }  // namespace tsr::med::coverage_mediator

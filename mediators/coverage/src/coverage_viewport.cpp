@@ -28,7 +28,7 @@ RenderStats CoverageViewport::render(const sg::Replica& replica, const View& vie
 
   cov::Camera camera{view.cameraToWorld, view.left, view.right, view.bottom, view.top, view.nearPlane};
   cov::Region region{view.width, view.height, view.region.x0, view.region.y0, view.region.x1, view.region.y1};
-  const cov::IdBuffer ids = context_->adapter.renderer().render(camera, region);
+  const cov::IdBuffer ids = context_->adapter.scene().renderer().render(camera, region);
 
   out = FrameBuffer(ids.width(), ids.height());
   out.depth = ids.depth;

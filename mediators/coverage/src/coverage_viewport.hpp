@@ -12,7 +12,8 @@ namespace tsr::med::coverage_mediator {
 struct CoverageContext {
   CoverageSceneAdapter adapter;
   std::mutex mutex;  // viewports sharing the scene render one at a time
-  CoverageContext(CoverageSceneAdapter::RendererFactory make, sg::ContainerId root) : adapter(std::move(make), root) {}
+  CoverageContext(std::shared_ptr<IdRendererSource> source, sg::ContainerId root)
+      : adapter(std::move(source), root, sg::kNoContainer) {}
 };
 
 class CoverageViewport final : public Viewport {

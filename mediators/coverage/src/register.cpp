@@ -29,7 +29,8 @@ void registerCoverage(ViewportRegistry& registry) {
         s.threads = threads;
         return std::make_unique<cov::EmbreeIdRenderer>(s);
       };
-      return std::make_shared<coverage_mediator::CoverageContext>(make, root);
+      return std::make_shared<coverage_mediator::CoverageContext>(
+          std::make_shared<coverage_mediator::IdRendererSource>(coverage_mediator::IdRendererSource{make}), root);
     });
     return std::make_unique<coverage_mediator::CoverageViewport>(std::move(settings), std::move(context));
   });

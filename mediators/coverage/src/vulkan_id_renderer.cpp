@@ -6,29 +6,11 @@
 #include "tsr/vk/error.hpp"
 #include "tsr/vk/renderer.hpp"
 #include "tsr/vk/scene.hpp"
+#include "tsr/vk/shared_device.hpp"
 
 namespace tsr::med::coverage_mediator {
 
 namespace {
-// One device for every Vulkan id pass in the process (lavapipe gains nothing
-// from more); vk::Device is not thread-safe, so every call through it holds
-// the mutex.
-struct SharedDevice {
-  std::shared_ptr<vk::Device> device;
-  std::mutex mutex;
-};
-
-std::shared_ptr<SharedDevice> sharedDevice() {
-  static std::mutex mutex;
-  static std::weak_ptr<SharedDevice> held;
-  std::lock_guard lock(mutex);
-  if (auto shared = held.lock()) return shared;
-  auto shared = std::make_shared<SharedDevice>();
-  shared->device = vk::Device::create();
-  held = shared;
-  return shared;
-}
-
 // Back-end errors surface as the interface's error type.
 template <class F>
 auto translated(F&& f) {
@@ -61,8 +43,8 @@ struct VulkanIdRenderer::State {
     cov::Instance instance;
     vk::InstanceId id;
   };
-  explicit State(std::shared_ptr<SharedDevice> s) : shared(std::move(s)) {}
-  std::shared_ptr<SharedDevice> shared;
+  explicit State(std::shared_ptr<vk::SharedDevice> s) : shared(std::move(s)) {}
+  std::shared_ptr<vk::SharedDevice> shared;
   vk::Scene scene{shared->device};
   vk::Renderer renderer{shared->device};
   // The id pass leaves out instances whose material is transparent; the
@@ -93,7 +75,7 @@ struct VulkanIdRenderer::State {
 };
 
 VulkanIdRenderer::VulkanIdRenderer() {
-  auto shared = sharedDevice();
+  auto shared = vk::sharedDevice();
   std::lock_guard lock(shared->mutex);
   state_ = std::make_unique<State>(shared);
 }

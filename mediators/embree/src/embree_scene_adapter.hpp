@@ -5,6 +5,7 @@
 // topology edit.
 #include "translation.hpp"
 #include "tsr/embree/device.hpp"
+#include "tsr/embree/error.hpp"
 #include "tsr/embree/scene.hpp"
 #include "tsr/med/instancing_scene_adapter.hpp"
 
@@ -20,7 +21,9 @@ struct EmbreeTypes {
   using LightId = embree::LightId;
   using Light = embree::Light;
   using Environment = embree::Environment;
+  using Error = embree::Error;
   static constexpr const char* kName = "embree";
+  static constexpr sg::FieldMask kMeshFields = kAllMeshFields;
   static constexpr bool kResizableMeshes = true;
   static embree::MeshData mesh(const sg::Geometry& g) { return translateMesh(g); }
   static embree::Material material(const sg::Container* m, const TextureLookup& t) { return translateMaterial(m, t); }

@@ -9,7 +9,7 @@ void registerVulkan(ViewportRegistry& registry) {
     std::string key = "vulkan:" + std::to_string(settings.root) + ":" + std::to_string(settings.background);
     sg::ContainerId root = settings.root, background = settings.background;
     auto context = contexts.acquire<vulkan_mediator::VulkanContext>(key, [&] {
-      return std::make_shared<vulkan_mediator::VulkanContext>(vulkan_mediator::sharedDevice(), root, background);
+      return std::make_shared<vulkan_mediator::VulkanContext>(vk::sharedDevice(), root, background);
     });
     return std::make_unique<vulkan_mediator::VulkanViewport>(std::move(settings), std::move(context));
   });

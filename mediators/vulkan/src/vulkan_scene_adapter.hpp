@@ -3,6 +3,7 @@
 // the rasterizer's types and translations. Vulkan meshes are fixed in size,
 // so a topology edit builds the mesh again and places its instances again.
 #include "translation.hpp"
+#include "tsr/vk/error.hpp"
 #include "tsr/med/instancing_scene_adapter.hpp"
 #include "tsr/vk/device.hpp"
 #include "tsr/vk/scene.hpp"
@@ -19,7 +20,9 @@ struct VulkanTypes {
   using LightId = vk::LightId;
   using Light = vk::Light;
   using Environment = vk::Environment;
+  using Error = vk::Error;
   static constexpr const char* kName = "vulkan";
+  static constexpr sg::FieldMask kMeshFields = kAllMeshFields;
   static constexpr bool kResizableMeshes = false;
   static vk::MeshData mesh(const sg::Geometry& g) { return translateMesh(g); }
   static vk::Material material(const sg::Container* m, const TextureLookup& t) { return translateMaterial(m, t); }

@@ -6,7 +6,7 @@
 #include <memory>
 #include <mutex>
 
-#include "shared_device.hpp"
+#include "tsr/vk/shared_device.hpp"
 #include "tsr/med/viewport.hpp"
 #include "tsr/vk/renderer.hpp"
 #include "vulkan_scene_adapter.hpp"
@@ -14,9 +14,9 @@
 namespace tsr::med::vulkan_mediator {
 
 struct VulkanContext {
-  std::shared_ptr<SharedDevice> shared;
+  std::shared_ptr<vk::SharedDevice> shared;
   VulkanSceneAdapter adapter;
-  VulkanContext(std::shared_ptr<SharedDevice> s, sg::ContainerId root, sg::ContainerId background)
+  VulkanContext(std::shared_ptr<vk::SharedDevice> s, sg::ContainerId root, sg::ContainerId background)
       : shared(s), adapter(s->device, root, background) {}
 };
 

@@ -1,9 +1,15 @@
-// What a one-transform edit costs a converted Embree scene of
-// builtin:instances:10000, against converting that scene from scratch,
-// twice: the mediator's part alone (Viewport::synchronize), and end to end
-// through a render of one pixel with one sample, which adds Embree's
-// acceleration structure builds (for an edit, the top level over 10,000
-// instances: Embree 3 cannot refit instance levels).
+// What one edit costs a converted Embree scene of builtin:instances:N,
+// against converting that scene from scratch: end to end through a render
+// of one pixel with one sample (which adds Embree's acceleration structure
+// builds; Embree 3 cannot refit instance levels, so whatever moves an
+// instance's bounds rebuilds the top level over all N), and the mediator's
+// part alone (Viewport::synchronize). The edits are one moved transform, one
+// material's colour and a two-vertex range of one geometry; run all with
+// --benchmark_filter='/(10000|100000)$'. Their mediator cost must not grow
+// with N.
+#include <map>
+#include <memory>
+
 #include <benchmark/benchmark.h>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -15,18 +21,61 @@ using namespace tsr;
 
 namespace {
 using Instances = bench::InstancesFixture;
-Instances& scene() {
-  static Instances instances("embree", med::registerEmbree, [] {
+
+Instances& scene(std::int64_t count) {
+  static std::map<std::int64_t, std::unique_ptr<Instances>> scenes;
+  auto& s = scenes[count];
+  if (!s) {
     med::Parameters p;
     p.set("spp", std::int64_t{1});
-    return p;
-  }());
-  return instances;
+    s = std::make_unique<Instances>("embree", med::registerEmbree, p, count);
+  }
+  return *s;
 }
+
+// One edit of the source scene, the i-th of the run.
+using Edit = void (*)(Instances&, int i);
+
+void moveOneTransform(Instances& s, int i) {
+  s.transforms[s.transforms.size() / 2]->setMatrix(glm::translate(glm::mat4(1.0f), glm::vec3(0.01f * i, 0, 0)));
+}
+void tintOneMaterial(Instances& s, int i) { s.materials.front()->setBaseColor(glm::vec3(0.5f, 0.5f, (i % 100) / 100.0f)); }
+void nudgeTwoVertices(Instances& s, int i) {
+  sg::Geometry& g = *s.geometries.front();
+  std::vector<sg::Vec3> run(g.positions().begin(), g.positions().begin() + 2);
+  for (auto& p : run) p.y += (i % 2 ? 1e-3f : -1e-3f);
+  g.updatePositions(0, run);
+}
+
+// A converted viewport; each iteration edits, ships the change list (not
+// timed: the scene graph's cost, measured elsewhere) and brings the viewport
+// up to date, end to end or the mediator's part only.
+void syncAfterEdit(benchmark::State& state, Edit edit, bool endToEnd) {
+  Instances& s = scene(state.range(0));
+  sg::Replica replica(4);
+  replica.apply(s.source.snapshot());
+  med::ContextPool contexts;
+  auto viewport = s.registry.create(s.settings(), contexts);
+  med::FrameBuffer out;
+  viewport->render(replica, s.onePixel(replica.scene()), out);
+  int i = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    edit(s, ++i);
+    replica.apply(s.source.commit());
+    state.ResumeTiming();
+    auto update = endToEnd ? viewport->render(replica, s.onePixel(replica.scene()), out).update
+                           : viewport->synchronize(replica);
+    if (update != med::SceneAdapter::Update::Synced) state.SkipWithError("expected a sync");
+  }
+  state.counters["instances"] = static_cast<double>(state.range(0));
+}
+
+void sizes(benchmark::internal::Benchmark* b) { b->Arg(10000)->Arg(100000); }
 }  // namespace
 
-static void BM_ConvertInstances10000(benchmark::State& state) {
-  Instances& s = scene();
+static void BM_ConvertInstances(benchmark::State& state) {
+  Instances& s = scene(state.range(0));
   sg::Replica replica;
   replica.apply(s.source.snapshot());
   med::FrameBuffer out;
@@ -37,30 +86,10 @@ static void BM_ConvertInstances10000(benchmark::State& state) {
     if (stats.update != med::SceneAdapter::Update::Converted) state.SkipWithError("expected a conversion");
   }
 }
-BENCHMARK(BM_ConvertInstances10000)->Unit(benchmark::kMillisecond)->MinTime(2.0);
-
-static void BM_SyncOneTransformEdit(benchmark::State& state) {
-  Instances& s = scene();
-  sg::Replica replica(4);
-  replica.apply(s.source.snapshot());
-  med::ContextPool contexts;
-  auto viewport = s.registry.create(s.settings(), contexts);
-  med::FrameBuffer out;
-  viewport->render(replica, s.onePixel(replica.scene()), out);
-  float x = 0;
-  for (auto _ : state) {
-    state.PauseTiming();  // the edit and its transport are the scene graph's cost, measured elsewhere
-    s.transforms[1234]->setMatrix(glm::translate(glm::mat4(1.0f), glm::vec3(x += 0.01f, 0, 0)));
-    replica.apply(s.source.commit());
-    state.ResumeTiming();
-    auto stats = viewport->render(replica, s.onePixel(replica.scene()), out);
-    if (stats.update != med::SceneAdapter::Update::Synced) state.SkipWithError("expected a sync");
-  }
-}
-BENCHMARK(BM_SyncOneTransformEdit)->Unit(benchmark::kMicrosecond)->MinTime(2.0);
+BENCHMARK(BM_ConvertInstances)->Apply(sizes)->Unit(benchmark::kMillisecond);
 
 static void BM_MediatorConvertOnly(benchmark::State& state) {
-  Instances& s = scene();
+  Instances& s = scene(state.range(0));
   sg::Replica replica;
   replica.apply(s.source.snapshot());
   for (auto _ : state) {
@@ -69,24 +98,19 @@ static void BM_MediatorConvertOnly(benchmark::State& state) {
     if (viewport->synchronize(replica) != med::SceneAdapter::Update::Converted) state.SkipWithError("expected a conversion");
   }
 }
-BENCHMARK(BM_MediatorConvertOnly)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_MediatorConvertOnly)->Apply(sizes)->Unit(benchmark::kMillisecond);
 
-static void BM_MediatorSyncOnlyOneTransformEdit(benchmark::State& state) {
-  Instances& s = scene();
-  sg::Replica replica(4);
-  replica.apply(s.source.snapshot());
-  med::ContextPool contexts;
-  auto viewport = s.registry.create(s.settings(), contexts);
-  viewport->synchronize(replica);
-  float x = 0;
-  for (auto _ : state) {
-    state.PauseTiming();
-    s.transforms[4321]->setMatrix(glm::translate(glm::mat4(1.0f), glm::vec3(x += 0.01f, 0, 0)));
-    replica.apply(s.source.commit());
-    state.ResumeTiming();
-    if (viewport->synchronize(replica) != med::SceneAdapter::Update::Synced) state.SkipWithError("expected a sync");
-  }
-}
-BENCHMARK(BM_MediatorSyncOnlyOneTransformEdit)->Unit(benchmark::kMicrosecond)->MinTime(2.0);
+static void BM_SyncOneTransformEdit(benchmark::State& state) { syncAfterEdit(state, moveOneTransform, true); }
+static void BM_SyncMaterialEdit(benchmark::State& state) { syncAfterEdit(state, tintOneMaterial, true); }
+static void BM_SyncPointsRangeEdit(benchmark::State& state) { syncAfterEdit(state, nudgeTwoVertices, true); }
+static void BM_MediatorSyncOnlyOneTransformEdit(benchmark::State& state) { syncAfterEdit(state, moveOneTransform, false); }
+static void BM_MediatorSyncOnlyMaterialEdit(benchmark::State& state) { syncAfterEdit(state, tintOneMaterial, false); }
+static void BM_MediatorSyncOnlyPointsRangeEdit(benchmark::State& state) { syncAfterEdit(state, nudgeTwoVertices, false); }
+BENCHMARK(BM_SyncOneTransformEdit)->Apply(sizes)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SyncMaterialEdit)->Apply(sizes)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SyncPointsRangeEdit)->Apply(sizes)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MediatorSyncOnlyOneTransformEdit)->Apply(sizes)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MediatorSyncOnlyMaterialEdit)->Apply(sizes)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MediatorSyncOnlyPointsRangeEdit)->Apply(sizes)->Unit(benchmark::kMicrosecond);
 
 BENCHMARK_MAIN();

@@ -12,7 +12,9 @@
 
 #include "tsr/med/coverage/ranking.hpp"
 #include "tsr/med/coverage/register.hpp"
+#include "tsr/med/vulkan/register.hpp"
 #include "tsr/sg/import/importer.hpp"
+#include "tsr/vk/shared_device.hpp"
 
 using namespace tsr;
 
@@ -97,4 +99,23 @@ TEST(CoverageEngines, UnknownEngineIsAParameterError) {
   s.backend = "coverage";
   s.parameters.set("engine", std::string("optix"));
   EXPECT_THROW(rig.registry.create(s, rig.contexts), med::ParameterError);
+}
+
+// A layered coverage + Vulkan render opens one device: the rasterizer's
+// context and the Vulkan id pass both hold the process's.
+TEST(CoverageEngines, VulkanIdPassSharesTheRasterizersDevice) {
+  auto held = vk::sharedDevice();
+  const long before = held.use_count();
+  Engines rig("builtin:cornell");
+  med::registerVulkan(rig.registry);
+  std::unique_ptr<med::Viewport> ids;
+  rig.render("vulkan", ids);
+  med::ViewportSettings s;
+  s.backend = "vulkan";
+  s.root = rig.imported.root;
+  auto raster = rig.registry.create(s, rig.contexts);
+  med::FrameBuffer image;
+  raster->render(rig.replica, med::View::fromCamera(*rig.replica.scene().find<sg::Camera>(rig.imported.cameras.front()), 32, 32),
+                 image);
+  EXPECT_EQ(held.use_count(), before + 2) << "one device for both, not one each";
 }

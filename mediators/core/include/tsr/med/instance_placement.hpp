@@ -1,21 +1,28 @@
 #pragma once
 // The geometry instances and lights a back-end holds for the flattened scene,
-// keyed by path, and the two updates every instancing adapter needs: a diff
-// against a fresh flattening when the graph's shape changed, and moving only
-// what sits below edited transforms. Back-ends whose scene API has
+// keyed by FlatKey, and the updates every instancing adapter needs: a diff
+// against a fresh flattening when the graph's shape changed, moving only
+// what sits below edited transforms, and per-geometry / per-material
+// indexes so an edit of one geometry or one material costs what uses it,
+// not every instance. Back-ends whose scene API has
 // addInstance / setInstanceTransform / setInstanceMaterial / removeInstance
 // and addLight / setLight / removeLight plug in through a types struct:
 //   struct Types { using Scene, MeshId, MaterialId, InstanceId, LightId, Light; };
+// A Types with `static std::optional<ObjectId> object(const sg::Scene&, const FlatNode&)`
+// also tags each instance with an object id (addInstance's fourth argument);
+// none skips the instance.
 #include <functional>
 #include <optional>
-#include <string>
 #include <unordered_map>
 #include <unordered_set>
 
+#include "tsr/med/dirty_predicates.hpp"
 #include "tsr/med/scene_flattening.hpp"
-#include "tsr/sg/merged_changes.hpp"
 
 namespace tsr::med {
+
+template <class Types>
+concept TagsObjects = requires(const sg::Scene& scene, const FlatNode& node) { Types::object(scene, node); };
 
 template <class Types>
 class InstancePlacement {
@@ -42,6 +49,8 @@ class InstancePlacement {
   void clear() {
     flat_ = {};
     instances_.clear();
+    byGeometry_.clear();
+    materialUsers_.clear();
     lights_.clear();
   }
 
@@ -50,34 +59,34 @@ class InstancePlacement {
   void place(const sg::Scene& scene, sg::ContainerId root, BackendScene& backend, const Hooks& hooks) {
     flat_ = flatten(scene, root);
     ++flattenings;
-    std::unordered_set<std::string> live;
+    std::unordered_set<FlatKey> live;
     for (const FlatNode& node : flat_.instances) {
+      auto held = instances_.find(node.key);
+      if (held != instances_.end() && held->second.geometry != node.id) {  // the key moved to another geometry
+        remove(held, backend);
+        held = instances_.end();
+      }
       auto mesh = hooks.mesh(node.id);
       if (!mesh) continue;
-      std::string key = node.key();
-      live.insert(key);
       MaterialId material = hooks.material(node.id);
-      auto held = instances_.find(key);
       if (held == instances_.end()) {
-        instances_.emplace(key, Placed{backend.addInstance(*mesh, material, node.world), node.id, node.world, material});
+        if (add(scene, node, *mesh, material, backend)) live.insert(node.key);
         continue;
       }
-      Placed& p = held->second;
-      if (p.world != node.world) {
-        backend.setInstanceTransform(p.id, node.world);
-        p.world = node.world;
-        ++transformUpdates;
-      }
-      if (p.material != material) {
-        backend.setInstanceMaterial(p.id, material);
-        p.material = material;
-      }
+      live.insert(node.key);
+      if (held->second.world != node.world) move(held->second, node.world, backend);
+      setMaterial(held->second, material, backend);
     }
-    eraseExcept(instances_, live, [&](const Placed& p) { backend.removeInstance(p.id); });
-    std::unordered_set<std::string> liveLights;
+    for (auto it = instances_.begin(); it != instances_.end();)
+      it = live.count(it->first) ? std::next(it) : remove(it, backend);
+    std::unordered_set<FlatKey> liveLights;
     for (const FlatNode& node : flat_.lights)
-      if (placeLight(node, backend, hooks)) liveLights.insert(node.key());
-    eraseExcept(lights_, liveLights, [&](auto id) { backend.removeLight(id); });
+      if (placeLight(node, backend, hooks)) liveLights.insert(node.key);
+    std::erase_if(lights_, [&](const auto& kv) {
+      if (liveLights.count(kv.first)) return false;
+      backend.removeLight(kv.second);
+      return true;
+    });
   }
 
   // Moves the instances and lights below transforms whose matrix changed,
@@ -85,24 +94,22 @@ class InstancePlacement {
   void moveEdited(const sg::Scene& scene, const sg::MergedChanges& changes, BackendScene& backend, const Hooks& hooks) {
     std::unordered_set<std::uint32_t> instances, lights;
     for (const auto& [id, e] : changes.entries()) {
-      if (e.type == sg::ContainerType::Transform && e.changed(sg::Transform::Matrix)) {
+      if (transformDirty(e)) {
         if (auto it = flat_.instancesUnder.find(id); it != flat_.instancesUnder.end())
           instances.insert(it->second.begin(), it->second.end());
         if (auto it = flat_.lightsUnder.find(id); it != flat_.lightsUnder.end())
           lights.insert(it->second.begin(), it->second.end());
       }
-      if (e.type == sg::ContainerType::Light && !e.destroyed)
+      if (lightDirty(e))
         for (std::uint32_t i = 0; i < flat_.lights.size(); ++i)
           if (flat_.lights[i].id == id) lights.insert(i);
     }
     for (std::uint32_t i : instances) {
       FlatNode& node = flat_.instances[i];
       node.world = worldMatrix(scene, node.path);
-      auto placed = instances_.find(node.key());
-      if (placed == instances_.end()) continue;  // not rendered here
-      backend.setInstanceTransform(placed->second.id, node.world);
-      placed->second.world = node.world;
-      ++transformUpdates;
+      auto placed = instances_.find(node.key);
+      if (placed == instances_.end() || placed->second.world == node.world) continue;  // not rendered here
+      move(placed->second, node.world, backend);
     }
     for (std::uint32_t i : lights) {
       FlatNode& node = flat_.lights[i];
@@ -111,40 +118,91 @@ class InstancePlacement {
     }
   }
 
-  std::unordered_map<std::string, Placed>& instances() { return instances_; }
-  const std::unordered_map<std::string, Placed>& instances() const { return instances_; }
+  // Gives every instance of `geometry` the material `material`.
+  void rebind(sg::ContainerId geometry, MaterialId material, BackendScene& backend) {
+    if (auto keys = byGeometry_.find(geometry); keys != byGeometry_.end())
+      for (FlatKey key : keys->second) setMaterial(instances_.at(key), material, backend);
+  }
+
+  // Removes every instance of `geometry` (its mesh is about to go).
+  void removeInstancesOf(sg::ContainerId geometry, BackendScene& backend) {
+    auto keys = byGeometry_.find(geometry);
+    if (keys == byGeometry_.end()) return;
+    for (FlatKey key : std::unordered_set<FlatKey>(keys->second)) remove(instances_.find(key), backend);
+  }
+
+  bool uses(sg::ContainerId geometry) const { return byGeometry_.count(geometry) != 0; }
+  bool usesMaterial(const MaterialId& material) const { return materialUsers_.count(material) != 0; }
+  const std::unordered_map<FlatKey, Placed>& instances() const { return instances_; }
   const FlatScene& flat() const { return flat_; }
 
   std::uint64_t flattenings = 0;
   std::uint64_t transformUpdates = 0;
 
  private:
+  using Iterator = typename std::unordered_map<FlatKey, Placed>::iterator;
+
+  bool add(const sg::Scene& scene, const FlatNode& node, typename Types::MeshId mesh, MaterialId material,
+           BackendScene& backend) {
+    typename Types::InstanceId id;
+    if constexpr (TagsObjects<Types>) {
+      auto object = Types::object(scene, node);
+      if (!object) return false;
+      id = backend.addInstance(mesh, material, node.world, *object);
+    } else {
+      (void)scene;
+      id = backend.addInstance(mesh, material, node.world);
+    }
+    instances_.emplace(node.key, Placed{id, node.id, node.world, material});
+    byGeometry_[node.id].insert(node.key);
+    ++materialUsers_[material];
+    return true;
+  }
+
+  Iterator remove(Iterator it, BackendScene& backend) {
+    const Placed& p = it->second;
+    backend.removeInstance(p.id);
+    if (auto keys = byGeometry_.find(p.geometry); keys != byGeometry_.end() && keys->second.erase(it->first) &&
+                                                  keys->second.empty())
+      byGeometry_.erase(keys);
+    release(p.material);
+    return instances_.erase(it);
+  }
+
+  void move(Placed& p, const glm::mat4& world, BackendScene& backend) {
+    backend.setInstanceTransform(p.id, world);
+    p.world = world;
+    ++transformUpdates;
+  }
+
+  void setMaterial(Placed& p, MaterialId material, BackendScene& backend) {
+    if (p.material == material) return;
+    backend.setInstanceMaterial(p.id, material);
+    release(p.material);
+    ++materialUsers_[material];
+    p.material = material;
+  }
+
+  void release(const MaterialId& material) {
+    if (auto n = materialUsers_.find(material); n != materialUsers_.end() && --n->second == 0) materialUsers_.erase(n);
+  }
+
   bool placeLight(const FlatNode& node, BackendScene& backend, const Hooks& hooks) {
     auto light = hooks.light(node);
     if (!light) return false;
-    auto held = lights_.find(node.key());
+    auto held = lights_.find(node.key);
     if (held == lights_.end())
-      lights_.emplace(node.key(), backend.addLight(*light));
+      lights_.emplace(node.key, backend.addLight(*light));
     else
       backend.setLight(held->second, *light);
     return true;
   }
 
-  template <class Map, class Remove>
-  static void eraseExcept(Map& map, const std::unordered_set<std::string>& keep, Remove remove) {
-    for (auto it = map.begin(); it != map.end();) {
-      if (keep.count(it->first)) {
-        ++it;
-        continue;
-      }
-      remove(it->second);
-      it = map.erase(it);
-    }
-  }
-
   FlatScene flat_;
-  std::unordered_map<std::string, Placed> instances_;
-  std::unordered_map<std::string, typename Types::LightId> lights_;
+  std::unordered_map<FlatKey, Placed> instances_;
+  std::unordered_map<sg::ContainerId, std::unordered_set<FlatKey>> byGeometry_;
+  std::unordered_map<MaterialId, std::size_t> materialUsers_;
+  std::unordered_map<FlatKey, typename Types::LightId> lights_;
 };
 
 }  // namespace tsr::med

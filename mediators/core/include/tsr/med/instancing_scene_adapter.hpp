@@ -1,16 +1,21 @@
 #pragma once
 // The scene adapter of back-ends that share one shape of scene API: meshes,
 // per-instance transforms and materials, textures, lights and an
-// environment (the Embree path tracer and the Vulkan rasterizer). Sync runs
-// in phases — textures, materials, meshes, placement, environment — each
-// guarded by what the merged changes name, so a moved transform updates
-// only the instances below it and a ranged vertex edit touches only that
-// range. A back-end plugs in through a Types struct:
+// environment (the Embree path tracer, the Vulkan rasterizer and, through
+// an adapter of its id renderer, the coverage pass). Sync runs in numbered
+// phases — textures, materials, meshes, placement, environment, leftovers —
+// each guarded by a named dirty predicate (dirty_predicates.hpp), so a
+// moved transform updates only the instances below it, a material edit
+// only that material, and a ranged vertex edit only that range: none of
+// them costs a pass over every instance. A back-end plugs in through a
+// Types struct:
 //
 //   struct Types {
 //     using Device, Scene, MeshId, MaterialId, InstanceId, TextureId, LightId, Light, Environment;
+//     using Error;                                   // what the back-end throws for data it refuses
 //     static constexpr const char* kName;            // logs; attachment "<kName>.hidden" hides geometry
 //     static constexpr bool kResizableMeshes;        // setMeshData may change a mesh's size
+//     static constexpr sg::FieldMask kMeshFields;    // the geometry fields its meshes hold
 //     static auto mesh(const sg::Geometry&);         // the back-end's MeshData
 //     static auto material(const sg::Container*, const std::function<std::optional<TextureId>(sg::ContainerId)>&);
 //     static auto texture(const sg::Image&);
@@ -49,6 +54,7 @@ class InstancingSceneAdapter final : public SceneAdapter {
       : device_(std::move(device)), root_(root), background_(background) {}
 
   BackendScene& scene() { return *scene_; }
+  const BackendScene& scene() const { return *scene_; }
   bool converted() const { return scene_ != nullptr; }
   const typename Types::Environment& environment() const { return environment_; }
   Counters counters() const {
@@ -76,14 +82,10 @@ class InstancingSceneAdapter final : public SceneAdapter {
     // Phase 0: does the shape of the graph change? Then placement is redone
     // (a diff: surviving instances keep their back-end objects).
     bool structural = false;
-    bool mayOrphan = false;  // something may no longer be used: look for leftovers
+    bool orphans = false;  // something may no longer be used: look for leftovers
     for (const auto& [id, e] : changes.entries()) {
-      if (e.destroyed || (e.type == sg::ContainerType::Geometry && e.changed(sg::Geometry::Material)) ||
-          (e.type != sg::ContainerType::Transform && e.type != sg::ContainerType::Light && e.mask != 0))
-        mayOrphan = true;
-      if (!(sg::typeBit(e.type) & sg::kNodeTypes)) continue;
-      if (e.created || e.destroyed || e.changed(sg::Container::kAttachments)) structural = true;
-      if (sg::isParentType(e.type) && e.changed(sg::Group::Children)) structural = true;
+      structural |= structureDirty(e);
+      orphans |= mayOrphan(e, scene.find(id));
     }
     syncTextures(scene, changes);                       // phase 1
     syncMaterials(scene, changes);                      // phase 2
@@ -92,11 +94,8 @@ class InstancingSceneAdapter final : public SceneAdapter {
       placement_.place(scene, root_, *scene_, hooks(scene));
     else
       placement_.moveEdited(scene, changes, *scene_, hooks(scene));
-    bool backgroundChanged = background_ != sg::kNoContainer && changes.entries().count(background_);
-    if (const auto* b = scene.find<sg::Background>(background_))
-      backgroundChanged |= changes.entries().count(b->environment()) != 0;
-    if (backgroundChanged) setEnvironment(scene);  // phase 5
-    if (structural || mayOrphan) dropUnused(scene);
+    if (backgroundDirty(scene, changes)) setEnvironment(scene);  // phase 5
+    if (structural || orphans) dropUnused(scene);                // phase 6
   }
 
  private:
@@ -121,7 +120,7 @@ class InstancingSceneAdapter final : public SceneAdapter {
 
   void syncTextures(const sg::Scene& scene, const sg::MergedChanges& changes) {
     for (const auto& [id, e] : changes.entries()) {
-      if (e.type != sg::ContainerType::Image || e.created || e.destroyed) continue;
+      if (!imageDirty(e)) continue;
       auto held = textures_.find(id);
       if (held == textures_.end()) continue;
       // New texture first, then the materials that use it, then the old one.
@@ -137,7 +136,7 @@ class InstancingSceneAdapter final : public SceneAdapter {
 
   void syncMaterials(const sg::Scene& scene, const sg::MergedChanges& changes) {
     for (const auto& [id, e] : changes.entries()) {
-      if (e.destroyed || e.created) continue;
+      if (!materialDirty(e)) continue;
       auto held = materials_.find(id);
       if (held == materials_.end()) continue;
       scene_->setMaterial(held->second, Types::material(scene.find(id), textures(scene)));
@@ -148,75 +147,68 @@ class InstancingSceneAdapter final : public SceneAdapter {
   // Returns true when placement must be redone (meshes were dropped).
   bool syncMeshes(const sg::Scene& scene, const sg::MergedChanges& changes) {
     using G = sg::Geometry;
-    const sg::FieldMask shape = sg::fieldBit(G::Positions) | sg::fieldBit(G::Normals) | sg::fieldBit(G::Uvs) |
-                                sg::fieldBit(G::Indices) | sg::fieldBit(G::Motion) | sg::fieldBit(G::Colors);
-    const sg::FieldMask ranged = sg::fieldBit(G::Positions) | sg::fieldBit(G::Normals);
     std::unordered_set<sg::ContainerId> rebuild;
     for (const auto& [id, e] : changes.entries()) {
-      if (e.type != sg::ContainerType::Geometry || e.created || e.destroyed) continue;
-      const auto* g = scene.find<G>(id);
-      if (e.changed(G::Material)) {
-        auto m = materialOfGeometry(scene, id);
-        for (auto& [key, placed] : placement_.instances())
-          if (placed.geometry == id && placed.material != m) {
-            scene_->setInstanceMaterial(placed.id, m);
-            placed.material = m;
-          }
-      }
-      if (!(e.mask & shape)) continue;
+      if (materialBindingDirty(e)) placement_.rebind(id, materialOfGeometry(scene, id), *scene_);
+      if (!meshDirty(e, Types::kMeshFields)) continue;
       auto held = meshes_.find(id);
       if (held == meshes_.end() && !unrenderable_.count(id)) continue;  // not (yet) instanced here
-      bool renderable = !g->invalidReason() && g->triangleCount() > 0;
-      const auto* pos = e.rangedEdit(G::Positions);
-      const auto* nrm = e.rangedEdit(G::Normals);
-      bool onlyRanges = !(e.mask & shape & ~ranged) && (!e.changed(G::Positions) || pos) && (!e.changed(G::Normals) || nrm);
-      if (held == meshes_.end() || !renderable) {  // flips between skipped and rendered
+      const auto* g = scene.find<G>(id);
+      if (held == meshes_.end() || !renderable(*g)) {  // flips between skipped and rendered
         rebuild.insert(id);
         continue;
       }
-      if (!onlyRanges) {
-        // New topology: in place where the back-end allows, else the mesh
-        // and its instances are built again.
-        if constexpr (Types::kResizableMeshes) {
-          scene_->setMeshData(held->second, Types::mesh(*g));
+      try {
+        if (pointsRangeOnly(e, Types::kMeshFields)) {
+          updateRanges(*g, held->second, e);
+        } else if constexpr (Types::kResizableMeshes) {
+          scene_->setMeshData(held->second, Types::mesh(*g));  // new topology, in place
           ++counters_.meshBuilds;
         } else {
-          rebuild.insert(id);
+          rebuild.insert(id);  // new topology: the mesh and its instances are built again
         }
-        continue;
-      }
-      // Vertex edits by range keep the topology: update those ranges only.
-      sg::RangeSet runs;
-      for (const auto* edit : {pos, nrm})
-        if (edit)
-          for (const auto& r : edit->ranges) runs.add(r);
-      for (const auto& r : runs.ranges()) {
-        std::span<const glm::vec3> p(g->positions().data() + r.begin, r.size());
-        std::span<const glm::vec3> n;
-        // Normals travel only when they were edited; the back-end keeps the rest.
-        if (nrm && !g->normals().empty()) n = std::span<const glm::vec3>(g->normals().data() + r.begin, r.size());
-        scene_->updateMeshVertices(held->second, static_cast<std::uint32_t>(r.begin), p, n);
-        ++counters_.meshRangeUpdates;
-      }
-    }
-    if (rebuild.empty()) return false;
-    auto& instances = placement_.instances();
-    for (auto it = instances.begin(); it != instances.end();) {
-      if (rebuild.count(it->second.geometry)) {
-        scene_->removeInstance(it->second.id);
-        it = instances.erase(it);
-      } else {
-        ++it;
+      } catch (const typename Types::Error& error) {
+        spdlog::warn("{}: geometry {} '{}' refused: {}", Types::kName, id, g->name(), error.what());
+        rebuild.insert(id);  // placement tries again and skips it with a warning
       }
     }
     for (sg::ContainerId id : rebuild) {
+      placement_.removeInstancesOf(id, *scene_);
       if (auto m = meshes_.find(id); m != meshes_.end()) {
         scene_->removeMesh(m->second);
         meshes_.erase(m);
       }
       unrenderable_.erase(id);
     }
-    return true;
+    return !rebuild.empty();
+  }
+
+  // Vertex edits by range keep the topology: update those ranges only.
+  void updateRanges(const sg::Geometry& g, typename Types::MeshId mesh, const ChangeEntry& e) {
+    using G = sg::Geometry;
+    const auto* pos = e.rangedEdit(G::Positions);
+    const auto* nrm = (Types::kMeshFields & sg::fieldBit(G::Normals)) ? e.rangedEdit(G::Normals) : nullptr;
+    sg::RangeSet runs;
+    for (const auto* edit : {pos, nrm})
+      if (edit)
+        for (const auto& r : edit->ranges) runs.add(r);
+    for (const auto& r : runs.ranges()) {
+      std::span<const glm::vec3> p(g.positions().data() + r.begin, r.size());
+      std::span<const glm::vec3> n;
+      // Normals travel only when they were edited; the back-end keeps the rest.
+      if (nrm && !g.normals().empty()) n = std::span<const glm::vec3>(g.normals().data() + r.begin, r.size());
+      scene_->updateMeshVertices(mesh, static_cast<std::uint32_t>(r.begin), p, n);
+      ++counters_.meshRangeUpdates;
+    }
+  }
+
+  static bool renderable(const sg::Geometry& g) { return !g.invalidReason() && g.triangleCount() > 0; }
+
+  bool backgroundDirty(const sg::Scene& scene, const sg::MergedChanges& changes) const {
+    if (background_ == sg::kNoContainer) return false;
+    bool dirty = changes.entries().count(background_) != 0;
+    if (const auto* b = scene.find<sg::Background>(background_)) dirty |= changes.entries().count(b->environment()) != 0;
+    return dirty;
   }
 
   typename InstancePlacement<Types>::Hooks hooks(const sg::Scene& scene) {
@@ -240,21 +232,19 @@ class InstancingSceneAdapter final : public SceneAdapter {
     scene_->setEnvironment(environment_);
   }
 
-  // Removes back-end meshes, materials and textures nothing uses any more.
+  // Removes back-end meshes, materials and textures nothing uses any more;
+  // the placement's indexes answer "used?", so this costs the number of
+  // meshes and materials, not of instances.
   void dropUnused(const sg::Scene& scene) {
-    std::unordered_set<sg::ContainerId> usedMeshes;
-    std::unordered_set<typename Types::MaterialId> usedMaterials;
-    for (const auto& [key, p] : placement_.instances()) {
-      usedMeshes.insert(p.geometry);
-      usedMaterials.insert(p.material);
-    }
     std::erase_if(meshes_, [&](const auto& kv) {
-      if (usedMeshes.count(kv.first) && scene.find(kv.first)) return false;
+      if (placement_.uses(kv.first) && scene.find(kv.first)) return false;
+      placement_.removeInstancesOf(kv.first, *scene_);  // a destroyed geometry's, until placement ran
       scene_->removeMesh(kv.second);
       return true;
     });
+    std::erase_if(unrenderable_, [&](sg::ContainerId id) { return !scene.find(id); });
     std::erase_if(materials_, [&](const auto& kv) {
-      if (usedMaterials.count(kv.second)) return false;
+      if (placement_.usesMaterial(kv.second)) return false;
       scene_->removeMaterial(kv.second);
       return true;
     });
@@ -281,10 +271,16 @@ class InstancingSceneAdapter final : public SceneAdapter {
       unrenderable_.insert(id);
       return std::nullopt;
     }
-    auto mesh = scene_->addMesh(Types::mesh(*g));
-    ++counters_.meshBuilds;
-    meshes_.emplace(id, mesh);
-    return mesh;
+    try {
+      auto mesh = scene_->addMesh(Types::mesh(*g));
+      ++counters_.meshBuilds;
+      meshes_.emplace(id, mesh);
+      return mesh;
+    } catch (const typename Types::Error& error) {
+      spdlog::warn("{}: geometry {} '{}' skipped: {}", Types::kName, id, g->name(), error.what());
+      unrenderable_.insert(id);
+      return std::nullopt;
+    }
   }
 
   typename Types::MaterialId materialFor(const sg::Scene& scene, sg::ContainerId id) {

@@ -20,13 +20,16 @@ class FlatteningError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Matches an instance or light across re-flattenings: a hash of its path
+// plus its occurrence (the smallest count that makes the key unique within
+// one flattening, so repeated children and hash collisions stay apart).
+using FlatKey = std::uint64_t;
+
 struct FlatNode {
   sg::ContainerId id = sg::kNoContainer;  // the geometry or light
   std::vector<sg::ContainerId> path;      // from the root down to, not including, id
-  std::uint32_t occurrence = 0;           // tells apart repeated children
+  FlatKey key = 0;
   glm::mat4 world{1.0f};
-  // A stable key for matching instances across re-flattenings.
-  std::string key() const;
 };
 
 struct FlatScene {

@@ -1,6 +1,6 @@
-#include "shared_device.hpp"
+#include "tsr/vk/shared_device.hpp"
 
-namespace tsr::med::vulkan_mediator {
+namespace tsr::vk {
 
 std::shared_ptr<SharedDevice> sharedDevice() {
   static std::mutex mutex;
@@ -8,9 +8,9 @@ std::shared_ptr<SharedDevice> sharedDevice() {
   std::lock_guard lock(mutex);
   if (auto shared = held.lock()) return shared;
   auto shared = std::make_shared<SharedDevice>();
-  shared->device = vk::Device::create();
+  shared->device = Device::create();
   held = shared;
   return shared;
 }
 
-}  // namespace tsr::med::vulkan_mediator
+}  // namespace tsr::vk

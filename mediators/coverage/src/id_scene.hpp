@@ -1,0 +1,80 @@
+#pragma once
+// An id renderer seen through the scene API the shared instancing adapter
+// drives (meshes, materials, instances, textures, lights, an environment),
+// so the coverage pass syncs through the same path as the path tracer and
+// the rasterizer. A material here is only "transparent or not"; changing it
+// flips the instances that use it. The id pass has no textures, lights or
+// environment: those calls hold nothing.
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "tsr/cov/id_renderer.hpp"
+
+namespace tsr::med::coverage_mediator {
+
+// The adapter's "device": makes an empty id renderer for every conversion.
+struct IdRendererSource {
+  std::function<std::unique_ptr<cov::IdRenderer>()> make;
+};
+
+struct Transparency {
+  bool transparent = false;
+};
+enum class MaterialId : std::uint32_t {};
+struct NoTexture {};
+enum class TextureId : std::uint32_t {};
+struct NoLight {};
+enum class LightId : std::uint32_t {};
+struct NoEnvironment {};
+
+class IdScene {
+ public:
+  explicit IdScene(const std::shared_ptr<IdRendererSource>& source);
+
+  cov::IdRenderer& renderer() { return *renderer_; }
+  // Instances whose transparency flag changed after they were added.
+  std::uint64_t transparencyUpdates() const { return transparencyUpdates_; }
+
+  cov::MeshId addMesh(cov::MeshData data) { return renderer_->addMesh(std::move(data)); }
+  void setMeshData(cov::MeshId mesh, cov::MeshData data) { renderer_->setMeshData(mesh, std::move(data)); }
+  // The id pass has no normals: only positions travel.
+  void updateMeshVertices(cov::MeshId mesh, std::uint32_t first, std::span<const glm::vec3> positions,
+                          std::span<const glm::vec3> normals);
+  void removeMesh(cov::MeshId mesh) { renderer_->removeMesh(mesh); }
+
+  MaterialId addMaterial(Transparency material);
+  void setMaterial(MaterialId id, Transparency material);
+  void removeMaterial(MaterialId id);
+
+  cov::InstanceId addInstance(cov::MeshId mesh, MaterialId material, const glm::mat4& world, cov::ObjectId object);
+  void setInstanceTransform(cov::InstanceId id, const glm::mat4& world) { renderer_->setInstanceTransform(id, world); }
+  void setInstanceMaterial(cov::InstanceId id, MaterialId material);
+  void removeInstance(cov::InstanceId id);
+
+  TextureId addTexture(NoTexture) { return TextureId{0}; }
+  void removeTexture(TextureId) {}
+  LightId addLight(NoLight) { return LightId{0}; }
+  void setLight(LightId, NoLight) {}
+  void removeLight(LightId) {}
+  void setEnvironment(NoEnvironment) {}
+
+ private:
+  struct Material {
+    bool transparent = false;
+    std::unordered_set<cov::InstanceId> users;
+  };
+  Material& material(MaterialId id);
+  void setTransparent(cov::InstanceId id, bool transparent);
+
+  std::unique_ptr<cov::IdRenderer> renderer_;
+  std::vector<std::optional<Material>> materials_;  // by MaterialId
+  std::unordered_map<cov::InstanceId, MaterialId> instanceMaterials_;
+  std::uint64_t transparencyUpdates_ = 0;
+};
+
+}  // namespace tsr::med::coverage_mediator
