@@ -16,6 +16,11 @@ bool isSupportedExtension(const std::string& name);
 // silently ignores properties of the wrong type) sees the document.
 void checkJsonTypes(const nlohmann::json& doc, const std::string& source);
 
+// Buffer and image uris name files inside the glTF's folder or are data:
+// uris; a scheme, an absolute path or a ".." that climbs out is refused
+// before any file is opened (after percent-decoding, as tinygltf does).
+void checkUris(const nlohmann::json& doc, const std::string& source);
+
 void checkRequiredExtensions(const tinygltf::Model& model, const std::string& source);
 
 // Child indices in range, no node with two parents, no cycles.
