@@ -183,6 +183,7 @@ LoadedFile loadBytes(std::span<const unsigned char> bytes, const std::string& so
     }
     checkJsonTypes(doc, source);
     checkUris(doc, source);
+    checkDeclaredSizes(doc, limit, source);
   }
 
   tinygltf::TinyGLTF loader;

@@ -254,6 +254,21 @@ void checkUris(const json& doc, const std::string& source) {
   }
 }
 
+void checkDeclaredSizes(const json& doc, std::uint64_t maxFileBytes, const std::string& source) {
+  if (!doc.contains("buffers")) return;
+  const json& buffers = doc.at("buffers");
+  for (std::size_t i = 0; i < buffers.size(); ++i) {
+    if (!buffers[i].contains("byteLength")) continue;
+    const std::uint64_t declared = buffers[i].at("byteLength").get<std::uint64_t>();
+    if (declared > maxFileBytes)
+      throw ImportLimitError(source,
+                             "buffer " + std::to_string(i) + " declares " + std::to_string(declared) +
+                                 " bytes, more than the limit of " + std::to_string(maxFileBytes) + " bytes (" +
+                                 std::to_string(maxFileBytes >> 20) + " MiB)",
+                             ImportLimitError::Limit::FileBytes);
+  }
+}
+
 void checkRequiredExtensions(const tinygltf::Model& model, const std::string& source) {
   for (const std::string& ext : model.extensionsRequired)
     if (!isSupportedExtension(ext)) throw ImportError(source, "required extension " + ext + " is not supported");
