@@ -18,8 +18,9 @@ printf '%-18s %12s %10s %9s\n' target executions exec/s findings
 for t in "${targets[@]}"; do
   work=build/fuzz/corpus/$t findings=build/fuzz/findings/$t
   rm -rf "$findings"; mkdir -p "$work" "$findings"
-  if [[ $2 == -runs=* ]]; then mode=("$2"); dirs=(tests/fuzz/corpus/"$t" tests/fuzz/regressions/"$t"); else
-    mode=(-max_total_time="$2"); dirs=("$work" tests/fuzz/corpus/"$t" tests/fuzz/regressions/"$t"); fi
+  # libFuzzer adds new inputs to the first folder: the one in build/, never the tree's.
+  if [[ $2 == -runs=* ]]; then mode=("$2"); else mode=(-max_total_time="$2"); fi
+  dirs=("$work" tests/fuzz/corpus/"$t" tests/fuzz/regressions/"$t")
   existing=(); for d in "${dirs[@]}"; do [ -d "$d" ] && existing+=("$d"); done
   dict=(); [ -f tests/fuzz/dict/"$t".dict ] && dict=(-dict=tests/fuzz/dict/"$t".dict)
   log=build/fuzz/$t.log
