@@ -26,6 +26,17 @@ std::string triangleGltf(const std::string& uri, const std::string& node = "\"me
   "buffers": [{"byteLength": )" + byteLength + R"(, "uri": ")" + uri + R"("}]})";
 }
 
+// A triangle whose node is animated to an infinite translation at t = 1.
+constexpr const char* kInfiniteAnimation = R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"},
+                {"bufferView": 1, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [1]},
+                {"bufferView": 2, "componentType": 5126, "count": 2, "type": "VEC3"}],
+  "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 8},
+                  {"buffer": 0, "byteOffset": 44, "byteLength": 24}],
+  "buffers": [{"byteLength": 68, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAAAAAACAfwAAAAA="}],
+  "animations": [{"samplers": [{"input": 1, "output": 2}], "channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}}]}]})";
+
 std::string dataUri(const char* base64) { return std::string("data:application/octet-stream;base64,") + base64; }
 
 std::string imageGltf(const std::string& uri) {
@@ -66,6 +77,7 @@ std::vector<BadInput> writeBadSceneInputs(const fs::path& dir) {
   write(dir / "scene" / "inf-translation.gltf", triangleGltf(dataUri(kTriangle), "\"mesh\": 0, \"translation\": [0, 1e400, 0]"));
   write(dir / "scene" / "inf-vertex.gltf", triangleGltf(dataUri(kInfVertex)));
   write(dir / "scene" / "nan-vertex.gltf", triangleGltf(dataUri(kNanVertex)));
+  write(dir / "scene" / "inf-animation.gltf", kInfiniteAnimation);
   write(dir / "scene" / "bad-image-uri.gltf", imageGltf("data:image/png;base64,iVBORw0KGgoAAAA="));
   write(dir / "scene" / "bad-jpeg.gltf", imageGltf("data:image/jpeg;base64,/9j/4AAQSkZJRgABAQAAAQABAAD/2wBDAAgGBgcGBQ=="));
   write(dir / "scene" / "not-a.png", "this is no PNG");
@@ -86,6 +98,7 @@ std::vector<BadInput> writeBadSceneInputs(const fs::path& dir) {
       {"infinite translation", "scene/inf-translation.gltf", "1e400"},
       {"infinite vertex", "scene/inf-vertex.gltf", "finite"},
       {"NaN vertex", "scene/nan-vertex.gltf", "finite"},
+      {"infinite animated translation", "scene/inf-animation.gltf", "animation 0 channel 0 output) element 1 is not finite"},
       {"truncated PNG", "scene/bad-image-uri.gltf", "image 0 is a truncated PNG"},
       {"JPEG that does not decode", "scene/bad-jpeg.gltf", "image 0"},
       {"image file that is no image", "scene/bad-image-file.gltf", "image 0 ('not-a.png') is neither PNG nor JPEG"},
