@@ -84,7 +84,7 @@ std::vector<BadInput> writeBadSceneInputs(const fs::path& dir) {
   write(dir / "scene" / "bad-image-file.gltf", imageGltf("not-a.png"));
   return {
       {"missing file", "scene/missing.gltf", "no such file"},
-      {"directory", "scene/folder.gltf", "not a regular file"},
+      {"directory", "scene/folder.gltf", "it is a directory"},
       {"empty file", "scene/empty.gltf", "invalid JSON"},
       {"truncated glb", "scene/truncated.glb", "GLB header says"},
       {"buffer in the parent folder", "scene/up.gltf", "leaves the glTF file's folder"},

@@ -18,7 +18,10 @@ namespace fs = std::filesystem;
 std::vector<unsigned char> readWholeFile(const std::string& path, std::uint64_t limit, const std::string& source) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec))
-    throw ImportError(source, "cannot open '" + path + "': no such file" + (fs::exists(path, ec) ? " (not a regular file)" : ""));
+    throw ImportError(source, "cannot open '" + path + "': " +
+                                  (fs::is_directory(path, ec) ? "it is a directory"
+                                   : fs::exists(path, ec)     ? "not a regular file"
+                                                              : "no such file"));
   const std::uint64_t size = fs::file_size(path, ec);
   if (ec) throw ImportError(source, "cannot read '" + path + "': " + ec.message());
   if (size > limit)
