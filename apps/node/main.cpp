@@ -27,7 +27,18 @@ int main(int argc, char** argv) {
   std::string present;
   app.add_option("--present", present, "write each wall tile here when its swap barrier releases (headless display)");
   app.add_option("--log-level", logLevel, "trace, debug, info, warn, error");
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    return 0;
+  } catch (const CLI::ParseError& e) {  // CLI11's own exit would print several lines and exit 105 and up
+    std::string message = e.what();
+    for (char& c : message)
+      if (c == '\n') c = ' ';
+    std::cerr << "error: " << message << "\n";
+    return 2;
+  }
 
   try {
     // Logs go to stderr: stdout carries only the "listening on" line.

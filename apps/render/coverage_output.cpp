@@ -2,11 +2,12 @@
 
 #include <algorithm>
 #include <cctype>
-#include <fstream>
 #include <stdexcept>
 #include <string_view>
 
 #include <nlohmann/json.hpp>
+
+#include "tsr/med/file_replacement.hpp"
 
 #if TSR_HAVE_COVERAGE
 #include "tsr/med/coverage/ranking.hpp"
@@ -33,9 +34,7 @@ void writeRanking(const std::string& path, const med::FrameBuffer& image, const 
                       {"height", image.height},
                       {"background", med::backgroundPixels(image)},
                       {"objects", std::move(objects)}};
-  std::ofstream out(path);
-  out << j.dump(2) << "\n";
-  if (!out) throw std::runtime_error(path + ": cannot write");
+  med::replaceTextFile(path, j.dump(2) + "\n");
 #else
   (void)image;
   (void)scene;

@@ -1,7 +1,6 @@
 // tessera-render: renders a scene with the back-end a viewport names and
 // writes the image. Errors: one line on stderr, exit status 2.
 #include <chrono>
-#include <fstream>
 #include <iostream>
 
 #include <nlohmann/json.hpp>
@@ -14,6 +13,7 @@
 #include "render_options.hpp"
 #include "scene_session.hpp"
 #include "sequence_render.hpp"
+#include "tsr/med/file_replacement.hpp"
 #include "tsr/med/image_file.hpp"
 #include "tsr/med/viewport_registry.hpp"
 
@@ -75,9 +75,7 @@ int run(int argc, char** argv) {
                         {"height", options.height},
                         {"rays", stats.rays},
                         {"rays_per_second", renderSeconds > 0 ? double(stats.rays) / renderSeconds : 0.0}};
-    std::ofstream out(options.statsJson);
-    out << j.dump(2) << "\n";
-    if (!out) throw std::runtime_error(options.statsJson + ": cannot write");
+    tsr::med::replaceTextFile(options.statsJson, j.dump(2) + "\n");
   }
   if (!options.quiet)
     std::cout << "wrote " << options.output << " (" << options.width << "x" << options.height << ", "

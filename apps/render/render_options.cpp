@@ -8,6 +8,10 @@
 
 namespace tsr::app {
 
+namespace {
+constexpr std::uint64_t kMaxImagePixels = std::uint64_t{1} << 26;
+}  // namespace
+
 void parseSize(const std::string& text, std::uint32_t& width, std::uint32_t& height) {
   auto x = text.find('x');
   auto number = [&](std::string_view s) {
@@ -20,6 +24,11 @@ void parseSize(const std::string& text, std::uint32_t& width, std::uint32_t& hei
   if (x == std::string::npos) throw std::invalid_argument("--size " + text + ": expected WxH, e.g. 512x512");
   width = number(std::string_view(text).substr(0, x));
   height = number(std::string_view(text).substr(x + 1));
+  // Colour, depth and outputs take 20+ bytes a pixel: refuse what no machine
+  // here could hold before a back-end tries to allocate it.
+  if (std::uint64_t{width} * height > kMaxImagePixels)
+    throw std::invalid_argument("--size " + text + ": more than " + std::to_string(kMaxImagePixels) +
+                                " pixels (8192x8192)");
 }
 
 std::string aovPath(const std::string& output, const std::string& aov) {

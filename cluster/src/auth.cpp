@@ -1,5 +1,6 @@
 #include "tsr/cluster/auth.hpp"
 
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 
@@ -11,6 +12,8 @@
 namespace tsr::cluster {
 
 std::string readTokenFile(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw TokenError("token file '" + path + "' is a directory");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw TokenError("cannot read token file '" + path + "'");
   std::string token;

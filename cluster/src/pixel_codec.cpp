@@ -90,6 +90,8 @@ med::FrameBuffer decodePixels(std::uint32_t width, std::uint32_t height, Compres
       src = &plain;
       break;
     }
+    default:  // a byte no encoder writes must not pass as raw pixels of any length
+      malformed("unknown compression " + std::to_string(static_cast<int>(compression)));
   }
   med::FrameBuffer fb(width, height);
   std::memcpy(static_cast<void*>(fb.colour.data()), src->data(), static_cast<std::size_t>(pixels) * 16);

@@ -59,5 +59,14 @@ TEST(PixelCodec, WrongSizesAndGarbageAreMalformed) {
   EXPECT_THROW(decodePixels(1u << 15, 1u << 15, Compression::None, garbage), ProtocolError);
 }
 
+// Found by fuzz_pixel_codec: a compression byte outside the enum fell
+// through the switch and the payload was read as raw pixels of any length.
+TEST(PixelCodec, UnknownCompressionIsMalformedWhateverTheLength) {
+  const std::vector<std::uint8_t> few(4, 0);
+  const std::vector<std::uint8_t> exact(16 * 16 * kBytesPerPixel, 0);
+  EXPECT_THROW(decodePixels(16, 16, static_cast<Compression>(3), few), ProtocolError);
+  EXPECT_THROW(decodePixels(16, 16, static_cast<Compression>(3), exact), ProtocolError);
+}
+
 }  // namespace
 }  // namespace tsr::cluster

@@ -6,6 +6,8 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "tsr/med/file_replacement.hpp"
+
 namespace tsr::med {
 
 namespace {
@@ -41,19 +43,17 @@ std::vector<glm::vec4> pixelsOf(const FrameBuffer& fb, const std::string& output
   }
   return it->second;
 }
-}  // namespace
 
-void writeImage(const std::string& path, const FrameBuffer& fb, const std::string& output) {
-  if (fb.width == 0 || fb.height == 0) throw ImageFileError(path + ": empty image");
-  auto pixels = pixelsOf(fb, output);
-  auto file = OIIO::ImageOutput::create(path);
-  if (!file) throw ImageFileError(path + ": " + OIIO::geterror());
-  bool floats = isFloatFormat(path);
+// Writes `path` in the format `named` (the final name) says.
+void writeImageFile(const std::string& path, const std::string& named, const FrameBuffer& fb, const std::vector<glm::vec4>& pixels) {
+  auto file = OIIO::ImageOutput::create(named);
+  if (!file) throw ImageFileError(named + ": " + OIIO::geterror());
+  bool floats = isFloatFormat(named);
   // Float formats keep alpha; 8-bit ones are viewed as pictures, so opaque RGB.
-  int channels = floats && path.find(".pfm") == std::string::npos && path.find(".hdr") == std::string::npos ? 4 : 3;
+  int channels = floats && named.find(".pfm") == std::string::npos && named.find(".hdr") == std::string::npos ? 4 : 3;
   OIIO::ImageSpec spec(static_cast<int>(fb.width), static_cast<int>(fb.height), channels,
                        floats ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-  if (!file->open(path, spec)) throw ImageFileError(path + ": " + file->geterror());
+  if (!file->open(path, spec)) throw ImageFileError(named + ": " + file->geterror());
   bool ok;
   if (floats) {
     std::vector<float> data;
@@ -68,7 +68,15 @@ void writeImage(const std::string& path, const FrameBuffer& fb, const std::strin
       for (int c = 0; c < 3; ++c) data.push_back(encodeSrgb(p[c]));
     ok = file->write_image(OIIO::TypeDesc::UINT8, data.data());
   }
-  if (!ok || !file->close()) throw ImageFileError(path + ": " + file->geterror());
+  if (!ok || !file->close()) throw ImageFileError(named + ": " + file->geterror());
+}
+}  // namespace
+
+void writeImage(const std::string& path, const FrameBuffer& fb, const std::string& output) {
+  if (fb.width == 0 || fb.height == 0) throw ImageFileError(path + ": empty image");
+  const auto pixels = pixelsOf(fb, output);
+  // A failed or interrupted write leaves an existing image as it was.
+  replaceFile(path, [&](const std::string& temporary) { writeImageFile(temporary, path, fb, pixels); });
 }
 
 FrameBuffer readImage(const std::string& path) {

@@ -454,12 +454,22 @@ class Converter {
 
 }  // namespace
 
-parsed::Scene parseFile(const std::string& path, const ImportOptions& options) {
-  LoadedFile file = loadFile(path, options);
+namespace {
+parsed::Scene converted(LoadedFile file, const std::string& source, const ImportOptions& options) {
   parsed::Scene scene;
   scene.warnings = std::move(file.warnings);
-  Converter(file.model, path, options, scene).run();
+  Converter(file.model, source, options, scene).run();
   return scene;
+}
+}  // namespace
+
+parsed::Scene parseFile(const std::string& path, const ImportOptions& options) {
+  return converted(loadFile(path, options), path, options);
+}
+
+parsed::Scene parseBytes(std::span<const unsigned char> bytes, const std::string& source, const std::string& baseDir,
+                         const ImportOptions& options) {
+  return converted(loadBytes(bytes, source, baseDir, options), source, options);
 }
 
 }  // namespace tsr::sg::gltf

@@ -1,5 +1,6 @@
 #include "gltf_loader.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -17,7 +18,10 @@ namespace fs = std::filesystem;
 std::vector<unsigned char> readWholeFile(const std::string& path, std::uint64_t limit, const std::string& source) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec))
-    throw ImportError(source, "cannot open '" + path + "': no such file" + (fs::exists(path, ec) ? " (not a regular file)" : ""));
+    throw ImportError(source, "cannot open '" + path + "': " +
+                                  (fs::is_directory(path, ec) ? "it is a directory"
+                                   : fs::exists(path, ec)     ? "not a regular file"
+                                                              : "no such file"));
   const std::uint64_t size = fs::file_size(path, ec);
   if (ec) throw ImportError(source, "cannot read '" + path + "': " + ec.message());
   if (size > limit)
@@ -33,19 +37,30 @@ std::vector<unsigned char> readWholeFile(const std::string& path, std::uint64_t 
 }
 
 // tinygltf's file callbacks, replaced so that external buffers obey the size
-// limit and no path goes through wordexp (its default expansion).
+// limit, no path goes through wordexp (its default expansion), and nothing
+// outside the glTF's own folder is touched: tinygltf also searches the
+// working directory, and a uri may climb out through "..".
 struct FsContext {
   std::uint64_t limit;
+  fs::path base;  // canonical folder of the glTF file
   std::optional<ImportLimitError> refused;  // rethrown with its kind after tinygltf gives up
 };
-bool fileExists(const std::string& path, void*) {
+bool insideBase(const std::string& path, const FsContext& ctx) {
   std::error_code ec;
-  return fs::is_regular_file(path, ec);
+  const fs::path resolved = fs::weakly_canonical(path, ec);
+  if (ec || ctx.base.empty()) return false;
+  const auto [b, r] = std::mismatch(ctx.base.begin(), ctx.base.end(), resolved.begin(), resolved.end());
+  return b == ctx.base.end();
+}
+bool fileExists(const std::string& path, void* user) {
+  std::error_code ec;
+  return insideBase(path, *static_cast<FsContext*>(user)) && fs::is_regular_file(path, ec);
 }
 std::string expandPath(const std::string& path, void*) { return path; }
 bool readFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
   auto* ctx = static_cast<FsContext*>(user);
   try {
+    if (!insideBase(path, *ctx)) throw ImportError(path, "'" + path + "' is outside the glTF file's folder; refused");
     *out = readWholeFile(path, ctx->limit, path);
     return true;
   } catch (const ImportLimitError& e) {
@@ -79,7 +94,7 @@ std::uint32_t readU32(const unsigned char* p) {
 }
 
 // The JSON chunk of a GLB container, with the header checked.
-std::string glbJson(const std::vector<unsigned char>& bytes, const std::string& source) {
+std::string glbJson(std::span<const unsigned char> bytes, const std::string& source) {
   if (bytes.size() < 20) throw ImportError(source, "GLB file too short for its header");
   if (readU32(&bytes[4]) != 2)
     throw ImportError(source, "GLB version " + std::to_string(readU32(&bytes[4])) + " is not supported (only 2)");
@@ -143,33 +158,47 @@ void scanJson(const char* first, const char* last, std::uint64_t limit, const st
 
 LoadedFile loadFile(const std::string& path, const ImportOptions& options) {
   const std::uint64_t limit = std::min<std::uint64_t>(options.maxFileBytes, 0xFFFFFFFFu);
-  std::vector<unsigned char> bytes = readWholeFile(path, limit, path);
+  const std::vector<unsigned char> bytes = readWholeFile(path, limit, path);
+  return loadBytes(bytes, path, fs::path(path).parent_path().string(), options);
+}
+
+LoadedFile loadBytes(std::span<const unsigned char> bytes, const std::string& source, const std::string& baseDir,
+                     const ImportOptions& options) {
+  const std::uint64_t limit = std::min<std::uint64_t>(options.maxFileBytes, 0xFFFFFFFFu);
+  if (bytes.size() > limit)
+    throw ImportLimitError(source,
+                           std::to_string(bytes.size()) + " bytes, more than the limit of " + std::to_string(limit) +
+                               " bytes (" + std::to_string(limit >> 20) + " MiB)",
+                           ImportLimitError::Limit::FileBytes);
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
 
-  const std::string glb = binary ? glbJson(bytes, path) : std::string();
+  const std::string glb = binary ? glbJson(bytes, source) : std::string();
   const char* first = binary ? glb.data() : reinterpret_cast<const char*>(bytes.data());
   const char* last = first + (binary ? glb.size() : bytes.size());
-  scanJson(first, last, options.maxJsonValues, path);
+  scanJson(first, last, options.maxJsonValues, source);
 
   {
     nlohmann::json doc;  // freed before tinygltf builds its own
     try {
       doc = nlohmann::json::parse(first, last);
     } catch (const nlohmann::json::exception& e) {
-      throw ImportError(path, std::string("invalid JSON: ") + e.what());
+      throw ImportError(source, std::string("invalid JSON: ") + e.what());
     }
-    checkJsonTypes(doc, path);
+    checkJsonTypes(doc, source);
+    checkUris(doc, source);
+    checkDeclaredSizes(doc, limit, source);
   }
 
   tinygltf::TinyGLTF loader;
-  FsContext ctx{limit, std::nullopt};
+  std::error_code ec;
+  FsContext ctx{limit, fs::weakly_canonical(baseDir.empty() ? fs::path(".") : fs::path(baseDir), ec), std::nullopt};
+  if (ec) ctx.base.clear();  // no folder: every external file is refused
   loader.SetFsCallbacks({&fileExists, &expandPath, &readFile, &refuseWrite, &ctx});
   loader.SetImageLoader(&keepImageBytes, nullptr);
   loader.SetPreserveImageChannels(true);
 
   LoadedFile out;
   std::string err, warn;
-  const std::string baseDir = fs::path(path).parent_path().string();
   const bool ok = binary ? loader.LoadBinaryFromMemory(&out.model, &err, &warn, bytes.data(),
                                                        static_cast<unsigned>(bytes.size()), baseDir)
                          : loader.LoadASCIIFromString(&out.model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
@@ -179,7 +208,7 @@ LoadedFile loadFile(const std::string& path, const ImportOptions& options) {
   for (std::size_t p = err.find('\n'); p != std::string::npos; p = err.find('\n', p)) err.replace(p, 1, "; ");
   // tinygltf may report success with an error message: either is a failure.
   if (ctx.refused) throw *ctx.refused;
-  if (!ok || !err.empty()) throw ImportError(path, err.empty() ? "tinygltf could not load the file" : err);
+  if (!ok || !err.empty()) throw ImportError(source, err.empty() ? "tinygltf could not load the file" : err);
   std::size_t start = 0;
   while (start < warn.size()) {
     std::size_t end = warn.find('\n', start);
@@ -187,8 +216,8 @@ LoadedFile loadFile(const std::string& path, const ImportOptions& options) {
     if (end > start) out.warnings.push_back(warn.substr(start, end - start));
     start = end + 1;
   }
-  checkRequiredExtensions(out.model, path);
-  checkNodeGraph(out.model, path);
+  checkRequiredExtensions(out.model, source);
+  checkNodeGraph(out.model, source);
   return out;
 }
 

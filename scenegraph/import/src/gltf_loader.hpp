@@ -3,6 +3,7 @@
 // passed the type checks of gltf_validation. Images are not decoded here:
 // the bytes of images given by uri are kept in tinygltf::Image::image,
 // those in buffer views are left for the importer to slice with checks.
+#include <span>
 #include <string>
 #include <vector>
 
@@ -18,5 +19,9 @@ struct LoadedFile {
 };
 
 LoadedFile loadFile(const std::string& path, const ImportOptions& options);
+// The same for a file's bytes; external buffers and images resolve inside
+// baseDir only (empty: the working directory), named `source` in errors.
+LoadedFile loadBytes(std::span<const unsigned char> bytes, const std::string& source, const std::string& baseDir,
+                     const ImportOptions& options);
 
 }  // namespace tsr::sg::gltf

@@ -1,6 +1,8 @@
 #include "gltf_validation.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <cstring>
 #include <functional>
 #include <map>
 
@@ -192,6 +194,79 @@ void checkJsonTypes(const json& doc, const std::string& source) {
   TypeChecker checker(source);
   if (!doc.is_object()) checker.fail("the document", "a JSON object");
   documentSchema(checker)(doc, "glTF");
+}
+
+namespace {
+
+std::string percentDecoded(const std::string& uri) {
+  std::string out;
+  for (std::size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+      out += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
+}
+
+// Why a (decoded) relative uri may not be opened, or empty when it may.
+std::string uriProblem(const std::string& uri) {
+  const std::size_t colon = uri.find(':');
+  const std::size_t slash = uri.find_first_of("/\\");
+  if (colon != std::string::npos && (slash == std::string::npos || colon < slash))
+    return "has a scheme; only files beside the glTF and data: uris are read";
+  if (!uri.empty() && (uri[0] == '/' || uri[0] == '\\')) return "is an absolute path; only files beside the glTF are read";
+  if (uri.find('\0') != std::string::npos) return "holds a NUL byte";
+  int depth = 0;
+  std::size_t start = 0;
+  while (start <= uri.size()) {
+    std::size_t end = uri.find_first_of("/\\", start);
+    if (end == std::string::npos) end = uri.size();
+    const std::string part = uri.substr(start, end - start);
+    if (part == "..") {
+      if (--depth < 0) return "leaves the glTF file's folder";
+    } else if (!part.empty() && part != ".") {
+      ++depth;
+    }
+    start = end + 1;
+  }
+  return {};
+}
+
+}  // namespace
+
+void checkUris(const json& doc, const std::string& source) {
+  for (const char* array : {"buffers", "images"}) {
+    if (!doc.contains(array)) continue;
+    const json& items = doc.at(array);
+    for (std::size_t i = 0; i < items.size(); ++i) {
+      if (!items[i].contains("uri")) continue;
+      const std::string& uri = items[i].at("uri").get_ref<const std::string&>();
+      if (uri.rfind("data:", 0) == 0) continue;
+      const std::string problem = uriProblem(percentDecoded(uri));
+      if (!problem.empty())
+        throw ImportError(source, std::string(array, std::strlen(array) - 1) + " " + std::to_string(i) + " uri '" +
+                                      uri + "' " + problem + "; refused, not read");
+    }
+  }
+}
+
+void checkDeclaredSizes(const json& doc, std::uint64_t maxFileBytes, const std::string& source) {
+  if (!doc.contains("buffers")) return;
+  const json& buffers = doc.at("buffers");
+  for (std::size_t i = 0; i < buffers.size(); ++i) {
+    if (!buffers[i].contains("byteLength")) continue;
+    const std::uint64_t declared = buffers[i].at("byteLength").get<std::uint64_t>();
+    if (declared > maxFileBytes)
+      throw ImportLimitError(source,
+                             "buffer " + std::to_string(i) + " declares " + std::to_string(declared) +
+                                 " bytes, more than the limit of " + std::to_string(maxFileBytes) + " bytes (" +
+                                 std::to_string(maxFileBytes >> 20) + " MiB)",
+                             ImportLimitError::Limit::FileBytes);
+  }
 }
 
 void checkRequiredExtensions(const tinygltf::Model& model, const std::string& source) {

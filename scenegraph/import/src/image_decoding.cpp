@@ -5,6 +5,7 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
+#include "png_structure.hpp"
 #include "tsr/sg/import/import_error.hpp"
 
 namespace tsr::sg {
@@ -28,6 +29,8 @@ parsed::Image decodeImage(const std::vector<std::uint8_t>& bytes, const std::str
   if (bytes.empty()) throw ImportError(source, what + " has no data");
   const std::string name = formatName(bytes, mimeType);
   if (name.empty()) throw ImportError(source, what + " is neither PNG nor JPEG");
+  if (name == "memory.png")
+    if (const std::string problem = pngStructureProblem(bytes); !problem.empty()) throw ImportError(source, what + " " + problem);
 
   OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
   // glTF colours are straight (unassociated) alpha; keep them as stored.

@@ -37,14 +37,12 @@ parsed::Scene parseBuiltin(const std::string& source) {
   throw ImportError(source, "unknown built-in scene; valid names are " + joined(builtinSceneNames()));
 }
 
-}  // namespace
-
-std::vector<std::string> builtinSceneNames() { return {"cornell", "instances:N", "animated"}; }
-
-ImportResult importScene(Scene& scene, const std::string& source, const ImportOptions& options) {
+// Runs a parser with every failure turned into an ImportError, then builds.
+template <class Parse>
+ImportResult parsedAndBuilt(Scene& scene, const std::string& source, Parse parse) {
   parsed::Scene data;
   try {
-    data = source.starts_with(kBuiltinPrefix) ? parseBuiltin(source) : gltf::parseFile(source, options);
+    data = parse();
   } catch (const ImportError&) {
     throw;
   } catch (const std::bad_alloc&) {
@@ -57,6 +55,21 @@ ImportResult importScene(Scene& scene, const std::string& source, const ImportOp
   spdlog::debug("imported {}: {} nodes, {} geometries, {} triangles, {} warnings", source, result.counts.nodes,
                 result.counts.geometries, result.counts.uniqueTriangles, result.warnings.size());
   return result;
+}
+
+}  // namespace
+
+std::vector<std::string> builtinSceneNames() { return {"cornell", "instances:N", "animated"}; }
+
+ImportResult importScene(Scene& scene, const std::string& source, const ImportOptions& options) {
+  return parsedAndBuilt(scene, source, [&] {
+    return source.starts_with(kBuiltinPrefix) ? parseBuiltin(source) : gltf::parseFile(source, options);
+  });
+}
+
+ImportResult importGltf(Scene& scene, std::span<const std::uint8_t> bytes, const std::string& source,
+                        const std::string& baseDir, const ImportOptions& options) {
+  return parsedAndBuilt(scene, source, [&] { return gltf::parseBytes(bytes, source, baseDir, options); });
 }
 
 }  // namespace tsr::sg

@@ -4,6 +4,7 @@
 // "builtin:animated"). Everything is parsed and validated before the first
 // container is created, so a failed import leaves the scene untouched.
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,11 @@ struct ImportResult {
 
 // Throws ImportError ("<source>: <reason>") for anything it cannot load.
 ImportResult importScene(Scene& scene, const std::string& source, const ImportOptions& options = {});
+// A .gltf or .glb (told apart by its first bytes) held in memory, named
+// `source` in errors; its external buffers and images resolve inside
+// baseDir, which they may not leave.
+ImportResult importGltf(Scene& scene, std::span<const std::uint8_t> bytes, const std::string& source,
+                        const std::string& baseDir, const ImportOptions& options = {});
 
 // The names importScene accepts after "builtin:", as written in messages.
 std::vector<std::string> builtinSceneNames();

@@ -1,0 +1,21 @@
+#pragma once
+// The bad scene inputs every program that reads scenes is tested with: each
+// writes its files into a scratch folder and names the scene argument and a
+// phrase the one error line must contain.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace tsr::test {
+
+struct BadInput {
+  std::string name;   // for the test's trace
+  std::string scene;  // the argument, relative to the scratch folder
+  std::string about;  // what the error line must name
+};
+
+// Writes the files into `dir` (a secret.bin beside the glTF folder is a valid
+// buffer, so a uri that reached it would make the import succeed).
+std::vector<BadInput> writeBadSceneInputs(const std::filesystem::path& dir);
+
+}  // namespace tsr::test
