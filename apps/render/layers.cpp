@@ -75,23 +75,6 @@ std::vector<LayerSpec> parseLayers(const std::string& value) {
   return layers;
 }
 
-std::vector<LayerSpec> takeLayers(std::vector<std::string>& args) {
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--layers") {
-      if (i + 1 == args.size()) throw std::invalid_argument("--layers: expected BACKEND[:NODE],... or a .json file");
-      auto layers = parseLayers(args[i + 1]);
-      args.erase(args.begin() + static_cast<std::ptrdiff_t>(i), args.begin() + static_cast<std::ptrdiff_t>(i) + 2);
-      return layers;
-    }
-    if (args[i].rfind("--layers=", 0) == 0) {
-      auto layers = parseLayers(args[i].substr(9));
-      args.erase(args.begin() + static_cast<std::ptrdiff_t>(i));
-      return layers;
-    }
-  }
-  return {};
-}
-
 sg::ContainerId findLayerRoot(const sg::Scene& scene, const std::string& name) {
   sg::ContainerId found = sg::kNoContainer;
   for (auto id : scene.ids()) {

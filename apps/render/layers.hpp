@@ -35,8 +35,6 @@ struct LayerSpec {
 // Parses the --layers value (or reads the .json file it names); throws
 // std::invalid_argument with a one-line message.
 std::vector<LayerSpec> parseLayers(const std::string& value);
-// Takes "--layers VALUE" or "--layers=VALUE" out of `args`; empty when absent.
-std::vector<LayerSpec> takeLayers(std::vector<std::string>& args);
 
 // The Group or Transform named `name`; throws std::invalid_argument.
 sg::ContainerId findLayerRoot(const sg::Scene& scene, const std::string& name);

@@ -22,13 +22,15 @@ namespace {
 int run(int argc, char** argv) {
   tsr::app::RenderOptions options;
   if (!tsr::app::parseRenderOptions(argc, argv, options)) return 0;
-  const auto layers = tsr::app::takeLayers(options.unparsed);  // --layers: a layered window (layers.hpp)
+  // --layers: a layered window (layers.hpp)
+  const auto layers = options.layers.empty() ? std::vector<tsr::app::LayerSpec>{} : tsr::app::parseLayers(options.layers);
+  const auto& sequence = options.sequence;
+  if (sequence.framesGiven && !layers.empty())
+    throw std::invalid_argument("--layers with --frames: a sequence renders through one back-end per frame; render the "
+                                "layers frame by frame, or drop --layers");
+  if (!sequence.cluster.empty() && !layers.empty()) throw std::invalid_argument("--layers with --cluster: not yet");
   // --frames and --cluster render sequences, locally or on nodes (sequence_render.cpp).
-  auto sequence = tsr::app::parseSequenceOptions(options.unparsed);
-  if (sequence.active() && !layers.empty()) throw std::invalid_argument("--layers: not with --frames or --cluster (yet)");
-  if (options.temporal.active() && !sequence.framesGiven)
-    throw std::invalid_argument("--temporal " + options.temporal.method + " needs --frames N");
-  if (sequence.active()) return tsr::app::renderSequence(options, sequence);
+  if (sequence.active() && layers.empty()) return tsr::app::renderSequence(options, sequence);
 
   tsr::app::SceneSession session;
   session.load(options.scene, options.import);

@@ -35,7 +35,6 @@ std::string importLimitOption(const sg::ImportLimitError& e) {
 
 bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
   CLI::App app{"Render a scene with one of Tessera's back-ends"};
-  app.allow_extras();
   std::string size = "512x512";
   std::int64_t spp = 16, maxDepth = 8, seed = 0, threads = 0;
   std::vector<std::string> params;
@@ -87,6 +86,10 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
                                  ->check(CLI::IsMember({"bilateral", "separable"})),
                              "filterKernel");
   addTemporalOptions(app, o.temporal);
+  addSequenceOptions(app, o.sequence);
+  app.add_option("--layers", o.layers,
+                 "layered window, composited by depth: BACKEND[:NODE],... bottom first, or a .json file (see the "
+                 "README); with --cluster the layer of the config's back-end renders on the nodes");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -97,6 +100,8 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
   }
   parseSize(size, o.width, o.height);
   checkTemporalOptions(o.temporal, static_cast<int>(spp));
+  if (o.temporal.active() && !o.sequence.framesGiven)
+    throw std::invalid_argument("--temporal " + o.temporal.method + " needs --frames N");
   o.import.maxFileBytes = maxFileMb << 20;
   for (const auto& p : params) {
     auto [name, value] = med::Parameters::parse(p);
@@ -117,7 +122,6 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
     auto [unused, value] = med::Parameters::parse(name + "=" + option->as<std::string>());
     o.parameters.set(name, value);
   }
-  o.unparsed = app.remaining();
   return true;
 }
 

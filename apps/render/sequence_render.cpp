@@ -7,10 +7,10 @@
 #include <stdexcept>
 
 #include "backends.hpp"
+#include "cluster_connection.hpp"
 #include "progress_bar.hpp"
 #include "scene_session.hpp"
 #include "temporal_pca_sequence.hpp"
-#include "tsr/cluster/auth.hpp"
 #include "tsr/cluster/cluster_window.hpp"
 #include "tsr/med/image_file.hpp"
 #include "tsr/med/viewport_registry.hpp"
@@ -68,33 +68,15 @@ FrameRenderer localRenderer(const RenderOptions& options, const SceneSession& se
   };
 }
 
-FrameRenderer clusterRenderer(const RenderOptions& options, const SequenceOptions& sequence, const SceneSession& session) {
-  cluster::ClusterConfig config = cluster::loadClusterConfig(sequence.cluster);
-  if (!sequence.nodes.empty()) config.replaceAddresses(cluster::parseNodeList(sequence.nodes));
-  // What the command line names beats the config; the config beats the
-  // command line's defaults.
-  for (auto& node : config.nodes)
-    for (const auto& [name, value] : options.parameters.all())
-      if (options.explicitParameters.count(name) || !node.parameters.has(name)) node.parameters.set(name, value);
-  config.validate();
-  cluster::ClientOptions client;
-  if (!sequence.tokenFile.empty()) client.token = cluster::readTokenFile(sequence.tokenFile);
-  client.outputs = frameOutputs(options);
+FrameRenderer clusterRenderer(const RenderOptions& options, const SceneSession& session) {
   if (options.temporal.active() && options.temporal.directSpp > options.parameters.getInt("spp", 16, 1, 1 << 20))
     throw std::invalid_argument("--direct-spp: with --cluster the nodes render direct and indirect light in the same "
                                 "paths, at --spp (raise --spp or leave --direct-spp out)");
-  // Whole-frame image steps of the nodes' back-end (pixel filtering) run
-  // here on the assembled frame, so tiles show no seams.
   auto registry = std::make_shared<med::ViewportRegistry>();
   registerBackends(*registry);
-  client.registry = registry.get();
-  auto window = std::shared_ptr<cluster::ClusterWindow>(new cluster::ClusterWindow(config, client),
-                                                        [registry](cluster::ClusterWindow* w) { delete w; });
+  std::shared_ptr<cluster::ClusterWindow> window{connectCluster(clusterConfig(options), options, frameOutputs(options), *registry).release(),
+                                                 [registry](cluster::ClusterWindow* w) { delete w; }};
   window->setContent(session.imported.root, session.imported.background);
-  std::size_t online = window->connect(config.timeouts.connect);
-  if (online == 0 && config.mode != cluster::ClusterMode::Tiled)
-    throw std::runtime_error("no cluster node could be reached: " + window->status().front().lastError);
-  if (!options.quiet) std::cout << online << " of " << config.nodes.size() << " nodes online\n";
   return [window](SceneSession& s, const sg::ChangeListPtr& delta, const med::View& view, int) {
     const auto* camera = s.source.find<sg::Camera>(s.camera);
     window->setEyes(camera->eyeSeparation(), camera->zeroParallaxDistance());
@@ -118,7 +100,7 @@ int renderSequence(const RenderOptions& options, const SequenceOptions& sequence
   if (options.temporal.method == "photons") return renderPhotonSequence(options, sequence);
   SceneSession session;
   session.load(options.scene, options.import);
-  FrameRenderer render = sequence.cluster.empty() ? localRenderer(options, session) : clusterRenderer(options, sequence, session);
+  FrameRenderer render = sequence.cluster.empty() ? localRenderer(options, session) : clusterRenderer(options, session);
   auto write = [&](int frame, const med::FrameBuffer& image) {
     std::string path = framePath(options.output, frame);
     med::writeImage(path, image);
