@@ -89,15 +89,19 @@ sg::ContainerId findLayerRoot(const sg::Scene& scene, const std::string& name) {
 
 med::Window makeLayeredWindow(const std::vector<LayerSpec>& layers, const sg::Scene& scene,
                               const med::ViewportSettings& defaults, const med::ViewportRegistry& registry,
-                              med::ContextPool& contexts) {
+                              med::ContextPool& contexts, const RemoteLayers& remote) {
   med::Window window;
-  if (layers.empty()) window.addLayer(registry.create(defaults, contexts));
+  auto add = [&](const med::ViewportSettings& settings) {
+    std::unique_ptr<med::Viewport> viewport = remote ? remote(settings) : nullptr;
+    window.addLayer(viewport ? std::move(viewport) : registry.create(settings, contexts));
+  };
+  if (layers.empty()) add(defaults);
   for (const LayerSpec& layer : layers) {
     med::ViewportSettings settings = defaults;
     settings.backend = layer.backend;
     if (!layer.root.empty()) settings.root = findLayerRoot(scene, layer.root);
     for (const auto& [name, value] : layer.parameters.all()) settings.parameters.set(name, value);
-    window.addLayer(registry.create(settings, contexts));
+    add(settings);
   }
   return window;
 }

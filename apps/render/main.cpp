@@ -8,6 +8,7 @@
 #include <spdlog/spdlog.h>
 
 #include "backends.hpp"
+#include "cluster_layer.hpp"
 #include "coverage_output.hpp"
 #include "layers.hpp"
 #include "progress_bar.hpp"
@@ -28,7 +29,6 @@ int run(int argc, char** argv) {
   if (sequence.framesGiven && !layers.empty())
     throw std::invalid_argument("--layers with --frames: a sequence renders through one back-end per frame; render the "
                                 "layers frame by frame, or drop --layers");
-  if (!sequence.cluster.empty() && !layers.empty()) throw std::invalid_argument("--layers with --cluster: not yet");
   // --frames and --cluster render sequences, locally or on nodes (sequence_render.cpp).
   if (sequence.active() && layers.empty()) return tsr::app::renderSequence(options, sequence);
 
@@ -51,7 +51,9 @@ int run(int argc, char** argv) {
   tsr::med::RenderControl control;
   control.progress = [&](double f) { bar.update(f); };
   tsr::med::FrameBuffer image;
-  auto window = tsr::app::makeLayeredWindow(layers, session.replica.scene(), settings, registry, contexts);
+  tsr::app::RemoteLayers remote;  // --cluster with --layers: one layer on the nodes
+  if (!sequence.cluster.empty()) remote = tsr::app::clusterLayer(options, layers, registry, *camera);
+  auto window = tsr::app::makeLayeredWindow(layers, session.replica.scene(), settings, registry, contexts, remote);
   tsr::app::checkOutputsOffered(options.aovs, window);  // before the render, not after it
   control.outputs = options.aovs;
   if (tsr::app::isRankingPath(options.output)) control.outputs->push_back(tsr::app::kRankingOutput);
