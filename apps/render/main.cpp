@@ -26,11 +26,10 @@ int run(int argc, char** argv) {
   // --layers: a layered window (layers.hpp)
   const auto layers = options.layers.empty() ? std::vector<tsr::app::LayerSpec>{} : tsr::app::parseLayers(options.layers);
   const auto& sequence = options.sequence;
-  if (sequence.framesGiven && !layers.empty())
-    throw std::invalid_argument("--layers with --frames: a sequence renders through one back-end per frame; render the "
-                                "layers frame by frame, or drop --layers");
-  // --frames and --cluster render sequences, locally or on nodes (sequence_render.cpp).
-  if (sequence.active() && layers.empty()) return tsr::app::renderSequence(options, sequence);
+  // --frames renders sequences, locally or on nodes (sequence_render.cpp);
+  // so does --cluster without --layers (the whole window on the nodes).
+  if (sequence.framesGiven || (!sequence.cluster.empty() && layers.empty()))
+    return tsr::app::renderSequence(options, sequence, layers);
 
   tsr::app::SceneSession session;
   session.load(options.scene, options.import);

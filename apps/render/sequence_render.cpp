@@ -8,6 +8,7 @@
 
 #include "backends.hpp"
 #include "cluster_connection.hpp"
+#include "cluster_layer.hpp"
 #include "progress_bar.hpp"
 #include "scene_session.hpp"
 #include "temporal_pca_sequence.hpp"
@@ -32,17 +33,30 @@ std::vector<std::string> frameOutputs(const RenderOptions& options) {
   return outputs;
 }
 
+// The window a local sequence renders through, with what it refers to
+// (declared first, so destroyed last).
+struct LocalWindow {
+  med::ViewportRegistry registry;
+  med::ContextPool contexts;
+  med::Window window;
+};
+
+// Every frame through a window of the --layers (none: --backend alone), a
+// layer of them on the --cluster nodes when one is given.
 // With --temporal, each frame gets its own seed (frame-by-frame renders
 // share one, so a static pixel's noise would repeat in every frame and look
 // like signal to the temporal step), and direct light, when --direct-spp
 // asks for more, continues the same progressive accumulation past --spp:
 // the indirect output is read at --spp, the direct one at --direct-spp.
-FrameRenderer localRenderer(const RenderOptions& options, const SceneSession& session) {
-  auto registry = std::make_shared<med::ViewportRegistry>();
-  registerBackends(*registry);
-  auto contexts = std::make_shared<med::ContextPool>();
+FrameRenderer localRenderer(const RenderOptions& options, const std::vector<LayerSpec>& layers, const SceneSession& session) {
+  auto local = std::make_shared<LocalWindow>();
+  registerBackends(local->registry);
   med::ViewportSettings settings{options.backend, session.imported.root, session.imported.background, options.parameters, true};
-  std::shared_ptr<med::Viewport> viewport = registry->create(settings, *contexts);
+  RemoteLayers remote;
+  if (!options.sequence.cluster.empty())
+    remote = clusterLayer(options, layers, local->registry, *session.source.find<sg::Camera>(session.camera));
+  local->window = makeLayeredWindow(layers, session.source, settings, local->registry, local->contexts, remote);
+  checkOutputsOffered(options.aovs, local->window);
   med::RenderControl control;
   control.outputs = frameOutputs(options);
   const bool temporal = options.temporal.active();
@@ -50,19 +64,20 @@ FrameRenderer localRenderer(const RenderOptions& options, const SceneSession& se
   const std::int64_t spp = options.parameters.getInt("spp", 16, 1, 1 << 20);
   const std::int64_t directSpp = std::max<std::int64_t>(spp, options.temporal.directSpp);
   return [=](SceneSession& s, const sg::ChangeListPtr&, const med::View& view, int frame) {
-    med::FrameBuffer image;
+    med::Window& window = local->window;
+    auto set = [&](const std::string& name, std::int64_t value) {
+      for (const auto& layer : window.layers()) layer->setParameter(name, value);
+    };
     if (temporal) {
-      viewport->setParameter("seed", seed + frame);
-      viewport->setParameter("spp", spp);
+      set("seed", seed + frame);
+      set("spp", spp);
     }
-    viewport->render(s.replica, view, image, control);
+    med::FrameBuffer image = window.render(s.replica, view, control);
     if (temporal && directSpp > spp) {
-      viewport->setParameter("spp", directSpp);
-      med::FrameBuffer more;
+      set("spp", directSpp);
       med::RenderControl direct = control;
       direct.outputs = std::vector<std::string>{"direct"};
-      viewport->render(s.replica, view, more, direct);
-      image.outputs["direct"] = std::move(more.outputs["direct"]);
+      image.outputs["direct"] = std::move(window.render(s.replica, view, direct).outputs["direct"]);
     }
     return image;
   };
@@ -94,13 +109,18 @@ int renderPhotonSequence(const RenderOptions&, const SequenceOptions&) {
                               "this build); use --temporal pca");
 }
 
-int renderSequence(const RenderOptions& options, const SequenceOptions& sequence) {
+int renderSequence(const RenderOptions& options, const SequenceOptions& sequence, const std::vector<LayerSpec>& layers) {
   if (sequence.frames > 1 && options.output.find("####") == std::string::npos)
     throw std::invalid_argument("--frames " + std::to_string(sequence.frames) + " needs #### in --output for the frame number");
   if (options.temporal.method == "photons") return renderPhotonSequence(options, sequence);
   SceneSession session;
   session.load(options.scene, options.import);
-  FrameRenderer render = sequence.cluster.empty() ? localRenderer(options, session) : clusterRenderer(options, session);
+  if (options.temporal.active() && !layers.empty())
+    throw std::invalid_argument("--temporal with --layers: each frame is rebuilt from the bottom layer's direct and "
+                                "indirect light, so the layers above it would be lost");
+  // A cluster without layers renders the whole window on the nodes.
+  FrameRenderer render = sequence.cluster.empty() || !layers.empty() ? localRenderer(options, layers, session)
+                                                                     : clusterRenderer(options, session);
   auto write = [&](int frame, const med::FrameBuffer& image) {
     std::string path = framePath(options.output, frame);
     med::writeImage(path, image);

@@ -80,6 +80,24 @@ TEST_F(LayersCommand, RasterisedMarkerOverPathTracedBoxIsOccludedWhereTheBoxIsNe
   EXPECT_GT(same, traced.colour.size() * 9 / 10) << "the same layers, MSAA only on the marker's edges";
 }
 
+TEST_F(LayersCommand, EveryFrameOfASequenceIsALayeredWindow) {
+  std::ofstream(dir / "two_roots.gltf") << tsr::test::twoRootScene();
+  const std::string common = "two_roots.gltf --size 32x32 --spp 2 --max-depth 2 --seed 1 --quiet --layers embree:box,vulkan:markers ";
+  Outcome r = run(common + "--output single.exr --aov depth");
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run(common + "--frames 2 --output seq.####.exr --aov depth");
+  ASSERT_EQ(r.status, 0) << r.err;
+  // The scene has no animation: both frames are the single layered image.
+  const auto single = tsr::med::readImage((dir / "single.exr").string());
+  const auto singleDepth = tsr::med::readImage((dir / "single.depth.exr").string());
+  for (const char* frame : {"0000", "0001"}) {
+    const auto image = tsr::med::readImage((dir / ("seq." + std::string(frame) + ".exr")).string());
+    EXPECT_EQ(image.colour, single.colour) << frame;
+    EXPECT_EQ(tsr::med::readImage((dir / ("seq." + std::string(frame) + ".depth.exr")).string()).colour, singleDepth.colour);
+  }
+  expectOneErrorLine(run(common + "--frames 2 --temporal pca --output t.####.exr"), "--temporal with --layers");
+}
+
 TEST_F(LayersCommand, BadLayersAreOneErrorLine) {
   expectOneErrorLine(run("builtin:cornell --size 8x8 --layers \"vulkan:nosuch\""), "nosuch");
   expectOneErrorLine(run("builtin:cornell --size 8x8 --layers embree,nosuch"), "unknown back-end 'nosuch'");

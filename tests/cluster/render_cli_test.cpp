@@ -175,6 +175,12 @@ TEST(RenderCli, ALayeredWindowWithAClusterLayerEqualsTheLocalLayeredRender) {
   for (std::size_t i = 0; i < cluster.colour.size(); ++i)
     marker += cluster.colour[i] != traced.colour[i] && cluster.colour[i].g > 0.9f && cluster.colour[i].r < 0.2f;
   EXPECT_GT(marker, 10u) << "the right half of the marker shows, not just stray edge pixels";
+  // A sequence of such windows: the scene does not move, every frame is the same image.
+  ASSERT_EQ(run(scene + kLocal + layers + " --cluster " + config + " --nodes " + addresses(nodes) + " --token-file " +
+                token.path() + " --frames 2 --output " + (dir.path / "frame.####.exr").string()),
+            0);
+  for (const char* f : {"0000", "0001"})
+    EXPECT_TRUE(bitwiseEqual(med::readImage((dir.path / ("frame." + std::string(f) + ".exr")).string()), local)) << f;
 }
 
 TEST(RenderCli, AClusterLayerNeedsExactlyOneLayerOfTheNodesBackEnd) {
