@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "stats_json.hpp"
+
 namespace tsr::app {
 
 namespace {
@@ -124,12 +126,7 @@ med::RenderStats renderLayered(med::Window& window, const sg::Replica& replica, 
                                med::FrameBuffer& out, const med::RenderControl& control) {
   out = window.render(replica, view, control);
   med::RenderStats total;
-  for (const auto& s : window.lastStats()) {
-    total.rays += s.rays;
-    total.samples = std::max(total.samples, s.samples);
-    total.seconds += s.seconds;
-    total.syncSeconds += s.syncSeconds;
-  }
+  for (const auto& s : window.lastStats()) addStats(total, s);
   return total;
 }
 

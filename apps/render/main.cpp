@@ -1,10 +1,8 @@
 // tessera-render: renders a scene with the back-end a viewport names and
 // writes the image. Errors: one line on stderr, exit status 2.
-#include <chrono>
-#include <fstream>
+#include <algorithm>
 #include <iostream>
 
-#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
 #include "backends.hpp"
@@ -15,6 +13,7 @@
 #include "render_options.hpp"
 #include "scene_session.hpp"
 #include "sequence_render.hpp"
+#include "stats_json.hpp"
 #include "tsr/med/image_file.hpp"
 #include "tsr/med/viewport_registry.hpp"
 
@@ -64,24 +63,7 @@ int run(int argc, char** argv) {
   else
     tsr::med::writeImage(options.output, image);
   for (const auto& aov : options.aovs) tsr::med::writeImage(tsr::app::aovPath(options.output, aov), image, aov);
-  if (!options.statsJson.empty()) {
-    // Like Embree's own benchmarks, rays per second count the time spent
-    // rendering, not the one-off conversion and acceleration-structure build.
-    const double renderSeconds = stats.seconds - stats.syncSeconds;
-    nlohmann::json j = {{"scene", options.scene},
-                        {"backend", options.backend},
-                        {"seconds", stats.seconds},
-                        {"sync_seconds", stats.syncSeconds},
-                        {"render_seconds", renderSeconds},
-                        {"spp", stats.samples},
-                        {"width", options.width},
-                        {"height", options.height},
-                        {"rays", stats.rays},
-                        {"rays_per_second", renderSeconds > 0 ? double(stats.rays) / renderSeconds : 0.0}};
-    std::ofstream out(options.statsJson);
-    out << j.dump(2) << "\n";
-    if (!out) throw std::runtime_error(options.statsJson + ": cannot write");
-  }
+  if (!options.statsJson.empty()) tsr::app::writeStatsJson(options, stats, 1);
   if (!options.quiet)
     std::cout << "wrote " << options.output << " (" << options.width << "x" << options.height << ", "
               << stats.samples << " spp, " << stats.seconds << " s)\n";

@@ -100,6 +100,9 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
   }
   parseSize(size, o.width, o.height);
   checkTemporalOptions(o.temporal, static_cast<int>(spp));
+  if (!o.statsJson.empty() && !o.sequence.cluster.empty())
+    throw std::invalid_argument("--stats-json with --cluster: the nodes report no ray counts or conversion times to "
+                                "add up (measure a node with a local render)");
   if (o.temporal.active() && !o.sequence.framesGiven)
     throw std::invalid_argument("--temporal " + o.temporal.method + " needs --frames N");
   o.import.maxFileBytes = maxFileMb << 20;

@@ -11,6 +11,7 @@
 #include "cluster_layer.hpp"
 #include "progress_bar.hpp"
 #include "scene_session.hpp"
+#include "stats_json.hpp"
 #include "temporal_pca_sequence.hpp"
 #include "tsr/cluster/cluster_window.hpp"
 #include "tsr/med/image_file.hpp"
@@ -48,7 +49,9 @@ struct LocalWindow {
 // like signal to the temporal step), and direct light, when --direct-spp
 // asks for more, continues the same progressive accumulation past --spp:
 // the indirect output is read at --spp, the direct one at --direct-spp.
-FrameRenderer localRenderer(const RenderOptions& options, const std::vector<LayerSpec>& layers, const SceneSession& session) {
+// `stats` adds up every render.
+FrameRenderer localRenderer(const RenderOptions& options, const std::vector<LayerSpec>& layers, const SceneSession& session,
+                            med::RenderStats& stats) {
   auto local = std::make_shared<LocalWindow>();
   registerBackends(local->registry);
   med::ViewportSettings settings{options.backend, session.imported.root, session.imported.background, options.parameters, true};
@@ -63,7 +66,7 @@ FrameRenderer localRenderer(const RenderOptions& options, const std::vector<Laye
   const std::int64_t seed = options.parameters.getInt("seed", 0, 0);
   const std::int64_t spp = options.parameters.getInt("spp", 16, 1, 1 << 20);
   const std::int64_t directSpp = std::max<std::int64_t>(spp, options.temporal.directSpp);
-  return [=](SceneSession& s, const sg::ChangeListPtr&, const med::View& view, int frame) {
+  return [=, &stats](SceneSession& s, const sg::ChangeListPtr&, const med::View& view, int frame) {
     med::Window& window = local->window;
     auto set = [&](const std::string& name, std::int64_t value) {
       for (const auto& layer : window.layers()) layer->setParameter(name, value);
@@ -72,12 +75,14 @@ FrameRenderer localRenderer(const RenderOptions& options, const std::vector<Laye
       set("seed", seed + frame);
       set("spp", spp);
     }
-    med::FrameBuffer image = window.render(s.replica, view, control);
+    med::FrameBuffer image, more;
+    addStats(stats, renderLayered(window, s.replica, view, image, control));
     if (temporal && directSpp > spp) {
       set("spp", directSpp);
       med::RenderControl direct = control;
       direct.outputs = std::vector<std::string>{"direct"};
-      image.outputs["direct"] = std::move(window.render(s.replica, view, direct).outputs["direct"]);
+      addStats(stats, renderLayered(window, s.replica, view, more, direct));
+      image.outputs["direct"] = std::move(more.outputs["direct"]);
     }
     return image;
   };
@@ -119,7 +124,8 @@ int renderSequence(const RenderOptions& options, const SequenceOptions& sequence
     throw std::invalid_argument("--temporal with --layers: each frame is rebuilt from the bottom layer's direct and "
                                 "indirect light, so the layers above it would be lost");
   // A cluster without layers renders the whole window on the nodes.
-  FrameRenderer render = sequence.cluster.empty() || !layers.empty() ? localRenderer(options, layers, session)
+  med::RenderStats stats;
+  FrameRenderer render = sequence.cluster.empty() || !layers.empty() ? localRenderer(options, layers, session, stats)
                                                                      : clusterRenderer(options, session);
   auto write = [&](int frame, const med::FrameBuffer& image) {
     std::string path = framePath(options.output, frame);
@@ -163,6 +169,7 @@ int renderSequence(const RenderOptions& options, const SequenceOptions& sequence
                 << renderSeconds << " s, pca " << pca->denoiseSeconds() << " s in " << pca->windows()
                 << " window(s), " << pca->meanModes() << " modes on average)\n";
   }
+  if (!options.statsJson.empty()) writeStatsJson(options, stats, sequence.frames);
   return 0;
 }
 

@@ -86,6 +86,21 @@ TEST_F(RenderCommand, UnknownOptionsAndImpossiblePairsAreOneErrorLine) {
   expectOneErrorLine(run("builtin:cornell --size 8x8 --nodes 127.0.0.1:1"), "--cluster");
   expectOneErrorLine(run("builtin:cornell --size 8x8 --frames 0 --output f.####.png"), "--frames");
   expectOneErrorLine(run("builtin:cornell --size 8x8 --fps 0 --frames 2 --output f.####.png"), "--fps");
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --cluster c.json --stats-json s.json"), "--stats-json with --cluster");
+}
+
+// --stats-json with --frames adds up the frames instead of being dropped.
+TEST_F(RenderCommand, SequenceStatsAddUpTheFrames) {
+  const std::string common = "builtin:animated --size 16x12 --spp 2 --max-depth 2 --seed 1 --threads 1 --quiet ";
+  ASSERT_EQ(run(common + "--output one.exr --stats-json one.json").status, 0);
+  const Outcome r = run(common + "--frames 3 --output f.####.exr --stats-json three.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto one = nlohmann::json::parse(slurp(dir / "one.json"));
+  const auto three = nlohmann::json::parse(slurp(dir / "three.json"));
+  EXPECT_EQ(three["frames"], 3);
+  EXPECT_EQ(three["spp"], 2);
+  // Frame 0 is the single render's image; frames 1 and 2 add at least their camera rays.
+  EXPECT_GE(three["rays"].get<std::uint64_t>(), one["rays"].get<std::uint64_t>() + 2u * 16u * 12u * 2u);
 }
 
 TEST_F(RenderCommand, SameSeedSameImage) {
