@@ -16,6 +16,10 @@ cluster::ClusterConfig clusterConfig(const RenderOptions& options) {
     for (const auto& [name, value] : options.parameters.all())
       if (options.explicitParameters.count(name) || !node.parameters.has(name)) node.parameters.set(name, value);
   config.validate();
+  for (const auto& node : config.nodes)
+    if (options.backendGiven && node.backend != options.backend)
+      throw std::invalid_argument("--backend " + options.backend + " with --cluster: the config's nodes render with " +
+                                  node.backend + " (set \"backend\" in " + sequence.cluster + ")");
   return config;
 }
 

@@ -39,7 +39,7 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
   std::int64_t spp = 16, maxDepth = 8, seed = 0, threads = 0;
   std::vector<std::string> params;
   app.add_option("scene", o.scene, "glTF file (.gltf/.glb) or builtin:NAME")->required();
-  app.add_option("--backend", o.backend, "embree, vulkan or coverage");
+  auto* backendOption = app.add_option("--backend", o.backend, "embree, vulkan or coverage (with --cluster: the config's)");
   app.add_option("--size", size, "image size WxH");
   auto* sppOption = app.add_option("--spp", spp, "samples per pixel")->check(CLI::Range(1, 1 << 20));
   auto* depthOption = app.add_option("--max-depth", maxDepth, "maximum path depth")->check(CLI::Range(0, 1024));
@@ -99,6 +99,7 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
     throw std::invalid_argument(e.what());
   }
   parseSize(size, o.width, o.height);
+  o.backendGiven = backendOption->count() > 0;
   checkTemporalOptions(o.temporal, static_cast<int>(spp));
   if (!o.statsJson.empty() && !o.sequence.cluster.empty())
     throw std::invalid_argument("--stats-json with --cluster: the nodes report no ray counts or conversion times to "

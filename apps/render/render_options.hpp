@@ -15,6 +15,7 @@ namespace tsr::app {
 struct RenderOptions {
   std::string scene;
   std::string backend = "embree";
+  bool backendGiven = false;  // named on the command line (a cluster config names its own)
   std::uint32_t width = 512, height = 512;
   std::string output = "render.png";
   std::vector<std::string> aovs;

@@ -87,6 +87,7 @@ TEST_F(RenderCommand, UnknownOptionsAndImpossiblePairsAreOneErrorLine) {
   expectOneErrorLine(run("builtin:cornell --size 8x8 --frames 0 --output f.####.png"), "--frames");
   expectOneErrorLine(run("builtin:cornell --size 8x8 --fps 0 --frames 2 --output f.####.png"), "--fps");
   expectOneErrorLine(run("builtin:cornell --size 8x8 --cluster c.json --stats-json s.json"), "--stats-json with --cluster");
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --fps 12"), "--frames");
 }
 
 // --stats-json with --frames adds up the frames instead of being dropped.

@@ -183,7 +183,7 @@ TEST(RenderCli, ALayeredWindowWithAClusterLayerEqualsTheLocalLayeredRender) {
     EXPECT_TRUE(bitwiseEqual(med::readImage((dir.path / ("frame." + std::string(f) + ".exr")).string()), local)) << f;
 }
 
-TEST(RenderCli, AClusterLayerNeedsExactlyOneLayerOfTheNodesBackEnd) {
+TEST(RenderCli, AClusterLayerNeedsExactlyOneLayerOfTheNodesBackEndAndNoOtherBackEnd) {
   TempDir dir;
   std::string config = writeConfig(dir.path, "cooperative", 1, R"(, "timeouts": {"connectMs": 200})");
   const fs::path err = dir.path / "err.txt";
@@ -197,6 +197,9 @@ TEST(RenderCli, AClusterLayerNeedsExactlyOneLayerOfTheNodesBackEnd) {
   };
   refused("vulkan", "no layer");
   refused("embree,embree", "several layers");
+  const int status = run("builtin:cornell --size 8x8 --backend vulkan --cluster " + config + " --output " +
+                         (dir.path / "x.exr").string() + " 2>" + err.string());
+  EXPECT_EQ(WEXITSTATUS(status), 2) << "the config names the nodes' back-end, not --backend";
 }
 
 TEST(RenderCli, FramesNeedAFrameNumberInTheOutputName) {
