@@ -80,16 +80,6 @@ TEST_F(RenderCommand, HelpListsEveryOptionTheReadmeNames) {
   }
 }
 
-TEST_F(RenderCommand, UnknownOptionsAndImpossiblePairsAreOneErrorLine) {
-  expectOneErrorLine(run("builtin:cornell --size 8x8 --bogus 3"), "--bogus");
-  expectOneErrorLine(run("builtin:cornell --size 8x8 --frames 2 --output f.png"), "####");
-  expectOneErrorLine(run("builtin:cornell --size 8x8 --nodes 127.0.0.1:1"), "--cluster");
-  expectOneErrorLine(run("builtin:cornell --size 8x8 --frames 0 --output f.####.png"), "--frames");
-  expectOneErrorLine(run("builtin:cornell --size 8x8 --fps 0 --frames 2 --output f.####.png"), "--fps");
-  expectOneErrorLine(run("builtin:cornell --size 8x8 --cluster c.json --stats-json s.json"), "--stats-json with --cluster");
-  expectOneErrorLine(run("builtin:cornell --size 8x8 --fps 12"), "--frames");
-}
-
 // --stats-json with --frames adds up the frames instead of being dropped.
 TEST_F(RenderCommand, SequenceStatsAddUpTheFrames) {
   const std::string common = "builtin:animated --size 16x12 --spp 2 --max-depth 2 --seed 1 --threads 1 --quiet ";
@@ -120,6 +110,15 @@ TEST_F(RenderCommand, BadInputIsOneErrorLine) {
   expectOneErrorLine(run("missing.gltf --size 8x8"), "missing.gltf");
   expectOneErrorLine(run("builtin:cornell --spp 0"), "--spp");
   expectOneErrorLine(run("builtin:cornell --size 8x8 --output x.nosuchformat"), "x.nosuchformat");
+  // Every option is declared: an unknown one is an error, and so is a pair
+  // that cannot combine.
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --bogus 3"), "--bogus");
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --frames 2 --output f.png"), "####");
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --nodes 127.0.0.1:1"), "--cluster");
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --frames 0 --output f.####.png"), "--frames");
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --fps 0 --frames 2 --output f.####.png"), "--fps");
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --cluster c.json --stats-json s.json"), "--stats-json with --cluster");
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --fps 12"), "--frames");
   expectOneErrorLine(run("builtin:cornell --size 8x8 --param spp=lots"), "parameter spp");
   expectOneErrorLine(run(""), "scene");
   // Refused before rendering, naming what the back-end offers; nothing written.
