@@ -27,16 +27,19 @@ ClusterViewport::ClusterViewport(med::ViewportSettings settings, std::shared_ptr
 }
 
 med::SceneAdapter::Update ClusterViewport::synchronize(const sg::Replica& replica) {
-  if (published_ == replica.version()) return med::SceneAdapter::Update::None;
+  // Published every time, even unchanged: that is when ClusterWindow
+  // retries offline nodes (those up to date are skipped).
+  const bool changed = published_ != replica.version();
   // ClusterWindow sends a delta only to nodes at its base version; the
   // others (and all of them when no single list bridges the gap) get a snapshot.
   sg::ChangeListPtr delta;
-  if (published_) {
+  if (published_ && changed) {
     auto since = replica.log().since(*published_);
     if (since.status == sg::ChangeLog::CatchUp::Deltas && since.lists.size() == 1) delta = since.lists.front();
   }
   window_->publish(replica.scene(), delta);
   published_ = replica.version();
+  if (!changed) return med::SceneAdapter::Update::None;
   return delta ? med::SceneAdapter::Update::Synced : med::SceneAdapter::Update::Converted;
 }
 
