@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "stats_json.hpp"
+
 namespace tsr::app {
 
 namespace {
@@ -75,23 +77,6 @@ std::vector<LayerSpec> parseLayers(const std::string& value) {
   return layers;
 }
 
-std::vector<LayerSpec> takeLayers(std::vector<std::string>& args) {
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--layers") {
-      if (i + 1 == args.size()) throw std::invalid_argument("--layers: expected BACKEND[:NODE],... or a .json file");
-      auto layers = parseLayers(args[i + 1]);
-      args.erase(args.begin() + static_cast<std::ptrdiff_t>(i), args.begin() + static_cast<std::ptrdiff_t>(i) + 2);
-      return layers;
-    }
-    if (args[i].rfind("--layers=", 0) == 0) {
-      auto layers = parseLayers(args[i].substr(9));
-      args.erase(args.begin() + static_cast<std::ptrdiff_t>(i));
-      return layers;
-    }
-  }
-  return {};
-}
-
 sg::ContainerId findLayerRoot(const sg::Scene& scene, const std::string& name) {
   sg::ContainerId found = sg::kNoContainer;
   for (auto id : scene.ids()) {
@@ -106,15 +91,19 @@ sg::ContainerId findLayerRoot(const sg::Scene& scene, const std::string& name) {
 
 med::Window makeLayeredWindow(const std::vector<LayerSpec>& layers, const sg::Scene& scene,
                               const med::ViewportSettings& defaults, const med::ViewportRegistry& registry,
-                              med::ContextPool& contexts) {
+                              med::ContextPool& contexts, const RemoteLayers& remote) {
   med::Window window;
-  if (layers.empty()) window.addLayer(registry.create(defaults, contexts));
+  auto add = [&](const med::ViewportSettings& settings) {
+    std::unique_ptr<med::Viewport> viewport = remote ? remote(settings) : nullptr;
+    window.addLayer(viewport ? std::move(viewport) : registry.create(settings, contexts));
+  };
+  if (layers.empty()) add(defaults);
   for (const LayerSpec& layer : layers) {
     med::ViewportSettings settings = defaults;
     settings.backend = layer.backend;
     if (!layer.root.empty()) settings.root = findLayerRoot(scene, layer.root);
     for (const auto& [name, value] : layer.parameters.all()) settings.parameters.set(name, value);
-    window.addLayer(registry.create(settings, contexts));
+    add(settings);
   }
   return window;
 }
@@ -137,12 +126,7 @@ med::RenderStats renderLayered(med::Window& window, const sg::Replica& replica, 
                                med::FrameBuffer& out, const med::RenderControl& control) {
   out = window.render(replica, view, control);
   med::RenderStats total;
-  for (const auto& s : window.lastStats()) {
-    total.rays += s.rays;
-    total.samples = std::max(total.samples, s.samples);
-    total.seconds += s.seconds;
-    total.syncSeconds += s.syncSeconds;
-  }
+  for (const auto& s : window.lastStats()) addStats(total, s);
   return total;
 }
 

@@ -17,6 +17,10 @@
 // per-layer parameters on top of the command line's:
 //   [{"backend": "embree", "root": "box", "parameters": {"spp": 64}},
 //    {"backend": "vulkan", "root": "markers", "parameters": {"msaa": 4}}]
+// With --cluster, the one layer of the config's back-end renders on the
+// nodes (cluster_layer.hpp), the others here.
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -35,18 +39,20 @@ struct LayerSpec {
 // Parses the --layers value (or reads the .json file it names); throws
 // std::invalid_argument with a one-line message.
 std::vector<LayerSpec> parseLayers(const std::string& value);
-// Takes "--layers VALUE" or "--layers=VALUE" out of `args`; empty when absent.
-std::vector<LayerSpec> takeLayers(std::vector<std::string>& args);
 
 // The Group or Transform named `name`; throws std::invalid_argument.
 sg::ContainerId findLayerRoot(const sg::Scene& scene, const std::string& name);
+
+// Makes the viewport of a layer rendered elsewhere (on a cluster's nodes);
+// null: the layer renders here, through the registry.
+using RemoteLayers = std::function<std::unique_ptr<med::Viewport>(const med::ViewportSettings&)>;
 
 // A window with one viewport per layer; `defaults` gives the background,
 // the scene's root and the command line's parameters. No layers: one layer
 // of defaults.backend over the whole scene.
 med::Window makeLayeredWindow(const std::vector<LayerSpec>& layers, const sg::Scene& scene,
                               const med::ViewportSettings& defaults, const med::ViewportRegistry& registry,
-                              med::ContextPool& contexts);
+                              med::ContextPool& contexts, const RemoteLayers& remote = {});
 // Throws std::invalid_argument naming what is offered when no layer of the
 // window can fill one of `outputs` (colour and depth always can).
 void checkOutputsOffered(const std::vector<std::string>& outputs, const med::Window& window);

@@ -1,19 +1,19 @@
 // tessera-render: renders a scene with the back-end a viewport names and
 // writes the image. Errors: one line on stderr, exit status 2.
-#include <chrono>
+#include <algorithm>
 #include <iostream>
 
-#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
 #include "backends.hpp"
+#include "cluster_layer.hpp"
 #include "coverage_output.hpp"
 #include "layers.hpp"
 #include "progress_bar.hpp"
 #include "render_options.hpp"
 #include "scene_session.hpp"
 #include "sequence_render.hpp"
-#include "tsr/med/file_replacement.hpp"
+#include "stats_json.hpp"
 #include "tsr/med/image_file.hpp"
 #include "tsr/med/viewport_registry.hpp"
 
@@ -22,13 +22,13 @@ namespace {
 int run(int argc, char** argv) {
   tsr::app::RenderOptions options;
   if (!tsr::app::parseRenderOptions(argc, argv, options)) return 0;
-  const auto layers = tsr::app::takeLayers(options.unparsed);  // --layers: a layered window (layers.hpp)
-  // --frames and --cluster render sequences, locally or on nodes (sequence_render.cpp).
-  auto sequence = tsr::app::parseSequenceOptions(options.unparsed);
-  if (sequence.active() && !layers.empty()) throw std::invalid_argument("--layers: not with --frames or --cluster (yet)");
-  if (options.temporal.active() && !sequence.framesGiven)
-    throw std::invalid_argument("--temporal " + options.temporal.method + " needs --frames N");
-  if (sequence.active()) return tsr::app::renderSequence(options, sequence);
+  // --layers: a layered window (layers.hpp)
+  const auto layers = options.layers.empty() ? std::vector<tsr::app::LayerSpec>{} : tsr::app::parseLayers(options.layers);
+  const auto& sequence = options.sequence;
+  // --frames renders sequences, locally or on nodes (sequence_render.cpp);
+  // so does --cluster without --layers (the whole window on the nodes).
+  if (sequence.framesGiven || (!sequence.cluster.empty() && layers.empty()))
+    return tsr::app::renderSequence(options, sequence, layers);
 
   tsr::app::SceneSession session;
   session.load(options.scene, options.import);
@@ -49,7 +49,9 @@ int run(int argc, char** argv) {
   tsr::med::RenderControl control;
   control.progress = [&](double f) { bar.update(f); };
   tsr::med::FrameBuffer image;
-  auto window = tsr::app::makeLayeredWindow(layers, session.replica.scene(), settings, registry, contexts);
+  tsr::app::RemoteLayers remote;  // --cluster with --layers: one layer on the nodes
+  if (!sequence.cluster.empty()) remote = tsr::app::clusterLayer(options, layers, registry, *camera);
+  auto window = tsr::app::makeLayeredWindow(layers, session.replica.scene(), settings, registry, contexts, remote);
   tsr::app::checkOutputsOffered(options.aovs, window);  // before the render, not after it
   control.outputs = options.aovs;
   if (tsr::app::isRankingPath(options.output)) control.outputs->push_back(tsr::app::kRankingOutput);
@@ -61,22 +63,7 @@ int run(int argc, char** argv) {
   else
     tsr::med::writeImage(options.output, image);
   for (const auto& aov : options.aovs) tsr::med::writeImage(tsr::app::aovPath(options.output, aov), image, aov);
-  if (!options.statsJson.empty()) {
-    // Like Embree's own benchmarks, rays per second count the time spent
-    // rendering, not the one-off conversion and acceleration-structure build.
-    const double renderSeconds = stats.seconds - stats.syncSeconds;
-    nlohmann::json j = {{"scene", options.scene},
-                        {"backend", options.backend},
-                        {"seconds", stats.seconds},
-                        {"sync_seconds", stats.syncSeconds},
-                        {"render_seconds", renderSeconds},
-                        {"spp", stats.samples},
-                        {"width", options.width},
-                        {"height", options.height},
-                        {"rays", stats.rays},
-                        {"rays_per_second", renderSeconds > 0 ? double(stats.rays) / renderSeconds : 0.0}};
-    tsr::med::replaceTextFile(options.statsJson, j.dump(2) + "\n");
-  }
+  if (!options.statsJson.empty()) tsr::app::writeStatsJson(options, stats, 1);
   if (!options.quiet)
     std::cout << "wrote " << options.output << " (" << options.width << "x" << options.height << ", "
               << stats.samples << " spp, " << stats.seconds << " s)\n";

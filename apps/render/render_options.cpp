@@ -44,12 +44,11 @@ std::string importLimitOption(const sg::ImportLimitError& e) {
 
 bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
   CLI::App app{"Render a scene with one of Tessera's back-ends"};
-  app.allow_extras();
   std::string size = "512x512";
   std::int64_t spp = 16, maxDepth = 8, seed = 0, threads = 0;
   std::vector<std::string> params;
   app.add_option("scene", o.scene, "glTF file (.gltf/.glb) or builtin:NAME")->required();
-  app.add_option("--backend", o.backend, "embree, vulkan or coverage");
+  auto* backendOption = app.add_option("--backend", o.backend, "embree, vulkan or coverage (with --cluster: the config's)");
   app.add_option("--size", size, "image size WxH");
   auto* sppOption = app.add_option("--spp", spp, "samples per pixel")->check(CLI::Range(1, 1 << 20));
   auto* depthOption = app.add_option("--max-depth", maxDepth, "maximum path depth")->check(CLI::Range(0, 1024));
@@ -96,6 +95,10 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
                                  ->check(CLI::IsMember({"bilateral", "separable"})),
                              "filterKernel");
   addTemporalOptions(app, o.temporal);
+  addSequenceOptions(app, o.sequence);
+  app.add_option("--layers", o.layers,
+                 "layered window, composited by depth: BACKEND[:NODE],... bottom first, or a .json file (see the "
+                 "README); with --cluster the layer of the config's back-end renders on the nodes");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -105,7 +108,13 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
     throw std::invalid_argument(e.what());
   }
   parseSize(size, o.width, o.height);
+  o.backendGiven = backendOption->count() > 0;
   checkTemporalOptions(o.temporal, static_cast<int>(spp));
+  if (!o.statsJson.empty() && !o.sequence.cluster.empty())
+    throw std::invalid_argument("--stats-json with --cluster: the nodes report no ray counts or conversion times to "
+                                "add up (measure a node with a local render)");
+  if (o.temporal.active() && !o.sequence.framesGiven)
+    throw std::invalid_argument("--temporal " + o.temporal.method + " needs --frames N");
   o.import.maxFileBytes = maxFileMb << 20;
   for (const auto& p : params) {
     auto [name, value] = med::Parameters::parse(p);
@@ -126,7 +135,6 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
     auto [unused, value] = med::Parameters::parse(name + "=" + option->as<std::string>());
     o.parameters.set(name, value);
   }
-  o.unparsed = app.remaining();
   return true;
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "sequence_options.hpp"
 #include "temporal_options.hpp"
 #include "tsr/med/parameters.hpp"
 #include "tsr/sg/import/importer.hpp"
@@ -14,6 +15,7 @@ namespace tsr::app {
 struct RenderOptions {
   std::string scene;
   std::string backend = "embree";
+  bool backendGiven = false;  // named on the command line (a cluster config names its own)
   std::uint32_t width = 512, height = 512;
   std::string output = "render.png";
   std::vector<std::string> aovs;
@@ -23,11 +25,14 @@ struct RenderOptions {
   bool quiet = false;
   sg::ImportOptions import;  // --max-file-mb, --max-elements
   TemporalOptions temporal;  // --temporal and its settings (with --frames)
-  std::vector<std::string> unparsed;  // arguments for other parts (cluster, frames)
+  SequenceOptions sequence;  // --frames, --fps, --cluster, --nodes, --token-file
+  std::string layers;        // --layers value (layers.hpp parses it); empty: one back-end
 };
 
-// Parses argv; throws std::invalid_argument with a one-line message for bad
-// input. Returns false when help was printed (exit 0).
+// Parses argv (every option is declared, so --help lists them all and an
+// unknown one is an error); throws std::invalid_argument with a one-line
+// message for bad input or options that cannot combine. Returns false when
+// help was printed (exit 0).
 bool parseRenderOptions(int argc, char** argv, RenderOptions& options);
 
 // "640x480" -> width, height; throws std::invalid_argument.

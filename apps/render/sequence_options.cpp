@@ -1,57 +1,20 @@
 #include "sequence_options.hpp"
 
-#include <cmath>
 #include <cstdio>
-#include <stdexcept>
 
 namespace tsr::app {
 
-namespace {
-double number(const std::string& option, const std::string& text) {
-  std::size_t used = 0;
-  double v = 0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || !std::isfinite(v)) throw std::invalid_argument(option + " " + text + ": not a number");
-  return v;
-}
-}  // namespace
-
-SequenceOptions parseSequenceOptions(const std::vector<std::string>& args) {
-  SequenceOptions o;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    std::string arg = args[i], value;
-    if (auto eq = arg.find('='); arg.rfind("--", 0) == 0 && eq != std::string::npos) {
-      value = arg.substr(eq + 1);
-      arg = arg.substr(0, eq);
-    } else if (arg == "--frames" || arg == "--fps" || arg == "--cluster" || arg == "--nodes" || arg == "--token-file") {
-      if (i + 1 >= args.size()) throw std::invalid_argument(arg + " needs a value");
-      value = args[++i];
-    }
-    if (arg == "--frames") {
-      double n = number(arg, value);
-      if (n < 1 || n > 1e6 || n != std::floor(n)) throw std::invalid_argument("--frames must be a whole number 1..1000000");
-      o.frames = static_cast<int>(n);
-      o.framesGiven = true;
-    } else if (arg == "--fps") {
-      o.fps = number(arg, value);
-      if (!(o.fps > 0)) throw std::invalid_argument("--fps must be positive");
-    } else if (arg == "--cluster") {
-      o.cluster = value;
-    } else if (arg == "--nodes") {
-      o.nodes = value;
-    } else if (arg == "--token-file") {
-      o.tokenFile = value;
-    } else {
-      throw std::invalid_argument("unknown argument " + args[i]);
-    }
-  }
-  if (o.cluster.empty() && (!o.nodes.empty() || !o.tokenFile.empty()))
-    throw std::invalid_argument("--nodes and --token-file need --cluster CONFIG.json");
-  return o;
+void addSequenceOptions(CLI::App& app, SequenceOptions& o) {
+  auto* g = app.add_option_group("Sequences and clusters", "animations, and rendering through tessera-node processes");
+  auto* frames = g->add_option("--frames", o.frames, "render N frames of the scene's animation (--output needs #### for the number)")
+      ->check(CLI::Range(1, 1000000))
+      ->each([&o](const std::string&) { o.framesGiven = true; });
+  g->add_option("--fps", o.fps, "frames per second of animation time (default 24)")
+      ->check(CLI::PositiveNumber)
+      ->needs(frames);
+  auto* cluster = g->add_option("--cluster", o.cluster, "render on the nodes a cluster config names (configs/*.json)");
+  g->add_option("--nodes", o.nodes, "HOST:PORT,... replacing the config's node addresses in order")->needs(cluster);
+  g->add_option("--token-file", o.tokenFile, "file holding the nodes' shared token")->needs(cluster);
 }
 
 std::string framePath(const std::string& pattern, int frame) {

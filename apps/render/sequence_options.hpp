@@ -1,12 +1,12 @@
 #pragma once
-// tessera-render's frame-sequence and cluster options, parsed from the
-// arguments the base options leave over:
+// tessera-render's frame-sequence and cluster options:
 //   --frames N [--fps F]         N frames of the scene's animation
 //   --cluster CONFIG.json        render through render nodes
 //   [--nodes HOST:PORT,...]      replace the config's node addresses in order
 //   [--token-file F]             the nodes' shared token
+#include <CLI/CLI.hpp>
+
 #include <string>
-#include <vector>
 
 namespace tsr::app {
 
@@ -20,8 +20,8 @@ struct SequenceOptions {
   bool active() const { return framesGiven || !cluster.empty(); }
 };
 
-// Throws std::invalid_argument for bad values or any argument left unknown.
-SequenceOptions parseSequenceOptions(const std::vector<std::string>& args);
+// Declares the options on `app` (so --help lists them), in their own group.
+void addSequenceOptions(CLI::App& app, SequenceOptions& options);
 
 // "out.####.png" + 7 -> "out.0007.png"; a name without #### is returned
 // as is (a single frame).

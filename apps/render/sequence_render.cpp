@@ -7,10 +7,12 @@
 #include <stdexcept>
 
 #include "backends.hpp"
+#include "cluster_connection.hpp"
+#include "cluster_layer.hpp"
 #include "progress_bar.hpp"
 #include "scene_session.hpp"
+#include "stats_json.hpp"
 #include "temporal_pca_sequence.hpp"
-#include "tsr/cluster/auth.hpp"
 #include "tsr/cluster/cluster_window.hpp"
 #include "tsr/med/image_file.hpp"
 #include "tsr/med/viewport_registry.hpp"
@@ -32,69 +34,69 @@ std::vector<std::string> frameOutputs(const RenderOptions& options) {
   return outputs;
 }
 
+// The window a local sequence renders through, with what it refers to
+// (declared first, so destroyed last).
+struct LocalWindow {
+  med::ViewportRegistry registry;
+  med::ContextPool contexts;
+  med::Window window;
+};
+
+// Every frame through a window of the --layers (none: --backend alone), a
+// layer of them on the --cluster nodes when one is given.
 // With --temporal, each frame gets its own seed (frame-by-frame renders
 // share one, so a static pixel's noise would repeat in every frame and look
 // like signal to the temporal step), and direct light, when --direct-spp
 // asks for more, continues the same progressive accumulation past --spp:
 // the indirect output is read at --spp, the direct one at --direct-spp.
-FrameRenderer localRenderer(const RenderOptions& options, const SceneSession& session) {
-  auto registry = std::make_shared<med::ViewportRegistry>();
-  registerBackends(*registry);
-  auto contexts = std::make_shared<med::ContextPool>();
+// `stats` adds up every render.
+FrameRenderer localRenderer(const RenderOptions& options, const std::vector<LayerSpec>& layers, const SceneSession& session,
+                            med::RenderStats& stats) {
+  auto local = std::make_shared<LocalWindow>();
+  registerBackends(local->registry);
   med::ViewportSettings settings{options.backend, session.imported.root, session.imported.background, options.parameters, true};
-  std::shared_ptr<med::Viewport> viewport = registry->create(settings, *contexts);
+  RemoteLayers remote;
+  if (!options.sequence.cluster.empty())
+    remote = clusterLayer(options, layers, local->registry, *session.source.find<sg::Camera>(session.camera));
+  local->window = makeLayeredWindow(layers, session.source, settings, local->registry, local->contexts, remote);
+  checkOutputsOffered(options.aovs, local->window);
   med::RenderControl control;
   control.outputs = frameOutputs(options);
   const bool temporal = options.temporal.active();
   const std::int64_t seed = options.parameters.getInt("seed", 0, 0);
   const std::int64_t spp = options.parameters.getInt("spp", 16, 1, 1 << 20);
   const std::int64_t directSpp = std::max<std::int64_t>(spp, options.temporal.directSpp);
-  return [=](SceneSession& s, const sg::ChangeListPtr&, const med::View& view, int frame) {
-    med::FrameBuffer image;
+  return [=, &stats](SceneSession& s, const sg::ChangeListPtr&, const med::View& view, int frame) {
+    med::Window& window = local->window;
+    auto set = [&](const std::string& name, std::int64_t value) {
+      for (const auto& layer : window.layers()) layer->setParameter(name, value);
+    };
     if (temporal) {
-      viewport->setParameter("seed", seed + frame);
-      viewport->setParameter("spp", spp);
+      set("seed", seed + frame);
+      set("spp", spp);
     }
-    viewport->render(s.replica, view, image, control);
+    med::FrameBuffer image, more;
+    addStats(stats, renderLayered(window, s.replica, view, image, control));
     if (temporal && directSpp > spp) {
-      viewport->setParameter("spp", directSpp);
-      med::FrameBuffer more;
+      set("spp", directSpp);
       med::RenderControl direct = control;
       direct.outputs = std::vector<std::string>{"direct"};
-      viewport->render(s.replica, view, more, direct);
+      addStats(stats, renderLayered(window, s.replica, view, more, direct));
       image.outputs["direct"] = std::move(more.outputs["direct"]);
     }
     return image;
   };
 }
 
-FrameRenderer clusterRenderer(const RenderOptions& options, const SequenceOptions& sequence, const SceneSession& session) {
-  cluster::ClusterConfig config = cluster::loadClusterConfig(sequence.cluster);
-  if (!sequence.nodes.empty()) config.replaceAddresses(cluster::parseNodeList(sequence.nodes));
-  // What the command line names beats the config; the config beats the
-  // command line's defaults.
-  for (auto& node : config.nodes)
-    for (const auto& [name, value] : options.parameters.all())
-      if (options.explicitParameters.count(name) || !node.parameters.has(name)) node.parameters.set(name, value);
-  config.validate();
-  cluster::ClientOptions client;
-  if (!sequence.tokenFile.empty()) client.token = cluster::readTokenFile(sequence.tokenFile);
-  client.outputs = frameOutputs(options);
+FrameRenderer clusterRenderer(const RenderOptions& options, const SceneSession& session) {
   if (options.temporal.active() && options.temporal.directSpp > options.parameters.getInt("spp", 16, 1, 1 << 20))
     throw std::invalid_argument("--direct-spp: with --cluster the nodes render direct and indirect light in the same "
                                 "paths, at --spp (raise --spp or leave --direct-spp out)");
-  // Whole-frame image steps of the nodes' back-end (pixel filtering) run
-  // here on the assembled frame, so tiles show no seams.
   auto registry = std::make_shared<med::ViewportRegistry>();
   registerBackends(*registry);
-  client.registry = registry.get();
-  auto window = std::shared_ptr<cluster::ClusterWindow>(new cluster::ClusterWindow(config, client),
-                                                        [registry](cluster::ClusterWindow* w) { delete w; });
+  std::shared_ptr<cluster::ClusterWindow> window{connectCluster(clusterConfig(options), options, frameOutputs(options), *registry).release(),
+                                                 [registry](cluster::ClusterWindow* w) { delete w; }};
   window->setContent(session.imported.root, session.imported.background);
-  std::size_t online = window->connect(config.timeouts.connect);
-  if (online == 0 && config.mode != cluster::ClusterMode::Tiled)
-    throw std::runtime_error("no cluster node could be reached: " + window->status().front().lastError);
-  if (!options.quiet) std::cout << online << " of " << config.nodes.size() << " nodes online\n";
   return [window](SceneSession& s, const sg::ChangeListPtr& delta, const med::View& view, int) {
     const auto* camera = s.source.find<sg::Camera>(s.camera);
     window->setEyes(camera->eyeSeparation(), camera->zeroParallaxDistance());
@@ -112,13 +114,19 @@ int renderPhotonSequence(const RenderOptions&, const SequenceOptions&) {
                               "this build); use --temporal pca");
 }
 
-int renderSequence(const RenderOptions& options, const SequenceOptions& sequence) {
+int renderSequence(const RenderOptions& options, const SequenceOptions& sequence, const std::vector<LayerSpec>& layers) {
   if (sequence.frames > 1 && options.output.find("####") == std::string::npos)
     throw std::invalid_argument("--frames " + std::to_string(sequence.frames) + " needs #### in --output for the frame number");
   if (options.temporal.method == "photons") return renderPhotonSequence(options, sequence);
   SceneSession session;
   session.load(options.scene, options.import);
-  FrameRenderer render = sequence.cluster.empty() ? localRenderer(options, session) : clusterRenderer(options, sequence, session);
+  if (options.temporal.active() && !layers.empty())
+    throw std::invalid_argument("--temporal with --layers: each frame is rebuilt from the bottom layer's direct and "
+                                "indirect light, so the layers above it would be lost");
+  // A cluster without layers renders the whole window on the nodes.
+  med::RenderStats stats;
+  FrameRenderer render = sequence.cluster.empty() || !layers.empty() ? localRenderer(options, layers, session, stats)
+                                                                     : clusterRenderer(options, session);
   auto write = [&](int frame, const med::FrameBuffer& image) {
     std::string path = framePath(options.output, frame);
     med::writeImage(path, image);
@@ -161,6 +169,7 @@ int renderSequence(const RenderOptions& options, const SequenceOptions& sequence
                 << renderSeconds << " s, pca " << pca->denoiseSeconds() << " s in " << pca->windows()
                 << " window(s), " << pca->meanModes() << " modes on average)\n";
   }
+  if (!options.statsJson.empty()) writeStatsJson(options, stats, sequence.frames);
   return 0;
 }
 

@@ -1,12 +1,15 @@
 #pragma once
 // Renders a frame sequence of the scene's animation (one frame when no
 // --frames was given), locally or through a ClusterWindow, writing one
-// image per frame. Returns the process exit status.
+// image per frame; with `layers`, each frame is a layered window
+// (layers.hpp), a layer of it on the cluster with --cluster. Returns the
+// process exit status.
+#include "layers.hpp"
 #include "render_options.hpp"
 #include "sequence_options.hpp"
 
 namespace tsr::app {
 
-int renderSequence(const RenderOptions& options, const SequenceOptions& sequence);
+int renderSequence(const RenderOptions& options, const SequenceOptions& sequence, const std::vector<LayerSpec>& layers);
 
 }  // namespace tsr::app

@@ -3,6 +3,7 @@
 #include <fstream>
 
 #include "command_runner.hpp"
+#include "two_root_scene.hpp"
 #include "layers.hpp"
 #include "tsr/med/image_file.hpp"
 
@@ -23,19 +24,6 @@ TEST(Layers, ParsesBackEndsWithOptionalRoots) {
     EXPECT_THROW(tsr::app::parseLayers(bad), std::invalid_argument) << bad;
 }
 
-TEST(Layers, TakesTheOptionOutOfTheRemainingArguments) {
-  std::vector<std::string> args{"--frames", "3", "--layers", "embree,vulkan:m", "--x"};
-  auto layers = tsr::app::takeLayers(args);
-  EXPECT_EQ(layers.size(), 2u);
-  EXPECT_EQ(args, (std::vector<std::string>{"--frames", "3", "--x"}));
-  args = {"--layers=vulkan"};
-  EXPECT_EQ(tsr::app::takeLayers(args).size(), 1u);
-  EXPECT_TRUE(args.empty());
-  EXPECT_TRUE(tsr::app::takeLayers(args).empty());
-  args = {"--layers"};
-  EXPECT_THROW(tsr::app::takeLayers(args), std::invalid_argument);
-}
-
 TEST(Layers, RootsAreUniquelyNamedGroupsOrTransforms) {
   tsr::sg::Scene scene;
   auto& markers = scene.create<tsr::sg::Group>("markers");
@@ -53,43 +41,8 @@ class LayersCommand : public tsr::test::CommandTest {
   Outcome run(const std::string& args) { return runBinary(TSR_RENDER_PATH, args); }
 };
 
-// A glTF scene with two roots: "box" (a wall and, nearer, an occluder over
-// its left half) and "markers" (a green quad between them, across the
-// middle). Every surface is emissive, so the path tracer needs no light.
-std::string twoRootScene() {
-  const float positions[] = {-0.5f, -0.5f, 0, 0.5f, -0.5f, 0, 0.5f, 0.5f, 0, -0.5f, 0.5f, 0};
-  const std::uint16_t indices[] = {0, 1, 2, 0, 2, 3};
-  std::string bytes(reinterpret_cast<const char*>(positions), sizeof positions);
-  bytes.append(reinterpret_cast<const char*>(indices), sizeof indices);
-  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string base64;
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    std::uint32_t v = std::uint32_t(std::uint8_t(bytes[i])) << 16;
-    if (i + 1 < bytes.size()) v |= std::uint32_t(std::uint8_t(bytes[i + 1])) << 8;
-    if (i + 2 < bytes.size()) v |= std::uint8_t(bytes[i + 2]);
-    for (std::size_t k = 0; k < 4; ++k) base64 += i + k <= bytes.size() ? table[(v >> (18 - 6 * k)) & 63] : '=';
-  }
-  return R"({"asset": {"version": "2.0"},
-  "buffers": [{"byteLength": 60, "uri": "data:application/octet-stream;base64,)" + base64 + R"("}],
-  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 12}],
-  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-0.5, -0.5, 0], "max": [0.5, 0.5, 0]},
-                {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}],
-  "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1]}, "emissiveFactor": [0.3, 0.3, 0.3]},
-                {"pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1]}, "emissiveFactor": [0.8, 0.1, 0.1]},
-                {"pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1]}, "emissiveFactor": [0.1, 1.0, 0.1]}],
-  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]},
-             {"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 1}]},
-             {"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 2}]}],
-  "nodes": [{"name": "box", "children": [1, 2]},
-            {"name": "wall", "mesh": 0, "scale": [4, 4, 1]},
-            {"name": "occluder", "mesh": 1, "translation": [-1, 0, 0.5], "scale": [2, 4, 1]},
-            {"name": "markers", "children": [4]},
-            {"name": "marker", "mesh": 2, "translation": [0, 0, 0.25]}],
-  "scenes": [{"nodes": [0, 3]}], "scene": 0})";
-}
-
 TEST_F(LayersCommand, RasterisedMarkerOverPathTracedBoxIsOccludedWhereTheBoxIsNearer) {
-  std::ofstream(dir / "two_roots.gltf") << twoRootScene();
+  std::ofstream(dir / "two_roots.gltf") << tsr::test::twoRootScene();
   const std::string common = "two_roots.gltf --size 64x64 --spp 2 --max-depth 2 --seed 1 --quiet ";
   Outcome r = run(common + "--layers embree:box --output traced.exr");
   ASSERT_EQ(r.status, 0) << r.err;
@@ -127,12 +80,31 @@ TEST_F(LayersCommand, RasterisedMarkerOverPathTracedBoxIsOccludedWhereTheBoxIsNe
   EXPECT_GT(same, traced.colour.size() * 9 / 10) << "the same layers, MSAA only on the marker's edges";
 }
 
+TEST_F(LayersCommand, EveryFrameOfASequenceIsALayeredWindow) {
+  std::ofstream(dir / "two_roots.gltf") << tsr::test::twoRootScene();
+  const std::string common = "two_roots.gltf --size 32x32 --spp 2 --max-depth 2 --seed 1 --quiet --layers embree:box,vulkan:markers ";
+  Outcome r = run(common + "--output single.exr --aov depth");
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run(common + "--frames 2 --output seq.####.exr --aov depth");
+  ASSERT_EQ(r.status, 0) << r.err;
+  // The scene has no animation: both frames are the single layered image.
+  const auto single = tsr::med::readImage((dir / "single.exr").string());
+  const auto singleDepth = tsr::med::readImage((dir / "single.depth.exr").string());
+  for (const char* frame : {"0000", "0001"}) {
+    const auto image = tsr::med::readImage((dir / ("seq." + std::string(frame) + ".exr")).string());
+    EXPECT_EQ(image.colour, single.colour) << frame;
+    EXPECT_EQ(tsr::med::readImage((dir / ("seq." + std::string(frame) + ".depth.exr")).string()).colour, singleDepth.colour);
+  }
+  expectOneErrorLine(run(common + "--frames 2 --temporal pca --output t.####.exr"), "--temporal with --layers");
+}
+
 TEST_F(LayersCommand, BadLayersAreOneErrorLine) {
   expectOneErrorLine(run("builtin:cornell --size 8x8 --layers \"vulkan:nosuch\""), "nosuch");
   expectOneErrorLine(run("builtin:cornell --size 8x8 --layers embree,nosuch"), "unknown back-end 'nosuch'");
   expectOneErrorLine(run("builtin:cornell --size 8x8 --layers missing.json"), "missing.json");
   std::ofstream(dir / "bad.json") << R"([{"root": "x"}])";
   expectOneErrorLine(run("builtin:cornell --size 8x8 --layers bad.json"), "backend");
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --layers"), "--layers");
 }
 
 }  // namespace

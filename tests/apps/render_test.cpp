@@ -1,5 +1,7 @@
 // tessera-render as a user runs it: images, statistics, and one-line errors.
 #include <fstream>
+#include <regex>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -46,6 +48,52 @@ TEST_F(RenderCommand, RendersTheCornellBoxWithStatsAndOutputs) {
   EXPECT_NEAR(stats["rays_per_second"].get<double>(), stats["rays"].get<double>() / render, 1e-6 * stats["rays_per_second"].get<double>());
 }
 
+// The options the README's Commands section shows for tessera-render (a
+// command's continuation lines start with '['; text after '#' is comment).
+std::set<std::string> readmeRenderOptions() {
+  std::ifstream in(std::string(TSR_SOURCE_DIR) + "/README.md");
+  std::set<std::string> options;
+  bool inCommands = false, renderLine = false;
+  const std::regex option("--[a-z][a-z0-9-]*");
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("## ", 0) == 0) inCommands = line == "## Commands";
+    if (!inCommands || line.rfind("    ", 0) != 0) continue;
+    line = line.substr(0, line.find('#'));
+    const auto text = line.find_first_not_of(' ');
+    if (text == std::string::npos) continue;
+    if (line[text] != '[') renderLine = line.compare(text, 15, "tessera-render ") == 0;
+    if (!renderLine) continue;
+    for (std::sregex_iterator m(line.begin(), line.end(), option), end; m != end; ++m) options.insert(m->str());
+  }
+  return options;
+}
+
+TEST_F(RenderCommand, HelpListsEveryOptionTheReadmeNames) {
+  const auto options = readmeRenderOptions();
+  for (const char* expected : {"--cluster", "--nodes", "--token-file", "--layers", "--frames", "--fps", "--temporal"})
+    ASSERT_TRUE(options.count(expected)) << "the README parser lost " << expected;
+  const Outcome r = run("--help");
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const auto& name : options) {
+    const std::regex listed("(^|[\\s,])" + name + "([\\s=,]|$)");
+    EXPECT_TRUE(std::regex_search(r.out, listed)) << name << " is missing from --help";
+  }
+}
+
+// --stats-json with --frames adds up the frames instead of being dropped.
+TEST_F(RenderCommand, SequenceStatsAddUpTheFrames) {
+  const std::string common = "builtin:animated --size 16x12 --spp 2 --max-depth 2 --seed 1 --threads 1 --quiet ";
+  ASSERT_EQ(run(common + "--output one.exr --stats-json one.json").status, 0);
+  const Outcome r = run(common + "--frames 3 --output f.####.exr --stats-json three.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto one = nlohmann::json::parse(slurp(dir / "one.json"));
+  const auto three = nlohmann::json::parse(slurp(dir / "three.json"));
+  EXPECT_EQ(three["frames"], 3);
+  EXPECT_EQ(three["spp"], 2);
+  // Frame 0 is the single render's image; frames 1 and 2 add at least their camera rays.
+  EXPECT_GE(three["rays"].get<std::uint64_t>(), one["rays"].get<std::uint64_t>() + 2u * 16u * 12u * 2u);
+}
+
 TEST_F(RenderCommand, SameSeedSameImage) {
   ASSERT_EQ(run("builtin:cornell --size 24x24 --spp 2 --seed 3 --threads 1 --output a.exr").status, 0);
   ASSERT_EQ(run("builtin:cornell --size 24x24 --spp 2 --seed 3 --threads 2 --output b.exr").status, 0);
@@ -62,6 +110,15 @@ TEST_F(RenderCommand, BadInputIsOneErrorLine) {
   expectOneErrorLine(run("missing.gltf --size 8x8"), "missing.gltf");
   expectOneErrorLine(run("builtin:cornell --spp 0"), "--spp");
   expectOneErrorLine(run("builtin:cornell --size 8x8 --output x.nosuchformat"), "x.nosuchformat");
+  // Every option is declared: an unknown one is an error, and so is a pair
+  // that cannot combine.
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --bogus 3"), "--bogus");
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --frames 2 --output f.png"), "####");
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --nodes 127.0.0.1:1"), "--cluster");
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --frames 0 --output f.####.png"), "--frames");
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --fps 0 --frames 2 --output f.####.png"), "--fps");
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --cluster c.json --stats-json s.json"), "--stats-json with --cluster");
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --fps 12"), "--frames");
   expectOneErrorLine(run("builtin:cornell --size 8x8 --param spp=lots"), "parameter spp");
   expectOneErrorLine(run(""), "scene");
   // Refused before rendering, naming what the back-end offers; nothing written.

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "cluster_test_util.hpp"
+#include "two_root_scene.hpp"
 #include "tsr/med/image_file.hpp"
 
 namespace tsr::cluster::test {
@@ -141,6 +142,64 @@ TEST(RenderCli, AnimatedFramesThroughAWallEqualLocalFrames) {
   // The animation moves: frames differ from each other.
   EXPECT_FALSE(bitwiseEqual(med::readImage((dir.path / "local.0000.exr").string()),
                             med::readImage((dir.path / "local.0002.exr").string())));
+}
+
+// --layers with --cluster: the path-traced layer renders cooperatively on
+// two nodes, the rasterised marker layer here; the composite equals the
+// one of a local layered render bit for bit (the cooperative layer is
+// bitwise a local render, and the rest is the same code on the same input).
+TEST(RenderCli, ALayeredWindowWithAClusterLayerEqualsTheLocalLayeredRender) {
+#ifndef TSR_HAVE_VULKAN_LAYERS
+  GTEST_SKIP() << "no Vulkan back-end in this build";
+#endif
+  TempDir dir;
+  TokenFile token("cli token");
+  auto nodes = startNodes(2, {"--token-file", token.path()});
+  const std::string scene = (dir.path / "two_roots.gltf").string();
+  std::ofstream(scene) << tsr::test::twoRootScene();
+  std::string config = writeConfig(dir.path, "cooperative", 2, R"(, "cooperative": {"tileSize": 16})");
+  const std::string layers = " --layers embree:box,vulkan:markers --aov depth";
+  ASSERT_EQ(run(scene + kLocal + layers + " --cluster " + config + " --nodes " + addresses(nodes) + " --token-file " +
+                token.path() + " --output " + (dir.path / "cluster.exr").string()),
+            0);
+  ASSERT_EQ(run(scene + kLocal + layers + " --output " + (dir.path / "local.exr").string()), 0);
+  ASSERT_EQ(run(scene + kLocal + " --layers embree:box --output " + (dir.path / "traced.exr").string()), 0);
+  const auto cluster = med::readImage((dir.path / "cluster.exr").string());
+  const auto local = med::readImage((dir.path / "local.exr").string());
+  EXPECT_TRUE(bitwiseEqual(cluster, local));
+  EXPECT_TRUE(bitwiseEqual(med::readImage((dir.path / "cluster.depth.exr").string()),
+                           med::readImage((dir.path / "local.depth.exr").string())));
+  // Not just the path-traced layer: the marker is composited in.
+  const auto traced = med::readImage((dir.path / "traced.exr").string());
+  std::size_t marker = 0;
+  for (std::size_t i = 0; i < cluster.colour.size(); ++i)
+    marker += cluster.colour[i] != traced.colour[i] && cluster.colour[i].g > 0.9f && cluster.colour[i].r < 0.2f;
+  EXPECT_GT(marker, 10u) << "the right half of the marker shows, not just stray edge pixels";
+  // A sequence of such windows: the scene does not move, every frame is the same image.
+  ASSERT_EQ(run(scene + kLocal + layers + " --cluster " + config + " --nodes " + addresses(nodes) + " --token-file " +
+                token.path() + " --frames 2 --output " + (dir.path / "frame.####.exr").string()),
+            0);
+  for (const char* f : {"0000", "0001"})
+    EXPECT_TRUE(bitwiseEqual(med::readImage((dir.path / ("frame." + std::string(f) + ".exr")).string()), local)) << f;
+}
+
+TEST(RenderCli, AClusterLayerNeedsExactlyOneLayerOfTheNodesBackEndAndNoOtherBackEnd) {
+  TempDir dir;
+  std::string config = writeConfig(dir.path, "cooperative", 1, R"(, "timeouts": {"connectMs": 200})");
+  const fs::path err = dir.path / "err.txt";
+  auto refused = [&](const std::string& layers, const std::string& why) {
+    const int status = run("builtin:cornell --size 8x8 --layers " + layers + " --cluster " + config + " --output " +
+                           (dir.path / "x.exr").string() + " 2>" + err.string());
+    EXPECT_EQ(WEXITSTATUS(status), 2) << layers;
+    std::ifstream in(err);
+    std::string message((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(message.find(why), std::string::npos) << message;
+  };
+  refused("vulkan", "no layer");
+  refused("embree,embree", "several layers");
+  const int status = run("builtin:cornell --size 8x8 --backend vulkan --cluster " + config + " --output " +
+                         (dir.path / "x.exr").string() + " 2>" + err.string());
+  EXPECT_EQ(WEXITSTATUS(status), 2) << "the config names the nodes' back-end, not --backend";
 }
 
 TEST(RenderCli, FramesNeedAFrameNumberInTheOutputName) {

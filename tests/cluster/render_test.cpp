@@ -9,6 +9,7 @@
 #include "cluster_test_util.hpp"
 #include "raw_client.hpp"
 #include "tsr/cluster/handshake.hpp"
+#include "tsr/cluster/cluster_viewport.hpp"
 #include "tsr/cluster/cluster_window.hpp"
 #include "tsr/cluster/wall_layout.hpp"
 #include "tsr/med/compositing.hpp"
@@ -94,6 +95,30 @@ TEST(ClusterRender, AnimatedCooperativeFramesStayEqualWhileTilesMove) {
     ClusterFrame f = app.window->render(app.view());
     EXPECT_TRUE(bitwiseEqual(f.image, app.reference(app.view()))) << "frame " << frame;
   }
+}
+
+// A ClusterViewport is a layer like a local viewport: it catches the nodes
+// up from the replica (a snapshot, then single deltas) and renders regions.
+TEST(ClusterRender, ClusterViewportFollowsTheReplicaAndRendersRegions) {
+  auto nodes = startNodes(2);
+  ClusterConfig c = configFor(ClusterMode::Cooperative, nodes, pathTracer(1));
+  c.cooperative.tileSize = 16;
+  Session app("builtin:animated", c, pathTracer(1));
+  ASSERT_EQ(app.connect(), 2u);
+  ClusterViewport viewport({"embree", app.s.imported.root, app.s.imported.background, pathTracer(1), true},
+                           std::move(app.window), {});
+  for (int frame = 0; frame < 3; ++frame) {
+    app.s.pose(frame * 6);
+    app.replica.apply(app.s.scene.commit());
+    med::FrameBuffer image;
+    const auto stats = viewport.render(app.replica, app.view(), image);
+    EXPECT_EQ(stats.update, frame == 0 ? med::SceneAdapter::Update::Converted : med::SceneAdapter::Update::Synced);
+    EXPECT_TRUE(bitwiseEqual(image, app.reference(app.view()))) << "frame " << frame;
+  }
+  const med::View tile = app.view().cropped({8, 16, 40, 48});
+  med::FrameBuffer part;
+  EXPECT_EQ(viewport.render(app.replica, tile, part).update, med::SceneAdapter::Update::None);
+  EXPECT_TRUE(bitwiseEqual(part, app.reference(tile)));
 }
 
 TEST(ClusterRender, WallTwoByTwoStitchedEqualsLocal) {
