@@ -93,6 +93,7 @@ struct Tracer {
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene.traversable, &ctx, &rh);
+    if (scene.movingTraversable) rtcIntersect1(scene.movingTraversable, &ctx, &rh);  // keeps the nearer hit
     ++rays;
     return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
   }
@@ -107,6 +108,7 @@ struct Tracer {
     RTCRay ray;
     setRay(ray, org, dir, tfar);
     rtcOccluded1(scene.traversable, &ctx, &ray);
+    if (scene.movingTraversable && ray.tfar >= 0.0f) rtcOccluded1(scene.movingTraversable, &ctx, &ray);
     ++rays;
     return ray.tfar < 0.0f;
   }
