@@ -122,11 +122,21 @@ void unplace(SceneState& s, InstanceRecord& inst, std::uint32_t id) {
       --s.topInstances;
       s.topDirty = true;
       break;
-    case Level::Moving:
-      rtcDetachGeometry(s.moving, topId(id));
-      --s.movingInstances;
+    case Level::Moving: {
+      // Keep the moving level's ids dense: the last one takes the freed id.
+      const std::uint32_t last = std::uint32_t(s.movingIds.size() - 1);
+      rtcDetachGeometry(s.moving, inst.movingId);
+      if (inst.movingId != last) {
+        InstanceRecord& other = *s.instances[s.movingIds[last]];
+        rtcDetachGeometry(s.moving, last);
+        rtcAttachGeometryByID(s.moving, other.geometry, inst.movingId);
+        other.movingId = inst.movingId;
+        s.movingIds[inst.movingId] = s.movingIds[last];
+      }
+      s.movingIds.pop_back();
       s.movingDirty = true;
       break;
+    }
   }
   inst.level = Level::None;
 }
@@ -410,14 +420,18 @@ RTCGeometry worldGeometry(RTCDevice device, const MeshData& d, const glm::mat4& 
   return g;
 }
 
-// Commit step 1: a changed mesh changes the bounds of every instance of it.
+// Commit step 1: a changed mesh changes the bounds of every instance of it,
+// which therefore join the moving level.
 void spreadMeshEdits(SceneState& s) {
   for (std::uint32_t id : s.pending.meshes) {
     if (!s.meshes[id]) continue;
     MeshRecord& m = *s.meshes[id];
     m.dirty = false;
     m.sceneStale = true;
-    for (std::uint32_t u : m.users) mark(s, u, true);
+    for (std::uint32_t u : m.users) {
+      s.instances[u]->moved = true;
+      mark(s, u, true);
+    }
   }
 }
 
@@ -452,8 +466,9 @@ std::vector<std::uint32_t> placeInstances(SceneState& s) {
         break;
       case Level::Moving:
         if (inst.level != Level::Moving) {
-          rtcAttachGeometryByID(s.moving, inst.geometry, topId(id));
-          ++s.movingInstances;
+          inst.movingId = std::uint32_t(s.movingIds.size());
+          rtcAttachGeometryByID(s.moving, inst.geometry, inst.movingId);
+          s.movingIds.push_back(id);
         }
         s.movingDirty = true;
         instanced.push_back(id);
@@ -492,7 +507,7 @@ void commitLevels(SceneState& s, const std::vector<std::uint32_t>& instanced) {
   }
   // Without instances there is no top level to cross.
   s.traversable = s.topInstances > 0 ? s.top : s.merged;
-  s.movingTraversable = s.movingInstances > 0 ? s.moving : nullptr;
+  s.movingTraversable = s.movingIds.empty() ? nullptr : s.moving;
   s.device->check("commit");
 }
 

@@ -39,7 +39,7 @@ enum class Level : std::uint8_t {
   None,    // not placed yet
   Merged,  // copied to world space into the merged static scene
   Top,     // instanced in the top level, which rarely changes
-  Moving,  // instanced in the small moving level: its transform was edited
+  Moving,  // instanced in the small moving level: its bounds changed since it was added
 };
 
 struct InstanceRecord {
@@ -49,7 +49,8 @@ struct InstanceRecord {
   RTCGeometry geometry = nullptr;      // the instance, for the top or moving level
   RTCGeometry flatGeometry = nullptr;  // or its triangles in world space, in the merged scene
   Level level = Level::None;
-  bool moved = false;      // transform edited since it was added: it belongs to the moving level
+  std::uint32_t movingId = 0;  // its id in the moving level, while there
+  bool moved = false;      // transform or mesh edited since it was added: it belongs to the moving level
   bool placeDirty = true;  // bounds or level may have changed since the last commit
   bool viewDirty = false;  // listed in Pending::instances
 
@@ -63,7 +64,7 @@ struct InstanceRecord {
 };
 
 // Ids in the top-level scene: the merged static scene is instanced at 0,
-// instance i at i + 1 (in the top or the moving level). In the merged scene, instance i's triangles have
+// instance i at i + 1 (hits in the moving level are reported so too). In the merged scene, instance i's triangles have
 // geometry id i.
 inline constexpr std::uint32_t kMergedTopId = 0;
 inline std::uint32_t topId(std::uint32_t instance) { return instance + 1; }
@@ -125,9 +126,9 @@ struct SceneState {
   std::shared_ptr<Device> device;
   // Instances that never moved: rebuilt when instances come or go. Ids as topId().
   RTCScene top = nullptr;
-  // Instances whose transform was edited: few, so a transform edit rebuilds
-  // a small level instead of the top over every instance (Embree 3 has one
-  // instancing level, so the two are traced one after the other).
+  // Instances whose transform or mesh was edited: few, so such an edit
+  // rebuilds a small level instead of the top over every instance (Embree 3
+  // has one instancing level, so the two are traced one after the other).
   RTCScene moving = nullptr;
   // Static meshes used by exactly one instance are merged, in world space,
   // into one high-quality acceleration structure: no instance traversal and
@@ -139,7 +140,10 @@ struct SceneState {
   // is instanced (no top level to cross), else the top level.
   RTCScene traversable = nullptr;
   RTCScene movingTraversable = nullptr;  // the moving level if it holds any instance
-  std::uint32_t topInstances = 0, movingInstances = 0;
+  std::uint32_t topInstances = 0;
+  // Moving-level geometry id -> instance id. Embree's commit walks every id
+  // below the highest, so the moving level's ids are dense, not topId().
+  std::vector<std::uint32_t> movingIds;
   bool topDirty = true, movingDirty = false;
   std::uint64_t uid = 0;
   std::uint64_t version = 1;

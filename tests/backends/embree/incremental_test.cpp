@@ -145,6 +145,42 @@ TEST(EmbreeIncremental, MovedInstanceOutlivesTheOtherUser) {
       start);
 }
 
+// Three instances of an animated mesh stay instanced: when the first of two
+// moved ones goes, the other takes its id in the moving level.
+TEST(EmbreeIncremental, MovingLevelKeepsTheOthersWhenOneGoes) {
+  auto at = [](float x) { return glm::translate(glm::mat4(1.0f), glm::vec3(x, 0.5f, 0)); };
+  auto build3 = [&](Scene& scene, bool withFirst, float secondX) {
+    MeshData ball = uvSphere({0, 0, 0}, 0.4f, 100, true);
+    ball.usage = MeshUsage::Animated;
+    const MeshId mesh = scene.addMesh(ball);
+    Material grey;
+    grey.baseColor = glm::vec3(0.6f);
+    const MaterialId m = scene.addMaterial(grey);
+    std::vector<InstanceId> ids;
+    if (withFirst) ids.push_back(scene.addInstance(mesh, m, at(-1.0f)));
+    ids.push_back(scene.addInstance(mesh, m, at(secondX)));
+    scene.addInstance(mesh, m, at(1.0f));
+    scene.setEnvironment(Environment::constant(glm::vec3(0.5f)));
+    return ids;
+  };
+  Scene scene(sharedDevice());
+  auto ids = build3(scene, true, 0.0f);
+  FrameBuffer frame(32, 32);
+  renderInto(scene, frame);
+  scene.setInstanceTransform(ids[0], at(-1.2f));
+  scene.setInstanceTransform(ids[1], at(0.2f));
+  renderInto(scene, frame);
+  scene.removeInstance(ids[0]);
+  FrameBuffer afterEdit(32, 32);
+  renderInto(scene, afterEdit);
+
+  Scene fresh(sharedDevice());
+  build3(fresh, false, 0.2f);
+  FrameBuffer direct(32, 32);
+  renderInto(fresh, direct);
+  EXPECT_TRUE(identical(afterEdit, direct));
+}
+
 TEST(EmbreeIncremental, Material) {
   State s;
   s.boxColour = {0.9f, 0.1f, 0.1f};
