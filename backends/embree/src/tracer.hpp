@@ -93,14 +93,15 @@ struct Tracer {
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene.traversable, &ctx, &rh);
-    if (scene.movingTraversable) intersectMoving(ctx, rh);
+    if (scene.movingTraversable) [[unlikely]]
+      intersectMoving(ctx, rh);
     ++rays;
     return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
   }
 
   // The moving level, traced up to the nearest hit so far: a hit there is
   // nearer and is renamed to the instance's top-level id.
-  void intersectMoving(RTCIntersectContext& ctx, RTCRayHit& rh) const {
+  [[gnu::noinline]] void intersectMoving(RTCIntersectContext& ctx, RTCRayHit& rh) const {
     const RTCHit nearest = rh.hit;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene.movingTraversable, &ctx, &rh);
@@ -120,7 +121,8 @@ struct Tracer {
     RTCRay ray;
     setRay(ray, org, dir, tfar);
     rtcOccluded1(scene.traversable, &ctx, &ray);
-    if (scene.movingTraversable && ray.tfar >= 0.0f) rtcOccluded1(scene.movingTraversable, &ctx, &ray);
+    if (scene.movingTraversable && ray.tfar >= 0.0f) [[unlikely]]
+      rtcOccluded1(scene.movingTraversable, &ctx, &ray);
     ++rays;
     return ray.tfar < 0.0f;
   }
