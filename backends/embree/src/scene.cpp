@@ -92,19 +92,87 @@ void fillGeometry(MeshRecord& m, RTCDevice device) {
   rtcSetSceneFlags(m.scene, animated ? RTC_SCENE_FLAG_DYNAMIC : RTC_SCENE_FLAG_NONE);
   rtcSetSceneBuildQuality(m.scene, animated ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_HIGH);
   rtcAttachGeometryByID(m.scene, m.geometry, 0);
-  m.dirty = true;
+  m.sceneStale = true;
+}
+
+// Lists an instance for commit() to refresh, without an edit of its own.
+void mark(SceneState& s, std::uint32_t id, bool placed) {
+  if (!s.instances[id]) {
+    s.pending.instances.push_back(id);  // removed: its view is cleared
+    return;
+  }
+  InstanceRecord& inst = *s.instances[id];
+  inst.placeDirty |= placed;
+  if (!inst.viewDirty) s.pending.instances.push_back(id);
+  inst.viewDirty = true;
+}
+
+// Takes the instance out of whatever level holds it.
+void unplace(SceneState& s, InstanceRecord& inst, std::uint32_t id) {
+  switch (inst.level) {
+    case Level::None: break;
+    case Level::Merged:
+      rtcDetachGeometry(s.merged, id);
+      rtcReleaseGeometry(inst.flatGeometry);
+      inst.flatGeometry = nullptr;
+      s.mergedDirty = true;
+      break;
+    case Level::Top:
+      rtcDetachGeometry(s.top, topId(id));
+      --s.topInstances;
+      s.topDirty = true;
+      break;
+    case Level::Moving: {
+      // Keep the moving level's ids dense: the last one takes the freed id.
+      const std::uint32_t last = std::uint32_t(s.movingIds.size() - 1);
+      rtcDetachGeometry(s.moving, inst.movingId);
+      if (inst.movingId != last) {
+        InstanceRecord& other = *s.instances[s.movingIds[last]];
+        rtcDetachGeometry(s.moving, last);
+        rtcAttachGeometryByID(s.moving, other.geometry, inst.movingId);
+        other.movingId = inst.movingId;
+        s.movingIds[inst.movingId] = s.movingIds[last];
+      }
+      s.movingIds.pop_back();
+      s.movingDirty = true;
+      break;
+    }
+  }
+  inst.level = Level::None;
+}
+
+// The instances of a mesh whose user count crossed one: the merged copy is
+// only for meshes used once.
+void replaceUsers(SceneState& s, const MeshRecord& m) {
+  if (m.users.size() > 2) return;
+  for (std::uint32_t u : m.users) mark(s, u, true);
 }
 
 }  // namespace
+
+void SceneState::edit(const Edit& e) {
+  ++version;
+  if (e.instance != kNoId) mark(*this, e.instance, e.placed);
+  if (e.mesh != kNoId && meshes[e.mesh] && !meshes[e.mesh]->dirty) {
+    meshes[e.mesh]->dirty = true;
+    pending.meshes.push_back(e.mesh);
+  }
+  pending.materials |= e.materials;
+  pending.lights |= e.lights;
+  pending.emitters |= e.emitters;
+}
 
 Scene::Scene(std::shared_ptr<Device> device) : state_(std::make_unique<SceneState>()) {
   if (!device) throw Error("scene needs a device");
   state_->device = std::move(device);
   state_->uid = nextSceneUid.fetch_add(1);
   state_->top = rtcNewScene(state_->device->handle());
-  // The top level changes on every transform edit: favour fast rebuilds.
+  // Instances come and go rarely, but a whole scene arrives at once: favour fast builds.
   rtcSetSceneFlags(state_->top, RTC_SCENE_FLAG_DYNAMIC);
   rtcSetSceneBuildQuality(state_->top, RTC_BUILD_QUALITY_LOW);
+  state_->moving = rtcNewScene(state_->device->handle());
+  rtcSetSceneFlags(state_->moving, RTC_SCENE_FLAG_DYNAMIC);
+  rtcSetSceneBuildQuality(state_->moving, RTC_BUILD_QUALITY_LOW);
   state_->merged = rtcNewScene(state_->device->handle());
   rtcSetSceneBuildQuality(state_->merged, RTC_BUILD_QUALITY_HIGH);
   state_->mergedInstance = rtcNewGeometry(state_->device->handle(), RTC_GEOMETRY_TYPE_INSTANCE);
@@ -122,6 +190,7 @@ Scene::~Scene() {
   state_->meshes.clear();
   rtcReleaseGeometry(state_->mergedInstance);
   rtcReleaseScene(state_->merged);
+  rtcReleaseScene(state_->moving);
   rtcReleaseScene(state_->top);
 }
 
@@ -133,7 +202,7 @@ MeshId Scene::addMesh(MeshData data) {
   fillGeometry(*m, state_->device->handle());
   state_->device->check("addMesh");
   state_->meshes.push_back(std::move(m));
-  ++state_->version;
+  state_->edit({});
   return MeshId(state_->meshes.size() - 1);
 }
 
@@ -156,9 +225,7 @@ void Scene::updateMeshVertices(MeshId id, std::uint32_t first, std::span<const g
   auto* v = static_cast<glm::vec3*>(rtcGetGeometryBufferData(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0));
   std::memcpy(v + first, positions.data(), positions.size() * sizeof(glm::vec3));
   rtcUpdateGeometryBuffer(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0);
-  m.dirty = true;
-  state_->topDirty = state_->derivedDirty = true;
-  ++state_->version;
+  state_->edit({.mesh = index(id)});
 }
 
 void Scene::setMeshData(MeshId id, MeshData data) {
@@ -170,17 +237,17 @@ void Scene::setMeshData(MeshId id, MeshData data) {
   m.data = std::move(data);
   fillGeometry(m, state_->device->handle());
   state_->device->check("setMeshData");
-  state_->topDirty = state_->derivedDirty = true;
-  ++state_->version;
+  state_->edit({.mesh = index(id)});
 }
 
 void Scene::removeMesh(MeshId id) {
   auto& m = lookup(state_->meshes, id, "mesh");
-  if (m->users > 0) {
-    throw Error("mesh " + std::to_string(index(id)) + " is still used by " + std::to_string(m->users) + " instance(s)");
+  if (!m->users.empty()) {
+    throw Error("mesh " + std::to_string(index(id)) + " is still used by " + std::to_string(m->users.size()) +
+                " instance(s)");
   }
   m.reset();
-  ++state_->version;
+  state_->edit({});
 }
 
 InstanceId Scene::addInstance(MeshId mesh, MaterialId material, const glm::mat4& transform) {
@@ -195,13 +262,12 @@ InstanceId Scene::addInstance(MeshId mesh, MaterialId material, const glm::mat4&
   rtcSetGeometryInstancedScene(inst->geometry, m.scene);
   rtcSetGeometryTimeStepCount(inst->geometry, 1);
   rtcSetGeometryTransform(inst->geometry, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &transform[0][0]);
-  auto id = std::uint32_t(state_->instances.size());
-  rtcAttachGeometryByID(state_->top, inst->geometry, topId(id));
   state_->device->check("addInstance");
-  ++m.users;
+  auto id = std::uint32_t(state_->instances.size());
   state_->instances.push_back(std::move(inst));
-  state_->topDirty = state_->derivedDirty = true;
-  ++state_->version;
+  m.users.push_back(id);
+  state_->edit({.instance = id, .placed = true});
+  replaceUsers(*state_, m);
   return InstanceId(id);
 }
 
@@ -209,32 +275,26 @@ void Scene::setInstanceTransform(InstanceId id, const glm::mat4& transform) {
   auto& inst = *lookup(state_->instances, id, "instance");
   validateTransform(transform);
   inst.transform = transform;
+  inst.moved = true;
   rtcSetGeometryTransform(inst.geometry, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &transform[0][0]);
-  inst.dirty = true;
-  state_->topDirty = state_->derivedDirty = true;
-  ++state_->version;
+  state_->edit({.instance = index(id), .placed = true});
 }
 
 void Scene::setInstanceMaterial(InstanceId id, MaterialId material) {
   auto& inst = *lookup(state_->instances, id, "instance");
   lookup(state_->materials, material, "material");
   inst.material = material;
-  state_->derivedDirty = true;
-  ++state_->version;
+  state_->edit({.instance = index(id)});
 }
 
 void Scene::removeInstance(InstanceId id) {
   auto& inst = lookup(state_->instances, id, "instance");
-  if (inst->flat) {
-    rtcDetachGeometry(state_->merged, index(id));
-    state_->mergedDirty = true;
-  } else {
-    rtcDetachGeometry(state_->top, topId(index(id)));
-  }
-  --state_->meshes[index(inst->mesh)]->users;
+  unplace(*state_, *inst, index(id));
+  auto& m = *state_->meshes[index(inst->mesh)];
+  std::erase(m.users, index(id));
   inst.reset();
-  state_->topDirty = state_->derivedDirty = true;
-  ++state_->version;
+  state_->edit({.instance = index(id)});
+  replaceUsers(*state_, m);
 }
 
 static void validateMaterial(const Material& m, const SceneState& s) {
@@ -252,17 +312,16 @@ static void validateMaterial(const Material& m, const SceneState& s) {
 MaterialId Scene::addMaterial(const Material& material) {
   validateMaterial(material, *state_);
   state_->materials.emplace_back(material);
-  state_->derivedDirty = true;
-  ++state_->version;
+  state_->edit({.materials = true});
   return MaterialId(state_->materials.size() - 1);
 }
 
 void Scene::setMaterial(MaterialId id, const Material& material) {
   auto& slot = lookup(state_->materials, id, "material");
   validateMaterial(material, *state_);
+  const bool emission = slot->isEmissive() || material.isEmissive();
   slot = material;
-  state_->derivedDirty = true;
-  ++state_->version;
+  state_->edit({.materials = true, .emitters = emission});
 }
 
 void Scene::removeMaterial(MaterialId id) {
@@ -271,13 +330,12 @@ void Scene::removeMaterial(MaterialId id) {
     if (inst && inst->material == id) throw Error("material " + std::to_string(index(id)) + " is still in use");
   }
   slot.reset();
-  state_->derivedDirty = true;
-  ++state_->version;
+  state_->edit({.materials = true});
 }
 
 TextureId Scene::addTexture(Texture texture) {
   state_->textures.push_back(std::make_shared<const Texture>(std::move(texture)));
-  ++state_->version;
+  state_->edit({});
   return TextureId(state_->textures.size() - 1);
 }
 
@@ -289,7 +347,7 @@ void Scene::removeTexture(TextureId id) {
     }
   }
   slot.reset();
-  ++state_->version;
+  state_->edit({});
 }
 
 static void validateLight(const Light& light) {
@@ -322,8 +380,7 @@ static void validateLight(const Light& light) {
 LightId Scene::addLight(const Light& light) {
   validateLight(light);
   state_->lights.emplace_back(light);
-  state_->derivedDirty = true;
-  ++state_->version;
+  state_->edit({.lights = true});
   return LightId(state_->lights.size() - 1);
 }
 
@@ -331,19 +388,17 @@ void Scene::setLight(LightId id, const Light& light) {
   auto& slot = lookup(state_->lights, id, "light");
   validateLight(light);
   slot = light;
-  state_->derivedDirty = true;
-  ++state_->version;
+  state_->edit({.lights = true});
 }
 
 void Scene::removeLight(LightId id) {
   lookup(state_->lights, id, "light").reset();
-  state_->derivedDirty = true;
-  ++state_->version;
+  state_->edit({.lights = true});
 }
 
 void Scene::setEnvironment(Environment environment) {
   state_->environment = std::move(environment);
-  ++state_->version;
+  state_->edit({});
 }
 
 namespace {
@@ -364,113 +419,154 @@ RTCGeometry worldGeometry(RTCDevice device, const MeshData& d, const glm::mat4& 
   rtcCommitGeometry(g);
   return g;
 }
-}  // namespace
 
-void Scene::commit() {
-  SceneState& s = *state_;
-  // Which instances go into the merged scene: those of static meshes nobody
-  // else uses. A mesh's change or a transform edit rebuilds its copy there.
-  for (std::size_t i = 0; i < s.instances.size(); ++i) {
-    if (!s.instances[i]) continue;
-    InstanceRecord& inst = *s.instances[i];
-    const MeshRecord& m = *s.meshes[index(inst.mesh)];
-    bool wantFlat = m.data.usage == MeshUsage::Static && m.users == 1;
-    bool rebuild = wantFlat && (inst.dirty || m.dirty || !inst.flat);
-    auto id = std::uint32_t(i);
-    if (inst.flat && (!wantFlat || rebuild)) {
-      rtcDetachGeometry(s.merged, id);
-      rtcReleaseGeometry(inst.flatGeometry);
-      inst.flatGeometry = nullptr;
-      s.mergedDirty = true;
+// Commit step 1: a changed mesh changes the bounds of every instance of it,
+// which therefore join the moving level.
+void spreadMeshEdits(SceneState& s) {
+  for (std::uint32_t id : s.pending.meshes) {
+    if (!s.meshes[id]) continue;
+    MeshRecord& m = *s.meshes[id];
+    m.dirty = false;
+    m.sceneStale = true;
+    for (std::uint32_t u : m.users) {
+      s.instances[u]->moved = true;
+      mark(s, u, true);
     }
-    if (rebuild) {
-      if (!inst.flat) {
-        rtcDetachGeometry(s.top, topId(id));
-        s.topDirty = true;
-      }
-      inst.flatGeometry = worldGeometry(s.device->handle(), m.data, inst.transform);
-      rtcAttachGeometryByID(s.merged, inst.flatGeometry, id);
-      s.mergedDirty = true;
-      inst.dirty = false;
-    } else if (inst.flat && !wantFlat) {
-      rtcAttachGeometryByID(s.top, inst.geometry, topId(id));
-      inst.dirty = true;
-      s.topDirty = true;
-    }
-    inst.flat = wantFlat;
   }
+}
+
+// Commit step 2: each changed instance goes where it belongs: static meshes
+// nobody else uses into the merged scene, instances that moved into the
+// moving level, the rest into the top level. Returns the instanced ones.
+std::vector<std::uint32_t> placeInstances(SceneState& s) {
+  std::vector<std::uint32_t> instanced;
+  for (std::uint32_t id : s.pending.instances) {
+    if (!s.instances[id] || !s.instances[id]->placeDirty) continue;
+    InstanceRecord& inst = *s.instances[id];
+    const MeshRecord& m = *s.meshes[index(inst.mesh)];
+    inst.placeDirty = false;
+    const Level want = m.data.usage == MeshUsage::Static && m.users.size() == 1 ? Level::Merged
+                       : inst.moved                                              ? Level::Moving
+                                                                                 : Level::Top;
+    // A merged copy is in world space: any change rebuilds it.
+    if (inst.level != want || want == Level::Merged) unplace(s, inst, id);
+    switch (want) {
+      case Level::Merged:
+        inst.flatGeometry = worldGeometry(s.device->handle(), m.data, inst.transform);
+        rtcAttachGeometryByID(s.merged, inst.flatGeometry, id);
+        s.mergedDirty = true;
+        break;
+      case Level::Top:
+        if (inst.level != Level::Top) {
+          rtcAttachGeometryByID(s.top, inst.geometry, topId(id));
+          ++s.topInstances;
+        }
+        s.topDirty = true;
+        instanced.push_back(id);
+        break;
+      case Level::Moving:
+        if (inst.level != Level::Moving) {
+          inst.movingId = std::uint32_t(s.movingIds.size());
+          rtcAttachGeometryByID(s.moving, inst.geometry, inst.movingId);
+          s.movingIds.push_back(id);
+        }
+        s.movingDirty = true;
+        instanced.push_back(id);
+        break;
+      case Level::None: break;
+    }
+    inst.level = want;
+  }
+  return instanced;
+}
+
+// Commit step 3: the BVH of each mesh an instance traverses, then the
+// instances (whose bounds come from it), then the levels over them.
+void commitLevels(SceneState& s, const std::vector<std::uint32_t>& instanced) {
+  for (std::uint32_t id : instanced) {
+    MeshRecord& m = *s.meshes[index(s.instances[id]->mesh)];
+    if (!m.sceneStale) continue;
+    rtcCommitGeometry(m.geometry);
+    rtcCommitScene(m.scene);
+    m.sceneStale = false;
+  }
+  for (std::uint32_t id : instanced) rtcCommitGeometry(s.instances[id]->geometry);
   if (s.mergedDirty) {
     rtcCommitScene(s.merged);
     rtcCommitGeometry(s.mergedInstance);
     s.mergedDirty = false;
     s.topDirty = true;
   }
-  for (auto& m : s.meshes) {
-    if (!m) continue;
-    if (m->dirty) {
-      // Instances of a changed mesh have new bounds.
-      for (auto& inst : s.instances)
-        if (inst && !inst->flat && s.meshes[index(inst->mesh)].get() == m.get()) {
-          inst->dirty = true;
-          s.topDirty = true;
-        }
-      m->sceneStale = true;
-      m->dirty = false;
-    }
-    // A mesh only merged needs no BVH of its own (until it is instanced).
-    if (!m->sceneStale) continue;
-    bool instanced = false;
-    for (const auto& inst : s.instances)
-      if (inst && !inst->flat && s.meshes[index(inst->mesh)].get() == m.get()) instanced = true;
-    if (!instanced) continue;
-    rtcCommitGeometry(m->geometry);
-    rtcCommitScene(m->scene);
-    m->sceneStale = false;
-  }
-  for (auto& inst : s.instances) {
-    if (!inst || !inst->dirty || inst->flat) continue;
-    rtcCommitGeometry(inst->geometry);
-    inst->dirty = false;
-  }
   if (s.topDirty) {
     rtcCommitScene(s.top);
     s.topDirty = false;
   }
-  bool anyInstanced = false;
-  for (const auto& inst : s.instances) anyInstanced |= inst && !inst->flat;
-  s.traversable = anyInstanced ? s.top : s.merged;
+  if (s.movingDirty) {
+    rtcCommitScene(s.moving);
+    s.movingDirty = false;
+  }
+  // Without instances there is no top level to cross.
+  s.traversable = s.topInstances > 0 ? s.top : s.merged;
+  s.movingTraversable = s.movingIds.empty() ? nullptr : s.moving;
   s.device->check("commit");
-  if (!s.derivedDirty) return;
+}
 
-  s.resolved.assign(s.materials.size(), {});
+// Commit step 4: materials as the renderer reads them. Returns whether they
+// moved in memory (every view points into them).
+bool refreshMaterials(SceneState& s) {
+  const ResolvedMaterial* before = s.resolved.data();
+  s.resolved.resize(s.materials.size());
   for (std::size_t i = 0; i < s.materials.size(); ++i) {
-    if (!s.materials[i]) continue;
     auto& r = s.resolved[i];
+    r = {};
+    if (!s.materials[i]) continue;
     r.material = *s.materials[i];
     if (r.material.baseColorTexture) r.baseColorTexture = s.textures[index(*r.material.baseColorTexture)].get();
     if (r.material.emissionTexture) r.emissionTexture = s.textures[index(*r.material.emissionTexture)].get();
   }
+  return s.resolved.data() != before;
+}
 
-  s.activeLights.clear();
-  for (const auto& l : s.lights)
-    if (l) s.activeLights.push_back(*l);
+InstanceView viewOf(const SceneState& s, const InstanceRecord& inst) {
+  InstanceView v;
+  v.mesh = &s.meshes[index(inst.mesh)]->data;
+  v.transform = inst.transform;
+  v.normalTransform = glm::transpose(glm::inverse(glm::mat3(inst.transform)));
+  v.faceNormalTransform = glm::determinant(glm::mat3(inst.transform)) * v.normalTransform;
+  v.material = &s.resolved[index(inst.material)];
+  return v;
+}
 
-  // Emitter distribution in instance-id order, so a scene rebuilt from
-  // scratch in the same order samples identically.
-  s.views.assign(s.instances.size(), {});
+// Commit step 5: the views of the changed instances (of all if `all`). An
+// emitter that changes, appears or goes rebuilds the emitter distribution.
+void refreshViews(SceneState& s, bool all) {
+  s.views.resize(s.instances.size());
+  auto refresh = [&](std::uint32_t id) {
+    InstanceView& v = s.views[id];
+    bool emissive = v.emissiveOffset != kNotEmissive;
+    v = s.instances[id] ? viewOf(s, *s.instances[id]) : InstanceView{};
+    emissive |= v.material && v.material->material.isEmissive();
+    s.pending.emitters |= emissive;
+  };
+  if (all) {
+    for (std::uint32_t id = 0; id < s.instances.size(); ++id) refresh(id);
+  } else {
+    for (std::uint32_t id : s.pending.instances) refresh(id);
+  }
+  for (std::uint32_t id : s.pending.instances)
+    if (s.instances[id]) s.instances[id]->viewDirty = false;
+}
+
+// Commit step 6: emissive triangles in world space, in instance-id order, so
+// a scene rebuilt from scratch in the same order samples identically.
+void rebuildEmitters(SceneState& s) {
   s.emissiveRanges.clear();
   s.emitterTriangles.clear();
   std::vector<float> power;
-  for (std::size_t i = 0; i < s.instances.size(); ++i) {
-    if (!s.instances[i]) continue;
-    const auto& inst = *s.instances[i];
+  for (std::size_t i = 0; i < s.views.size(); ++i) {
     auto& v = s.views[i];
-    v.mesh = &s.meshes[index(inst.mesh)]->data;
-    v.transform = inst.transform;
-    v.normalTransform = glm::transpose(glm::inverse(glm::mat3(inst.transform)));
-    v.faceNormalTransform = glm::determinant(glm::mat3(inst.transform)) * v.normalTransform;
-    v.material = &s.resolved[index(inst.material)];
-    if (!v.material->material.isEmissive()) continue;
+    v.emissiveOffset = kNotEmissive;
+    if (!v.mesh || !v.material->material.isEmissive()) continue;
     v.emissiveOffset = std::uint32_t(power.size());
     s.emissiveRanges.push_back({v.emissiveOffset, std::uint32_t(i)});
     float lum = luminance(v.material->material.emission);
@@ -489,8 +585,23 @@ void Scene::commit() {
     }
   }
   s.emitters = Distribution1D(power);
-  s.derivedDirty = false;
-  spdlog::debug("tsr::embree: committed scene {} v{} ({} emissive triangles)", s.uid, s.version, power.size());
+  spdlog::debug("tsr::embree: scene {} v{} has {} emissive triangles", s.uid, s.version, power.size());
+}
+}  // namespace
+
+void Scene::commit() {
+  SceneState& s = *state_;
+  spreadMeshEdits(s);
+  commitLevels(s, placeInstances(s));
+  const bool allViews = s.pending.materials && refreshMaterials(s);
+  if (s.pending.lights) {
+    s.activeLights.clear();
+    for (const auto& l : s.lights)
+      if (l) s.activeLights.push_back(*l);
+  }
+  refreshViews(s, allViews);
+  if (s.pending.emitters) rebuildEmitters(s);
+  s.pending = {};
 }
 
 std::uint64_t Scene::version() const { return state_->version; }

@@ -21,9 +21,9 @@ struct MeshRecord {
   MeshData data;
   RTCScene scene = nullptr;
   RTCGeometry geometry = nullptr;
-  std::uint32_t users = 0;  // instances referencing this mesh
-  bool dirty = true;         // data changed since the last commit
-  bool sceneStale = true;    // its own BVH not built for the current data
+  std::vector<std::uint32_t> users;  // ids of the instances referencing this mesh
+  bool dirty = false;                // data changed since the last commit (listed in Pending)
+  bool sceneStale = true;            // its own BVH not built for the current data
 
   MeshRecord() = default;
   MeshRecord(const MeshRecord&) = delete;
@@ -34,14 +34,25 @@ struct MeshRecord {
   }
 };
 
+// Where an instance's triangles are traced from.
+enum class Level : std::uint8_t {
+  None,    // not placed yet
+  Merged,  // copied to world space into the merged static scene
+  Top,     // instanced in the top level, which rarely changes
+  Moving,  // instanced in the small moving level: its bounds changed since it was added
+};
+
 struct InstanceRecord {
   MeshId mesh{};
   MaterialId material{};
   glm::mat4 transform{1.0f};
-  RTCGeometry geometry = nullptr;      // the instance in the top level
+  RTCGeometry geometry = nullptr;      // the instance, for the top or moving level
   RTCGeometry flatGeometry = nullptr;  // or its triangles in world space, in the merged scene
-  bool flat = false;
-  bool dirty = true;
+  Level level = Level::None;
+  std::uint32_t movingId = 0;  // its id in the moving level, while there
+  bool moved = false;      // transform or mesh edited since it was added: it belongs to the moving level
+  bool placeDirty = true;  // bounds or level may have changed since the last commit
+  bool viewDirty = false;  // listed in Pending::instances
 
   InstanceRecord() = default;
   InstanceRecord(const InstanceRecord&) = delete;
@@ -53,7 +64,7 @@ struct InstanceRecord {
 };
 
 // Ids in the top-level scene: the merged static scene is instanced at 0,
-// instance i at i + 1. In the merged scene, instance i's triangles have
+// instance i at i + 1 (hits in the moving level are reported so too). In the merged scene, instance i's triangles have
 // geometry id i.
 inline constexpr std::uint32_t kMergedTopId = 0;
 inline std::uint32_t topId(std::uint32_t instance) { return instance + 1; }
@@ -90,9 +101,35 @@ struct EmissiveRange {
   std::uint32_t instance;
 };
 
+inline constexpr std::uint32_t kNoId = std::numeric_limits<std::uint32_t>::max();
+
+// What one edit invalidates, for SceneState::edit().
+struct Edit {
+  std::uint32_t instance = kNoId;  // whose view to refresh
+  bool placed = false;             // ... and whose bounds or level may change
+  std::uint32_t mesh = kNoId;      // whose data changed: its BVH and its instances' bounds
+  bool materials = false;          // resolved materials
+  bool lights = false;
+  bool emitters = false;           // emission changed: the emitter distribution
+};
+
+// Edits since the last commit, which refreshes exactly these.
+struct Pending {
+  std::vector<std::uint32_t> instances;
+  std::vector<std::uint32_t> meshes;
+  bool materials = false;
+  bool lights = false;
+  bool emitters = false;
+};
+
 struct SceneState {
   std::shared_ptr<Device> device;
+  // Instances that never moved: rebuilt when instances come or go. Ids as topId().
   RTCScene top = nullptr;
+  // Instances whose transform or mesh was edited: few, so such an edit
+  // rebuilds a small level instead of the top over every instance (Embree 3
+  // has one instancing level, so the two are traced one after the other).
+  RTCScene moving = nullptr;
   // Static meshes used by exactly one instance are merged, in world space,
   // into one high-quality acceleration structure: no instance traversal and
   // one BVH over interleaved objects. Shared or animated meshes stay instanced.
@@ -102,8 +139,19 @@ struct SceneState {
   // What rays traverse, set at commit: the merged scene itself when nothing
   // is instanced (no top level to cross), else the top level.
   RTCScene traversable = nullptr;
+  RTCScene movingTraversable = nullptr;  // the moving level if it holds any instance
+  std::uint32_t topInstances = 0;
+  // Moving-level geometry id -> instance id. Embree's commit walks every id
+  // below the highest, so the moving level's ids are dense, not topId().
+  std::vector<std::uint32_t> movingIds;
+  bool topDirty = true, movingDirty = false;
   std::uint64_t uid = 0;
   std::uint64_t version = 1;
+
+  // The one way to edit: restarts accumulation (bumps the version) and
+  // records what commit() must refresh.
+  void edit(const Edit& e);
+  Pending pending;
 
   std::vector<std::unique_ptr<MeshRecord>> meshes;
   std::vector<std::unique_ptr<InstanceRecord>> instances;
@@ -111,9 +159,6 @@ struct SceneState {
   std::vector<std::shared_ptr<const Texture>> textures;
   std::vector<std::optional<Light>> lights;
   Environment environment;
-
-  bool topDirty = true;
-  bool derivedDirty = true;
 
   // Derived at commit().
   std::vector<ResolvedMaterial> resolved;

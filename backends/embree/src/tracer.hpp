@@ -93,8 +93,22 @@ struct Tracer {
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene.traversable, &ctx, &rh);
+    if (scene.movingTraversable) [[unlikely]]
+      intersectMoving(ctx, rh);
     ++rays;
     return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+  }
+
+  // The moving level, traced up to the nearest hit so far: a hit there is
+  // nearer and is renamed to the instance's top-level id.
+  [[gnu::noinline]] void intersectMoving(RTCIntersectContext& ctx, RTCRayHit& rh) const {
+    const RTCHit nearest = rh.hit;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene.movingTraversable, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+      rh.hit = nearest;
+    else
+      rh.hit.instID[0] = topId(scene.movingIds[rh.hit.instID[0]]);
   }
 
   bool occluded(const glm::vec3& org, const glm::vec3& dir, float tfar) {
@@ -107,6 +121,8 @@ struct Tracer {
     RTCRay ray;
     setRay(ray, org, dir, tfar);
     rtcOccluded1(scene.traversable, &ctx, &ray);
+    if (scene.movingTraversable && ray.tfar >= 0.0f) [[unlikely]]
+      rtcOccluded1(scene.movingTraversable, &ctx, &ray);
     ++rays;
     return ray.tfar < 0.0f;
   }

@@ -14,6 +14,7 @@ struct State {
   float waveHeight = 0.0f;  // vertices of the animated sheet
   bool withExtraBall = false;
   bool withBox = true;
+  float lampEmission = 6.0f;
 };
 
 MeshData sheet(float wave) {
@@ -35,7 +36,7 @@ MeshData sheet(float wave) {
 
 struct Built {
   MeshId sheet, ball;
-  MaterialId boxMaterial, ballMaterial;
+  MaterialId boxMaterial, ballMaterial, lampMaterial;
   InstanceId ball1, box, extra;
 };
 
@@ -58,10 +59,11 @@ Built build(Scene& scene, const State& s) {
     b.box = scene.addInstance(scene.addMesh(uvSphere({0.8f, 0.4f, 0.3f}, 0.4f, 100, false)), b.boxMaterial, glm::mat4(1.0f));
   }
   Material lamp;
-  lamp.emission = glm::vec3(6.0f);
+  lamp.emission = glm::vec3(s.lampEmission);
   lamp.baseColor = glm::vec3(0.0f);
+  b.lampMaterial = scene.addMaterial(lamp);
   scene.addInstance(scene.addMesh(quad({-0.5f, 2.5f, -0.5f}, {0.5f, 2.5f, -0.5f}, {0.5f, 2.5f, 0.5f}, {-0.5f, 2.5f, 0.5f})),
-                    scene.addMaterial(lamp), glm::mat4(1.0f));
+                    b.lampMaterial, glm::mat4(1.0f));
   if (s.withExtraBall) {
     b.extra = scene.addInstance(b.ball, b.boxMaterial, glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, 0.5f, -1.0f)));
   }
@@ -79,9 +81,10 @@ void renderInto(Scene& scene, FrameBuffer& fb) {
   render(renderer, scene, kCamera, Region::full(fb.width(), fb.height()), fb, 2);
 }
 
-void expectEditEqualsFresh(const State& edited, const std::function<void(Scene&, const Built&)>& edit) {
+void expectEditEqualsFresh(const State& edited, const std::function<void(Scene&, const Built&)>& edit,
+                           const State& start = State{}) {
   Scene scene(sharedDevice());
-  Built b = build(scene, State{});
+  Built b = build(scene, start);
   FrameBuffer before(32, 32);
   renderInto(scene, before);  // commits the unedited state first
   std::uint64_t v = scene.version();
@@ -106,6 +109,78 @@ TEST(EmbreeIncremental, InstanceTransform) {
   });
 }
 
+// A shared mesh is instanced: its moved instance leaves the top level for
+// the moving level, and moves again there; a fresh scene keeps it in the top.
+TEST(EmbreeIncremental, SharedInstanceMovesTwice) {
+  State start;
+  start.withExtraBall = true;
+  State s = start;
+  s.ballOffset = {0.3f, 0.2f, 0.1f};
+  expectEditEqualsFresh(
+      s,
+      [&](Scene& scene, const Built& b) {
+        const glm::vec3 at = glm::vec3(-0.6f, 0.6f, 0);
+        scene.setInstanceTransform(b.ball1, glm::translate(glm::mat4(1.0f), at - s.ballOffset));
+        FrameBuffer between(8, 8);
+        renderInto(scene, between);  // commits the first move
+        scene.setInstanceTransform(b.ball1, glm::translate(glm::mat4(1.0f), at + s.ballOffset));
+      },
+      start);
+}
+
+// The moved instance goes when its second user goes: from the moving level to the merged scene.
+TEST(EmbreeIncremental, MovedInstanceOutlivesTheOtherUser) {
+  State start;
+  start.withExtraBall = true;
+  State s;
+  s.ballOffset = {0.3f, 0.2f, 0.1f};
+  expectEditEqualsFresh(
+      s,
+      [&](Scene& scene, const Built& b) {
+        scene.setInstanceTransform(b.ball1, glm::translate(glm::mat4(1.0f), glm::vec3(-0.6f, 0.6f, 0) + s.ballOffset));
+        FrameBuffer between(8, 8);
+        renderInto(scene, between);
+        scene.removeInstance(b.extra);
+      },
+      start);
+}
+
+// Three instances of an animated mesh stay instanced: when the first of two
+// moved ones goes, the other takes its id in the moving level.
+TEST(EmbreeIncremental, MovingLevelKeepsTheOthersWhenOneGoes) {
+  auto at = [](float x) { return glm::translate(glm::mat4(1.0f), glm::vec3(x, 0.5f, 0)); };
+  auto build3 = [&](Scene& scene, bool withFirst, float secondX) {
+    MeshData ball = uvSphere({0, 0, 0}, 0.4f, 100, true);
+    ball.usage = MeshUsage::Animated;
+    const MeshId mesh = scene.addMesh(ball);
+    Material grey;
+    grey.baseColor = glm::vec3(0.6f);
+    const MaterialId m = scene.addMaterial(grey);
+    std::vector<InstanceId> ids;
+    if (withFirst) ids.push_back(scene.addInstance(mesh, m, at(-1.0f)));
+    ids.push_back(scene.addInstance(mesh, m, at(secondX)));
+    scene.addInstance(mesh, m, at(1.0f));
+    scene.setEnvironment(Environment::constant(glm::vec3(0.5f)));
+    return ids;
+  };
+  Scene scene(sharedDevice());
+  auto ids = build3(scene, true, 0.0f);
+  FrameBuffer frame(32, 32);
+  renderInto(scene, frame);
+  scene.setInstanceTransform(ids[0], at(-1.2f));
+  scene.setInstanceTransform(ids[1], at(0.2f));
+  renderInto(scene, frame);
+  scene.removeInstance(ids[0]);
+  FrameBuffer afterEdit(32, 32);
+  renderInto(scene, afterEdit);
+
+  Scene fresh(sharedDevice());
+  build3(fresh, false, 0.2f);
+  FrameBuffer direct(32, 32);
+  renderInto(fresh, direct);
+  EXPECT_TRUE(identical(afterEdit, direct));
+}
+
 TEST(EmbreeIncremental, Material) {
   State s;
   s.boxColour = {0.9f, 0.1f, 0.1f};
@@ -113,6 +188,18 @@ TEST(EmbreeIncremental, Material) {
     Material m;
     m.baseColor = s.boxColour;
     scene.setMaterial(b.boxMaterial, m);
+  });
+}
+
+// Emission feeds the emitter distribution, which a material edit must refresh.
+TEST(EmbreeIncremental, EmissiveMaterial) {
+  State s;
+  s.lampEmission = 2.0f;
+  expectEditEqualsFresh(s, [&](Scene& scene, const Built& b) {
+    Material m;
+    m.emission = glm::vec3(s.lampEmission);
+    m.baseColor = glm::vec3(0.0f);
+    scene.setMaterial(b.lampMaterial, m);
   });
 }
 

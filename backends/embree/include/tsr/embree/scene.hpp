@@ -58,7 +58,8 @@ class Scene {
 
   void setEnvironment(Environment environment);
 
-  // Commits pending edits to Embree and rebuilds light data; idempotent.
+  // Commits pending edits to Embree and refreshes the derived data of what
+  // they touched (views, emitters only if an emitter changed); idempotent.
   void commit();
 
   std::uint64_t version() const;
@@ -66,7 +67,9 @@ class Scene {
   std::size_t instanceCount() const;
   std::size_t meshCount() const;
 
-  // For the renderer and for benchmarks that trace raw rays; valid after commit().
+  // For benchmarks that trace raw rays; valid after commit(). Instances whose
+  // transform or mesh was edited are in a second level the renderer traces
+  // after this one, so raw rays see only scenes that were never edited.
   RTCScene embreeScene() const;
   const SceneState& state() const { return *state_; }
 
