@@ -291,10 +291,13 @@ struct ClusterWindow::Impl {
       it.outputs = outputs;
       it.resolve = resolver == nullptr;
     }
+    // Targets hold what nodes send and what the application reads (the
+    // resolver fills the latter's remainder), each allocated once.
+    std::vector<std::string> held = outputs;
+    for (const auto& name : options.outputs)
+      if (!has(held, name)) held.push_back(name);
     for (auto& t : targets)
-      for (const auto& name : options.outputs) t.outputs[name].assign(t.colour.size(), glm::vec4(0.0f));
-    for (auto& t : targets)
-      for (const auto& name : outputs) t.outputs[name].assign(t.colour.size(), glm::vec4(0.0f));
+      for (const auto& name : held) t.outputs[name].assign(t.colour.size(), glm::vec4(0.0f));
   }
 
   Frame viewportsFor(const Node& n) const {

@@ -60,9 +60,8 @@ SceneAdapter::Update EmbreeViewport::synchronize(const sg::Replica& replica) {
 // Pixel filtering's inputs of a finished render: flash samples topped up,
 // the buffers written as outputs.
 void EmbreeViewport::writeFilterInputs(embree::Scene& scene, const embree::Camera& camera, const embree::Region& traced,
-                                       FrameBuffer& full) {
+                                       const FilterSettings& filter, FrameBuffer& full) {
   embree::FrameBuffer& fb = *accumulation_;
-  const FilterSettings filter = FilterSettings::from(settings_.parameters);
   const std::uint32_t flash = flashSamplesFor(fb.sampleCount(0, 0));
   if (fb.rangeSamples(0, 0) < flash) renderer_.renderFlashPass(scene, camera, traced, fb, flash - fb.rangeSamples(0, 0));
   writePixelFilterInputs(fb, filter.pathClass, full, filter.mode == FilterMode::Hybrid ? radiance_.get() : nullptr);
@@ -87,7 +86,7 @@ void EmbreeViewport::resolveLocally(const FilterSettings& filter, std::uint32_t 
   auto explicitlyWanted = [&](const std::string& name) {
     return control.outputs && std::find(control.outputs->begin(), control.outputs->end(), name) != control.outputs->end();
   };
-  for (const auto& name : resolveInputs())
+  for (const auto& name : pixelFilterInputs())
     if (!explicitlyWanted(name)) out.outputs.erase(name);
 }
 
@@ -202,7 +201,7 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
   fill(kDirect, [&](std::uint32_t x, std::uint32_t y) { return fb.mean(embree::Channel::Direct, x, y); });
   fill(kIndirect, [&](std::uint32_t x, std::uint32_t y) { return fb.mean(embree::Channel::Indirect, x, y); });
   fill(kVariance, [&](std::uint32_t x, std::uint32_t y) { return fb.variance(embree::Channel::Colour, x, y); });
-  if (filter.usesPixelFilter() && stats.samples > 0) writeFilterInputs(scene, camera, traced, full);
+  if (filter.usesPixelFilter() && stats.samples > 0) writeFilterInputs(scene, camera, traced, filter, full);
   out = crop(std::move(full), region.x0 - traced.x0, region.y0 - traced.y0, region.regionWidth(), region.regionHeight());
   if (filter.usesPixelFilter() && stats.samples > 0) resolveLocally(filter, spp, out, control);
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -38,7 +38,7 @@ class EmbreeViewport final : public Viewport {
  private:
   embree::RenderSettings renderSettings() const;
   void writeFilterInputs(embree::Scene& scene, const embree::Camera& camera, const embree::Region& traced,
-                         FrameBuffer& full);
+                         const FilterSettings& filter, FrameBuffer& full);
   void resolveLocally(const FilterSettings& filter, std::uint32_t spp, FrameBuffer& out, const RenderControl& control);
 
   std::shared_ptr<EmbreeContext> context_;
