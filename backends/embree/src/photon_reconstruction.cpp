@@ -271,6 +271,8 @@ Reconstruction PhotonSequence::reconstruct(std::int64_t frame, PhotonHalf half) 
   return out;
 }
 
+bool IrradianceField::fits(const Scene& scene) const { return elements_ && elements_->matches(scene.state()); }
+
 glm::vec3 IrradianceField::at(std::uint32_t instance, std::uint32_t prim, float b1, float b2) const {
   if (!elements_) return glm::vec3(0.0f);
   glm::vec3 wgt;

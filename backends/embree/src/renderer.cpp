@@ -404,8 +404,9 @@ PassResult Renderer::renderPaths(Scene& scene, const Camera& camera, const Regio
 
 PassResult Renderer::renderWithIrradiance(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
                                           const IrradianceField& field) {
-  if (field.empty() || field.sceneUid() != scene.uid())
-    throw Error("the irradiance field was not reconstructed for this scene");
+  scene.commit();  // the element check reads the committed instances
+  if (field.empty() || !field.fits(scene))
+    throw Error("the irradiance field was reconstructed on other instances or meshes than this scene has");
   return renderPaths(scene, camera, region, fb, &field);
 }
 

@@ -223,12 +223,34 @@ TEST(EmbreePhotonSequence, RejectsBadUse) {
   scene.addInstance(scene.addMesh(test::quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0})), scene.addMaterial(m),
                     glm::mat4(1.0f));
   EXPECT_THROW(seq.addFrame(scene, 1), Error);  // topology changed
-  Scene other(sharedDevice());
-  test::cornellBox(other, 0);
   Renderer renderer;
   FrameBuffer fb(4, 4);
-  EXPECT_THROW(renderer.renderWithIrradiance(other, Camera{}, Region{4, 4, 0, 0, 4, 4}, fb, seq.reconstruct(0).field),
+  // The scene now has one instance more than the field's elements.
+  EXPECT_THROW(renderer.renderWithIrradiance(scene, Camera{}, Region{4, 4, 0, 0, 4, 4}, fb, seq.reconstruct(0).field),
                Error);
+}
+
+TEST(EmbreePhotonSequence, FieldFitsACopyOfTheSceneWithTheSameElements) {
+  // A renderer lagging the photon pass renders its own copy of the scene:
+  // the field applies to it, and the image equals one rendered in the
+  // scene the photons were traced in.
+  Scene traced(sharedDevice()), copy(sharedDevice());
+  const Camera camera = test::cornellBox(traced, 0);
+  test::cornellBox(copy, 0);
+  PhotonSettings s = smallSettings();
+  s.photonsPerFrame = 20000;
+  PhotonSequence seq(s);
+  addFrames(seq, traced, 1);
+  const IrradianceField field = seq.reconstruct(0).field;
+  copy.commit();
+  EXPECT_TRUE(field.fits(copy));
+  const Region region{16, 16, 0, 0, 16, 16};
+  Renderer renderer;
+  FrameBuffer a(16, 16), b(16, 16);
+  renderer.renderWithIrradiance(traced, camera, region, a, field);
+  renderer.renderWithIrradiance(copy, camera, region, b, field);
+  for (std::uint32_t y = 0; y < 16; ++y)
+    for (std::uint32_t x = 0; x < 16; ++x) ASSERT_EQ(a.mean(Channel::Colour, x, y), b.mean(Channel::Colour, x, y));
 }
 
 }  // namespace

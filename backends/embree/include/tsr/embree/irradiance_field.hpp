@@ -17,12 +17,20 @@ struct ElementSet;
 // normal is within the crease angle, so the lookup is continuous across
 // element borders on smooth surfaces and does not bleed round sharp edges.
 // Immutable once built; cheap to copy (the element topology is shared).
+class Scene;
+
 class IrradianceField {
  public:
   IrradianceField() = default;
 
   bool empty() const { return !elements_; }
   std::uint64_t sceneUid() const { return sceneUid_; }
+  // True when `scene` has the elements this field was reconstructed on: the
+  // same instances of meshes with the same triangle counts. The scene the
+  // photons were traced in qualifies, and so does another copy of it posed
+  // at another frame (a renderer lagging the photon pass by its lookahead).
+  // Reads the scene as last committed.
+  bool fits(const Scene& scene) const;
   // Changes with every reconstruction, so a renderer can tell fields apart.
   std::uint64_t uid() const { return uid_; }
   std::size_t elementCount() const { return element_.size(); }

@@ -71,8 +71,8 @@ class Renderer {
   // perfect specular surfaces; at the first Diffuse surface they take
   // direct light by light sampling and add albedo / pi x field.at(...) as
   // Indirect, then end. Other materials trace their indirect light as usual.
-  // The field must come from this scene (throws otherwise); a new field
-  // restarts accumulation in fb.
+  // The field must fit the scene (IrradianceField::fits; throws otherwise);
+  // a new field restarts accumulation in fb.
   PassResult renderWithIrradiance(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
                                   const IrradianceField& field);
 
