@@ -1,5 +1,7 @@
 #include "tsr/med/window.hpp"
 
+#include <algorithm>
+
 #include "tsr/med/compositing.hpp"
 
 namespace tsr::med {
@@ -7,6 +9,18 @@ namespace tsr::med {
 Viewport& Window::addLayer(std::unique_ptr<Viewport> viewport) {
   layers_.push_back(std::move(viewport));
   return *layers_.back();
+}
+
+std::uint32_t Window::lookahead() const {
+  std::uint32_t frames = 0;
+  for (const auto& layer : layers_)
+    if (layer->active()) frames = std::max(frames, layer->lookahead());
+  return frames;
+}
+
+void Window::prepare(const sg::Replica& ahead, std::int64_t frame) {
+  for (const auto& layer : layers_)
+    if (layer->active()) layer->prepare(ahead, frame);
 }
 
 FrameBuffer Window::render(const sg::Replica& replica, const View& view, const RenderControl& control) {

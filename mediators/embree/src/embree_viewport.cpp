@@ -8,29 +8,13 @@ namespace tsr::med::embree_mediator {
 
 namespace {
 constexpr std::uint32_t kLargestGrownPass = 8;
-constexpr const char* kAlbedo = "albedo";
-constexpr const char* kNormal = "normal";
-constexpr const char* kDirect = "direct";
-constexpr const char* kIndirect = "indirect";
-constexpr const char* kVariance = "variance";
 }  // namespace
 
 EmbreeViewport::EmbreeViewport(ViewportSettings settings, std::shared_ptr<EmbreeContext> context)
     : Viewport(std::move(settings)), context_(std::move(context)) {}
 
-embree::RenderSettings EmbreeViewport::renderSettings() const {
-  const Parameters& p = settings_.parameters;
-  embree::RenderSettings s;
-  s.seed = static_cast<std::uint64_t>(p.getInt("seed", 0, 0));
-  s.maxDepth = static_cast<std::uint32_t>(p.getInt("maxDepth", 8, 0, 1024));
-  if (p.getBool("directOnly", false)) s.maxDepth = 1;
-  s.samplesPerPass = static_cast<std::uint32_t>(p.getInt("samplesPerPass", 1, 1, 4096));
-  s.threads = static_cast<int>(p.getInt("threads", 0, 0, 4096));
-  return s;
-}
-
 std::vector<std::string> EmbreeViewport::outputNames() const {
-  std::vector<std::string> names{kAlbedo, kNormal, kDirect, kIndirect, kVariance};
+  std::vector<std::string> names = accumulatedOutputNames();
   if (FilterSettings::from(settings_.parameters).usesPixelFilter()) names.push_back(kBlendOutput);
   return names;
 }
@@ -114,7 +98,7 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
   view.validate();
   const auto start = std::chrono::steady_clock::now();
   const auto spp = static_cast<std::uint32_t>(settings_.parameters.getInt("spp", 16, 1, 1 << 20));
-  renderer_.setSettings(renderSettings());
+  renderer_.setSettings(renderSettingsFrom(settings_.parameters));
   const FilterSettings filter = FilterSettings::from(settings_.parameters);
   const bool radiance = filter.usesRadianceFilter();
 
@@ -122,8 +106,8 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
   RenderStats stats;
   stats.update = context_->adapter.catchUp(replica);
 
-  embree::Camera camera{view.cameraToWorld, view.left, view.right, view.bottom, view.top, view.nearPlane};
-  embree::Region region{view.width, view.height, view.region.x0, view.region.y0, view.region.x1, view.region.y1};
+  const embree::Camera camera = cameraOf(view);
+  const embree::Region region = regionOf(view);
   // Radiance filtering gathers samples up to maxRadius pixels away in every
   // frame: a region (a cluster tile) is traced with a halo that wide, so
   // its pixels match the whole frame's (within the README's tolerance).
@@ -180,27 +164,11 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
   stats.samples = accumulation_->sampleCount(0, 0);
 
   const embree::FrameBuffer& fb = *accumulation_;
-  FrameBuffer full(fb.width(), fb.height());
-  full.colour = fb.colourImage();
-  full.depth = fb.depthImage();
+  FrameBuffer full = accumulatedFrame(fb, control);
   if (radiance) {
     const auto shown = radiance_->radianceImage(fb);
     for (std::size_t i = 0; i < shown.size(); ++i) full.colour[i] = glm::vec4(shown[i], full.colour[i].a);
   }
-  // Named outputs are filled only where the caller reads them: all five
-  // cost about a tenth of a 16-spp pass at 512x512.
-  auto fill = [&](const char* name, auto read) {
-    if (!control.wants(name)) return;
-    auto& pixels = full.outputs[name];
-    pixels.resize(full.colour.size());
-    for (std::uint32_t y = 0; y < fb.height(); ++y)
-      for (std::uint32_t x = 0; x < fb.width(); ++x) pixels[full.index(x, y)] = glm::vec4(read(x, y), 1.0f);
-  };
-  fill(kAlbedo, [&](std::uint32_t x, std::uint32_t y) { return fb.albedo(x, y); });
-  fill(kNormal, [&](std::uint32_t x, std::uint32_t y) { return fb.normal(x, y); });
-  fill(kDirect, [&](std::uint32_t x, std::uint32_t y) { return fb.mean(embree::Channel::Direct, x, y); });
-  fill(kIndirect, [&](std::uint32_t x, std::uint32_t y) { return fb.mean(embree::Channel::Indirect, x, y); });
-  fill(kVariance, [&](std::uint32_t x, std::uint32_t y) { return fb.variance(embree::Channel::Colour, x, y); });
   if (filter.usesPixelFilter() && stats.samples > 0) writeFilterInputs(scene, camera, traced, filter, full);
   out = crop(std::move(full), region.x0 - traced.x0, region.y0 - traced.y0, region.regionWidth(), region.regionHeight());
   if (filter.usesPixelFilter() && stats.samples > 0) resolveLocally(filter, spp, out, control);

@@ -9,6 +9,7 @@
 
 #include "embree_scene_adapter.hpp"
 #include "pixel_filtering.hpp"
+#include "render_outputs.hpp"
 #include "tsr/embree/radiance_filter.hpp"
 #include "tsr/embree/renderer.hpp"
 #include "tsr/med/viewport.hpp"
@@ -36,7 +37,6 @@ class EmbreeViewport final : public Viewport {
   const EmbreeContext& context() const { return *context_; }
 
  private:
-  embree::RenderSettings renderSettings() const;
   void writeFilterInputs(embree::Scene& scene, const embree::Camera& camera, const embree::Region& traced,
                          const FilterSettings& filter, FrameBuffer& full);
   void resolveLocally(const FilterSettings& filter, std::uint32_t spp, FrameBuffer& out, const RenderControl& control);

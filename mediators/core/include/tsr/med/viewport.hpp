@@ -35,6 +35,8 @@ struct RenderControl {
   // tiles): the viewport then leaves its whole-frame image steps undone and
   // returns their inputs (resolveInputs()) as named outputs instead.
   bool resolve = true;
+  // The animation frame shown; viewports with a lookahead() need it. -1: none.
+  std::int64_t frame = -1;
 
   bool wants(const std::string& output) const {
     return !outputs || std::find(outputs->begin(), outputs->end(), output) != outputs->end();
@@ -83,6 +85,16 @@ class Viewport {
   // the assembler asks nodes for the others only.
   virtual std::vector<std::string> resolveOutputs() const { return {}; }
   virtual void resolve(FrameBuffer& /*frame*/) {}
+
+  // Frames of an animation a viewport must see before it shows one: a
+  // temporal method that gathers from the frames around the one shown
+  // (photon density estimation over time) sees the future through a second
+  // replica. The caller feeds every frame in order to prepare(), with a
+  // replica posed at that frame, and renders frame f (RenderControl::frame)
+  // once f + lookahead() was prepared or the animation has no more frames.
+  // Zero: render() needs nothing ahead and prepare() does nothing.
+  virtual std::uint32_t lookahead() const { return 0; }
+  virtual void prepare(const sg::Replica& /*ahead*/, std::int64_t /*frame*/) {}
 
  protected:
   ViewportSettings settings_;

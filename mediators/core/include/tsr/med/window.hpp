@@ -20,6 +20,10 @@ class Window {
 
   // Renders every active layer for `view` and composites them in order.
   FrameBuffer render(const sg::Replica& replica, const View& view, const RenderControl& control = {});
+  // The frames the active layers must see ahead of the one shown (the
+  // largest Viewport::lookahead()), and prepare() handing one to each.
+  std::uint32_t lookahead() const;
+  void prepare(const sg::Replica& ahead, std::int64_t frame);
   // Stats of each layer from the last render (inactive layers: default).
   const std::vector<RenderStats>& lastStats() const { return stats_; }
 

@@ -1,0 +1,52 @@
+#include "render_outputs.hpp"
+
+namespace tsr::med::embree_mediator {
+
+namespace {
+constexpr const char* kAlbedo = "albedo";
+constexpr const char* kNormal = "normal";
+constexpr const char* kDirect = "direct";
+constexpr const char* kIndirect = "indirect";
+constexpr const char* kVariance = "variance";
+}  // namespace
+
+std::vector<std::string> accumulatedOutputNames() { return {kAlbedo, kNormal, kDirect, kIndirect, kVariance}; }
+
+embree::RenderSettings renderSettingsFrom(const Parameters& p) {
+  embree::RenderSettings s;
+  s.seed = static_cast<std::uint64_t>(p.getInt("seed", 0, 0));
+  s.maxDepth = static_cast<std::uint32_t>(p.getInt("maxDepth", 8, 0, 1024));
+  if (p.getBool("directOnly", false)) s.maxDepth = 1;
+  s.samplesPerPass = static_cast<std::uint32_t>(p.getInt("samplesPerPass", 1, 1, 4096));
+  s.threads = static_cast<int>(p.getInt("threads", 0, 0, 4096));
+  return s;
+}
+
+embree::Camera cameraOf(const View& view) {
+  return embree::Camera{view.cameraToWorld, view.left, view.right, view.bottom, view.top, view.nearPlane};
+}
+
+embree::Region regionOf(const View& view) {
+  return embree::Region{view.width, view.height, view.region.x0, view.region.y0, view.region.x1, view.region.y1};
+}
+
+FrameBuffer accumulatedFrame(const embree::FrameBuffer& fb, const RenderControl& control) {
+  FrameBuffer full(fb.width(), fb.height());
+  full.colour = fb.colourImage();
+  full.depth = fb.depthImage();
+  auto fill = [&](const char* name, auto read) {
+    if (!control.wants(name)) return;
+    auto& pixels = full.outputs[name];
+    pixels.resize(full.colour.size());
+    for (std::uint32_t y = 0; y < fb.height(); ++y)
+      for (std::uint32_t x = 0; x < fb.width(); ++x) pixels[full.index(x, y)] = glm::vec4(read(x, y), 1.0f);
+  };
+  fill(kAlbedo, [&](std::uint32_t x, std::uint32_t y) { return fb.albedo(x, y); });
+  fill(kNormal, [&](std::uint32_t x, std::uint32_t y) { return fb.normal(x, y); });
+  fill(kDirect, [&](std::uint32_t x, std::uint32_t y) { return fb.mean(embree::Channel::Direct, x, y); });
+  fill(kIndirect, [&](std::uint32_t x, std::uint32_t y) { return fb.mean(embree::Channel::Indirect, x, y); });
+  fill(kVariance, [&](std::uint32_t x, std::uint32_t y) { return fb.variance(embree::Channel::Colour, x, y); });
+  return full;
+}
+
+}  // namespace tsr::med::embree_mediator
