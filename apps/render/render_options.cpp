@@ -135,6 +135,7 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
     auto [unused, value] = med::Parameters::parse(name + "=" + option->as<std::string>());
     o.parameters.set(name, value);
   }
+  o.temporal.applyTo(o.parameters);
   return true;
 }
 

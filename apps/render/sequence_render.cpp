@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <deque>
 #include <functional>
 #include <iostream>
 #include <stdexcept>
@@ -24,11 +25,19 @@ namespace {
 using FrameRenderer =
     std::function<med::FrameBuffer(SceneSession&, const sg::ChangeListPtr&, const med::View&, int frame)>;
 
+// How a sequence is rendered: frame by frame, or by a window whose layers
+// must see `lookahead` frames of the animation before they show one.
+struct SequenceRenderer {
+  FrameRenderer render;
+  std::uint32_t lookahead = 0;
+  std::function<void(const sg::Replica& ahead, int frame)> prepare;
+};
+
 // The outputs every frame needs: the --aov ones, and with --temporal the
-// split the temporal step works on.
+// split the PCA step works on.
 std::vector<std::string> frameOutputs(const RenderOptions& options) {
   std::vector<std::string> outputs = options.aovs;
-  if (options.temporal.active())
+  if (options.temporal.method == "pca")
     for (const char* name : {"direct", "indirect"})
       if (std::find(outputs.begin(), outputs.end(), name) == outputs.end()) outputs.push_back(name);
   return outputs;
@@ -49,8 +58,9 @@ struct LocalWindow {
 // like signal to the temporal step), and direct light, when --direct-spp
 // asks for more, continues the same progressive accumulation past --spp:
 // the indirect output is read at --spp, the direct one at --direct-spp.
-// `stats` adds up every render.
-FrameRenderer localRenderer(const RenderOptions& options, const std::vector<LayerSpec>& layers, const SceneSession& session,
+// With --temporal photons, the path tracer's photon layer sees each frame
+// its lookahead ahead of the one shown. `stats` adds up every render.
+SequenceRenderer localRenderer(const RenderOptions& options, const std::vector<LayerSpec>& layers, const SceneSession& session,
                             med::RenderStats& stats) {
   auto local = std::make_shared<LocalWindow>();
   registerBackends(local->registry);
@@ -60,14 +70,19 @@ FrameRenderer localRenderer(const RenderOptions& options, const std::vector<Laye
     remote = clusterLayer(options, layers, local->registry, *session.source.find<sg::Camera>(session.camera));
   local->window = makeLayeredWindow(layers, session.source, settings, local->registry, local->contexts, remote);
   checkOutputsOffered(options.aovs, local->window);
-  med::RenderControl control;
-  control.outputs = frameOutputs(options);
-  const bool temporal = options.temporal.active();
+  med::RenderControl shown;
+  shown.outputs = frameOutputs(options);
+  const bool temporal = options.temporal.method == "pca";
   const std::int64_t seed = options.parameters.getInt("seed", 0, 0);
   const std::int64_t spp = options.parameters.getInt("spp", 16, 1, 1 << 20);
   const std::int64_t directSpp = std::max<std::int64_t>(spp, options.temporal.directSpp);
-  return [=, &stats](SceneSession& s, const sg::ChangeListPtr&, const med::View& view, int frame) {
+  SequenceRenderer sequence;
+  sequence.lookahead = local->window.lookahead();
+  sequence.prepare = [local](const sg::Replica& ahead, int frame) { local->window.prepare(ahead, frame); };
+  sequence.render = [=, &stats](SceneSession& s, const sg::ChangeListPtr&, const med::View& view, int frame) {
     med::Window& window = local->window;
+    med::RenderControl control = shown;
+    control.frame = frame;
     auto set = [&](const std::string& name, std::int64_t value) {
       for (const auto& layer : window.layers()) layer->setParameter(name, value);
     };
@@ -86,6 +101,7 @@ FrameRenderer localRenderer(const RenderOptions& options, const std::vector<Laye
     }
     return image;
   };
+  return sequence;
 }
 
 FrameRenderer clusterRenderer(const RenderOptions& options, const SceneSession& session) {
@@ -107,26 +123,22 @@ FrameRenderer clusterRenderer(const RenderOptions& options, const SceneSession& 
 
 }  // namespace
 
-// `--temporal photons` (spatio-temporal photon density estimation) renders
-// through the Embree back-end's photon pass: the one place to connect it.
-int renderPhotonSequence(const RenderOptions&, const SequenceOptions&) {
-  throw std::invalid_argument("--temporal photons: not available yet (the photon pass of the Embree back-end is not in "
-                              "this build); use --temporal pca");
-}
-
 int renderSequence(const RenderOptions& options, const SequenceOptions& sequence, const std::vector<LayerSpec>& layers) {
   if (sequence.frames > 1 && options.output.find("####") == std::string::npos)
     throw std::invalid_argument("--frames " + std::to_string(sequence.frames) + " needs #### in --output for the frame number");
-  if (options.temporal.method == "photons") return renderPhotonSequence(options, sequence);
   SceneSession session;
   session.load(options.scene, options.import);
-  if (options.temporal.active() && !layers.empty())
-    throw std::invalid_argument("--temporal with --layers: each frame is rebuilt from the bottom layer's direct and "
-                                "indirect light, so the layers above it would be lost");
+  if (options.temporal.method == "pca" && !layers.empty())
+    throw std::invalid_argument("--temporal pca with --layers: each frame is rebuilt from the bottom layer's direct "
+                                "and indirect light, so the layers above it would be lost");
   // A cluster without layers renders the whole window on the nodes.
+  const bool local = sequence.cluster.empty() || !layers.empty();
+  if (options.temporal.method == "photons" && (!sequence.cluster.empty() || options.backend != "embree"))
+    throw std::invalid_argument("--temporal photons renders with the local path tracer (--backend embree): its photon "
+                                "pass sees every frame ahead of the one shown, which the cluster protocol does not carry");
   med::RenderStats stats;
-  FrameRenderer render = sequence.cluster.empty() || !layers.empty() ? localRenderer(options, layers, session, stats)
-                                                                     : clusterRenderer(options, session);
+  SequenceRenderer renderer = local ? localRenderer(options, layers, session, stats)
+                                    : SequenceRenderer{clusterRenderer(options, session), 0, {}};
   auto write = [&](int frame, const med::FrameBuffer& image) {
     std::string path = framePath(options.output, frame);
     med::writeImage(path, image);
@@ -140,16 +152,38 @@ int renderSequence(const RenderOptions& options, const SequenceOptions& sequence
       write(frame, image);
     });
   double renderSeconds = 0;
-  for (int frame = 0; frame < sequence.frames; ++frame) {
-    // Frame 0 is the scene as loaded; later ones pose the animation at frame / fps.
-    if (sequence.framesGiven)
-      for (const auto& animation : session.imported.animations)
-        animation.apply(session.source, static_cast<float>(frame / sequence.fps));
-    auto delta = session.publish();
+  // With a lookahead, frames are posed and committed `lookahead` frames
+  // before they are shown: their change lists reach a second replica (the
+  // scene ahead) at once and the shown one when their frame's turn comes.
+  const int lookahead = static_cast<int>(renderer.lookahead);
+  sg::Replica ahead;
+  std::deque<sg::ChangeListPtr> pending;
+  for (int posed = 0; posed < sequence.frames + lookahead; ++posed) {
+    sg::ChangeListPtr delta;
+    if (posed < sequence.frames) {
+      // Frame 0 is the scene as loaded; later ones pose the animation at frame / fps.
+      if (sequence.framesGiven)
+        for (const auto& animation : session.imported.animations)
+          animation.apply(session.source, static_cast<float>(posed / sequence.fps));
+      if (lookahead == 0) {
+        delta = session.publish();
+      } else {
+        pending.push_back(session.source.commit());
+        ahead.apply(pending.back());
+        renderer.prepare(ahead, posed);
+      }
+    }
+    const int frame = posed - lookahead;
+    if (frame < 0) continue;
+    if (lookahead > 0) {
+      delta = pending.front();
+      pending.pop_front();
+      session.replica.apply(delta);
+    }
     const auto* camera = session.replica.scene().find<sg::Camera>(session.camera);
     auto view = med::View::fromCamera(*camera, options.width, options.height);
     auto started = std::chrono::steady_clock::now();
-    med::FrameBuffer image = render(session, delta, view, frame);
+    med::FrameBuffer image = renderer.render(session, delta, view, frame);
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     renderSeconds += seconds;
     if (pca) {

@@ -8,7 +8,8 @@ void addTemporalOptions(CLI::App& app, TemporalOptions& o) {
   auto* g = app.add_option_group("Temporal (with --frames)", "flicker-free animations: indirect light denoised over time");
   g->add_option("--temporal", o.method,
                 "pca: project the indirect light onto its temporal PCA basis (Meyer & Anderson); photons: "
-                "spatio-temporal photon density estimation. --spp is then the indirect sample count")
+                "spatio-temporal photon density estimation (--backend embree). With pca --spp is the indirect "
+                "sample count, with photons the direct one")
       ->check(CLI::IsMember({"pca", "photons"}));
   g->add_option("--direct-spp", o.directSpp,
                 "direct-light samples per pixel and frame (default: --spp; direct light has the lower variance, "
@@ -21,6 +22,12 @@ void addTemporalOptions(CLI::App& app, TemporalOptions& o) {
   g->add_option("--temporal-epsilon-change", o.epsilonChange,
                 "stop adding modes when one more explains less than this (default 0.001)")
       ->check(CLI::Range(0.0, 1.0));
+  g->add_option("--photons-per-frame", o.photonsPerFrame,
+                "photons traced per frame (default: chosen by a pilot pass for 10% error, Weber et al. eq. 3)")
+      ->check(CLI::Range(1, 1 << 30));
+  g->add_option("--photon-frames", o.photonFrames,
+                "frames whose photons reconstruct one frame, centred on it; odd (default 9)")
+      ->check(CLI::Range(1, 255));
   g->add_flag("--temporal-global", o.global, "one truncation for the whole frame, not a smoothed per-pixel map");
   g->add_option("--temporal-map-sigma", o.mapSigma, "Gaussian smoothing of the per-pixel truncation map, pixels (default 2)")
       ->check(CLI::Range(0.0, 64.0));
@@ -35,12 +42,25 @@ void checkTemporalOptions(const TemporalOptions& o, int spp) {
     if (o.directSpp || o.modes) throw std::invalid_argument("--direct-spp and --temporal-modes need --temporal");
     return;
   }
+  if (o.method == "photons" && o.photonFrames % 2 == 0)
+    throw std::invalid_argument("--photon-frames " + std::to_string(o.photonFrames) +
+                                " must be odd: the window is centred on the frame it reconstructs");
+  if (o.method == "photons" && o.directSpp)
+    throw std::invalid_argument("--direct-spp with --temporal photons: photons carry the indirect light, so --spp "
+                                "is already the direct-light sample count");
   if (o.overlap >= o.window)
     throw std::invalid_argument("--temporal-overlap " + std::to_string(o.overlap) + " must be smaller than --temporal-window " +
                                 std::to_string(o.window));
   if (o.directSpp && o.directSpp < spp)
     throw std::invalid_argument("--direct-spp " + std::to_string(o.directSpp) + " is below --spp " + std::to_string(spp) +
                                 ": direct light comes from the same paths as the indirect, so it gets at least --spp");
+}
+
+void TemporalOptions::applyTo(med::Parameters& parameters) const {
+  if (method != "photons") return;
+  parameters.set("temporal", std::string("photons"));
+  parameters.set("photonsPerFrame", std::int64_t{photonsPerFrame});
+  parameters.set("photonFrames", std::int64_t{photonFrames});
 }
 
 }  // namespace tsr::app

@@ -5,9 +5,12 @@
 //   --temporal-modes M       fixed PCA truncation (default: automatic, 2.3)
 //   --temporal-epsilon E, --temporal-epsilon-change C, --temporal-global,
 //   --temporal-map-sigma S, --temporal-window W, --temporal-overlap O
+//   --photons-per-frame N, --photon-frames T (photons)
 #include <CLI/CLI.hpp>
 
 #include <string>
+
+#include "tsr/med/parameters.hpp"
 
 namespace tsr::app {
 
@@ -19,7 +22,13 @@ struct TemporalOptions {
   bool global = false;  // one truncation for the whole frame instead of 3.2's map
   double mapSigma = 2.0;
   int window = 64, overlap = 16;
+  int photonsPerFrame = 0;  // 0: from the photon pilot pass
+  int photonFrames = 9;     // the photon method's temporal window (odd)
   bool active() const { return !method.empty(); }
+  // The viewport parameters that select the method in the back-end
+  // (photons: the path tracer's photon viewport); none for pca, which
+  // works on the rendered frames.
+  void applyTo(med::Parameters& parameters) const;
 };
 
 // Declares the options on `app` (so --help lists them), in their own group.

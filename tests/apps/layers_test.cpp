@@ -95,7 +95,7 @@ TEST_F(LayersCommand, EveryFrameOfASequenceIsALayeredWindow) {
     EXPECT_EQ(image.colour, single.colour) << frame;
     EXPECT_EQ(tsr::med::readImage((dir / ("seq." + std::string(frame) + ".depth.exr")).string()).colour, singleDepth.colour);
   }
-  expectOneErrorLine(run(common + "--frames 2 --temporal pca --output t.####.exr"), "--temporal with --layers");
+  expectOneErrorLine(run(common + "--frames 2 --temporal pca --output t.####.exr"), "--temporal pca with --layers");
 }
 
 TEST_F(LayersCommand, BadLayersAreOneErrorLine) {
