@@ -119,7 +119,7 @@ int renderSequence(const RenderOptions& options, const SequenceOptions& sequence
     throw std::invalid_argument("--frames " + std::to_string(sequence.frames) + " needs #### in --output for the frame number");
   if (options.temporal.method == "photons") return renderPhotonSequence(options, sequence);
   SceneSession session;
-  session.load(options.scene, options.import);
+  session.load(options.scene, options.import, options.view);
   if (options.temporal.active() && !layers.empty())
     throw std::invalid_argument("--temporal with --layers: each frame is rebuilt from the bottom layer's direct and "
                                 "indirect light, so the layers above it would be lost");
@@ -129,8 +129,8 @@ int renderSequence(const RenderOptions& options, const SequenceOptions& sequence
                                                                      : clusterRenderer(options, session);
   auto write = [&](int frame, const med::FrameBuffer& image) {
     std::string path = framePath(options.output, frame);
-    med::writeImage(path, image);
-    for (const auto& aov : options.aovs) med::writeImage(aovPath(path, aov), image, aov);
+    med::writeImage(path, image, "colour", options.display);
+    for (const auto& aov : options.aovs) med::writeImage(aovPath(path, aov), image, aov, options.display);
     return path;
   };
   ProgressBar bar(options.temporal.active() ? "rendering + " + options.temporal.method : "rendering", !options.quiet);
