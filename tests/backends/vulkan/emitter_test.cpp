@@ -22,7 +22,7 @@ using test::device;
 constexpr float kPi = std::numbers::pi_v<float>;
 
 TEST(VulkanEmitters, AQuadGivesFourPatchesWithItsAreaFacingItsFront) {
-  const MeshData q = test::quad({-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1});  // faces -Y
+  const MeshData q = test::quad({-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1});  // faces +Y
   const auto patches = meshEmitterPatches(q.positions, q.indices);
   ASSERT_EQ(patches.size(), 4u);
   float area = 0.0f;
@@ -35,7 +35,7 @@ TEST(VulkanEmitters, AQuadGivesFourPatchesWithItsAreaFacingItsFront) {
     EXPECT_NEAR(std::abs(p.centre.z), 0.5f, 1e-4f);
   }
   EXPECT_NEAR(area, 4.0f, 1e-4f);
-  EXPECT_LT(glm::length(vectorArea - glm::vec3(0, -4, 0)), 1e-4f);
+  EXPECT_LT(glm::length(vectorArea - glm::vec3(0, 4, 0)), 1e-4f);
 }
 
 TEST(VulkanEmitters, AClosedMeshHasNoPreferredDirection) {
@@ -48,7 +48,7 @@ TEST(VulkanEmitters, AClosedMeshHasNoPreferredDirection) {
     vectorArea += p.vectorArea;
     area += p.area;
   }
-  EXPECT_NEAR(area, 4.0f * kPi, 0.1f);
+  EXPECT_NEAR(area, 4.0f * kPi, 0.2f) << "the polyhedron is a little smaller than the sphere";
   EXPECT_LT(glm::length(vectorArea), 1e-3f * area);
 }
 
