@@ -31,7 +31,7 @@ int run(int argc, char** argv) {
     return tsr::app::renderSequence(options, sequence, layers);
 
   tsr::app::SceneSession session;
-  session.load(options.scene, options.import);
+  session.load(options.scene, options.import, options.view);
   session.publish();
 
   tsr::med::ViewportRegistry registry;
@@ -61,8 +61,9 @@ int run(int argc, char** argv) {
   if (tsr::app::isRankingPath(options.output))
     tsr::app::writeRanking(options.output, image, session.replica.scene());
   else
-    tsr::med::writeImage(options.output, image);
-  for (const auto& aov : options.aovs) tsr::med::writeImage(tsr::app::aovPath(options.output, aov), image, aov);
+    tsr::med::writeImage(options.output, image, "colour", options.display);
+  for (const auto& aov : options.aovs)
+    tsr::med::writeImage(tsr::app::aovPath(options.output, aov), image, aov, options.display);
   if (!options.statsJson.empty()) tsr::app::writeStatsJson(options, stats, 1);
   if (!options.quiet)
     std::cout << "wrote " << options.output << " (" << options.width << "x" << options.height << ", "

@@ -1,6 +1,9 @@
 #include "render_options.hpp"
 
+#include <cctype>
+#include <cmath>
 #include <charconv>
+#include <cstdlib>
 #include <iostream>
 #include <stdexcept>
 
@@ -29,6 +32,24 @@ void parseSize(const std::string& text, std::uint32_t& width, std::uint32_t& hei
   if (std::uint64_t{width} * height > kMaxImagePixels)
     throw std::invalid_argument("--size " + text + ": more than " + std::to_string(kMaxImagePixels) +
                                 " pixels (8192x8192)");
+}
+
+sg::Vec3 parsePoint(const std::string& option, const std::string& text) {
+  sg::Vec3 p(0.0f);
+  std::size_t start = 0;
+  for (int i = 0; i < 3; ++i) {
+    const std::size_t comma = text.find(',', start);
+    if ((i < 2) != (comma != std::string::npos))
+      throw std::invalid_argument(option + " " + text + ": expected X,Y,Z (three numbers separated by commas)");
+    const std::string part = text.substr(start, i < 2 ? comma - start : std::string::npos);
+    const char* begin = part.c_str();
+    char* end = nullptr;
+    p[i] = std::strtof(begin, &end);
+    if (part.empty() || end != begin + part.size() || std::isspace(static_cast<unsigned char>(part.front())))
+      throw std::invalid_argument(option + " " + text + ": '" + part + "' is not a number");
+    start = comma + 1;
+  }
+  return p;
 }
 
 std::string aovPath(const std::string& output, const std::string& aov) {
@@ -94,6 +115,18 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
   filterOptions.emplace_back(filterGroup->add_option("--filter-kernel", filterKernel, "bilateral or separable (with --filter pixel)")
                                  ->check(CLI::IsMember({"bilateral", "separable"})),
                              "filterKernel");
+  std::string lookFrom, lookAt, tonemap = "none";
+  double fov = 0, exposure = 0;
+  auto* viewGroup = app.add_option_group("View", "camera, default lights and the picture's tone");
+  viewGroup->add_option("--camera", o.view.camera, "the scene camera to look through: its name or index (default: the first)");
+  auto* fromOption = viewGroup->add_option("--look-from", lookFrom, "eye position X,Y,Z (world units); overrides the camera");
+  auto* atOption = viewGroup->add_option("--look-at", lookAt, "point looked at X,Y,Z (default with --look-from: the bounds' centre)");
+  auto* fovOption = viewGroup->add_option("--fov", fov, "vertical field of view in degrees, 0 < fov < 180");
+  bool noDefaultLight = false;
+  viewGroup->add_flag("--no-default-light", noDefaultLight, "a scene without lights stays unlit (default: a grey dome and a camera light)");
+  auto* exposureOption = viewGroup->add_option("--exposure", exposure, "exposure in stops for 8-bit outputs (PNG, JPEG); EXR stays linear");
+  viewGroup->add_option("--tonemap", tonemap, "tone curve for 8-bit outputs: none or filmic (ACES fitted, Narkowicz 2015)")
+      ->check(CLI::IsMember({"none", "filmic"}));
   addTemporalOptions(app, o.temporal);
   addSequenceOptions(app, o.sequence);
   app.add_option("--layers", o.layers,
@@ -108,6 +141,15 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
     throw std::invalid_argument(e.what());
   }
   parseSize(size, o.width, o.height);
+  if (*fromOption) o.view.look.from = parsePoint("--look-from", lookFrom);
+  if (*atOption) o.view.look.at = parsePoint("--look-at", lookAt);
+  if (*fovOption) o.view.look.fovDegrees = static_cast<float>(fov);
+  sg::validate(o.view.look);
+  o.view.defaultLight = !noDefaultLight;
+  if (*exposureOption && !(std::isfinite(exposure) && std::abs(exposure) <= 64))
+    throw std::invalid_argument("--exposure " + std::to_string(exposure) + ": expected stops between -64 and 64");
+  o.display.exposureEv = static_cast<float>(exposure);
+  o.display.curve = med::parseToneCurve(tonemap);
   o.backendGiven = backendOption->count() > 0;
   checkTemporalOptions(o.temporal, static_cast<int>(spp));
   if (!o.statsJson.empty() && !o.sequence.cluster.empty())

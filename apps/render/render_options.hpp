@@ -5,8 +5,10 @@
 #include <string>
 #include <vector>
 
+#include "scene_session.hpp"
 #include "sequence_options.hpp"
 #include "temporal_options.hpp"
+#include "tsr/med/display_transform.hpp"
 #include "tsr/med/parameters.hpp"
 #include "tsr/sg/import/importer.hpp"
 
@@ -27,6 +29,8 @@ struct RenderOptions {
   TemporalOptions temporal;  // --temporal and its settings (with --frames)
   SequenceOptions sequence;  // --frames, --fps, --cluster, --nodes, --token-file
   std::string layers;        // --layers value (layers.hpp parses it); empty: one back-end
+  ViewChoice view;           // --camera, --look-from, --look-at, --fov, --no-default-light
+  med::DisplayTransform display;  // --exposure, --tonemap (8-bit outputs only)
 };
 
 // Parses argv (every option is declared, so --help lists them all and an
@@ -34,6 +38,9 @@ struct RenderOptions {
 // message for bad input or options that cannot combine. Returns false when
 // help was printed (exit 0).
 bool parseRenderOptions(int argc, char** argv, RenderOptions& options);
+
+// "1,2.5,-3" -> a point; throws std::invalid_argument naming `option`.
+sg::Vec3 parsePoint(const std::string& option, const std::string& text);
 
 // "640x480" -> width, height; throws std::invalid_argument.
 void parseSize(const std::string& text, std::uint32_t& width, std::uint32_t& height);

@@ -1,25 +1,41 @@
 #pragma once
 // The application side of a render: the authoring scene loaded from a file
-// or a built-in, the camera to look through, and a replica fed by commits
-// (the render thread's copy, in the DESIGN's words).
+// or a built-in, the camera to look through, the default light rig when the
+// scene brings no light, and a replica fed by commits (the render thread's
+// copy, in the DESIGN's words).
 #include <string>
 
+#include "tsr/sg/import/default_light_rig.hpp"
 #include "tsr/sg/import/importer.hpp"
+#include "tsr/sg/import/scene_camera.hpp"
 #include "tsr/sg/replica.hpp"
 #include "tsr/sg/scene.hpp"
 
 namespace tsr::app {
 
+// How the user asked to look at the scene (--camera, --look-*, --fov,
+// --no-default-light).
+struct ViewChoice {
+  std::string camera;  // name or index; empty: the scene's first camera
+  sg::LookOverride look;
+  bool defaultLight = true;
+};
+
 struct SceneSession {
   sg::Scene source;
   sg::ImportResult imported;
   sg::ContainerId camera = sg::kNoContainer;
+  sg::DefaultLightRig rig;  // active only when added
   sg::Replica replica;
 
-  // Imports `scene`; adds a camera framing the bounds when it has none.
-  // Throws sg::ImportError.
-  void load(const std::string& scene, const sg::ImportOptions& options = {});
-  // Commits the frame's edits and applies them to the replica.
+  // Imports `scene`; picks the camera (adds one framing the bounds when the
+  // scene has none), applies the look override, and adds the default light
+  // rig to a scene without lights. Throws sg::ImportError or
+  // std::invalid_argument.
+  void load(const std::string& scene, const sg::ImportOptions& options = {}, const ViewChoice& view = {});
+  // Moves the rig's camera light to the camera and commits the frame's edits.
+  sg::ChangeListPtr commit();
+  // commit(), and the list applied to the replica.
   sg::ChangeListPtr publish();
 };
 

@@ -127,7 +127,7 @@ int renderSequence(const RenderOptions& options, const SequenceOptions& sequence
   if (sequence.frames > 1 && options.output.find("####") == std::string::npos)
     throw std::invalid_argument("--frames " + std::to_string(sequence.frames) + " needs #### in --output for the frame number");
   SceneSession session;
-  session.load(options.scene, options.import);
+  session.load(options.scene, options.import, options.view);
   if (options.temporal.method == "pca" && !layers.empty())
     throw std::invalid_argument("--temporal pca with --layers: each frame is rebuilt from the bottom layer's direct "
                                 "and indirect light, so the layers above it would be lost");
@@ -141,8 +141,8 @@ int renderSequence(const RenderOptions& options, const SequenceOptions& sequence
                                     : SequenceRenderer{clusterRenderer(options, session), 0, {}};
   auto write = [&](int frame, const med::FrameBuffer& image) {
     std::string path = framePath(options.output, frame);
-    med::writeImage(path, image);
-    for (const auto& aov : options.aovs) med::writeImage(aovPath(path, aov), image, aov);
+    med::writeImage(path, image, "colour", options.display);
+    for (const auto& aov : options.aovs) med::writeImage(aovPath(path, aov), image, aov, options.display);
     return path;
   };
   ProgressBar bar(options.temporal.active() ? "rendering + " + options.temporal.method : "rendering", !options.quiet);
@@ -168,7 +168,7 @@ int renderSequence(const RenderOptions& options, const SequenceOptions& sequence
       if (lookahead == 0) {
         delta = session.publish();
       } else {
-        pending.push_back(session.source.commit());
+        pending.push_back(session.commit());
         ahead.apply(pending.back());
         renderer.prepare(ahead, posed);
       }

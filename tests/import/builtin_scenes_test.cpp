@@ -6,6 +6,7 @@
 #include "import_test_util.hpp"
 #include "tsr/sg/import/importer.hpp"
 #include "tsr/sg/import/scene_stats.hpp"
+#include "tsr/sg/node_world.hpp"
 
 namespace tsr::sg {
 namespace {
@@ -25,8 +26,8 @@ TEST(BuiltinScenes, CornellBoxMatchesTheReferenceSetup) {
 
   ASSERT_EQ(r.cameras.size(), 1u);
   const Camera* cam = scene.find<Camera>(r.cameras[0]);
-  EXPECT_NEAR(glm::distance(Vec3(cam->pose()[3]), Vec3(278, 273, -800)), 0.0f, 1e-3f);
-  EXPECT_NEAR(glm::distance(-Vec3(cam->pose()[2]), Vec3(0, 0, 1)), 0.0f, 1e-5f);  // looks down +z
+  EXPECT_NEAR(glm::distance(Vec3(tsr::sg::cameraWorldPose(*cam)[3]), Vec3(278, 273, -800)), 0.0f, 1e-3f);
+  EXPECT_NEAR(glm::distance(-Vec3(tsr::sg::cameraWorldPose(*cam)[2]), Vec3(0, 0, 1)), 0.0f, 1e-5f);  // looks down +z
   EXPECT_NEAR(cam->verticalFov(), 37.0f * 3.14159265f / 180.0f, 1e-5f);
 
   const auto* mirror = test::byName<SurfaceMaterial>(scene, "mirror");
@@ -76,7 +77,7 @@ TEST(BuiltinScenes, InstancesShareAFewMeshes) {
 
   // The camera sees every instance: each centre projects inside the frustum.
   const Camera* cam = scene.find<Camera>(r.cameras.at(0));
-  const Mat4 view = glm::inverse(cam->pose());
+  const Mat4 view = glm::inverse(tsr::sg::cameraWorldPose(*cam));
   const float tanHalf = std::tan(cam->verticalFov() / 2);
   for (ContainerId id : scene.ids())
     if (const Transform* t = scene.find<Transform>(id); t && !t->children().empty() && scene.find<Geometry>(t->children()[0])) {

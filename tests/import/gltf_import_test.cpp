@@ -5,6 +5,7 @@
 #include "test_scenes.hpp"
 #include "tsr/sg/import/importer.hpp"
 #include "tsr/sg/import/scene_stats.hpp"
+#include "tsr/sg/node_world.hpp"
 
 namespace tsr::sg {
 namespace {
@@ -157,7 +158,7 @@ TEST_F(RichScene, MaterialsCarryFactorsExtensionsAndTextures) {
   EXPECT_EQ(uri->colorSpace(), ColorSpace::Linear);  // normal and metallic-roughness data
 }
 
-TEST_F(RichScene, LightsHangUnderTheirNodesAndCamerasGetWorldPoses) {
+TEST_F(RichScene, LightsAndCamerasHangUnderTheirNodes) {
   const Light* point = nullptr;
   const Light* spot = nullptr;
   const Light* sun = nullptr;
@@ -181,7 +182,7 @@ TEST_F(RichScene, LightsHangUnderTheirNodesAndCamerasGetWorldPoses) {
 
   const Camera* cam = scene.find<Camera>(result.cameras[0]);
   ASSERT_NE(cam, nullptr);
-  expectNear(Vec3(cam->pose()[3]), Vec3(10, 0, 10));
+  expectNear(Vec3(tsr::sg::cameraWorldPose(*cam)[3]), Vec3(10, 0, 10));
   EXPECT_FLOAT_EQ(cam->verticalFov(), 0.8f);
   EXPECT_FLOAT_EQ(cam->nearPlane(), 0.5f);
   EXPECT_FLOAT_EQ(cam->farPlane(), 200.0f);

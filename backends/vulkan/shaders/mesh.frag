@@ -1,9 +1,10 @@
 #version 450
 #include "common.glsl"
 
-// Direct light from point, spot and directional lights with the Embree
-// back-end's BSDFs (f * cos, same units), an ambient term from the average
-// environment radiance, and emission from the front face.
+// Direct light from point, spot and directional lights and from emissive
+// geometry's patches (area-like lights) with the Embree back-end's BSDFs
+// (f * cos, same units), an ambient term from the average environment
+// radiance, and emission from the front face.
 
 // Specialised per material class: CPU rasterizers execute both sides of
 // branches, so unused BSDFs, texture fetches and shadow taps must be compiled out.
@@ -23,7 +24,7 @@ layout(location = 0) out vec4 outColour;
 
 const float PI = 3.14159265358979;
 const uint DIFFUSE = 0u, CONDUCTOR = 1u, DIELECTRIC = 2u, MIRROR = 3u, GLASS = 4u;
-const uint POINT = 0u, SPOT = 1u, DIRECTIONAL = 2u;
+const uint POINT = 0u, SPOT = 1u, DIRECTIONAL = 2u, EMITTER = 3u;
 
 float ggxD(float nh, float a) {
   if (nh <= 0.0) return 0.0;
@@ -94,7 +95,7 @@ vec3 evalBsdf(uint type, vec3 colour, float alpha, float eta, vec3 n, vec3 wo, v
 // on CPU rasterizers.
 float visibility(uint i, vec3 p, vec3 ng) {
   float offset = lights[i].cone.z;
-  if (uint(lights[i].position.w) == SPOT) offset *= length(lights[i].position.xyz - p);
+  if (uint(lights[i].position.w) != DIRECTIONAL) offset *= length(lights[i].position.xyz - p);
   vec4 c = lights[i].shadowMatrix * vec4(p + ng * offset, 1.0);
   if (c.w <= 0.0) return 1.0;
   vec3 s = c.xyz / c.w;
@@ -148,7 +149,15 @@ void main() {
         if (!(d2 > 0.0)) continue;
         wi = d / sqrt(d2);
         li = lights[i].intensity.rgb / d2;
-        if (lt == SPOT) {
+        if (lt == EMITTER) {
+          // A patch of area A: radiance x projected area, over d^2 + A / pi
+          // (a disc's on-axis irradiance), so it stays finite up close.
+          float area = lights[i].intensity.w;
+          float directional = lights[i].cone.x;
+          float projected = directional * max(dot(direction.xyz, -wi), 0.0) + 0.25 * (area - directional);
+          if (projected <= 0.0) continue;
+          li = lights[i].intensity.rgb * (projected / (d2 + area / PI));
+        } else if (lt == SPOT) {
           vec4 cone = lights[i].cone;
           float c = dot(direction.xyz, -wi);
           float falloff = c >= cone.x ? 1.0 : (c <= cone.y ? 0.0 : smoothstep(cone.y, cone.x, c));

@@ -22,13 +22,15 @@ struct GpuMaterial {
   glm::vec4 params;     // GGX alpha, ior, unused, unused
 };
 
-enum : std::uint32_t { kGpuPoint = 0, kGpuSpot = 1, kGpuDirectional = 2 };
+enum : std::uint32_t { kGpuPoint = 0, kGpuSpot = 1, kGpuDirectional = 2, kGpuEmitter = 3 };
 
+// Emitter patches (emitter_lights.hpp) use direction = normal, intensity =
+// (radiance, area) and cone.x = directional area.
 struct GpuLight {
   glm::vec4 position;   // xyz, type
   glm::vec4 direction;  // normalized travel direction, shadow layer (< 0: none)
   glm::vec4 intensity;  // W/sr, or W/m^2 for directional
-  glm::vec4 cone;       // cos inner, cos outer, normal offset (world units, per unit distance for spots), 1 / map size
+  glm::vec4 cone;       // cos inner, cos outer, normal offset (world units, per unit distance for spots/emitters), 1 / map size
   glm::mat4 shadowMatrix;
 };
 

@@ -2,6 +2,7 @@
 
 #include "buffer.hpp"
 #include "command_slot.hpp"
+#include "emitter_lights.hpp"
 #include "id_pass.hpp"
 #include "gpu_types.hpp"
 #include "pipeline.hpp"
@@ -70,6 +71,7 @@ struct Renderer::Impl {
 
   std::vector<std::uint32_t> drawOrder;
   std::vector<GpuLight> gpuLights;
+  glm::vec3 ambientFromEmitters{0.0f};  // emitterAmbient() of this frame
   std::vector<std::uint32_t> transparentSorted;
 
   explicit Impl(const Device& d);
@@ -81,7 +83,9 @@ struct Renderer::Impl {
   // start in the draw order.
   std::uint32_t sortDrawOrder(const SceneState& s, const Camera& camera);
   // Fills the light buffer; returns the shadowed lights' view-projections.
-  std::vector<glm::mat4> gatherLights(const SceneState& s, const RenderSettings& settings);
+  std::vector<glm::mat4> gatherLights(SceneState& s, const RenderSettings& settings);
+  void addEmitterLights(SceneState& s, const RenderSettings& settings, bool shadows,
+                        std::vector<glm::mat4>& shadowViewProj);
   void prepareFrame(const SceneState& s, const Camera& camera, const Region& region, const RenderSettings& settings,
                     std::uint32_t shadowLayers);
   void recordShadows(VkCommandBuffer cmd, const SceneState& s, const std::vector<glm::mat4>& shadowViewProj,
@@ -275,7 +279,7 @@ std::uint32_t Renderer::Impl::sortDrawOrder(const SceneState& s, const Camera& c
 }
 
 // Lights, with a shadow layer for each shadowed spot/directional light.
-std::vector<glm::mat4> Renderer::Impl::gatherLights(const SceneState& s, const RenderSettings& settings) {
+std::vector<glm::mat4> Renderer::Impl::gatherLights(SceneState& s, const RenderSettings& settings) {
   gpuLights.clear();
   std::vector<glm::mat4> shadowViewProj;
   const bool shadows = settings.shadows && !s.sceneEmpty && !s.opaqueOrder.empty();
@@ -314,12 +318,41 @@ std::vector<glm::mat4> Renderer::Impl::gatherLights(const SceneState& s, const R
     }
     gpuLights.push_back(g);
   }
+  addEmitterLights(s, settings, shadows, shadowViewProj);
   ensureHost(device, lightBuffer, std::max<std::size_t>(gpuLights.size(), 1) * sizeof(GpuLight),
              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   if (!gpuLights.empty())
     std::memcpy(lightBuffer.mapped(), gpuLights.data(), gpuLights.size() * sizeof(GpuLight));
 
   return shadowViewProj;
+}
+
+// Emissive geometry as area-like lights (emitter_lights.hpp). Mostly flat
+// patches get a shadow map while layers remain (brightest first), with a
+// wide cone: what lies outside it is at grazing angles and left unshadowed.
+void Renderer::Impl::addEmitterLights(SceneState& s, const RenderSettings& settings, bool shadows,
+                                      std::vector<glm::mat4>& shadowViewProj) {
+  constexpr float kShadowHalfAngle = 1.309f;  // 75 degrees
+  const std::vector<EmitterLight> emitters = emitterLights(s, settings.emitterLights);
+  ambientFromEmitters = settings.emitterAmbient ? emitterAmbient(s, emitters) : glm::vec3(0.0f);
+  for (const EmitterLight& e : emitters) {
+    GpuLight g{};
+    // Just off the surface, so the emitter does not shadow itself.
+    const glm::vec3 position = e.position + e.normal * (1e-3f * std::sqrt(e.area));
+    g.position = glm::vec4(position, float(kGpuEmitter));
+    g.direction = glm::vec4(e.normal, -1.0f);
+    g.intensity = glm::vec4(e.radiance, e.area);
+    g.cone = glm::vec4(e.directionalArea, 0.0f, 0.0f, 1.0f / float(settings.shadowMapSize));
+    if (shadows && e.directionalArea > 0.5f * e.area && shadowViewProj.size() < kMaxShadowMaps) {
+      const SpotLight proxy{position, e.normal, glm::vec3(0.0f), kShadowHalfAngle, kShadowHalfAngle, true};
+      const ShadowProjection sp = spotShadow(proxy, s.sceneMin, s.sceneMax, settings.shadowMapSize);
+      g.direction.w = float(shadowViewProj.size());
+      g.cone.z = sp.normalOffset;
+      g.shadowMatrix = sp.viewProj;
+      shadowViewProj.push_back(sp.viewProj);
+    }
+    gpuLights.push_back(g);
+  }
 }
 
 // The frame's uniforms, targets sized for the region, and the frame's descriptors.
@@ -331,7 +364,7 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
   GpuFrame frame{};
   frame.viewProj = camera.projection(region) * camera.worldToCamera();
   frame.cameraPos = glm::vec4(camPos, 1.0f);
-  frame.ambient = glm::vec4(s.environment.averageRadiance(), 0.0f);
+  frame.ambient = glm::vec4(s.environment.averageRadiance() + ambientFromEmitters, 0.0f);
   frame.counts = glm::uvec4(std::uint32_t(gpuLights.size()), 0u, 0u, 0u);
   std::memcpy(frameBuffer.mapped(), &frame, sizeof(frame));
 

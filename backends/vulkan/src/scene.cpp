@@ -304,6 +304,8 @@ MeshId Scene::addMesh(const MeshData& data) {
   uploadToBuffer(*s.device, m.buffer, 0, bytes.data(), total);
   s.geometryBytes += total;
   m.positions = data.positions;
+  m.indices = data.indices;
+  m.area = meshArea(m.positions, m.indices);
   m.boundsMin = m.boundsMax = data.positions[0];
   for (const auto& p : data.positions) {
     m.boundsMin = glm::min(m.boundsMin, p);
@@ -339,6 +341,8 @@ void Scene::updateMeshVertices(MeshId mesh, std::uint32_t first, std::span<const
     s.geometryBytes += normals.size_bytes();
   }
   std::copy(positions.begin(), positions.end(), m.positions.begin() + first);
+  m.patchesDirty = true;
+  m.area = meshArea(m.positions, m.indices);
   m.boundsMin = m.boundsMax = m.positions[0];
   for (const auto& p : m.positions) {
     m.boundsMin = glm::min(m.boundsMin, p);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "buffer.hpp"
+#include "emitter_lights.hpp"
 #include "gpu_types.hpp"
 #include "image.hpp"
 
@@ -27,7 +28,11 @@ struct MeshRecord {
   VkDeviceSize normalOffset = 0;
   VkDeviceSize uvOffset = 0;
   VkDeviceSize indexOffset = 0;
-  std::vector<glm::vec3> positions;  // CPU copy for bounds
+  std::vector<glm::vec3> positions;  // CPU copy for bounds and emitter patches
+  std::vector<std::uint32_t> indices;  // CPU copy for emitter patches
+  std::vector<EmitterPatch> patches;   // made when an emissive instance first uses the mesh
+  bool patchesDirty = true;
+  float area = 0.0f;  // surface area, for the emitters' ambient term
   glm::vec3 boundsMin{0.0f};
   glm::vec3 boundsMax{0.0f};
   std::uint32_t users = 0;

@@ -72,9 +72,13 @@ void writeImageFile(const std::string& path, const std::string& named, const Fra
 }
 }  // namespace
 
-void writeImage(const std::string& path, const FrameBuffer& fb, const std::string& output) {
+void writeImage(const std::string& path, const FrameBuffer& fb, const std::string& output,
+                const DisplayTransform& display) {
   if (fb.width == 0 || fb.height == 0) throw ImageFileError(path + ": empty image");
-  const auto pixels = pixelsOf(fb, output);
+  auto pixels = pixelsOf(fb, output);
+  const bool radiance = isColourOutput(output) || output == "direct" || output == "indirect";
+  if (radiance && !display.identity() && !isFloatFormat(path))
+    for (auto& p : pixels) p = display.apply(p);
   // A failed or interrupted write leaves an existing image as it was.
   replaceFile(path, [&](const std::string& temporary) { writeImageFile(temporary, path, fb, pixels); });
 }

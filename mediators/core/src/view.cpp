@@ -8,12 +8,13 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "tsr/sg/coordinate_limit.hpp"
+#include "tsr/sg/node_world.hpp"
 
 namespace tsr::med {
 
 View View::fromCamera(const sg::Camera& camera, std::uint32_t width, std::uint32_t height) {
   View v;
-  v.cameraToWorld = camera.pose();
+  v.cameraToWorld = sg::cameraWorldPose(camera);
   v.nearPlane = camera.nearPlane();
   v.farPlane = camera.farPlane();
   float halfHeight = v.nearPlane * std::tan(camera.verticalFov() * 0.5f);

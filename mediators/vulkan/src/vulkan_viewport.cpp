@@ -17,6 +17,8 @@ vk::RenderSettings VulkanViewport::renderSettings() const {
   s.msaaSamples = static_cast<std::uint32_t>(msaa);
   s.shadows = p.getBool("shadows", true);
   s.shadowMapSize = static_cast<std::uint32_t>(p.getInt("shadowMapSize", 1024, 16, 8192));
+  s.emitterLights = static_cast<std::uint32_t>(p.getInt("emitterLights", 32, 0, 256));
+  s.emitterAmbient = p.getBool("emitterAmbient", true);
   s.background = backgroundColour(context_->adapter.environment());
   return s;
 }

@@ -24,7 +24,7 @@ class Builder {
     Group& root = scene_.create<Group>("import root");
     result_.root = root.id();
     std::vector<ContainerId> top;
-    for (int r : data_.roots) top.push_back(node(r, Mat4(1.0f)));
+    for (int r : data_.roots) top.push_back(node(r));
     root.setChildren(std::move(top));
 
     Background& bg = scene_.create<Background>("background");
@@ -37,20 +37,19 @@ class Builder {
   }
 
  private:
-  ContainerId node(int index, const Mat4& parentWorld) {
+  ContainerId node(int index) {
     const parsed::Node& n = data_.nodes[static_cast<std::size_t>(index)];
     Transform& t = scene_.create<Transform>(n.name);
     t.setMatrix(n.local);
     transforms_[static_cast<std::size_t>(index)] = t.id();
     ++result_.counts.nodes;
-    const Mat4 world = parentWorld * n.local;
 
     std::vector<ContainerId> children;
     if (n.mesh != parsed::kNone)
       for (int p : data_.meshes[static_cast<std::size_t>(n.mesh)].primitives) children.push_back(geometry(p));
     if (n.light != parsed::kNone) children.push_back(light(n.light));
-    if (n.camera != parsed::kNone) camera(n.camera, world);
-    for (int c : n.children) children.push_back(node(c, world));
+    if (n.camera != parsed::kNone) children.push_back(camera(n.camera));
+    for (int c : n.children) children.push_back(node(c));
     t.setChildren(std::move(children));
     return t.id();
   }
@@ -134,14 +133,15 @@ class Builder {
     return id = l.id();
   }
 
-  void camera(int index, const Mat4& world) {
+  // A child of its node, so the node's (animated) transforms move it.
+  ContainerId camera(int index) {
     const parsed::Camera& src = data_.cameras[static_cast<std::size_t>(index)];
     Camera& c = scene_.create<Camera>(src.name);
-    c.setPose(world);
     c.setVerticalFov(src.yfov);
     c.setNearPlane(src.znear);
     c.setFarPlane(src.zfar);
     result_.cameras.push_back(c.id());
+    return c.id();
   }
 
   void animation(const parsed::AnimationClip& clip) {

@@ -57,3 +57,24 @@ TEST(View, ValidationNamesTheProblem) {
   EXPECT_NO_THROW(v.validate());
   EXPECT_EQ(v.cropped({0, 0, 1, 1}).region.width(), 1u);
 }
+
+// Cameras are nodes: the Transforms above one move it, on the replica too.
+TEST(View, ACameraUnderATransformFollowsIt) {
+  sg::Scene s;
+  auto& dolly = s.create<sg::Transform>("dolly");
+  auto& cam = s.create<sg::Camera>("camera");
+  cam.lookAt({0, 0, 5}, {0, 0, 0});
+  dolly.addChild(cam.id());
+  const auto eyeAt = [](const View& v, glm::vec3 expected) { return glm::length(glm::vec3(v.cameraToWorld[3]) - expected) < 1e-5f; };
+  EXPECT_TRUE(eyeAt(View::fromCamera(cam, 8, 8), {0, 0, 5}));
+  sg::Scene replica;
+  replica.apply(*s.commit());
+  dolly.setMatrix(glm::translate(glm::mat4(1.0f), glm::vec3(2, 0, 0)));
+  replica.apply(*s.commit());
+  EXPECT_TRUE(eyeAt(View::fromCamera(cam, 8, 8), {2, 0, 5}));
+  EXPECT_TRUE(eyeAt(View::fromCamera(*replica.find<sg::Camera>(cam.id()), 8, 8), {2, 0, 5}));
+  // A camera held by no node: its pose is its world pose.
+  auto& loose = s.create<sg::Camera>();
+  loose.lookAt({1, 2, 3}, {0, 0, 0});
+  EXPECT_TRUE(eyeAt(View::fromCamera(loose, 8, 8), {1, 2, 3}));
+}

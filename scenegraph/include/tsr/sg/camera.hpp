@@ -1,7 +1,9 @@
 #pragma once
-// A pinhole camera. The pose maps camera space to world space; the camera
-// looks down its -Z axis with +Y up (glTF's convention). Tiles and eyes are
-// derived from it by the mediators as off-axis frusta.
+// A pinhole camera, a node of the graph. The pose maps camera space to its
+// parent's space (to world space for a camera no node holds; see
+// node_world.hpp for the world pose); the camera looks down its -Z axis with
+// +Y up (glTF's convention). Tiles and eyes are derived from it by the
+// mediators as off-axis frusta.
 #include "tsr/sg/container_of.hpp"
 
 namespace tsr::sg {

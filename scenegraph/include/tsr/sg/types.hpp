@@ -36,8 +36,10 @@ inline constexpr unsigned kContainerTypeCount = 9;
 // A set of container types, used to say what a reference field may name.
 using TypeSet = std::uint32_t;
 constexpr TypeSet typeBit(ContainerType t) { return TypeSet{1} << static_cast<unsigned>(t); }
+// Cameras are nodes: a camera under an animated Transform moves with it.
 inline constexpr TypeSet kNodeTypes = typeBit(ContainerType::Group) | typeBit(ContainerType::Transform) |
-                                      typeBit(ContainerType::Geometry) | typeBit(ContainerType::Light);
+                                      typeBit(ContainerType::Geometry) | typeBit(ContainerType::Light) |
+                                      typeBit(ContainerType::Camera);
 inline constexpr TypeSet kMaterialTypes =
     typeBit(ContainerType::SimpleMaterial) | typeBit(ContainerType::SurfaceMaterial);
 inline constexpr TypeSet kImageTypes = typeBit(ContainerType::Image);

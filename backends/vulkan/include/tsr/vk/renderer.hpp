@@ -16,8 +16,16 @@ namespace tsr::vk {
 
 struct RenderSettings {
   std::uint32_t msaaSamples = 1;  // 1 or 4
-  bool shadows = true;            // shadow maps for spot and directional lights
+  bool shadows = true;            // shadow maps for spot and directional lights (and flat emitters)
   std::uint32_t shadowMapSize = 1024;
+  // Emissive geometry lights the scene through at most this many area-like
+  // lights (patches of the emissive meshes, merged when there are more); 0:
+  // emissive surfaces glow but light nothing.
+  std::uint32_t emitterLights = 32;
+  // Adds the emitters' interreflected light as ambient (Cohen's ambient
+  // term, see src/emitter_lights.hpp), so a room lit by a panel is not
+  // black wherever the panel does not shine directly.
+  bool emitterAmbient = true;
   glm::vec4 background{0.0f};     // colour and alpha where nothing is drawn
 };
 

@@ -23,8 +23,10 @@ inline bool edited(const ChangeEntry& e) { return !e.created && !e.destroyed; }
 
 // The flattened graph changes shape: a node came or went, a parent's
 // children changed, or attachments (which may hide a node) changed.
+// Cameras are nodes but never flattened: one alone changes nothing here
+// (hanging it under a parent changes the parent's children).
 inline bool structureDirty(const ChangeEntry& e) {
-  if (!isNode(e)) return false;
+  if (!isNode(e) || e.type == sg::ContainerType::Camera) return false;
   return e.created || e.destroyed || e.changed(sg::Container::kAttachments) ||
          (sg::isParentType(e.type) && e.changed(sg::Group::Children));
 }

@@ -1,10 +1,12 @@
 #pragma once
 // Frame buffers to files through OpenImageIO, the format chosen by the
 // extension: float formats (EXR, PFM, HDR) keep radiance as it is; 8-bit
-// ones (PNG, JPEG, ...) are clamped and sRGB-encoded.
+// ones (PNG, JPEG, ...) are clamped and sRGB-encoded, after the display
+// transform (exposure, tone curve) for radiance outputs.
 #include <stdexcept>
 #include <string>
 
+#include "tsr/med/display_transform.hpp"
 #include "tsr/med/frame_buffer.hpp"
 
 namespace tsr::med {
@@ -15,7 +17,10 @@ class ImageFileError : public std::runtime_error {
 };
 
 // Writes colour, or the named output (e.g. "albedo", "depth") when given.
-void writeImage(const std::string& path, const FrameBuffer& fb, const std::string& output = "colour");
+// `display` applies to 8-bit formats and to radiance (colour, direct,
+// indirect), never to albedo, normals, depth or statistics.
+void writeImage(const std::string& path, const FrameBuffer& fb, const std::string& output = "colour",
+                const DisplayTransform& display = {});
 // Reads an image back as RGBA float (linear for float files, sRGB decoded otherwise).
 FrameBuffer readImage(const std::string& path);
 

@@ -29,7 +29,8 @@ struct View {
   std::uint32_t width = 0, height = 0;  // the full image
   PixelRect region;                     // the part to render
 
-  // A symmetric frustum from a scene camera for a width x height image.
+  // A symmetric frustum from a scene camera for a width x height image, at
+  // the camera's world pose (the Transforms above it included).
   static View fromCamera(const sg::Camera& camera, std::uint32_t width, std::uint32_t height);
   // The same image, only the pixels of `rect` (a tile).
   View cropped(const PixelRect& rect) const;

@@ -1,0 +1,23 @@
+#pragma once
+// Where a node sits in the world: the product of the Transforms above it.
+// Cameras are nodes too, so an animated parent moves the camera under it.
+#include "tsr/sg/types.hpp"
+
+namespace tsr::sg {
+
+class Scene;
+class Camera;
+
+// The product of the Transform matrices from a root down to `node`
+// (excluded). A node held by several parents (instanced) follows, at each
+// level, the parent with the smallest id; a node without parents, or not in
+// the scene, has the identity.
+Mat4 parentWorldMatrix(const Scene& scene, ContainerId node);
+
+// A camera's pose in the world: parentWorldMatrix * Camera::pose().
+// Throws std::invalid_argument when `camera` is not a Camera of the scene.
+Mat4 cameraWorldPose(const Scene& scene, ContainerId camera);
+// The same for a camera held by a scene (its pose, for one held by none).
+Mat4 cameraWorldPose(const Camera& camera);
+
+}  // namespace tsr::sg

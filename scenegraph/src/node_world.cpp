@@ -1,0 +1,35 @@
+#include "tsr/sg/node_world.hpp"
+
+#include <stdexcept>
+#include <string>
+
+#include "tsr/sg/scene.hpp"
+
+namespace tsr::sg {
+
+Mat4 parentWorldMatrix(const Scene& scene, ContainerId node) {
+  Mat4 world(1.0f);
+  // The graph is acyclic (the scene refuses cycles), so this walk ends.
+  for (ContainerId child = node;;) {
+    ContainerId parent = kNoContainer;
+    for (ContainerId id : scene.referrers(child)) {
+      const Container* c = scene.find(id);
+      if (c && isParentType(c->type()) && (parent == kNoContainer || id < parent)) parent = id;
+    }
+    if (parent == kNoContainer) return world;
+    if (const auto* t = scene.find<Transform>(parent)) world = t->matrix() * world;
+    child = parent;
+  }
+}
+
+Mat4 cameraWorldPose(const Scene& scene, ContainerId camera) {
+  const auto* c = scene.find<Camera>(camera);
+  if (!c) throw std::invalid_argument("container " + std::to_string(camera) + " is not a camera of the scene");
+  return parentWorldMatrix(scene, camera) * c->pose();
+}
+
+Mat4 cameraWorldPose(const Camera& camera) {
+  return camera.scene() ? parentWorldMatrix(*camera.scene(), camera.id()) * camera.pose() : camera.pose();
+}
+
+}  // namespace tsr::sg

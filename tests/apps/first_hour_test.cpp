@@ -1,0 +1,170 @@
+// What a new user tries first, through tessera-render with the real
+// back-ends: a scene lit only by emissive geometry and a glTF without any
+// lights both render recognisably lit in the path tracer and the
+// rasterizer; cameras are chosen by name or index, placed from the command
+// line, and moved by their animated parents; exposure and the filmic curve
+// change PNGs only; bad values are one error line.
+#include <cmath>
+#include <fstream>
+
+#include <glm/glm.hpp>
+
+#include "command_runner.hpp"
+#include "lit_scene_gltf.hpp"
+#include "tsr/med/image_file.hpp"
+
+namespace {
+
+using ::testing::HasSubstr;
+using tsr::test::Outcome;
+
+// Brightness: mean luminance of the colour clamped to [0, 1], as a PNG
+// shows it (unclamped, the emitter's own pixels would dominate). Embree (64
+// spp) over vulkan, measured (README, "Lights, cameras and the picture"):
+// builtin:cornell 1.05, the boxes under the default rig 1.00. Allowed:
+// within a factor of 1.3 either way.
+constexpr double kBrightnessFactor = 1.3;
+
+class FirstHour : public tsr::test::CommandTest {
+ protected:
+  Outcome run(const std::string& args) { return runBinary(TSR_RENDER_PATH, args); }
+  void render(const std::string& args) {
+    const Outcome r = run(args + " --quiet");
+    ASSERT_EQ(r.status, 0) << args << "\n" << r.err;
+  }
+  tsr::med::FrameBuffer image(const std::string& name) { return tsr::med::readImage((dir / name).string()); }
+  static double meanLuminance(const tsr::med::FrameBuffer& fb) {
+    double sum = 0;
+    for (const auto& p : fb.colour) {
+      const glm::vec3 c = glm::clamp(glm::vec3(p), 0.0f, 1.0f);
+      sum += 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+    }
+    return sum / double(fb.colour.size());
+  }
+  static double meanAbsDifference(const tsr::med::FrameBuffer& a, const tsr::med::FrameBuffer& b) {
+    EXPECT_EQ(a.colour.size(), b.colour.size());
+    if (a.colour.size() != b.colour.size()) return 1e9;
+    double sum = 0;
+    for (std::size_t i = 0; i < a.colour.size(); ++i)
+      for (int c = 0; c < 3; ++c) sum += std::abs(a.colour[i][c] - b.colour[i][c]);
+    return sum / (3.0 * double(a.colour.size()));
+  }
+  static void expectSimilarBrightness(double embree, double vulkan, const std::string& scene) {
+    ASSERT_GT(vulkan, 0.0) << scene;
+    const double ratio = embree / vulkan;
+    std::cout << scene << ": mean luminance embree " << embree << ", vulkan " << vulkan << ", ratio " << ratio << "\n";
+    EXPECT_LT(ratio, kBrightnessFactor) << scene;
+    EXPECT_GT(ratio, 1.0 / kBrightnessFactor) << scene;
+  }
+  std::string boxes() {
+    tsr::test::writeLitSceneGltf((dir / "boxes.gltf").string());
+    return "boxes.gltf --size 64x48";
+  }
+  // The camera's vertical field of view in degrees, as --fov takes it.
+  static std::string fov() { return std::to_string(glm::degrees(double(tsr::test::kCameraYfov))); }
+};
+
+TEST_F(FirstHour, CornellIsLitByItsCeilingPanelInEmbreeAndVulkan) {
+  const std::string common = "builtin:cornell --size 64x64 ";
+  render(common + "--backend embree --spp 64 --seed 1 --output e.exr");
+  render(common + "--backend vulkan --output v.exr");
+  render(common + "--backend vulkan --param emitterLights=0 --output unlit.exr");
+  const double embree = meanLuminance(image("e.exr")), vulkan = meanLuminance(image("v.exr"));
+  expectSimilarBrightness(embree, vulkan, "builtin:cornell");
+  // Without emitter lights only the panel itself shows (the black room).
+  EXPECT_LT(meanLuminance(image("unlit.exr")), 0.2 * vulkan);
+  // The same room in both: floor and ceiling lit, red wall left, green right.
+  for (const char* name : {"e.exr", "v.exr"}) {
+    const auto fb = image(name);
+    const auto at = [&](int x, int y) { return glm::vec3(fb.colour[std::size_t(y) * fb.width + x]); };
+    EXPECT_GT(at(10, 60).r, 0.1f) << name << ": the floor is lit";
+    EXPECT_GT(at(32, 5).g, 0.1f) << name << ": the ceiling is lit";
+    EXPECT_GT(at(4, 30).r, 2 * at(4, 30).g) << name << ": the left wall is red";
+    EXPECT_GT(at(60, 30).g, 2 * at(60, 30).r) << name << ": the right wall is green";
+  }
+}
+
+TEST_F(FirstHour, AGltfWithoutLightsGetsTheDefaultRigInEveryBackend) {
+  const std::string scene = boxes();
+  const Outcome e = run(scene + " --backend embree --spp 64 --seed 1 --output e.exr --quiet");
+  ASSERT_EQ(e.status, 0) << e.err;
+  EXPECT_THAT(e.out, HasSubstr("default rig")) << "the log says the scene got the default rig";
+  render(scene + " --backend vulkan --output v.exr");
+  expectSimilarBrightness(meanLuminance(image("e.exr")), meanLuminance(image("v.exr")), "boxes.gltf");
+  // The coverage back-end shows false colours, not light: it renders, with the rig's nodes ignored.
+  render(scene + " --backend coverage --output c.png");
+  // --no-default-light: nothing lights it, in either.
+  render(scene + " --backend embree --spp 4 --no-default-light --output e0.exr");
+  render(scene + " --backend vulkan --no-default-light --output v0.exr");
+  EXPECT_EQ(meanLuminance(image("e0.exr")), 0.0);
+  EXPECT_EQ(meanLuminance(image("v0.exr")), 0.0);
+  // Builtin:cornell has its own light: no rig there.
+  const Outcome c = run("builtin:cornell --size 8x8 --backend vulkan --output c.exr --quiet");
+  EXPECT_THAT(c.out, ::testing::Not(HasSubstr("default rig")));
+}
+
+TEST_F(FirstHour, CamerasAreChosenByNameOrIndexAndPlacedByLookOptions) {
+  const std::string scene = boxes() + " --backend vulkan";
+  render(scene + " --output first.exr");
+  render(scene + " --camera front --output front.exr");
+  render(scene + " --camera 1 --output one.exr");
+  render(scene + " --camera top --output top.exr");
+  EXPECT_EQ(meanAbsDifference(image("first.exr"), image("front.exr")), 0.0) << "the first camera is the default";
+  EXPECT_EQ(meanAbsDifference(image("one.exr"), image("top.exr")), 0.0) << "index 1 is the camera named top";
+  EXPECT_GT(meanAbsDifference(image("front.exr"), image("top.exr")), 0.02) << "top sees another view";
+  // The front camera's pose by hand: the same view (planes differ, pixels hardly).
+  render(scene + " --look-from 0,1.5,6 --look-at 0,1.5,0 --fov " + fov() + " --output look.exr");
+  EXPECT_LT(meanAbsDifference(image("front.exr"), image("look.exr")), 2e-3);
+  // --fov alone widens the chosen camera's view: the boxes get smaller.
+  render(scene + " --fov 90 --output wide.exr");
+  EXPECT_GT(meanAbsDifference(image("front.exr"), image("wide.exr")), 0.02);
+}
+
+TEST_F(FirstHour, AnAnimatedParentMovesItsCamera) {
+  const std::string scene = boxes() + " --backend vulkan --camera tracking";
+  render(scene + " --frames 2 --fps 1 --output f.####.exr");
+  render(boxes() + " --backend vulkan --camera front --output front.exr");
+  render(boxes() + " --backend vulkan --look-from 2,1.5,6 --look-at 2,1.5,0 --fov " + fov() + " --output moved.exr");
+  EXPECT_LT(meanAbsDifference(image("f.0000.exr"), image("front.exr")), 2e-3) << "at t = 0 the dolly is home";
+  EXPECT_GT(meanAbsDifference(image("f.0000.exr"), image("f.0001.exr")), 0.02) << "at t = 1 it has moved";
+  EXPECT_LT(meanAbsDifference(image("f.0001.exr"), image("moved.exr")), 2e-3) << "2 units along +X";
+}
+
+TEST_F(FirstHour, ExposureAndFilmicCurveChangePngsOnly) {
+  const std::string scene = "builtin:cornell --size 48x48 --backend vulkan ";
+  render(scene + "--output plain.png");
+  render(scene + "--exposure 1 --output bright.png");
+  render(scene + "--exposure 3 --output over.png");
+  render(scene + "--exposure 3 --tonemap filmic --output filmic.png");
+  render(scene + "--output plain.exr");
+  render(scene + "--exposure 3 --tonemap filmic --output graded.exr");
+  EXPECT_GT(meanLuminance(image("bright.png")), 1.4 * meanLuminance(image("plain.png")));
+  EXPECT_EQ(meanAbsDifference(image("plain.exr"), image("graded.exr")), 0.0) << "EXR stays linear";
+  // Three stops over clip much of the picture to white; the filmic curve rolls it off.
+  auto clipped = [&](const char* name) {
+    std::size_t n = 0;
+    for (const auto& p : image(name).colour) n += p.r >= 1.0f && p.g >= 1.0f && p.b >= 1.0f;
+    return n;
+  };
+  EXPECT_GT(clipped("over.png"), 100u);
+  EXPECT_LT(clipped("filmic.png"), clipped("over.png") / 4);
+}
+
+TEST_F(FirstHour, BadViewValuesAreOneErrorLine) {
+  const std::string scene = boxes() + " --backend vulkan --output x.png ";
+  expectOneErrorLine(run(scene + "--fov 0"), "--fov");
+  expectOneErrorLine(run(scene + "--fov 180"), "--fov");
+  expectOneErrorLine(run(scene + "--fov nan"), "--fov");
+  expectOneErrorLine(run(scene + "--look-from 1,2"), "--look-from 1,2: expected X,Y,Z");
+  expectOneErrorLine(run(scene + "--look-from 1,2,x"), "'x' is not a number");
+  expectOneErrorLine(run(scene + "--look-at inf,0,0"), "--look-at");
+  expectOneErrorLine(run(scene + "--look-from 1,1,1 --look-at 1,1,1"), "same point");
+  expectOneErrorLine(run(scene + "--camera 7"), "cameras: 0 'front', 1 'top', 2 'tracking'");
+  expectOneErrorLine(run(scene + "--camera nosuch"), "--camera nosuch");
+  expectOneErrorLine(run("builtin:instances:4 --camera 1 --output x.png"), "--camera 1");
+  expectOneErrorLine(run(scene + "--tonemap sepia"), "--tonemap");
+  expectOneErrorLine(run(scene + "--exposure inf"), "--exposure");
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
+}
+
+}  // namespace
