@@ -20,20 +20,6 @@ bool validJobName(const std::string& job) {
   return true;
 }
 
-// Ranks 3, 4 and 7 -> "3, 4, 7" (at most 16 listed).
-std::string listRanks(const std::vector<unsigned>& ranks) {
-  std::string out;
-  for (std::size_t i = 0; i < ranks.size() && i < 16; ++i) out += (i ? ", " : "") + std::to_string(ranks[i]);
-  if (ranks.size() > 16) out += " and " + std::to_string(ranks.size() - 16) + " more";
-  return out;
-}
-
-std::string seconds(std::chrono::milliseconds duration) {
-  std::ostringstream s;
-  s << duration.count() / 1000.0;
-  return s.str();
-}
-
 }  // namespace
 
 DirectoryRendezvous::DirectoryRendezvous(fs::path directory, const std::string& job) {
@@ -47,7 +33,7 @@ fs::path DirectoryRendezvous::rankFile(unsigned rank) const {
   return folder_ / ("rank-" + std::to_string(rank) + ".addr");
 }
 
-void DirectoryRendezvous::publish(unsigned rank, const cluster::NodeAddress& address) const {
+void DirectoryRendezvous::publish(unsigned rank, const cluster::NodeAddress& address) {
   std::error_code ec;
   fs::create_directories(folder_, ec);
   if (ec) throw LaunchError("cannot create the rendezvous folder " + folder_.string() + ": " + ec.message());
@@ -55,7 +41,7 @@ void DirectoryRendezvous::publish(unsigned rank, const cluster::NodeAddress& add
 }
 
 std::vector<cluster::NodeAddress> DirectoryRendezvous::gather(unsigned size, std::chrono::milliseconds timeout,
-                                                              const Progress& progress) const {
+                                                              const Progress& progress) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   std::vector<cluster::NodeAddress> addresses(size > 0 ? size - 1 : 0);
   std::vector<bool> found(addresses.size(), false);
@@ -85,25 +71,18 @@ std::vector<cluster::NodeAddress> DirectoryRendezvous::gather(unsigned size, std
     if (progress && published != reported) progress(published, size - 1);
     reported = published;
     if (published + 1 == size) return addresses;
-    if (std::chrono::steady_clock::now() >= deadline) {
-      std::vector<unsigned> missing;
-      for (unsigned r = 1; r < size; ++r)
-        if (!found[r - 1]) missing.push_back(r);
-      throw LaunchError("rank" + std::string(missing.size() > 1 ? "s " : " ") + listRanks(missing) +
-                        " published no address in " + folder_.string() + " within " + seconds(timeout) + " s (" +
-                        std::to_string(published) + " of " + std::to_string(size - 1) + " nodes did)");
-    }
+    if (std::chrono::steady_clock::now() >= deadline) throw LaunchError(missingRanksMessage(found, where(), timeout));
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
 }
 
-void DirectoryRendezvous::markDone() const {
+void DirectoryRendezvous::markDone() {
   std::error_code ec;
   fs::create_directories(folder_, ec);
   med::replaceTextFile((folder_ / "done").string(), "done\n");
 }
 
-bool DirectoryRendezvous::done() const {
+bool DirectoryRendezvous::done() {
   std::error_code ec;
   return fs::exists(folder_ / "done", ec);
 }

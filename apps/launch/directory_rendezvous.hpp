@@ -6,33 +6,30 @@
 // then writes "done" so the node ranks stop their nodes and exit.
 #include <chrono>
 #include <filesystem>
-#include <functional>
 #include <string>
 #include <vector>
 
-#include "tsr/cluster/node_address.hpp"
+#include "rendezvous.hpp"
 
 namespace tsr::app {
 
-class DirectoryRendezvous {
+class DirectoryRendezvous final : public Rendezvous {
  public:
   // Throws LaunchError for an empty job name or one with characters other
   // than letters, digits, '.', '_' and '-' (it becomes a folder name).
   DirectoryRendezvous(std::filesystem::path directory, const std::string& job);
 
   const std::filesystem::path& folder() const { return folder_; }
+  std::string where() const override { return folder_.string(); }
 
-  void publish(unsigned rank, const cluster::NodeAddress& address) const;
-  // The addresses of ranks 1..size-1 in rank order, polled until all are
-  // there. Throws LaunchError naming the missing ranks after `timeout`, or
-  // the file at once when one holds no valid HOST:PORT line.
-  using Progress = std::function<void(unsigned published, unsigned wanted)>;
+  void publish(unsigned rank, const cluster::NodeAddress& address) override;
+  bool done() override;
+  // Polls the folder; throws at once, naming the file, when one holds no
+  // valid HOST:PORT line.
   std::vector<cluster::NodeAddress> gather(unsigned size, std::chrono::milliseconds timeout,
-                                           const Progress& progress = {}) const;
-
-  // Rank 0's word that the client has finished.
-  void markDone() const;
-  bool done() const;
+                                           const Progress& progress = {}) override;
+  // Writes "done".
+  void markDone() override;
 
   // Files larger than this are not address files.
   static constexpr std::uintmax_t kMaxAddressFileBytes = 256;

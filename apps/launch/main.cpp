@@ -1,4 +1,4 @@
-// tessera-launch [--rendezvous DIR] [options] -- CLIENT-COMMAND...
+// tessera-launch (--rendezvous DIR | --rendezvous-address HOST:PORT) [options] -- CLIENT-COMMAND...
 // One command line for every process of a job started by mpirun, srun or
 // ssh: rank 0 waits until every other rank has published the address of
 // the tessera-node it started, then runs CLIENT-COMMAND with
@@ -20,6 +20,7 @@
 #include "child_process.hpp"
 #include "directory_rendezvous.hpp"
 #include "launch_rank.hpp"
+#include "socket_rendezvous.hpp"
 
 namespace {
 
@@ -35,7 +36,7 @@ void onSignal(int signal) {
 }
 
 struct LaunchOptions {
-  std::string rendezvous, job, tokenFile, nodeBinary, listenHost = "127.0.0.1", advertise;
+  std::string rendezvous, rendezvousAddress, job, tokenFile, nodeBinary, listenHost = "127.0.0.1", advertise;
   std::vector<std::string> nodeArgs, client;
   int rank = -1, size = -1;
   unsigned threads = 0;
@@ -72,7 +73,7 @@ std::chrono::milliseconds waitLimit(const LaunchOptions& o) {
   return std::chrono::milliseconds(static_cast<long long>(o.waitSeconds * 1000));
 }
 
-int runNode(const LaunchOptions& o, const tsr::app::LaunchRank& rank, const tsr::app::DirectoryRendezvous& meet,
+int runNode(const LaunchOptions& o, const tsr::app::LaunchRank& rank, tsr::app::Rendezvous& meet,
             const Console& console) {
   std::vector<std::string> argv{o.nodeBinary.empty() ? defaultNodeBinary() : o.nodeBinary, "--listen",
                                 o.listenHost + ":0", "--name", "rank-" + std::to_string(rank.rank)};
@@ -91,7 +92,7 @@ int runNode(const LaunchOptions& o, const tsr::app::LaunchRank& rank, const tsr:
   auto address = tsr::cluster::parseNodeAddress(line.substr(prefix.size()));
   address.host = advertisedHost(o);
   meet.publish(rank.rank, address);
-  console.info("node at " + address.text() + " published in " + meet.folder().string());
+  console.info("node at " + address.text() + " published to " + meet.where());
   while (!stopRequested && !meet.done()) {
     if (auto status = node.poll())
       throw LaunchError("tessera-node exited with status " + std::to_string(*status) + " before the client finished");
@@ -102,10 +103,10 @@ int runNode(const LaunchOptions& o, const tsr::app::LaunchRank& rank, const tsr:
   return stopRequested ? status : 0;
 }
 
-int runClient(const LaunchOptions& o, const tsr::app::LaunchRank& rank, const tsr::app::DirectoryRendezvous& meet,
+int runClient(const LaunchOptions& o, const tsr::app::LaunchRank& rank, tsr::app::Rendezvous& meet,
               const Console& console) {
   struct DoneOnExit {  // the nodes stop however rank 0 leaves
-    const tsr::app::DirectoryRendezvous& meet;
+    tsr::app::Rendezvous& meet;
     ~DoneOnExit() {
       try {
         meet.markDone();
@@ -113,7 +114,7 @@ int runClient(const LaunchOptions& o, const tsr::app::LaunchRank& rank, const ts
       }
     }
   } done{meet};
-  console.info("waiting for " + std::to_string(rank.size - 1) + " node(s) in " + meet.folder().string());
+  console.info("waiting for " + std::to_string(rank.size - 1) + " node(s) at " + meet.where());
   auto addresses = meet.gather(rank.size, waitLimit(o), [&](unsigned found, unsigned wanted) {
     if (found > 0) console.info(std::to_string(found) + " of " + std::to_string(wanted) + " nodes published");
   });
@@ -135,9 +136,12 @@ int runClient(const LaunchOptions& o, const tsr::app::LaunchRank& rank, const ts
 int main(int argc, char** argv) {
   CLI::App app{"Starts a Tessera client (rank 0) and render nodes (other ranks) under mpirun, srun or ssh"};
   LaunchOptions o;
-  app.add_option("--rendezvous", o.rendezvous,
-                 "folder every host of the job sees; the ranks meet in DIR/tessera-JOB")
-      ->required();
+  auto* folder = app.add_option("--rendezvous", o.rendezvous,
+                                "folder every host of the job sees; the ranks meet in DIR/tessera-JOB");
+  auto* address = app.add_option("--rendezvous-address", o.rendezvousAddress,
+                                 "instead of a folder: rank 0 listens on HOST:PORT, the node ranks connect there");
+  folder->excludes(address);
+  address->excludes(folder);
   app.add_option("--job", o.job, "job name (default: SLURM_JOB_ID.SLURM_STEP_ID or Open MPI's job id); unique per run");
   app.add_option("--rank", o.rank, "this process's rank, when no launcher sets SLURM_PROCID or OMPI_COMM_WORLD_RANK")
       ->check(CLI::NonNegativeNumber);
@@ -155,8 +159,12 @@ int main(int argc, char** argv) {
   app.positionals_at_end();
   Console console;
   tsr::app::LaunchRank rank;
+  tsr::cluster::NodeAddress rankZero;
   try {
     app.parse(argc, argv);
+    if (o.rendezvous.empty() && o.rendezvousAddress.empty())
+      throw LaunchError("give --rendezvous DIR (a shared folder) or --rendezvous-address HOST:PORT (rank 0's)");
+    if (!o.rendezvousAddress.empty()) rankZero = tsr::cluster::parseNodeAddress(o.rendezvousAddress);
     if ((o.rank < 0) != (o.size < 0)) throw LaunchError("--rank and --size go together");
     if (o.rank >= 0) {
       rank = {static_cast<unsigned>(o.rank), static_cast<unsigned>(o.size), o.job, "command line"};
@@ -167,7 +175,8 @@ int main(int argc, char** argv) {
       throw LaunchError("no rank: start under mpirun or srun, or give --rank and --size");
     }
     if (!o.job.empty()) rank.job = o.job;
-    if (rank.job.empty()) throw LaunchError("no job name from " + rank.source + ": give --job NAME, unique per run");
+    if (rank.job.empty() && !o.rendezvous.empty())
+      throw LaunchError("no job name from " + rank.source + ": give --job NAME, unique per run");
     if (rank.size < 2) throw LaunchError("a job of 1 process has no node: start at least 2 ranks");
     if (rank.rank == 0 && o.client.empty()) throw LaunchError("no client command: give it after --");
   } catch (const CLI::CallForHelp&) {
@@ -185,8 +194,11 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
   try {
-    tsr::app::DirectoryRendezvous meet(o.rendezvous, rank.job);
-    return rank.rank == 0 ? runClient(o, rank, meet, console) : runNode(o, rank, meet, console);
+    std::unique_ptr<tsr::app::Rendezvous> meet;
+    if (!o.rendezvous.empty()) meet = std::make_unique<tsr::app::DirectoryRendezvous>(o.rendezvous, rank.job);
+    else
+      meet = std::make_unique<tsr::app::SocketRendezvous>(rankZero, rank.rank == 0, waitLimit(o));
+    return rank.rank == 0 ? runClient(o, rank, *meet, console) : runNode(o, rank, *meet, console);
   } catch (const std::exception& e) {
     std::cerr << "error: rank " << rank.rank << ": " << e.what() << "\n";
     return 1;

@@ -6,6 +6,10 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <thread>
+
+#include <netinet/in.h>
+#include <sys/socket.h>
 
 #include <sys/wait.h>
 
@@ -15,6 +19,7 @@
 #include "cluster_test_util.hpp"
 #include "directory_rendezvous.hpp"
 #include "launch_rank.hpp"
+#include "socket_rendezvous.hpp"
 #include "tsr/med/image_file.hpp"
 
 namespace tsr::cluster::test {
@@ -124,6 +129,58 @@ TEST(DirectoryRendezvous, HostileFilesAndJobNamesAreRefused) {
   }
 }
 
+// A port that was free a moment ago (the socket rendezvous needs one every rank knows).
+std::uint16_t freePort() {
+  int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t length = sizeof a;
+  EXPECT_EQ(bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
+  getsockname(fd, reinterpret_cast<sockaddr*>(&a), &length);
+  close(fd);
+  return ntohs(a.sin_port);
+}
+
+TEST(SocketRendezvous, GathersTheNodesThatConnectAndTellsThemWhenDone) {
+  const NodeAddress rankZero{"127.0.0.1", freePort()};
+  app::SocketRendezvous server(rankZero, true, std::chrono::seconds(5));
+  app::SocketRendezvous first(rankZero, false, std::chrono::seconds(5)), second(rankZero, false, std::chrono::seconds(5));
+  std::thread late([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    second.publish(2, parseNodeAddress("host-b:7002"));
+  });
+  first.publish(1, parseNodeAddress("host-a:7001"));
+  auto addresses = server.gather(3, std::chrono::seconds(5));
+  late.join();
+  ASSERT_EQ(addresses.size(), 2u);
+  EXPECT_EQ(addresses[0].text(), "host-a:7001");
+  EXPECT_EQ(addresses[1].text(), "host-b:7002");
+  EXPECT_FALSE(first.done());
+  server.markDone();
+  for (int i = 0; i < 100 && !(first.done() && second.done()); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_TRUE(first.done());
+  EXPECT_TRUE(second.done());
+}
+
+TEST(SocketRendezvous, StrayLinesAreRefusedAndTheWaitNamesWhoIsMissing) {
+  const NodeAddress rankZero{"127.0.0.1", freePort()};
+  auto server = std::make_unique<app::SocketRendezvous>(rankZero, true, std::chrono::seconds(5));
+  app::SocketRendezvous impostor(rankZero, false, std::chrono::seconds(5)), real(rankZero, false, std::chrono::seconds(5));
+  impostor.publish(9, parseNodeAddress("evil:1"));  // rank 9 of a job of 3
+  real.publish(2, parseNodeAddress("127.0.0.1:7002"));
+  try {
+    server->gather(3, std::chrono::milliseconds(300));
+    FAIL() << "gather returned without rank 1";
+  } catch (const app::LaunchError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("rank 1 published no address in rank 0 at " + rankZero.text()));
+    EXPECT_THAT(e.what(), HasSubstr("refused 'rank 9 evil:1'"));
+  }
+  server.reset();  // rank 0 gone: a node that comes now gives up after its wait
+  EXPECT_THROW(app::SocketRendezvous(rankZero, false, std::chrono::milliseconds(200)).publish(1, rankZero),
+               app::LaunchError);
+}
+
 struct Run {
   int status = -1;
   std::string err;
@@ -185,6 +242,23 @@ TEST(LaunchCommand, ThreeSlurmRanksRenderLikeALocalRender) {
     script += "env SLURM_PROCID=" + std::to_string(rank) + " SLURM_NTASKS=3 SLURM_JOB_ID=42 " + kLaunch +
               " --rendezvous " + dir.path.string() + " --token-file " + token.path() + " --threads 1 -- " +
               clientCommand(dir.path) + (rank ? " &\n" : "\n");
+  script += "status=$?; wait; exit $status\n";
+  std::ofstream(dir.path / "job.sh") << script;
+  auto r = shell("bash " + (dir.path / "job.sh").string(), dir.path / "err");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("2 of 2 nodes published"));
+  expectEqualsLocalRender(dir.path);
+}
+
+TEST(LaunchCommand, RanksGivenByHandMeetAtRankZerosAddress) {
+  // What an ssh loop does: --rank/--size on each command line, no shared folder.
+  TempDir dir;
+  TokenFile token("launch token");
+  const std::string meet = " --rendezvous-address 127.0.0.1:" + std::to_string(freePort());
+  std::string script;
+  for (int rank = 2; rank >= 0; --rank)  // the nodes start first and retry until rank 0 listens
+    script += kLaunch + meet + " --rank " + std::to_string(rank) + " --size 3 --token-file " + token.path() +
+              " --threads 1 -- " + clientCommand(dir.path) + (rank ? " &\n" : "\n");
   script += "status=$?; wait; exit $status\n";
   std::ofstream(dir.path / "job.sh") << script;
   auto r = shell("bash " + (dir.path / "job.sh").string(), dir.path / "err");
