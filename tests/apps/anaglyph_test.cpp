@@ -99,6 +99,11 @@ TEST_F(AnaglyphCommand, TwoNodesRenderTheEyesOfTheLocalImage) {
                     " --token-file " + token.path() + " --output nodes.exr");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(sameColour(med::readImage((dir / "nodes.exr").string()), expected(med::AnaglyphMethod::Dubois)));
+  // One node renders both eyes (its two viewports share one converted scene).
+  r = anaglyph("builtin:cornell" + kRender + kEyes + " --nodes " + left.text() + " --token-file " + token.path() +
+               " --output one-node.exr");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(sameColour(med::readImage((dir / "one-node.exr").string()), expected(med::AnaglyphMethod::Dubois)));
 }
 
 TEST_F(AnaglyphCommand, BadInputIsOneErrorLine) {
@@ -172,6 +177,24 @@ TEST_F(AnaglyphWindow, ShowsTheHeadlessImageAndFollowsKeysAndMouse) {
             0.01f);
   // Dragging moves the camera: another view of the box.
   EXPECT_GT(maxDifference(shot("orbited.png"), shot("redcyan.png")), 0.05f);
+}
+
+TEST_F(AnaglyphWindow, OnNodesTheCameraMovesTooAsTheLocalWindowShows) {
+  // The drag edits the scene camera; the nodes follow through change lists.
+  std::ofstream(dir / "orbit.script") << "frames 1\norbit -60 20\nframes 1\nscreenshot orbited.png\n";
+  cluster::test::TokenFile token("anaglyph token");
+  cluster::test::NodeProcess left({"--token-file", token.path()}), right({"--token-file", token.path()});
+  auto r = anaglyph("builtin:cornell" + kRender + kEyes + " --nodes " + left.text() + "," + right.text() +
+                    " --token-file " + token.path() + " --script orbit.script");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::filesystem::rename(dir / "orbited.png", dir / "nodes-orbited.png");
+  r = anaglyph("builtin:cornell" + kRender + kEyes + " --script orbit.script");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto local = med::readImage((dir / "orbited.png").string());
+  EXPECT_EQ(maxDifference(med::readImage((dir / "nodes-orbited.png").string()), local), 0.0f);
+  auto h = anaglyph("builtin:cornell" + kRender + kEyes + " --output unmoved.png");
+  ASSERT_EQ(h.status, 0) << h.err;
+  EXPECT_GT(maxDifference(med::readImage((dir / "unmoved.png").string()), local), 0.05f);
 }
 
 }  // namespace
