@@ -88,3 +88,29 @@ bool DirectoryRendezvous::done() {
 }
 
 }  // namespace tsr::app
+
+namespace tsr::app {
+
+void DirectoryRendezvous::retire(unsigned rank) {
+  std::error_code ec;
+  fs::remove(rankFile(rank), ec);
+}
+
+void DirectoryRendezvous::cleanUp(unsigned size, std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  auto anyLeft = [&] {
+    std::error_code ec;
+    for (unsigned r = 1; r < size; ++r)
+      if (fs::exists(rankFile(r), ec)) return true;
+    return false;
+  };
+  while (anyLeft()) {
+    if (std::chrono::steady_clock::now() >= deadline) return;  // a node rank still stopping: leave the folder
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  std::error_code ec;
+  fs::remove(folder_ / "done", ec);
+  fs::remove(folder_, ec);  // only when empty
+}
+
+}  // namespace tsr::app

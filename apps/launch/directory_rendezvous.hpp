@@ -30,6 +30,9 @@ class DirectoryRendezvous final : public Rendezvous {
                                            const Progress& progress = {}) override;
   // Writes "done".
   void markDone() override;
+  void retire(unsigned rank) override;  // removes the rank's file
+  // Removes "done" and the folder once no rank file is left.
+  void cleanUp(unsigned size, std::chrono::milliseconds timeout) override;
 
   // Files larger than this are not address files.
   static constexpr std::uintmax_t kMaxAddressFileBytes = 256;

@@ -100,6 +100,7 @@ int runNode(const LaunchOptions& o, const tsr::app::LaunchRank& rank, tsr::app::
   }
   const int status = node.stop(std::chrono::seconds(5));
   forwardTo = -1;
+  meet.retire(rank.rank);
   return stopRequested ? status : 0;
 }
 
@@ -107,17 +108,21 @@ int runClient(const LaunchOptions& o, const tsr::app::LaunchRank& rank, tsr::app
               const Console& console) {
   struct DoneOnExit {  // the nodes stop however rank 0 leaves
     tsr::app::Rendezvous& meet;
+    unsigned size;
+    bool gathered = false;  // else the word stays for node ranks that come late
     ~DoneOnExit() {
       try {
         meet.markDone();
+        if (gathered) meet.cleanUp(size, std::chrono::seconds(10));
       } catch (...) {
       }
     }
-  } done{meet};
+  } done{meet, rank.size};
   console.info("waiting for " + std::to_string(rank.size - 1) + " node(s) at " + meet.where());
   auto addresses = meet.gather(rank.size, waitLimit(o), [&](unsigned found, unsigned wanted) {
     if (found > 0) console.info(std::to_string(found) + " of " + std::to_string(wanted) + " nodes published");
   });
+  done.gathered = true;
   std::string nodes;
   for (const auto& a : addresses) nodes += (nodes.empty() ? "" : ",") + a.text();
   std::vector<std::string> argv = o.client;

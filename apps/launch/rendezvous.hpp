@@ -23,12 +23,17 @@ class Rendezvous {
   virtual void publish(unsigned rank, const cluster::NodeAddress& address) = 0;
   // True once rank 0 has said its client finished (or can no longer say so).
   virtual bool done() = 0;
+  // This node rank has stopped its node (after done()).
+  virtual void retire(unsigned /*rank*/) {}
 
   // Rank 0: the addresses of ranks 1..size-1 in rank order. Throws
   // LaunchError naming the missing ranks after `timeout`.
   virtual std::vector<cluster::NodeAddress> gather(unsigned size, std::chrono::milliseconds timeout,
                                                    const Progress& progress = {}) = 0;
   virtual void markDone() = 0;
+  // After markDone(): waits at most `timeout` for the node ranks to retire
+  // and removes what the rendezvous left behind.
+  virtual void cleanUp(unsigned /*size*/, std::chrono::milliseconds /*timeout*/) {}
 };
 
 // Ranks 3, 4 and 7 -> "ranks 3, 4, 7 published no address in WHERE within 60 s (5 of 8 nodes did)".

@@ -247,6 +247,8 @@ TEST(LaunchCommand, ThreeSlurmRanksRenderLikeALocalRender) {
   auto r = shell("bash " + (dir.path / "job.sh").string(), dir.path / "err");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_THAT(r.err, HasSubstr("2 of 2 nodes published"));
+  EXPECT_FALSE(fs::exists(dir.path / "tessera-42.0")) << "the nodes retired and rank 0 removed the folder";
+  EXPECT_FALSE(fs::exists(dir.path / "tessera-42"));
   expectEqualsLocalRender(dir.path);
 }
 
@@ -276,6 +278,8 @@ TEST(LaunchCommand, MpirunOnLoopbackRendersLikeALocalRender) {
                  dir.path / "err");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_THAT(r.err, HasSubstr("[rank 0/3]: running"));
+  for (const auto& entry : fs::directory_iterator(dir.path))
+    EXPECT_NE(entry.path().filename().string().rfind("tessera-", 0), 0u) << entry.path() << " left behind";
   expectEqualsLocalRender(dir.path);
 }
 #endif
