@@ -10,6 +10,7 @@
 #include "anaglyph_options.hpp"
 #include "anaglyph_window.hpp"
 #include "backends.hpp"
+#include "progress_bar.hpp"
 #include "tsr/cluster/auth.hpp"
 #include "tsr/med/image_file.hpp"
 #include "tsr/sg/import/scene_stats.hpp"
@@ -76,7 +77,10 @@ int run(int argc, char** argv) {
   if (!o.output.empty()) {
     renderer->publish(session);
     const auto view = tsr::med::View::fromCamera(camera, o.width, o.height);
-    auto pair = renderer->render(session, view, stereo.separation, stereo.zeroParallax);
+    tsr::app::ProgressBar bar("rendering both eyes");
+    auto pair = renderer->render(session, view, stereo.separation, stereo.zeroParallax,
+                                 [&](double f) { bar.update(f); });
+    bar.finish();
     tsr::med::writeImage(o.output, tsr::med::anaglyph(pair.left, pair.right, stereo.method));
     std::cout << "wrote " << o.output << " (" << o.width << "x" << o.height << ", " << tsr::app::methodName(stereo.method)
               << ", eye separation " << stereo.separation << ", zero parallax " << stereo.zeroParallax << ")\n";

@@ -13,11 +13,14 @@ class LocalStereo final : public StereoRenderer {
 
   void publish(SceneSession& session) override { session.publish(); }
 
-  StereoPair render(const SceneSession& session, const med::View& centre, float separation,
-                    float zeroParallax) override {
+  StereoPair render(const SceneSession& session, const med::View& centre, float separation, float zeroParallax,
+                    const std::function<void(double)>& progress) override {
     StereoPair pair;
-    viewport_->render(session.replica, centre.eye(med::Eye::Left, separation, zeroParallax), pair.left);
-    viewport_->render(session.replica, centre.eye(med::Eye::Right, separation, zeroParallax), pair.right);
+    med::RenderControl control;
+    if (progress) control.progress = [&](double f) { progress(0.5 * f); };
+    viewport_->render(session.replica, centre.eye(med::Eye::Left, separation, zeroParallax), pair.left, control);
+    if (progress) control.progress = [&](double f) { progress(0.5 + 0.5 * f); };
+    viewport_->render(session.replica, centre.eye(med::Eye::Right, separation, zeroParallax), pair.right, control);
     return pair;
   }
 
@@ -37,9 +40,11 @@ class ClusterStereo final : public StereoRenderer {
 
   void publish(SceneSession& session) override { window_.publish(session.source, session.publish()); }
 
-  StereoPair render(const SceneSession&, const med::View& centre, float separation, float zeroParallax) override {
+  StereoPair render(const SceneSession&, const med::View& centre, float separation, float zeroParallax,
+                    const std::function<void(double)>& progress) override {
     window_.setEyes(separation, zeroParallax);
-    auto frame = window_.render(centre);
+    auto frame = window_.render(centre);  // both eyes at once, one on each node
+    if (progress) progress(1.0);
     return {std::move(frame.left), std::move(frame.right)};
   }
 

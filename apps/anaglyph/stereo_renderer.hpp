@@ -4,6 +4,7 @@
 // left eye on the first node and right eye on the second (both on one
 // node when one is given). Either way the application's scene reaches the
 // renderers as change lists, each frame.
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -23,9 +24,10 @@ class StereoRenderer {
   virtual ~StereoRenderer() = default;
   // Commits the session's edits and hands them to the renderers.
   virtual void publish(SceneSession& session) = 0;
-  // Both eyes of `centre` (the full image of the cyclopean view).
-  virtual StereoPair render(const SceneSession& session, const med::View& centre, float separation,
-                            float zeroParallax) = 0;
+  // Both eyes of `centre` (the full image of the cyclopean view);
+  // `progress` (may be empty) hears 0..1 over both.
+  virtual StereoPair render(const SceneSession& session, const med::View& centre, float separation, float zeroParallax,
+                            const std::function<void(double)>& progress = {}) = 0;
 };
 
 std::unique_ptr<StereoRenderer> localStereo(const med::ViewportRegistry& registry, med::ViewportSettings settings);
