@@ -1,9 +1,8 @@
 #include "anaglyph_options.hpp"
 
+#include <CLI/CLI.hpp>
 #include <iostream>
 #include <stdexcept>
-
-#include <CLI/CLI.hpp>
 
 #include "render_options.hpp"
 
@@ -25,10 +24,12 @@ const char* methodName(med::AnaglyphMethod method) {
 }
 
 bool parseAnaglyphOptions(int argc, char** argv, AnaglyphOptions& o) {
-  CLI::App app{"Red/cyan anaglyph of a scene: both eyes rendered here or on two render nodes, shown in a window or "
-               "written to a file"};
+  CLI::App app{
+      "Red/cyan anaglyph of a scene: both eyes rendered here or on two render nodes, shown in a window or "
+      "written to a file"};
   app.footer(
-      "Window keys: left drag orbit, right drag pan, wheel zoom, W/A/S/D/Q/E fly, [ ] eye separation, - = zero-parallax "
+      "Window keys: left drag orbit, right drag pan, wheel zoom, W/A/S/D/Q/E fly, [ ] eye separation, - = "
+      "zero-parallax "
       "distance, M red-cyan/Dubois, R reset the view, Esc quit.");
   std::string size = "640x480", method = "dubois";
   std::int64_t spp = 4, maxDepth = 8, seed = 0, threads = 0;
@@ -40,18 +41,22 @@ bool parseAnaglyphOptions(int argc, char** argv, AnaglyphOptions& o) {
   app.add_option("--max-depth", maxDepth, "maximum path depth")->check(CLI::Range(0, 1024));
   app.add_option("--seed", seed, "random seed")->check(CLI::NonNegativeNumber);
   app.add_option("--threads", threads, "render threads (0: all)")->check(CLI::Range(0, 4096));
-  app.add_option("--method", method, "red-cyan (red from the left eye, cyan from the right) or dubois "
-                                      "(least-squares projection in linear RGB: truer colours)")
+  app.add_option("--method", method,
+                 "red-cyan (red from the left eye, cyan from the right) or dubois "
+                 "(least-squares projection in linear RGB: truer colours)")
       ->check(CLI::IsMember({"red-cyan", "dubois"}));
-  auto* sepOption = app.add_option("--eye-separation", separation, "distance between the eyes in scene units "
-                                                                   "(default: 1/30 of the zero-parallax distance)")
+  auto* sepOption = app.add_option("--eye-separation", separation,
+                                   "distance between the eyes in scene units "
+                                   "(default: 1/30 of the zero-parallax distance)")
                         ->check(CLI::Range(0.0f, 1e6f));
-  auto* zpOption = app.add_option("--zero-parallax", zeroParallax, "distance of the plane that appears on the screen "
-                                                                    "(default: to the centre of the scene's bounds)")
+  auto* zpOption = app.add_option("--zero-parallax", zeroParallax,
+                                  "distance of the plane that appears on the screen "
+                                  "(default: to the centre of the scene's bounds)")
                        ->check(CLI::Range(1e-6f, 1e9f));
   std::vector<std::string> params;
   app.add_option("--param", params, "back-end parameter name=value (repeatable), e.g. filter=pixel");
-  app.add_option("--nodes", o.nodes, "render the left eye on the first node and the right on the second (HOST:PORT,...)");
+  app.add_option("--nodes", o.nodes,
+                 "render the left eye on the first node and the right on the second (HOST:PORT,...)");
   app.add_option("--token-file", o.tokenFile, "the nodes' shared token");
   app.add_option("--output", o.output, "render one frame headless to this image file (no window)");
   app.add_option("--script", o.script, "window: run the actions of this file (see --help-script), then exit");
@@ -80,7 +85,8 @@ bool parseAnaglyphOptions(int argc, char** argv, AnaglyphOptions& o) {
     return false;
   }
   parseSize(size, o.width, o.height);
-  if (!o.output.empty() && !o.script.empty()) throw std::invalid_argument("--output renders without a window; --script needs one");
+  if (!o.output.empty() && !o.script.empty())
+    throw std::invalid_argument("--output renders without a window; --script needs one");
   if (!o.tokenFile.empty() && o.nodes.empty()) throw std::invalid_argument("--token-file needs --nodes");
   o.method = method == "dubois" ? med::AnaglyphMethod::Dubois : med::AnaglyphMethod::RedCyan;
   if (*sepOption) o.eyeSeparation = separation;

@@ -17,9 +17,9 @@ struct AnaglyphOptions {
   med::Parameters parameters;  // spp, maxDepth, seed, threads
   med::AnaglyphMethod method = med::AnaglyphMethod::Dubois;
   std::optional<float> eyeSeparation, zeroParallax;  // unset: from the scene bounds (main.cpp)
-  std::string nodes, tokenFile;                       // --nodes: eyes render on the nodes
-  std::string output;                                 // headless: one frame to this file
-  std::string script;                                 // window: actions from this file, then exit
+  std::string nodes, tokenFile;                      // --nodes: eyes render on the nodes
+  std::string output;                                // headless: one frame to this file
+  std::string script;                                // window: actions from this file, then exit
   sg::ImportOptions import;
 };
 

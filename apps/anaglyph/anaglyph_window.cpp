@@ -77,7 +77,8 @@ AnaglyphWindow::AnaglyphWindow(SceneSession& session, StereoRenderer& renderer, 
   glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
   glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
   window_ = glfwCreateWindow(static_cast<int>(width), static_cast<int>(height), "tessera-anaglyph", nullptr, nullptr);
-  if (!window_) throw std::runtime_error("cannot open a " + std::to_string(width) + "x" + std::to_string(height) + " window");
+  if (!window_)
+    throw std::runtime_error("cannot open a " + std::to_string(width) + "x" + std::to_string(height) + " window");
   glfwSetWindowUserPointer(window_, this);
   glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int, int action, int) {
     if (action == GLFW_RELEASE) return;
@@ -106,19 +107,37 @@ AnaglyphWindow::~AnaglyphWindow() {
 void AnaglyphWindow::key(char name) {
   const float step = 0.05f;
   switch (name) {
-    case 'w': navigation_.fly({0, 0, -step}); moved_ = true; break;
-    case 's': navigation_.fly({0, 0, step}); moved_ = true; break;
-    case 'a': navigation_.fly({-step, 0, 0}); moved_ = true; break;
-    case 'd': navigation_.fly({step, 0, 0}); moved_ = true; break;
-    case 'q': navigation_.fly({0, -step, 0}); moved_ = true; break;
-    case 'e': navigation_.fly({0, step, 0}); moved_ = true; break;
+    case 'w':
+      navigation_.fly({0, 0, -step});
+      moved_ = true;
+      break;
+    case 's':
+      navigation_.fly({0, 0, step});
+      moved_ = true;
+      break;
+    case 'a':
+      navigation_.fly({-step, 0, 0});
+      moved_ = true;
+      break;
+    case 'd':
+      navigation_.fly({step, 0, 0});
+      moved_ = true;
+      break;
+    case 'q':
+      navigation_.fly({0, -step, 0});
+      moved_ = true;
+      break;
+    case 'e':
+      navigation_.fly({0, step, 0});
+      moved_ = true;
+      break;
     case '[': stereo_.separation /= 1.25f; break;
     case ']': stereo_.separation *= 1.25f; break;
     case '-': stereo_.zeroParallax /= 1.25f; break;
     case '=': stereo_.zeroParallax *= 1.25f; break;
     case 'm':
-      stereo_.method = stereo_.method == med::AnaglyphMethod::Dubois ? med::AnaglyphMethod::RedCyan
-                                                                     : med::AnaglyphMethod::Dubois;
+      stereo_.method =
+          stereo_.method == med::AnaglyphMethod::Dubois ? med::AnaglyphMethod::RedCyan : med::AnaglyphMethod::Dubois;
       break;
     case 'r':
       navigation_ = initialNavigation_;
@@ -136,8 +155,10 @@ void AnaglyphWindow::drag(double dx, double dy, bool pan) {
   int height = 0;
   glfwGetFramebufferSize(window_, nullptr, &height);
   const float perPixel = 1.0f / static_cast<float>(std::max(height, 1));
-  if (pan) navigation_.pan(static_cast<float>(-dx) * perPixel, static_cast<float>(dy) * perPixel);
-  else navigation_.orbit(static_cast<float>(-dx) * 0.25f, static_cast<float>(dy) * 0.25f);
+  if (pan)
+    navigation_.pan(static_cast<float>(-dx) * perPixel, static_cast<float>(dy) * perPixel);
+  else
+    navigation_.orbit(static_cast<float>(-dx) * 0.25f, static_cast<float>(dy) * 0.25f);
   moved_ = dirty_ = true;
 }
 
@@ -154,8 +175,8 @@ void AnaglyphWindow::frame() {
   if (moved_) session_.source.find<sg::Camera>(session_.camera)->setPose(navigation_.pose());
   moved_ = false;
   renderer_.publish(session_);
-  const auto view = med::View::fromCamera(cameraOf(session_), static_cast<std::uint32_t>(width),
-                                          static_cast<std::uint32_t>(height));
+  const auto view =
+      med::View::fromCamera(cameraOf(session_), static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height));
   auto pair = renderer_.render(session_, view, stereo_.separation, stereo_.zeroParallax);
   shown_ = med::anaglyph(pair.left, pair.right, stereo_.method);
   target_->present(vk::FrameBuffer(shown_.width, shown_.height, shown_.colour));
@@ -203,7 +224,8 @@ void AnaglyphWindow::run(const std::vector<ScriptAction>& script) {
 void AnaglyphWindow::screenshot(const std::string& path) const {
   const auto& bytes = target_->lastPresentedPixels();
   const std::uint32_t w = target_->lastPresentedWidth(), h = target_->lastPresentedHeight();
-  if (bytes.size() != std::size_t{w} * h * 4 || w == 0) throw std::runtime_error("screenshot " + path + ": nothing shown yet (add 'frames 1' before it)");
+  if (bytes.size() != std::size_t{w} * h * 4 || w == 0)
+    throw std::runtime_error("screenshot " + path + ": nothing shown yet (add 'frames 1' before it)");
   const bool bgra = target_->format() == VK_FORMAT_B8G8R8A8_SRGB || target_->format() == VK_FORMAT_B8G8R8A8_UNORM;
   auto decode = [](std::uint8_t v) {
     const float s = v / 255.0f;

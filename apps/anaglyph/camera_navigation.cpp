@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -50,8 +49,6 @@ void CameraNavigation::fly(const glm::vec3& cameraSpace) {
   target_ += move;
 }
 
-glm::mat4 CameraNavigation::pose() const {
-  return glm::inverse(glm::lookAt(eye_, target_, kUp));
-}
+glm::mat4 CameraNavigation::pose() const { return glm::inverse(glm::lookAt(eye_, target_, kUp)); }
 
 }  // namespace tsr::app

@@ -3,9 +3,9 @@
 // scene, two views) or on two render nodes (cluster stereo mode), combined
 // per pixel (red-cyan or Dubois), shown in a window with navigation or,
 // with --output, written as one frame. Errors: one "error:" line, exit 2.
-#include <iostream>
-
 #include <spdlog/spdlog.h>
+
+#include <iostream>
 
 #include "anaglyph_options.hpp"
 #include "anaglyph_window.hpp"
@@ -78,17 +78,20 @@ int run(int argc, char** argv) {
     renderer->publish(session);
     const auto view = tsr::med::View::fromCamera(camera, o.width, o.height);
     tsr::app::ProgressBar bar("rendering both eyes");
-    auto pair = renderer->render(session, view, stereo.separation, stereo.zeroParallax,
-                                 [&](double f) { bar.update(f); });
+    auto pair =
+        renderer->render(session, view, stereo.separation, stereo.zeroParallax, [&](double f) { bar.update(f); });
     bar.finish();
     tsr::med::writeImage(o.output, tsr::med::anaglyph(pair.left, pair.right, stereo.method));
-    std::cout << "wrote " << o.output << " (" << o.width << "x" << o.height << ", " << tsr::app::methodName(stereo.method)
-              << ", eye separation " << stereo.separation << ", zero parallax " << stereo.zeroParallax << ")\n";
+    std::cout << "wrote " << o.output << " (" << o.width << "x" << o.height << ", "
+              << tsr::app::methodName(stereo.method) << ", eye separation " << stereo.separation << ", zero parallax "
+              << stereo.zeroParallax << ")\n";
     return 0;
   }
   tsr::app::AnaglyphWindow window(session, *renderer, stereo, o.width, o.height, !script.empty());
-  if (script.empty()) window.run();
-  else window.run(script);
+  if (script.empty())
+    window.run();
+  else
+    window.run(script);
   return 0;
 }
 

@@ -58,8 +58,8 @@ std::unique_ptr<StereoRenderer> localStereo(const med::ViewportRegistry& registr
   return std::make_unique<LocalStereo>(registry, std::move(settings));
 }
 
-std::unique_ptr<StereoRenderer> clusterStereo(const cluster::ClusterConfig& config, const cluster::ClientOptions& client,
-                                              const SceneSession& session) {
+std::unique_ptr<StereoRenderer> clusterStereo(const cluster::ClusterConfig& config,
+                                              const cluster::ClientOptions& client, const SceneSession& session) {
   return std::make_unique<ClusterStereo>(config, client, session);
 }
 

@@ -33,7 +33,7 @@ class StereoRenderer {
 std::unique_ptr<StereoRenderer> localStereo(const med::ViewportRegistry& registry, med::ViewportSettings settings);
 
 // Connects to `config` (mode stereo); throws when no node answers.
-std::unique_ptr<StereoRenderer> clusterStereo(const cluster::ClusterConfig& config, const cluster::ClientOptions& client,
-                                              const SceneSession& session);
+std::unique_ptr<StereoRenderer> clusterStereo(const cluster::ClusterConfig& config,
+                                              const cluster::ClientOptions& client, const SceneSession& session);
 
 }  // namespace tsr::app

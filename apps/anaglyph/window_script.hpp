@@ -8,7 +8,7 @@ namespace tsr::app {
 
 struct ScriptAction {
   enum class Kind { Key, Orbit, Pan, Scroll, Frames, Screenshot } kind;
-  std::string text;  // key name or screenshot path
+  std::string text;     // key name or screenshot path
   double x = 0, y = 0;  // drag pixels, wheel notches, frame count
 };
 

@@ -1,14 +1,14 @@
 #include "child_process.hpp"
 
-#include <cerrno>
-#include <csignal>
-#include <cstring>
-#include <thread>
-
 #include <poll.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+#include <thread>
 
 #include "launch_rank.hpp"
 
@@ -53,7 +53,8 @@ std::string ChildProcess::readLine(std::chrono::milliseconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   std::string line;
   while (stdout_ >= 0 && line.size() < 4096) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) return {};
     pollfd p{stdout_, POLLIN, 0};
     if (::poll(&p, 1, static_cast<int>(left.count())) <= 0) return {};
@@ -82,8 +83,10 @@ int ChildProcess::wait() {
   while (!status_ && pid_ > 0) {
     int raw = 0;
     const pid_t r = waitpid(pid_, &raw, 0);
-    if (r == pid_) status_ = statusOf(raw);
-    else if (r < 0 && errno != EINTR) status_ = 1;
+    if (r == pid_)
+      status_ = statusOf(raw);
+    else if (r < 0 && errno != EINTR)
+      status_ = 1;
   }
   return status_.value_or(1);
 }
@@ -92,7 +95,8 @@ int ChildProcess::stop(std::chrono::milliseconds grace) {
   if (poll()) return *status_;
   ::kill(pid_, SIGTERM);
   const auto deadline = std::chrono::steady_clock::now() + grace;
-  while (!poll() && std::chrono::steady_clock::now() < deadline) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  while (!poll() && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
   if (!status_) {
     ::kill(pid_, SIGKILL);
     return wait();

@@ -2,12 +2,12 @@
 // A program the launcher starts and outlives: argv exactly as given (no
 // shell), stdin and stderr shared with the launcher, stdout either shared
 // or read line by line (tessera-node announces its address there).
+#include <sys/types.h>
+
 #include <chrono>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <sys/types.h>
 
 namespace tsr::app {
 

@@ -8,14 +8,13 @@
 // 2 for usage errors, 1 when the rendezvous or a node fails.
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <climits>
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <thread>
-
-#include <CLI/CLI.hpp>
 
 #include "child_process.hpp"
 #include "directory_rendezvous.hpp"
@@ -200,7 +199,8 @@ int main(int argc, char** argv) {
   std::signal(SIGTERM, onSignal);
   try {
     std::unique_ptr<tsr::app::Rendezvous> meet;
-    if (!o.rendezvous.empty()) meet = std::make_unique<tsr::app::DirectoryRendezvous>(o.rendezvous, rank.job);
+    if (!o.rendezvous.empty())
+      meet = std::make_unique<tsr::app::DirectoryRendezvous>(o.rendezvous, rank.job);
     else
       meet = std::make_unique<tsr::app::SocketRendezvous>(rankZero, rank.rank == 0, waitLimit(o));
     return rank.rank == 0 ? runClient(o, rank, *meet, console) : runNode(o, rank, *meet, console);

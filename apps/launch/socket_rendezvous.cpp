@@ -1,16 +1,16 @@
 #include "socket_rendezvous.hpp"
 
+#include <netdb.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
 #include <cerrno>
 #include <charconv>
 #include <cstring>
 #include <memory>
 #include <sstream>
 #include <thread>
-
-#include <netdb.h>
-#include <poll.h>
-#include <sys/socket.h>
-#include <unistd.h>
 
 #include "launch_rank.hpp"
 
@@ -92,7 +92,8 @@ void SocketRendezvous::publish(unsigned rank, const cluster::NodeAddress& addres
     for (addrinfo* a = addresses.list; a && link_ < 0; a = a->ai_next) {
       int fd = socket(a->ai_family, a->ai_socktype | SOCK_CLOEXEC, a->ai_protocol);
       if (fd < 0) continue;
-      if (connect(fd, a->ai_addr, a->ai_addrlen) == 0) link_ = fd;
+      if (connect(fd, a->ai_addr, a->ai_addrlen) == 0)
+        link_ = fd;
       else {
         why = std::strerror(errno);
         close(fd);
@@ -174,8 +175,10 @@ std::vector<cluster::NodeAddress> SocketRendezvous::gather(unsigned size, std::c
     }
     if (fds[0].revents & POLLIN) {
       const int fd = accept4(listen_, nullptr, nullptr, SOCK_CLOEXEC);
-      if (fd >= 0 && pending.size() < 4 * kMaxJobSize) pending.push_back({fd, {}});
-      else if (fd >= 0) close(fd);
+      if (fd >= 0 && pending.size() < 4 * kMaxJobSize)
+        pending.push_back({fd, {}});
+      else if (fd >= 0)
+        close(fd);
     }
   }
   dropAll();

@@ -37,9 +37,9 @@ class SocketRendezvous final : public Rendezvous {
  private:
   cluster::NodeAddress address_;
   std::chrono::milliseconds connectTimeout_;
-  int listen_ = -1;          // rank 0
-  std::vector<int> nodes_;   // rank 0: connections of the ranks gathered, open until markDone
-  int link_ = -1;            // node rank: its connection to rank 0
+  int listen_ = -1;         // rank 0
+  std::vector<int> nodes_;  // rank 0: connections of the ranks gathered, open until markDone
+  int link_ = -1;           // node rank: its connection to rank 0
 };
 
 }  // namespace tsr::app

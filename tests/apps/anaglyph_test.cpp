@@ -1,20 +1,19 @@
 // tessera-anaglyph: its image is the composition of two eye renders made
 // apart (locally and through two nodes), its window presents that image
 // and follows the keys and the mouse, and bad input is one error line.
-#include <cmath>
-#include <filesystem>
-#include <cstring>
-#include <fstream>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "../cluster/node_process.hpp"
 #include "backends.hpp"
 #include "camera_navigation.hpp"
 #include "command_runner.hpp"
-#include "../cluster/node_process.hpp"
 #include "scene_session.hpp"
 #include "tsr/med/compositing.hpp"
 #include "tsr/med/image_file.hpp"
@@ -47,7 +46,8 @@ med::FrameBuffer composedLocally(med::AnaglyphMethod method, float separation = 
   settings.parameters.set("threads", std::int64_t{1});
   const auto view = med::View::fromCamera(*session.replica.scene().find<sg::Camera>(session.camera), 64, 48);
   med::FrameBuffer left, right;
-  registry.create(settings, contexts)->render(session.replica, view.eye(med::Eye::Left, separation, kZeroParallax), left);
+  registry.create(settings, contexts)
+      ->render(session.replica, view.eye(med::Eye::Left, separation, kZeroParallax), left);
   med::ContextPool otherContexts;  // the right eye converts the scene anew: nothing shared with the left
   registry.create(settings, otherContexts)
       ->render(session.replica, view.eye(med::Eye::Right, separation, kZeroParallax), right);
@@ -79,8 +79,8 @@ class AnaglyphCommand : public CommandTest {
 };
 
 TEST_F(AnaglyphCommand, OutputEqualsTheCompositionOfTwoLocalEyeRenders) {
-  for (auto [name, method] : {std::pair{"dubois", med::AnaglyphMethod::Dubois},
-                              std::pair{"red-cyan", med::AnaglyphMethod::RedCyan}}) {
+  for (auto [name, method] :
+       {std::pair{"dubois", med::AnaglyphMethod::Dubois}, std::pair{"red-cyan", med::AnaglyphMethod::RedCyan}}) {
     auto r = anaglyph("builtin:cornell" + kRender + kEyes + " --method " + name + " --output " + name + ".exr");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_THAT(r.out, HasSubstr("wrote " + std::string(name) + ".exr"));
@@ -169,11 +169,12 @@ TEST_F(AnaglyphWindow, ShowsTheHeadlessImageAndFollowsKeysAndMouse) {
   };
   EXPECT_LE(maxDifference(shot("first.png"), headless(kEyes, "first-headless.png")), 0.01f);
   // ] widens the eyes by 1.25: the image of --eye-separation 75.
-  EXPECT_LE(maxDifference(shot("wider.png"), headless(" --eye-separation 75 --zero-parallax 1000", "wider-headless.png")),
-            0.01f);
+  EXPECT_LE(
+      maxDifference(shot("wider.png"), headless(" --eye-separation 75 --zero-parallax 1000", "wider-headless.png")),
+      0.01f);
   EXPECT_GT(maxDifference(shot("wider.png"), shot("first.png")), 0.05f);
-  EXPECT_LE(maxDifference(shot("redcyan.png"),
-                          headless(" --eye-separation 75 --zero-parallax 1000 --method red-cyan", "redcyan-headless.png")),
+  EXPECT_LE(maxDifference(shot("redcyan.png"), headless(" --eye-separation 75 --zero-parallax 1000 --method red-cyan",
+                                                        "redcyan-headless.png")),
             0.01f);
   // Dragging moves the camera: another view of the box.
   EXPECT_GT(maxDifference(shot("orbited.png"), shot("redcyan.png")), 0.05f);

@@ -1,20 +1,18 @@
 // tessera-launch: ranks from the launcher's environment, the shared-folder
 // rendezvous, and whole jobs whose rank 0 renders through the nodes the
 // other ranks started; the image equals a local render.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
 #include <thread>
-
-#include <netinet/in.h>
-#include <sys/socket.h>
-
-#include <sys/wait.h>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
 
 #include "cluster_test_util.hpp"
 #include "directory_rendezvous.hpp"
@@ -54,8 +52,11 @@ std::string launchError(const std::map<std::string, std::string>& values) {
 }
 
 TEST(LaunchRank, SlurmComesBeforeOpenMpi) {
-  auto r = app::rankFromEnvironment(environment({{"SLURM_PROCID", "2"}, {"SLURM_NTASKS", "5"}, {"SLURM_JOB_ID", "77"},
-                                                 {"SLURM_STEP_ID", "1"}, {"OMPI_COMM_WORLD_RANK", "0"},
+  auto r = app::rankFromEnvironment(environment({{"SLURM_PROCID", "2"},
+                                                 {"SLURM_NTASKS", "5"},
+                                                 {"SLURM_JOB_ID", "77"},
+                                                 {"SLURM_STEP_ID", "1"},
+                                                 {"OMPI_COMM_WORLD_RANK", "0"},
                                                  {"OMPI_COMM_WORLD_SIZE", "3"}}));
   ASSERT_TRUE(r);
   EXPECT_EQ(r->rank, 2u);
@@ -145,7 +146,8 @@ std::uint16_t freePort() {
 TEST(SocketRendezvous, GathersTheNodesThatConnectAndTellsThemWhenDone) {
   const NodeAddress rankZero{"127.0.0.1", freePort()};
   app::SocketRendezvous server(rankZero, true, std::chrono::seconds(5));
-  app::SocketRendezvous first(rankZero, false, std::chrono::seconds(5)), second(rankZero, false, std::chrono::seconds(5));
+  app::SocketRendezvous first(rankZero, false, std::chrono::seconds(5)),
+      second(rankZero, false, std::chrono::seconds(5));
   std::thread late([&] {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
     second.publish(2, parseNodeAddress("host-b:7002"));
@@ -158,7 +160,8 @@ TEST(SocketRendezvous, GathersTheNodesThatConnectAndTellsThemWhenDone) {
   EXPECT_EQ(addresses[1].text(), "host-b:7002");
   EXPECT_FALSE(first.done());
   server.markDone();
-  for (int i = 0; i < 100 && !(first.done() && second.done()); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  for (int i = 0; i < 100 && !(first.done() && second.done()); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
   EXPECT_TRUE(first.done());
   EXPECT_TRUE(second.done());
 }
@@ -166,7 +169,8 @@ TEST(SocketRendezvous, GathersTheNodesThatConnectAndTellsThemWhenDone) {
 TEST(SocketRendezvous, StrayLinesAreRefusedAndTheWaitNamesWhoIsMissing) {
   const NodeAddress rankZero{"127.0.0.1", freePort()};
   auto server = std::make_unique<app::SocketRendezvous>(rankZero, true, std::chrono::seconds(5));
-  app::SocketRendezvous impostor(rankZero, false, std::chrono::seconds(5)), real(rankZero, false, std::chrono::seconds(5));
+  app::SocketRendezvous impostor(rankZero, false, std::chrono::seconds(5)),
+      real(rankZero, false, std::chrono::seconds(5));
   impostor.publish(9, parseNodeAddress("evil:1"));  // rank 9 of a job of 3
   real.publish(2, parseNodeAddress("127.0.0.1:7002"));
   try {
@@ -199,9 +203,9 @@ const std::string kRender = TSR_RENDER_BINARY;
 
 TEST(LaunchCommand, WithoutARankItIsAUsageError) {
   TempDir dir;
-  auto r = shell("env -u SLURM_PROCID -u OMPI_COMM_WORLD_RANK " + kLaunch + " --rendezvous " + dir.path.string() +
-                     " -- true",
-                 dir.path / "err");
+  auto r = shell(
+      "env -u SLURM_PROCID -u OMPI_COMM_WORLD_RANK " + kLaunch + " --rendezvous " + dir.path.string() + " -- true",
+      dir.path / "err");
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(r.err.rfind("error: no rank", 0), 0u) << r.err;
 }
@@ -215,22 +219,26 @@ TEST(LaunchCommand, RankZeroGivesUpNamingTheRanksThatNeverCame) {
   EXPECT_TRUE(fs::exists(dir.path / "tessera-lonely" / "done"));  // any node that comes late stops again
 }
 
-// The client: builtin:cornell cooperatively on the job's nodes.
-std::string clientCommand(const fs::path& dir) {
-  std::ofstream(dir / "coop.json") << R"({"mode": "cooperative", "backend": "embree",
-    "parameters": {"spp": 2, "maxDepth": 3, "seed": 5, "threads": 1},
-    "nodes": [{"address": "127.0.0.1:1"}, {"address": "127.0.0.1:1"}], "cooperative": {"tileSize": 16}})";
-  return kRender + " builtin:cornell --quiet --size 48x40 --cluster " + (dir / "coop.json").string() + " --output " +
+// The client: builtin:cornell on the job's nodes, cooperatively on two or
+// as a 2x2 wall on four (the nodes' addresses come from tessera-launch).
+std::string clientCommand(const fs::path& dir, bool wall = false) {
+  std::ofstream(dir / "cluster.json") << R"({"mode": ")" << (wall ? "tiled" : "cooperative") << R"(",
+    "backend": "embree", "parameters": {"spp": 2, "maxDepth": 3, "seed": 5, "threads": 1},
+    "nodes": [)" << (wall ? "{}, {}, {}, {}" : "{}, {}")
+                                      << R"(], "cooperative": {"tileSize": 16}, "wall": {"columns": 2, "rows": 2}})";
+  return kRender + " builtin:cornell --quiet --size 48x40 --cluster " + (dir / "cluster.json").string() + " --output " +
          (dir / "cluster.exr").string();
 }
 
 void expectEqualsLocalRender(const fs::path& dir) {
-  ASSERT_EQ(std::system((kRender + " builtin:cornell --quiet --spp 2 --max-depth 3 --seed 5 --threads 1 --size 48x40 "
-                                   "--output " +
+  ASSERT_EQ(std::system((kRender +
+                         " builtin:cornell --quiet --spp 2 --max-depth 3 --seed 5 --threads 1 --size 48x40 "
+                         "--output " +
                          (dir / "local.exr").string())
                             .c_str()),
             0);
-  EXPECT_TRUE(bitwiseEqual(med::readImage((dir / "cluster.exr").string()), med::readImage((dir / "local.exr").string())));
+  EXPECT_TRUE(
+      bitwiseEqual(med::readImage((dir / "cluster.exr").string()), med::readImage((dir / "local.exr").string())));
 }
 
 TEST(LaunchCommand, ThreeSlurmRanksRenderLikeALocalRender) {
@@ -270,14 +278,17 @@ TEST(LaunchCommand, RanksGivenByHandMeetAtRankZerosAddress) {
 }
 
 #ifdef TSR_MPIRUN
-TEST(LaunchCommand, MpirunOnLoopbackRendersLikeALocalRender) {
+TEST(LaunchCommand, MpirunOnLoopbackRendersAWallLikeALocalRender) {
+  // Five processes: the client and the four nodes of a 2x2 wall.
   TempDir dir;
   TokenFile token("launch token");
-  auto r = shell(std::string(TSR_MPIRUN) + " --allow-run-as-root --oversubscribe -np 3 " + kLaunch + " --rendezvous " +
-                     dir.path.string() + " --token-file " + token.path() + " --threads 1 -- " + clientCommand(dir.path),
+  auto r = shell(std::string(TSR_MPIRUN) + " --allow-run-as-root --oversubscribe -np 5 " + kLaunch + " --rendezvous " +
+                     dir.path.string() + " --token-file " + token.path() + " --threads 1 -- " +
+                     clientCommand(dir.path, true),
                  dir.path / "err");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_THAT(r.err, HasSubstr("[rank 0/3]: running"));
+  EXPECT_THAT(r.err, HasSubstr("[rank 0/5]: running"));
+  EXPECT_THAT(r.err, HasSubstr("4 of 4 nodes published"));
   for (const auto& entry : fs::directory_iterator(dir.path))
     EXPECT_NE(entry.path().filename().string().rfind("tessera-", 0), 0u) << entry.path() << " left behind";
   expectEqualsLocalRender(dir.path);
