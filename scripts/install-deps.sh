@@ -15,6 +15,7 @@ packages=(
   clang libclang-rt-14-dev
   libcli11-dev libspdlog-dev libfmt-dev libglm-dev libimgui-dev
   libeigen3-dev
+  openmpi-bin
 )
 
 if [ "$(id -u)" -ne 0 ]; then

@@ -12,4 +12,10 @@ FrameBuffer::FrameBuffer(std::uint32_t width, std::uint32_t height) : width_(wid
   depth_.assign(std::size_t(width) * height, std::numeric_limits<float>::infinity());
 }
 
+FrameBuffer::FrameBuffer(std::uint32_t width, std::uint32_t height, std::vector<glm::vec4> colour)
+    : FrameBuffer(width, height) {
+  if (colour.size() != colour_.size()) throw Error("frame buffer colour has the wrong number of pixels");
+  colour_ = std::move(colour);
+}
+
 }  // namespace tsr::vk

@@ -8,6 +8,28 @@
 namespace tsr::med {
 
 namespace {
+
+// Dubois, "A projection method to generate anaglyph stereo images" (ICASSP
+// 2001), red/cyan matrices for linear RGB (rows: output R, G, B). They are
+// the least-squares fit, for typical filter and display spectra, of the
+// colours seen through each filter to those each eye's image should show.
+constexpr float kDuboisLeft[3][3] = {{0.4561f, 0.500484f, 0.176381f},
+                                     {-0.0400822f, -0.0378246f, -0.0157589f},
+                                     {-0.0152161f, -0.0205971f, -0.00546856f}};
+constexpr float kDuboisRight[3][3] = {{-0.0434706f, -0.0879388f, -0.00155529f},
+                                      {0.378476f, 0.73364f, -0.0184503f},
+                                      {-0.0721527f, -0.112961f, 1.2264f}};
+
+glm::vec3 dubois(const glm::vec4& l, const glm::vec4& r) {
+  glm::vec3 out;
+  for (int row = 0; row < 3; ++row) {
+    float v = 0;
+    for (int c = 0; c < 3; ++c) v += kDuboisLeft[row][c] * l[c] + kDuboisRight[row][c] * r[c];
+    out[row] = std::clamp(v, 0.0f, 1.0f);
+  }
+  return out;
+}
+
 void requireSameSize(const FrameBuffer& a, const FrameBuffer& b, const char* what) {
   if (a.width != b.width || a.height != b.height) throw std::invalid_argument(std::string(what) + ": sizes differ");
 }
@@ -29,12 +51,14 @@ void compositeByDepth(FrameBuffer& base, const FrameBuffer& layer) {
   }
 }
 
-FrameBuffer anaglyph(const FrameBuffer& left, const FrameBuffer& right) {
+FrameBuffer anaglyph(const FrameBuffer& left, const FrameBuffer& right, AnaglyphMethod method) {
   requireSameSize(left, right, "anaglyph");
   FrameBuffer out(left.width, left.height);
   for (std::size_t i = 0; i < out.colour.size(); ++i) {
-    out.colour[i] = glm::vec4(left.colour[i].r, right.colour[i].g, right.colour[i].b,
-                              std::max(left.colour[i].a, right.colour[i].a));
+    const glm::vec3 rgb = method == AnaglyphMethod::Dubois
+                              ? dubois(left.colour[i], right.colour[i])
+                              : glm::vec3(left.colour[i].r, right.colour[i].g, right.colour[i].b);
+    out.colour[i] = glm::vec4(rgb, std::max(left.colour[i].a, right.colour[i].a));
     out.depth[i] = std::min(left.depth[i], right.depth[i]);
   }
   return out;

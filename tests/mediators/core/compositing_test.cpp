@@ -46,6 +46,24 @@ TEST(Compositing, AnaglyphTakesRedFromTheLeftEye) {
   EXPECT_THROW(anaglyph(left, FrameBuffer(3, 3)), std::invalid_argument);
 }
 
+TEST(Compositing, DuboisProjectsBothEyesAndClamps) {
+  // The matrices' rows add up to about 1: white seen by both eyes stays white.
+  FrameBuffer white = filled({1, 1, 1, 1}, 1), black = filled({0, 0, 0, 1}, 1);
+  FrameBuffer whiteOut = anaglyph(white, white, AnaglyphMethod::Dubois);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(whiteOut.colour[0][c], 1.0f, 2e-3f) << c;
+  // Left eye red alone: the red filter passes 0.456 of it; negative parts clamp to 0.
+  FrameBuffer red = filled({1, 0, 0, 1}, 1);
+  EXPECT_EQ(anaglyph(red, black, AnaglyphMethod::Dubois).colour[0], glm::vec4(0.4561f, 0, 0, 1));
+  // Right eye blue alone: 1.2264 of it, clamped.
+  FrameBuffer blue = filled({0, 0, 1, 1}, 1);
+  EXPECT_EQ(anaglyph(black, blue, AnaglyphMethod::Dubois).colour[0], glm::vec4(0, 0, 1, 1));
+  // Green in the left eye darkens the cyan channels (the cross-talk term).
+  FrameBuffer green = filled({0, 1, 0, 1}, 1), grey = filled({0.5f, 0.5f, 0.5f, 1}, 1);
+  FrameBuffer out = anaglyph(green, grey, AnaglyphMethod::Dubois);
+  EXPECT_NEAR(out.colour[0].g, 0.5f * (0.378476f + 0.73364f - 0.0184503f) - 0.0378246f, 1e-5f);
+  EXPECT_EQ(anaglyph(green, grey, AnaglyphMethod::RedCyan).colour[0], glm::vec4(0, 0.5f, 0.5f, 1));
+}
+
 TEST(ImageFile, ExrKeepsFloatsAndPngIsEncoded) {
   FrameBuffer fb(3, 2);
   for (std::size_t i = 0; i < fb.colour.size(); ++i) fb.colour[i] = glm::vec4(0.1f * float(i), 2.5f, 0.5f, 1.0f);

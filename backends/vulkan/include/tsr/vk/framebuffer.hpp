@@ -18,6 +18,9 @@ namespace tsr::vk {
 class FrameBuffer {
  public:
   FrameBuffer(std::uint32_t width, std::uint32_t height);
+  // An image made elsewhere (composited, filtered) to present: colour as
+  // above, width * height pixels, depth +infinity. Throws Error on a size mismatch.
+  FrameBuffer(std::uint32_t width, std::uint32_t height, std::vector<glm::vec4> colour);
 
   std::uint32_t width() const { return width_; }
   std::uint32_t height() const { return height_; }

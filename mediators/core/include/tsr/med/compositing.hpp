@@ -9,8 +9,18 @@ namespace tsr::med {
 // premultiplied) RGBA with alpha as coverage.
 void compositeByDepth(FrameBuffer& base, const FrameBuffer& layer);
 
-// Red/cyan anaglyph: red from the left eye, green and blue from the right.
-FrameBuffer anaglyph(const FrameBuffer& left, const FrameBuffer& right);
+enum class AnaglyphMethod {
+  RedCyan,  // red from the left eye, green and blue from the right
+  // Dubois's least-squares red/cyan projection: the colours seen through the
+  // filters are as near as the filters allow (in CIE XYZ) to the colours
+  // each eye should see, which keeps more colour and less retinal rivalry.
+  Dubois,
+};
+
+// One image for red/cyan glasses, applied to linear RGB (as frame buffers
+// hold it); Dubois's result is clamped to [0, 1]. Depth is the nearer eye's.
+FrameBuffer anaglyph(const FrameBuffer& left, const FrameBuffer& right,
+                     AnaglyphMethod method = AnaglyphMethod::RedCyan);
 // Left and right next to each other.
 FrameBuffer sideBySide(const FrameBuffer& left, const FrameBuffer& right);
 

@@ -1,0 +1,106 @@
+#include "anaglyph_options.hpp"
+
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <stdexcept>
+
+#include "render_options.hpp"
+
+namespace tsr::app {
+
+namespace {
+const char* kScriptHelp =
+    "--script FILE: one action a line, '#' starts a comment:\n"
+    "  key NAME          press a key: w a s d q e [ ] - = m r\n"
+    "  orbit DX DY       drag with the left button by DX, DY pixels\n"
+    "  pan DX DY         drag with the right button\n"
+    "  scroll N          turn the wheel N notches (positive: closer)\n"
+    "  frames N          render and present N frames\n"
+    "  screenshot FILE   write what the window shows (PNG, EXR, ...)\n";
+}  // namespace
+
+const char* methodName(med::AnaglyphMethod method) {
+  return method == med::AnaglyphMethod::Dubois ? "dubois" : "red-cyan";
+}
+
+bool parseAnaglyphOptions(int argc, char** argv, AnaglyphOptions& o) {
+  CLI::App app{
+      "Red/cyan anaglyph of a scene: both eyes rendered here or on two render nodes, shown in a window or "
+      "written to a file"};
+  app.footer(
+      "Window keys: left drag orbit, right drag pan, wheel zoom, W/A/S/D/Q/E fly, [ ] eye separation, - = "
+      "zero-parallax "
+      "distance, M red-cyan/Dubois, R reset the view, Esc quit.");
+  std::string size = "640x480", method = "dubois";
+  std::int64_t spp = 4, maxDepth = 8, seed = 0, threads = 0;
+  float separation = 0, zeroParallax = 0;
+  app.add_option("scene", o.scene, "glTF file (.gltf/.glb) or builtin:NAME")->required();
+  app.add_option("--backend", o.backend, "embree, vulkan or coverage (here or on every node)");
+  app.add_option("--size", size, "image size WxH (the window's initial size)");
+  app.add_option("--spp", spp, "samples per pixel and eye")->check(CLI::Range(1, 1 << 20));
+  app.add_option("--max-depth", maxDepth, "maximum path depth")->check(CLI::Range(0, 1024));
+  app.add_option("--seed", seed, "random seed")->check(CLI::NonNegativeNumber);
+  app.add_option("--threads", threads, "render threads (0: all)")->check(CLI::Range(0, 4096));
+  app.add_option("--method", method,
+                 "red-cyan (red from the left eye, cyan from the right) or dubois "
+                 "(least-squares projection in linear RGB: truer colours)")
+      ->check(CLI::IsMember({"red-cyan", "dubois"}));
+  auto* sepOption = app.add_option("--eye-separation", separation,
+                                   "distance between the eyes in scene units "
+                                   "(default: 1/30 of the zero-parallax distance)")
+                        ->check(CLI::Range(0.0f, 1e6f));
+  auto* zpOption = app.add_option("--zero-parallax", zeroParallax,
+                                  "distance of the plane that appears on the screen "
+                                  "(default: to the centre of the scene's bounds)")
+                       ->check(CLI::Range(1e-6f, 1e9f));
+  std::vector<std::string> params;
+  app.add_option("--param", params, "back-end parameter name=value (repeatable), e.g. filter=pixel");
+  app.add_option("--nodes", o.nodes,
+                 "render the left eye on the first node and the right on the second (HOST:PORT,...)");
+  app.add_option("--token-file", o.tokenFile, "the nodes' shared token");
+  app.add_option("--output", o.output, "render one frame headless to this image file (no window)");
+  app.add_option("--script", o.script, "window: run the actions of this file (see --help-script), then exit");
+  bool scriptHelp = false;
+  app.add_flag("--help-script", scriptHelp, "list the actions a --script file may hold");
+  std::uint64_t maxFileMb = o.import.maxFileBytes >> 20;
+  app.add_option("--max-file-mb", maxFileMb, "largest scene file (.gltf, .glb, buffer, image) read, in MiB")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 20));
+  app.add_option("--max-elements", o.import.maxJsonValues,
+                 "most values a glTF's JSON may hold; larger files are refused before parsing")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    return false;
+  } catch (const CLI::ParseError& e) {
+    if (scriptHelp) {  // no SCENE needed to ask
+      std::cout << kScriptHelp;
+      return false;
+    }
+    throw std::invalid_argument(e.what());
+  }
+  if (scriptHelp) {
+    std::cout << kScriptHelp;
+    return false;
+  }
+  parseSize(size, o.width, o.height);
+  if (!o.output.empty() && !o.script.empty())
+    throw std::invalid_argument("--output renders without a window; --script needs one");
+  if (!o.tokenFile.empty() && o.nodes.empty()) throw std::invalid_argument("--token-file needs --nodes");
+  o.method = method == "dubois" ? med::AnaglyphMethod::Dubois : med::AnaglyphMethod::RedCyan;
+  if (*sepOption) o.eyeSeparation = separation;
+  if (*zpOption) o.zeroParallax = zeroParallax;
+  o.import.maxFileBytes = maxFileMb << 20;
+  o.parameters.set("spp", spp);
+  o.parameters.set("maxDepth", maxDepth);
+  o.parameters.set("seed", seed);
+  o.parameters.set("threads", threads);
+  for (const auto& p : params) {
+    auto [name, value] = med::Parameters::parse(p);
+    o.parameters.set(name, value);
+  }
+  return true;
+}
+
+}  // namespace tsr::app
