@@ -1,5 +1,6 @@
 #include "imgui_overlay.hpp"
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -118,6 +119,16 @@ void ImGuiOverlay::initialiseRenderer(VkFormat format, std::uint32_t imageCount)
   ImGui_ImplVulkan_DestroyFontUploadObjects();
   rendererReady_ = true;
   format_ = format;
+  // ImGui's colours are sRGB values; an sRGB swapchain image encodes what the
+  // shader writes, so the style's colours are decoded once to look as meant.
+  if (format == VK_FORMAT_B8G8R8A8_SRGB || format == VK_FORMAT_R8G8B8A8_SRGB) {
+    ImGuiStyle& style = ImGui::GetStyle();
+    for (ImVec4& c : style.Colors) {
+      c.x = std::pow(c.x, 2.2f);
+      c.y = std::pow(c.y, 2.2f);
+      c.z = std::pow(c.z, 2.2f);
+    }
+  }
 }
 
 void ImGuiOverlay::destroyFramebuffers() {

@@ -140,6 +140,7 @@ TEST_F(ViewerWindow, ScriptedBackendSwitchesMatchHeadlessRenders) {
 
 TEST_F(ViewerWindow, SideBySideViewportsOrbitBookmarksAndLayeredExr) {
   writeScript("orbit.txt",
+              "time 0\n"
               "wait frames 2\n"
               "screenshot left.png 0\n"
               "orbit 40\n"
@@ -148,7 +149,7 @@ TEST_F(ViewerWindow, SideBySideViewportsOrbitBookmarksAndLayeredExr) {
               "screenshot left-orbit.png 0\n"
               "screenshot right.exr 1\n"
               "bookmark save side\n");
-  const Outcome v = viewer("builtin:cornell --viewports vulkan,embree --size 200x100 --spp 2 --max-depth 2 "
+  const Outcome v = viewer("builtin:animated --viewports vulkan,embree --size 200x100 --spp 2 --max-depth 2 "
                            "--script orbit.txt --exit-after");
   ASSERT_EQ(v.status, 0) << v.err;
   const auto left = image("left.png"), turned = image("left-orbit.png");
@@ -166,9 +167,9 @@ TEST_F(ViewerWindow, SideBySideViewportsOrbitBookmarksAndLayeredExr) {
 
   // The bookmark lies beside the scene (builtin scenes: the current folder)
   // and brings the view back in a new run.
-  ASSERT_TRUE(std::filesystem::exists(dir / "builtin-cornell.bookmarks.json"));
-  writeScript("back.txt", "bookmark load side\nwait frames 2\nscreenshot back.png 0\n");
-  const Outcome again = viewer("builtin:cornell --viewports vulkan --size 100x100 --script back.txt --exit-after");
+  ASSERT_TRUE(std::filesystem::exists(dir / "builtin-animated.bookmarks.json"));
+  writeScript("back.txt", "time 0\nbookmark load side\nwait frames 2\nscreenshot back.png 0\n");
+  const Outcome again = viewer("builtin:animated --viewports vulkan --size 100x100 --script back.txt --exit-after");
   ASSERT_EQ(again.status, 0) << again.err;
   EXPECT_LE(compare(image("back.png"), turned).maxAbs, 1.0 / 255 + 1e-6);
 }
@@ -186,3 +187,5 @@ TEST_F(ViewerWindow, AFailingActionNamesItsLine) {
   EXPECT_EQ(v.status, 2);
   EXPECT_THAT(v.err, HasSubstr("error: fail.txt:2: no bookmark 'nowhere'"));
 }
+
+}  // namespace
