@@ -10,6 +10,8 @@
 #include <spdlog/spdlog.h>
 
 #include "backends.hpp"
+#include "cluster_connection.hpp"
+#include "tsr/cluster/cluster_viewport.hpp"
 #include "imgui_overlay.hpp"
 #include "tsr/med/coverage/ranking.hpp"
 #include "tsr/sg/import/scene_stats.hpp"
@@ -44,6 +46,26 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)), contexts_(
   defaults.parameters = options_.parameters;
   for (const auto& backend : options_.viewports) panes_.emplace_back(backend, defaults);
   loadScene(options_.scene);
+  if (!options_.cluster.empty()) connectToCluster();
+}
+
+// --cluster: viewport 0 renders on the nodes whenever it shows their
+// back-end (its other back-ends render here); tessera-render's connection code.
+void Viewer::connectToCluster() {
+  RenderOptions render;
+  render.sequence.cluster = options_.cluster;
+  render.sequence.nodes = options_.nodes;
+  render.sequence.tokenFile = options_.tokenFile;
+  render.parameters = options_.parameters;  // the config's own parameters win over these defaults
+  const cluster::ClusterConfig config = clusterConfig(render);
+  std::shared_ptr<cluster::ClusterWindow> window = connectCluster(config, render, {}, registry_);
+  const auto* camera = session_->source.find<sg::Camera>(session_->camera);
+  window->setEyes(camera->eyeSeparation(), camera->zeroParallaxDistance());
+  const std::string backend = config.nodes.front().backend;
+  panes_.front().setRemote([window, backend](const med::ViewportSettings& settings) -> std::unique_ptr<med::Viewport> {
+    if (settings.backend != backend) return nullptr;
+    return std::make_unique<cluster::ClusterViewport>(settings, window, std::vector<std::string>{});
+  });
 }
 
 Viewer::~Viewer() {

@@ -46,6 +46,7 @@ class Viewer {
   };
 
   void openWindow();
+  void connectToCluster();
   void loadScene(const std::string& scene);  // replaces the session; throws, leaving the old one
   void frameScene();
   std::uint32_t paneWidth(std::uint32_t windowWidth) const;

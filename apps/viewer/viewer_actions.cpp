@@ -34,13 +34,15 @@ bool Viewer::runScript() {
   }
   if (samplesToWait_ > 0) {
     bool done = true;
+    // Path tracers rendered here; a cluster's renders whole frames.
     for (const auto& pane : panes_)
-      if (pane.backend() == "embree" && pane.converging() &&
+      if (pane.backend() == "embree" && !pane.isRemote("embree") && pane.converging() &&
           pane.samples() < std::min<std::uint32_t>(std::uint32_t(samplesToWait_), convergence_.sampleLimit))
         done = false;
     // A pane that has not rendered yet counts as not there yet.
     for (const auto& pane : panes_)
-      if (pane.backend() == "embree" && (pane.shownBackend() != "embree" || pane.samples() == 0)) done = false;
+      if (pane.backend() == "embree" && (pane.shownBackend() != "embree" || (!pane.isRemote("embree") && pane.samples() == 0)))
+        done = false;
     if (convergence_.paused) done = true;  // paused: it would never come
     if (!done) return true;
     samplesToWait_ = 0;

@@ -45,6 +45,11 @@ bool parseViewerOptions(int argc, char** argv, ViewerOptions& o) {
                  "run the actions of FILE, one a line (backend, orbit, pan, zoom, wait, screenshot, ...: see README)");
   app.add_flag("--exit-after", o.exitAfter, "quit when the --script is done (exit status 0)");
   app.add_flag("--hide-panels", o.hidePanels, "start with the panels hidden (H shows them)");
+  auto* clusterGroup = app.add_option_group("Cluster", "render viewport 0 on tessera-node processes");
+  clusterGroup->add_option("--cluster", o.cluster,
+                           "cluster config (configs/*.json): viewport 0 renders on its nodes while it shows their back-end");
+  clusterGroup->add_option("--nodes", o.nodes, "HOST:PORT,... replacing the config's node addresses in order");
+  clusterGroup->add_option("--token-file", o.tokenFile, "the nodes' shared token");
   std::uint64_t maxFileMb = o.import.maxFileBytes >> 20;
   app.add_option("--max-file-mb", maxFileMb, "largest scene file (.gltf, .glb, buffer, image) read, in MiB")
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 20));
@@ -76,6 +81,8 @@ bool parseViewerOptions(int argc, char** argv, ViewerOptions& o) {
   if (o.width / o.viewports.size() < 16)
     throw std::invalid_argument("--size " + size + ": too narrow for " + std::to_string(o.viewports.size()) +
                                 " viewports (16 pixels each at least)");
+  if (o.cluster.empty() && (!o.nodes.empty() || !o.tokenFile.empty()))
+    throw std::invalid_argument("--nodes and --token-file go with --cluster CONFIG");
   if (o.exitAfter && o.script.empty()) throw std::invalid_argument("--exit-after needs --script FILE");
   for (const auto& p : params) {
     auto [name, value] = med::Parameters::parse(p);

@@ -20,6 +20,7 @@ void ViewerPane::resetScene(const med::ViewportSettings& defaults) {
   defaults_ = defaults;
   defaults_.parameters = kept;
   viewports_.clear();
+  remoteBackends_.clear();
   frame_ = {};
   stats_ = {};
   samples_ = 0;
@@ -32,7 +33,10 @@ med::Viewport& ViewerPane::viewport(const std::string& backend, const med::Viewp
   if (it == viewports_.end()) {
     med::ViewportSettings settings = defaults_;
     settings.backend = backend;
-    it = viewports_.emplace(backend, registry.create(settings, contexts)).first;
+    std::unique_ptr<med::Viewport> made = remote_ ? remote_(settings) : nullptr;
+    if (made) remoteBackends_.insert(backend);
+    else made = registry.create(settings, contexts);
+    it = viewports_.emplace(backend, std::move(made)).first;
   }
   return *it->second;
 }
@@ -56,7 +60,7 @@ void ViewerPane::render(const med::ViewportRegistry& registry, med::ContextPool&
   const bool reportSwitch = switched;
   restart_ = false;
   const bool sized = frame_.width == view.region.width() && frame_.height == view.region.height();
-  if (backend != kPathTracer) {
+  if (backend != kPathTracer || isRemote(backend)) {
     converging_ = false;
     if (restarted || !sized) stats_ = vp.render(replica, view, frame_, control);  // else the image stands
     if (reportSwitch) switchReport_.emplace(backend, stats_);
@@ -101,9 +105,10 @@ const med::FrameBuffer& ViewerPane::renderWithOutputs(const med::ViewportRegistr
                                                       const sg::Replica& replica, const med::View& view) {
   med::Viewport& vp = viewport(shown_.empty() ? backend_ : shown_, registry, contexts);
   med::RenderControl control;  // outputs unset: all it offers
-  if (vp.backend() == kPathTracer) vp.setParameter("spp", std::int64_t(std::max<std::uint32_t>(samples_, 1)));
+  const bool progressive = vp.backend() == kPathTracer && !isRemote(vp.backend());
+  if (progressive) vp.setParameter("spp", std::int64_t(std::max<std::uint32_t>(samples_, 1)));
   stats_ = vp.render(replica, view, frame_, control);
-  if (vp.backend() == kPathTracer) samples_ = stats_.samples;
+  if (progressive) samples_ = stats_.samples;
   return frame_;
 }
 

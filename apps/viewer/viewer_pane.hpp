@@ -5,10 +5,12 @@
 // the change list instead of converting the scene again.
 #include <map>
 #include <optional>
+#include <set>
 #include <utility>
 #include <memory>
 #include <string>
 
+#include "layers.hpp"
 #include "tsr/med/viewport_registry.hpp"
 
 namespace tsr::app {
@@ -28,6 +30,10 @@ class ViewerPane {
   // The back-end shown from the next frame on; its viewport is created on
   // first use through the registry.
   void setBackend(const std::string& backend) { backend_ = backend; }
+  // Viewports rendered elsewhere (a cluster's nodes): asked first for each
+  // back-end; those it makes render whole frames, like a rasteriser.
+  void setRemote(RemoteLayers remote) { remote_ = std::move(remote); }
+  bool isRemote(const std::string& backend) const { return remoteBackends_.count(backend) != 0; }
   // Sets a parameter of this pane's viewports (those alive and those to come).
   void setParameter(const std::string& name, const med::ParameterValue& value);
   const med::Parameters& parameters() const { return defaults_.parameters; }
@@ -56,6 +62,7 @@ class ViewerPane {
   // The back-end of the last frame (the rasteriser while moving, with that option).
   const std::string& shownBackend() const { return shown_; }
   std::uint32_t samples() const { return shown_ == "embree" ? samples_ : 0; }
+  bool progressive() const { return shown_ == "embree" && !isRemote(shown_); }
   double samplesPerSecond() const { return samplesPerSecond_; }
   double raysPerSecond() const { return raysPerSecond_; }
   bool converging() const { return converging_; }
@@ -70,6 +77,8 @@ class ViewerPane {
   std::string backend_;
   std::string shown_;
   std::map<std::string, std::unique_ptr<med::Viewport>> viewports_;
+  RemoteLayers remote_;
+  std::set<std::string> remoteBackends_;
   med::FrameBuffer frame_;
   med::RenderStats stats_;
   med::View lastView_;

@@ -97,7 +97,9 @@ void Viewer::drawPanels() {
     }
     const med::RenderStats& stats = pane.stats();
     ImGui::Text("showing %s, %.1f ms a frame", pane.shownBackend().c_str(), stats.seconds * 1e3);
-    if (pane.backend() == "embree") {
+    if (pane.isRemote(pane.shownBackend())) {
+      ImGui::Text("rendered on the cluster's nodes (%s)", options_.cluster.c_str());
+    } else if (pane.backend() == "embree") {
       ImGui::Text("%u spp of %u %s", pane.samples(), convergence_.sampleLimit,
                   convergence_.paused ? "(paused)" : pane.converging() ? "" : "(done)");
       ImGui::Text("%.2f samples/s, %.2f Mrays/s", pane.samplesPerSecond(), pane.raysPerSecond() * 1e-6);

@@ -8,6 +8,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "../cluster/node_process.hpp"
 #include "command_runner.hpp"
 #include "tsr/med/image_file.hpp"
 
@@ -186,6 +187,26 @@ TEST_F(ViewerWindow, AFailingActionNamesItsLine) {
   const Outcome v = viewer("builtin:cornell --viewports vulkan --size 64x64 --script fail.txt --exit-after");
   EXPECT_EQ(v.status, 2);
   EXPECT_THAT(v.err, HasSubstr("error: fail.txt:2: no bookmark 'nowhere'"));
+}
+
+// --cluster: viewport 0's path tracer renders on two real tessera-node
+// processes; the picture equals tessera-render --cluster's of the same view
+// (same config, same nodes: bit for bit), and follows the camera.
+TEST_F(ViewerWindow, ClusterClientRendersOnNodes) {
+  tsr::cluster::test::TokenFile token("viewer token");
+  auto nodes = tsr::cluster::test::startNodes(2, {"--token-file", token.path()});
+  const std::string cluster = std::string(" --cluster ") + TSR_CONFIG_DIR + "/cooperative-2.json --nodes " +
+                              nodes[0]->text() + "," + nodes[1]->text() + " --token-file " + token.path();
+  writeScript("cluster.txt", "time 0\nwait frames 2\nscreenshot cluster.png\norbit 20\nwait frames 2\nscreenshot turned.png\n");
+  const Outcome v = viewer("builtin:animated --size 96x72" + cluster + " --script cluster.txt --exit-after");
+  ASSERT_EQ(v.status, 0) << v.err;
+  EXPECT_THAT(v.out, HasSubstr("2 of 2 nodes online"));
+  const Outcome r = render("builtin:animated --size 96x72 --quiet --output ref.png" + cluster);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto shot = image("cluster.png");
+  EXPECT_GT(litFraction(shot), 0.3);
+  EXPECT_LE(compare(shot, image("ref.png")).maxAbs, 1.0 / 255 + 1e-6);
+  EXPECT_GT(compare(shot, image("turned.png")).meanAbs, 0.03);
 }
 
 }  // namespace
