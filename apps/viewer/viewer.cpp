@@ -33,7 +33,11 @@ Viewer* viewerOf(GLFWwindow* window) { return static_cast<Viewer*>(glfwGetWindow
 Viewer::Viewer(ViewerOptions options) : options_(std::move(options)), contexts_(std::make_unique<med::ContextPool>()) {
   registerBackends(registry_);
   for (const auto& backend : options_.viewports)
-    if (!registry_.has(backend)) registry_.create(med::ViewportSettings{backend}, *contexts_);  // throws, naming the known ones
+    if (!registry_.has(backend)) {
+      med::ViewportSettings unknown;
+      unknown.backend = backend;
+      registry_.create(unknown, *contexts_);  // throws, naming the back-ends it knows
+    }
   convergence_.sampleLimit = options_.sampleLimit;
   convergence_.rasterWhileMoving = options_.rasterWhileMoving;
   showPanels_ = !options_.hidePanels;

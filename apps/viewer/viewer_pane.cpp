@@ -69,22 +69,24 @@ void ViewerPane::render(const med::ViewportRegistry& registry, med::ContextPool&
   // The path tracer converges one pass a frame: it is asked for the samples
   // it has plus one (it restarts by itself when the view, the scene or its
   // settings changed, and then renders that one sample, paused or not).
+  const std::uint32_t previous = samples_;
   if (restarted) samples_ = 0;
   const std::uint32_t limit = convergence.sampleLimit;
   converging_ = samples_ < limit && !convergence.paused;
   if (!converging_ && !restarted && sized) return;
   const std::uint32_t want = std::min(limit, std::max<std::uint32_t>(samples_ + 1, 1));
   vp.setParameter("spp", std::int64_t(want));
-  const std::uint32_t before = samples_;
   stats_ = vp.render(replica, view, frame_, control);
   if (reportSwitch) switchReport_.emplace(backend, stats_);
   samples_ = stats_.samples;
-  if (stats_.seconds > 0 && samples_ > before) {
-    const double rendered = stats_.seconds - stats_.syncSeconds;
-    if (rendered > 0) {
-      samplesPerSecond_ = double(samples_ - before) / rendered;
-      raysPerSecond_ = double(stats_.rays) / rendered;
-    }
+  // Rates over the whole convergence so far (filter steps included), not
+  // one frame's: a filter frame would read as a stall.
+  if (samples_ < previous || samples_ <= 1) convergence_ = {};  // the accumulation started again
+  convergence_.seconds += stats_.seconds - stats_.syncSeconds;
+  convergence_.rays += stats_.rays;
+  if (convergence_.seconds > 0) {
+    samplesPerSecond_ = double(samples_) / convergence_.seconds;
+    raysPerSecond_ = double(convergence_.rays) / convergence_.seconds;
   }
 }
 

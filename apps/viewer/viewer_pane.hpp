@@ -63,6 +63,7 @@ class ViewerPane {
   const std::string& shownBackend() const { return shown_; }
   std::uint32_t samples() const { return shown_ == "embree" ? samples_ : 0; }
   bool progressive() const { return shown_ == "embree" && !isRemote(shown_); }
+  // Since the image last restarted.
   double samplesPerSecond() const { return samplesPerSecond_; }
   double raysPerSecond() const { return raysPerSecond_; }
   bool converging() const { return converging_; }
@@ -87,6 +88,10 @@ class ViewerPane {
   std::optional<std::pair<std::string, med::RenderStats>> switchReport_;
   bool restart_ = true;
   bool converging_ = false;
+  struct Convergence {
+    double seconds = 0;  // rendering since the last restart
+    std::uint64_t rays = 0;
+  } convergence_;
   double samplesPerSecond_ = 0, raysPerSecond_ = 0;
 };
 

@@ -96,13 +96,13 @@ void Viewer::drawPanels() {
       ImGui::EndCombo();
     }
     const med::RenderStats& stats = pane.stats();
-    ImGui::Text("showing %s, %.1f ms a frame", pane.shownBackend().c_str(), stats.seconds * 1e3);
+    ImGui::Text("showing %s, last render %.1f ms", pane.shownBackend().c_str(), stats.seconds * 1e3);
     if (pane.isRemote(pane.shownBackend())) {
       ImGui::Text("rendered on the cluster's nodes (%s)", options_.cluster.c_str());
     } else if (pane.backend() == "embree") {
       ImGui::Text("%u spp of %u %s", pane.samples(), convergence_.sampleLimit,
                   convergence_.paused ? "(paused)" : pane.converging() ? "" : "(done)");
-      ImGui::Text("%.2f samples/s, %.2f Mrays/s", pane.samplesPerSecond(), pane.raysPerSecond() * 1e-6);
+      ImGui::Text("%.2f spp/s, %.2f Mrays/s since it restarted", pane.samplesPerSecond(), pane.raysPerSecond() * 1e-6);
       const med::Parameters& p = pane.parameters();
       int depth = int(p.getInt("maxDepth", 8, 0, 1024));
       if (ImGui::SliderInt("max depth", &depth, 0, 32)) pane.setParameter("maxDepth", std::int64_t(depth));

@@ -176,10 +176,45 @@ TEST_F(ViewerWindow, SideBySideViewportsOrbitBookmarksAndLayeredExr) {
 }
 
 TEST_F(ViewerWindow, CoveragePickSelectsTheObjectUnderThePixel) {
-  writeScript("pick.txt", "wait frames 2\npick 0 80 100\nwait frames 1\nscreenshot picked.png\n");
-  const Outcome v = viewer("builtin:cornell --viewports coverage --size 160x120 --script pick.txt --exit-after");
+  writeScript("pick.txt", "wait frames 2\nwindow-screenshot before.png\npick 0 80 100\nwait frames 2\n"
+                          "window-screenshot picked.png\npick 0 0 0\nwait frames 2\nwindow-screenshot after.png\n");
+  const Outcome v = viewer("builtin:cornell --viewports coverage --size 160x120 --hide-panels --script pick.txt --exit-after");
   ASSERT_EQ(v.status, 0) << v.err;
   EXPECT_THAT(v.out, HasSubstr("viewport 0: picked object "));
+  EXPECT_THAT(v.out, HasSubstr("viewport 0: picked nothing"));
+  // The selected object stands out: the window's picture changes, and
+  // goes back once the background is clicked.
+  EXPECT_GT(compare(image("before.png"), image("picked.png")).meanAbs, 0.05);
+  EXPECT_LE(compare(image("before.png"), image("after.png")).maxAbs, 1.0 / 255 + 1e-6);
+}
+
+// Figure 5.6's option: while the camera moves the path-traced viewport
+// shows the rasteriser's picture, and path traces once it rests.
+TEST_F(ViewerWindow, RasterisesWhileMovingThenPathTraces) {
+  writeScript("move.txt",
+              "time 0\nraster-while-moving on\nwait frames 2\norbit 10\n"
+              "screenshot moving.png 0\nscreenshot raster.png 1\n"
+              "wait samples 2\nscreenshot resting.png 0\n");
+  const Outcome v = viewer("builtin:animated --viewports embree,vulkan --size 192x72 --spp 2 --max-depth 2 "
+                           "--script move.txt --exit-after");
+  ASSERT_EQ(v.status, 0) << v.err;
+  EXPECT_LE(compare(image("moving.png"), image("raster.png")).maxAbs, 1.0 / 255 + 1e-6) << "rasterised while moving";
+  EXPECT_GT(compare(image("resting.png"), image("raster.png")).meanAbs, 0.02) << "path traced at rest";
+}
+
+// The time action (the panel's slider) poses the animation; open replaces the scene.
+TEST_F(ViewerWindow, AnimationTimeAndOpeningAnotherScene) {
+  writeScript("time.txt",
+              "time 0\nwait frames 2\nscreenshot t0.png\ntime 1.5\nwait frames 2\nscreenshot t15.png\n"
+              "open builtin:cornell\nwait frames 2\nscreenshot cornell.png\n");
+  const Outcome v = viewer("builtin:animated --viewports coverage --size 96x72 --script time.txt --exit-after");
+  ASSERT_EQ(v.status, 0) << v.err;
+  const Difference moved = compare(image("t0.png"), image("t15.png"));
+  EXPECT_GT(moved.maxAbs, 0.2) << "something moved";
+  EXPECT_GT(moved.meanAbs, 0.001) << "something moved";
+  const Outcome r = render("builtin:cornell --backend coverage --size 96x72 --quiet --output cornell-ref.png");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_LE(compare(image("cornell.png"), image("cornell-ref.png")).maxAbs, 1.0 / 255 + 1e-6);
 }
 
 TEST_F(ViewerWindow, AFailingActionNamesItsLine) {
