@@ -143,7 +143,7 @@ void Viewer::openWindow() {
   });
   // The presentation device is apart from the back-ends' (vk::sharedDevice):
   // it needs the window system's extensions; it only copies and draws panels.
-  device_ = vk::Device::create(vk::DeviceOptions::forWindows());
+  device_ = vk::Device::create(vk::DeviceOptions::forWindows(options_.validate));
   overlay_ = std::make_unique<ImGuiOverlay>(device_, window_);
   vk::SwapchainOptions swapchain;
   swapchain.overlay = overlay_.get();
@@ -286,7 +286,15 @@ void Viewer::present() {
 int Viewer::run() {
   openWindow();
   while (!glfwWindowShouldClose(window_)) {
-    glfwPollEvents();
+    // Nothing to converge, play or run: sleep until input (or a moment, for
+    // ImGui's own animations) instead of spinning on the shared CPU.
+    const bool busy = playing_ || scriptNext_ < script_.size() || framesToWait_ > 0 || samplesToWait_ > 0 ||
+                      std::any_of(panes_.begin(), panes_.end(), [](const ViewerPane& p) { return p.converging(); }) ||
+                      std::chrono::steady_clock::now() - lastMove_ < kMovingFor * 2;
+    if (busy)
+      glfwPollEvents();
+    else
+      glfwWaitEventsTimeout(0.1);
     int w = 0, h = 0;
     glfwGetFramebufferSize(window_, &w, &h);
     width_ = std::uint32_t(std::max(w, 0));
@@ -313,6 +321,11 @@ int Viewer::run() {
     overlay_->endFrame();
     present();
     ++frame_;
+  }
+  if (options_.validate && device_->validationErrors() > 0) {
+    const auto messages = device_->validationMessages();
+    throw std::runtime_error(std::to_string(device_->validationErrors()) + " Vulkan validation errors, the first: " +
+                             (messages.empty() ? std::string("?") : messages.front()));
   }
   return 0;
 }

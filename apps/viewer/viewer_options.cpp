@@ -45,6 +45,8 @@ bool parseViewerOptions(int argc, char** argv, ViewerOptions& o) {
                  "run the actions of FILE, one a line (backend, orbit, pan, zoom, wait, screenshot, ...: see README)");
   app.add_flag("--exit-after", o.exitAfter, "quit when the --script is done (exit status 0)");
   app.add_flag("--hide-panels", o.hidePanels, "start with the panels hidden (H shows them)");
+  app.add_flag("--validate", o.validate,
+               "Vulkan validation layers on the window's device (presentation and panels); any error fails the run");
   auto* clusterGroup = app.add_option_group("Cluster", "render viewport 0 on tessera-node processes");
   clusterGroup->add_option("--cluster", o.cluster,
                            "cluster config (configs/*.json): viewport 0 renders on its nodes while it shows their back-end");

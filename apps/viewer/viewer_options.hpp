@@ -18,6 +18,7 @@ struct ViewerOptions {
   std::string script;                             // --script FILE
   bool exitAfter = false;                         // --exit-after: quit when the script is done
   bool hidePanels = false;
+  bool validate = false;  // Vulkan validation on the window's device; errors fail the run
   std::string cluster, nodes, tokenFile;  // --cluster CONFIG [--nodes A:P,...] [--token-file F]
   med::Parameters parameters;  // --max-depth, --threads, --param extras: every viewport
   sg::ImportOptions import;    // --max-file-mb, --max-elements

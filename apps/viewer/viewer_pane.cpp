@@ -81,12 +81,12 @@ void ViewerPane::render(const med::ViewportRegistry& registry, med::ContextPool&
   samples_ = stats_.samples;
   // Rates over the whole convergence so far (filter steps included), not
   // one frame's: a filter frame would read as a stall.
-  if (samples_ < previous || samples_ <= 1) convergence_ = {};  // the accumulation started again
-  convergence_.seconds += stats_.seconds - stats_.syncSeconds;
-  convergence_.rays += stats_.rays;
-  if (convergence_.seconds > 0) {
-    samplesPerSecond_ = double(samples_) / convergence_.seconds;
-    raysPerSecond_ = double(convergence_.rays) / convergence_.seconds;
+  if (samples_ < previous || samples_ <= 1) rates_ = {};  // the accumulation started again
+  rates_.seconds += stats_.seconds - stats_.syncSeconds;
+  rates_.rays += stats_.rays;
+  if (rates_.seconds > 0) {
+    samplesPerSecond_ = double(samples_) / rates_.seconds;
+    raysPerSecond_ = double(rates_.rays) / rates_.seconds;
   }
 }
 

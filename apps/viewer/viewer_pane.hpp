@@ -88,10 +88,10 @@ class ViewerPane {
   std::optional<std::pair<std::string, med::RenderStats>> switchReport_;
   bool restart_ = true;
   bool converging_ = false;
-  struct Convergence {
+  struct Rates {
     double seconds = 0;  // rendering since the last restart
     std::uint64_t rays = 0;
-  } convergence_;
+  } rates_;
   double samplesPerSecond_ = 0, raysPerSecond_ = 0;
 };
 

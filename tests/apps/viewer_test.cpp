@@ -20,7 +20,8 @@ TEST_F(ViewerCommand, HelpListsEveryOptionAndKey) {
   const Outcome r = run("--help");
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* option : {"--viewports", "--size", "--spp", "--max-depth", "--threads", "--param",
-                             "--raster-while-moving", "--script", "--exit-after", "--hide-panels", "--max-file-mb",
+                             "--raster-while-moving", "--script", "--exit-after", "--hide-panels", "--validate",
+                             "--cluster", "--nodes", "--token-file", "--max-file-mb",
                              "--max-elements"})
     EXPECT_THAT(r.out, HasSubstr(option));
   for (const char* key : {"left drag", "right drag", "wheel", "W A S D", "F12", "Space", "cycle the back-end", "Drop"})

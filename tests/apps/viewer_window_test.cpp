@@ -217,6 +217,15 @@ TEST_F(ViewerWindow, AnimationTimeAndOpeningAnotherScene) {
   EXPECT_LE(compare(image("cornell.png"), image("cornell-ref.png")).maxAbs, 1.0 / 255 + 1e-6);
 }
 
+// The swapchain copy, the panels' render pass and the window read-back
+// under Vulkan's validation layers, through a resize-free run.
+TEST_F(ViewerWindow, PresentsPanelsWithoutValidationErrors) {
+  writeScript("valid.txt", "wait frames 3\nwindow-screenshot w.png\nbackend 0 coverage\nwait frames 2\n");
+  const Outcome v = viewer("builtin:animated --viewports vulkan --size 320x200 --validate --script valid.txt --exit-after");
+  EXPECT_EQ(v.status, 0) << v.err;
+  EXPECT_THAT(v.err, ::testing::Not(HasSubstr("error")));
+}
+
 TEST_F(ViewerWindow, AFailingActionNamesItsLine) {
   writeScript("fail.txt", "wait frames 1\nbookmark load nowhere\n");
   const Outcome v = viewer("builtin:cornell --viewports vulkan --size 64x64 --script fail.txt --exit-after");
