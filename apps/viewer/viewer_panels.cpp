@@ -33,9 +33,11 @@ double realParameter(const med::Parameters& p, const std::string& name, double f
 }  // namespace
 
 void Viewer::drawPanels() {
-  ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(310, 0), ImGuiCond_FirstUseEver);
-  ImGui::Begin("tessera-viewer");
+  // The viewer's panel at the bottom left, each viewport's at its top right;
+  // both fit their contents.
+  ImGui::SetNextWindowPos(ImVec2(8, float(height_) - 8), ImGuiCond_FirstUseEver, ImVec2(0, 1));
+  ImGui::Begin("tessera-viewer", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  ImGui::PushItemWidth(160);
   ImGui::TextWrapped("%s", sceneName_.c_str());
   ImGui::Text("%.1f frames/s", ImGui::GetIO().Framerate);
   if (!status_.empty()) ImGui::TextWrapped("%s", status_.c_str());
@@ -78,15 +80,16 @@ void Viewer::drawPanels() {
     if (ImGui::InputInt("sample limit", &limit, 16, 256)) convergence_.sampleLimit = std::uint32_t(std::clamp(limit, 1, 1 << 20));
     if (ImGui::Button(convergence_.paused ? "Resume (Space)" : "Pause (Space)")) convergence_.paused = !convergence_.paused;
   }
+  ImGui::PopItemWidth();
   ImGui::End();
 
   const std::uint32_t pw = paneWidth(width_);
   for (std::size_t i = 0; i < panes_.size(); ++i) {
     ViewerPane& pane = panes_[i];
     const std::string title = "Viewport " + std::to_string(i);
-    ImGui::SetNextWindowPos(ImVec2(float(std::uint32_t(i) * pw + pw) - 290.0f, 8), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(280, 0), ImGuiCond_FirstUseEver);
-    ImGui::Begin(title.c_str());
+    ImGui::SetNextWindowPos(ImVec2(float(std::uint32_t(i) * pw + pw) - 8.0f, 8), ImGuiCond_FirstUseEver, ImVec2(1, 0));
+    ImGui::Begin(title.c_str(), nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+    ImGui::PushItemWidth(160);
     const auto names = registry_.backends();
     if (ImGui::BeginCombo("back-end", pane.backend().c_str())) {
       for (const auto& name : names) {
@@ -102,7 +105,7 @@ void Viewer::drawPanels() {
     } else if (pane.backend() == "embree") {
       ImGui::Text("%u spp of %u %s", pane.samples(), convergence_.sampleLimit,
                   convergence_.paused ? "(paused)" : pane.converging() ? "" : "(done)");
-      ImGui::Text("%.2f spp/s, %.2f Mrays/s since it restarted", pane.samplesPerSecond(), pane.raysPerSecond() * 1e-6);
+      ImGui::Text("%.2f spp/s, %.2f Mrays/s (since restart)", pane.samplesPerSecond(), pane.raysPerSecond() * 1e-6);
       const med::Parameters& p = pane.parameters();
       int depth = int(p.getInt("maxDepth", 8, 0, 1024));
       if (ImGui::SliderInt("max depth", &depth, 0, 32)) pane.setParameter("maxDepth", std::int64_t(depth));
@@ -122,8 +125,8 @@ void Viewer::drawPanels() {
       }
     } else if (pane.backend() == "coverage" && pane.frame().outputs.count(med::kIdOutput)) {
       const auto ranked = med::rankObjects(pane.frame(), session_->replica.scene());
-      ImGui::Text("%zu objects seen; click one (here or in the image)", ranked.size());
-      ImGui::BeginChild("ranking", ImVec2(0, 160), true);
+      ImGui::Text("%zu objects seen; click one here or in the image", ranked.size());
+      ImGui::BeginChild("ranking", ImVec2(260, 140), true);
       for (const auto& r : ranked) {
         char label[200];
         std::snprintf(label, sizeof(label), "%5.1f%%  %s##%llu", r.fraction * 100.0,
@@ -133,6 +136,7 @@ void Viewer::drawPanels() {
       }
       ImGui::EndChild();
     }
+    ImGui::PopItemWidth();
     ImGui::End();
   }
 }

@@ -217,6 +217,21 @@ TEST_F(ViewerWindow, AnimationTimeAndOpeningAnotherScene) {
   EXPECT_LE(compare(image("cornell.png"), image("cornell-ref.png")).maxAbs, 1.0 / 255 + 1e-6);
 }
 
+// A back-end left alone while the camera moved for more frames than the
+// replica's change log holds (256) still catches up by syncing: the viewer
+// keeps the viewports it does not show within the log.
+TEST_F(ViewerWindow, ABackendSwitchedBackAfterLongNavigationSyncs) {
+  std::string script = "backend 0 vulkan\nwait frames 1\nbackend 0 coverage\n";
+  for (int i = 0; i < 300; ++i) script += "orbit 1\n";
+  script += "backend 0 vulkan\nwait frames 1\n";
+  writeScript("long.txt", script);
+  const Outcome v = viewer("builtin:animated --viewports embree --size 48x32 --hide-panels --script long.txt --exit-after");
+  ASSERT_EQ(v.status, 0) << v.err;
+  const auto back = v.out.rfind("viewport 0: vulkan, scene ");
+  ASSERT_NE(back, std::string::npos) << v.out;
+  EXPECT_EQ(v.out.compare(back, 33, "viewport 0: vulkan, scene synced "), 0) << v.out;
+}
+
 // The swapchain copy, the panels' render pass and the window read-back
 // under Vulkan's validation layers, through a resize-free run.
 TEST_F(ViewerWindow, PresentsPanelsWithoutValidationErrors) {
