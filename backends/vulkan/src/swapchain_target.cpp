@@ -153,8 +153,9 @@ void SwapchainTarget::createSwapchain() {
   if (options_.readback) usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   if (options_.overlay) usage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
   if ((caps.supportedUsageFlags & usage) != usage)
-    throw Error(options_.readback ? "SwapchainTarget: the surface does not allow transfer to and from its images"
-                                  : "SwapchainTarget: the surface does not allow transfer into (or drawing to) its images");
+    throw Error(std::string("SwapchainTarget: the surface does not allow transfer ") +
+                (options_.readback ? "to and from" : "into") + " its images" +
+                (options_.overlay ? " or drawing to them (for the overlay)" : ""));
 
   if (format_ == VK_FORMAT_UNDEFINED) {
     std::uint32_t count = 0;
