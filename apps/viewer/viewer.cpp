@@ -141,6 +141,10 @@ void Viewer::openWindow() {
   glfwSetDropCallback(window_, [](GLFWwindow* w, int count, const char** paths) {
     if (count > 0) viewerOf(w)->dropped_ = std::string(paths[0]);
   });
+  glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int, int action, int) {
+    auto& keys = viewerOf(w)->pressedKeys_;
+    if (action == GLFW_PRESS && keys.size() < 64) keys.push_back(key);
+  });
   // The presentation device is apart from the back-ends' (vk::sharedDevice):
   // it needs the window system's extensions; it only copies and draws panels.
   device_ = vk::Device::create(vk::DeviceOptions::forWindows(options_.validate));
@@ -195,27 +199,34 @@ void Viewer::handleInput() {
       if (pane >= 0 && y >= 0) pick(std::size_t(pane), std::uint32_t(x) - std::uint32_t(pane) * paneWidth(width_), std::uint32_t(y));
     }
   }
+  std::vector<int> pressed;
+  pressed.swap(pressedKeys_);
   if (io.WantCaptureKeyboard) return;
   const float step = 0.02f;
   auto held = [&](int key) { return glfwGetKey(window_, key) == GLFW_PRESS ? 1.0f : 0.0f; };
   orbit_.fly((held(GLFW_KEY_W) - held(GLFW_KEY_S)) * step, (held(GLFW_KEY_D) - held(GLFW_KEY_A)) * step,
              (held(GLFW_KEY_E) - held(GLFW_KEY_Q)) * step);
-  if (ImGui::IsKeyPressed(GLFW_KEY_F, false)) frameScene();
-  if (ImGui::IsKeyPressed(GLFW_KEY_B, false)) {
-    const int pane = paneAt(x);
-    cycleBackend(pane >= 0 ? std::size_t(pane) : 0);
+  for (const int key : pressed) {
+    if (key == GLFW_KEY_F) frameScene();
+    if (key == GLFW_KEY_B) {
+      const int pane = paneAt(x);
+      cycleBackend(pane >= 0 ? std::size_t(pane) : 0);
+    }
+    if (key == GLFW_KEY_SPACE) convergence_.paused = !convergence_.paused;
+    if (key == GLFW_KEY_H) showPanels_ = !showPanels_;
+    if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(window_, GLFW_TRUE);
+    if (key == GLFW_KEY_F12 || key == GLFW_KEY_P) {
+      ++screenshots_;
+      try {
+        for (std::size_t i = 0; i < panes_.size(); ++i)
+          screenshotPane(i, "viewer-" + std::to_string(screenshots_) + "-" + std::to_string(i) + ".png");
+      } catch (const std::exception& e) {
+        status_ = std::string("error: ") + e.what();  // a key's failure is shown, not fatal
+      }
+    }
+    if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9 && std::size_t(key - GLFW_KEY_1) < bookmarks_.bookmarks.size())
+      loadBookmark(bookmarks_.bookmarks[std::size_t(key - GLFW_KEY_1)].name);
   }
-  if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) convergence_.paused = !convergence_.paused;
-  if (ImGui::IsKeyPressed(GLFW_KEY_H, false)) showPanels_ = !showPanels_;
-  if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) glfwSetWindowShouldClose(window_, GLFW_TRUE);
-  if (ImGui::IsKeyPressed(GLFW_KEY_F12, false) || ImGui::IsKeyPressed(GLFW_KEY_P, false)) {
-    ++screenshots_;
-    for (std::size_t i = 0; i < panes_.size(); ++i)
-      screenshotPane(i, "viewer-" + std::to_string(screenshots_) + "-" + std::to_string(i) + ".png");
-  }
-  for (int k = 0; k < 9; ++k)
-    if (ImGui::IsKeyPressed(GLFW_KEY_1 + k, false) && std::size_t(k) < bookmarks_.bookmarks.size())
-      loadBookmark(bookmarks_.bookmarks[std::size_t(k)].name);
 }
 
 void Viewer::setAnimationTime(double seconds) {

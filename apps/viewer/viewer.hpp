@@ -87,6 +87,9 @@ class Viewer {
   std::string bookmarkMessage_;
   std::string status_;  // the last error or notice, shown in the panel
   std::optional<std::string> dropped_;
+  // Keys pressed since the last frame, from GLFW's callback: a tap shorter
+  // than a (slow, path-traced) frame is not lost as it would be by polling.
+  std::vector<int> pressedKeys_;
   sg::ContainerId selected_ = sg::kNoContainer;
   double animationTime_ = 0, animationDuration_ = 0;
   bool playing_ = false;

@@ -232,6 +232,35 @@ TEST_F(ViewerWindow, ABackendSwitchedBackAfterLongNavigationSyncs) {
   EXPECT_EQ(v.out.compare(back, 33, "viewport 0: vulkan, scene synced "), 0) << v.out;
 }
 
+// Keys, typed by xdotool (X's XTEST) into the window: B cycles the back-end
+// of the viewport under the mouse, F12 writes every viewport's image, Esc
+// quits cleanly.
+TEST_F(ViewerWindow, KeysCycleTheBackendScreenshotAndQuit) {
+#ifndef TSR_XDOTOOL
+  GTEST_SKIP() << "xdotool not found at configure time (scripts/install-deps.sh installs it)";
+#else
+  writeScript("forever.txt", "wait frames 1000000\n");
+  std::ofstream(dir / "keys.sh")
+      << "'" TSR_VIEWER_PATH "' builtin:animated --viewports vulkan --size 200x150 --script forever.txt &\n"
+         "pid=$!\n"
+         "for i in $(seq 100); do w=$(" TSR_XDOTOOL " search --name tessera-viewer | head -1); [ -n \"$w\" ] && break; sleep 0.2; done\n"
+         TSR_XDOTOOL " windowfocus --sync $w\n"
+         TSR_XDOTOOL " mousemove --window $w 50 50\n"
+         "sleep 0.5\n"
+         TSR_XDOTOOL " key b\n"
+         TSR_XDOTOOL " key F12\n"
+         "for i in $(seq 100); do [ -f viewer-1-0.png ] && break; sleep 0.2; done\n"
+         TSR_XDOTOOL " key Escape\n"
+         "wait $pid\n";
+  const Outcome v = runBinary("/bin/sh", "keys.sh");
+  EXPECT_EQ(v.status, 0) << v.err;
+  EXPECT_THAT(v.out, HasSubstr("viewport 0: vulkan, scene converted"));
+  EXPECT_THAT(v.out, HasSubstr("viewport 0: coverage, scene converted")) << "B went from vulkan to the next name";
+  ASSERT_TRUE(std::filesystem::exists(dir / "viewer-1-0.png")) << v.out << v.err;
+  EXPECT_EQ(image("viewer-1-0.png").width, 200u);
+#endif
+}
+
 // The swapchain copy, the panels' render pass and the window read-back
 // under Vulkan's validation layers, through a resize-free run.
 TEST_F(ViewerWindow, PresentsPanelsWithoutValidationErrors) {
