@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config python3
   libembree-dev embree-tools libtbb-dev
   libvulkan-dev mesa-vulkan-drivers vulkan-tools glslc vulkan-validationlayers
-  libglfw3-dev xvfb xauth
+  libglfw3-dev xvfb xauth xdotool
   libtinygltf-dev nlohmann-json3-dev libstb-dev
   libopenimageio-dev openimageio-tools
   libboost-dev liblz4-dev libzstd-dev libssl-dev

@@ -117,6 +117,7 @@ SwapchainTarget::~SwapchainTarget() {
 
 void SwapchainTarget::destroySwapchainResources() {
   VkDevice dev = device_->handle();
+  if (options_.overlay && !impl_->images.empty()) options_.overlay->swapchainChanged(format_, {0, 0}, {});
   for (VkSemaphore s : impl_->renderDone) vkDestroySemaphore(dev, s, nullptr);
   impl_->renderDone.clear();
   impl_->images.clear();
@@ -150,9 +151,11 @@ void SwapchainTarget::createSwapchain() {
 
   VkImageUsageFlags usage = VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   if (options_.readback) usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  if (options_.overlay) usage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
   if ((caps.supportedUsageFlags & usage) != usage)
-    throw Error(options_.readback ? "SwapchainTarget: the surface does not allow transfer to and from its images"
-                                  : "SwapchainTarget: the surface does not allow transfer into its images");
+    throw Error(std::string("SwapchainTarget: the surface does not allow transfer ") +
+                (options_.readback ? "to and from" : "into") + " its images" +
+                (options_.overlay ? " or drawing to them (for the overlay)" : ""));
 
   if (format_ == VK_FORMAT_UNDEFINED) {
     std::uint32_t count = 0;
@@ -216,6 +219,7 @@ void SwapchainTarget::createSwapchain() {
   VkSemaphoreCreateInfo sci = vkStruct<VkSemaphoreCreateInfo>(VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO);
   impl_->renderDone.assign(count, VK_NULL_HANDLE);
   for (auto& s : impl_->renderDone) check(vkCreateSemaphore(dev, &sci, nullptr, &s), "vkCreateSemaphore");
+  if (options_.overlay) options_.overlay->swapchainChanged(format_, extent, impl_->images);
 
   if (options_.readback) {
     VkDeviceSize bytes = VkDeviceSize(extent.width) * extent.height * 4;
@@ -225,10 +229,11 @@ void SwapchainTarget::createSwapchain() {
   spdlog::debug("tsr::vk: swapchain {}x{}, {} images, format {}", extent.width, extent.height, count, int(format_));
 }
 
-std::vector<std::uint8_t> SwapchainTarget::encode(const FrameBuffer& fb) const {
+std::vector<std::uint8_t> SwapchainTarget::encode(const FrameBuffer& fb) const { return encode(fb.colourImage()); }
+
+std::vector<std::uint8_t> SwapchainTarget::encode(const std::vector<glm::vec4>& colour) const {
   const bool bgra = isBgra(format_);
-  std::vector<std::uint8_t> out(std::size_t(fb.width()) * fb.height() * 4);
-  const auto& colour = fb.colourImage();
+  std::vector<std::uint8_t> out(colour.size() * 4);
   for (std::size_t i = 0; i < colour.size(); ++i) {
     std::uint8_t r = encodeSrgb(colour[i].r), g = encodeSrgb(colour[i].g), b = encodeSrgb(colour[i].b);
     out[4 * i + 0] = bgra ? b : r;
@@ -239,7 +244,12 @@ std::vector<std::uint8_t> SwapchainTarget::encode(const FrameBuffer& fb) const {
   return out;
 }
 
-bool SwapchainTarget::present(const FrameBuffer& fb) {
+bool SwapchainTarget::present(const FrameBuffer& fb) { return present(fb.width(), fb.height(), fb.colourImage()); }
+
+bool SwapchainTarget::present(std::uint32_t width, std::uint32_t height, const std::vector<glm::vec4>& colour) {
+  if (colour.size() != std::size_t(width) * height)
+    throw Error("SwapchainTarget::present: " + std::to_string(colour.size()) + " pixels for a " +
+                std::to_string(width) + "x" + std::to_string(height) + " image");
   VkDevice dev = device_->handle();
 
   // Follow the window's size even where the platform does not report
@@ -270,7 +280,7 @@ bool SwapchainTarget::present(const FrameBuffer& fb) {
     check(acquired, "vkAcquireNextImageKHR");
 
   // Stage the encoded pixels (the buffer is idle: the fence above waited for its last use).
-  const std::vector<std::uint8_t> pixels = encode(fb);
+  const std::vector<std::uint8_t> pixels = encode(colour);
   if (!pixels.empty()) {
     if (impl_->staging.size() < pixels.size())
       impl_->staging = Buffer(*device_, pixels.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, Buffer::kHost);
@@ -291,18 +301,19 @@ bool SwapchainTarget::present(const FrameBuffer& fb) {
   black.float32[3] = 1.0f;
   VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
   vkCmdClearColorImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black, 1, &all);
-  const std::uint32_t w = std::min(fb.width(), extent_.width), h = std::min(fb.height(), extent_.height);
+  const std::uint32_t w = std::min(width, extent_.width), h = std::min(height, extent_.height);
   if (w > 0 && h > 0) {
     imageBarrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                  VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                  VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
     VkBufferImageCopy copy{};
-    copy.bufferRowLength = fb.width();
-    copy.bufferImageHeight = fb.height();
+    copy.bufferRowLength = width;
+    copy.bufferImageHeight = height;
     copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     copy.imageExtent = {w, h, 1};
     vkCmdCopyBufferToImage(cmd, impl_->staging.handle(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
   }
+  if (options_.overlay) options_.overlay->record(cmd, index);
   if (options_.readback) {
     imageBarrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,

@@ -72,6 +72,39 @@ void writeImageFile(const std::string& path, const std::string& named, const Fra
 }
 }  // namespace
 
+void writeLayeredExr(const std::string& path, const FrameBuffer& fb) {
+  if (fb.width == 0 || fb.height == 0) throw ImageFileError(path + ": empty image");
+  if (path.size() < 4 || path.compare(path.size() - 4, 4, ".exr") != 0)
+    throw ImageFileError(path + ": layered images are written as .exr only");
+  std::vector<std::string> names{"R", "G", "B", "A", "Z"};
+  for (const auto& [name, pixels] : fb.outputs)
+    for (const char* c : {".R", ".G", ".B"}) names.push_back(name + c);
+  const std::size_t channels = names.size(), count = std::size_t{fb.width} * fb.height;
+  std::vector<float> data(count * channels);
+  for (std::size_t i = 0; i < count; ++i) {
+    float* px = &data[i * channels];
+    for (int c = 0; c < 4; ++c) px[c] = fb.colour[i][c];
+    px[4] = fb.depth[i];
+    std::size_t at = 5;
+    for (const auto& [name, pixels] : fb.outputs) {
+      const glm::vec4 v = i < pixels.size() ? pixels[i] : glm::vec4(0.0f);
+      for (int c = 0; c < 3; ++c) px[at++] = v[c];
+    }
+  }
+  replaceFile(path, [&](const std::string& temporary) {
+    auto file = OIIO::ImageOutput::create(path);
+    if (!file) throw ImageFileError(path + ": " + OIIO::geterror());
+    OIIO::ImageSpec spec(static_cast<int>(fb.width), static_cast<int>(fb.height), static_cast<int>(channels),
+                         OIIO::TypeDesc::FLOAT);
+    spec.channelnames = names;
+    spec.alpha_channel = 3;
+    spec.z_channel = 4;
+    if (!file->open(temporary, spec)) throw ImageFileError(path + ": " + file->geterror());
+    if (!file->write_image(OIIO::TypeDesc::FLOAT, data.data()) || !file->close())
+      throw ImageFileError(path + ": " + file->geterror());
+  });
+}
+
 void writeImage(const std::string& path, const FrameBuffer& fb, const std::string& output,
                 const DisplayTransform& display) {
   if (fb.width == 0 || fb.height == 0) throw ImageFileError(path + ": empty image");

@@ -2,8 +2,11 @@
 
 #include "tsr/vk/device.hpp"
 #include "tsr/vk/framebuffer.hpp"
+#include "tsr/vk/swapchain_overlay.hpp"
 
 #include <vulkan/vulkan.h>
+
+#include <glm/vec4.hpp>
 
 #include <cstdint>
 #include <memory>
@@ -18,6 +21,9 @@ struct SwapchainOptions {
   // for tests. Needs TRANSFER_SRC on swapchain images; throws Error if the
   // surface does not allow it.
   bool readback = false;
+  // Drawn over every presented frame (see SwapchainOverlay); must outlive
+  // the target. Adds COLOR_ATTACHMENT to the swapchain images' usage.
+  SwapchainOverlay* overlay = nullptr;
 };
 
 // Presents rendered FrameBuffers in a GLFW window. The window must have been
@@ -44,6 +50,9 @@ class SwapchainTarget {
   // Presents fb; false if nothing was shown because the window has zero
   // size (minimised). Throws Error on Vulkan failures.
   bool present(const FrameBuffer& fb);
+  // The same for a width x height image of linear colour, row 0 at the top
+  // (an application's own composition of several renders).
+  bool present(std::uint32_t width, std::uint32_t height, const std::vector<glm::vec4>& colour);
 
   // Current swapchain size (follows the window's framebuffer size).
   std::uint32_t width() const { return extent_.width; }
@@ -56,6 +65,7 @@ class SwapchainTarget {
   // fb as present() writes it into the image: width*height*4 bytes in this
   // target's channel order (BGRA or RGBA), sRGB-encoded, alpha 255.
   std::vector<std::uint8_t> encode(const FrameBuffer& fb) const;
+  std::vector<std::uint8_t> encode(const std::vector<glm::vec4>& colour) const;
   // With readback: the bytes of the image last presented (width() x height()
   // at that time, lastPresentedWidth/Height), else empty.
   const std::vector<std::uint8_t>& lastPresentedPixels() const { return lastPixels_; }

@@ -21,6 +21,10 @@ class ImageFileError : public std::runtime_error {
 // indirect), never to albedo, normals, depth or statistics.
 void writeImage(const std::string& path, const FrameBuffer& fb, const std::string& output = "colour",
                 const DisplayTransform& display = {});
+// Writes one OpenEXR file with colour (R, G, B, A), depth (Z) and every
+// named output as a layer ("albedo.R", "albedo.G", "albedo.B", ...): what a
+// compositor opens as AOVs. Throws ImageFileError unless `path` ends in .exr.
+void writeLayeredExr(const std::string& path, const FrameBuffer& fb);
 // Reads an image back as RGBA float (linear for float files, sRGB decoded otherwise).
 FrameBuffer readImage(const std::string& path);
 

@@ -1,0 +1,98 @@
+#include "viewer_options.hpp"
+
+#include <iostream>
+#include <stdexcept>
+
+#include <CLI/CLI.hpp>
+
+#include "render_options.hpp"
+
+namespace tsr::app {
+
+std::string viewerKeyHelp() {
+  return "Keys and mouse (when the panels do not have the focus):\n"
+         "  left drag      orbit around the target\n"
+         "  right drag     pan (also middle drag, or shift + left drag)\n"
+         "  wheel          zoom towards the target\n"
+         "  W A S D Q E    fly forward, left, back, right, down, up\n"
+         "  F              frame the scene again\n"
+         "  B              cycle the back-end of the viewport under the mouse\n"
+         "  1 .. 9         select a camera bookmark\n"
+         "  Space          pause / resume the path tracer\n"
+         "  F12 (or P)     screenshot of every viewport (viewer-N-VIEWPORT.png in the current folder)\n"
+         "  H              hide / show the panels\n"
+         "  Esc            quit\n"
+         "Drop a .gltf or .glb on the window to open it.\n";
+}
+
+bool parseViewerOptions(int argc, char** argv, ViewerOptions& o) {
+  CLI::App app{"Look at a scene interactively, one or more viewports side by side, each with its own back-end"};
+  app.footer(viewerKeyHelp());
+  std::string size = "1024x576", viewports = "embree";
+  std::int64_t maxDepth = 8, threads = 0, limit = o.sampleLimit;
+  std::vector<std::string> params;
+  app.add_option("scene", o.scene, "glTF file (.gltf/.glb) or builtin:NAME (default builtin:cornell)");
+  app.add_option("--viewports", viewports, "back-ends of the viewports, left to right: e.g. embree,vulkan");
+  app.add_option("--size", size, "window size WxH");
+  app.add_option("--spp", limit, "sample limit of the path tracer (it converges up to this)")
+      ->check(CLI::Range(1, 1 << 20));
+  auto* depthOption = app.add_option("--max-depth", maxDepth, "maximum path depth")->check(CLI::Range(0, 1024));
+  auto* threadsOption = app.add_option("--threads", threads, "render threads (0: all)")->check(CLI::Range(0, 4096));
+  app.add_option("--param", params, "back-end parameter name=value for every viewport (repeatable)");
+  app.add_flag("--raster-while-moving", o.rasterWhileMoving,
+               "path-traced viewports rasterise while the camera moves and path trace when it stops");
+  app.add_option("--script", o.script,
+                 "run the actions of FILE, one a line (backend, orbit, pan, zoom, wait, screenshot, ...: see README)");
+  app.add_flag("--exit-after", o.exitAfter, "quit when the --script is done (exit status 0)");
+  app.add_flag("--hide-panels", o.hidePanels, "start with the panels hidden (H shows them)");
+  app.add_flag("--validate", o.validate,
+               "Vulkan validation layers on the window's device (presentation and panels); any error fails the run");
+  auto* clusterGroup = app.add_option_group("Cluster", "render viewport 0 on tessera-node processes");
+  clusterGroup->add_option("--cluster", o.cluster,
+                           "cluster config (configs/*.json): viewport 0 renders on its nodes while it shows their back-end");
+  clusterGroup->add_option("--nodes", o.nodes, "HOST:PORT,... replacing the config's node addresses in order");
+  clusterGroup->add_option("--token-file", o.tokenFile, "the nodes' shared token");
+  std::uint64_t maxFileMb = o.import.maxFileBytes >> 20;
+  app.add_option("--max-file-mb", maxFileMb, "largest scene file (.gltf, .glb, buffer, image) read, in MiB")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 20));
+  app.add_option("--max-elements", o.import.maxJsonValues,
+                 "most values a glTF's JSON may hold; larger files are refused before parsing")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    return false;
+  } catch (const CLI::ParseError& e) {
+    throw std::invalid_argument(e.what());
+  }
+  parseSize(size, o.width, o.height);
+  o.sampleLimit = static_cast<std::uint32_t>(limit);
+  o.import.maxFileBytes = maxFileMb << 20;
+  o.viewports.clear();
+  std::size_t start = 0;
+  for (;;) {
+    const auto comma = viewports.find(',', start);
+    const std::string name = viewports.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    if (name.empty()) throw std::invalid_argument("--viewports " + viewports + ": an empty back-end name");
+    o.viewports.push_back(name);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  if (o.viewports.size() > 8) throw std::invalid_argument("--viewports: at most 8 viewports side by side");
+  if (o.width / o.viewports.size() < 16)
+    throw std::invalid_argument("--size " + size + ": too narrow for " + std::to_string(o.viewports.size()) +
+                                " viewports (16 pixels each at least)");
+  if (o.cluster.empty() && (!o.nodes.empty() || !o.tokenFile.empty()))
+    throw std::invalid_argument("--nodes and --token-file go with --cluster CONFIG");
+  if (o.exitAfter && o.script.empty()) throw std::invalid_argument("--exit-after needs --script FILE");
+  for (const auto& p : params) {
+    auto [name, value] = med::Parameters::parse(p);
+    o.parameters.set(name, value);
+  }
+  if (*depthOption || !o.parameters.has("maxDepth")) o.parameters.set("maxDepth", maxDepth);
+  if (*threadsOption || !o.parameters.has("threads")) o.parameters.set("threads", threads);
+  return true;
+}
+
+}  // namespace tsr::app

@@ -1,0 +1,144 @@
+// The viewer's ImGui panels: scene and camera, one panel per viewport (its
+// back-end, and for the path tracer its convergence and filter controls;
+// for coverage the ranked list), animation.
+#include <cstdio>
+
+#include <imgui.h>
+
+#include "tsr/med/coverage/ranking.hpp"
+#include "viewer.hpp"
+
+namespace tsr::app {
+
+namespace {
+
+const char* const kFilters[] = {"none", "pixel", "atrous", "radiance", "hybrid"};
+
+std::string stringParameter(const med::Parameters& p, const std::string& name, const std::string& fallback) {
+  try {
+    return p.getString(name, fallback);
+  } catch (const med::ParameterError&) {
+    return fallback;
+  }
+}
+
+double realParameter(const med::Parameters& p, const std::string& name, double fallback) {
+  try {
+    return p.getReal(name, fallback);
+  } catch (const med::ParameterError&) {
+    return fallback;
+  }
+}
+
+}  // namespace
+
+void Viewer::drawPanels() {
+  // The viewer's panel at the bottom left, each viewport's at its top right;
+  // both fit their contents.
+  ImGui::SetNextWindowPos(ImVec2(8, float(height_) - 8), ImGuiCond_FirstUseEver, ImVec2(0, 1));
+  ImGui::Begin("tessera-viewer", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  ImGui::PushItemWidth(160);
+  ImGui::TextWrapped("%s", sceneName_.c_str());
+  ImGui::Text("%.1f frames/s", ImGui::GetIO().Framerate);
+  if (!status_.empty()) ImGui::TextWrapped("%s", status_.c_str());
+
+  if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) {
+    if (ImGui::Button("Frame scene (F)")) frameScene();
+    ImGui::SameLine();
+    if (ImGui::Button("Orbit 15")) orbit_.orbit(15.0f, 0.0f);
+    bool rasterise = convergence_.rasterWhileMoving;
+    if (ImGui::Checkbox("Rasterise while moving", &rasterise)) convergence_.rasterWhileMoving = rasterise;
+    static char name[64] = "view";
+    ImGui::SetNextItemWidth(140);
+    ImGui::InputText("##bookmark", name, sizeof(name));
+    ImGui::SameLine();
+    if (ImGui::Button("Save bookmark")) {
+      try {
+        saveBookmark(name);
+      } catch (const std::exception& e) {
+        bookmarkMessage_ = std::string("error: ") + e.what();
+      }
+    }
+    for (std::size_t i = 0; i < bookmarks_.bookmarks.size(); ++i) {
+      const std::string label = std::to_string(i + 1) + ": " + bookmarks_.bookmarks[i].name;
+      if (ImGui::Selectable(label.c_str())) loadBookmark(bookmarks_.bookmarks[i].name);
+    }
+    if (!bookmarkMessage_.empty()) ImGui::TextWrapped("%s", bookmarkMessage_.c_str());
+  }
+
+  if (animationDuration_ > 0 && ImGui::CollapsingHeader("Animation", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::Checkbox("Play", &playing_);
+    float t = float(animationTime_);
+    if (ImGui::SliderFloat("time (s)", &t, 0.0f, float(animationDuration_))) {
+      playing_ = false;
+      setAnimationTime(t);
+    }
+  }
+
+  if (ImGui::CollapsingHeader("Path tracer", ImGuiTreeNodeFlags_DefaultOpen)) {
+    int limit = int(convergence_.sampleLimit);
+    if (ImGui::InputInt("sample limit", &limit, 16, 256)) convergence_.sampleLimit = std::uint32_t(std::clamp(limit, 1, 1 << 20));
+    if (ImGui::Button(convergence_.paused ? "Resume (Space)" : "Pause (Space)")) convergence_.paused = !convergence_.paused;
+  }
+  ImGui::PopItemWidth();
+  ImGui::End();
+
+  const std::uint32_t pw = paneWidth(width_);
+  for (std::size_t i = 0; i < panes_.size(); ++i) {
+    ViewerPane& pane = panes_[i];
+    const std::string title = "Viewport " + std::to_string(i);
+    ImGui::SetNextWindowPos(ImVec2(float(std::uint32_t(i) * pw + pw) - 8.0f, 8), ImGuiCond_FirstUseEver, ImVec2(1, 0));
+    ImGui::Begin(title.c_str(), nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+    ImGui::PushItemWidth(160);
+    const auto names = registry_.backends();
+    if (ImGui::BeginCombo("back-end", pane.backend().c_str())) {
+      for (const auto& name : names) {
+        const std::string label = name + (pane.hasViewport(name) ? "  (converted)" : "");
+        if (ImGui::Selectable(label.c_str(), name == pane.backend())) pane.setBackend(name);
+      }
+      ImGui::EndCombo();
+    }
+    const med::RenderStats& stats = pane.stats();
+    ImGui::Text("showing %s, last render %.1f ms", pane.shownBackend().c_str(), stats.seconds * 1e3);
+    if (pane.isRemote(pane.shownBackend())) {
+      ImGui::Text("rendered on the cluster's nodes (%s)", options_.cluster.c_str());
+    } else if (pane.backend() == "embree") {
+      ImGui::Text("%u spp of %u %s", pane.samples(), convergence_.sampleLimit,
+                  convergence_.paused ? "(paused)" : pane.converging() ? "" : "(done)");
+      ImGui::Text("%.2f spp/s, %.2f Mrays/s (since restart)", pane.samplesPerSecond(), pane.raysPerSecond() * 1e-6);
+      const med::Parameters& p = pane.parameters();
+      int depth = int(p.getInt("maxDepth", 8, 0, 1024));
+      if (ImGui::SliderInt("max depth", &depth, 0, 32)) pane.setParameter("maxDepth", std::int64_t(depth));
+      const std::string filter = stringParameter(p, "filter", "none");
+      if (ImGui::BeginCombo("filter", filter.c_str())) {
+        for (const char* f : kFilters)
+          if (ImGui::Selectable(f, filter == f)) pane.setParameter("filter", std::string(f));
+        ImGui::EndCombo();
+      }
+      if (filter != "none") {
+        float threshold = float(realParameter(p, "threshold", 0.01));
+        if (ImGui::SliderFloat("threshold", &threshold, 0.0f, 0.2f, "%.3f")) pane.setParameter("threshold", double(threshold));
+        float sigmaS = float(realParameter(p, "sigmaS", 8.0));
+        if (ImGui::SliderFloat("sigma s (px)", &sigmaS, 0.5f, 32.0f)) pane.setParameter("sigmaS", double(sigmaS));
+        float sigmaC = float(realParameter(p, "sigmaC", 0.02));
+        if (ImGui::SliderFloat("sigma c", &sigmaC, 0.001f, 0.5f, "%.3f")) pane.setParameter("sigmaC", double(sigmaC));
+      }
+    } else if (pane.backend() == "coverage" && pane.frame().outputs.count(med::kIdOutput)) {
+      const auto ranked = med::rankObjects(pane.frame(), session_->replica.scene());
+      ImGui::Text("%zu objects seen; click one here or in the image", ranked.size());
+      ImGui::BeginChild("ranking", ImVec2(260, 140), true);
+      for (const auto& r : ranked) {
+        char label[200];
+        std::snprintf(label, sizeof(label), "%5.1f%%  %s##%llu", r.fraction * 100.0,
+                      r.name.empty() ? ("#" + std::to_string(r.id)).c_str() : r.name.c_str(),
+                      static_cast<unsigned long long>(r.id));
+        if (ImGui::Selectable(label, r.id == selected_)) selected_ = r.id == selected_ ? sg::kNoContainer : r.id;
+      }
+      ImGui::EndChild();
+    }
+    ImGui::PopItemWidth();
+    ImGui::End();
+  }
+}
+
+}  // namespace tsr::app

@@ -1,0 +1,300 @@
+// tessera-viewer in a real window: ctest runs this binary through
+// `xvfb-run -a` with TSR_REQUIRE_DISPLAY=1 (tests/apps/CMakeLists.txt), so a
+// broken Xvfb fails rather than skips. Scripted runs switch back-ends, take
+// screenshots and are compared with headless tessera-render images of the
+// same view.
+#include <cmath>
+#include <cstdlib>
+
+#include <OpenImageIO/imageio.h>
+
+#include "../cluster/node_process.hpp"
+#include "command_runner.hpp"
+#include "tsr/med/image_file.hpp"
+
+namespace {
+
+using ::testing::HasSubstr;
+using tsr::test::Outcome;
+
+// Per-channel differences of two 8-bit images read back as linear floats,
+// measured on the sRGB-encoded values (0..1) people see.
+struct Difference {
+  double meanAbs = 0;  // mean |a - b| over channels and pixels
+  double maxAbs = 0;
+};
+
+float encode(float linear) {
+  const float c = std::clamp(linear, 0.0f, 1.0f);
+  return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+Difference compare(const tsr::med::FrameBuffer& a, const tsr::med::FrameBuffer& b) {
+  EXPECT_EQ(a.width, b.width);
+  EXPECT_EQ(a.height, b.height);
+  Difference d;
+  if (a.colour.size() != b.colour.size()) {
+    d.meanAbs = d.maxAbs = 1;
+    return d;
+  }
+  for (std::size_t i = 0; i < a.colour.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      const double e = std::abs(encode(a.colour[i][c]) - encode(b.colour[i][c]));
+      d.meanAbs += e;
+      d.maxAbs = std::max(d.maxAbs, e);
+    }
+  d.meanAbs /= double(a.colour.size() * 3);
+  return d;
+}
+
+// Fraction of pixels that are not black, and the spread of their values.
+double litFraction(const tsr::med::FrameBuffer& fb) {
+  std::size_t lit = 0;
+  for (const auto& p : fb.colour)
+    if (p.r + p.g + p.b > 0.01f) ++lit;
+  return double(lit) / double(fb.colour.size());
+}
+
+bool displayRequired() {
+  const char* v = std::getenv("TSR_REQUIRE_DISPLAY");
+  return v && *v && std::string(v) != "0";
+}
+
+class ViewerWindow : public tsr::test::CommandTest {
+ protected:
+  void SetUp() override {
+    CommandTest::SetUp();
+    const char* display = std::getenv("DISPLAY");
+    if (!display || !*display) {
+      if (displayRequired()) FAIL() << "no DISPLAY (run through xvfb-run -a)";
+      GTEST_SKIP() << "no DISPLAY (run through xvfb-run -a)";
+    }
+  }
+  Outcome viewer(const std::string& args) { return runBinary(TSR_VIEWER_PATH, args); }
+  Outcome render(const std::string& args) { return runBinary(TSR_RENDER_PATH, args); }
+  void writeScript(const std::string& name, const std::string& text) { std::ofstream(dir / name) << text; }
+  tsr::med::FrameBuffer image(const std::string& name) { return tsr::med::readImage((dir / name).string()); }
+};
+
+// Tolerances (sRGB-encoded values, 0..1): the rasteriser and the coverage
+// renderer are deterministic, so a viewport matches tessera-render's image
+// of the same view to 1/255 in every pixel; the path tracer seeds samples
+// by index, so 8 samples taken one a frame match an 8-spp batch render to
+// a mean of 0.5/255 (and 4/255 in any pixel: float sums in another order).
+TEST_F(ViewerWindow, ScriptedBackendSwitchesMatchHeadlessRenders) {
+  writeScript("switch.txt",
+              "# every back-end in turn, one viewport of 160x120; animations held at 0 s\n"
+              "time 0\n"
+              "backend 0 vulkan\n"
+              "wait frames 2\n"
+              "screenshot vulkan.png\n"
+              "backend 0 coverage\n"
+              "wait frames 2\n"
+              "screenshot coverage.png\n"
+              "backend 0 embree\n"
+              "wait samples 8\n"
+              "screenshot embree.png\n"
+              "backend 0 vulkan\n"
+              "wait frames 2\n"
+              "screenshot vulkan-again.png\n"
+              "window-screenshot window.png\n");
+  const Outcome v = viewer("builtin:animated --size 160x120 --spp 8 --max-depth 4 --script switch.txt --exit-after");
+  ASSERT_EQ(v.status, 0) << v.err;
+  // Each back-end converts the scene once; going back to the rasteriser syncs its kept viewport.
+  EXPECT_THAT(v.out, HasSubstr("viewport 0: vulkan, scene converted"));
+  EXPECT_THAT(v.out, HasSubstr("viewport 0: coverage, scene converted"));
+  EXPECT_THAT(v.out, HasSubstr("viewport 0: embree, scene converted"));
+  std::size_t conversions = 0;
+  for (auto at = v.out.find("vulkan, scene converted"); at != std::string::npos;
+       at = v.out.find("vulkan, scene converted", at + 1))
+    ++conversions;
+  EXPECT_EQ(conversions, 1u) << v.out;
+
+  for (const char* backend : {"vulkan", "coverage", "embree"}) {
+    const Outcome r = render(std::string("builtin:animated --size 160x120 --spp 8 --max-depth 4 --quiet --backend ") +
+                             backend + " --output ref-" + backend + ".png");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto shot = image(std::string(backend) + ".png");
+    const auto ref = image(std::string("ref-") + backend + ".png");
+    ASSERT_EQ(shot.width, 160u);
+    ASSERT_EQ(shot.height, 120u);
+    EXPECT_GT(litFraction(shot), 0.3) << backend << ": not blank";
+    const Difference d = compare(shot, ref);
+    if (std::string(backend) == "embree") {
+      EXPECT_LE(d.meanAbs, 0.5 / 255) << backend;
+      EXPECT_LE(d.maxAbs, 4.0 / 255) << backend;
+    } else {
+      EXPECT_LE(d.maxAbs, 1.0 / 255 + 1e-6) << backend;
+    }
+  }
+  // The back-ends show different pictures of the room.
+  EXPECT_GT(compare(image("vulkan.png"), image("coverage.png")).meanAbs, 0.05);
+  EXPECT_GT(compare(image("vulkan.png"), image("embree.png")).meanAbs, 0.02);
+  EXPECT_GT(compare(image("embree.png"), image("coverage.png")).meanAbs, 0.05);
+  // Back to the rasteriser: the same picture as before.
+  EXPECT_LE(compare(image("vulkan.png"), image("vulkan-again.png")).maxAbs, 1.0 / 255 + 1e-6);
+  // The window holds the viewport and the panels drawn over it.
+  const auto window = image("window.png");
+  EXPECT_EQ(window.width, 160u);
+  EXPECT_GT(compare(window, image("vulkan-again.png")).meanAbs, 0.01) << "panels drawn over the image";
+}
+
+TEST_F(ViewerWindow, SideBySideViewportsOrbitBookmarksAndLayeredExr) {
+  writeScript("orbit.txt",
+              "time 0\n"
+              "wait frames 2\n"
+              "screenshot left.png 0\n"
+              "orbit 40\n"
+              "tilt 10\n"
+              "wait frames 2\n"
+              "screenshot left-orbit.png 0\n"
+              "screenshot right.exr 1\n"
+              "bookmark save side\n");
+  const Outcome v = viewer("builtin:animated --viewports vulkan,embree --size 200x100 --spp 2 --max-depth 2 "
+                           "--script orbit.txt --exit-after");
+  ASSERT_EQ(v.status, 0) << v.err;
+  const auto left = image("left.png"), turned = image("left-orbit.png");
+  EXPECT_EQ(left.width, 100u) << "two viewports share the window's width";
+  EXPECT_EQ(left.height, 100u);
+  EXPECT_GT(compare(left, turned).meanAbs, 0.03) << "orbiting changed the view";
+
+  // The path tracer's screenshot as EXR carries its outputs as layers.
+  auto in = OIIO::ImageInput::open((dir / "right.exr").string());
+  ASSERT_TRUE(in);
+  const auto& names = in->spec().channelnames;
+  for (const char* channel : {"R", "G", "B", "A", "Z", "albedo.R", "normal.G", "direct.B", "indirect.R"})
+    EXPECT_NE(std::find(names.begin(), names.end(), channel), names.end()) << channel;
+  EXPECT_EQ(in->spec().width, 100);
+
+  // The bookmark lies beside the scene (builtin scenes: the current folder)
+  // and brings the view back in a new run.
+  ASSERT_TRUE(std::filesystem::exists(dir / "builtin-animated.bookmarks.json"));
+  writeScript("back.txt", "time 0\nbookmark load side\nwait frames 2\nscreenshot back.png 0\n");
+  const Outcome again = viewer("builtin:animated --viewports vulkan --size 100x100 --script back.txt --exit-after");
+  ASSERT_EQ(again.status, 0) << again.err;
+  EXPECT_LE(compare(image("back.png"), turned).maxAbs, 1.0 / 255 + 1e-6);
+}
+
+TEST_F(ViewerWindow, CoveragePickSelectsTheObjectUnderThePixel) {
+  writeScript("pick.txt", "wait frames 2\nwindow-screenshot before.png\npick 0 80 100\nwait frames 2\n"
+                          "window-screenshot picked.png\npick 0 0 0\nwait frames 2\nwindow-screenshot after.png\n");
+  const Outcome v = viewer("builtin:cornell --viewports coverage --size 160x120 --hide-panels --script pick.txt --exit-after");
+  ASSERT_EQ(v.status, 0) << v.err;
+  EXPECT_THAT(v.out, HasSubstr("viewport 0: picked object "));
+  EXPECT_THAT(v.out, HasSubstr("viewport 0: picked nothing"));
+  // The selected object stands out: the window's picture changes, and
+  // goes back once the background is clicked.
+  EXPECT_GT(compare(image("before.png"), image("picked.png")).meanAbs, 0.05);
+  EXPECT_LE(compare(image("before.png"), image("after.png")).maxAbs, 1.0 / 255 + 1e-6);
+}
+
+// Figure 5.6's option: while the camera moves the path-traced viewport
+// shows the rasteriser's picture, and path traces once it rests.
+TEST_F(ViewerWindow, RasterisesWhileMovingThenPathTraces) {
+  writeScript("move.txt",
+              "time 0\nraster-while-moving on\nwait frames 2\norbit 10\n"
+              "screenshot moving.png 0\nscreenshot raster.png 1\n"
+              "wait samples 2\nscreenshot resting.png 0\n");
+  const Outcome v = viewer("builtin:animated --viewports embree,vulkan --size 192x72 --spp 2 --max-depth 2 "
+                           "--script move.txt --exit-after");
+  ASSERT_EQ(v.status, 0) << v.err;
+  EXPECT_LE(compare(image("moving.png"), image("raster.png")).maxAbs, 1.0 / 255 + 1e-6) << "rasterised while moving";
+  EXPECT_GT(compare(image("resting.png"), image("raster.png")).meanAbs, 0.02) << "path traced at rest";
+}
+
+// The time action (the panel's slider) poses the animation; open replaces the scene.
+TEST_F(ViewerWindow, AnimationTimeAndOpeningAnotherScene) {
+  writeScript("time.txt",
+              "time 0\nwait frames 2\nscreenshot t0.png\ntime 1.5\nwait frames 2\nscreenshot t15.png\n"
+              "open builtin:cornell\nwait frames 2\nscreenshot cornell.png\n");
+  const Outcome v = viewer("builtin:animated --viewports coverage --size 96x72 --script time.txt --exit-after");
+  ASSERT_EQ(v.status, 0) << v.err;
+  const Difference moved = compare(image("t0.png"), image("t15.png"));
+  EXPECT_GT(moved.maxAbs, 0.2) << "something moved";
+  EXPECT_GT(moved.meanAbs, 0.001) << "something moved";
+  const Outcome r = render("builtin:cornell --backend coverage --size 96x72 --quiet --output cornell-ref.png");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_LE(compare(image("cornell.png"), image("cornell-ref.png")).maxAbs, 1.0 / 255 + 1e-6);
+}
+
+// A back-end left alone while the camera moved for more frames than the
+// replica's change log holds (256) still catches up by syncing: the viewer
+// keeps the viewports it does not show within the log.
+TEST_F(ViewerWindow, ABackendSwitchedBackAfterLongNavigationSyncs) {
+  std::string script = "backend 0 vulkan\nwait frames 1\nbackend 0 coverage\n";
+  for (int i = 0; i < 300; ++i) script += "orbit 1\n";
+  script += "backend 0 vulkan\nwait frames 1\n";
+  writeScript("long.txt", script);
+  const Outcome v = viewer("builtin:animated --viewports embree --size 48x32 --hide-panels --script long.txt --exit-after");
+  ASSERT_EQ(v.status, 0) << v.err;
+  const auto back = v.out.rfind("viewport 0: vulkan, scene ");
+  ASSERT_NE(back, std::string::npos) << v.out;
+  EXPECT_EQ(v.out.compare(back, 33, "viewport 0: vulkan, scene synced "), 0) << v.out;
+}
+
+// Keys, typed by xdotool (X's XTEST) into the window: B cycles the back-end
+// of the viewport under the mouse, F12 writes every viewport's image, Esc
+// quits cleanly.
+TEST_F(ViewerWindow, KeysCycleTheBackendScreenshotAndQuit) {
+#ifndef TSR_XDOTOOL
+  GTEST_SKIP() << "xdotool not found at configure time (scripts/install-deps.sh installs it)";
+#else
+  writeScript("forever.txt", "wait frames 1000000\n");
+  std::ofstream(dir / "keys.sh")
+      << "'" TSR_VIEWER_PATH "' builtin:animated --viewports vulkan --size 200x150 --script forever.txt &\n"
+         "pid=$!\n"
+         "for i in $(seq 100); do w=$(" TSR_XDOTOOL " search --name tessera-viewer | head -1); [ -n \"$w\" ] && break; sleep 0.2; done\n"
+         TSR_XDOTOOL " windowfocus --sync $w\n"
+         TSR_XDOTOOL " mousemove --window $w 50 50\n"
+         "sleep 0.5\n"
+         TSR_XDOTOOL " key b\n"
+         TSR_XDOTOOL " key F12\n"
+         "for i in $(seq 100); do [ -f viewer-1-0.png ] && break; sleep 0.2; done\n"
+         TSR_XDOTOOL " key Escape\n"
+         "wait $pid\n";
+  const Outcome v = runBinary("/bin/sh", "keys.sh");
+  EXPECT_EQ(v.status, 0) << v.err;
+  EXPECT_THAT(v.out, HasSubstr("viewport 0: vulkan, scene converted"));
+  EXPECT_THAT(v.out, HasSubstr("viewport 0: coverage, scene converted")) << "B went from vulkan to the next name";
+  ASSERT_TRUE(std::filesystem::exists(dir / "viewer-1-0.png")) << v.out << v.err;
+  EXPECT_EQ(image("viewer-1-0.png").width, 200u);
+#endif
+}
+
+// The swapchain copy, the panels' render pass and the window read-back
+// under Vulkan's validation layers, through a resize-free run.
+TEST_F(ViewerWindow, PresentsPanelsWithoutValidationErrors) {
+  writeScript("valid.txt", "wait frames 3\nwindow-screenshot w.png\nbackend 0 coverage\nwait frames 2\n");
+  const Outcome v = viewer("builtin:animated --viewports vulkan --size 320x200 --validate --script valid.txt --exit-after");
+  EXPECT_EQ(v.status, 0) << v.err;
+  EXPECT_THAT(v.err, ::testing::Not(HasSubstr("error")));
+}
+
+TEST_F(ViewerWindow, AFailingActionNamesItsLine) {
+  writeScript("fail.txt", "wait frames 1\nbookmark load nowhere\n");
+  const Outcome v = viewer("builtin:cornell --viewports vulkan --size 64x64 --script fail.txt --exit-after");
+  EXPECT_EQ(v.status, 2);
+  EXPECT_THAT(v.err, HasSubstr("error: fail.txt:2: no bookmark 'nowhere'"));
+}
+
+// --cluster: viewport 0's path tracer renders on two real tessera-node
+// processes; the picture equals tessera-render --cluster's of the same view
+// (same config, same nodes: bit for bit), and follows the camera.
+TEST_F(ViewerWindow, ClusterClientRendersOnNodes) {
+  tsr::cluster::test::TokenFile token("viewer token");
+  auto nodes = tsr::cluster::test::startNodes(2, {"--token-file", token.path()});
+  const std::string cluster = std::string(" --cluster ") + TSR_CONFIG_DIR + "/cooperative-2.json --nodes " +
+                              nodes[0]->text() + "," + nodes[1]->text() + " --token-file " + token.path();
+  writeScript("cluster.txt", "time 0\nwait frames 2\nscreenshot cluster.png\norbit 20\nwait frames 2\nscreenshot turned.png\n");
+  const Outcome v = viewer("builtin:animated --size 96x72" + cluster + " --script cluster.txt --exit-after");
+  ASSERT_EQ(v.status, 0) << v.err;
+  EXPECT_THAT(v.out, HasSubstr("2 of 2 nodes online"));
+  const Outcome r = render("builtin:animated --size 96x72 --quiet --output ref.png" + cluster);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto shot = image("cluster.png");
+  EXPECT_GT(litFraction(shot), 0.3);
+  EXPECT_LE(compare(shot, image("ref.png")).maxAbs, 1.0 / 255 + 1e-6);
+  EXPECT_GT(compare(shot, image("turned.png")).meanAbs, 0.03);
+}
+
+}  // namespace
