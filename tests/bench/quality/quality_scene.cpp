@@ -1,6 +1,8 @@
 #include "quality_scene.hpp"
 
+#include <chrono>
 #include <cmath>
+#include <deque>
 #include <stdexcept>
 
 #include "tsr/med/view.hpp"
@@ -59,7 +61,46 @@ void QualityScene::pose(float seconds, float lightScale) {
       if (const auto* light = source_.find<sg::Light>(id)) lightIntensities_.emplace_back(id, light->intensity());
   for (const auto& animation : imported_.animations) animation.apply(source_, seconds);
   for (const auto& [id, intensity] : lightIntensities_) source_.find<sg::Light>(id)->setIntensity(intensity * lightScale);
-  replica_.apply(source_.commit());
+  lastCommit_ = source_.commit();
+  replica_.apply(lastCommit_);
+}
+
+std::vector<Shot> QualityScene::renderAhead(med::Viewport& viewport, std::uint32_t size, int frames,
+                                            const std::function<void(int)>& pose,
+                                            const std::vector<std::string>& outputs) {
+  const int lookahead = static_cast<int>(viewport.lookahead());
+  sg::Replica ahead, shown;
+  const auto start = source_.snapshot();
+  ahead.apply(start);
+  shown.apply(start);
+  std::deque<sg::ChangeListPtr> pending;
+  std::vector<Shot> shots;
+  double preparing = 0;
+  for (int posed = 0; posed < frames + lookahead; ++posed) {
+    if (posed < frames) {
+      pose(posed);  // commits into replica_; the same list goes to both replicas here
+      pending.push_back(lastCommit_);
+      ahead.apply(lastCommit_);
+      const auto t = std::chrono::steady_clock::now();
+      viewport.prepare(ahead, posed);
+      preparing += std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+    }
+    const int frame = posed - lookahead;
+    if (frame < 0) continue;
+    shown.apply(pending.front());
+    pending.pop_front();
+    const auto view = med::View::fromCamera(*shown.scene().find<sg::Camera>(imported_.cameras.front()), size, size);
+    med::RenderControl control;
+    control.outputs = outputs;
+    control.frame = frame;
+    Shot shot;
+    const auto stats = viewport.render(shown, view, shot.image, control);
+    shot.seconds = stats.seconds - stats.syncSeconds;
+    shot.samples = stats.samples;
+    shots.push_back(std::move(shot));
+  }
+  for (auto& shot : shots) shot.seconds += preparing / double(shots.size());
+  return shots;
 }
 
 Shot QualityScene::render(med::Viewport& viewport, std::uint32_t size, bool wantBlend,

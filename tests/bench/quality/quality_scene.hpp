@@ -4,8 +4,10 @@
 // fresh viewport on it reuses one converted scene (conversion and BVH build
 // stay out of the timings).
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "tsr/med/frame_buffer.hpp"
 #include "tsr/med/viewport_registry.hpp"
@@ -42,12 +44,21 @@ class QualityScene {
   // intensity by `lightScale` (a light switch), then commits.
   void pose(float seconds, float lightScale = 1.0f);
 
+  // Renders frames 0..frames-1 of the animation through a viewport that
+  // looks ahead (Viewport::lookahead, the photon viewport): frame f is posed
+  // by pose(f) in a replica ahead and prepared `lookahead` frames before it
+  // is shown from a second replica. Each shot's seconds include its share of
+  // the prepare() calls (the photon passes). Leaves the scene at the last frame.
+  std::vector<Shot> renderAhead(med::Viewport& viewport, std::uint32_t size, int frames,
+                                const std::function<void(int frame)>& pose, const std::vector<std::string>& outputs);
+
  private:
   std::string key_, label_;
   const med::ViewportRegistry& registry_;
   sg::Scene source_;
   sg::ImportResult imported_;
   sg::Replica replica_;
+  sg::ChangeListPtr lastCommit_;  // of the last pose()
   med::ContextPool contexts_;
   std::unique_ptr<med::Viewport> anchor_;
   std::vector<std::pair<sg::ContainerId, float>> lightIntensities_;  // as imported

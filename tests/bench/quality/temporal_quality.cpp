@@ -1,5 +1,6 @@
 // temporal_quality: how much PCA projection of the indirect light over time
-// (Meyer & Anderson; tessera-render --temporal pca) buys on an animation,
+// (Meyer & Anderson; tessera-render --temporal pca) and spatio-temporal
+// photon density estimation (Weber et al.; --temporal photons) buy on an animation,
 // against every frame rendered by the same path tracer at high spp
 // (cached). Prints one markdown table (and writes it with --out): relMSE
 // per frame and averaged for frame-by-frame rendering and PCA at k spp,
@@ -49,6 +50,9 @@ struct Options {
   std::string cache = "build/quality-cache";
   std::string out, pngDir;
   std::vector<int> modes{2, 1, 3, 5};  // extra rows with a fixed truncation
+  bool photons = true;
+  std::uint32_t photonsPerFrame = 0;  // 0: the pilot pass chooses
+  std::uint32_t photonFrames = 9;
 };
 
 void note(const std::string& s) { std::cerr << "[temporal_quality] " << s << std::endl; }
@@ -164,6 +168,9 @@ int main(int argc, char** argv) {
   app.add_option("--switch-frame", o.switchFrame, "frame at which the lights switch (0: none; default frames/2)");
   app.add_option("--modes", o.modes, "fixed truncations to compare (--temporal-modes)");
   app.add_option("--threads", o.threads, "render threads (0: all)");
+  app.add_flag("!--no-photons", o.photons, "leave out the photon method");
+  app.add_option("--photons-per-frame", o.photonsPerFrame, "photons per frame (default: the pilot pass chooses)");
+  app.add_option("--photon-frames", o.photonFrames, "the photon method's temporal window t_max (odd)");
   app.add_option("--cache", o.cache, "reference cache directory");
   app.add_option("--out", o.out, "also write the table here");
   app.add_option("--png-dir", o.pngDir, "write the frames of each method as PNGs here");
@@ -251,6 +258,31 @@ int main(int argc, char** argv) {
       methods.push_back(pca(fmt::format("PCA, M = {}, {}", m, kName), fixed));
     }
 
+    std::size_t photonIndex = 0;
+    if (o.photons) {
+      // Direct light at k spp per pixel, indirect from photons; every cost
+      // (pilot and photon passes, reconstruction, direct samples) is timed.
+      med::Parameters p = parameters(o, o.k, o.seed);
+      p.set("temporal", std::string("photons"));
+      p.set("photonsPerFrame", std::int64_t{o.photonsPerFrame});
+      p.set("photonFrames", std::int64_t{o.photonFrames});
+      auto vp = scene.viewport(p);
+      note("photons: tracing and rendering the sequence");
+      auto shots = scene.renderAhead(*vp, o.size, o.frames, [&](int t) {
+        scene.pose(static_cast<float>(t / o.fps), (o.switchFrame > 0 && t < o.switchFrame) ? o.switchFrom : 1.0f);
+      }, {"direct", "indirect"});
+      Method m;
+      m.name = fmt::format("photons, t_max {}, direct {} spp", o.photonFrames, o.k);
+      for (auto& shot : shots) {
+        Split s = split(std::move(shot));
+        m.beauty.push_back(std::move(s.colour));
+        m.indirect.push_back(std::move(s.indirect));
+        m.seconds += s.seconds;
+      }
+      photonIndex = methods.size();
+      methods.push_back(std::move(m));
+    }
+
     // Per method: relMSE per frame (beauty and indirect), flicker.
     struct Scores {
       std::vector<double> beauty, indirect;
@@ -293,16 +325,22 @@ int main(int argc, char** argv) {
 
     table << fmt::format("relMSE per frame (beauty / indirect), frame by frame at {} spp vs {}:\n\n", o.k,
                          methods[byFrame.size() + (o.modes.empty() ? 0 : 2)].name);
-    table << "| frame | frame by frame | PCA | mean indirect luminance: reference | frame by frame | PCA |\n|---|---|---|---|---|---|\n";
+    table << "| frame | frame by frame | PCA | photons | mean indirect luminance: reference | frame by frame | PCA | photons "
+             "|\n|---|---|---|---|---|---|---|---|\n";
     // Per frame, the switch and the PNGs: the first fixed truncation (with
     // path-traced noise 2.3's rule keeps every mode; see the README).
     const std::size_t pcaIndex = byFrame.size() + (o.modes.empty() ? 0 : 2);
     for (int t = 0; t < o.frames; ++t) {
       const auto u = std::size_t(t);
-      table << fmt::format("| {}{} | {} / {} | {} / {} | {} | {} | {} |\n", t, t == o.switchFrame ? " (switch)" : "",
-                           num(scores[kIndex].beauty[u]), num(scores[kIndex].indirect[u]), num(scores[pcaIndex].beauty[u]),
-                           num(scores[pcaIndex].indirect[u]), num(meanLuminance(refIndirect[u])),
-                           num(meanLuminance(methods[kIndex].indirect[u])), num(meanLuminance(methods[pcaIndex].indirect[u])));
+      const bool ph = o.photons;
+      table << fmt::format("| {}{} | {} / {} | {} / {} | {} / {} | {} | {} | {} | {} |\n", t,
+                           t == o.switchFrame ? " (switch)" : "", num(scores[kIndex].beauty[u]),
+                           num(scores[kIndex].indirect[u]), num(scores[pcaIndex].beauty[u]),
+                           num(scores[pcaIndex].indirect[u]), ph ? num(scores[photonIndex].beauty[u]) : "",
+                           ph ? num(scores[photonIndex].indirect[u]) : "", num(meanLuminance(refIndirect[u])),
+                           num(meanLuminance(methods[kIndex].indirect[u])),
+                           num(meanLuminance(methods[pcaIndex].indirect[u])),
+                           ph ? num(meanLuminance(methods[photonIndex].indirect[u])) : "");
     }
     if (o.switchFrame > 0 && o.switchFrame < o.frames) {
       const auto s = std::size_t(o.switchFrame);
@@ -314,6 +352,12 @@ int main(int argc, char** argv) {
           s, num(step(refIndirect)), num(step(methods[pcaIndex].indirect)),
           100 * step(methods[pcaIndex].indirect) / step(refIndirect), 100 * before(methods[pcaIndex].indirect),
           100 * before(methods[kIndex].indirect));
+      if (o.photons)
+        table << fmt::format("light switch, photons: indirect step {} ({:.0f}% of the reference's); the frame before "
+                             "is off by {:.1f}%\n",
+                             num(step(methods[photonIndex].indirect)),
+                             100 * step(methods[photonIndex].indirect) / step(refIndirect),
+                             100 * before(methods[photonIndex].indirect));
     }
     std::cout << table.str();
     if (!o.out.empty()) {
@@ -327,6 +371,10 @@ int main(int argc, char** argv) {
     writePngs(o, "reference_indirect", refIndirect);
     writePngs(o, fmt::format("frame_by_frame_{}spp_indirect", o.k), methods[kIndex].indirect);
     writePngs(o, "pca_indirect", methods[pcaIndex].indirect);
+    if (o.photons) {
+      writePngs(o, "photons", methods[photonIndex].beauty);
+      writePngs(o, "photons_indirect", methods[photonIndex].indirect);
+    }
   } catch (const std::exception& e) {
     std::cerr << "temporal_quality: " << e.what() << "\n";
     return 1;

@@ -26,16 +26,19 @@ pngs=build/quality-png/temporal
 have --png-dir || args+=(--png-dir "$pngs")
 "$bin/temporal_quality" "${args[@]}"
 
-# Strip: rows frame by frame (16 spp), PCA, reference; every 3rd frame.
+# Strip: rows frame by frame (16 spp), PCA, photons (when run), reference;
+# six frames around the light switch.
 if command -v oiiotool > /dev/null && [[ -d "$pngs" ]]; then
   picks=()
-  for row in frame_by_frame_16spp pca reference; do
-    for t in 0003 0006 0007 0008 0009 0012; do
-      [[ -f "$pngs/${row}_$t.png" ]] && picks+=("$pngs/${row}_$t.png")
-    done
+  rows=0
+  for row in frame_by_frame_16spp pca photons reference; do
+    [[ -f "$pngs/${row}_0003.png" ]] || continue
+    rows=$((rows + 1))
+    for t in 0003 0006 0007 0008 0009 0012; do picks+=("$pngs/${row}_$t.png"); done
   done
-  if [[ ${#picks[@]} -eq 18 ]]; then
-    oiiotool "${picks[@]}" --mosaic:pad=2 6x3 -o build/quality-png/temporal_strip.png
-    echo "strip: build/quality-png/temporal_strip.png (rows: frame by frame 16 spp, PCA 16 spp, reference; frames 3 6 7 8 9 12)"
+  for f in "${picks[@]}"; do [[ -f "$f" ]] || { echo "strip: $f missing" >&2; exit 1; }; done
+  if [[ $rows -ge 3 ]]; then
+    oiiotool "${picks[@]}" --mosaic:pad=2 6x$rows -o build/quality-png/temporal_strip.png
+    echo "strip: build/quality-png/temporal_strip.png (rows: frame by frame 16 spp, PCA 16 spp, photons, reference; frames 3 6 7 8 9 12)"
   fi
 fi
