@@ -338,7 +338,10 @@ class Soak {
     const pid_t victim = spawnRender(o_.renderBinary, args(100000));
     // Killed once it has rendered a frame, so that it dies in the middle of a later one.
     const auto give = Clock::now() + 30s;
-    while (Clock::now() < give && !std::filesystem::exists(dir + "/f-0001.png")) step(), ++frame_;
+    while (Clock::now() < give && !std::filesystem::exists(dir + "/f-0001.png")) {
+      step();
+      ++frame_;
+    }
     kill(victim, SIGKILL);
     waitpid(victim, nullptr, 0);
     auto killedAt = Clock::now();
