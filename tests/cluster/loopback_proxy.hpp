@@ -106,8 +106,11 @@ class LoopbackProxy {
   void pump(int from, int to, std::uint64_t cutAt, std::uint64_t generation, bool towardsNode) {
     std::uint8_t buffer[4096];
     std::uint64_t carried = 0;
-    const auto start = std::chrono::steady_clock::now();
-    while (!stopping_ && cutGeneration_ == generation) {
+    // The rate holds from when it was set: bytes carried before do not count.
+    std::uint64_t rate = 0, sinceRate = 0;
+    auto rateStart = std::chrono::steady_clock::now();
+    auto live = [&] { return !stopping_ && cutGeneration_ == generation; };
+    while (live()) {
       pollfd p{from, POLLIN, 0};
       if (poll(&p, 1, 20) <= 0) continue;
       std::size_t want = sizeof buffer;
@@ -121,9 +124,17 @@ class LoopbackProxy {
         ++cuts_;
         break;
       }
-      if (const std::uint64_t rate = rate_) {  // hold the average at the rate
-        const auto due = start + std::chrono::microseconds(carried * 1000000 / rate);
-        std::this_thread::sleep_until(due);
+      if (rate_ != rate) {
+        rate = rate_;
+        sinceRate = 0;
+        rateStart = std::chrono::steady_clock::now();
+      }
+      sinceRate += static_cast<std::uint64_t>(n);
+      if (rate) {  // hold the average at the rate, in short sleeps that notice a stop or a new rate
+        const auto due = rateStart + std::chrono::microseconds(sinceRate * 1000000 / rate);
+        while (live() && rate_ == rate && std::chrono::steady_clock::now() < due)
+          std::this_thread::sleep_for(std::min<std::chrono::steady_clock::duration>(
+              due - std::chrono::steady_clock::now(), std::chrono::milliseconds(10)));
       }
     }
     // Either direction ending ends the connection: the other pump sees EOF.
