@@ -69,8 +69,19 @@ echo "check-style: clang-tidy over ${#units[@]} translation unit(s)"
 # Findings are reported in the changed files only, not in every header or
 # unchanged .cpp the units bring in.
 lines="[$(for f in "${files[@]}"; do printf '{"name":"%s"},' "$(pwd)/$f"; done | sed 's/,$//')]"
+# clang-tidy 14 cannot parse Boost.Asio's C++20 coroutines over gcc 12's
+# libstdc++ (cluster/); such a unit is named as not checked, not passed.
+unparsed=0
 for u in "${units[@]}"; do
-  clang-tidy -p "$build" --quiet --header-filter='.*' --line-filter="$lines" "$u" 2>/dev/null || status=1
+  out=$(clang-tidy -p "$build" --quiet --header-filter='.*' --line-filter="$lines" "$u" 2>/dev/null) && continue
+  if grep -q '\[clang-diagnostic-error\]' <<<"$out"; then
+    echo "check-style: $u: clang-tidy could not parse it (coroutines?), not checked"
+    unparsed=$((unparsed + 1))
+  else
+    echo "$out"
+    status=1
+  fi
 done
+[ $unparsed -eq 0 ] || echo "check-style: $unparsed unit(s) not checked by clang-tidy"
 [ $status -eq 0 ] && echo "check-style: clean" || echo "check-style: findings above"
 exit $status

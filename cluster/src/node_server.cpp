@@ -67,7 +67,7 @@ NodeAddress NodeServer::listen() {
   a.bind(ep);
   a.listen();
   tcp::endpoint bound = a.local_endpoint();
-  asio::co_spawn(impl_->io, impl_->accept(), [](std::exception_ptr e) {
+  asio::co_spawn(impl_->io, impl_->accept(), [](const std::exception_ptr& e) {
     if (!e) return;
     try {
       std::rethrow_exception(e);

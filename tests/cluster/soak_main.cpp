@@ -20,15 +20,18 @@ int main(int argc, char** argv) {
   double maxSlowdown = 3.0, maxRssGrowthMiB = 32.0;
   bool noFaults = false;
   app.add_option("--frames", frames, "frames per mode (default 10000)")->check(CLI::Range(10, 10000000));
-  app.add_option("--hash-every", hashEvery, "replica hash check every N frames (default 100)")->check(CLI::Range(1, 1000000));
+  app.add_option("--hash-every", hashEvery, "replica hash check every N frames (default 100)")
+      ->check(CLI::Range(1, 1000000));
   app.add_option("--size", size, "image side in pixels (default 32)")->check(CLI::Range(8, 1024));
   app.add_option("--modes", modes, "cluster modes (default: cooperative tiled stereo)")
       ->check(CLI::IsMember({"cooperative", "tiled", "stereo"}));
   app.add_option("--render-binary", renderBinary, "tessera-render, for the killed-client fault (none: left out)")
       ->check(CLI::ExistingFile);
-  app.add_option("--max-slowdown", maxSlowdown, "allowed median frame time under garbage peers over the baseline (default 3)")
+  app.add_option("--max-slowdown", maxSlowdown,
+                 "allowed median frame time under garbage peers over the baseline (default 3)")
       ->check(CLI::PositiveNumber);
-  app.add_option("--max-rss-growth-mib", maxRssGrowthMiB, "allowed growth of a node's RSS from start to end (default 32)")
+  app.add_option("--max-rss-growth-mib", maxRssGrowthMiB,
+                 "allowed growth of a node's RSS from start to end (default 32)")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--no-faults", noFaults, "soak only, no faults");
   try {

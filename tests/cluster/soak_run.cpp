@@ -98,8 +98,7 @@ void hostilePeers(const std::vector<NodeAddress>& targets, std::atomic<bool>& st
       try {
         flood.push_back(std::make_unique<RawClient>(targets[i % targets.size()], 1000));
         ++floodConnected;
-      } catch (const std::exception&) {
-      }
+      } catch (const std::exception&) {}
     }
     std::this_thread::sleep_for(1s);
   }
@@ -149,8 +148,10 @@ class Soak {
     // frames until it is over and the cluster recovered.
     std::vector<std::pair<int, std::function<void()>>> faults;
     if (o_.faults) {
-      faults = {{n * 15 / 100, [&] { killAndRestart(); }}, {n * 27 / 100, [&] { stopAndResume(); }},
-                {n * 39 / 100, [&] { cutMidSnapshot(); }}, {n * 63 / 100, [&] { slowLink(); }},
+      faults = {{n * 15 / 100, [&] { killAndRestart(); }},
+                {n * 27 / 100, [&] { stopAndResume(); }},
+                {n * 39 / 100, [&] { cutMidSnapshot(); }},
+                {n * 63 / 100, [&] { slowLink(); }},
                 {n * 75 / 100, [&] { garbagePeers(); }}};
       if (!o_.renderBinary.empty()) faults.insert(faults.begin() + 3, {n * 51 / 100, [&] { killAClient(); }});
     }
@@ -193,8 +194,8 @@ class Soak {
     const auto t0 = Clock::now();
     window_->publish(scene_.scene, delta);
     Step s;
-    const sg::Camera* cam = scene_.imported.cameras.empty() ? nullptr
-                                                             : scene_.scene.find<sg::Camera>(scene_.imported.cameras.front());
+    const sg::Camera* cam =
+        scene_.imported.cameras.empty() ? nullptr : scene_.scene.find<sg::Camera>(scene_.imported.cameras.front());
     const sg::Camera fallback;
     const med::View view = med::View::fromCamera(cam ? *cam : fallback, o_.size, o_.size);
     try {
@@ -307,13 +308,16 @@ class Soak {
     proxy_->cutNextAfter(256 + snapshot / 2);
     proxy_->cutAll();
     auto end = Clock::now();
-    renderThrough(f, [&] {
-      if (proxy_->cuts() > before) {
-        end = Clock::now();
-        return false;
-      }
-      return Clock::now() - end < 10s;
-    }, &end);
+    renderThrough(
+        f,
+        [&] {
+          if (proxy_->cuts() > before) {
+            end = Clock::now();
+            return false;
+          }
+          return Clock::now() - end < 10s;
+        },
+        &end);
     f.detail = "snapshot " + std::to_string(snapshot) + " bytes, cut " +
                (proxy_->cuts() > before ? "inside it" : "NOT reached (rejoin without a snapshot?)");
     report_.faults.back().detail = f.detail;
@@ -332,8 +336,17 @@ class Soak {
       {"address": "127.0.0.1:1"}, {"address": "127.0.0.1:2"}, {"address": "127.0.0.1:3"}, {"address": "127.0.0.1:4"}],
       "wall": {"columns": 2, "rows": 2}})";
     auto args = [&](int frames) {
-      return std::vector<std::string>{"builtin:animated", "--cluster", config, "--nodes", addresses, "--size", "64x64",
-                                      "--frames", std::to_string(frames), "--output", dir + "/f-####.png"};
+      return std::vector<std::string>{"builtin:animated",
+                                      "--cluster",
+                                      config,
+                                      "--nodes",
+                                      addresses,
+                                      "--size",
+                                      "64x64",
+                                      "--frames",
+                                      std::to_string(frames),
+                                      "--output",
+                                      dir + "/f-####.png"};
     };
     const pid_t victim = spawnRender(o_.renderBinary, args(100000));
     // Killed once it has rendered a frame, so that it dies in the middle of a later one.
@@ -348,7 +361,8 @@ class Soak {
     // The next client is served: a short render must succeed.
     const pid_t next = spawnRender(o_.renderBinary, args(2));
     int status = -1;
-    renderThrough(f, [&] { return waitpid(next, &status, WNOHANG) == 0; }, &killedAt);
+    renderThrough(
+        f, [&] { return waitpid(next, &status, WNOHANG) == 0; }, &killedAt);
     f.detail = std::string("next client ") + (WIFEXITED(status) && WEXITSTATUS(status) == 0 ? "served" : "FAILED") +
                " (exit " + std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")";
     report_.faults.back().detail = f.detail;
@@ -361,12 +375,15 @@ class Soak {
     proxy_->setRate(16 * 1024);
     const auto until = Clock::now() + 3s;
     auto end = until;
-    renderThrough(f, [&] {
-      if (Clock::now() < until) return true;
-      proxy_->setRate(0);
-      end = Clock::now();
-      return false;
-    }, &end);
+    renderThrough(
+        f,
+        [&] {
+          if (Clock::now() < until) return true;
+          proxy_->setRate(0);
+          end = Clock::now();
+          return false;
+        },
+        &end);
   }
 
   void garbagePeers() {
@@ -382,12 +399,15 @@ class Soak {
       done = true;
     });
     auto end = Clock::now();
-    renderThrough(f, [&] {
-      samplePeak();
-      if (!done) return true;
-      end = Clock::now();
-      return false;
-    }, &end);
+    renderThrough(
+        f,
+        [&] {
+          samplePeak();
+          if (!done) return true;
+          end = Clock::now();
+          return false;
+        },
+        &end);
     stop = true;
     peers.join();
     report_.faults.back().detail = detail;
@@ -408,9 +428,12 @@ class Soak {
 
 std::string modeName(ClusterMode mode) {
   switch (mode) {
-    case ClusterMode::Cooperative: return "cooperative";
-    case ClusterMode::Tiled: return "tiled";
-    case ClusterMode::Stereo: return "stereo";
+    case ClusterMode::Cooperative:
+      return "cooperative";
+    case ClusterMode::Tiled:
+      return "tiled";
+    case ClusterMode::Stereo:
+      return "stereo";
   }
   return "?";
 }
@@ -427,9 +450,8 @@ std::string describe(const SoakReport& r) {
       << r.start[i].fds << " -> " << r.end[i].fds << "\n";
   for (const auto& f : r.faults)
     s << "  " << f.name << ": " << f.framesAffected << " frames affected, " << f.offlineTiles << " tiles lost, "
-      << f.reassignedItems << " items redone, " << f.failedFrames << " frames lost, recovery "
-      << f.recoverySeconds << " s, frame time x" << f.frameSlowdown << (f.detail.empty() ? "" : "; " + f.detail)
-      << "\n";
+      << f.reassignedItems << " items redone, " << f.failedFrames << " frames lost, recovery " << f.recoverySeconds
+      << " s, frame time x" << f.frameSlowdown << (f.detail.empty() ? "" : "; " + f.detail) << "\n";
   return s.str();
 }
 

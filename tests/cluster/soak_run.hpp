@@ -29,7 +29,7 @@ struct NodeUsage {
 
 struct FaultOutcome {
   std::string name;
-  int framesAffected = 0;      // frames rendered while the fault lasted or recovery ran
+  int framesAffected = 0;           // frames rendered while the fault lasted or recovery ran
   std::size_t offlineTiles = 0;     // wall tiles shown as offline fill: pixels lost
   std::size_t reassignedItems = 0;  // work redone by other nodes: nothing lost, time spent
   int failedFrames = 0;             // render() threw: the frame was lost
@@ -44,7 +44,7 @@ struct SoakReport {
   int nodesChecked = 0;  // node replicas compared, over all checks
   int divergences = 0;
   int failedFrames = 0;
-  double baselineFrameSeconds = 0;  // median before the first fault
+  double baselineFrameSeconds = 0;    // median before the first fault
   std::vector<NodeUsage> start, end;  // per node, after the first frame and at the end
   long peakRssKiB = 0;                // largest node RSS seen at any sample
   std::vector<FaultOutcome> faults;

@@ -31,7 +31,7 @@ embree::RenderSettings EmbreeViewport::renderSettings() const {
 
 std::vector<std::string> EmbreeViewport::outputNames() const {
   std::vector<std::string> names{kAlbedo, kNormal, kDirect, kIndirect, kVariance};
-  if (FilterSettings::from(settings_.parameters).usesPixelFilter()) names.push_back(kBlendOutput);
+  if (FilterSettings::from(settings_.parameters).usesPixelFilter()) names.emplace_back(kBlendOutput);
   return names;
 }
 
