@@ -2,6 +2,7 @@
 
 #include <csignal>
 #include <optional>
+#include <system_error>
 
 #include <spdlog/spdlog.h>
 
@@ -27,7 +28,9 @@ struct NodeServer::Impl {
         continue;
       }
       if (ec == asio::error::operation_aborted || !acceptor.is_open()) co_return;
-      spdlog::warn("accept: {}; accepting again in 100 ms", ec.message());
+      // Accept errors are errno values; std's category names them (Boost
+      // 1.74's error_category fails UBSan's vptr check in message()).
+      spdlog::warn("accept: {}; accepting again in 100 ms", std::system_category().message(ec.value()));
       pause.expires_after(std::chrono::milliseconds(100));
       co_await pause.async_wait(asio::redirect_error(asio::use_awaitable, ec));
     }
