@@ -12,7 +12,7 @@ packages=(
   libopenimageio-dev openimageio-tools
   libboost-dev liblz4-dev libzstd-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  clang libclang-rt-14-dev
+  clang libclang-rt-14-dev clang-format clang-tidy
   libcli11-dev libspdlog-dev libfmt-dev libglm-dev libimgui-dev
   libeigen3-dev
   openmpi-bin

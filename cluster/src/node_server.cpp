@@ -2,6 +2,7 @@
 
 #include <csignal>
 #include <optional>
+#include <system_error>
 
 #include <spdlog/spdlog.h>
 
@@ -13,10 +14,25 @@ struct NodeServer::Impl {
   Impl(NodeOptions o, const med::ViewportRegistry& registry)
       : context{std::move(o), registry, worker}, acceptor(io) {}
 
+  // A failed accept (out of file descriptors under a flood of connections,
+  // a connection reset before it was taken) must not end the loop: the node
+  // would never take a client again. It pauses briefly, so that sessions
+  // can close and free descriptors, and accepts on.
   asio::awaitable<void> accept() {
+    asio::steady_timer pause(io);
     for (;;) {
-      tcp::socket socket = co_await acceptor.async_accept(asio::use_awaitable);
-      std::make_shared<NodeSession>(std::move(socket), context)->start();
+      boost::system::error_code ec;
+      tcp::socket socket = co_await acceptor.async_accept(asio::redirect_error(asio::use_awaitable, ec));
+      if (!ec) {
+        std::make_shared<NodeSession>(std::move(socket), context)->start();
+        continue;
+      }
+      if (ec == asio::error::operation_aborted || !acceptor.is_open()) co_return;
+      // Accept errors are errno values; std's category names them (Boost
+      // 1.74's error_category fails UBSan's vptr check in message()).
+      spdlog::warn("accept: {}; accepting again in 100 ms", std::system_category().message(ec.value()));
+      pause.expires_after(std::chrono::milliseconds(100));
+      co_await pause.async_wait(asio::redirect_error(asio::use_awaitable, ec));
     }
   }
 
@@ -54,7 +70,7 @@ NodeAddress NodeServer::listen() {
   a.bind(ep);
   a.listen();
   tcp::endpoint bound = a.local_endpoint();
-  asio::co_spawn(impl_->io, impl_->accept(), [](std::exception_ptr e) {
+  asio::co_spawn(impl_->io, impl_->accept(), [](const std::exception_ptr& e) {
     if (!e) return;
     try {
       std::rethrow_exception(e);

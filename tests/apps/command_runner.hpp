@@ -89,7 +89,7 @@ class CommandTest : public ::testing::Test {
   // Found by mutating real files: a glTF camera at z = -1e20, finite, which
   // passed every check and aborted Embree ("Assertion 'ray.valid()' failed").
   std::filesystem::path writeFarCameraGltf(const std::string& name = "far.gltf") {
-    const auto path = dir / name;
+    auto path = dir / name;
     std::ofstream(path) << R"({"asset": {"version": "2.0"},
       "cameras": [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1}}],
       "nodes": [{"camera": 0, "translation": [0, 0, -1e20]}], "scenes": [{"nodes": [0]}]})";

@@ -12,7 +12,7 @@
 namespace tsr::cluster::test {
 
 inline ClusterConfig configFor(ClusterMode mode, const std::vector<std::unique_ptr<NodeProcess>>& nodes,
-                               med::Parameters parameters = {}) {
+                               const med::Parameters& parameters = {}) {
   ClusterConfig c;
   c.mode = mode;
   for (const auto& n : nodes) c.nodes.push_back({n->address(), "embree", parameters});

@@ -27,6 +27,7 @@ class NodeProcess {
     std::vector<std::string> args{TSR_NODE_BINARY, "--listen", listen, "--log-level", "warn"};
     args.insert(args.end(), extraArgs.begin(), extraArgs.end());
     std::vector<char*> argv;
+    argv.reserve(args.size() + 1);
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
     int out[2];
@@ -35,6 +36,10 @@ class NodeProcess {
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_adddup2(&actions, out[1], STDOUT_FILENO);
     posix_spawn_file_actions_addclose(&actions, out[0]);
+    // Nothing else of this process reaches the node: not other nodes' pipes,
+    // not client sockets (a node holding one would keep it open after the
+    // client closed it, and count it as its own descriptor).
+    posix_spawn_file_actions_addclosefrom_np(&actions, STDERR_FILENO + 1);
     int rc = posix_spawn(&pid_, argv[0], &actions, nullptr, argv.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
     close(out[1]);
@@ -61,6 +66,7 @@ class NodeProcess {
   const NodeAddress& address() const { return address_; }
   std::string text() const { return address_.text(); }
   bool alive() const { return pid_ > 0; }
+  pid_t pid() const { return pid_; }
 
   void kill() {
     if (pid_ <= 0) return;
@@ -98,7 +104,7 @@ class NodeProcess {
   NodeAddress address_;
 };
 
-inline std::vector<std::unique_ptr<NodeProcess>> startNodes(std::size_t n, std::vector<std::string> args = {}) {
+inline std::vector<std::unique_ptr<NodeProcess>> startNodes(std::size_t n, const std::vector<std::string>& args = {}) {
   std::vector<std::unique_ptr<NodeProcess>> out;
   for (std::size_t i = 0; i < n; ++i) out.push_back(std::make_unique<NodeProcess>(args));
   return out;

@@ -1,6 +1,7 @@
 // Real tessera-node processes on 127.0.0.1: authentication, version check,
 // hostile bytes, and replicas that follow the client's scene frame by frame.
 #include <random>
+#include <sys/resource.h>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -173,6 +174,37 @@ TEST_F(HostileInput, CorruptChangeListClosesThatClientOnly) {
   EXPECT_EQ(m.type, MessageType::Error);
   EXPECT_EQ(raw.waitClosed(), Outcome::Closed);
   expectHonestClientUnharmed();
+}
+
+// A flood of connections beyond the node's file-descriptor limit makes its
+// accepts fail; once the flood is gone it takes clients again (an accept
+// error used to end its accept loop for good).
+TEST(NodeFlood, AcceptsAgainAfterRunningOutOfDescriptors) {
+  rlimit saved{};
+  ASSERT_EQ(getrlimit(RLIMIT_NOFILE, &saved), 0);
+  rlimit low = saved;
+  low.rlim_cur = 64;  // inherited by the node: enough to run, far fewer than the flood
+  ASSERT_EQ(setrlimit(RLIMIT_NOFILE, &low), 0);
+  std::unique_ptr<NodeProcess> node;
+  try {
+    node = std::make_unique<NodeProcess>();
+  } catch (...) {
+    setrlimit(RLIMIT_NOFILE, &saved);
+    throw;
+  }
+  ASSERT_EQ(setrlimit(RLIMIT_NOFILE, &saved), 0);
+  {
+    std::vector<std::unique_ptr<RawClient>> flood;
+    for (int i = 0; i < 200; ++i) flood.push_back(std::make_unique<RawClient>(node->address()));
+    std::this_thread::sleep_for(500ms);  // the node runs out of descriptors meanwhile
+  }
+  std::vector<std::unique_ptr<NodeProcess>> nodes;
+  nodes.push_back(std::move(node));
+  ClusterWindow w(configFor(ClusterMode::Cooperative, nodes));
+  ASSERT_EQ(w.connect(10s), 1u);
+  AnimatedScene s;
+  for (int f = 0; f < 3; ++f) step(w, s, f);
+  expectReplicasMatch(w, s.scene, 1);
 }
 
 TEST(Replication, HundredAnimatedFramesLeaveEveryReplicaEqual) {

@@ -30,6 +30,10 @@ std::uint64_t settingsHash(const RenderSettings& s) {
   return splitmix64(h ^ std::uint64_t(s.lightSampling));
 }
 
+// FrameBuffer::Key::estimator of radiance passes (plain paths: 0, an
+// irradiance field: a hash of its uid).
+constexpr std::uint64_t kRadianceEstimator = 0x3C6EF372FE94F82Bull;
+
 }  // namespace
 
 PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos,
@@ -289,9 +293,13 @@ void Renderer::setSettings(const RenderSettings& settings) {
   settings_ = settings;
 }
 
-template <class PerPixel>
-PassResult Renderer::runTiles(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
-                              PerPixel&& perPixel, std::uint64_t keySalt) {
+bool Renderer::restartIfStale(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
+                              Estimator estimator) {
+  return restartIfStale(scene, camera, region, fb, estimator == Estimator::Radiance ? kRadianceEstimator : 0);
+}
+
+bool Renderer::restartIfStale(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
+                              std::optional<std::uint64_t> estimator) {
   camera.validate();
   region.validate();
   if (fb.width() != region.regionWidth() || fb.height() != region.regionHeight()) {
@@ -300,14 +308,19 @@ PassResult Renderer::runTiles(Scene& scene, const Camera& camera, const Region& 
                 std::to_string(region.regionHeight()));
   }
   scene.commit();
+  const std::uint64_t held = fb.key_ ? fb.key_->estimator : 0;
+  FrameBuffer::Key key{scene.uid(), scene.version(), camera, region, settingsHash(settings_), estimator.value_or(held)};
+  if (fb.key_ && *fb.key_ == key) return false;
+  fb.reset();
+  fb.key_ = key;
+  return true;
+}
 
+template <class PerPixel>
+PassResult Renderer::runTiles(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
+                              PerPixel&& perPixel, std::optional<std::uint64_t> estimator) {
   PassResult result;
-  FrameBuffer::Key key{scene.uid(), scene.version(), camera, region, settingsHash(settings_) ^ keySalt};
-  if (!fb.key_ || !(*fb.key_ == key)) {
-    fb.reset();
-    fb.key_ = key;
-    result.restarted = true;
-  }
+  result.restarted = restartIfStale(scene, camera, region, fb, estimator);
 
   const SceneState& state = scene.state();
   const RenderSettings settings = settings_;
@@ -435,7 +448,8 @@ PassResult Renderer::renderRadiancePass(Scene& scene, const Camera& camera, cons
                  record.pixelAngle = pixelAngle * c * std::sqrt(c);
                  record.unfiltered = sample.indirect - sample.caustic;
                  fb.accumulate(x, y, sample);
-               });
+               },
+               kRadianceEstimator);
   if (result.completed) arena_->arena.execute([&] { RadianceFilterStep::run(fb, acc, filter); });
   return result;
 }
@@ -453,7 +467,8 @@ PassResult Renderer::renderFlashPass(Scene& scene, const Camera& camera, const R
                       glm::vec3 dir = cameraRay(camera, eye.rotation, region, px, py, rng.uniform2());
                       fb.accumulateRange(x, y, tracer.traceFlash(eye.position, dir, eye.position));
                     }
-                  });
+                  },
+                  std::nullopt);
 }
 
 }  // namespace tsr::embree

@@ -15,7 +15,7 @@ EmbreeViewport::EmbreeViewport(ViewportSettings settings, std::shared_ptr<Embree
 
 std::vector<std::string> EmbreeViewport::outputNames() const {
   std::vector<std::string> names = accumulatedOutputNames();
-  if (FilterSettings::from(settings_.parameters).usesPixelFilter()) names.push_back(kBlendOutput);
+  if (FilterSettings::from(settings_.parameters).usesPixelFilter()) names.emplace_back(kBlendOutput);
   return names;
 }
 
@@ -125,16 +125,16 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
   if (radiance && (!radiance_ || radiance_->width() != traced.regionWidth() || radiance_->height() != traced.regionHeight()))
     radiance_ = std::make_unique<embree::RadianceAccumulator>(traced.regionWidth(), traced.regionHeight());
 
-  // Progressive: passes until the target sample count. The back-end restarts
-  // accumulation by itself when the scene, camera, region or settings
-  // changed; a converged image is reused only if none of them did.
+  // Progressive: passes until the target sample count. The back-end decides
+  // whether the samples held still fit the scene, camera, region and
+  // settings, and restarts them if not; a converged image is reused if they do.
   embree::Scene& scene = context_->adapter.scene();
   scene.commit();  // builds the acceleration structures the catch-up touched
   stats.syncSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   embree::RenderSettings settings = renderer_.settings();
-  Accumulated now{&scene, scene.version(), camera, traced, settings.seed, settings.maxDepth, radiance};
-  bool stale = accumulated_ != now;
-  if (stale) pixelFilter_.forget();
+  if (renderer_.restartIfStale(scene, camera, traced, *accumulation_,
+                               radiance ? embree::Estimator::Radiance : embree::Estimator::Paths))
+    pixelFilter_.forget();
   // Unless samplesPerPass is given, passes grow 1, 2, 4, 8 samples per pixel:
   // the first image is ready after one sample, and later passes keep a
   // pixel's samples back to back (its paths find the same BVH nodes in
@@ -145,11 +145,9 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
   std::uint32_t passSize = settings.samplesPerPass;
   for (;;) {
     embree::FrameBuffer& fb = *accumulation_;
-    const std::uint32_t done = stale ? 0 : fb.sampleCount(0, 0);
+    const std::uint32_t done = fb.sampleCount(0, 0);
     if (done >= spp) break;
     if (control.cancel && control.cancel->load()) break;
-    stale = false;
-    accumulated_ = now;
     if (growPasses && !radiance) {
       settings.samplesPerPass = std::min(passSize, spp - done);
       renderer_.setSettings(settings);

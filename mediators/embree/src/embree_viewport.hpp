@@ -5,7 +5,6 @@
 // eyes or two tiles converge independently.
 #include <memory>
 #include <mutex>
-#include <optional>
 
 #include "embree_scene_adapter.hpp"
 #include "pixel_filtering.hpp"
@@ -44,18 +43,6 @@ class EmbreeViewport final : public Viewport {
   std::shared_ptr<EmbreeContext> context_;
   embree::Renderer renderer_;
   std::unique_ptr<embree::FrameBuffer> accumulation_;
-  // What the accumulated samples were rendered for; anything else restarts.
-  struct Accumulated {
-    const embree::Scene* scene = nullptr;
-    std::uint64_t sceneVersion = 0;
-    embree::Camera camera;
-    embree::Region region;
-    std::uint64_t seed = 0;
-    std::uint32_t maxDepth = 0;
-    bool radiance = false;  // radiance filtering accumulates apart
-    bool operator==(const Accumulated&) const = default;
-  };
-  std::optional<Accumulated> accumulated_;
   PixelFilterResolver pixelFilter_;
   std::unique_ptr<embree::RadianceAccumulator> radiance_;
 };

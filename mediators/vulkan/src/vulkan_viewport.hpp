@@ -16,7 +16,7 @@ namespace tsr::med::vulkan_mediator {
 struct VulkanContext {
   std::shared_ptr<vk::SharedDevice> shared;
   VulkanSceneAdapter adapter;
-  VulkanContext(std::shared_ptr<vk::SharedDevice> s, sg::ContainerId root, sg::ContainerId background)
+  VulkanContext(const std::shared_ptr<vk::SharedDevice>& s, sg::ContainerId root, sg::ContainerId background)
       : shared(s), adapter(s->device, root, background) {}
 };
 

@@ -236,6 +236,26 @@ TEST(EmbreeRadianceFilter, RestartsWithTheFrameBuffer) {
   EXPECT_EQ(acc.frames(5, 5), 1u);
 }
 
+TEST(EmbreeRadianceFilter, PathAndRadianceSamplesDoNotMix) {
+  Box box;
+  Renderer renderer;
+  FrameBuffer fb(kSize, kSize);
+  RadianceAccumulator acc(kSize, kSize);
+  const Region region = Region::full(kSize, kSize);
+  renderer.renderPass(box.scene, box.camera, region, fb);
+  renderer.renderPass(box.scene, box.camera, region, fb);
+  EXPECT_FALSE(renderer.restartIfStale(box.scene, box.camera, region, fb, Estimator::Paths));
+  EXPECT_EQ(fb.sampleCount(5, 5), 2u);
+  EXPECT_TRUE(renderer.restartIfStale(box.scene, box.camera, region, fb, Estimator::Radiance));
+  EXPECT_EQ(fb.sampleCount(5, 5), 0u);
+  EXPECT_FALSE(renderer.renderRadiancePass(box.scene, box.camera, region, fb, acc, {}).restarted);
+  EXPECT_FALSE(renderer.renderFlashPass(box.scene, box.camera, region, fb, 2).restarted)
+      << "flash samples join the radiance samples held";
+  EXPECT_FALSE(renderer.restartIfStale(box.scene, box.camera, region, fb, Estimator::Radiance));
+  EXPECT_EQ(fb.sampleCount(5, 5), 1u);
+  EXPECT_TRUE(renderer.renderPass(box.scene, box.camera, region, fb).restarted);
+}
+
 TEST(EmbreeRadianceFilter, RejectsBadSettingsAndSizes) {
   Box box;
   Renderer renderer;

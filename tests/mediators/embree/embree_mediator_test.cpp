@@ -164,6 +164,12 @@ TEST_F(EmbreeMediator, ConvergedImagesAreReusedUntilSomethingChanges) {
   EXPECT_EQ(more.samples, 3u) << "continues from 2 samples";
   viewport->setParameter("seed", std::int64_t{99});
   EXPECT_EQ(viewport->render(replica, view, image).samples, 3u) << "restarted and reconverged";
+  EXPECT_EQ(viewport->render(replica, view, image).rays, 0u);
+  viewport->setParameter("filter", std::string("radiance"));
+  EXPECT_GT(viewport->render(replica, view, image).rays, 0u) << "radiance samples do not reuse path samples";
+  EXPECT_EQ(viewport->render(replica, view, image).rays, 0u);
+  viewport->setParameter("filter", std::string("none"));
+  EXPECT_GT(viewport->render(replica, view, image).rays, 0u);
 }
 
 TEST_F(EmbreeMediator, GrowingPassesGiveTheSameImageAsSingleSamplePasses) {

@@ -83,6 +83,7 @@ class FrameBuffer {
     Camera camera;
     Region region;
     std::uint64_t settingsHash = 0;
+    std::uint64_t estimator = 0;  // plain paths, radiance records, or one irradiance field's uid
     bool operator==(const Key&) const = default;
   };
 

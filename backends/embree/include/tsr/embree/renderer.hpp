@@ -10,12 +10,17 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 namespace tsr::embree {
 
 // Which estimator handles emitters and the environment. Mis is the normal
 // mode; the single-strategy modes exist to validate it (same expectation).
 enum class LightSampling { Mis, LightOnly, BsdfOnly };
+
+// How a pass estimates a pixel. Samples of different estimators do not mix
+// in one frame buffer: a pass of another one restarts it.
+enum class Estimator { Paths, Radiance };
 
 struct RenderSettings {
   std::uint64_t seed = 0;
@@ -43,6 +48,16 @@ class Renderer {
 
   const RenderSettings& settings() const { return settings_; }
   void setSettings(const RenderSettings& settings);
+
+  // Commits the scene if needed and restarts accumulation in fb when what it
+  // holds was rendered for another scene version, camera, region,
+  // image-affecting setting or estimator than a pass of `estimator` would
+  // render now; returns whether it restarted. A caller asks this before
+  // counting the samples still missing (fb.sampleCount), and drops what it
+  // derived from the old samples when it returns true. Passes do the same
+  // check themselves.
+  bool restartIfStale(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
+                      Estimator estimator = Estimator::Paths);
 
   // Commits the scene if needed, restarts accumulation in fb when the scene
   // version, camera, region or an image-affecting setting differ from what fb
@@ -84,11 +99,15 @@ class Renderer {
 
  private:
   struct Arena;
-  // Validates, commits, restarts fb if stale, then calls
-  // perPixel(tracer, x, y, fullImageX, fullImageY) over parallel tiles.
+  // Validates, commits, restarts fb if stale for `estimator` (its key in
+  // FrameBuffer::Key; none: the pass joins whichever estimator fb holds, as
+  // flash samples do), then calls perPixel(tracer, x, y, fullImageX,
+  // fullImageY) over parallel tiles.
   template <class PerPixel>
   PassResult runTiles(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
-                      PerPixel&& perPixel, std::uint64_t keySalt = 0);
+                      PerPixel&& perPixel, std::optional<std::uint64_t> estimator);
+  bool restartIfStale(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
+                      std::optional<std::uint64_t> estimator);
   // Path samples for renderPass; with a field, for renderWithIrradiance.
   PassResult renderPaths(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
                          const IrradianceField* field);
