@@ -1,5 +1,7 @@
 #include "anaglyph_options.hpp"
 
+#include "import_limit_options.hpp"
+
 #include <CLI/CLI.hpp>
 #include <iostream>
 #include <stdexcept>
@@ -62,12 +64,8 @@ bool parseAnaglyphOptions(int argc, char** argv, AnaglyphOptions& o) {
   app.add_option("--script", o.script, "window: run the actions of this file (see --help-script), then exit");
   bool scriptHelp = false;
   app.add_flag("--help-script", scriptHelp, "list the actions a --script file may hold");
-  std::uint64_t maxFileMb = o.import.maxFileBytes >> 20;
-  app.add_option("--max-file-mb", maxFileMb, "largest scene file (.gltf, .glb, buffer, image) read, in MiB")
-      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 20));
-  app.add_option("--max-elements", o.import.maxJsonValues,
-                 "most values a glTF's JSON may hold; larger files are refused before parsing")
-      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40));
+  ImportLimitOptions limits;
+  limits.add(app, o.import);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -91,7 +89,7 @@ bool parseAnaglyphOptions(int argc, char** argv, AnaglyphOptions& o) {
   o.method = method == "dubois" ? med::AnaglyphMethod::Dubois : med::AnaglyphMethod::RedCyan;
   if (*sepOption) o.eyeSeparation = separation;
   if (*zpOption) o.zeroParallax = zeroParallax;
-  o.import.maxFileBytes = maxFileMb << 20;
+  limits.apply(o.import);
   o.parameters.set("spp", spp);
   o.parameters.set("maxDepth", maxDepth);
   o.parameters.set("seed", seed);

@@ -14,6 +14,7 @@
 #include "tsr/cluster/auth.hpp"
 #include "tsr/med/image_file.hpp"
 #include "tsr/sg/import/scene_stats.hpp"
+#include "error_line.hpp"
 
 namespace {
 
@@ -101,10 +102,7 @@ int main(int argc, char** argv) {
   try {
     return run(argc, argv);
   } catch (const std::exception& e) {
-    std::string message = e.what();
-    for (char& c : message)
-      if (c == '\n') c = ' ';
-    std::cerr << "error: " << message << "\n";
+    tsr::app::printError(e.what());
     return 2;
   }
 }

@@ -9,20 +9,17 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include "error_line.hpp"
+#include "import_limit_options.hpp"
 #include "tsr/sg/import/importer.hpp"
 #include "tsr/sg/import/scene_stats.hpp"
 #include "tsr/sg/scene.hpp"
 
+using tsr::app::oneLine;
+
 namespace {
 
 constexpr int kErrorExit = 2;
-
-// One line, whatever the message holds.
-std::string oneLine(std::string s) {
-  for (char& c : s)
-    if (c == '\n' || c == '\r') c = ' ';
-  return s;
-}
 
 nlohmann::json toJson(const std::string& source, const tsr::sg::ImportResult& r, const tsr::sg::SceneStats& s) {
   nlohmann::json j;
@@ -79,12 +76,8 @@ int main(int argc, char** argv) {
   app.add_flag("--json", json, "print a JSON object instead of text");
   app.add_flag("-v,--verbose", verbose, "log the importer's progress to stderr");
   tsr::sg::ImportOptions options;
-  std::uint64_t maxFileMb = options.maxFileBytes >> 20;
-  app.add_option("--max-file-mb", maxFileMb, "largest scene file (.gltf, .glb, buffer, image) read, in MiB")
-      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 20));
-  app.add_option("--max-elements", options.maxJsonValues,
-                 "most values a glTF's JSON may hold; larger files are refused before parsing")
-      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40));
+  tsr::app::ImportLimitOptions limits;
+  limits.add(app, options);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -93,7 +86,7 @@ int main(int argc, char** argv) {
     std::cerr << "error: " << oneLine(e.what()) << "\n";
     return kErrorExit;
   }
-  options.maxFileBytes = maxFileMb << 20;
+  limits.apply(options);
 
   // stdout carries only the report, so logs go to stderr, and only on request.
   spdlog::set_default_logger(spdlog::stderr_color_mt("tessera-inspect"));

@@ -20,6 +20,7 @@
 #include "directory_rendezvous.hpp"
 #include "launch_rank.hpp"
 #include "socket_rendezvous.hpp"
+#include "error_line.hpp"
 
 namespace {
 
@@ -187,10 +188,7 @@ int main(int argc, char** argv) {
     std::cout << app.help();
     return 0;
   } catch (const std::exception& e) {
-    std::string message = e.what();
-    for (char& c : message)
-      if (c == '\n') c = ' ';
-    std::cerr << "error: " << message << "\n";
+    tsr::app::printError(e.what());
     return 2;
   }
 

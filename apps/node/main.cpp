@@ -12,6 +12,7 @@
 #include "backends.hpp"
 #include "tsr/cluster/auth.hpp"
 #include "tsr/cluster/node_server.hpp"
+#include "error_line.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"Tessera render node"};
@@ -33,10 +34,7 @@ int main(int argc, char** argv) {
     std::cout << app.help();
     return 0;
   } catch (const CLI::ParseError& e) {  // CLI11's own exit would print several lines and exit 105 and up
-    std::string message = e.what();
-    for (char& c : message)
-      if (c == '\n') c = ' ';
-    std::cerr << "error: " << message << "\n";
+    tsr::app::printError(e.what());
     return 2;
   }
 
@@ -64,10 +62,7 @@ int main(int argc, char** argv) {
     server.run();
     return 0;
   } catch (const std::exception& e) {
-    std::string message = e.what();
-    for (char& c : message)
-      if (c == '\n') c = ' ';
-    std::cerr << "error: " << message << "\n";
+    tsr::app::printError(e.what());
     return 2;
   }
 }

@@ -16,6 +16,7 @@
 #include "stats_json.hpp"
 #include "tsr/med/image_file.hpp"
 #include "tsr/med/viewport_registry.hpp"
+#include "error_line.hpp"
 
 namespace {
 
@@ -78,14 +79,10 @@ int main(int argc, char** argv) {
   try {
     return run(argc, argv);
   } catch (const tsr::sg::ImportLimitError& e) {
-    std::string message = e.what();
-    std::replace(message.begin(), message.end(), '\n', ' ');
-    std::cerr << "error: " << message << " (raise it with " << tsr::app::importLimitOption(e) << ")\n";
+    tsr::app::printError(std::string(e.what()) + " (raise it with " + tsr::app::importLimitOption(e) + ")");
     return 2;
   } catch (const std::exception& e) {
-    std::string message = e.what();
-    std::replace(message.begin(), message.end(), '\n', ' ');
-    std::cerr << "error: " << message << "\n";
+    tsr::app::printError(e.what());
     return 2;
   }
 }

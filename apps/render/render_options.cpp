@@ -1,5 +1,7 @@
 #include "render_options.hpp"
 
+#include "import_limit_options.hpp"
+
 #include <cctype>
 #include <cmath>
 #include <charconv>
@@ -80,12 +82,8 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
   app.add_option("--stats-json", o.statsJson, "write render statistics as JSON");
   app.add_option("--param", params, "back-end parameter name=value (repeatable)");
   app.add_flag("--quiet", o.quiet, "no progress bar");
-  std::uint64_t maxFileMb = o.import.maxFileBytes >> 20;
-  app.add_option("--max-file-mb", maxFileMb, "largest scene file (.gltf, .glb, buffer, image) read, in MiB")
-      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 20));
-  app.add_option("--max-elements", o.import.maxJsonValues,
-                 "most values a glTF's JSON may hold; larger files are refused before parsing")
-      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40));
+  ImportLimitOptions limits;
+  limits.add(app, o.import);
   // Noise filtering of the path tracer: each option sets the viewport
   // parameter named after it (see the embree back-end's README).
   std::vector<std::pair<CLI::Option*, std::string>> filterOptions;
@@ -157,7 +155,7 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
                                 "add up (measure a node with a local render)");
   if (o.temporal.active() && !o.sequence.framesGiven)
     throw std::invalid_argument("--temporal " + o.temporal.method + " needs --frames N");
-  o.import.maxFileBytes = maxFileMb << 20;
+  limits.apply(o.import);
   for (const auto& p : params) {
     auto [name, value] = med::Parameters::parse(p);
     o.parameters.set(name, value);

@@ -8,6 +8,7 @@
 
 #include "viewer.hpp"
 #include "viewer_options.hpp"
+#include "error_line.hpp"
 
 int main(int argc, char** argv) {
   spdlog::set_level(spdlog::level::warn);
@@ -17,9 +18,7 @@ int main(int argc, char** argv) {
     tsr::app::Viewer viewer(std::move(options));
     return viewer.run();
   } catch (const std::exception& e) {
-    std::string message = e.what();
-    std::replace(message.begin(), message.end(), '\n', ' ');
-    std::cerr << "error: " << message << "\n";
+    tsr::app::printError(e.what());
     return 2;
   }
 }

@@ -1,5 +1,7 @@
 #include "viewer_options.hpp"
 
+#include "import_limit_options.hpp"
+
 #include <iostream>
 #include <stdexcept>
 
@@ -52,12 +54,8 @@ bool parseViewerOptions(int argc, char** argv, ViewerOptions& o) {
                            "cluster config (configs/*.json): viewport 0 renders on its nodes while it shows their back-end");
   clusterGroup->add_option("--nodes", o.nodes, "HOST:PORT,... replacing the config's node addresses in order");
   clusterGroup->add_option("--token-file", o.tokenFile, "the nodes' shared token");
-  std::uint64_t maxFileMb = o.import.maxFileBytes >> 20;
-  app.add_option("--max-file-mb", maxFileMb, "largest scene file (.gltf, .glb, buffer, image) read, in MiB")
-      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 20));
-  app.add_option("--max-elements", o.import.maxJsonValues,
-                 "most values a glTF's JSON may hold; larger files are refused before parsing")
-      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40));
+  ImportLimitOptions limits;
+  limits.add(app, o.import);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -68,7 +66,7 @@ bool parseViewerOptions(int argc, char** argv, ViewerOptions& o) {
   }
   parseSize(size, o.width, o.height);
   o.sampleLimit = static_cast<std::uint32_t>(limit);
-  o.import.maxFileBytes = maxFileMb << 20;
+  limits.apply(o.import);
   o.viewports.clear();
   std::size_t start = 0;
   for (;;) {
