@@ -1,5 +1,6 @@
 #include "anaglyph_options.hpp"
 
+#include "command_line.hpp"
 #include "import_limit_options.hpp"
 
 #include <CLI/CLI.hpp>
@@ -67,16 +68,13 @@ bool parseAnaglyphOptions(int argc, char** argv, AnaglyphOptions& o) {
   ImportLimitOptions limits;
   limits.add(app, o.import);
   try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp&) {
-    std::cout << app.help();
-    return false;
-  } catch (const CLI::ParseError& e) {
+    if (!parseCommandLine(app, argc, argv)) return false;
+  } catch (const std::invalid_argument&) {
     if (scriptHelp) {  // no SCENE needed to ask
       std::cout << kScriptHelp;
       return false;
     }
-    throw std::invalid_argument(e.what());
+    throw;
   }
   if (scriptHelp) {
     std::cout << kScriptHelp;

@@ -1,5 +1,6 @@
 #include "render_options.hpp"
 
+#include "command_line.hpp"
 #include "import_limit_options.hpp"
 
 #include <cctype>
@@ -130,14 +131,7 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
   app.add_option("--layers", o.layers,
                  "layered window, composited by depth: BACKEND[:NODE],... bottom first, or a .json file (see the "
                  "README); with --cluster the layer of the config's back-end renders on the nodes");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp&) {
-    std::cout << app.help();
-    return false;
-  } catch (const CLI::ParseError& e) {
-    throw std::invalid_argument(e.what());
-  }
+  if (!parseCommandLine(app, argc, argv)) return false;
   parseSize(size, o.width, o.height);
   if (*fromOption) o.view.look.from = parsePoint("--look-from", lookFrom);
   if (*atOption) o.view.look.at = parsePoint("--look-at", lookAt);

@@ -1,5 +1,6 @@
 #include "viewer_options.hpp"
 
+#include "command_line.hpp"
 #include "import_limit_options.hpp"
 
 #include <iostream>
@@ -56,14 +57,7 @@ bool parseViewerOptions(int argc, char** argv, ViewerOptions& o) {
   clusterGroup->add_option("--token-file", o.tokenFile, "the nodes' shared token");
   ImportLimitOptions limits;
   limits.add(app, o.import);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp&) {
-    std::cout << app.help();
-    return false;
-  } catch (const CLI::ParseError& e) {
-    throw std::invalid_argument(e.what());
-  }
+  if (!parseCommandLine(app, argc, argv)) return false;
   parseSize(size, o.width, o.height);
   o.sampleLimit = static_cast<std::uint32_t>(limit);
   limits.apply(o.import);
