@@ -1,9 +1,13 @@
-// tessera-node --listen HOST:PORT [--token-file F | --insecure] [--name N] [--threads N] [--present DIR]
+// tessera-node --listen HOST:PORT [--token-file F | --insecure] [--name N] [--threads N]
+//              [--present none|window|files:DIR]
 // Serves render requests of Tessera clients. The first line on stdout is
 // "listening on HOST:PORT" (port 0 picks a free one), for scripts and tests.
 // Without a token file it listens only on loopback, unless --insecure.
 // Start-up errors: one "error:" line on stderr, exit status 2.
+#include <atomic>
+#include <filesystem>
 #include <iostream>
+#include <thread>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/sinks/stdout_color_sinks.h>
@@ -13,6 +17,9 @@
 #include "tsr/cluster/auth.hpp"
 #include "tsr/cluster/node_server.hpp"
 #include "error_line.hpp"
+#ifdef TSR_HAVE_WINDOW
+#include "window_presenter.hpp"
+#endif
 
 int main(int argc, char** argv) {
   CLI::App app{"Tessera render node"};
@@ -25,8 +32,11 @@ int main(int argc, char** argv) {
   app.add_flag("--insecure", insecure, "without --token-file, listen on a non-loopback address anyway: anyone may connect");
   app.add_option("--name", name, "name reported to clients");
   app.add_option("--threads", threads, "render threads per viewport (0: all cores)");
-  std::string present;
-  app.add_option("--present", present, "write each wall tile here when its swap barrier releases (headless display)");
+  std::string present = "none";
+  app.add_option("--present", present,
+                 "what to do with the wall tile when the swap barrier releases its frame: none, window (a window "
+                 "placed as the client's config says), files:DIR (DIR/NAME-frameN-X-Y.exr, for headless walls)")
+      ->capture_default_str();
   app.add_option("--log-level", logLevel, "trace, debug, info, warn, error");
   try {
     app.parse(argc, argv);
@@ -47,7 +57,24 @@ int main(int argc, char** argv) {
     options.listen = tsr::cluster::parseNodeAddress(listen.find(':') == std::string::npos ? listen + ":0" : listen);
     options.name = name;
     options.threads = threads;
-    options.presentDirectory = present;
+#ifdef TSR_HAVE_WINDOW
+    std::shared_ptr<tsr::app::WindowPresenter> window;
+#endif
+    if (present.rfind("files:", 0) == 0) {
+      std::string dir = present.substr(6);
+      if (dir.empty() || !std::filesystem::is_directory(dir))
+        throw std::invalid_argument("--present files:DIR needs an existing directory, not '" + dir + "'");
+      options.presenter = tsr::cluster::makeFilePresenter(dir, name);
+    } else if (present == "window") {
+#ifdef TSR_HAVE_WINDOW
+      window = std::make_shared<tsr::app::WindowPresenter>("tessera-node " + name);
+      options.presenter = window;
+#else
+      throw std::invalid_argument("--present window: this build has no Vulkan window support");
+#endif
+    } else if (present != "none") {
+      throw std::invalid_argument("--present must be none, window or files:DIR, not '" + present + "'");
+    }
     if (!tokenFile.empty()) options.token = tsr::cluster::readTokenFile(tokenFile);
     options.insecure = insecure;
 
@@ -59,6 +86,26 @@ int main(int argc, char** argv) {
     server.stopOnSignals();
     auto bound = server.listen();
     std::cout << "listening on " << bound.text() << std::endl;  // endl: scripts read this line at once
+#ifdef TSR_HAVE_WINDOW
+    if (window) {
+      // GLFW on this (the main) thread, the server beside it; either ending stops the other.
+      std::atomic<bool> stopped{false};
+      std::thread serving([&] {
+        server.run();
+        stopped = true;
+      });
+      try {
+        if (window->run(stopped)) spdlog::info("window closed: stopping");
+      } catch (...) {
+        server.stop();
+        serving.join();
+        throw;
+      }
+      server.stop();
+      serving.join();
+      return 0;
+    }
+#endif
     server.run();
     return 0;
   } catch (const std::exception& e) {

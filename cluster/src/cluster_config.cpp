@@ -70,9 +70,28 @@ void ClusterConfig::validate() const {
   if (nodes.empty()) throw ConfigError("no nodes");
   for (const auto& n : nodes)
     if (n.backend.empty()) throw ConfigError("node " + n.address.text() + " has no back-end");
-  if (mode == ClusterMode::Tiled && std::size_t{wall.columns} * wall.rows != nodes.size())
+  if (mode == ClusterMode::Tiled && wall.screens.empty() && std::size_t{wall.columns} * wall.rows != nodes.size())
     throw ConfigError("a " + std::to_string(wall.columns) + "x" + std::to_string(wall.rows) + " wall needs " +
                       std::to_string(wall.columns * wall.rows) + " nodes, the config has " + std::to_string(nodes.size()));
+  if (mode == ClusterMode::Tiled && !wall.screens.empty() && wall.screens.size() != nodes.size())
+    throw ConfigError("a wall of " + std::to_string(wall.screens.size()) + " screens needs as many nodes, the config has " +
+                      std::to_string(nodes.size()));
+  if (!wall.screens.empty()) {
+    if (wall.frameWidth == 0 || wall.frameHeight == 0) throw ConfigError("wall 'frame' must be [width, height]");
+    for (std::size_t i = 0; i < wall.screens.size(); ++i) {
+      const ScreenConfig& s = wall.screens[i];
+      std::string which = "screen " + std::to_string(i);
+      if (s.eye.has_value() != wall.screens.front().eye.has_value())
+        throw ConfigError(which + ": either every screen names an eye or none does");
+      if (s.width == 0 || s.height == 0) throw ConfigError(which + " has no size");
+      std::int64_t x0 = std::int64_t{s.x} + s.bezel, x1 = std::int64_t{s.x} + s.width - s.bezel;
+      std::int64_t y0 = std::int64_t{s.y} + s.bezel, y1 = std::int64_t{s.y} + s.height - s.bezel;
+      if (x1 <= std::max<std::int64_t>(x0, 0) || y1 <= std::max<std::int64_t>(y0, 0) || x0 >= wall.frameWidth ||
+          y0 >= wall.frameHeight)
+        throw ConfigError(which + " shows no pixel of the " + std::to_string(wall.frameWidth) + "x" +
+                          std::to_string(wall.frameHeight) + " frame (rectangle, bezel)");
+    }
+  }
 }
 
 ClusterConfig parseClusterConfig(const std::string& text, const std::string& source) {
@@ -122,7 +141,57 @@ ClusterConfig parseClusterConfig(const std::string& text, const std::string& sou
   const json& wall = r.object(j, "wall");
   c.wall.columns = r.positive(wall, "columns", c.wall.columns);
   c.wall.rows = r.positive(wall, "rows", c.wall.rows);
-  c.wall.bezel = static_cast<std::uint32_t>(r.get<std::int64_t>(wall, "bezel", 0));
+  std::int64_t bezel = r.get<std::int64_t>(wall, "bezel", 0);
+  if (bezel < 0 || bezel > 65535) r.fail("grid 'bezel' must be 0..65535 (overlap needs 'screens')");
+  c.wall.bezel = static_cast<std::uint32_t>(bezel);
+  if (wall.contains("screens")) {
+    auto frame = r.get<std::vector<std::int64_t>>(wall, "frame", {});
+    if (frame.size() != 2 || frame[0] <= 0 || frame[1] <= 0 || frame[0] > 1 << 20 || frame[1] > 1 << 20)
+      r.fail("wall 'frame' must be [width, height] in pixels, each 1..1048576");
+    c.wall.frameWidth = static_cast<std::uint32_t>(frame[0]);
+    c.wall.frameHeight = static_cast<std::uint32_t>(frame[1]);
+    if (!wall.at("screens").is_array() || wall.at("screens").size() > 4096) r.fail("'screens' must be an array (at most 4096)");
+    for (const json& sj : wall.at("screens")) {
+      if (!sj.is_object()) r.fail("each screen must be an object");
+      ScreenConfig s;
+      auto rect = r.get<std::vector<std::int64_t>>(sj, "rect", {});
+      if (rect.size() != 4) r.fail("a screen's 'rect' must be [x, y, width, height]");
+      for (std::int64_t v : rect)
+        if (v < -(1 << 20) || v > 1 << 20) r.fail("a screen's 'rect' must lie within +-1048576");
+      if (rect[2] <= 0 || rect[3] <= 0) r.fail("a screen's 'rect' must have a positive width and height");
+      s.x = static_cast<std::int32_t>(rect[0]);
+      s.y = static_cast<std::int32_t>(rect[1]);
+      s.width = static_cast<std::uint32_t>(rect[2]);
+      s.height = static_cast<std::uint32_t>(rect[3]);
+      std::int64_t b = r.get<std::int64_t>(sj, "bezel", 0);
+      if (b < -65535 || b > 65535) r.fail("a screen's 'bezel' must be -65535..65535");
+      s.bezel = static_cast<std::int32_t>(b);
+      if (sj.contains("eye")) {
+        std::string eye = r.get<std::string>(sj, "eye", "");
+        if (eye == "left") s.eye = med::Eye::Left;
+        else if (eye == "right") s.eye = med::Eye::Right;
+        else r.fail("unknown eye '" + eye + "' (left, right)");
+      }
+      if (sj.contains("window")) {
+        const json& wj = r.object(sj, "window");
+        WindowPlacement w;
+        auto pos = r.get<std::vector<std::int64_t>>(wj, "position", {0, 0});
+        auto size = r.get<std::vector<std::int64_t>>(wj, "size", {0, 0});
+        if (pos.size() != 2 || size.size() != 2) r.fail("a window's 'position' and 'size' must be [x, y] and [width, height]");
+        for (std::int64_t v : pos)
+          if (v < -(1 << 20) || v > 1 << 20) r.fail("a window's 'position' must lie within +-1048576");
+        for (std::int64_t v : size)
+          if (v < 0 || v > 16384) r.fail("a window's 'size' must be 0..16384 (0: the screen's pixels)");
+        w.x = static_cast<std::int32_t>(pos[0]);
+        w.y = static_cast<std::int32_t>(pos[1]);
+        w.width = static_cast<std::uint32_t>(size[0]);
+        w.height = static_cast<std::uint32_t>(size[1]);
+        w.fullscreen = r.get<bool>(wj, "fullscreen", false);
+        s.window = w;
+      }
+      c.wall.screens.push_back(s);
+    }
+  }
   if (wall.contains("offlineColour")) {
     auto rgb = r.get<std::vector<float>>(wall, "offlineColour", {});
     if (rgb.size() != 3) r.fail("'offlineColour' must be [r, g, b]");
@@ -144,6 +213,7 @@ ClusterConfig parseClusterConfig(const std::string& text, const std::string& sou
   c.timeouts.heartbeat = r.millis(t, "heartbeatMs", c.timeouts.heartbeat);
   c.timeouts.deadAfter = r.millis(t, "deadAfterMs", c.timeouts.deadAfter);
   c.timeouts.retry = r.millis(t, "retryMs", c.timeouts.retry);
+  c.timeouts.late = r.millis(t, "lateMs", c.timeouts.late);
   try {
     c.validate();
   } catch (const ConfigError& e) {

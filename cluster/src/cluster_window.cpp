@@ -1,22 +1,32 @@
 #include "tsr/cluster/cluster_window.hpp"
 
 #include <algorithm>
+#include <ctime>
 #include <optional>
 #include <thread>
 
 #include <spdlog/spdlog.h>
 
 #include "frame_round.hpp"
+#include "frame_strategy.hpp"
 #include "node_link.hpp"
 #include "tsr/cluster/protocol_error.hpp"
-#include "tsr/cluster/tile_balancer.hpp"
-#include "tsr/cluster/wall_layout.hpp"
-#include "tsr/med/compositing.hpp"
 #include "tsr/sg/wire_codec.hpp"
 
 namespace tsr::cluster {
 
 using Clock = std::chrono::steady_clock;
+
+const char* name(NodePhase phase) {
+  switch (phase) {
+    case NodePhase::Idle: return "idle";
+    case NodePhase::Connect: return "connect";
+    case NodePhase::Snapshot: return "snapshot";
+    case NodePhase::Render: return "render";
+    case NodePhase::Barrier: return "barrier";
+  }
+  return "?";
+}
 
 namespace {
 struct Node {
@@ -29,7 +39,23 @@ struct Node {
   std::uint64_t applied = 0;
   std::uint64_t sentVersion = 0;
   std::string lastError;
+  std::optional<HashReply> hash;  // the answer to the latest HashQuery
+  // When the phases the client may wait in began (see phaseOf).
+  Clock::time_point stateSince = Clock::now(), listSentAt{}, requestAt{}, lastTileAt{};
+  std::pair<std::uint64_t, NodePhase> reportedLate{0, NodePhase::Idle};
 };
+
+// A steady-clock instant as wall-clock time of day, for people reading logs.
+std::string timeOfDay(Clock::time_point t) {
+  auto wall = std::chrono::system_clock::now() - std::chrono::duration_cast<std::chrono::system_clock::duration>(Clock::now() - t);
+  std::time_t tt = std::chrono::system_clock::to_time_t(wall);
+  std::tm tm{};
+  localtime_r(&tt, &tm);
+  auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(wall.time_since_epoch()).count() % 1000;
+  char text[32];
+  std::snprintf(text, sizeof text, "%02d:%02d:%02d.%03d", tm.tm_hour, tm.tm_min, tm.tm_sec, static_cast<int>(ms));
+  return text;
+}
 }  // namespace
 
 struct ClusterWindow::Impl {
@@ -41,34 +67,34 @@ struct ClusterWindow::Impl {
   Inbox inbox;
   std::vector<Node> nodes;
 
-  std::optional<TileBalancer> balancer;
-  std::vector<med::PixelRect> tiles;
-  std::uint32_t tilesFor[2] = {0, 0};
-  FrameRound* round = nullptr;  // while render() runs
+  std::unique_ptr<FrameStrategy> strategy;
   std::size_t reassigned = 0;
-  std::vector<ReplicaHash>* hashes = nullptr;
   std::uint64_t hashToken = 0;
   std::uint64_t frame = 0;
-  float eyeSeparation, zeroParallax;
+  Eyes eyes;
   sg::ContainerId root = sg::kNoContainer, background = sg::kNoContainer;
   // The local viewport that resolves assembled frames, and what it needs.
   med::ContextPool resolverContexts;
   std::unique_ptr<med::Viewport> resolver;
   std::vector<std::string> resolveInputs;
   std::vector<std::string> resolveOutputs;
-  std::string renderError;  // a node's report that it cannot render this frame
 
   Impl(ClusterConfig c, ClientOptions o) : config(std::move(c)), options(std::move(o)) {
-    eyeSeparation = config.stereo.eyeSeparation.value_or(0.065f);
-    zeroParallax = config.stereo.zeroParallax.value_or(5.0f);
+    strategy = makeFrameStrategy(config);
+    eyes.separation = config.stereo.eyeSeparation.value_or(eyes.separation);
+    eyes.zeroParallax = config.stereo.zeroParallax.value_or(eyes.zeroParallax);
     thread = std::thread([this] { io.run(); });
   }
   ~Impl() {
+    // What is queued (the last frame's Swap among it) goes out before the
+    // Bye; a node that does not take it within a moment is closed anyway.
     for (auto& n : nodes)
-      if (n.link) {
-        n.link->send(makeFrame(Bye{}));
-        n.link->close();
-      }
+      if (n.link) n.link->finish(makeFrame(Bye{}));
+    auto until = Clock::now() + std::chrono::milliseconds(500);
+    while (Clock::now() < until && std::any_of(nodes.begin(), nodes.end(), [](const Node& n) { return n.link && n.link->running(); }))
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    for (auto& n : nodes)
+      if (n.link) n.link->close();
     work.reset();
     io.stop();
     thread.join();
@@ -83,9 +109,48 @@ struct ClusterWindow::Impl {
     return i;
   }
 
+  void setState(Node& n, NodeState state) {
+    if (n.state != state) n.stateSince = Clock::now();
+    n.state = state;
+  }
+
+  // Where node i stands, and since when; `round` is the running frame (or null).
+  std::pair<NodePhase, Clock::time_point> phaseOf(std::size_t i, const FrameRound* round) const {
+    const Node& n = nodes[i];
+    if (n.state == NodeState::Offline || n.state == NodeState::Connecting) return {NodePhase::Connect, n.stateSince};
+    if (n.state == NodeState::Joined) return {NodePhase::Snapshot, n.stateSince};
+    if (n.applied < n.sentVersion) return {NodePhase::Snapshot, n.listSentAt};
+    if (round) {
+      auto awaited = round->awaited();
+      if (std::find(awaited.begin(), awaited.end(), i) != awaited.end()) {
+        if (!round->pendingOf(i).empty()) return {NodePhase::Render, n.requestAt};
+        return {NodePhase::Barrier, std::max(n.requestAt, n.lastTileAt)};
+      }
+    }
+    return {NodePhase::Idle, n.stateSince};
+  }
+
+  // Says once per frame and phase which awaited node is late, in which phase and since when.
+  void reportLate(const FrameRound& round, std::vector<std::string>& late) {
+    auto now = Clock::now();
+    for (std::size_t i : round.awaited()) {
+      auto [phase, since] = phaseOf(i, &round);
+      Node& n = nodes[i];
+      if (phase == NodePhase::Idle || now - since < config.timeouts.late) continue;
+      if (n.reportedLate == std::pair{round.frame(), phase}) continue;
+      n.reportedLate = {round.frame(), phase};
+      std::string line = n.config.address.text() + " (" + (n.name.empty() ? "?" : n.name) + "): " + name(phase) +
+                         " since " + timeOfDay(since) + " (" +
+                         std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(now - since).count()) +
+                         " ms)";
+      spdlog::warn("frame {}: node {} is late", round.frame(), line);
+      late.push_back(std::move(line));
+    }
+  }
+
   void startConnecting(std::size_t i) {
     Node& n = nodes[i];
-    n.state = NodeState::Connecting;
+    setState(n, NodeState::Connecting);
     n.link->start(++n.generation);
   }
 
@@ -95,19 +160,20 @@ struct ClusterWindow::Impl {
       if (nodes[i].state == NodeState::Offline && now >= nodes[i].retryAt) startConnecting(i);
   }
 
-  // Sets a node offline and lets the running frame give its work away.
-  void lose(std::size_t i, const std::string& why) {
+  // Sets a node offline and lets the running frame (if any) give its work away.
+  void lose(std::size_t i, const std::string& why, FrameRound* round) {
     Node& n = nodes[i];
     if (n.state == NodeState::Offline) return;
     bool wasIn = n.state == NodeState::Synced;
     spdlog::warn("node {} ({}) lost: {}", n.config.address.text(), n.name, why);
     n.link->close();
     ++n.generation;  // events of the old connection no longer count
-    n.state = NodeState::Offline;
+    setState(n, NodeState::Offline);
     n.lastError = why;
     n.retryAt = Clock::now() + config.timeouts.retry;
-    if (round) round->forget(i);
-    if (wasIn && round) takeOver(i);
+    if (!round) return;
+    round->forget(i);
+    if (wasIn) takeOver(*round, i);
   }
 
   std::vector<std::size_t> synced() const {
@@ -117,38 +183,29 @@ struct ClusterWindow::Impl {
     return out;
   }
 
-  // The work of a lost node: another node's in cooperative and stereo mode
-  // (sent within this frame), the offline fill on a wall.
-  void takeOver(std::size_t lost) {
-    std::vector<std::size_t> pending = round->pendingOf(lost);
-    if (pending.empty()) return;
-    if (config.mode == ClusterMode::Tiled) {
-      for (std::size_t item : pending) round->giveUp(item, config.wall.offlineColour);
-      return;
-    }
+  // The work of a lost node goes where the strategy says, within this
+  // frame; what it places nowhere shows the offline fill.
+  void takeOver(FrameRound& round, std::size_t lost) {
+    std::vector<std::size_t> pending = round.pendingOf(lost);
     std::vector<std::size_t> live = synced();
-    if (live.empty()) return;  // render() notices and throws
-    if (balancer) balancer->removeNode(lost);
-    std::map<std::size_t, std::vector<std::size_t>> handed;
-    for (std::size_t k = 0; k < pending.size(); ++k) {
-      const WorkItem& it = round->items()[pending[k]];
-      std::size_t to = (balancer && it.tile != TileBalancer::kNone) ? balancer->owner(it.tile) : live[k % live.size()];
-      round->reassign(pending[k], to);
-      handed[to].push_back(pending[k]);
-    }
+    if (pending.empty() || (live.empty() && strategy->needsNodes())) return;  // render() notices and throws
+    auto handed = strategy->takeOver(round, lost, pending, live);
     for (auto& [to, items] : handed) {
-      nodes[to].link->send(round->request(items));
-      round->sent(to);
+      for (std::size_t item : items) round.reassign(item, to);
+      nodes[to].link->send(round.request(items));
+      nodes[to].requestAt = Clock::now();
+      round.sent(to);
       reassigned += items.size();
     }
+    for (std::size_t item : round.pendingOf(lost)) round.giveUp(item, config.wall.offlineColour);
   }
 
-  void handle(LinkEvent& e) {
+  void handle(LinkEvent& e, FrameRound* round) {
     Node& n = nodes.at(e.node);
     if (e.generation != n.generation) return;
     switch (e.kind) {
       case LinkEvent::Kind::Connected:
-        n.state = NodeState::Joined;
+        setState(n, NodeState::Joined);
         n.name = e.welcome.nodeName;
         n.applied = 0;
         // Kept even without the back-end: it still mirrors the scene; its renders fail and drop it then.
@@ -158,31 +215,34 @@ struct ClusterWindow::Impl {
         return;
       case LinkEvent::Kind::Failed:
         if (n.lastError != e.reason) spdlog::warn("node {}: cannot connect: {}", n.config.address.text(), e.reason);
-        n.state = NodeState::Offline;
+        setState(n, NodeState::Offline);
         n.lastError = e.reason;
         n.retryAt = Clock::now() + config.timeouts.retry;
         return;
       case LinkEvent::Kind::Closed:
-        return lose(e.node, e.reason);
+        return lose(e.node, e.reason, round);
       case LinkEvent::Kind::Received:
         try {
-          receive(e.node, e.message);
+          receive(e.node, e.message, round);
         } catch (const ProtocolError& err) {
-          lose(e.node, std::string("protocol violation: ") + err.what());
+          lose(e.node, std::string("protocol violation: ") + err.what(), round);
         }
         return;
     }
   }
 
   // One handler per message a node sends.
-  void receive(std::size_t i, const Message& m) {
+  // `round` is the frame being rendered, null between frames.
+  void receive(std::size_t i, const Message& m, FrameRound* round) {
     switch (m.type) {
       case MessageType::Applied: nodes[i].applied = parse<Applied>(m).version; return;
       case MessageType::RenderTile: {
         RenderTile tile = parse<RenderTile>(m);
         if (!round) return;
-        const WorkItem* done = round->onTile(i, tile);
-        if (done && balancer && done->tile != TileBalancer::kNone) balancer->record(done->tile, tile.seconds);
+        if (const WorkItem* done = round->onTile(i, tile)) {
+          strategy->tileDone(*done, tile.seconds);
+          nodes[i].lastTileAt = Clock::now();
+        }
         return;
       }
       case MessageType::FrameDone:
@@ -190,7 +250,7 @@ struct ClusterWindow::Impl {
         return;
       case MessageType::HashReply: {
         HashReply r = parse<HashReply>(m);
-        if (hashes && r.token == hashToken) hashes->push_back({i, r.version, r.hash});
+        if (r.token == hashToken) nodes[i].hash = r;
         return;
       }
       case MessageType::HeartbeatAck: parse<HeartbeatAck>(m); return;
@@ -199,65 +259,26 @@ struct ClusterWindow::Impl {
         spdlog::warn("node {}: {}", nodes[i].config.address.text(), nodes[i].lastError);
         // A node that cannot render the frame (a bad parameter, an output its
         // back-end lacks) would fail the same way on every node it moves to.
-        if (round && nodes[i].lastError.rfind("render failed", 0) == 0 && renderError.empty())
-          renderError = "node " + nodes[i].config.address.text() + ": " + nodes[i].lastError;
+        if (round && nodes[i].lastError.rfind("render failed", 0) == 0)
+          round->fail("node " + nodes[i].config.address.text() + ": " + nodes[i].lastError);
         return;
       default: throw ProtocolError(ProtocolError::Kind::Unexpected, std::string(name(m.type)) + " after the handshake");
     }
   }
 
-  // Handles events until `done` holds or the deadline passes.
+  // Handles events until `done` holds or the deadline passes; `round` is
+  // the frame they may belong to.
   template <class Done>
-  bool pump(Clock::time_point deadline, Done done) {
+  bool pump(Clock::time_point deadline, Done done, FrameRound* round = nullptr) {
     while (!done()) {
       auto e = inbox.pop(deadline);
       if (!e) return done();
-      handle(*e);
+      handle(*e, round);
     }
     return true;
   }
   void drain() {
     pump(Clock::now(), [] { return false; });
-  }
-
-  std::vector<WorkItem> plan(const med::View& view, std::vector<med::FrameBuffer>& targets,
-                             const std::vector<std::size_t>& live) {
-    std::vector<WorkItem> items;
-    switch (config.mode) {
-      case ClusterMode::Cooperative: {
-        if (!balancer || tilesFor[0] != view.width || tilesFor[1] != view.height) {
-          tiles = tileGrid(view.width, view.height, config.cooperative.tileSize);
-          balancer.emplace(tiles.size(), config.cooperative.tolerance, config.cooperative.maxMovesPerFrame);
-          tilesFor[0] = view.width;
-          tilesFor[1] = view.height;
-        }
-        balancer->setNodes(live);
-        targets.emplace_back(view.width, view.height);
-        for (std::size_t t = 0; t < tiles.size(); ++t) items.push_back({0, view, tiles[t], 0, t, balancer->owner(t)});
-        break;
-      }
-      case ClusterMode::Tiled: {
-        auto rects = wallLayout(view.width, view.height, config.wall.columns, config.wall.rows, config.wall.bezel);
-        targets.emplace_back(view.width, view.height);
-        for (std::size_t t = 0; t < rects.size(); ++t) items.push_back({0, view, rects[t], 0, TileBalancer::kNone, t});
-        break;
-      }
-      case ClusterMode::Stereo: {
-        targets.emplace_back(view.width, view.height);
-        targets.emplace_back(view.width, view.height);
-        // Node 0 takes the left eye and node 1 the right, as configured,
-        // when they are there; otherwise whoever is.
-        auto pick = [&](std::size_t preferred, std::size_t k) {
-          return std::find(live.begin(), live.end(), preferred) != live.end() ? preferred : live[k % live.size()];
-        };
-        med::View l = view.eye(med::Eye::Left, eyeSeparation, zeroParallax);
-        med::View r = view.eye(med::Eye::Right, eyeSeparation, zeroParallax);
-        items.push_back({0, l, l.region, 0, TileBalancer::kNone, pick(0, 0)});
-        items.push_back({1, r, r.region, 1, TileBalancer::kNone, pick(1, 1)});
-        break;
-      }
-    }
-    return items;
   }
 
   // A resolver exists when every node runs the same back-end with the same
@@ -302,8 +323,15 @@ struct ClusterWindow::Impl {
 
   Frame viewportsFor(const Node& n) const {
     SetViewports sv;
-    std::uint32_t count = config.mode == ClusterMode::Stereo ? 2 : 1;
-    for (std::uint32_t id = 0; id < count; ++id) sv.viewports.push_back({id, n.config.backend, root, background, n.config.parameters});
+    // A wall node's window goes where the config's screen says; without a
+    // window entry, at the screen's place in the virtual frame.
+    std::size_t i = static_cast<std::size_t>(&n - nodes.data());
+    if (config.mode == ClusterMode::Tiled && i < config.wall.screens.size()) {
+      const ScreenConfig& screen = config.wall.screens[i];
+      sv.window = screen.window.value_or(WindowPlacement{screen.x, screen.y, 0, 0, false});
+    }
+    for (std::uint32_t id = 0; id < strategy->viewportsPerNode(); ++id)
+      sv.viewports.push_back({id, n.config.backend, root, background, n.config.parameters});
     return makeFrame(sv);
   }
 };
@@ -349,6 +377,7 @@ void ClusterWindow::publish(const sg::Scene& scene, const sg::ChangeListPtr& del
   for (auto& n : s.nodes) {
     bool follows = n.state == NodeState::Synced && delta && n.sentVersion == delta->baseVersion();
     if (n.state == NodeState::Synced && !delta && n.sentVersion == scene.version()) continue;
+    if (n.applied >= n.sentVersion) n.listSentAt = Clock::now();  // it was caught up: a new wait begins
     if (follows) {
       if (!changes) changes = frameFromPayload(MessageType::Changes, sg::encode(*delta));
       n.link->send(changes);
@@ -357,7 +386,7 @@ void ClusterWindow::publish(const sg::Scene& scene, const sg::ChangeListPtr& del
       if (!snapshot) snapshot = frameFromPayload(MessageType::Snapshot, sg::encode(*scene.snapshot()));
       n.link->send(snapshot);
       if (n.state == NodeState::Joined) n.link->send(s.viewportsFor(n));
-      n.state = NodeState::Synced;
+      s.setState(n, NodeState::Synced);
     } else {
       continue;
     }
@@ -375,18 +404,20 @@ bool ClusterWindow::waitApplied(std::uint64_t version, std::chrono::milliseconds
 
 std::vector<ReplicaHash> ClusterWindow::replicaHashes(std::chrono::milliseconds timeout) {
   Impl& s = *impl_;
-  std::vector<ReplicaHash> out;
-  s.hashes = &out;
   ++s.hashToken;
   std::vector<std::size_t> asked = s.synced();
-  for (std::size_t i : asked) s.nodes[i].link->send(makeFrame(HashQuery{s.hashToken}));
+  for (std::size_t i : asked) {
+    s.nodes[i].hash.reset();
+    s.nodes[i].link->send(makeFrame(HashQuery{s.hashToken}));
+  }
   s.pump(Clock::now() + timeout, [&] {
-    return std::all_of(asked.begin(), asked.end(), [&](std::size_t i) {
-      return s.nodes[i].state != NodeState::Synced ||
-             std::any_of(out.begin(), out.end(), [&](const ReplicaHash& h) { return h.node == i; });
-    });
+    return std::all_of(asked.begin(), asked.end(),
+                       [&](std::size_t i) { return s.nodes[i].state != NodeState::Synced || s.nodes[i].hash; });
   });
-  s.hashes = nullptr;
+  std::vector<ReplicaHash> out;
+  for (std::size_t i : asked)
+    if (s.nodes[i].state == NodeState::Synced && s.nodes[i].hash)
+      out.push_back({i, s.nodes[i].hash->version, s.nodes[i].hash->hash});
   return out;
 }
 
@@ -395,47 +426,45 @@ ClusterFrame ClusterWindow::render(const med::View& view) {
   view.validate();
   s.drain();
   std::vector<std::size_t> live = s.synced();
-  if (live.empty() && s.config.mode != ClusterMode::Tiled) throw ClusterError("no cluster node is online");
+  if (live.empty() && s.strategy->needsNodes()) throw ClusterError("no cluster node is online");
 
   ClusterFrame result;
   result.frame = ++s.frame;
   std::vector<med::FrameBuffer> targets;
-  std::vector<WorkItem> items = s.plan(view, targets, live);
+  std::vector<WorkItem> items = s.strategy->plan(view, s.eyes, live, targets);
   s.makeResolver();
   s.askOutputs(items, targets);
   FrameRound round(result.frame, std::move(items), targets, s.config.compression);
-  s.round = &round;
   s.reassigned = 0;
-  struct Clear {
-    Impl& s;
-    ~Clear() { s.round = nullptr; }
-  } clear{s};
 
   for (std::size_t i = 0; i < round.items().size(); ++i)
     if (s.nodes[round.items()[i].node].state != NodeState::Synced) round.giveUp(i, s.config.wall.offlineColour);
   for (auto& [node, its] : round.pendingByNode()) {
     s.nodes[node].link->send(round.request(its));
+    s.nodes[node].requestAt = Clock::now();
     round.sent(node);
   }
 
   auto deadline = Clock::now() + s.config.timeouts.frame;
-  s.renderError.clear();
   while (!round.finished()) {
-    if (!s.renderError.empty()) throw ClusterError(s.renderError);
-    if (s.config.mode != ClusterMode::Tiled && s.synced().empty()) throw ClusterError("every cluster node was lost during the frame");
-    if (!s.pump(deadline, [&] { return round.finished() || !s.renderError.empty(); })) {
+    if (!round.error().empty()) throw ClusterError(round.error());
+    if (s.strategy->needsNodes() && s.synced().empty()) throw ClusterError("every cluster node was lost during the frame");
+    // Wakes now and then to say who is late, short of the deadline.
+    auto wake = std::min(deadline, Clock::now() + s.config.timeouts.late / 4);
+    bool done = s.pump(wake, [&] { return round.finished() || !round.error().empty(); }, &round);
+    s.reportLate(round, result.lateNodes);
+    if (!done && Clock::now() >= deadline) {
       // Nodes that missed the frame deadline are dropped; their work moves or shows as offline.
-      for (std::size_t node : round.awaited()) s.lose(node, "missed the frame deadline");
+      for (std::size_t node : round.awaited()) s.lose(node, "missed the frame deadline", &round);
       deadline = Clock::now() + s.config.timeouts.frame;
     }
   }
 
-  if (s.config.mode == ClusterMode::Tiled) {
+  if (s.strategy->frameDone()) {
     // The barrier: every tile is in (or given up), so the wall swaps at once.
     for (std::size_t n : s.synced())
       if (round.delivered(n)) s.nodes[n].link->send(makeFrame(Swap{result.frame}));
   }
-  if (s.balancer && s.config.mode == ClusterMode::Cooperative) s.balancer->rebalance();
 
   result.busySeconds.assign(s.nodes.size(), 0.0);
   for (const auto& [node, busy] : round.busySeconds()) result.busySeconds[node] = busy;
@@ -443,6 +472,8 @@ ClusterFrame ClusterWindow::render(const med::View& view) {
   for (const auto& [node, t] : round.tileSeconds()) result.tileSeconds[node] = t;
   for (const auto& it : round.items()) result.offlineTiles += it.offline ? 1 : 0;
   result.reassignedItems = s.reassigned;
+  result.assembleSeconds = round.assembleSeconds();
+  result.barrierSeconds = round.barrierSeconds();
   if (s.resolver) {
     for (auto& t : targets) {
       s.resolver->resolve(t);
@@ -451,27 +482,24 @@ ClusterFrame ClusterWindow::render(const med::View& view) {
           t.outputs.erase(name);
     }
   }
-  if (s.config.mode == ClusterMode::Stereo) {
-    result.left = std::move(targets[0]);
-    result.right = std::move(targets[1]);
-    result.image = s.config.stereo.compose == StereoCompose::Anaglyph ? med::anaglyph(result.left, result.right)
-                                                                      : med::sideBySide(result.left, result.right);
-  } else {
-    result.image = std::move(targets[0]);
-  }
+  s.strategy->compose(targets, result);
   return result;
 }
 
 void ClusterWindow::setEyes(float separation, float zeroParallax) {
   // The config's values, where it gives them, win over the application's.
-  impl_->eyeSeparation = impl_->config.stereo.eyeSeparation.value_or(separation);
-  impl_->zeroParallax = impl_->config.stereo.zeroParallax.value_or(zeroParallax);
+  impl_->eyes.separation = impl_->config.stereo.eyeSeparation.value_or(separation);
+  impl_->eyes.zeroParallax = impl_->config.stereo.zeroParallax.value_or(zeroParallax);
 }
 
 std::vector<NodeStatus> ClusterWindow::status() const {
   std::vector<NodeStatus> out;
-  for (const auto& n : impl_->nodes)
-    out.push_back({n.config.address, n.name, n.state, n.applied, n.link->bytesSent(), n.lastError});
+  for (std::size_t i = 0; i < impl_->nodes.size(); ++i) {
+    const Node& n = impl_->nodes[i];
+    auto [phase, since] = impl_->phaseOf(i, nullptr);
+    out.push_back({n.config.address, n.name, n.state, n.applied, n.link->bytesSent(), n.link->bytesReceived(), n.lastError,
+                   phase, since});
+  }
   return out;
 }
 
@@ -483,6 +511,6 @@ std::size_t ClusterWindow::onlineNodes() const {
 
 const ClusterConfig& ClusterWindow::config() const { return impl_->config; }
 
-double ClusterWindow::estimatedImbalance() const { return impl_->balancer ? impl_->balancer->imbalance() : 1.0; }
+double ClusterWindow::estimatedImbalance() const { return impl_->strategy->imbalance(); }
 
 }  // namespace tsr::cluster

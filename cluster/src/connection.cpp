@@ -18,8 +18,7 @@ Connection::Connection(tcp::socket socket, Sender peer) : socket_(std::move(sock
 asio::awaitable<Message> Connection::receive() {
   std::array<std::uint8_t, kFrameHeaderBytes> header;
   co_await asio::async_read(socket_, asio::buffer(header), asio::use_awaitable);
-  lastReceived_ = Clock::now();
-  bytesReceived_ += header.size();
+  received(header.size());
   FrameHeader h = decodeFrameHeader(header);
   const MessageSpec& s = spec(h.type);
   if (s.sender != peer_)
@@ -29,17 +28,27 @@ asio::awaitable<Message> Connection::receive() {
   Message m;
   m.type = h.type;
   // Grow with the bytes that actually arrive, so a large announced length
-  // costs nothing until the peer sends that much.
+  // costs nothing until the peer sends that much; every read that returns
+  // is a sign of life, however little it brought.
   constexpr std::size_t kChunk = std::size_t{1} << 20;
-  while (m.payload.size() < h.length) {
-    std::size_t have = m.payload.size();
-    std::size_t next = std::min<std::size_t>(h.length - have, kChunk);
-    m.payload.resize(have + next);
-    co_await asio::async_read(socket_, asio::buffer(m.payload.data() + have, next), asio::use_awaitable);
-    lastReceived_ = Clock::now();
-    bytesReceived_ += next;
+  std::size_t have = 0;
+  while (have < h.length) {
+    if (m.payload.size() == have) m.payload.resize(have + std::min<std::size_t>(h.length - have, kChunk));
+    std::size_t n = co_await socket_.async_read_some(asio::buffer(m.payload.data() + have, m.payload.size() - have),
+                                                     asio::use_awaitable);
+    have += n;
+    received(n);
+    if (onProgress_ && have < h.length && Clock::now() - lastProgress_ >= progressInterval_) {
+      lastProgress_ = Clock::now();
+      onProgress_();
+    }
   }
   co_return m;
+}
+
+void Connection::received(std::size_t bytes) {
+  lastReceived_ = Clock::now();
+  bytesReceived_ += bytes;
 }
 
 void Connection::send(Frame frame) {
@@ -67,6 +76,7 @@ void Connection::close() {
   socket_.shutdown(tcp::socket::shutdown_both, ignored);
   socket_.close(ignored);
   queue_.clear();
+  written_ = 0;
 }
 
 void Connection::writeNext() {
@@ -76,7 +86,11 @@ void Connection::writeNext() {
     if (closeAfterFlush_) close();
     return;
   }
-  asio::async_write(socket_, asio::buffer(*queue_.front()),
+  // In pieces, so the stall clock sees a slow peer's progress on one large frame.
+  constexpr std::size_t kPiece = std::size_t{64} << 10;
+  const auto& front = *queue_.front();
+  std::size_t piece = std::min(kPiece, front.size() - written_);
+  asio::async_write(socket_, asio::buffer(front.data() + written_, piece),
                     [self = shared_from_this()](boost::system::error_code ec, std::size_t n) {
                       self->bytesSent_ += n;
                       self->lastWritten_ = Clock::now();
@@ -85,7 +99,11 @@ void Connection::writeNext() {
                         self->close();
                         return;
                       }
-                      self->queue_.pop_front();
+                      self->written_ += n;
+                      if (self->written_ >= self->queue_.front()->size()) {
+                        self->written_ = 0;
+                        self->queue_.pop_front();
+                      }
                       self->writeNext();
                     });
 }
@@ -105,7 +123,10 @@ asio::awaitable<void> Connection::watchdog() {
     co_await timer.async_wait(asio::use_awaitable);
     auto now = Clock::now();
     bool quiet = idle_.count() > 0 && now - lastReceived_ > idle_;
-    bool stalled = writing_ && writeStall_.count() > 0 && now - lastWritten_ > writeStall_;
+    // A write that makes no progress is a stall only while the peer is silent
+    // too: a large kernel buffer wakes a writer late (after it drained by half),
+    // and a peer still talking to us is alive.
+    bool stalled = writing_ && writeStall_.count() > 0 && now - std::max(lastWritten_, lastReceived_) > writeStall_;
     if (open_ && (quiet || stalled)) {
       timedOut_ = true;
       close();

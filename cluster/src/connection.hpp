@@ -4,10 +4,13 @@
 // header (magic, version, type, who may send it, whether it is allowed
 // before authentication, its size) before reading or allocating the
 // payload; a watchdog closes the socket when the peer goes quiet or stops
-// reading what we write.
+// reading what we write. Bulk counts as life: every piece of a payload that
+// arrives, and every piece of ours the peer takes, resets the clocks, so a
+// large snapshot or tile on a slow link is not mistaken for a dead peer.
 #include <atomic>
 #include <chrono>
 #include <deque>
+#include <functional>
 #include <memory>
 
 #include "asio.hpp"
@@ -38,6 +41,13 @@ class Connection : public std::enable_shared_from_this<Connection> {
   void startWatchdog(std::chrono::milliseconds idle, std::chrono::milliseconds writeStall);
   void setIdleLimit(std::chrono::milliseconds idle) { idle_ = idle; }
   bool timedOut() const { return timedOut_; }
+  // Called (io thread) at most once per `interval` while a payload is still
+  // arriving: the receiver of bulk tells the sender it is alive, since the
+  // sender's heartbeats wait behind the bulk in the same stream.
+  void onBulkProgress(std::chrono::milliseconds interval, std::function<void()> f) {
+    progressInterval_ = interval;
+    onProgress_ = std::move(f);
+  }
 
   std::uint64_t bytesSent() const { return bytesSent_; }
   std::uint64_t bytesReceived() const { return bytesReceived_; }
@@ -46,6 +56,7 @@ class Connection : public std::enable_shared_from_this<Connection> {
 
  private:
   void writeNext();
+  void received(std::size_t bytes);
   asio::awaitable<void> watchdog();
 
   tcp::socket socket_;
@@ -60,6 +71,10 @@ class Connection : public std::enable_shared_from_this<Connection> {
   Clock::time_point lastWritten_ = Clock::now();
   std::chrono::milliseconds idle_{0};
   std::chrono::milliseconds writeStall_{0};
+  std::size_t written_ = 0;  // of the queue's front frame
+  std::chrono::milliseconds progressInterval_{0};
+  std::function<void()> onProgress_;
+  Clock::time_point lastProgress_ = Clock::now();
   std::atomic<std::uint64_t> bytesSent_{0};
   std::atomic<std::uint64_t> bytesReceived_{0};
 };

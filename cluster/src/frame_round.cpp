@@ -49,6 +49,7 @@ const WorkItem* FrameRound::onTile(std::size_t node, const RenderTile& tile) {
     if (it.done || it.offline || it.node != node || it.viewport != tile.viewport || !(it.rect == tile.rect)) continue;
     if (tile.outputs != it.outputs)
       throw ProtocolError(ProtocolError::Kind::Malformed, "RenderTile outputs differ from the ones asked for");
+    auto started = std::chrono::steady_clock::now();
     med::FrameBuffer px = decodePixels(tile.rect.width(), tile.rect.height(), tile.compression, tile.pixels, tile.outputs);
     med::FrameBuffer& out = targets_.at(it.target);
     auto place = [&](auto& to, const auto& from) {
@@ -64,6 +65,7 @@ const WorkItem* FrameRound::onTile(std::size_t node, const RenderTile& tile) {
     }
     it.done = true;
     tileSeconds_[node] += tile.seconds;
+    assembleSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     return &it;
   }
   return nullptr;
@@ -72,7 +74,15 @@ const WorkItem* FrameRound::onTile(std::size_t node, const RenderTile& tile) {
 void FrameRound::onDone(std::size_t node, const FrameDone& done) {
   if (done.frame != frame_) return;
   busy_[node] += done.busySeconds;
-  if (auto it = outstanding_.find(node); it != outstanding_.end() && --it->second <= 0) outstanding_.erase(it);
+  if (auto it = outstanding_.find(node); it != outstanding_.end() && --it->second <= 0) {
+    outstanding_.erase(it);
+    lastDone_ = std::chrono::steady_clock::now();
+    if (!firstDone_) firstDone_ = lastDone_;
+  }
+}
+
+double FrameRound::barrierSeconds() const {
+  return firstDone_ ? std::chrono::duration<double>(*lastDone_ - *firstDone_).count() : 0.0;
 }
 
 void FrameRound::giveUp(std::size_t item, const glm::vec4& fill) {

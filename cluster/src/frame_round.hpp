@@ -3,7 +3,10 @@
 // renders, which have arrived, and where their pixels go. Items can move to
 // another node mid-frame (a node died) or be given up (a wall tile whose
 // node is gone shows the offline fill).
+#include <chrono>
 #include <map>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "tsr/cluster/messages.hpp"
@@ -51,11 +54,23 @@ class FrameRound {
   // Gives an item up, filling its rectangle with `fill`.
   void giveUp(std::size_t item, const glm::vec4& fill);
 
+  // A node's report that it cannot render this frame: it would fail the
+  // same way on every node its work moves to. The first reason counts.
+  void fail(const std::string& reason) {
+    if (error_.empty()) error_ = reason;
+  }
+  const std::string& error() const { return error_; }
+
   bool finished() const;
   bool delivered(std::size_t node) const;  // every item of this node arrived
   const std::vector<WorkItem>& items() const { return items_; }
   const std::map<std::size_t, double>& busySeconds() const { return busy_; }
   const std::map<std::size_t, double>& tileSeconds() const { return tileSeconds_; }
+  // The client's own work: decoding and placing tiles.
+  double assembleSeconds() const { return assembleSeconds_; }
+  // From the first node's FrameDone to the last one's: how long the
+  // quickest node waits at the barrier.
+  double barrierSeconds() const;
 
  private:
   std::uint64_t frame_;
@@ -65,6 +80,9 @@ class FrameRound {
   std::map<std::size_t, double> busy_;
   std::map<std::size_t, double> tileSeconds_;
   std::map<std::size_t, int> outstanding_;
+  std::string error_;
+  double assembleSeconds_ = 0;
+  std::optional<std::chrono::steady_clock::time_point> firstDone_, lastDone_;
 };
 
 }  // namespace tsr::cluster

@@ -209,6 +209,14 @@ void SetViewports::write(sg::ByteWriter& w) const {
     w.varint(v.background);
     writeParameters(w, v.parameters);
   }
+  w.u8(window ? 1 : 0);
+  if (window) {
+    w.svarint(window->x);
+    w.svarint(window->y);
+    w.varint(window->width);
+    w.varint(window->height);
+    w.u8(window->fullscreen ? 1 : 0);
+  }
 }
 SetViewports SetViewports::read(sg::ByteReader& r) {
   SetViewports m;
@@ -224,6 +232,23 @@ SetViewports SetViewports::read(sg::ByteReader& r) {
     v.background = r.varint();
     v.parameters = readParameters(r);
     m.viewports.push_back(std::move(v));
+  }
+  std::uint8_t hasWindow = r.u8();
+  if (hasWindow > 1) r.fail("window flag must be 0 or 1");
+  if (hasWindow) {
+    WindowPlacement wp;
+    const std::int64_t limit = kMaxImageSide;
+    for (std::int32_t* v : {&wp.x, &wp.y}) {
+      std::int64_t p = r.svarint();
+      if (p < -limit || p > limit) r.fail("window position beyond +-" + std::to_string(kMaxImageSide));
+      *v = static_cast<std::int32_t>(p);
+    }
+    wp.width = readU32Varint(r, kMaxImageSide, "window width");
+    wp.height = readU32Varint(r, kMaxImageSide, "window height");
+    std::uint8_t full = r.u8();
+    if (full > 1) r.fail("fullscreen flag must be 0 or 1");
+    wp.fullscreen = full == 1;
+    m.window = wp;
   }
   return m;
 }

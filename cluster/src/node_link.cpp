@@ -32,6 +32,14 @@ void NodeLink::close() {
   });
 }
 
+void NodeLink::finish(Frame last) {
+  asio::post(io_, [self = shared_from_this(), f = std::move(last)]() mutable {
+    if (!self->conn_) return;
+    self->conn_->send(std::move(f));
+    self->conn_->closeAfterFlush();
+  });
+}
+
 void NodeLink::report(LinkEvent::Kind kind, std::uint64_t generation, std::string reason) {
   LinkEvent e;
   e.kind = kind;
@@ -42,6 +50,11 @@ void NodeLink::report(LinkEvent::Kind kind, std::uint64_t generation, std::strin
 }
 
 asio::awaitable<void> NodeLink::run(std::uint64_t generation) {
+  ++running_;
+  struct Ended {
+    std::atomic<int>& running;
+    ~Ended() { --running; }
+  } ended{running_};
   auto conn = std::make_shared<Connection>(tcp::socket(io_), Sender::Node);
   conn_ = conn;
   bool connected = false;

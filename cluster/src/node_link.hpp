@@ -20,6 +20,10 @@ class NodeLink : public std::enable_shared_from_this<NodeLink> {
   void start(std::uint64_t generation);
   void send(Frame frame);  // any thread; dropped when not connected
   void close();            // any thread
+  // Sends `last` (a Bye), then closes once everything queued is written.
+  void finish(Frame last);  // any thread
+  // A connection attempt or connection is under way (false once it ended).
+  bool running() const { return running_ > 0; }
   // Bytes of the messages the client sent through this link (heartbeats aside).
   std::uint64_t bytesSent() const { return bytesSent_; }
   std::uint64_t bytesReceived() const { return bytesReceived_; }
@@ -37,6 +41,7 @@ class NodeLink : public std::enable_shared_from_this<NodeLink> {
   Inbox& inbox_;
   std::shared_ptr<Connection> conn_;  // io thread only
   std::atomic<std::uint64_t> bytesSent_{0}, bytesReceived_{0};
+  std::atomic<int> running_{0};  // run() coroutines not yet ended
 };
 
 }  // namespace tsr::cluster

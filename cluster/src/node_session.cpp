@@ -7,7 +7,6 @@
 #include "tsr/cluster/handshake.hpp"
 #include "tsr/cluster/pixel_codec.hpp"
 #include "tsr/cluster/protocol_error.hpp"
-#include "tsr/med/image_file.hpp"
 #include "tsr/sg/errors.hpp"
 #include "tsr/sg/wire_codec.hpp"
 
@@ -15,6 +14,8 @@ namespace tsr::cluster {
 
 using Kind = ProtocolError::Kind;
 using Clock = std::chrono::steady_clock;
+// Far below any client's dead-node timeout (its default is 4 s).
+constexpr std::chrono::milliseconds kBulkAckInterval{100};
 
 namespace {
 std::string peerName(const tcp::socket& s) {
@@ -40,6 +41,11 @@ asio::awaitable<void> NodeSession::run() {
   try {
     if (!co_await handshake()) co_return;
     conn_->setIdleLimit(ctx_.options.idleTimeout);
+    // The client's heartbeats queue behind a large snapshot in the stream:
+    // while one arrives, say we are alive without being asked.
+    conn_->onBulkProgress(kBulkAckInterval, [conn = std::weak_ptr<Connection>(conn_)] {
+      if (auto c = conn.lock()) c->send(makeFrame(HeartbeatAck{0}));
+    });
     spdlog::info("session {} authenticated", peer_);
     while (conn_->isOpen()) {
       Message m = co_await conn_->receive();
@@ -152,6 +158,7 @@ void NodeSession::onSetViewports(const Message& m) {
     State& st = *self->state_;
     st.viewports.clear();
     st.settings.clear();
+    st.window = sv.window;
     for (const auto& v : sv.viewports) {
       med::ViewportSettings s;
       s.backend = v.backend;
@@ -209,7 +216,7 @@ void NodeSession::render(State& st, const NodeContext& ctx, const RenderRequest&
       tile.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
       tile.outputs = job.outputs;
       EncodedPixels px = encodePixels(fb, request.compression, job.outputs);
-      if (!ctx.options.presentDirectory.empty()) st.backBuffer.emplace_back(rect, fb);
+      if (ctx.options.presenter) st.backBuffer.push_back({rect, fb});
       tile.compression = px.compression;
       tile.pixels = std::move(px.bytes);
       conn->post(makeFrame(tile));
@@ -226,22 +233,11 @@ void NodeSession::onSwap(const Message& m) {
   // The wall's barrier released: show the tiles rendered for this frame.
   Swap swap = parse<Swap>(m);
   ctx_.worker.post([self = shared_from_this(), swap] {
-    if (self->state_->lastFrame == swap.frame) present(*self->state_, self->ctx_, swap.frame, self->peer_);
+    const State& st = *self->state_;
+    if (st.lastFrame != swap.frame || !self->ctx_.options.presenter) return;
+    spdlog::debug("session {}: presenting frame {}", self->peer_, swap.frame);
+    self->ctx_.options.presenter->present(swap.frame, st.backBuffer, st.window);
   });
-}
-
-void NodeSession::present(const State& st, const NodeContext& ctx, std::uint64_t frame, const std::string& client) {
-  spdlog::debug("session {}: presenting frame {}", client, frame);
-  if (ctx.options.presentDirectory.empty()) return;
-  for (const auto& [rect, fb] : st.backBuffer) {
-    std::string path = ctx.options.presentDirectory + "/" + ctx.options.name + "-frame" + std::to_string(frame) + "-" +
-                       std::to_string(rect.x0) + "-" + std::to_string(rect.y0) + ".exr";
-    try {
-      med::writeImage(path, fb);
-    } catch (const std::exception& e) {
-      spdlog::error("cannot present to {}: {}", path, e.what());
-    }
-  }
 }
 
 void NodeSession::onHashQuery(const Message& m) {

@@ -41,7 +41,8 @@ class NodeSession : public std::enable_shared_from_this<NodeSession> {
     std::map<Key, std::unique_ptr<med::Viewport>> viewports;  // one per (viewport, rect): tiles keep their samples
     std::uint64_t lastFrame = ~std::uint64_t{0};
     // The last frame's tiles, held until its Swap: what a wall node shows.
-    std::vector<std::pair<med::PixelRect, med::FrameBuffer>> backBuffer;
+    std::vector<PresentedTile> backBuffer;
+    std::optional<WindowPlacement> window;  // where the client's config shows our screen
     std::atomic<bool> cancelled{false};
   };
 
@@ -57,7 +58,6 @@ class NodeSession : public std::enable_shared_from_this<NodeSession> {
   void onHeartbeat(const Message& m);
 
   // Worker side.
-  static void present(const State& state, const NodeContext& ctx, std::uint64_t frame, const std::string& client);
   static void render(State& state, const NodeContext& ctx, const RenderRequest& request,
                      const std::shared_ptr<Connection>& conn);
   void failFromWorker(const std::string& reason);

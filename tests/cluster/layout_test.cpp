@@ -76,6 +76,38 @@ TEST(ClusterConfig, RejectsWhatCannotWork) {
   EXPECT_THROW(parseClusterConfig(R"({"mode": "tiled", "nodes": [{}], "wall": {"columns": 2, "rows": 2}})"), ConfigError);
   EXPECT_THROW(parseClusterConfig(R"({"nodes": [{"address": "nohost"}]})"), ConfigError);
   EXPECT_THROW(parseClusterConfig(R"({"nodes": [{"parameters": {"x": [1]}}]})"), ConfigError);
+  // Screens: a count that differs from the nodes', no frame, a screen wholly outside, eyes on some only.
+  const std::string two = R"({"mode": "tiled", "nodes": [{}, {}], "wall": )";
+  EXPECT_THROW(parseClusterConfig(two + R"({"frame": [10, 10], "screens": [{"rect": [0, 0, 5, 5]}]}})"), ConfigError);
+  EXPECT_THROW(parseClusterConfig(two + R"({"screens": [{"rect": [0, 0, 5, 5]}, {"rect": [5, 0, 5, 5]}]}})"), ConfigError);
+  EXPECT_THROW(parseClusterConfig(two + R"({"frame": [10, 10], "screens": [{"rect": [0, 0, 5, 5]}, {"rect": [20, 0, 5, 5]}]}})"),
+               ConfigError);
+  EXPECT_THROW(parseClusterConfig(two + R"({"frame": [10, 10], "screens": [{"rect": [0, 0, 5, 5], "eye": "left"},
+                                                                          {"rect": [5, 0, 5, 5]}]}})"),
+               ConfigError);
+  EXPECT_THROW(parseClusterConfig(two + R"({"frame": [10, 10], "screens": [{"rect": [0, 0, 4, 4], "bezel": 2},
+                                                                          {"rect": [5, 0, 5, 5]}]}})"),
+               ConfigError) << "a bezel that hides the whole screen";
+}
+
+// Non-uniform screens scale from the wall's frame to the rendered size; a
+// negative bezel grows a screen (clipped to the frame).
+TEST(WallLayout, ScreensScaleAndBezelsShrinkOrGrow) {
+  ClusterConfig c = parseClusterConfig(R"({"mode": "tiled", "nodes": [{}, {}, {}], "wall": {"frame": [200, 100], "screens": [
+      {"rect": [0, 0, 100, 100], "bezel": 10, "eye": "left"},
+      {"rect": [100, 0, 100, 50], "bezel": -20, "eye": "right", "window": {"position": [-1920, 0], "fullscreen": true}},
+      {"rect": [100, 50, 100, 50], "eye": "right"}]}})");
+  auto screens = wallScreens(c.wall, 100, 50);
+  ASSERT_EQ(screens.size(), 3u);
+  EXPECT_EQ(screens[0].rect, (med::PixelRect{5, 5, 45, 45}));
+  EXPECT_EQ(screens[1].rect, (med::PixelRect{40, 0, 100, 35}));
+  EXPECT_EQ(screens[2].rect, (med::PixelRect{50, 25, 100, 50}));
+  EXPECT_EQ(screens[0].eye, med::Eye::Left);
+  EXPECT_EQ(screens[2].eye, med::Eye::Right);
+  EXPECT_TRUE(c.wall.stereo());
+  ASSERT_TRUE(c.wall.screens[1].window.has_value());
+  EXPECT_EQ(c.wall.screens[1].window->x, -1920);
+  EXPECT_TRUE(c.wall.screens[1].window->fullscreen);
 }
 
 }  // namespace
@@ -85,7 +117,8 @@ namespace tsr::cluster {
 namespace {
 
 TEST(ClusterConfig, ShippedConfigsParse) {
-  for (const char* name : {"cooperative-2.json", "wall-2x2.json", "stereo-pair.json", "mixed-backends.json"}) {
+  for (const char* name : {"cooperative-2.json", "wall-2x2.json", "stereo-pair.json", "mixed-backends.json",
+                           "wall-screens.json", "wall-stereo.json"}) {
     ClusterConfig c = loadClusterConfig(std::string(TSR_CONFIG_DIR) + "/" + name);
     EXPECT_FALSE(c.nodes.empty()) << name;
   }

@@ -114,6 +114,12 @@ TEST(MessageCodec, RoundTripsCarryEveryField) {
 
   SetViewports sv = parse<SetViewports>(unframe(makeFrame(sampleViewports())));
   EXPECT_EQ(sv.viewports, sampleViewports().viewports);
+  EXPECT_FALSE(sv.window.has_value());
+  SetViewports placed = sampleViewports();
+  placed.window = WindowPlacement{-1920, 40, 1280, 0, true};
+  EXPECT_EQ(parse<SetViewports>(unframe(makeFrame(placed))).window, placed.window);
+  placed.window->x = -(1 << 20);  // beyond any desktop
+  EXPECT_THROW(parse<SetViewports>(unframe(makeFrame(placed))), ProtocolError);
 
   Welcome w = parse<Welcome>(unframe(makeFrame(Welcome{"n1", 4, {"embree", "vulkan"}})));
   EXPECT_EQ(w.nodeName, "n1");

@@ -188,7 +188,7 @@ TEST(ClusterRender, WallNodesPresentTheirTilesWhenTheBarrierReleases) {
   std::string dir = mkdtemp(dirName);
   std::vector<std::unique_ptr<NodeProcess>> nodes;
   for (int i = 0; i < 4; ++i)
-    nodes.push_back(std::make_unique<NodeProcess>(std::vector<std::string>{"--present", dir, "--name", "n" + std::to_string(i)}));
+    nodes.push_back(std::make_unique<NodeProcess>(std::vector<std::string>{"--present", "files:" + dir, "--name", "n" + std::to_string(i)}));
   Session app("builtin:cornell", configFor(ClusterMode::Tiled, nodes, pathTracer()), pathTracer());
   ASSERT_EQ(app.connect(), 4u);
   app.publish();

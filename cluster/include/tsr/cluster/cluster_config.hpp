@@ -18,6 +18,7 @@
 #include "tsr/cluster/messages.hpp"
 #include "tsr/cluster/node_address.hpp"
 #include "tsr/med/parameters.hpp"
+#include "tsr/med/view.hpp"
 
 namespace tsr::cluster {
 
@@ -41,10 +42,31 @@ struct CooperativeConfig {
   std::uint32_t maxMovesPerFrame = 4;  // a moved tile loses its samples: move little at a time
 };
 
+// One screen of a wall that is not a grid (Tide and Equalizer describe
+// walls so): its rectangle in the virtual frame, in the frame's pixels.
+struct ScreenConfig {
+  std::int32_t x = 0, y = 0;
+  std::uint32_t width = 0, height = 0;
+  // Pixels hidden behind the frame on each edge (mullion compensation);
+  // negative: the screen shows that much beyond its rectangle, as
+  // overlapping projectors do.
+  std::int32_t bezel = 0;
+  std::optional<med::Eye> eye;  // a stereo wall: which eye this screen shows
+  std::optional<WindowPlacement> window;
+};
+
 struct WallConfig {
+  // A grid: columns x rows screens with `bezel` hidden pixels between neighbours.
   std::uint32_t columns = 2, rows = 2;
-  std::uint32_t bezel = 0;                      // hidden pixels between neighbouring tiles
+  std::uint32_t bezel = 0;
+  // Or screens one by one (non-empty wins over the grid), in a virtual
+  // frame of frameWidth x frameHeight pixels scaled to the rendered size.
+  std::uint32_t frameWidth = 0, frameHeight = 0;
+  std::vector<ScreenConfig> screens;
   glm::vec4 offlineColour{0.25f, 0.0f, 0.25f, 1.0f};  // fill of a tile whose node is gone
+
+  std::size_t screenCount() const { return screens.empty() ? std::size_t{columns} * rows : screens.size(); }
+  bool stereo() const { return !screens.empty() && screens.front().eye.has_value(); }
 };
 
 struct StereoConfig {
@@ -60,6 +82,7 @@ struct Timeouts {
   std::chrono::milliseconds heartbeat{500};
   std::chrono::milliseconds deadAfter{4000};  // no message for this long: the node is gone
   std::chrono::milliseconds retry{1000};      // between reconnection attempts
+  std::chrono::milliseconds late{1000};       // a node this long in one phase of a frame is reported
 };
 
 struct ClusterConfig {

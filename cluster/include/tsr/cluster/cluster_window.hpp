@@ -38,13 +38,22 @@ struct ClientOptions {
 
 enum class NodeState { Offline, Connecting, Joined, Synced };
 
+// What the client waits for from a node: the connection, its replica
+// catching up (a snapshot or change lists), its tiles, or its FrameDone
+// before the frame's barrier releases. Idle: nothing.
+enum class NodePhase { Idle, Connect, Snapshot, Render, Barrier };
+const char* name(NodePhase phase);
+
 struct NodeStatus {
   NodeAddress address;
   std::string name;       // as the node calls itself
   NodeState state = NodeState::Offline;
   std::uint64_t appliedVersion = 0;
-  std::uint64_t bytesSent = 0;  // messages sent to this node, heartbeats aside
+  std::uint64_t bytesSent = 0;      // messages sent to this node, heartbeats aside
+  std::uint64_t bytesReceived = 0;  // messages received from it
   std::string lastError;
+  NodePhase phase = NodePhase::Idle;
+  std::chrono::steady_clock::time_point phaseSince{};
 };
 
 struct ClusterFrame {
@@ -55,6 +64,13 @@ struct ClusterFrame {
   std::vector<double> tileSeconds;  // per node: the part spent rendering its tiles
   std::size_t offlineTiles = 0;     // wall tiles shown as offline fill
   std::size_t reassignedItems = 0;  // work taken over from nodes lost during the frame
+  // Nodes that were late (past timeouts.late in one phase) during the frame:
+  // one line each, "ADDRESS (NAME): PHASE since HH:MM:SS.mmm (S s)".
+  std::vector<std::string> lateNodes;
+  // The client's share: decoding and placing tiles, and the spread of the
+  // nodes' FrameDone (the barrier's wait for the slowest).
+  double assembleSeconds = 0;
+  double barrierSeconds = 0;
 };
 
 struct ReplicaHash {

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -99,9 +100,18 @@ struct ViewportSpec {
   bool operator==(const ViewportSpec&) const = default;
 };
 
+// Where a wall node shows its screen (tessera-node --present window).
+struct WindowPlacement {
+  std::int32_t x = 0, y = 0;            // desktop position of the window
+  std::uint32_t width = 0, height = 0;  // 0: the size of the screen's pixels
+  bool fullscreen = false;
+  bool operator==(const WindowPlacement&) const = default;
+};
+
 struct SetViewports {
   static constexpr MessageType kType = MessageType::SetViewports;
   std::vector<ViewportSpec> viewports;  // replaces every viewport the node holds for us
+  std::optional<WindowPlacement> window = {};  // a wall screen's window, where the config places it
   void write(sg::ByteWriter& w) const;
   static SetViewports read(sg::ByteReader& r);
 };

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "tsr/cluster/node_address.hpp"
+#include "tsr/cluster/presenter.hpp"
 #include "tsr/med/viewport_registry.hpp"
 
 namespace tsr::cluster {
@@ -21,9 +22,9 @@ struct NodeOptions {
   bool insecure = false;
   std::string name = "node";
   unsigned threads = 0;           // default "threads" parameter of viewports; 0 leaves it to the back-end
-  // A headless node "presents" a wall tile by writing it here when the
-  // swap barrier releases its frame (empty: presenting is a no-op).
-  std::string presentDirectory;
+  // What the node does with its wall tiles when the swap barrier releases a
+  // frame (null: nothing, and tiles are not kept for it).
+  std::shared_ptr<Presenter> presenter;
   std::chrono::milliseconds handshakeTimeout{5000};
   std::chrono::milliseconds idleTimeout{15000};  // clients heartbeat far more often than this
 };

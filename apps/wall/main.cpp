@@ -1,0 +1,234 @@
+// tessera-wall CONFIG SCENE [--nodes A,B,...] [--token-file F] [--frames N] [--spp N] [--fps F]
+//              [--size WxH] [--max-fps F] [--status-every S] [--output FILE]
+// Plays a scene's animation on a display wall (Schwenk 5.3.4): each node of
+// the config renders its screen and presents it when the swap barrier
+// releases the frame. Prints the frame rate and every node's status; a
+// node that drops out has its tile marked and is taken back when it
+// returns; a late node is named with its phase and since when.
+// Errors: one "error:" line on stderr, exit status 2.
+#include <atomic>
+#include <csignal>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include <CLI/CLI.hpp>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include "scene_session.hpp"
+#include "tsr/cluster/auth.hpp"
+#include "tsr/cluster/cluster_window.hpp"
+#include "tsr/med/file_replacement.hpp"
+#include "tsr/med/image_file.hpp"
+#include "tsr/sg/import/importer.hpp"
+
+namespace {
+
+std::atomic<bool> interrupted{false};
+
+using tsr::cluster::NodeState;
+using Clock = std::chrono::steady_clock;
+
+struct Options {
+  std::string config, scene, nodes, tokenFile, size, output;
+  std::uint64_t frames = 0;  // 0: until interrupted
+  std::int64_t spp = 0;      // 0: the config's
+  double fps = 24.0;
+  double maxFps = 0.0;  // 0: as fast as the nodes go
+  double statusEvery = 1.0;
+};
+
+std::pair<std::uint32_t, std::uint32_t> parseSize(const std::string& text) {
+  unsigned w = 0, h = 0;
+  char x = 0, extra = 0;
+  std::istringstream in(text);
+  if (!(in >> w >> x >> h) || x != 'x' || in >> extra || w == 0 || h == 0 || w > 32768 || h > 32768 ||
+      std::uint64_t{w} * h > 8192ull * 8192ull)
+    throw std::invalid_argument("--size must be WxH, each 1..32768, at most 8192x8192 pixels in all, not '" + text + "'");
+  return {w, h};
+}
+
+const char* stateName(NodeState s) {
+  switch (s) {
+    case NodeState::Offline: return "OFFLINE";
+    case NodeState::Connecting: return "connecting";
+    case NodeState::Joined: return "joined";
+    case NodeState::Synced: return "ok";
+  }
+  return "?";
+}
+
+std::string statusLine(const tsr::cluster::ClusterWindow& wall, std::uint64_t frame, double fps,
+                       const tsr::cluster::ClusterFrame& last) {
+  std::ostringstream out;
+  out << "frame " << frame << "  " << std::fixed;
+  out.precision(1);
+  out << fps << " fps";
+  if (last.offlineTiles) out << "  " << last.offlineTiles << " tile(s) marked offline";
+  auto status = wall.status();
+  for (std::size_t i = 0; i < status.size(); ++i) {
+    const auto& s = status[i];
+    out << "\n  screen " << i << "  " << s.address.text() << " " << (s.name.empty() ? "?" : s.name) << "  "
+        << stateName(s.state);
+    if (s.state != NodeState::Synced) {
+      auto ago = std::chrono::duration<double>(Clock::now() - s.phaseSince).count();
+      out << " for " << ago << " s (" << tsr::cluster::name(s.phase) << ")";
+      if (!s.lastError.empty()) out << ": " << s.lastError;
+    } else if (i < last.busySeconds.size()) {
+      out.precision(3);
+      out << "  busy " << last.busySeconds[i] << " s";
+      out.precision(1);
+    }
+  }
+  return out.str();
+}
+
+int run(const Options& o) {
+  tsr::cluster::ClusterConfig config = tsr::cluster::loadClusterConfig(o.config);
+  if (config.mode != tsr::cluster::ClusterMode::Tiled)
+    throw std::invalid_argument(o.config + ": a wall needs \"mode\": \"tiled\"");
+  if (!o.nodes.empty()) config.replaceAddresses(tsr::cluster::parseNodeList(o.nodes));
+  if (o.spp > 0)
+    for (auto& n : config.nodes) n.parameters.set("spp", o.spp);
+  config.validate();
+  std::uint32_t width = config.wall.frameWidth ? config.wall.frameWidth : 960;
+  std::uint32_t height = config.wall.frameHeight ? config.wall.frameHeight : 540;
+  if (!o.size.empty()) std::tie(width, height) = parseSize(o.size);
+
+  tsr::app::SceneSession session;
+  session.load(o.scene);
+  tsr::cluster::ClientOptions client;
+  if (!o.tokenFile.empty()) client.token = tsr::cluster::readTokenFile(o.tokenFile);
+  client.name = "tessera-wall";
+  tsr::cluster::ClusterWindow wall(config, client);
+  wall.setContent(session.imported.root, session.imported.background);
+  std::size_t online = wall.connect(config.timeouts.connect);
+  std::cout << online << " of " << config.nodes.size() << " nodes online; " << width << "x" << height << ", "
+            << session.imported.animations.size() << " animation(s)" << std::endl;
+
+  std::vector<NodeState> before(config.nodes.size(), NodeState::Offline);
+  auto started = Clock::now(), lastStatus = started;
+  std::uint64_t framesSinceStatus = 0;
+  tsr::cluster::ClusterFrame last;
+  // The client's cost per frame after the first (which carries the snapshots).
+  struct Totals {
+    std::uint64_t frames = 0, sent = 0, received = 0;
+    double seconds = 0, assemble = 0, barrier = 0;
+  } totals;
+  auto bytes = [&] {
+    std::pair<std::uint64_t, std::uint64_t> b{0, 0};
+    for (const auto& s : wall.status()) {
+      b.first += s.bytesSent;
+      b.second += s.bytesReceived;
+    }
+    return b;
+  };
+  auto nextFrameAt = started;
+  for (std::uint64_t frame = 0; (o.frames == 0 || frame < o.frames) && !interrupted; ++frame) {
+    if (o.maxFps > 0) {
+      std::this_thread::sleep_until(nextFrameAt);
+      nextFrameAt = std::max(nextFrameAt + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / o.maxFps)),
+                             Clock::now() - std::chrono::seconds(1));
+    }
+    for (const auto& animation : session.imported.animations)
+      animation.apply(session.source, static_cast<float>(static_cast<double>(frame) / o.fps));
+    auto frameStarted = Clock::now();
+    auto bytesBefore = bytes();
+    auto delta = session.publish();
+    wall.publish(session.source, delta);
+    const tsr::sg::Camera* camera = session.source.find<tsr::sg::Camera>(session.camera);
+    last = wall.render(tsr::med::View::fromCamera(*camera, width, height));
+    ++framesSinceStatus;
+    if (frame > 0) {
+      auto bytesAfter = bytes();
+      ++totals.frames;
+      totals.seconds += std::chrono::duration<double>(Clock::now() - frameStarted).count();
+      totals.assemble += last.assembleSeconds;
+      totals.barrier += last.barrierSeconds;
+      totals.sent += bytesAfter.first - bytesBefore.first;
+      totals.received += bytesAfter.second - bytesBefore.second;
+    }
+    for (const auto& late : last.lateNodes) std::cout << "late: frame " << last.frame << ": " << late << std::endl;
+    auto status = wall.status();
+    for (std::size_t i = 0; i < status.size(); ++i) {
+      bool wasIn = before[i] == NodeState::Synced, isIn = status[i].state == NodeState::Synced;
+      if (wasIn && !isIn)
+        std::cout << "node " << status[i].address.text() << " dropped out (" << status[i].lastError
+                  << "): screen " << i << " marked offline" << std::endl;
+      if (!wasIn && isIn && frame > 0) std::cout << "node " << status[i].address.text() << " is back on screen " << i << std::endl;
+      before[i] = status[i].state;
+    }
+    auto now = Clock::now();
+    double since = std::chrono::duration<double>(now - lastStatus).count();
+    bool lastFrame = o.frames != 0 && frame + 1 == o.frames;
+    if (since >= o.statusEvery || lastFrame) {
+      std::cout << statusLine(wall, last.frame, static_cast<double>(framesSinceStatus) / std::max(since, 1e-9), last)
+                << std::endl;
+      lastStatus = now;
+      framesSinceStatus = 0;
+    }
+  }
+  if (totals.frames > 0) {
+    double n = static_cast<double>(totals.frames);
+    std::cout << std::fixed;
+    std::cout.precision(3);
+    std::cout << "client per frame (" << totals.frames << " frames after the first): " << 1e3 * totals.seconds / n
+              << " ms in all, " << 1e3 * totals.assemble / n << " ms assembling tiles, " << 1e3 * totals.barrier / n
+              << " ms barrier spread, " << static_cast<double>(totals.sent) / n << " bytes sent, "
+              << static_cast<double>(totals.received) / n << " bytes received" << std::endl;
+  }
+  if (!o.output.empty() && last.image.width > 0) {
+    tsr::med::replaceFile(o.output, [&](const std::string& temporary) { tsr::med::writeImage(temporary, last.image); });
+    std::cout << "wrote " << o.output << std::endl;
+  }
+  return 0;
+}
+
+std::string oneLine(std::string message) {
+  for (char& c : message)
+    if (c == '\n') c = ' ';
+  return message;
+}
+
+}  // namespace
+
+
+int main(int argc, char** argv) {
+  CLI::App app{"Tessera display wall: plays a scene on the nodes of a tiled config, swapping their screens together"};
+  Options o;
+  std::string logLevel = "warn";
+  app.add_option("CONFIG", o.config, "cluster config with \"mode\": \"tiled\" (a grid or screens, see configs/)")->required();
+  app.add_option("SCENE", o.scene, "a .gltf/.glb file or builtin:cornell, builtin:animated, builtin:instances:N")->required();
+  app.add_option("--nodes", o.nodes, "node addresses A:P,B:Q,... in screen order (default: the config's)");
+  app.add_option("--token-file", o.tokenFile, "file holding the token the nodes were started with");
+  app.add_option("--frames", o.frames, "frames to play (0: until interrupted)")->capture_default_str();
+  app.add_option("--spp", o.spp, "samples per pixel on every node (0: the config's)")->capture_default_str();
+  app.add_option("--fps", o.fps, "animation frames per second of scene time")->capture_default_str()->check(CLI::Range(0.001, 1000.0));
+  app.add_option("--max-fps", o.maxFps, "at most this many frames a second (0: as fast as the nodes render)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1000.0));
+  app.add_option("--size", o.size, "virtual frame WxH (default: the config's wall frame, else 960x540)");
+  app.add_option("--status-every", o.statusEvery, "seconds between status lines")->capture_default_str()->check(CLI::Range(0.0, 3600.0));
+  app.add_option("--output", o.output, "write the last stitched frame here (PNG, EXR, ...)");
+  app.add_option("--log-level", logLevel, "trace, debug, info, warn, error")->capture_default_str();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "error: " << oneLine(e.what()) << "\n";
+    return 2;
+  }
+  try {
+    spdlog::set_default_logger(spdlog::stderr_color_mt("wall"));
+    spdlog::set_level(spdlog::level::from_str(logLevel));
+    std::signal(SIGINT, [](int) { interrupted = true; });
+    std::signal(SIGTERM, [](int) { interrupted = true; });
+    return run(o);
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << oneLine(e.what()) << "\n";
+    return 2;
+  }
+}
