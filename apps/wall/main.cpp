@@ -16,6 +16,10 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include "command_line.hpp"
+#include "error_line.hpp"
+#include "import_limit_options.hpp"
+#include "render_options.hpp"
 #include "scene_session.hpp"
 #include "tsr/cluster/auth.hpp"
 #include "tsr/cluster/cluster_window.hpp"
@@ -31,23 +35,14 @@ using tsr::cluster::NodeState;
 using Clock = std::chrono::steady_clock;
 
 struct Options {
-  std::string config, scene, nodes, tokenFile, size, output;
+  std::string config, scene, nodes, tokenFile, size, output, camera;
+  tsr::sg::ImportOptions import;
   std::uint64_t frames = 0;  // 0: until interrupted
   std::int64_t spp = 0;      // 0: the config's
   double fps = 24.0;
   double maxFps = 0.0;  // 0: as fast as the nodes go
   double statusEvery = 1.0;
 };
-
-std::pair<std::uint32_t, std::uint32_t> parseSize(const std::string& text) {
-  unsigned w = 0, h = 0;
-  char x = 0, extra = 0;
-  std::istringstream in(text);
-  if (!(in >> w >> x >> h) || x != 'x' || in >> extra || w == 0 || h == 0 || w > 32768 || h > 32768 ||
-      std::uint64_t{w} * h > 8192ull * 8192ull)
-    throw std::invalid_argument("--size must be WxH, each 1..32768, at most 8192x8192 pixels in all, not '" + text + "'");
-  return {w, h};
-}
 
 const char* stateName(NodeState s) {
   switch (s) {
@@ -94,10 +89,12 @@ int run(const Options& o) {
   config.validate();
   std::uint32_t width = config.wall.frameWidth ? config.wall.frameWidth : 960;
   std::uint32_t height = config.wall.frameHeight ? config.wall.frameHeight : 540;
-  if (!o.size.empty()) std::tie(width, height) = parseSize(o.size);
+  if (!o.size.empty()) tsr::app::parseSize(o.size, width, height);
 
   tsr::app::SceneSession session;
-  session.load(o.scene);
+  tsr::app::ViewChoice view;
+  view.camera = o.camera;
+  session.load(o.scene, o.import, view);
   tsr::cluster::ClientOptions client;
   if (!o.tokenFile.empty()) client.token = tsr::cluster::readTokenFile(o.tokenFile);
   client.name = "tessera-wall";
@@ -185,14 +182,7 @@ int run(const Options& o) {
   return 0;
 }
 
-std::string oneLine(std::string message) {
-  for (char& c : message)
-    if (c == '\n') c = ' ';
-  return message;
-}
-
 }  // namespace
-
 
 int main(int argc, char** argv) {
   CLI::App app{"Tessera display wall: plays a scene on the nodes of a tiled config, swapping their screens together"};
@@ -210,25 +200,21 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 1000.0));
   app.add_option("--size", o.size, "virtual frame WxH (default: the config's wall frame, else 960x540)");
   app.add_option("--status-every", o.statusEvery, "seconds between status lines")->capture_default_str()->check(CLI::Range(0.0, 3600.0));
+  app.add_option("--camera", o.camera, "the scene camera to play through: its name or index (default: the first)");
   app.add_option("--output", o.output, "write the last stitched frame here (PNG, EXR, ...)");
   app.add_option("--log-level", logLevel, "trace, debug, info, warn, error")->capture_default_str();
+  tsr::app::ImportLimitOptions importLimits;
+  importLimits.add(app, o.import);
   try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp&) {
-    std::cout << app.help();
-    return 0;
-  } catch (const CLI::ParseError& e) {
-    std::cerr << "error: " << oneLine(e.what()) << "\n";
-    return 2;
-  }
-  try {
+    if (!tsr::app::parseCommandLine(app, argc, argv)) return 0;
+    importLimits.apply(o.import);
     spdlog::set_default_logger(spdlog::stderr_color_mt("wall"));
     spdlog::set_level(spdlog::level::from_str(logLevel));
     std::signal(SIGINT, [](int) { interrupted = true; });
     std::signal(SIGTERM, [](int) { interrupted = true; });
     return run(o);
   } catch (const std::exception& e) {
-    std::cerr << "error: " << oneLine(e.what()) << "\n";
+    tsr::app::printError(e.what());
     return 2;
   }
 }

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "cluster_test_util.hpp"
-#include "throttled_proxy.hpp"
+#include "loopback_proxy.hpp"
 #include "tsr/cluster/cluster_window.hpp"
 #include "tsr/med/embree/register.hpp"
 #include "tsr/sg/geometry.hpp"
@@ -18,7 +18,9 @@ using namespace std::chrono_literals;
 TEST(ClusterLiveness, SlowSnapshotAndTileDoNotCountAsADeadNode) {
   NodeProcess node;
   constexpr std::size_t kRate = 1 << 20;  // 1 MiB/s each way
-  ThrottledProxy proxy(node.address(), kRate);
+  LoopbackProxy proxy(node.address());
+  proxy.setRate(kRate);
+  proxy.setSocketBuffers(16 * 1024);
 
   AnimatedScene s("builtin:cornell");
   // Ballast no viewport shows (it hangs under no root): 4 MiB of points.

@@ -53,6 +53,10 @@ class LoopbackProxy {
   const NodeAddress& address() const { return address_; }
   // Bytes per second in each direction; 0: unlimited.
   void setRate(std::uint64_t bytesPerSecond) { rate_ = bytesPerSecond; }
+  // Socket buffers of this many bytes on connections accepted from now on
+  // (0: the kernel's), so that megabytes of kernel buffering do not hide a
+  // slow rate from the sender.
+  void setSocketBuffers(int bytes) { socketBuffers_ = bytes; }
   // Closes every open connection now.
   void cutAll() { ++cutGeneration_; }
   // Closes the next connection once it has carried this many bytes towards
@@ -81,6 +85,11 @@ class LoopbackProxy {
       int client = accept(listener_, nullptr, nullptr);
       if (client < 0) continue;
       int node = socket(AF_INET, SOCK_STREAM, 0);
+      if (int size = socketBuffers_; size > 0)
+        for (int fd : {client, node}) {
+          setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &size, sizeof size);
+          setsockopt(fd, SOL_SOCKET, SO_SNDBUF, &size, sizeof size);
+        }
       sockaddr_in addr{};
       addr.sin_family = AF_INET;
       addr.sin_port = htons(target_.port);
@@ -147,6 +156,7 @@ class LoopbackProxy {
   int listener_ = -1;
   std::atomic<bool> stopping_{false};
   std::atomic<std::uint64_t> rate_{0};
+  std::atomic<int> socketBuffers_{0};
   std::atomic<std::uint64_t> cutAfter_{0};
   std::atomic<std::uint64_t> cutGeneration_{0};
   std::atomic<std::uint64_t> cuts_{0};
