@@ -42,6 +42,7 @@ struct Options {
   double fps = 24.0;
   double maxFps = 0.0;  // 0: as fast as the nodes go
   double statusEvery = 1.0;
+  bool pixelsBack = false;
 };
 
 const char* stateName(NodeState s) {
@@ -135,6 +136,9 @@ int run(const Options& o) {
     auto delta = session.publish();
     wall.publish(session.source, delta);
     const tsr::sg::Camera* camera = session.source.find<tsr::sg::Camera>(session.camera);
+    // The nodes present their screens themselves: pixels travel to this
+    // client only for the frame --output writes (with --frames 0, every one).
+    wall.keepPixelsOnNodes(!o.pixelsBack && (o.output.empty() || (o.frames != 0 && frame + 1 != o.frames)));
     last = wall.render(tsr::med::View::fromCamera(*camera, width, height));
     ++framesSinceStatus;
     if (frame > 0) {
@@ -201,7 +205,10 @@ int main(int argc, char** argv) {
   app.add_option("--size", o.size, "virtual frame WxH (default: the config's wall frame, else 960x540)");
   app.add_option("--status-every", o.statusEvery, "seconds between status lines")->capture_default_str()->check(CLI::Range(0.0, 3600.0));
   app.add_option("--camera", o.camera, "the scene camera to play through: its name or index (default: the first)");
-  app.add_option("--output", o.output, "write the last stitched frame here (PNG, EXR, ...)");
+  app.add_option("--output", o.output, "write the last stitched frame here (PNG, EXR, ...); only that frame's pixels come back from the nodes");
+  app.add_flag("--pixels-back", o.pixelsBack,
+               "every frame's pixels come back to this client, as they would for a preview (default: they stay on "
+               "the nodes, which present them)");
   app.add_option("--log-level", logLevel, "trace, debug, info, warn, error")->capture_default_str();
   tsr::app::ImportLimitOptions importLimits;
   importLimits.add(app, o.import);

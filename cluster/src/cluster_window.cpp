@@ -71,6 +71,7 @@ struct ClusterWindow::Impl {
   std::size_t reassigned = 0;
   std::uint64_t hashToken = 0;
   std::uint64_t frame = 0;
+  bool keepPixels = false;
   Eyes eyes;
   sg::ContainerId root = sg::kNoContainer, background = sg::kNoContainer;
   // The local viewport that resolves assembled frames, and what it needs.
@@ -432,9 +433,13 @@ ClusterFrame ClusterWindow::render(const med::View& view) {
   result.frame = ++s.frame;
   std::vector<med::FrameBuffer> targets;
   std::vector<WorkItem> items = s.strategy->plan(view, s.eyes, live, targets);
-  s.makeResolver();
-  s.askOutputs(items, targets);
-  FrameRound round(result.frame, std::move(items), targets, s.config.compression);
+  // Pixels left on the nodes are resolved there: the client never sees them.
+  result.pixelsKept = s.keepPixels && s.config.mode == ClusterMode::Tiled;
+  if (!result.pixelsKept) {
+    s.makeResolver();
+    s.askOutputs(items, targets);
+  }
+  FrameRound round(result.frame, std::move(items), targets, result.pixelsKept ? Compression::Kept : s.config.compression);
   s.reassigned = 0;
 
   for (std::size_t i = 0; i < round.items().size(); ++i)
@@ -474,7 +479,7 @@ ClusterFrame ClusterWindow::render(const med::View& view) {
   result.reassignedItems = s.reassigned;
   result.assembleSeconds = round.assembleSeconds();
   result.barrierSeconds = round.barrierSeconds();
-  if (s.resolver) {
+  if (s.resolver && !result.pixelsKept) {
     for (auto& t : targets) {
       s.resolver->resolve(t);
       for (const auto& name : s.resolveInputs)
@@ -485,6 +490,8 @@ ClusterFrame ClusterWindow::render(const med::View& view) {
   s.strategy->compose(targets, result);
   return result;
 }
+
+void ClusterWindow::keepPixelsOnNodes(bool keep) { impl_->keepPixels = keep; }
 
 void ClusterWindow::setEyes(float separation, float zeroParallax) {
   // The config's values, where it gives them, win over the application's.

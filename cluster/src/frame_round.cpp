@@ -49,6 +49,16 @@ const WorkItem* FrameRound::onTile(std::size_t node, const RenderTile& tile) {
     if (it.done || it.offline || it.node != node || it.viewport != tile.viewport || !(it.rect == tile.rect)) continue;
     if (tile.outputs != it.outputs)
       throw ProtocolError(ProtocolError::Kind::Malformed, "RenderTile outputs differ from the ones asked for");
+    if ((tile.compression == Compression::Kept) != (compression_ == Compression::Kept))
+      throw ProtocolError(ProtocolError::Kind::Malformed, compression_ == Compression::Kept
+                                                              ? "RenderTile carries pixels the client left on the node"
+                                                              : "RenderTile without the pixels asked for");
+    if (tile.compression == Compression::Kept) {
+      if (!tile.pixels.empty()) throw ProtocolError(ProtocolError::Kind::Malformed, "a kept RenderTile carries bytes");
+      it.done = true;
+      tileSeconds_[node] += tile.seconds;
+      return &it;
+    }
     auto started = std::chrono::steady_clock::now();
     med::FrameBuffer px = decodePixels(tile.rect.width(), tile.rect.height(), tile.compression, tile.pixels, tile.outputs);
     med::FrameBuffer& out = targets_.at(it.target);

@@ -113,7 +113,7 @@ med::Parameters readParameters(sg::ByteReader& r) {
 Compression readCompression(sg::ByteReader& r) {
   std::size_t at = r.offset();
   std::uint8_t c = r.u8();
-  if (c > static_cast<std::uint8_t>(Compression::Zstd)) throw sg::DecodeError(at, "unknown compression " + std::to_string(c));
+  if (c > static_cast<std::uint8_t>(Compression::Kept)) throw sg::DecodeError(at, "unknown compression " + std::to_string(c));
   return static_cast<Compression>(c);
 }
 

@@ -215,10 +215,14 @@ void NodeSession::render(State& st, const NodeContext& ctx, const RenderRequest&
       tile.rect = rect;
       tile.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
       tile.outputs = job.outputs;
-      EncodedPixels px = encodePixels(fb, request.compression, job.outputs);
-      if (ctx.options.presenter) st.backBuffer.push_back({rect, fb});
-      tile.compression = px.compression;
-      tile.pixels = std::move(px.bytes);
+      if (request.compression == Compression::Kept) {
+        tile.compression = Compression::Kept;
+      } else {
+        EncodedPixels px = encodePixels(fb, request.compression, job.outputs);
+        tile.compression = px.compression;
+        tile.pixels = std::move(px.bytes);
+      }
+      if (ctx.options.presenter) st.backBuffer.push_back({rect, std::move(fb)});
       conn->post(makeFrame(tile));
     }
   }

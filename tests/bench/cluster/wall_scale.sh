@@ -1,22 +1,28 @@
 #!/usr/bin/env bash
 # The client's per-frame cost of a display wall against its node count:
-# walls of N tessera-node processes on loopback (tiny 32x24 screens, a cheap
+# walls of N tessera-node processes on loopback (tiny screens, 32x24 unless --tile, a cheap
 # back-end so rendering is not what is measured) played by tessera-wall.
 # Reports per frame: wall-clock time, time assembling tiles, the barrier's
 # spread (first to last node done), bytes sent and received, and each as a
 # ratio to the smallest wall.
 #
+# With --pixels-back every frame's pixels also travel to the client (a
+# preview); by default they stay on the nodes, which present them.
+#
 #   tests/bench/cluster/wall_scale.sh [--build DIR] [--counts "4 16 32"] [--backend coverage|vulkan] [--frames N]
+#                                     [--tile WxH] [--pixels-back]
 set -euo pipefail
 
-build=build/default counts="4 16 32" backend=coverage frames=60
+build=build/default counts="4 16 32" backend=coverage frames=60 tile=32x24 back=""
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --build) build=$2; shift 2 ;;
     --counts) counts=$2; shift 2 ;;
     --backend) backend=$2; shift 2 ;;
     --frames) frames=$2; shift 2 ;;
-    -h|--help) sed -n '2,9p' "$0"; exit 0 ;;
+    --tile) tile=$2; shift 2 ;;
+    --pixels-back) back=--pixels-back; shift ;;
+    -h|--help) sed -n '2,13p' "$0"; exit 0 ;;
     *) echo "error: unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -63,7 +69,7 @@ for n in $counts; do
 JSON
   start_nodes "$n"
   line=$("$wall" "$work/wall.json" builtin:animated --nodes "$(cat "$work/addresses")" --frames "$frames" \
-           --size $((columns * 32))x$((rows * 24)) --status-every 1000 | grep "client per frame")
+           --size $((columns * ${tile%x*}))x$((rows * ${tile#*x})) --status-every 1000 $back | grep "client per frame")
   stop_nodes
   read -r ms assemble barrier sent received < <(echo "$line" |
     sed -E 's/.*: ([0-9.]+) ms in all, ([0-9.]+) ms assembling tiles, ([0-9.]+) ms barrier spread, ([0-9.]+) bytes sent, ([0-9.]+) bytes received/\1 \2 \3 \4 \5/')

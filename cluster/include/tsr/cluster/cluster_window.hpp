@@ -71,6 +71,9 @@ struct ClusterFrame {
   // nodes' FrameDone (the barrier's wait for the slowest).
   double assembleSeconds = 0;
   double barrierSeconds = 0;
+  // The wall's pixels stayed on the nodes (keepPixelsOnNodes): `image`
+  // holds only the offline fill.
+  bool pixelsKept = false;
 };
 
 struct ReplicaHash {
@@ -109,6 +112,12 @@ class ClusterWindow {
   // Throws ClusterError when no node is left to render (wall: never; its
   // tiles show the offline fill).
   ClusterFrame render(const med::View& view);
+  // Wall (tiled) mode: true lets the nodes keep their pixels, present them
+  // and send none back, so the client's traffic no longer grows with the
+  // wall's pixel count. For a client that shows no picture itself; the
+  // frame then comes back without one (ClusterFrame::pixelsKept). Other
+  // modes ignore it. Default false.
+  void keepPixelsOnNodes(bool keep);
   // Stereo: eye separation and zero-parallax distance (the scene camera's);
   // values the config gives take precedence.
   void setEyes(float separation, float zeroParallax);

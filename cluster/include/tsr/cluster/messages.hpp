@@ -116,7 +116,9 @@ struct SetViewports {
   static SetViewports read(sg::ByteReader& r);
 };
 
-enum class Compression : std::uint8_t { None = 0, Lz4 = 1, Zstd = 2 };
+// Kept: the pixels stay on the node, which presents them itself (a display
+// wall that only needs the swap barrier); its tiles carry no pixels.
+enum class Compression : std::uint8_t { None = 0, Lz4 = 1, Zstd = 2, Kept = 3 };
 
 struct RenderJob {
   std::uint32_t viewport = 0;
