@@ -301,6 +301,8 @@ RenderTile RenderTile::read(sg::ByteReader& r) {
   m.seconds = readSeconds(r);
   m.outputs = readOutputNames(r);
   m.compression = readCompression(r);
+  if (m.compression == Compression::Kept && r.remaining() != 0)
+    throw sg::DecodeError(r.offset(), "pixels kept on the node, yet the tile carries bytes");
   auto rest = r.take(r.remaining(), "pixels");
   m.pixels.assign(rest.begin(), rest.end());  // sizes are checked by decodePixels
   return m;

@@ -223,6 +223,14 @@ TEST(MessageCodec, ValidationRejectsNonsenseValues) {
   r.jobs[0].view.region = {0, 0, 8192, 8192};
   r.jobs[0].rects = {{0, 0, 8192, 8192}};
   EXPECT_THROW(parse<RenderRequest>(unframe(makeFrame(r))), ProtocolError);
+  // A wall node keeping its pixels sends a tile without them, and only without them.
+  RenderTile kept = parse<RenderTile>(unframe(makeFrame(RenderTile{5, 1, {1, 2, 3, 4}, 0.5, Compression::Kept, {}})));
+  EXPECT_EQ(kept.compression, Compression::Kept);
+  EXPECT_TRUE(kept.pixels.empty());
+  EXPECT_THROW(parse<RenderTile>(unframe(makeFrame(RenderTile{5, 1, {1, 2, 3, 4}, 0.5, Compression::Kept, {1}}))),
+               ProtocolError);
+  EXPECT_THROW(parse<RenderTile>(unframe(makeFrame(RenderTile{5, 1, {1, 2, 3, 4}, 0.5, Compression(4), {}}))),
+               ProtocolError);
   SetViewports sv = sampleViewports();
   sv.viewports.push_back(sv.viewports[0]);  // the same id twice
   EXPECT_THROW(parse<SetViewports>(unframe(makeFrame(sv))), ProtocolError);
