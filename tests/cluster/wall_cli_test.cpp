@@ -113,5 +113,36 @@ TEST(WallCli, NonUniformWallStitchesToTheLocalRender) {
   EXPECT_EQ(stitched.colour[stitched.index(0, 39)], glm::vec4(0.0f));
 }
 
+#ifdef TSR_MPIRUN
+// The same wall started the way a cluster starts it: mpirun places the
+// client (rank 0, tessera-wall) and four nodes presenting to files, which
+// meet through a rendezvous folder (tessera-launch).
+TEST(WallCli, MpirunStartsTheWallOnLoopback) {
+  TempDir dir;
+  const fs::path present = dir.path / "present", meet = dir.path / "meet", out = dir.path / "wall.exr";
+  fs::create_directories(present);
+  fs::create_directories(meet);
+  const std::string command = std::string(TSR_MPIRUN) + " --allow-run-as-root --oversubscribe -np 5 " +
+                              TSR_LAUNCH_BINARY + " --rendezvous " + meet.string() +
+                              " --threads 1 --node-arg=--present --node-arg=files:" + present.string() + " -- " +
+                              TSR_WALL_BINARY + " " + gridConfig(dir.path) +
+                              " builtin:animated --frames 2 --size 48x40 --output " + out.string();
+  const fs::path log = dir.path / "mpirun.log";
+  const int raw = std::system((command + " > '" + log.string() + "' 2>&1").c_str());
+  ASSERT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << slurp(log);
+  EXPECT_NE(slurp(log).find("4 of 4 nodes online"), std::string::npos) << slurp(log);
+  const med::FrameBuffer ref = localFrame(1, 48, 40);
+  expectTileEquals(med::readImage(out.string()), ref, {0, 0, 48, 40}, "the stitched frame");
+  // Ranks 1..4 are the screens in rank order; each presented its part of frame 2.
+  auto rects = wallLayout(48, 40, 2, 2, 0);
+  for (std::size_t i = 0; i < 4; ++i) {
+    const fs::path tile = present / ("rank-" + std::to_string(i + 1) + "-frame2-" + std::to_string(rects[i].x0) + "-" +
+                                     std::to_string(rects[i].y0) + ".exr");
+    ASSERT_TRUE(fs::exists(tile)) << tile << "\n" << slurp(log);
+    expectTileEquals(med::readImage(tile.string()), ref, rects[i], "rank " + std::to_string(i + 1));
+  }
+}
+#endif
+
 }  // namespace
 }  // namespace tsr::cluster::test
