@@ -255,6 +255,32 @@ TEST(ClusterRender, StereoPairComposedEqualsLocalComposition) {
   EXPECT_GT(f.busySeconds[1], 0.0);
 }
 
+// A stereo wall is one config: each screen names its eye. Two screens per
+// eye, side by side, stitch to the local left and right eye renders.
+TEST(ClusterRender, StereoWallInOneConfigEqualsLocalEyes) {
+  auto nodes = startNodes(4);
+  ClusterConfig c = configFor(ClusterMode::Tiled, nodes, pathTracer());
+  c.wall.frameWidth = c.wall.frameHeight = kSize;
+  const std::uint32_t half = kSize / 2;
+  for (med::Eye eye : {med::Eye::Left, med::Eye::Right})
+    for (std::int32_t x : {0, static_cast<std::int32_t>(half)}) c.wall.screens.push_back({x, 0, half, kSize, 0, eye, {}});
+  c.stereo.compose = StereoCompose::Anaglyph;
+  Session app("builtin:cornell", c, pathTracer());
+  app.window->setEyes(0.1f, 3.0f);
+  ASSERT_EQ(app.connect(), 4u);
+  app.publish();
+  ClusterFrame f = app.window->render(app.view());
+  EXPECT_EQ(f.offlineTiles, 0u);
+  auto right = app.registry.create({"embree", app.s.imported.root, app.s.imported.background, pathTracer(), true}, app.contexts);
+  med::FrameBuffer l, r;
+  app.local->render(app.replica, app.view().eye(med::Eye::Left, 0.1f, 3.0f), l);
+  right->render(app.replica, app.view().eye(med::Eye::Right, 0.1f, 3.0f), r);
+  EXPECT_TRUE(bitwiseEqual(f.left, l));
+  EXPECT_TRUE(bitwiseEqual(f.right, r));
+  EXPECT_TRUE(bitwiseEqual(f.image, med::anaglyph(l, r)));
+  for (std::size_t i = 0; i < 4; ++i) EXPECT_GT(f.busySeconds[i], 0.0) << "screen " << i;
+}
+
 TEST(ClusterRender, KilledNodesTilesAreTakenOverAndTheImageStaysEqual) {
   auto nodes = startNodes(3);
   ClusterConfig c = configFor(ClusterMode::Cooperative, nodes, pathTracer(8));
