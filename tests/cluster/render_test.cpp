@@ -4,6 +4,8 @@
 #include <future>
 #include <thread>
 
+#include <regex>
+
 #include <gtest/gtest.h>
 
 #include "cluster_test_util.hpp"
@@ -181,6 +183,47 @@ TEST(ClusterRender, WallNeverStallsOnANodeThatStopsAnswering) {
   }
   EXPECT_EQ(again.offlineTiles, 0u);
   EXPECT_TRUE(bitwiseEqual(again.image, ref));
+}
+
+// A late node is named with the phase it is stuck in and since when, while
+// the frame waits for it: behind on the scene (snapshot), or rendering.
+TEST(ClusterRender, ALateNodeIsNamedWithItsPhaseAndSince) {
+  auto nodes = startNodes(2);
+  ClusterConfig c = configFor(ClusterMode::Tiled, nodes, pathTracer(1));
+  c.wall.columns = 2;
+  c.wall.rows = 1;
+  c.timeouts.late = 150ms;
+  c.timeouts.heartbeat = 100ms;
+  c.timeouts.deadAfter = 1500ms;
+  Session app("builtin:animated", c, pathTracer(1));
+  ASSERT_EQ(app.connect(), 2u);
+  app.publish(0);
+  app.window->render(app.view());
+  const std::regex line(R"(127\.0\.0\.1:\d+ \(node\): (snapshot|render) since \d\d:\d\d:\d\d\.\d{3} \(\d+ ms\))");
+  auto reportFor = [](const ClusterFrame& f, const NodeProcess& n) {
+    std::string found;
+    for (const auto& l : f.lateNodes)
+      if (l.rfind(n.text() + " ", 0) == 0) found = l;
+    return found;
+  };
+
+  nodes[1]->pause();  // it cannot apply the next change list
+  app.publish(1);
+  ClusterFrame behind = app.window->render(app.view());
+  nodes[1]->resume();
+  std::string said = reportFor(behind, *nodes[1]);
+  EXPECT_TRUE(std::regex_match(said, line)) << said;
+  EXPECT_NE(said.find("snapshot since"), std::string::npos) << said;
+  EXPECT_EQ(behind.offlineTiles, 1u) << "lost after the dead-node timeout";
+
+  app.publish(2);
+  ASSERT_TRUE(app.window->waitApplied(app.s.scene.version(), 5s));
+  nodes[0]->pause();  // it has the scene, but renders nothing
+  ClusterFrame stuck = app.window->render(app.view());
+  nodes[0]->resume();
+  said = reportFor(stuck, *nodes[0]);
+  EXPECT_TRUE(std::regex_match(said, line)) << said;
+  EXPECT_NE(said.find("render since"), std::string::npos) << said;
 }
 
 TEST(ClusterRender, WallNodesPresentTheirTilesWhenTheBarrierReleases) {
