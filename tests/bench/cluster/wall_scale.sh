@@ -2,7 +2,7 @@
 # The client's per-frame cost of a display wall against its node count:
 # walls of N tessera-node processes on loopback (tiny screens, 32x24 unless --tile, a cheap
 # back-end so rendering is not what is measured) played by tessera-wall.
-# Reports per frame: wall-clock time, time assembling tiles, the barrier's
+# Reports per frame: wall-clock time, the client's CPU time, time assembling tiles, the barrier's
 # spread (first to last node done), bytes sent and received, and each as a
 # ratio to the smallest wall.
 #
@@ -57,7 +57,7 @@ stop_nodes() {
   pids=()
 }
 
-printf "%6s %8s %10s %12s %12s %12s %14s\n" nodes grid "ms/frame" "assemble ms" "barrier ms" "sent B" "received B"
+printf "%6s %8s %10s %12s %12s %12s %12s %14s\n" nodes grid "ms/frame" "client CPU ms" "assemble ms" "barrier ms" "sent B" "received B"
 base=""
 for n in $counts; do
   columns=$(awk -v n="$n" 'BEGIN { c = int(sqrt(n)); while (n % c) --c; print n / c }')
@@ -68,12 +68,16 @@ for n in $counts; do
  "wall": {"columns": $columns, "rows": $rows}, "timeouts": {"connectMs": 10000}}
 JSON
   start_nodes "$n"
-  line=$("$wall" "$work/wall.json" builtin:animated --nodes "$(cat "$work/addresses")" --frames "$frames" \
-           --size $((columns * ${tile%x*}))x$((rows * ${tile#*x})) --status-every 1000 $back | grep "client per frame")
+  # The client's own CPU (user + system, scene loading and the first frame included) per frame.
+  TIMEFORMAT="%U %S"
+  { time "$wall" "$work/wall.json" builtin:animated --nodes "$(cat "$work/addresses")" --frames "$frames" \
+      --size $((columns * ${tile%x*}))x$((rows * ${tile#*x})) --status-every 1000 $back > "$work/wall.out"; } 2> "$work/time"
+  line=$(grep "client per frame" "$work/wall.out")
+  cpu=$(tail -1 "$work/time" | awk -v f="$frames" '{ printf "%.3f", 1000 * ($1 + $2) / f }')
   stop_nodes
   read -r ms assemble barrier sent received < <(echo "$line" |
     sed -E 's/.*: ([0-9.]+) ms in all, ([0-9.]+) ms assembling tiles, ([0-9.]+) ms barrier spread, ([0-9.]+) bytes sent, ([0-9.]+) bytes received/\1 \2 \3 \4 \5/')
-  printf "%6s %8s %10.3f %12.4f %12.3f %12.0f %14.0f\n" "$n" "${columns}x$rows" "$ms" "$assemble" "$barrier" "$sent" "$received"
+  printf "%6s %8s %10.3f %12s %12.4f %12.3f %12.0f %14.0f\n" "$n" "${columns}x$rows" "$ms" "$cpu" "$assemble" "$barrier" "$sent" "$received"
   if [[ -z $base ]]; then base="$n $ms $assemble $barrier $sent $received"; fi
   echo "$n $ms $assemble $barrier $sent $received" >> "$work/rows"
 done
