@@ -104,9 +104,15 @@ constexpr std::uint64_t kBlock = 4096;
 
 }  // namespace
 
+std::vector<glm::vec3> sourcePowers(const SceneState& scene, const ElementGeometry& bounds) {
+  std::vector<glm::vec3> out;
+  for (const Source& s : sources(scene, bounds)) out.push_back(s.power);
+  return out;
+}
+
 glm::vec3 emittedPower(const SceneState& scene, const ElementGeometry& bounds) {
   glm::vec3 sum(0.0f);
-  for (const Source& s : sources(scene, bounds)) sum += s.power;
+  for (const glm::vec3& p : sourcePowers(scene, bounds)) sum += p;
   return sum;
 }
 

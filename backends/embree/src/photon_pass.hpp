@@ -22,6 +22,8 @@ struct PhotonHit {
 // Total emitted power (W per channel) of the scene's lights at its current
 // pose; a directional light counts over the disc covering `bounds`.
 glm::vec3 emittedPower(const SceneState& scene, const ElementGeometry& bounds);
+// The same per source (each light, each emissive triangle), in scene order.
+std::vector<glm::vec3> sourcePowers(const SceneState& scene, const ElementGeometry& bounds);
 
 struct PhotonPassResult {
   std::vector<PhotonHit> hits;  // in photon order: independent of the thread count

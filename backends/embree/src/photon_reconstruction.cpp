@@ -37,30 +37,34 @@ struct Window {
   std::uint32_t photons(std::size_t a, std::size_t b, std::size_t e) const {
     return countPrefix[(b + 1) * elements + e] - countPrefix[a * elements + e];
   }
-  float meanCount(std::ptrdiff_t a, std::ptrdiff_t b, std::size_t e) const {
-    a = std::max<std::ptrdiff_t>(a, 0);
-    b = std::min<std::ptrdiff_t>(b, std::ptrdiff_t(frames) - 1);
-    return float(photons(std::size_t(a), std::size_t(b), e)) / float(b - a + 1);
-  }
 };
 
-// 002 eq. 1 outward from the centre: mu over the three frames around t0, x
-// over the three frames ending at the tested one (so a step is caught at
-// the first frame after it); at least `minSide` frames each way.
-std::pair<std::size_t, std::size_t> validExtent(const Window& w, std::size_t e, float k, std::size_t minSide) {
-  const std::ptrdiff_t c = std::ptrdiff_t(w.centre);
-  const float mu = w.meanCount(c - 1, c + 1, e);
+// 002 eq. 1 outward from the centre, on the photon counts per frame `n` of
+// one support: mu over the three frames around t0, x over the three frames
+// ending at the tested one (so a step is caught at the first frame after
+// it); at least `minSide` frames each way.
+std::pair<std::size_t, std::size_t> validExtent(const std::vector<float>& n, std::size_t centre, float k,
+                                                std::size_t minSide) {
+  const std::ptrdiff_t c = std::ptrdiff_t(centre), last = std::ptrdiff_t(n.size()) - 1;
+  auto mean = [&](std::ptrdiff_t a, std::ptrdiff_t b) {
+    a = std::max<std::ptrdiff_t>(a, 0);
+    b = std::min(b, last);
+    float sum = 0.0f;
+    for (std::ptrdiff_t i = a; i <= b; ++i) sum += n[std::size_t(i)];
+    return sum / float(b - a + 1);
+  };
+  const float mu = mean(c - 1, c + 1);
   const float sigma = mu > 0.0f ? std::sqrt(mu) : 1.0f;
   auto valid = [&](float x) { return x >= mu - k * sigma && x <= mu + k * sigma; };
   std::size_t back = 0, fwd = 0;
-  while (back < w.centre) {
+  while (back < centre) {
     const std::ptrdiff_t d = c - std::ptrdiff_t(back) - 1;
-    if (back >= minSide && !valid(w.meanCount(d, d + 2, e))) break;
+    if (back >= minSide && !valid(mean(d, d + 2))) break;
     ++back;
   }
-  while (w.centre + fwd + 1 < w.frames) {
+  while (centre + fwd + 1 < n.size()) {
     const std::ptrdiff_t d = c + std::ptrdiff_t(fwd) + 1;
-    if (fwd >= minSide && !valid(w.meanCount(d - 2, d, e))) break;
+    if (fwd >= minSide && !valid(mean(d - 2, d))) break;
     ++fwd;
   }
   return {back, fwd};
@@ -119,6 +123,23 @@ Reconstruction PhotonSequence::reconstruct(std::int64_t frame, PhotonHalf half) 
       wholeWindow[k * elements + e] =
           geo.area[e] > 0.0f ? w.energy(a, b, e) / (float(b - a + 1) * geo.area[e]) : glm::vec3(0.0f);
     }
+  // A light whose power steps between two frames (switched, dimmed at
+  // once) changes every element it reaches: the window of every element
+  // ends there. The emitted power is known exactly, so unlike the counts'
+  // test this needs no noise margin; gradual changes below the step pass.
+  auto emissionJump = [&](std::size_t a, std::size_t b) {
+    const auto& pa = slots[a]->sourcePower;
+    const auto& pb = slots[b]->sourcePower;
+    if (pa.size() != pb.size()) return true;
+    for (std::size_t i = 0; i < pa.size(); ++i) {
+      const float la = luminance(pa[i]), lb = luminance(pb[i]);
+      if (std::abs(la - lb) > cfg.emissionStep * std::max(la, lb)) return true;
+    }
+    return false;
+  };
+  std::pair<std::size_t, std::size_t> emission{w.centre, w.centre};
+  while (emission.first > 0 && !emissionJump(emission.first - 1, emission.first)) --emission.first;
+  while (emission.second + 1 < w.frames && !emissionJump(emission.second, emission.second + 1)) ++emission.second;
   const float sigmaT = 0.5f * float(cfg.tMax);
   const float cosCrease = std::cos(cfg.creaseAngle);
   const float target = 1.0f / (cfg.accuracy * cfg.accuracy);  // eq. 4: photons in the support
@@ -138,50 +159,66 @@ Reconstruction PhotonSequence::reconstruct(std::int64_t frame, PhotonHalf half) 
     std::uint32_t current = 0;
     std::vector<std::uint32_t> members;
     std::vector<std::uint32_t> ringEnd;
+    std::vector<float> supportCounts;  // photons per frame over the support
   };
   tbb::enumerable_thread_specific<Scratch> scratch;
 
   auto element = [&](std::size_t q) {
     Scratch& sc = scratch.local();
     if (sc.stamp.size() != elements) sc.stamp.assign(elements, 0), sc.current = 0;
-    if (++sc.current == 0) std::fill(sc.stamp.begin(), sc.stamp.end(), 0), sc.current = 1;
-    const auto [back, fwd] = validExtent(w, q, cfg.validityK, minSide);
+    // Ring neighbourhoods (BFS layers over shared corners, not across
+    // creases) until the support holds `target` photons over frames
+    // [lo, hi], plus one ring. Returns the number of rings.
+    auto grow = [&](std::size_t lo, std::size_t hi, float want) {
+      if (++sc.current == 0) std::fill(sc.stamp.begin(), sc.stamp.end(), 0), sc.current = 1;
+      sc.members.assign(1, std::uint32_t(q));
+      sc.ringEnd.assign(1, 1);
+      sc.stamp[q] = sc.current;
+      float photons = float(w.photons(lo, hi, q));
+      std::size_t rings = 0, extra = 0;
+      while (rings < cfg.maxRings + 1) {
+        if (photons >= want || rings == cfg.maxRings) {
+          if (extra == 1) break;
+          extra = 1;
+        }
+        const std::size_t from = rings == 0 ? 0 : sc.ringEnd[rings - 1], to = sc.ringEnd[rings];
+        for (std::size_t m = from; m < to; ++m) {
+          const std::uint32_t* c = &set.corners[3 * std::size_t(sc.members[m])];
+          for (int k = 0; k < 3; ++k) {
+            for (std::uint32_t i = set.vertexStart[c[k]]; i < set.vertexStart[c[k] + 1]; ++i) {
+              const std::uint32_t p = set.vertexElements[i];
+              if (sc.stamp[p] == sc.current) continue;
+              sc.stamp[p] = sc.current;
+              if (glm::dot(geo.normal[p], geo.normal[q]) < cosCrease) continue;
+              sc.members.push_back(p);
+              photons += float(w.photons(lo, hi, p));
+            }
+          }
+        }
+        if (sc.members.size() == to) break;  // nothing more to reach
+        sc.ringEnd.push_back(std::uint32_t(sc.members.size()));
+        ++rings;
+        if (extra == 1) break;
+      }
+      return rings;
+    };
+
+    // The validity test counts the photons of the support the whole window
+    // would use, not of q alone: one element sees a few photons a frame, and
+    // with sigma = sqrt(mu) a step of several times its level would pass
+    // (002 tests the energy of a region large enough to be stable).
+    const std::size_t wholeRings = grow(0, w.frames - 1, target);
+    sc.supportCounts.assign(w.frames, 0.0f);
+    for (std::uint32_t p : sc.members)
+      for (std::size_t k = 0; k < w.frames; ++k) sc.supportCounts[k] += float(w.n(k, p));
+    auto [back, fwd] = validExtent(sc.supportCounts, w.centre, cfg.validityK, minSide);
+    back = std::min(back, w.centre - emission.first);
+    fwd = std::min(fwd, emission.second - w.centre);
     out.backward[q] = std::uint8_t(back);
     out.forward[q] = std::uint8_t(fwd);
     const std::size_t lo = w.centre - back, hi = w.centre + fwd;
     cut[q] = (lo > 0 || hi + 1 < w.frames) ? 1 : 0;
-
-    // Ring neighbourhoods (BFS layers over shared corners, not across
-    // creases) until the support holds `target` photons, plus one ring.
-    sc.members.assign(1, std::uint32_t(q));
-    sc.ringEnd.assign(1, 1);
-    sc.stamp[q] = sc.current;
-    float photons = float(w.photons(lo, hi, q));
-    std::size_t rings = 0, extra = 0;
-    while (rings < cfg.maxRings + 1) {
-      if (photons >= target || rings == cfg.maxRings) {
-        if (extra == 1) break;
-        extra = 1;
-      }
-      const std::size_t from = rings == 0 ? 0 : sc.ringEnd[rings - 1], to = sc.ringEnd[rings];
-      for (std::size_t m = from; m < to; ++m) {
-        const std::uint32_t* c = &set.corners[3 * std::size_t(sc.members[m])];
-        for (int k = 0; k < 3; ++k) {
-          for (std::uint32_t i = set.vertexStart[c[k]]; i < set.vertexStart[c[k] + 1]; ++i) {
-            const std::uint32_t p = set.vertexElements[i];
-            if (sc.stamp[p] == sc.current) continue;
-            sc.stamp[p] = sc.current;
-            if (glm::dot(geo.normal[p], geo.normal[q]) < cosCrease) continue;
-            sc.members.push_back(p);
-            photons += float(w.photons(lo, hi, p));
-          }
-        }
-      }
-      if (sc.members.size() == to) break;  // nothing more to reach
-      sc.ringEnd.push_back(std::uint32_t(sc.members.size()));
-      ++rings;
-      if (extra == 1) break;
-    }
+    const std::size_t rings = (lo == 0 && hi + 1 == w.frames) ? wholeRings : grow(lo, hi, target);
     out.rings[q] = std::uint8_t(rings);
     float ringRadius = 0.0f;
     if (rings > 0)

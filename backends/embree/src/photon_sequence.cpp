@@ -54,6 +54,8 @@ void PhotonSettings::validate() const {
   if (photonsPerFrame == 0 && pilotPhotons == 0) throw Error("photon pilotPhotons must be >= 1 without photonsPerFrame");
   if (!(maxError > 0.0f) || !(accuracy > 0.0f) || !(influence > 0.0f) || !(validityK > 0.0f))
     throw Error("photon maxError, accuracy, influence and validityK must be > 0");
+  if (!(emissionStep >= 0.0f) || !std::isfinite(emissionStep))
+    throw Error("photon emissionStep must be a finite relative change >= 0");
   if (!(creaseAngle >= 0.0f && creaseAngle <= kPi)) throw Error("photon creaseAngle must be in [0, pi]");
   if (maxRings > 64) throw Error("photon maxRings must be at most 64");
   if (threads < 0) throw Error("photon threads must be >= 0 (0 = all)");
@@ -100,7 +102,9 @@ FrameStats PhotonSequence::addFrame(Scene& scene, std::int64_t frame) {
   }
   const ElementSet& elements = *s.elements;
   ElementGeometry geometry = elementGeometry(elements, state);
-  const float power = luminance(emittedPower(state, geometry));
+  std::vector<glm::vec3> sourcePower = sourcePowers(state, geometry);
+  float power = 0.0f;
+  for (const glm::vec3& p : sourcePower) power += luminance(p);
 
   FrameStats stats;
   if (!s.started) {
@@ -142,6 +146,7 @@ FrameStats PhotonSequence::addFrame(Scene& scene, std::int64_t frame) {
     slot.energy[2 * std::size_t(h.element) + h.parity] += h.power;
   }
   slot.geometry = std::move(geometry);
+  slot.sourcePower = std::move(sourcePower);
   stats.photons = photons;
   stats.hits = pass.hits.size();
   stats.rays += pass.rays;

@@ -18,6 +18,7 @@ embree::PhotonSettings photonSettingsFrom(const Parameters& p) {
                          ": the window is centred on the frame it reconstructs, so it must be odd");
   s.accuracy = static_cast<float>(p.getReal("photonAccuracy", s.accuracy));
   s.maxError = static_cast<float>(p.getReal("photonMaxError", s.maxError));
+  s.emissionStep = static_cast<float>(p.getReal("photonEmissionStep", s.emissionStep));
   s.maxBounces = static_cast<std::uint32_t>(p.getInt("maxDepth", 8, 0, 1024));
   s.seed = static_cast<std::uint64_t>(p.getInt("seed", 0, 0));
   s.threads = static_cast<int>(p.getInt("threads", 0, 0, 4096));

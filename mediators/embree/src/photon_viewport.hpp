@@ -11,7 +11,9 @@
 // pixel, default 16), photonsPerFrame (0: chosen by a pilot pass, Weber
 // eq. 3), photonFrames (the odd temporal window t_max, default 9),
 // photonAccuracy (sigma_% of eq. 4, default 0.05), photonMaxError (E_max
-// of eq. 3, default 0.1).
+// of eq. 3, default 0.1), photonEmissionStep (a light's power changing by
+// more than this fraction between frames ends every temporal window there,
+// default 0.05).
 #include "embree_scene_adapter.hpp"
 #include "tsr/embree/photon_sequence.hpp"
 #include "tsr/embree/renderer.hpp"

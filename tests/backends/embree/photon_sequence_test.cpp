@@ -60,10 +60,11 @@ struct Extents {
 
 // Extents of the elements that collect at least `minCount` photons a frame
 // at the centre frame, reconstructing frame 4 of frames 0..8.
-Extents extents(float stepFactor, int stepFrame, float minCount) {
+Extents extents(float stepFactor, int stepFrame, float minCount, float emissionStep = PhotonSettings{}.emissionStep) {
   Scene scene(sharedDevice());
   test::cornellBox(scene, 0);
   PhotonSettings settings = smallSettings();
+  settings.emissionStep = emissionStep;
   settings.photonsPerFrame = 60000;  // about 10 photons a frame on a lit element
   PhotonSequence seq(settings);
   addFrames(seq, scene, 9, [&](int f) {
@@ -101,10 +102,25 @@ TEST(EmbreePhotonSequence, ValidityTestRunsThroughAStaticScene) {
 TEST(EmbreePhotonSequence, ValidityTestStopsAtALightStep) {
   // The light gets four times brighter from frame 6 on: collection for
   // frame 4 must stop at frame 5 going forwards, and still run backwards.
-  const Extents e = extents(4.0f, 6, 1.0f);
+  // With the emission rule off, the photon counts' test (002 eq. 1) alone.
+  const Extents e = extents(4.0f, 6, 1.0f, 1e6f);
   ASSERT_GT(e.elements, 50u);
   EXPECT_LT(e.pastStep, 0.1);
   EXPECT_GT(e.fullBackward, 0.85);
+}
+
+TEST(EmbreePhotonSequence, ALightSwitchEndsTheWindowOfEveryElement) {
+  // 30% brighter from frame 6: within the counts' noise on dim elements,
+  // but the emitted power is known exactly, so no element, lit or dim,
+  // collects past the switch; a static light cuts nothing.
+  const Extents step = extents(1.3f, 6, 0.0f);
+  ASSERT_GT(step.elements, 100u);
+  EXPECT_EQ(step.pastStep, 0.0);
+  EXPECT_GT(step.fullBackward, 0.85);
+  const Extents counts = extents(1.3f, 6, 0.0f, 1e6f);
+  EXPECT_GT(counts.pastStep, 0.2) << "without it, the counts' test lets a small step through on many elements";
+  const Extents still = extents(1.0f, 100, 0.0f);
+  EXPECT_GT(still.fullForward, 0.85);
 }
 
 TEST(EmbreePhotonSequence, ReconstructionOfAStaticSceneBeatsOneFramesCounts) {

@@ -25,6 +25,7 @@ struct PhotonSettings {
   float creaseAngle = 0.7f;              // radians: neighbourhoods and corners do not cross sharper edges
   float validityK = 2.0f;                // k of 002 eq. 1
   std::uint32_t minFrames = 3;           // 002: temporal extent at least 3 frames
+  float emissionStep = 0.05f;            // a source's power changing more (relative) between frames ends every window
   std::uint32_t maxBounces = 8;
   std::uint64_t seed = 0;
   int threads = 0;  // 0 = all hardware threads
