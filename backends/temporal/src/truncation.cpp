@@ -6,17 +6,18 @@
 
 namespace tsr::temporal {
 
-int truncationFor(const std::vector<double>& unexplained, const TruncationRule& rule) {
-  const int n = static_cast<int>(unexplained.size()) - 1;
-  if (n < 1) throw std::invalid_argument("temporal: truncation of an empty basis");
-  for (int x = 1; x < n; ++x) {
-    const double here = unexplained[static_cast<std::size_t>(x)];
-    if (here <= rule.epsilon && here - unexplained[static_cast<std::size_t>(x) + 1] <= rule.epsilonChange) return x;
-  }
-  return n;
-}
-
 namespace {
+
+// The median energy of the centred modes 2..N (mode 1 is the mean), or 0
+// when there are too few of them to tell noise from signal.
+double noiseLevel(const std::vector<double>& unexplained) {
+  const std::size_t n = unexplained.size() - 1;
+  if (n < 5) return 0.0;
+  std::vector<double> energy;
+  for (std::size_t x = 2; x <= n; ++x) energy.push_back(std::max(0.0, unexplained[x - 1] - unexplained[x]));
+  std::nth_element(energy.begin(), energy.begin() + static_cast<std::ptrdiff_t>(energy.size() / 2), energy.end());
+  return energy[energy.size() / 2];
+}
 
 // Separable Gaussian, clamped at the borders.
 std::vector<float> blur(const std::vector<float>& in, std::uint32_t w, std::uint32_t h, double sigma) {
@@ -45,10 +46,41 @@ std::vector<float> blur(const std::vector<float>& in, std::uint32_t w, std::uint
 
 }  // namespace
 
+int truncationFor(const std::vector<double>& unexplained, const TruncationRule& rule) {
+  return truncationFor(unexplained, rule, rule.noiseAware ? noiseLevel(unexplained) : 0.0);
+}
+
+int truncationFor(const std::vector<double>& unexplained, const TruncationRule& rule, double noise) {
+  const int n = static_cast<int>(unexplained.size()) - 1;
+  if (n < 1) throw std::invalid_argument("temporal: truncation of an empty basis");
+  const double changeLimit = std::max(rule.epsilonChange, noise);
+  for (int x = 1; x < n; ++x) {
+    const auto i = static_cast<std::size_t>(x);
+    const double signalLeft = unexplained[i] - static_cast<double>(n - x) * noise;
+    const double next = unexplained[i] - unexplained[i + 1] - noise;  // mode x + 1 beyond the noise
+    if (signalLeft <= rule.epsilon && next <= changeLimit) return x;
+  }
+  return n;
+}
+
+
 std::vector<float> truncationMap(const PcaBasis& basis, const TruncationRule& rule, double sigma) {
   const std::size_t pixels = std::size_t{basis.width()} * basis.height();
   std::vector<float> map(pixels);
-  for (std::size_t p = 0; p < pixels; ++p) map[p] = static_cast<float>(truncationFor(basis.pixelUnexplained(p), rule));
+  // A pixel's noise level: its mean energy in the modes the whole frame's
+  // rule calls noise (beyond the global M), pooled over its neighbours.
+  // (The median of one pixel's own few modes would be too rough, and
+  // biased low: it sees three channels per mode.)
+  std::vector<float> noise(pixels, 0.0f);
+  const int global = rule.noiseAware ? truncationFor(basis.unexplained(), rule) : basis.modes();
+  if (global < basis.modes()) {
+    for (std::size_t p = 0; p < pixels; ++p)
+      noise[p] = static_cast<float>(basis.pixelUnexplained(p)[static_cast<std::size_t>(global)] /
+                                    static_cast<double>(basis.modes() - global));
+    noise = blur(noise, basis.width(), basis.height(), std::max(sigma, 2.0));
+  }
+  for (std::size_t p = 0; p < pixels; ++p)
+    map[p] = static_cast<float>(truncationFor(basis.pixelUnexplained(p), rule, noise[p]));
   map = blur(map, basis.width(), basis.height(), sigma);
   for (float& m : map) m = std::clamp(m, 1.0f, static_cast<float>(basis.modes()));  // rounding of the blur
   return map;

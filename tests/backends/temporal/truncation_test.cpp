@@ -49,6 +49,31 @@ TEST(Truncation, RemovesWhiteNoiseAndKeepsAStep) {
               0.01 * step);
 }
 
+// Noise as a path tracer leaves it at few samples (30 % of the signal, not
+// 3 %): every mode then improves on the fixed epsilonChange, so 2.3's rule
+// alone keeps them all; measuring the noise keeps the signal's modes only.
+TEST(Truncation, NoiseAwareRuleStopsAtTheSignalUnderHeavyNoise) {
+  const auto clean = switchedLight();
+  const auto noisy = test::withNoise(clean, 0.3f, 7);
+  PcaSettings settings;
+  settings.perPixel = false;
+  settings.rule.noiseAware = false;
+  const PcaResult fixed = denoise(noisy, settings);
+  EXPECT_GT(fixed.globalModes, kFrames / 2) << "2.3 with a fixed epsilonChange keeps the noise";
+  settings.rule.noiseAware = true;
+  const PcaResult aware = denoise(noisy, settings);
+  EXPECT_GE(aware.globalModes, 2);
+  EXPECT_LE(aware.globalModes, 4);
+  EXPECT_LT(test::mse(aware.frames, clean), test::mse(fixed.frames, clean) / 4);
+  const double step = test::mean(clean[12]) - test::mean(clean[11]);
+  EXPECT_NEAR(test::mean(aware.frames[12]) - test::mean(aware.frames[11]), step, 0.05 * step) << "the switch stays";
+  // The per-pixel map measures each pixel's own noise the same way.
+  settings.perPixel = true;
+  const PcaResult map = denoise(noisy, settings);
+  EXPECT_LT(map.meanTruncation(), 6.0);
+  EXPECT_LT(test::mse(map.frames, clean), test::mse(fixed.frames, clean) / 2);
+}
+
 // Left half static, right half a bright spot moving down a column: the
 // right half needs many modes, the left one.
 std::vector<Frame> movingSpot() {
