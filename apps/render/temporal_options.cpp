@@ -22,6 +22,9 @@ void addTemporalOptions(CLI::App& app, TemporalOptions& o) {
   g->add_option("--temporal-epsilon-change", o.epsilonChange,
                 "stop adding modes when one more explains less than this (default 0.001)")
       ->check(CLI::Range(0.0, 1.0));
+  g->add_flag("--temporal-plain-rule", o.plainRule,
+              "2.3's truncation rule as published: --temporal-epsilon-change alone decides what is noise (default: "
+              "the noise level is measured from the modes, see backends/temporal/README.md)");
   g->add_option("--photons-per-frame", o.photonsPerFrame,
                 "photons traced per frame (default: chosen by a pilot pass for 10% error, Weber et al. eq. 3)")
       ->check(CLI::Range(1, 1 << 30));

@@ -20,6 +20,7 @@ temporal::PcaSettings pcaSettings(const TemporalOptions& o) {
   temporal::PcaSettings s;
   s.rule.epsilon = o.epsilon;
   s.rule.epsilonChange = o.epsilonChange;
+  s.rule.noiseAware = !o.plainRule;
   s.fixedModes = o.modes;
   s.perPixel = !o.global;
   s.mapSigma = o.mapSigma;

@@ -167,6 +167,22 @@ TEST_F(RenderCommand, TemporalPcaWritesDirectPlusDenoisedIndirect) {
   expectOneErrorLine(run("builtin:animated --temporal pca --output p.png"), "--frames");
 }
 
+// The automatic truncation measures the path tracer's noise: at 2 spp,
+// 2.3's rule as published keeps every one of the 8 modes (no denoising);
+// the default keeps fewer.
+TEST_F(RenderCommand, TemporalPcaTruncationSeesThroughTheNoise) {
+  auto modes = [&](const std::string& extra) {
+    const auto r = run("builtin:animated --size 24x24 --spp 2 --threads 1 --frames 8 --fps 4 --temporal pca "
+                       "--temporal-global --output m.####.exr " + extra);
+    EXPECT_EQ(r.status, 0) << r.err;
+    const auto at = r.out.find(" modes on average");
+    EXPECT_NE(at, std::string::npos) << r.out;
+    return at == std::string::npos ? 0.0 : std::stod(r.out.substr(r.out.rfind(", ", at) + 2));
+  };
+  EXPECT_EQ(modes("--temporal-plain-rule"), 8.0);
+  EXPECT_LE(modes(""), 4.0);
+}
+
 namespace {
 
 // Flicker as the issue defines it: the mean over pixels and frame pairs of
