@@ -1,7 +1,10 @@
 #pragma once
 // Shared set-up of the cluster integration tests: configs for nodes
 // started on free ports, and the animated built-in scene.
+#include <stdlib.h>
+
 #include <cstring>
+#include <filesystem>
 
 #include "node_process.hpp"
 #include "tsr/cluster/cluster_config.hpp"
@@ -10,6 +13,18 @@
 #include "tsr/sg/scene.hpp"
 
 namespace tsr::cluster::test {
+
+// A fresh folder under /tmp, removed with everything in it.
+struct TempDir {
+  std::filesystem::path path;
+  TempDir() {
+    char name[] = "/tmp/tsr-cluster-XXXXXX";
+    path = mkdtemp(name);
+  }
+  ~TempDir() { std::filesystem::remove_all(path); }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+};
 
 inline ClusterConfig configFor(ClusterMode mode, const std::vector<std::unique_ptr<NodeProcess>>& nodes,
                                const med::Parameters& parameters = {}) {

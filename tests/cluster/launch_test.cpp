@@ -26,15 +26,6 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    char name[] = "/tmp/tsr-launch-XXXXXX";
-    path = mkdtemp(name);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
-
 app::EnvironmentLookup environment(std::map<std::string, std::string> values) {
   return [values = std::move(values)](const char* name) -> const char* {
     auto it = values.find(name);

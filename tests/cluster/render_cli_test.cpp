@@ -17,15 +17,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    char name[] = "/tmp/tsr-cli-XXXXXX";
-    path = mkdtemp(name);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
-
 int run(const std::string& args) {
   std::string command = std::string(TSR_RENDER_BINARY) + " " + args + " --quiet > /dev/null";
   return std::system(command.c_str());

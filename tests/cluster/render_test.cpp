@@ -71,6 +71,15 @@ struct Session {
     local->render(replica, v, fb);
     return fb;
   }
+  // Left and right eye rendered by two local viewports, as a local stereo window would.
+  std::pair<med::FrameBuffer, med::FrameBuffer> eyes(float separation, float zeroParallax) {
+    auto right = registry.create({"embree", s.imported.root, s.imported.background, local->settings().parameters, true},
+                                 contexts);
+    med::FrameBuffer l, r;
+    local->render(replica, view().eye(med::Eye::Left, separation, zeroParallax), l);
+    right->render(replica, view().eye(med::Eye::Right, separation, zeroParallax), r);
+    return {std::move(l), std::move(r)};
+  }
 };
 
 TEST(ClusterRender, CooperativeOnThreeNodesEqualsLocal) {
@@ -285,11 +294,7 @@ TEST(ClusterRender, StereoPairComposedEqualsLocalComposition) {
   ASSERT_EQ(app.connect(), 2u);
   app.publish();
   ClusterFrame f = app.window->render(app.view());
-  // Two local viewports, one per eye, as a local stereo window would have.
-  auto right = app.registry.create({"embree", app.s.imported.root, app.s.imported.background, pathTracer(), true}, app.contexts);
-  med::FrameBuffer l, r;
-  app.local->render(app.replica, app.view().eye(med::Eye::Left, 0.1f, 3.0f), l);
-  right->render(app.replica, app.view().eye(med::Eye::Right, 0.1f, 3.0f), r);
+  const auto [l, r] = app.eyes(0.1f, 3.0f);
   EXPECT_TRUE(bitwiseEqual(f.left, l));
   EXPECT_TRUE(bitwiseEqual(f.right, r));
   EXPECT_TRUE(bitwiseEqual(f.image, med::anaglyph(l, r)));
@@ -314,10 +319,7 @@ TEST(ClusterRender, StereoWallInOneConfigEqualsLocalEyes) {
   app.publish();
   ClusterFrame f = app.window->render(app.view());
   EXPECT_EQ(f.offlineTiles, 0u);
-  auto right = app.registry.create({"embree", app.s.imported.root, app.s.imported.background, pathTracer(), true}, app.contexts);
-  med::FrameBuffer l, r;
-  app.local->render(app.replica, app.view().eye(med::Eye::Left, 0.1f, 3.0f), l);
-  right->render(app.replica, app.view().eye(med::Eye::Right, 0.1f, 3.0f), r);
+  const auto [l, r] = app.eyes(0.1f, 3.0f);
   EXPECT_TRUE(bitwiseEqual(f.left, l));
   EXPECT_TRUE(bitwiseEqual(f.right, r));
   EXPECT_TRUE(bitwiseEqual(f.image, med::anaglyph(l, r)));

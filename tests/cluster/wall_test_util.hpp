@@ -23,15 +23,6 @@ namespace tsr::cluster::test {
 
 namespace fs = std::filesystem;
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    char name[] = "/tmp/tsr-wall-XXXXXX";
-    path = mkdtemp(name);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
-
 inline med::Parameters pathTracer() {
   med::Parameters p;
   p.set("spp", std::int64_t{2});
