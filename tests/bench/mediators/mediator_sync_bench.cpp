@@ -1,9 +1,10 @@
 // What one edit costs a converted Embree scene of builtin:instances:N,
 // against converting that scene from scratch: end to end through a render
 // of one pixel with one sample (which adds Embree's acceleration structure
-// builds; Embree 3 cannot refit instance levels, so an instance whose bounds
-// change leaves the top level over all N once, for a level of the instances
-// that moved), and the mediator's part alone (Viewport::synchronize). The
+// builds; Embree 3 cannot refit instance levels, so an instance that moves
+// goes to a small level of the instances that moved, leaving a ghost in the
+// top level over all N, which rebuilds once per sqrt(N) such first moves),
+// and the mediator's part alone (Viewport::synchronize). The
 // edits are one moved transform (the same one, or a different one each time),
 // one material's colour and a two-vertex range of one geometry; run all with
 // --benchmark_filter='/(10000|100000)$'. Their mediator cost must not grow
@@ -40,8 +41,9 @@ using Edit = void (*)(Instances&, int i);
 void moveOneTransform(Instances& s, int i) {
   s.transforms[s.transforms.size() / 2]->setMatrix(glm::translate(glm::mat4(1.0f), glm::vec3(0.01f * i, 0, 0)));
 }
-// A different instance each time: the first move of an instance takes it out
-// of the top level (which rebuilds), later moves only rebuild the moving level.
+// A different instance each time: the first move of an instance ghosts it in
+// the top level, and every sqrt(N)-th folds the ghosts back (a rebuild of the
+// top level); between folds only the moving level rebuilds.
 void moveAnotherTransform(Instances& s, int i) {
   s.transforms[std::size_t(i) % s.transforms.size()]->setMatrix(glm::translate(glm::mat4(1.0f), glm::vec3(0, 0.01f * i, 0)));
 }
