@@ -115,6 +115,30 @@ static void BM_SyncPointsRangeEdit(benchmark::State& state) { syncAfterEdit(stat
 static void BM_MediatorSyncOnlyOneTransformEdit(benchmark::State& state) { syncAfterEdit(state, moveOneTransform, false); }
 static void BM_MediatorSyncOnlyMaterialEdit(benchmark::State& state) { syncAfterEdit(state, tintOneMaterial, false); }
 static void BM_MediatorSyncOnlyPointsRangeEdit(benchmark::State& state) { syncAfterEdit(state, nudgeTwoVertices, false); }
+// What ghosts cost a frame: one sample per pixel of a 64x64 view after
+// `moved` different instances moved once each (their ghosts stay in the top
+// level until sqrt(N) of them), against the same frame with none moved.
+static void BM_RenderAfterMoves(benchmark::State& state) {
+  Instances& s = scene(state.range(0));
+  sg::Replica replica(4);
+  replica.apply(s.source.snapshot());
+  med::ContextPool contexts;
+  auto viewport = s.registry.create(s.settings(), contexts);
+  med::FrameBuffer out;
+  viewport->render(replica, s.onePixel(replica.scene()), out);
+  for (int i = 0; i < state.range(1); ++i) {
+    moveAnotherTransform(s, 7919 * (i + 1));  // spread over the grid
+    replica.apply(s.source.commit());
+    viewport->render(replica, s.onePixel(replica.scene()), out);
+  }
+  // Two poses a hair apart, so each frame restarts accumulation and traces all its pixels.
+  med::View frames[2] = {s.view(replica.scene(), 64, 64), s.view(replica.scene(), 64, 64)};
+  frames[1].cameraToWorld[3].x += 1e-4f;
+  int i = 0;
+  for (auto _ : state) viewport->render(replica, frames[++i % 2], out);
+}
+BENCHMARK(BM_RenderAfterMoves)->Args({10000, 0})->Args({10000, 99})->Unit(benchmark::kMillisecond);
+
 BENCHMARK(BM_SyncOneTransformEdit)->Apply(sizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_SyncFirstTransformEdit)->Apply(sizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_SyncMaterialEdit)->Apply(sizes)->Unit(benchmark::kMicrosecond);
