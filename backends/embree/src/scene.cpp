@@ -292,7 +292,6 @@ InstanceId Scene::addInstance(MeshId mesh, MaterialId material, const glm::mat4&
   inst->geometry = rtcNewGeometry(state_->device->handle(), RTC_GEOMETRY_TYPE_INSTANCE);
   rtcSetGeometryInstancedScene(inst->geometry, m.scene);
   rtcSetGeometryTimeStepCount(inst->geometry, 1);
-  rtcSetGeometryTransform(inst->geometry, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &transform[0][0]);
   state_->device->check("addInstance");
   auto id = std::uint32_t(state_->instances.size());
   state_->instances.push_back(std::move(inst));
