@@ -8,6 +8,7 @@
 #include <glm/matrix.hpp>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstring>
@@ -89,7 +90,9 @@ void fillGeometry(MeshRecord& m, RTCDevice device) {
   std::memcpy(i, d.indices.data(), d.indices.size() * sizeof(std::uint32_t));
   bool animated = d.usage == MeshUsage::Animated;
   rtcSetGeometryBuildQuality(m.geometry, animated ? RTC_BUILD_QUALITY_REFIT : RTC_BUILD_QUALITY_HIGH);
-  rtcSetSceneFlags(m.scene, animated ? RTC_SCENE_FLAG_DYNAMIC : RTC_SCENE_FLAG_NONE);
+  // Every scene a top-level ray enters allows the tracer's context filter (ghosts).
+  rtcSetSceneFlags(m.scene, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION |
+                                (animated ? RTC_SCENE_FLAG_DYNAMIC : RTC_SCENE_FLAG_NONE));
   rtcSetSceneBuildQuality(m.scene, animated ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_HIGH);
   rtcAttachGeometryByID(m.scene, m.geometry, 0);
   m.sceneStale = true;
@@ -107,6 +110,45 @@ void mark(SceneState& s, std::uint32_t id, bool placed) {
   inst.viewDirty = true;
 }
 
+// Takes the instance's copy out of the top level, a ghost's included (which
+// rebuilds the top level).
+void leaveTop(SceneState& s, InstanceRecord& inst, std::uint32_t id) {
+  rtcDetachGeometry(s.top, topId(id));
+  --s.topInstances;
+  s.topDirty = true;
+  if (inst.level == Level::Ghosted) {
+    s.ghosts[topId(id)] = 0;
+    --s.ghostCount;
+  }
+}
+
+void enterMoving(SceneState& s, InstanceRecord& inst, std::uint32_t id) {
+  if (!inst.movingGeometry) {
+    inst.movingGeometry = rtcNewGeometry(s.device->handle(), RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(inst.movingGeometry, s.meshes[index(inst.mesh)]->scene);
+    rtcSetGeometryTimeStepCount(inst.movingGeometry, 1);
+  }
+  inst.movingId = std::uint32_t(s.movingIds.size());
+  rtcAttachGeometryByID(s.moving, inst.movingGeometry, inst.movingId);
+  s.movingIds.push_back(id);
+  s.movingDirty = true;
+}
+
+void leaveMoving(SceneState& s, InstanceRecord& inst) {
+  // Keep the moving level's ids dense: the last one takes the freed id.
+  const std::uint32_t last = std::uint32_t(s.movingIds.size() - 1);
+  rtcDetachGeometry(s.moving, inst.movingId);
+  if (inst.movingId != last) {
+    InstanceRecord& other = *s.instances[s.movingIds[last]];
+    rtcDetachGeometry(s.moving, last);
+    rtcAttachGeometryByID(s.moving, other.movingGeometry, inst.movingId);
+    other.movingId = inst.movingId;
+    s.movingIds[inst.movingId] = s.movingIds[last];
+  }
+  s.movingIds.pop_back();
+  s.movingDirty = true;
+}
+
 // Takes the instance out of whatever level holds it.
 void unplace(SceneState& s, InstanceRecord& inst, std::uint32_t id) {
   switch (inst.level) {
@@ -117,26 +159,12 @@ void unplace(SceneState& s, InstanceRecord& inst, std::uint32_t id) {
       inst.flatGeometry = nullptr;
       s.mergedDirty = true;
       break;
-    case Level::Top:
-      rtcDetachGeometry(s.top, topId(id));
-      --s.topInstances;
-      s.topDirty = true;
+    case Level::Top: leaveTop(s, inst, id); break;
+    case Level::Moving: leaveMoving(s, inst); break;
+    case Level::Ghosted:
+      leaveTop(s, inst, id);
+      leaveMoving(s, inst);
       break;
-    case Level::Moving: {
-      // Keep the moving level's ids dense: the last one takes the freed id.
-      const std::uint32_t last = std::uint32_t(s.movingIds.size() - 1);
-      rtcDetachGeometry(s.moving, inst.movingId);
-      if (inst.movingId != last) {
-        InstanceRecord& other = *s.instances[s.movingIds[last]];
-        rtcDetachGeometry(s.moving, last);
-        rtcAttachGeometryByID(s.moving, other.geometry, inst.movingId);
-        other.movingId = inst.movingId;
-        s.movingIds[inst.movingId] = s.movingIds[last];
-      }
-      s.movingIds.pop_back();
-      s.movingDirty = true;
-      break;
-    }
   }
   inst.level = Level::None;
 }
@@ -168,12 +196,15 @@ Scene::Scene(std::shared_ptr<Device> device) : state_(std::make_unique<SceneStat
   state_->uid = nextSceneUid.fetch_add(1);
   state_->top = rtcNewScene(state_->device->handle());
   // Instances come and go rarely, but a whole scene arrives at once: favour fast builds.
-  rtcSetSceneFlags(state_->top, RTC_SCENE_FLAG_DYNAMIC);
+  // The context filter is how the tracer skips ghosts (SceneState::ghosts);
+  // Embree checks the flag of each scene a ray enters.
+  rtcSetSceneFlags(state_->top, RTC_SCENE_FLAG_DYNAMIC | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
   rtcSetSceneBuildQuality(state_->top, RTC_BUILD_QUALITY_LOW);
   state_->moving = rtcNewScene(state_->device->handle());
   rtcSetSceneFlags(state_->moving, RTC_SCENE_FLAG_DYNAMIC);
   rtcSetSceneBuildQuality(state_->moving, RTC_BUILD_QUALITY_LOW);
   state_->merged = rtcNewScene(state_->device->handle());
+  rtcSetSceneFlags(state_->merged, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
   rtcSetSceneBuildQuality(state_->merged, RTC_BUILD_QUALITY_HIGH);
   state_->mergedInstance = rtcNewGeometry(state_->device->handle(), RTC_GEOMETRY_TYPE_INSTANCE);
   rtcSetGeometryInstancedScene(state_->mergedInstance, state_->merged);
@@ -261,7 +292,6 @@ InstanceId Scene::addInstance(MeshId mesh, MaterialId material, const glm::mat4&
   inst->geometry = rtcNewGeometry(state_->device->handle(), RTC_GEOMETRY_TYPE_INSTANCE);
   rtcSetGeometryInstancedScene(inst->geometry, m.scene);
   rtcSetGeometryTimeStepCount(inst->geometry, 1);
-  rtcSetGeometryTransform(inst->geometry, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &transform[0][0]);
   state_->device->check("addInstance");
   auto id = std::uint32_t(state_->instances.size());
   state_->instances.push_back(std::move(inst));
@@ -275,8 +305,7 @@ void Scene::setInstanceTransform(InstanceId id, const glm::mat4& transform) {
   auto& inst = *lookup(state_->instances, id, "instance");
   validateTransform(transform);
   inst.transform = transform;
-  inst.moved = true;
-  rtcSetGeometryTransform(inst.geometry, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &transform[0][0]);
+  inst.moved = true;  // commit() gives the transform to the copy in the level it goes to
   state_->edit({.instance = index(id), .placed = true});
 }
 
@@ -430,14 +459,22 @@ void spreadMeshEdits(SceneState& s) {
     m.sceneStale = true;
     for (std::uint32_t u : m.users) {
       s.instances[u]->moved = true;
+      s.instances[u]->meshChanged = true;
       mark(s, u, true);
     }
   }
 }
 
+void setTransform(RTCGeometry g, const glm::mat4& transform) {
+  rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &transform[0][0]);
+}
+
 // Commit step 2: each changed instance goes where it belongs: static meshes
 // nobody else uses into the merged scene, instances that moved into the
-// moving level, the rest into the top level. Returns the instanced ones.
+// moving level, the rest into the top level. An instance that moves out of
+// the top level leaves a ghost there instead of rebuilding it, unless its
+// mesh changed (the ghost would trace the new mesh, with bounds of the old).
+// Returns the instanced ones.
 std::vector<std::uint32_t> placeInstances(SceneState& s) {
   std::vector<std::uint32_t> instanced;
   for (std::uint32_t id : s.pending.instances) {
@@ -445,31 +482,49 @@ std::vector<std::uint32_t> placeInstances(SceneState& s) {
     InstanceRecord& inst = *s.instances[id];
     const MeshRecord& m = *s.meshes[index(inst.mesh)];
     inst.placeDirty = false;
+    const bool inTop = inst.level == Level::Top || inst.level == Level::Ghosted;
     const Level want = m.data.usage == MeshUsage::Static && m.users.size() == 1 ? Level::Merged
-                       : inst.moved                                              ? Level::Moving
-                                                                                 : Level::Top;
-    // A merged copy is in world space: any change rebuilds it.
-    if (inst.level != want || want == Level::Merged) unplace(s, inst, id);
+                       : !inst.moved                                           ? Level::Top
+                       : inTop && !inst.meshChanged                            ? Level::Ghosted
+                                                                               : Level::Moving;
+    inst.meshChanged = false;
     switch (want) {
       case Level::Merged:
+        // A merged copy is in world space: any change rebuilds it.
+        unplace(s, inst, id);
         inst.flatGeometry = worldGeometry(s.device->handle(), m.data, inst.transform);
         rtcAttachGeometryByID(s.merged, inst.flatGeometry, id);
         s.mergedDirty = true;
         break;
       case Level::Top:
         if (inst.level != Level::Top) {
+          unplace(s, inst, id);
+          setTransform(inst.geometry, inst.transform);
           rtcAttachGeometryByID(s.top, inst.geometry, topId(id));
           ++s.topInstances;
+          s.topDirty = true;
         }
-        s.topDirty = true;
+        instanced.push_back(id);
+        break;
+      case Level::Ghosted:
+        if (inst.level == Level::Top) {
+          if (s.ghosts.size() <= topId(id)) s.ghosts.resize(s.instances.size() + 1);
+          s.ghosts[topId(id)] = 1;
+          ++s.ghostCount;
+          enterMoving(s, inst, id);
+        }
+        setTransform(inst.movingGeometry, inst.transform);
+        s.movingDirty = true;
         instanced.push_back(id);
         break;
       case Level::Moving:
-        if (inst.level != Level::Moving) {
-          inst.movingId = std::uint32_t(s.movingIds.size());
-          rtcAttachGeometryByID(s.moving, inst.geometry, inst.movingId);
-          s.movingIds.push_back(id);
+        if (inst.level == Level::Ghosted) {
+          leaveTop(s, inst, id);
+        } else if (inst.level != Level::Moving) {
+          unplace(s, inst, id);
+          enterMoving(s, inst, id);
         }
+        setTransform(inst.movingGeometry, inst.transform);
         s.movingDirty = true;
         instanced.push_back(id);
         break;
@@ -480,7 +535,36 @@ std::vector<std::uint32_t> placeInstances(SceneState& s) {
   return instanced;
 }
 
-// Commit step 3: the BVH of each mesh an instance traverses, then the
+// How many ghosts the top level carries before it rebuilds. Each edit
+// rebuilds the moving level over its L ghosts (c L, c about 0.7 us here),
+// each L-th folds them, rebuilding the top level over all n instances
+// (about 2c n): the mean cost per edit, 2c n / L + c L / 2, is least at
+// L = 2 sqrt(n).
+std::uint32_t ghostLimit(std::uint32_t topInstances) {
+  return std::max<std::uint32_t>(32, std::uint32_t(2.0 * std::sqrt(double(topInstances))));
+}
+
+// Commit step 3a: when the top level rebuilds anyway, or the ghosts grew too
+// many, the ghosted instances go back to the top level at their transform.
+void foldGhosts(SceneState& s) {
+  if (s.ghostCount == 0 || (!s.topDirty && s.ghostCount <= ghostLimit(s.topInstances))) return;
+  std::vector<std::uint32_t> ghosted;
+  for (std::uint32_t id : s.movingIds)
+    if (s.instances[id]->level == Level::Ghosted) ghosted.push_back(id);
+  for (std::uint32_t id : ghosted) {
+    InstanceRecord& inst = *s.instances[id];
+    leaveMoving(s, inst);
+    s.ghosts[topId(id)] = 0;
+    inst.level = Level::Top;
+    inst.moved = false;
+    setTransform(inst.geometry, inst.transform);
+    rtcCommitGeometry(inst.geometry);
+  }
+  s.ghostCount = 0;
+  s.topDirty = true;
+}
+
+// Commit step 3b: the BVH of each mesh an instance traverses, then the
 // instances (whose bounds come from it), then the levels over them.
 void commitLevels(SceneState& s, const std::vector<std::uint32_t>& instanced) {
   for (std::uint32_t id : instanced) {
@@ -490,13 +574,17 @@ void commitLevels(SceneState& s, const std::vector<std::uint32_t>& instanced) {
     rtcCommitScene(m.scene);
     m.sceneStale = false;
   }
-  for (std::uint32_t id : instanced) rtcCommitGeometry(s.instances[id]->geometry);
+  for (std::uint32_t id : instanced) {
+    const InstanceRecord& inst = *s.instances[id];
+    rtcCommitGeometry(inst.level == Level::Top ? inst.geometry : inst.movingGeometry);
+  }
   if (s.mergedDirty) {
     rtcCommitScene(s.merged);
     rtcCommitGeometry(s.mergedInstance);
     s.mergedDirty = false;
     s.topDirty = true;
   }
+  foldGhosts(s);
   if (s.topDirty) {
     rtcCommitScene(s.top);
     s.topDirty = false;

@@ -39,18 +39,24 @@ enum class Level : std::uint8_t {
   None,    // not placed yet
   Merged,  // copied to world space into the merged static scene
   Top,     // instanced in the top level, which rarely changes
-  Moving,  // instanced in the small moving level: its bounds changed since it was added
+  Moving,  // instanced in the small moving level only: its mesh changed since it was added
+  // Moved from the top level without rebuilding it: its current copy is in
+  // the moving level, its old copy stays in the top level as a ghost whose
+  // hits the tracer rejects, until the top level rebuilds.
+  Ghosted,
 };
 
 struct InstanceRecord {
   MeshId mesh{};
   MaterialId material{};
   glm::mat4 transform{1.0f};
-  RTCGeometry geometry = nullptr;      // the instance, for the top or moving level
-  RTCGeometry flatGeometry = nullptr;  // or its triangles in world space, in the merged scene
+  RTCGeometry geometry = nullptr;        // the instance in the top level (Top, or a ghost while Ghosted)
+  RTCGeometry movingGeometry = nullptr;  // the instance in the moving level (Moving, Ghosted)
+  RTCGeometry flatGeometry = nullptr;    // or its triangles in world space, in the merged scene
   Level level = Level::None;
   std::uint32_t movingId = 0;  // its id in the moving level, while there
-  bool moved = false;      // transform or mesh edited since it was added: it belongs to the moving level
+  bool moved = false;          // transform or mesh edited since it was placed: it belongs to the moving level
+  bool meshChanged = false;    // its mesh changed: a ghost of it would trace the new mesh, so it leaves the top
   bool placeDirty = true;  // bounds or level may have changed since the last commit
   bool viewDirty = false;  // listed in Pending::instances
 
@@ -59,6 +65,7 @@ struct InstanceRecord {
   InstanceRecord& operator=(const InstanceRecord&) = delete;
   ~InstanceRecord() {
     if (geometry) rtcReleaseGeometry(geometry);
+    if (movingGeometry) rtcReleaseGeometry(movingGeometry);
     if (flatGeometry) rtcReleaseGeometry(flatGeometry);
   }
 };
@@ -124,12 +131,18 @@ struct Pending {
 
 struct SceneState {
   std::shared_ptr<Device> device;
-  // Instances that never moved: rebuilt when instances come or go. Ids as topId().
+  // Instances that did not move since it was built: rebuilt when instances
+  // come or go, or when the ghosts grow too many. Ids as topId().
   RTCScene top = nullptr;
   // Instances whose transform or mesh was edited: few, so such an edit
   // rebuilds a small level instead of the top over every instance (Embree 3
   // has one instancing level, so the two are traced one after the other).
   RTCScene moving = nullptr;
+  // Top-level ids (topId()) of the ghosts: instances moved to the moving
+  // level whose old copy is still in the top level. The tracer rejects hits
+  // on them with a context filter, set only while there are any.
+  std::vector<std::uint8_t> ghosts;
+  std::uint32_t ghostCount = 0;
   // Static meshes used by exactly one instance are merged, in world space,
   // into one high-quality acceleration structure: no instance traversal and
   // one BVH over interleaved objects. Shared or animated meshes stay instanced.

@@ -23,6 +23,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 namespace tsr::embree {
 
@@ -70,6 +71,30 @@ inline bool traceable(const glm::vec3& org, const glm::vec3& dir, float tfar) {
          std::abs(dir.y) <= kMaxRayComponent && std::abs(dir.z) <= kMaxRayComponent && std::abs(tfar) <= kInf;
 }
 
+// The top level's intersection context: while it holds ghosts (instances
+// that moved to the moving level, SceneState::ghosts), hits on them are
+// rejected, so a ray sees what lies behind. Without ghosts there is no
+// filter and no cost.
+struct TopLevelContext {
+  RTCIntersectContext context;  // first: Embree hands the filter a pointer to it
+  const SceneState* scene;
+
+  explicit TopLevelContext(const SceneState& s) : scene(&s) {
+    rtcInitIntersectContext(&context);
+    if (s.ghostCount > 0) [[unlikely]]
+      context.filter = rejectGhosts;
+  }
+
+  static void rejectGhosts(const RTCFilterFunctionNArguments* args) {
+    const auto& ghosts = reinterpret_cast<const TopLevelContext*>(args->context)->scene->ghosts;
+    for (unsigned i = 0; i < args->N; ++i) {
+      const unsigned top = RTCHitN_instID(args->hit, args->N, i, 0);
+      if (args->valid[i] != 0 && top < ghosts.size() && ghosts[top]) args->valid[i] = 0;
+    }
+  }
+};
+static_assert(std::is_standard_layout_v<TopLevelContext>);
+
 struct Tracer {
   const SceneState& scene;
   const RenderSettings& settings;
@@ -87,21 +112,22 @@ struct Tracer {
       ++refused;
       return false;
     }
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
+    TopLevelContext top(scene);
     setRay(rh.ray, org, dir, kInf);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene.traversable, &ctx, &rh);
+    rtcIntersect1(scene.traversable, &top.context, &rh);
     if (scene.movingTraversable) [[unlikely]]
-      intersectMoving(ctx, rh);
+      intersectMoving(rh);
     ++rays;
     return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
   }
 
   // The moving level, traced up to the nearest hit so far: a hit there is
   // nearer and is renamed to the instance's top-level id.
-  [[gnu::noinline]] void intersectMoving(RTCIntersectContext& ctx, RTCRayHit& rh) const {
+  [[gnu::noinline]] void intersectMoving(RTCRayHit& rh) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
     const RTCHit nearest = rh.hit;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene.movingTraversable, &ctx, &rh);
@@ -116,13 +142,15 @@ struct Tracer {
       ++refused;
       return true;
     }
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
+    TopLevelContext top(scene);
     RTCRay ray;
     setRay(ray, org, dir, tfar);
-    rtcOccluded1(scene.traversable, &ctx, &ray);
-    if (scene.movingTraversable && ray.tfar >= 0.0f) [[unlikely]]
+    rtcOccluded1(scene.traversable, &top.context, &ray);
+    if (scene.movingTraversable && ray.tfar >= 0.0f) [[unlikely]] {
+      RTCIntersectContext ctx;
+      rtcInitIntersectContext(&ctx);
       rtcOccluded1(scene.movingTraversable, &ctx, &ray);
+    }
     ++rays;
     return ray.tfar < 0.0f;
   }

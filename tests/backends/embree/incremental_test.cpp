@@ -229,5 +229,123 @@ TEST(EmbreeIncremental, RemoveInstance) {
   expectEditEqualsFresh(s, [&](Scene& scene, const Built& b) { scene.removeInstance(b.box); });
 }
 
+
+// A crowd of instances of two shared meshes, one animated, on a merged
+// floor, edited many times: moves of many different instances (each leaves
+// a ghost in the top level, and the ghosts fold back into it when they grow
+// past the limit or when the top level rebuilds anyway), moves again of
+// moved ones, a vertex edit of the animated mesh under ghosts, a removal
+// and an addition. After each round the render equals a scene built fresh
+// in that state.
+struct Crowd {
+  std::vector<glm::vec3> at;  // per instance, in id order
+  std::vector<bool> present;
+  float blobScale = 1.0f;  // vertices of the animated mesh
+};
+
+Crowd crowd() {
+  Crowd c;
+  for (int i = 0; i < 100; ++i) c.at.push_back({-1.8f + 0.4f * float(i % 10), 0.15f, -1.8f + 0.4f * float(i / 10)});
+  c.present.assign(c.at.size(), true);
+  return c;
+}
+
+MeshData blob(float scale) {
+  MeshData m = uvSphere({0, 0, 0}, 0.12f, 80, true);
+  for (auto& p : m.positions) p = glm::vec3(p.x * scale, p.y, p.z);
+  m.usage = MeshUsage::Animated;
+  return m;
+}
+
+struct CrowdIds {
+  MeshId ball, blob;  // odd crowd indices are blobs
+  MeshId mesh(std::size_t i) const { return i % 2 ? blob : ball; }
+  MaterialId material;
+  std::vector<InstanceId> instances;  // by crowd index
+};
+
+CrowdIds buildCrowd(Scene& scene, const Crowd& c) {
+  CrowdIds ids;
+  Material lamp;
+  lamp.emission = glm::vec3(8.0f);
+  lamp.baseColor = glm::vec3(0.0f);
+  scene.addInstance(scene.addMesh(quad({-1, 3, -1}, {1, 3, -1}, {1, 3, 1}, {-1, 3, 1})), scene.addMaterial(lamp),
+                    glm::mat4(1.0f));
+  Material grey;
+  grey.baseColor = glm::vec3(0.6f);
+  scene.addInstance(scene.addMesh(quad({-3, 0, 3}, {3, 0, 3}, {3, 0, -3}, {-3, 0, -3})), scene.addMaterial(grey),
+                    glm::mat4(1.0f));
+  Material paint;
+  paint.baseColor = glm::vec3(0.8f, 0.3f, 0.2f);
+  ids.material = scene.addMaterial(paint);
+  ids.ball = scene.addMesh(uvSphere({0, 0, 0}, 0.15f, 60, false));
+  ids.blob = scene.addMesh(blob(c.blobScale));
+  for (std::size_t i = 0; i < c.at.size(); ++i) {
+    if (!c.present[i]) {
+      ids.instances.emplace_back();
+      continue;
+    }
+    ids.instances.push_back(scene.addInstance(ids.mesh(i), ids.material, glm::translate(glm::mat4(1.0f), c.at[i])));
+  }
+  scene.setEnvironment(Environment::constant(glm::vec3(0.1f)));
+  return ids;
+}
+
+TEST(EmbreeIncremental, ManyMovesEqualAFreshScene) {
+  const Camera camera = Camera::lookAt({0, 4, 3}, {0, 0, 0}, {0, 1, 0}, glm::radians(55.0f), 1.0f);
+  auto renderCrowd = [&](Scene& scene, FrameBuffer& fb) {
+    RenderSettings s;
+    s.seed = 5;
+    s.maxDepth = 4;
+    Renderer renderer(s);
+    render(renderer, scene, camera, Region::full(fb.width(), fb.height()), fb, 2);
+  };
+  Crowd state = crowd();
+  Scene scene(sharedDevice());
+  CrowdIds ids = buildCrowd(scene, state);
+  FrameBuffer commits(4, 4);
+  renderCrowd(scene, commits);
+  auto move = [&](std::size_t i, glm::vec3 by) {
+    state.at[i] += by;
+    scene.setInstanceTransform(ids.instances[i], glm::translate(glm::mat4(1.0f), state.at[i]));
+    renderCrowd(scene, commits);  // one commit per edit, as a viewer dragging objects does
+  };
+  auto expectFresh = [&](const char* round) {
+    FrameBuffer edited(48, 48);
+    renderCrowd(scene, edited);
+    Scene fresh(sharedDevice());
+    buildCrowd(fresh, state);
+    FrameBuffer direct(48, 48);
+    renderCrowd(fresh, direct);
+    EXPECT_TRUE(identical(edited, direct)) << round;
+  };
+
+  for (std::size_t i = 0; i < 10; ++i) move(i, {0.1f, 0.0f, 0.15f});
+  expectFresh("ten instances moved once: ghosts in the top level");
+  for (std::size_t i = 10; i < 45; ++i) move(i, {-0.1f, 0.05f * float(i % 3), 0.1f});
+  expectFresh("past the ghost limit: folded back into the top level");
+  move(5, {0.0f, 0.3f, 0.0f});
+  move(60, {0.2f, 0.0f, 0.0f});
+  move(61, {0.0f, 0.0f, -0.2f});
+  move(62, {-0.2f, 0.0f, 0.0f});
+  move(60, {0.0f, 0.2f, 0.0f});
+  expectFresh("moved again, in the moving level");
+  state.blobScale = 1.6f;
+  MeshData b = blob(state.blobScale);
+  scene.updateMeshVertices(ids.blob, 0, b.positions);  // 61 is a ghost of the blob: it leaves the top level
+  move(63, {0.1f, 0.0f, 0.1f});
+  state.present[62] = false;  // a ghost goes
+  scene.removeInstance(ids.instances[62]);
+  expectFresh("a vertex edit under ghosts, a ghost removed");
+  move(70, {0.0f, 0.2f, 0.0f});
+  move(72, {0.0f, 0.2f, 0.0f});
+  for (glm::vec3 at : {glm::vec3(0.0f, 1.0f, 0.0f), glm::vec3(0.5f, 1.0f, 0.0f)}) {
+    ids.instances.push_back(scene.addInstance(ids.mesh(state.at.size()), ids.material, glm::translate(glm::mat4(1.0f), at)));
+    state.at.push_back(at);
+    state.present.push_back(true);
+  }
+  expectFresh("an addition rebuilds the top level and folds the ghosts");
+}
+
 }  // namespace
 }  // namespace tsr::embree::test

@@ -1,9 +1,10 @@
 // What one edit costs a converted Embree scene of builtin:instances:N,
 // against converting that scene from scratch: end to end through a render
 // of one pixel with one sample (which adds Embree's acceleration structure
-// builds; Embree 3 cannot refit instance levels, so an instance whose bounds
-// change leaves the top level over all N once, for a level of the instances
-// that moved), and the mediator's part alone (Viewport::synchronize). The
+// builds; Embree 3 cannot refit instance levels, so an instance that moves
+// goes to a small level of the instances that moved, leaving a ghost in the
+// top level over all N, which rebuilds once per 2 sqrt(N) such first moves),
+// and the mediator's part alone (Viewport::synchronize). The
 // edits are one moved transform (the same one, or a different one each time),
 // one material's colour and a two-vertex range of one geometry; run all with
 // --benchmark_filter='/(10000|100000)$'. Their mediator cost must not grow
@@ -37,13 +38,27 @@ Instances& scene(std::int64_t count) {
 // One edit of the source scene, the i-th of the run.
 using Edit = void (*)(Instances&, int i);
 
+// Edits are numbered over the whole program, so none sets the value an
+// earlier one left (which changes nothing): Google Benchmark runs each
+// function several times, to pick its iteration count and to repeat.
+int nextEdit() {
+  static int n = 0;
+  return ++n;
+}
+
 void moveOneTransform(Instances& s, int i) {
   s.transforms[s.transforms.size() / 2]->setMatrix(glm::translate(glm::mat4(1.0f), glm::vec3(0.01f * i, 0, 0)));
 }
-// A different instance each time: the first move of an instance takes it out
-// of the top level (which rebuilds), later moves only rebuild the moving level.
+// A different instance each time: the first move of an instance ghosts it in
+// the top level, and every 2 sqrt(N)-th folds the ghosts back (a rebuild of the
+// top level); between folds only the moving level rebuilds.
 void moveAnotherTransform(Instances& s, int i) {
   s.transforms[std::size_t(i) % s.transforms.size()]->setMatrix(glm::translate(glm::mat4(1.0f), glm::vec3(0, 0.01f * i, 0)));
+}
+// A millimetre, to an instance spread over the grid: the frame stays the same.
+void nudgeAnotherTransform(Instances& s, int i) {
+  sg::Transform& t = *s.transforms[std::size_t(i) * 7919 % s.transforms.size()];
+  t.setMatrix(glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, 1e-3f)) * t.matrix());
 }
 void tintOneMaterial(Instances& s, int i) { s.materials.front()->setBaseColor(glm::vec3(0.5f, 0.5f, (i % 100) / 100.0f)); }
 void nudgeTwoVertices(Instances& s, int i) {
@@ -64,10 +79,9 @@ void syncAfterEdit(benchmark::State& state, Edit edit, bool endToEnd) {
   auto viewport = s.registry.create(s.settings(), contexts);
   med::FrameBuffer out;
   viewport->render(replica, s.onePixel(replica.scene()), out);
-  int i = 0;
   for (auto _ : state) {
     state.PauseTiming();
-    edit(s, ++i);
+    edit(s, nextEdit());
     replica.apply(s.source.commit());
     state.ResumeTiming();
     auto update = endToEnd ? viewport->render(replica, s.onePixel(replica.scene()), out).update
@@ -113,6 +127,30 @@ static void BM_SyncPointsRangeEdit(benchmark::State& state) { syncAfterEdit(stat
 static void BM_MediatorSyncOnlyOneTransformEdit(benchmark::State& state) { syncAfterEdit(state, moveOneTransform, false); }
 static void BM_MediatorSyncOnlyMaterialEdit(benchmark::State& state) { syncAfterEdit(state, tintOneMaterial, false); }
 static void BM_MediatorSyncOnlyPointsRangeEdit(benchmark::State& state) { syncAfterEdit(state, nudgeTwoVertices, false); }
+// What ghosts cost a frame: one sample per pixel of a 64x64 view after
+// `moved` different instances moved (a millimetre) once each (their ghosts stay in the top
+// level until 2 sqrt(N) of them), against the same frame with none moved.
+static void BM_RenderAfterMoves(benchmark::State& state) {
+  Instances& s = scene(state.range(0));
+  sg::Replica replica(4);
+  replica.apply(s.source.snapshot());
+  med::ContextPool contexts;
+  auto viewport = s.registry.create(s.settings(), contexts);
+  med::FrameBuffer out;
+  viewport->render(replica, s.onePixel(replica.scene()), out);
+  for (int i = 0; i < state.range(1); ++i) {
+    nudgeAnotherTransform(s, nextEdit());
+    replica.apply(s.source.commit());
+    viewport->render(replica, s.onePixel(replica.scene()), out);
+  }
+  // Two poses a hair apart, so each frame restarts accumulation and traces all its pixels.
+  med::View frames[2] = {s.view(replica.scene(), 64, 64), s.view(replica.scene(), 64, 64)};
+  frames[1].cameraToWorld[3].x += 1e-4f;
+  int i = 0;
+  for (auto _ : state) viewport->render(replica, frames[++i % 2], out);
+}
+BENCHMARK(BM_RenderAfterMoves)->Args({10000, 0})->Args({10000, 199})->Unit(benchmark::kMillisecond);
+
 BENCHMARK(BM_SyncOneTransformEdit)->Apply(sizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_SyncFirstTransformEdit)->Apply(sizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_SyncMaterialEdit)->Apply(sizes)->Unit(benchmark::kMicrosecond);

@@ -15,7 +15,7 @@ namespace {
 constexpr std::uint32_t kSize = 48;
 
 struct Rig : test::ViewportRig {
-  Rig() : ViewportRig("embree", med::registerEmbree, "builtin:cornell", kSize) {
+  explicit Rig(const std::string& scene = "builtin:cornell") : ViewportRig("embree", med::registerEmbree, scene, kSize) {
     parameters.set("spp", std::int64_t{4});
     parameters.set("seed", std::int64_t{7});
     parameters.set("maxDepth", std::int64_t{4});
@@ -117,6 +117,34 @@ class EmbreeMediator : public ::testing::Test {
   sg::Replica replica;
   med::ContextPool contexts;
 };
+
+// A viewer dragging many objects, one frame per edit: each moved instance
+// leaves a ghost in the top level until they fold back into it (past
+// 2 sqrt(400) = 40 of them); moved again, they stay in the moving level.
+TEST(EmbreeMediatorManyMoves, RenderAfterManyMovesEqualsAFreshConversion) {
+  Rig rig("builtin:instances:400");
+  std::vector<sg::Transform*> carriers;  // the unnamed transforms that each carry one object (not the camera's, the sun's)
+  for (auto id : rig.source.ids())
+    if (auto* t = rig.source.find<sg::Transform>(id); t && t->children().size() == 1 && t->name().empty())
+      carriers.push_back(t);
+  ASSERT_EQ(carriers.size(), 400u);
+  Follower follower;
+  follower.replica.apply(rig.source.commit());
+  ASSERT_EQ(follower.render(rig).update, med::SceneAdapter::Update::Converted);
+  const med::FrameBuffer before = follower.image;
+  auto move = [&](std::size_t i, float dz) {
+    sg::Transform& t = *carriers[i * 37 % carriers.size()];  // spread over the grid
+    t.setMatrix(glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, dz)) * t.matrix());
+    follower.replica.apply(rig.source.commit());
+    EXPECT_EQ(follower.render(rig).update, med::SceneAdapter::Update::Synced);
+  };
+  for (std::size_t i = 0; i < 30; ++i) move(i, 0.3f);
+  expectSameBits(follower.image, fresh(rig), "30 instances moved: ghosts");
+  for (std::size_t i = 30; i < 60; ++i) move(i, -0.3f);
+  for (std::size_t i = 50; i < 60; ++i) move(i, 0.2f);
+  expectSameBits(follower.image, fresh(rig), "60 moved (a fold at 41), the last 10 moved again");
+  EXPECT_GT(test::differingPixels(before, follower.image), 0u) << "the moves are visible";
+}
 
 TEST_F(EmbreeMediator, TilesAreCropsAndThreadsDoNotMatter) {
   auto full = rig.registry.create(rig.settings(), contexts);

@@ -69,7 +69,8 @@ class Scene {
 
   // For benchmarks that trace raw rays; valid after commit(). Instances whose
   // transform or mesh was edited are in a second level the renderer traces
-  // after this one, so raw rays see only scenes that were never edited.
+  // after this one (leaving ghosts here that the renderer skips), so raw
+  // rays see only scenes that were never edited.
   RTCScene embreeScene() const;
   const SceneState& state() const { return *state_; }
 
