@@ -51,11 +51,11 @@ bool parseAnaglyphOptions(int argc, char** argv, AnaglyphOptions& o) {
   auto* sepOption = app.add_option("--eye-separation", separation,
                                    "distance between the eyes in scene units "
                                    "(default: 1/30 of the zero-parallax distance)")
-                        ->check(CLI::Range(0.0f, 1e6f));
+                        ->check(FiniteRange(0.0, 1e6));
   auto* zpOption = app.add_option("--zero-parallax", zeroParallax,
                                   "distance of the plane that appears on the screen "
                                   "(default: to the centre of the scene's bounds)")
-                       ->check(CLI::Range(1e-6f, 1e9f));
+                       ->check(FiniteRange(1e-6, 1e9));
   std::vector<std::string> params;
   app.add_option("--param", params, "back-end parameter name=value (repeatable), e.g. filter=pixel");
   app.add_option("--nodes", o.nodes,

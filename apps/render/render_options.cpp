@@ -96,17 +96,17 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
           ->check(CLI::IsMember({"none", "pixel", "atrous", "radiance", "hybrid"})),
       "filter");
   filterOptions.emplace_back(filterGroup->add_option("--threshold", threshold, "perceived variance kept under (default 0.01)")
-                                 ->check(CLI::NonNegativeNumber),
+                                 ->check(FiniteNonNegative()),
                              "threshold");
   filterOptions.emplace_back(filterGroup->add_option("--sigma-s", sigmaS, "spatial std. dev., pixels (default 8)")
-                                 ->check(CLI::PositiveNumber),
+                                 ->check(FinitePositive()),
                              "sigmaS");
   filterOptions.emplace_back(filterGroup->add_option("--sigma-c", sigmaC, "range colour std. dev. (default 0.02)")
-                                 ->check(CLI::PositiveNumber),
+                                 ->check(FinitePositive()),
                              "sigmaC");
   filterOptions.emplace_back(
       filterGroup->add_option("--sigma-d", sigmaD, "range depth std. dev., fraction of the frame's depth extent (default 0.1)")
-          ->check(CLI::PositiveNumber),
+          ->check(FinitePositive()),
       "sigmaD");
   filterOptions.emplace_back(filterGroup->add_option("--path-class", pathClass, "paths filtered: indirect, caustic or all")
                                  ->check(CLI::IsMember({"indirect", "caustic", "all"})),
