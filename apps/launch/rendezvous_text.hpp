@@ -11,8 +11,10 @@
 
 namespace tsr::app {
 
-// Address files and rank lines longer than this are refused.
-inline constexpr std::size_t kMaxRendezvousText = 256;
+// Address files and rank lines longer than this are refused. What a node
+// rank writes always fits: "rank 4095 " + a host of at most 255 characters
+// + ":65535\n" (the fuzz target found a 256-byte limit that refused some).
+inline constexpr std::size_t kMaxRendezvousText = 512;
 
 // One "HOST:PORT" line (a trailing newline and nothing else after it); port
 // 0 is refused. Throws LaunchError naming `file`.
