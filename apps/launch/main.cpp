@@ -172,6 +172,15 @@ int main(int argc, char** argv) {
     if (o.rendezvous.empty() && o.rendezvousAddress.empty())
       throw LaunchError("give --rendezvous DIR (a shared folder) or --rendezvous-address HOST:PORT (rank 0's)");
     if (!o.rendezvousAddress.empty()) rankZero = tsr::cluster::parseNodeAddress(o.rendezvousAddress);
+    // Hosts this rank hands on (to tessera-node, in its published address) are checked here, not by them.
+    for (const auto& [option, host] : {std::pair{"--listen", o.listenHost}, std::pair{"--advertise", o.advertise}}) {
+      if (host.empty()) continue;
+      try {
+        tsr::cluster::parseNodeAddress(host + ":0");
+      } catch (const std::invalid_argument&) {
+        throw LaunchError(std::string(option) + " " + host.substr(0, 64) + ": not a host name or IP address");
+      }
+    }
     if ((o.rank < 0) != (o.size < 0)) throw LaunchError("--rank and --size go together");
     if (o.rank >= 0) {
       rank = {static_cast<unsigned>(o.rank), static_cast<unsigned>(o.size), o.job, "command line"};

@@ -237,6 +237,9 @@ TEST_F(BadInput, LaunchRefusesBadRendezvousRanksAndPrograms) {
       {"", folder + "--rank 0 --size 2 -- ./meet", "./meet: not an executable file"},
       {"", folder + "--rank 1 --size 2 --node-binary ./missing-node", "./missing-node: no such program"},
       {"", folder + "--rank 1 --size 2 --wait 0", "--wait"},
+      {"", folder + "--rank 1 --size 2 --wait nan", "--wait"},
+      {"", folder + "--rank 1 --size 2 --listen 'no host'", "--listen no host: not a host name"},
+      {"", folder + "--rank 1 --size 2 --advertise 'a,b'", "--advertise a,b: not a host name"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.env + " " + c.args);
