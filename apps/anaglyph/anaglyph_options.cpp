@@ -60,9 +60,10 @@ bool parseAnaglyphOptions(int argc, char** argv, AnaglyphOptions& o) {
   app.add_option("--param", params, "back-end parameter name=value (repeatable), e.g. filter=pixel");
   app.add_option("--nodes", o.nodes,
                  "render the left eye on the first node and the right on the second (HOST:PORT,...)");
-  app.add_option("--token-file", o.tokenFile, "the nodes' shared token");
-  app.add_option("--output", o.output, "render one frame headless to this image file (no window)");
-  app.add_option("--script", o.script, "window: run the actions of this file (see --help-script), then exit");
+  app.add_option("--token-file", o.tokenFile, "the nodes' shared token")->check(FileName());
+  app.add_option("--output", o.output, "render one frame headless to this image file (no window)")->check(FileName());
+  app.add_option("--script", o.script, "window: run the actions of this file (see --help-script), then exit")
+      ->check(FileName());
   bool scriptHelp = false;
   app.add_flag("--help-script", scriptHelp, "list the actions a --script file may hold");
   ImportLimitOptions limits;

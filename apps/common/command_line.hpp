@@ -26,6 +26,14 @@ inline bool parseCommandLine(CLI::App& app, int argc, char** argv) {
   return true;
 }
 
+// A file option given as "" (an unset shell variable, say) is refused: taken
+// as not given, it would quietly change what the program does (no --output:
+// a window; no --stats-json: no statistics).
+inline CLI::Validator FileName() {
+  return CLI::Validator([](std::string& text) { return text.empty() ? std::string("an empty file name") : std::string(); },
+                        "");
+}
+
 // A floating-point option's bounds. CLI::Range and CLI::PositiveNumber let
 // "nan" through (every comparison with it is false) and PositiveNumber
 // "inf": every real-valued option is checked with this instead.

@@ -152,8 +152,10 @@ int main(int argc, char** argv) {
   app.add_option("--rank", o.rank, "this process's rank, when no launcher sets SLURM_PROCID or OMPI_COMM_WORLD_RANK")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--size", o.size, "the job size, with --rank")->check(CLI::PositiveNumber);
-  app.add_option("--token-file", o.tokenFile, "shared token: given to every node and appended to the client command");
-  app.add_option("--node-binary", o.nodeBinary, "tessera-node to run on node ranks (default: beside this program)");
+  app.add_option("--token-file", o.tokenFile, "shared token: given to every node and appended to the client command")
+      ->check(tsr::app::FileName());
+  app.add_option("--node-binary", o.nodeBinary, "tessera-node to run on node ranks (default: beside this program)")
+      ->check(tsr::app::FileName());
   app.add_option("--listen", o.listenHost, "host the nodes listen on (0.0.0.0: every interface; needs --token-file)");
   app.add_option("--advertise", o.advertise,
                  "host name the nodes publish (default: the --listen host, or this host's name for 0.0.0.0)");

@@ -78,9 +78,9 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
   auto* depthOption = app.add_option("--max-depth", maxDepth, "maximum path depth")->check(CLI::Range(0, 1024));
   auto* seedOption = app.add_option("--seed", seed, "random seed")->check(CLI::NonNegativeNumber);
   auto* threadsOption = app.add_option("--threads", threads, "render threads (0: all)")->check(CLI::Range(0, 4096));
-  app.add_option("--output", o.output, "image file; the format follows the extension");
+  app.add_option("--output", o.output, "image file; the format follows the extension")->check(FileName());
   app.add_option("--aov", o.aovs, "extra outputs to write next to --output (albedo, normal, depth, direct, ...)");
-  app.add_option("--stats-json", o.statsJson, "write render statistics as JSON");
+  app.add_option("--stats-json", o.statsJson, "write render statistics as JSON")->check(FileName());
   app.add_option("--param", params, "back-end parameter name=value (repeatable)");
   app.add_flag("--quiet", o.quiet, "no progress bar");
   ImportLimitOptions limits;

@@ -14,9 +14,10 @@ void addSequenceOptions(CLI::App& app, SequenceOptions& o) {
   g->add_option("--fps", o.fps, "frames per second of animation time (default 24)")
       ->check(FinitePositive())
       ->needs(frames);
-  auto* cluster = g->add_option("--cluster", o.cluster, "render on the nodes a cluster config names (configs/*.json)");
+  auto* cluster = g->add_option("--cluster", o.cluster, "render on the nodes a cluster config names (configs/*.json)")
+                      ->check(FileName());
   g->add_option("--nodes", o.nodes, "HOST:PORT,... replacing the config's node addresses in order")->needs(cluster);
-  g->add_option("--token-file", o.tokenFile, "file holding the nodes' shared token")->needs(cluster);
+  g->add_option("--token-file", o.tokenFile, "file holding the nodes' shared token")->check(FileName())->needs(cluster);
 }
 
 std::string framePath(const std::string& pattern, int frame) {

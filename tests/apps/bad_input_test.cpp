@@ -75,6 +75,8 @@ TEST_F(BadInput, RenderRefusesBadOptionsAndConfigs) {
       {"--size 16", "expected WxH"},
       {"--backend nosuch", "nosuch"},
       {"--output out.unknownformat", "out.unknownformat"},
+      {"--output ''", "--output: an empty file name"},
+      {"--stats-json ''", "--stats-json: an empty file name"},
   };
   for (const auto& config : writeBadConfigs(dir))
     cases.push_back({"--cluster " + config.file + " --nodes 127.0.0.1:1", config.about});
@@ -135,6 +137,7 @@ TEST_F(BadInput, ViewerRefusesBadOptionsScriptsAndConfigs) {
       {"--spp 0", "--spp"},
       {"--max-file-mb 0", "--max-file-mb"},
       {"--exit-after", "--exit-after needs --script"},
+      {"--script ''", "--script: an empty file name"},
       {"--no-such-option", "--no-such-option"},
   };
   for (const auto& config : writeBadConfigs(dir))
@@ -183,6 +186,8 @@ TEST_F(BadInput, AnaglyphRefusesBadOptionsAndScripts) {
       {"--nodes 'a b:1'", "the host must be"},
       {"--nodes 127.0.0.1:1 --token-file missing-token", "missing-token"},
       {"--token-file missing-token", "--token-file needs --nodes"},
+      {"--output ''", "--output: an empty file name"},
+      {"--script ''", "--script: an empty file name"},
   };
   for (const auto& script : tsr::test::writeBadScriptFiles(dir))
     cases.push_back({"--script " + script.path, script.about});
@@ -238,6 +243,7 @@ TEST_F(BadInput, LaunchRefusesBadRendezvousRanksAndPrograms) {
       {"", folder + "--rank 1 --size 2 --node-binary ./missing-node", "./missing-node: no such program"},
       {"", folder + "--rank 1 --size 2 --wait 0", "--wait"},
       {"", folder + "--rank 1 --size 2 --wait nan", "--wait"},
+      {"", folder + "--rank 1 --size 2 --token-file ''", "--token-file: an empty file name"},
       {"", folder + "--rank 1 --size 2 --listen 'no host'", "--listen no host: not a host name"},
       {"", folder + "--rank 1 --size 2 --advertise 'a,b'", "--advertise a,b: not a host name"},
   };
