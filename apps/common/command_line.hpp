@@ -30,8 +30,8 @@ inline bool parseCommandLine(CLI::App& app, int argc, char** argv) {
 // as not given, it would quietly change what the program does (no --output:
 // a window; no --stats-json: no statistics).
 inline CLI::Validator FileName() {
-  return CLI::Validator([](std::string& text) { return text.empty() ? std::string("an empty file name") : std::string(); },
-                        "");
+  return CLI::Validator(
+      [](std::string& text) { return text.empty() ? std::string("an empty file name") : std::string(); }, "");
 }
 
 // A floating-point option's bounds. CLI::Range and CLI::PositiveNumber let

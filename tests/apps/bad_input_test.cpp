@@ -142,7 +142,8 @@ TEST_F(BadInput, ViewerRefusesBadOptionsScriptsAndConfigs) {
   };
   for (const auto& config : writeBadConfigs(dir))
     cases.push_back({"--cluster " + config.file + " --nodes 127.0.0.1:1", config.about});
-  for (const auto& script : tsr::test::writeBadScriptFiles(dir)) cases.push_back({"--script " + script.path, script.about});
+  for (const auto& script : tsr::test::writeBadScriptFiles(dir))
+    cases.push_back({"--script " + script.path, script.about});
   std::ofstream(dir / "nan.txt") << "orbit nan\n";
   std::ofstream(dir / "viewport.txt") << "backend 1 vulkan\n";
   std::ofstream(dir / "backend.txt") << "backend 0 nosuch\n";
@@ -197,11 +198,11 @@ TEST_F(BadInput, AnaglyphRefusesBadOptionsAndScripts) {
     SCOPED_TRACE(c.args);
     std::ofstream(dir / "out.png") << kGoodImage;
     // A script needs the window, so those cases go without --output.
-    const std::string output =
-        c.args.find("--output") == std::string::npos && c.args.find("--script") == std::string::npos ? " --output out.png"
-                                                                                                     : "";
+    const bool headless = c.args.find("--output") == std::string::npos && c.args.find("--script") == std::string::npos;
+    const std::string output = headless ? " --output out.png" : "";
     const std::string size = c.args.find("--size") == std::string::npos ? " --size 16x16" : "";
-    expectOneErrorLine(run(TSR_ANAGLYPH_PATH, "builtin:cornell --spp 1 " + c.args + size + output, kNoDisplay), c.about);
+    expectOneErrorLine(run(TSR_ANAGLYPH_PATH, "builtin:cornell --spp 1 " + c.args + size + output, kNoDisplay),
+                       c.about);
     EXPECT_EQ(slurp(dir / "out.png"), kGoodImage);
     EXPECT_FALSE(fs::exists(dir / "out.unknownformat"));
     EXPECT_TRUE(temporaries().empty());

@@ -183,7 +183,8 @@ TEST_F(ViewerWindow, ABrokenBookmarksFileIsNotSavedOver) {
   writeScript("save.txt", "wait frames 1\nbookmark save here\n");
   const Outcome v = viewer("builtin:cornell --viewports coverage --size 64x64 --script save.txt --exit-after");
   EXPECT_EQ(v.status, 2);
-  EXPECT_THAT(v.err, HasSubstr("error: save.txt:2: not saving over builtin-cornell.bookmarks.json, which could not be read"));
+  EXPECT_THAT(v.err,
+              HasSubstr("error: save.txt:2: not saving over builtin-cornell.bookmarks.json, which could not be read"));
   EXPECT_EQ(slurp(dir / "builtin-cornell.bookmarks.json"), broken);
 }
 
