@@ -7,14 +7,15 @@
 # tests/fuzz/regressions/TARGET/ so the normal test suite replays it.
 set -uo pipefail
 cd "$(dirname "$0")/.."
-targets=(wire_codec cluster_messages pixel_codec gltf_import cluster_config)
+targets=(wire_codec cluster_messages pixel_codec gltf_import cluster_config launch_address_file launch_rank_line
+         viewer_script camera_bookmarks anaglyph_script)
 [ $# -eq 2 ] || { echo "usage: scripts/fuzz.sh TARGET|all SECONDS|-runs=N" >&2; exit 2; }
 [ "$1" = all ] || targets=("$1")
 cmake --preset fuzz > /dev/null && cmake --build build/fuzz -j"${FUZZ_JOBS:-2}" \
   $(printf -- '--target fuzz_%s ' "${targets[@]}") > /dev/null || { echo "fuzz build failed" >&2; exit 2; }
 
 status=0
-printf '%-18s %12s %10s %9s\n' target executions exec/s findings
+printf '%-20s %12s %10s %9s\n' target executions exec/s findings
 for t in "${targets[@]}"; do
   work=build/fuzz/corpus/$t findings=build/fuzz/findings/$t
   rm -rf "$findings"; mkdir -p "$work" "$findings"
@@ -31,7 +32,7 @@ for t in "${targets[@]}"; do
   execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)
   speed=$(grep -o 'stat::average_exec_per_sec: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)
   found=$(find "$findings" -type f | wc -l)
-  printf '%-18s %12s %10s %9s\n' "$t" "${execs:-?}" "${speed:-?}" "$found"
+  printf '%-20s %12s %10s %9s\n' "$t" "${execs:-?}" "${speed:-?}" "$found"
   if [ $rc -ne 0 ]; then status=1; grep -m3 -E 'ERROR|SUMMARY|runtime error' "$log" | sed 's/^/    /'; fi
 done
 exit $status

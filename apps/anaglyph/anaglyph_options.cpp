@@ -51,18 +51,19 @@ bool parseAnaglyphOptions(int argc, char** argv, AnaglyphOptions& o) {
   auto* sepOption = app.add_option("--eye-separation", separation,
                                    "distance between the eyes in scene units "
                                    "(default: 1/30 of the zero-parallax distance)")
-                        ->check(CLI::Range(0.0f, 1e6f));
+                        ->check(FiniteRange(0.0, 1e6));
   auto* zpOption = app.add_option("--zero-parallax", zeroParallax,
                                   "distance of the plane that appears on the screen "
                                   "(default: to the centre of the scene's bounds)")
-                       ->check(CLI::Range(1e-6f, 1e9f));
+                       ->check(FiniteRange(1e-6, 1e9));
   std::vector<std::string> params;
   app.add_option("--param", params, "back-end parameter name=value (repeatable), e.g. filter=pixel");
   app.add_option("--nodes", o.nodes,
                  "render the left eye on the first node and the right on the second (HOST:PORT,...)");
-  app.add_option("--token-file", o.tokenFile, "the nodes' shared token");
-  app.add_option("--output", o.output, "render one frame headless to this image file (no window)");
-  app.add_option("--script", o.script, "window: run the actions of this file (see --help-script), then exit");
+  app.add_option("--token-file", o.tokenFile, "the nodes' shared token")->check(FileName());
+  app.add_option("--output", o.output, "render one frame headless to this image file (no window)")->check(FileName());
+  app.add_option("--script", o.script, "window: run the actions of this file (see --help-script), then exit")
+      ->check(FileName());
   bool scriptHelp = false;
   app.add_flag("--help-script", scriptHelp, "list the actions a --script file may hold");
   ImportLimitOptions limits;

@@ -199,22 +199,22 @@ void AnaglyphWindow::run() {
   }
 }
 
-void AnaglyphWindow::run(const std::vector<ScriptAction>& script) {
+void AnaglyphWindow::run(const std::vector<WindowAction>& script) {
   for (const auto& a : script) {
     glfwPollEvents();
     switch (a.kind) {
-      case ScriptAction::Kind::Key: key(a.text[0]); break;
-      case ScriptAction::Kind::Orbit: drag(a.x, a.y, false); break;
-      case ScriptAction::Kind::Pan: drag(a.x, a.y, true); break;
-      case ScriptAction::Kind::Scroll: scroll(a.x); break;
-      case ScriptAction::Kind::Frames:
+      case WindowAction::Kind::Key: key(a.text[0]); break;
+      case WindowAction::Kind::Orbit: drag(a.x, a.y, false); break;
+      case WindowAction::Kind::Pan: drag(a.x, a.y, true); break;
+      case WindowAction::Kind::Scroll: scroll(a.x); break;
+      case WindowAction::Kind::Frames:
         for (int i = 0; i < static_cast<int>(a.x); ++i) {
           dirty_ = true;
           frame();
           glfwPollEvents();
         }
         break;
-      case ScriptAction::Kind::Screenshot: screenshot(a.text); break;
+      case WindowAction::Kind::Screenshot: screenshot(a.text); break;
     }
   }
 }

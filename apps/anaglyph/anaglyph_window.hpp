@@ -38,7 +38,7 @@ class AnaglyphWindow {
   // Until the window is closed or Esc pressed.
   void run();
   // The actions, then return (a screenshot writes what the window last showed).
-  void run(const std::vector<ScriptAction>& script);
+  void run(const std::vector<WindowAction>& script);
 
   // Input, from GLFW's callbacks and from scripts alike.
   void key(char name);

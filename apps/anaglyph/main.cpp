@@ -64,7 +64,7 @@ tsr::app::StereoSettings defaultStereo(const tsr::app::AnaglyphOptions& o, const
 int run(int argc, char** argv) {
   tsr::app::AnaglyphOptions o;
   if (!tsr::app::parseAnaglyphOptions(argc, argv, o)) return 0;
-  const auto script = o.script.empty() ? std::vector<tsr::app::ScriptAction>{} : tsr::app::parseWindowScript(o.script);
+  const auto script = o.script.empty() ? std::vector<tsr::app::WindowAction>{} : tsr::app::parseWindowScript(o.script);
   spdlog::set_level(spdlog::level::warn);
   tsr::app::SceneSession session;
   session.load(o.scene, o.import);

@@ -5,9 +5,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <thread>
 
 #include "launch_rank.hpp"
@@ -15,6 +18,34 @@
 extern char** environ;
 
 namespace tsr::app {
+
+namespace {
+
+bool executableFile(const std::string& path) {
+  std::error_code ec;
+  return std::filesystem::is_regular_file(path, ec) && access(path.c_str(), X_OK) == 0;
+}
+
+}  // namespace
+
+void checkStartable(const std::string& program) {
+  if (program.empty()) throw LaunchError("an empty program name");
+  if (program.find('/') != std::string::npos) {
+    std::error_code ec;
+    if (!std::filesystem::exists(program, ec)) throw LaunchError(program + ": no such program");
+    if (!executableFile(program)) throw LaunchError(program + ": not an executable file");
+    return;
+  }
+  const char* path = std::getenv("PATH");
+  std::string dirs = path ? path : "/usr/local/bin:/usr/bin:/bin";
+  for (std::size_t start = 0; start <= dirs.size();) {
+    const auto colon = std::min(dirs.find(':', start), dirs.size());
+    const std::string dir = dirs.substr(start, colon - start);
+    if (executableFile((dir.empty() ? std::string(".") : dir) + "/" + program)) return;
+    start = colon + 1;
+  }
+  throw LaunchError(program + ": no such program on PATH");
+}
 
 ChildProcess::ChildProcess(const std::vector<std::string>& args, bool captureStdout) {
   if (args.empty()) throw LaunchError("no command to start");

@@ -11,6 +11,11 @@
 
 namespace tsr::app {
 
+// Throws LaunchError when `program` (an argv[0]) cannot be started: a path
+// that is missing, a folder or not executable, or a name not found on PATH.
+// Checked before a rank waits for the others, not after.
+void checkStartable(const std::string& program);
+
 class ChildProcess {
  public:
   // Starts argv[0] (searched on PATH when it has no '/'). Throws

@@ -1,10 +1,11 @@
 #include "directory_rendezvous.hpp"
 
 #include <fstream>
-#include <sstream>
+#include <iterator>
 #include <thread>
 
 #include "launch_rank.hpp"
+#include "rendezvous_text.hpp"
 #include "tsr/med/file_replacement.hpp"
 
 namespace tsr::app {
@@ -53,18 +54,12 @@ std::vector<cluster::NodeAddress> DirectoryRendezvous::gather(unsigned size, std
       std::error_code ec;
       const auto bytes = fs::file_size(file, ec);
       if (ec) continue;  // not there yet
-      if (bytes > kMaxAddressFileBytes)
+      if (bytes > kMaxRendezvousText)
         throw LaunchError("rendezvous file " + file.string() + " holds " + std::to_string(bytes) +
                           " bytes, not one HOST:PORT line");
-      std::ifstream in(file);
-      std::string line;
-      std::getline(in, line);
-      try {
-        addresses[r - 1] = cluster::parseNodeAddress(line);
-      } catch (const std::exception& e) {
-        throw LaunchError("rendezvous file " + file.string() + " does not hold HOST:PORT: " + e.what());
-      }
-      if (addresses[r - 1].port == 0) throw LaunchError("rendezvous file " + file.string() + " gives port 0");
+      std::ifstream in(file, std::ios::binary);
+      const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      addresses[r - 1] = parseAddressFile(text.substr(0, kMaxRendezvousText + 1), file.string());
       found[r - 1] = true;
       ++published;
     }

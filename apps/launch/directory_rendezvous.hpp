@@ -34,9 +34,6 @@ class DirectoryRendezvous final : public Rendezvous {
   // Removes "done" and the folder once no rank file is left.
   void cleanUp(unsigned size, std::chrono::milliseconds timeout) override;
 
-  // Files larger than this are not address files.
-  static constexpr std::uintmax_t kMaxAddressFileBytes = 256;
-
  private:
   std::filesystem::path rankFile(unsigned rank) const;
   std::filesystem::path folder_;

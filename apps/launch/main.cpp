@@ -20,6 +20,7 @@
 #include "directory_rendezvous.hpp"
 #include "launch_rank.hpp"
 #include "socket_rendezvous.hpp"
+#include "command_line.hpp"
 #include "error_line.hpp"
 
 namespace {
@@ -151,25 +152,37 @@ int main(int argc, char** argv) {
   app.add_option("--rank", o.rank, "this process's rank, when no launcher sets SLURM_PROCID or OMPI_COMM_WORLD_RANK")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--size", o.size, "the job size, with --rank")->check(CLI::PositiveNumber);
-  app.add_option("--token-file", o.tokenFile, "shared token: given to every node and appended to the client command");
-  app.add_option("--node-binary", o.nodeBinary, "tessera-node to run on node ranks (default: beside this program)");
+  app.add_option("--token-file", o.tokenFile, "shared token: given to every node and appended to the client command")
+      ->check(tsr::app::FileName());
+  app.add_option("--node-binary", o.nodeBinary, "tessera-node to run on node ranks (default: beside this program)")
+      ->check(tsr::app::FileName());
   app.add_option("--listen", o.listenHost, "host the nodes listen on (0.0.0.0: every interface; needs --token-file)");
   app.add_option("--advertise", o.advertise,
                  "host name the nodes publish (default: the --listen host, or this host's name for 0.0.0.0)");
   app.add_option("--threads", o.threads, "render threads per node viewport (0: all cores)");
   app.add_option("--node-arg", o.nodeArgs, "extra argument for tessera-node (repeatable)")->allow_extra_args(false);
   app.add_option("--wait", o.waitSeconds, "seconds to wait for a node to start and for all nodes to publish")
-      ->check(CLI::Range(0.1, 3600.0));
+      ->check(tsr::app::FiniteRange(0.1, 3600.0));
   app.add_option("client", o.client, "client command run by rank 0 (after --), e.g. tessera-render SCENE --cluster C");
   app.positionals_at_end();
   Console console;
   tsr::app::LaunchRank rank;
   tsr::cluster::NodeAddress rankZero;
+  std::unique_ptr<tsr::app::Rendezvous> meet;
   try {
     app.parse(argc, argv);
     if (o.rendezvous.empty() && o.rendezvousAddress.empty())
       throw LaunchError("give --rendezvous DIR (a shared folder) or --rendezvous-address HOST:PORT (rank 0's)");
     if (!o.rendezvousAddress.empty()) rankZero = tsr::cluster::parseNodeAddress(o.rendezvousAddress);
+    // Hosts this rank hands on (to tessera-node, in its published address) are checked here, not by them.
+    for (const auto& [option, host] : {std::pair{"--listen", o.listenHost}, std::pair{"--advertise", o.advertise}}) {
+      if (host.empty()) continue;
+      try {
+        tsr::cluster::parseNodeAddress(host + ":0");
+      } catch (const std::invalid_argument&) {
+        throw LaunchError(std::string(option) + " " + host.substr(0, 64) + ": not a host name or IP address");
+      }
+    }
     if ((o.rank < 0) != (o.size < 0)) throw LaunchError("--rank and --size go together");
     if (o.rank >= 0) {
       rank = {static_cast<unsigned>(o.rank), static_cast<unsigned>(o.size), o.job, "command line"};
@@ -184,6 +197,21 @@ int main(int argc, char** argv) {
       throw LaunchError("no job name from " + rank.source + ": give --job NAME, unique per run");
     if (rank.size < 2) throw LaunchError("a job of 1 process has no node: start at least 2 ranks");
     if (rank.rank == 0 && o.client.empty()) throw LaunchError("no client command: give it after --");
+    // What can be checked here is, before any rank waits for the others.
+    if (rank.rank == 0)
+      tsr::app::checkStartable(o.client.front());
+    else
+      tsr::app::checkStartable(o.nodeBinary.empty() ? defaultNodeBinary() : o.nodeBinary);
+    if (!o.rendezvous.empty()) {
+      std::error_code ec;
+      if (!fs::is_directory(o.rendezvous, ec))
+        throw LaunchError("--rendezvous " + o.rendezvous +
+                          (fs::exists(o.rendezvous, ec) ? ": not a folder"
+                                                         : ": no such folder (one every host of the job sees)"));
+      meet = std::make_unique<tsr::app::DirectoryRendezvous>(o.rendezvous, rank.job);
+    } else {
+      meet = std::make_unique<tsr::app::SocketRendezvous>(rankZero, rank.rank == 0, waitLimit(o));
+    }
   } catch (const CLI::CallForHelp&) {
     std::cout << app.help();
     return 0;
@@ -196,11 +224,6 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
   try {
-    std::unique_ptr<tsr::app::Rendezvous> meet;
-    if (!o.rendezvous.empty())
-      meet = std::make_unique<tsr::app::DirectoryRendezvous>(o.rendezvous, rank.job);
-    else
-      meet = std::make_unique<tsr::app::SocketRendezvous>(rankZero, rank.rank == 0, waitLimit(o));
     return rank.rank == 0 ? runClient(o, rank, *meet, console) : runNode(o, rank, *meet, console);
   } catch (const std::exception& e) {
     std::cerr << "error: rank " << rank.rank << ": " << e.what() << "\n";

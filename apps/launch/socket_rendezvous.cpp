@@ -6,13 +6,12 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <charconv>
 #include <cstring>
 #include <memory>
-#include <sstream>
 #include <thread>
 
 #include "launch_rank.hpp"
+#include "rendezvous_text.hpp"
 
 namespace tsr::app {
 
@@ -36,21 +35,6 @@ AddressList resolve(const cluster::NodeAddress& address, bool passive) {
   const int rc = getaddrinfo(address.host.c_str(), std::to_string(address.port).c_str(), &hints, &out.list);
   if (rc != 0) throw LaunchError("rendezvous address " + address.text() + ": " + gai_strerror(rc));
   return out;
-}
-
-// "rank 3 host:7000" -> rank 3, host:7000; false for anything else.
-bool parseLine(const std::string& line, unsigned size, unsigned& rank, cluster::NodeAddress& address) {
-  std::istringstream words(line);
-  std::string word, rankText, addressText, extra;
-  if (!(words >> word >> rankText >> addressText) || word != "rank" || (words >> extra)) return false;
-  auto [end, ec] = std::from_chars(rankText.data(), rankText.data() + rankText.size(), rank);
-  if (ec != std::errc() || end != rankText.data() + rankText.size() || rank == 0 || rank >= size) return false;
-  try {
-    address = cluster::parseNodeAddress(addressText);
-  } catch (const std::exception&) {
-    return false;
-  }
-  return address.port != 0;
 }
 
 }  // namespace
@@ -149,12 +133,10 @@ std::vector<cluster::NodeAddress> SocketRendezvous::gather(unsigned size, std::c
       bool drop = n <= 0;
       if (n > 0) p.buffer.append(chunk, static_cast<std::size_t>(n));
       if (const auto newline = p.buffer.find('\n'); !drop && newline != std::string::npos) {
-        unsigned rank = 0;
-        cluster::NodeAddress address;
         const std::string line = p.buffer.substr(0, newline);
-        if (parseLine(line, size, rank, address) && !found[rank - 1]) {
-          found[rank - 1] = true;
-          addresses[rank - 1] = address;
+        if (const auto r = parseRankLine(line, size); r && !found[r->rank - 1]) {
+          found[r->rank - 1] = true;
+          addresses[r->rank - 1] = r->address;
           ++published;
           nodes_.push_back(p.fd);  // kept open: closing it tells the node to stop
           pending.erase(pending.begin() + static_cast<std::ptrdiff_t>(i - 1));

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "rendezvous.hpp"
+#include "rendezvous_text.hpp"
 
 namespace tsr::app {
 
@@ -32,7 +33,7 @@ class SocketRendezvous final : public Rendezvous {
                                            const Progress& progress = {}) override;
   void markDone() override;
 
-  static constexpr std::size_t kMaxLine = 256;
+  static constexpr std::size_t kMaxLine = kMaxRendezvousText;
 
  private:
   cluster::NodeAddress address_;

@@ -78,9 +78,9 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
   auto* depthOption = app.add_option("--max-depth", maxDepth, "maximum path depth")->check(CLI::Range(0, 1024));
   auto* seedOption = app.add_option("--seed", seed, "random seed")->check(CLI::NonNegativeNumber);
   auto* threadsOption = app.add_option("--threads", threads, "render threads (0: all)")->check(CLI::Range(0, 4096));
-  app.add_option("--output", o.output, "image file; the format follows the extension");
+  app.add_option("--output", o.output, "image file; the format follows the extension")->check(FileName());
   app.add_option("--aov", o.aovs, "extra outputs to write next to --output (albedo, normal, depth, direct, ...)");
-  app.add_option("--stats-json", o.statsJson, "write render statistics as JSON");
+  app.add_option("--stats-json", o.statsJson, "write render statistics as JSON")->check(FileName());
   app.add_option("--param", params, "back-end parameter name=value (repeatable)");
   app.add_flag("--quiet", o.quiet, "no progress bar");
   ImportLimitOptions limits;
@@ -96,17 +96,17 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
           ->check(CLI::IsMember({"none", "pixel", "atrous", "radiance", "hybrid"})),
       "filter");
   filterOptions.emplace_back(filterGroup->add_option("--threshold", threshold, "perceived variance kept under (default 0.01)")
-                                 ->check(CLI::NonNegativeNumber),
+                                 ->check(FiniteNonNegative()),
                              "threshold");
   filterOptions.emplace_back(filterGroup->add_option("--sigma-s", sigmaS, "spatial std. dev., pixels (default 8)")
-                                 ->check(CLI::PositiveNumber),
+                                 ->check(FinitePositive()),
                              "sigmaS");
   filterOptions.emplace_back(filterGroup->add_option("--sigma-c", sigmaC, "range colour std. dev. (default 0.02)")
-                                 ->check(CLI::PositiveNumber),
+                                 ->check(FinitePositive()),
                              "sigmaC");
   filterOptions.emplace_back(
       filterGroup->add_option("--sigma-d", sigmaD, "range depth std. dev., fraction of the frame's depth extent (default 0.1)")
-          ->check(CLI::PositiveNumber),
+          ->check(FinitePositive()),
       "sigmaD");
   filterOptions.emplace_back(filterGroup->add_option("--path-class", pathClass, "paths filtered: indirect, caustic or all")
                                  ->check(CLI::IsMember({"indirect", "caustic", "all"})),

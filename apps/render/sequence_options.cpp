@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "command_line.hpp"
+
 namespace tsr::app {
 
 void addSequenceOptions(CLI::App& app, SequenceOptions& o) {
@@ -10,11 +12,12 @@ void addSequenceOptions(CLI::App& app, SequenceOptions& o) {
       ->check(CLI::Range(1, 1000000))
       ->each([&o](const std::string&) { o.framesGiven = true; });
   g->add_option("--fps", o.fps, "frames per second of animation time (default 24)")
-      ->check(CLI::PositiveNumber)
+      ->check(FinitePositive())
       ->needs(frames);
-  auto* cluster = g->add_option("--cluster", o.cluster, "render on the nodes a cluster config names (configs/*.json)");
+  auto* cluster = g->add_option("--cluster", o.cluster, "render on the nodes a cluster config names (configs/*.json)")
+                      ->check(FileName());
   g->add_option("--nodes", o.nodes, "HOST:PORT,... replacing the config's node addresses in order")->needs(cluster);
-  g->add_option("--token-file", o.tokenFile, "file holding the nodes' shared token")->needs(cluster);
+  g->add_option("--token-file", o.tokenFile, "file holding the nodes' shared token")->check(FileName())->needs(cluster);
 }
 
 std::string framePath(const std::string& pattern, int frame) {

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "command_line.hpp"
+
 namespace tsr::app {
 
 void addTemporalOptions(CLI::App& app, TemporalOptions& o) {
@@ -18,10 +20,10 @@ void addTemporalOptions(CLI::App& app, TemporalOptions& o) {
   g->add_option("--temporal-modes", o.modes, "keep this many PCA modes (default: chosen by --temporal-epsilon)")
       ->check(CLI::Range(1, 1 << 20));
   g->add_option("--temporal-epsilon", o.epsilon, "energy fraction the kept modes may leave unexplained (default 0.005)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(FiniteRange(0.0, 1.0));
   g->add_option("--temporal-epsilon-change", o.epsilonChange,
                 "stop adding modes when one more explains less than this (default 0.001)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(FiniteRange(0.0, 1.0));
   g->add_flag("--temporal-plain-rule", o.plainRule,
               "2.3's truncation rule as published: --temporal-epsilon-change alone decides what is noise (default: "
               "the noise level is measured from the modes, see backends/temporal/README.md)");
@@ -33,7 +35,7 @@ void addTemporalOptions(CLI::App& app, TemporalOptions& o) {
       ->check(CLI::Range(1, 255));
   g->add_flag("--temporal-global", o.global, "one truncation for the whole frame, not a smoothed per-pixel map");
   g->add_option("--temporal-map-sigma", o.mapSigma, "Gaussian smoothing of the per-pixel truncation map, pixels (default 2)")
-      ->check(CLI::Range(0.0, 64.0));
+      ->check(FiniteRange(0.0, 64.0));
   g->add_option("--temporal-window", o.window, "frames denoised together; longer sequences run in overlapping windows (default 64)")
       ->check(CLI::Range(2, 100000));
   g->add_option("--temporal-overlap", o.overlap, "frames two windows share, cross-faded (default 16)")

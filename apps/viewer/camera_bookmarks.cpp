@@ -2,10 +2,10 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 
 #include <nlohmann/json.hpp>
 
+#include "text_file.hpp"
 #include "tsr/med/file_replacement.hpp"
 
 namespace tsr::app {
@@ -84,19 +84,17 @@ std::string formatBookmarks(const std::vector<Bookmark>& bookmarks) {
 void BookmarkFile::load(const std::string& bookmarkPath) {
   std::vector<Bookmark> read;
   std::error_code ec;
-  if (std::filesystem::exists(bookmarkPath, ec)) {
-    if (std::filesystem::file_size(bookmarkPath, ec) > kMaxBytes) throw BookmarkError(bookmarkPath + ": larger than 64 KiB");
-    std::ifstream in(bookmarkPath, std::ios::binary);
-    if (!in) throw BookmarkError(bookmarkPath + ": cannot be read");
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    read = parseBookmarks(text, bookmarkPath);
-  }
+  if (std::filesystem::exists(bookmarkPath, ec))
+    read = parseBookmarks(readTextFile<BookmarkError>(bookmarkPath, kMaxBytes), bookmarkPath);
   path = bookmarkPath;
   bookmarks = std::move(read);
+  loadError.clear();
 }
 
 void BookmarkFile::save(const Bookmark& bookmark) {
   if (bookmark.name.empty() || bookmark.name.size() > kMaxName) throw BookmarkError("a bookmark name has 1 to 128 characters");
+  if (!loadError.empty())
+    throw BookmarkError("not saving over " + path + ", which could not be read (" + loadError + "): fix or remove it");
   std::vector<Bookmark> next = bookmarks;
   bool replaced = false;
   for (auto& b : next)

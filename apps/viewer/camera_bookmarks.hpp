@@ -28,6 +28,9 @@ struct Bookmark {
 struct BookmarkFile {
   std::string path;
   std::vector<Bookmark> bookmarks;
+  // Why the file at `path` could not be loaded, when it could not: save()
+  // then refuses, so a person's file with one typo is not replaced.
+  std::string loadError;
 
   static std::string pathFor(const std::string& scene);
   // No file: no bookmarks. Throws BookmarkError "PATH: what is wrong" for a
@@ -35,7 +38,7 @@ struct BookmarkFile {
   // is changed then.
   void load(const std::string& bookmarkPath);
   // Adds or replaces `bookmark` by name, then writes the file. Throws
-  // BookmarkError (the list is unchanged then).
+  // BookmarkError (the list is unchanged then), also after a failed load.
   void save(const Bookmark& bookmark);
   const Bookmark* find(const std::string& name) const;
 };

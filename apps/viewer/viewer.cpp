@@ -91,6 +91,7 @@ void Viewer::loadScene(const std::string& scene) {
     if (!marks.bookmarks.empty()) markMessage = std::to_string(marks.bookmarks.size()) + " bookmarks from " + marks.path;
   } catch (const BookmarkError& e) {
     marks.path = BookmarkFile::pathFor(scene);
+    marks.loadError = e.what();
     markMessage = std::string("bookmarks not restored: ") + e.what();
   }
   // From here on nothing throws: the old scene goes.

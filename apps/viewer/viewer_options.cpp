@@ -45,16 +45,18 @@ bool parseViewerOptions(int argc, char** argv, ViewerOptions& o) {
   app.add_flag("--raster-while-moving", o.rasterWhileMoving,
                "path-traced viewports rasterise while the camera moves and path trace when it stops");
   app.add_option("--script", o.script,
-                 "run the actions of FILE, one a line (backend, orbit, pan, zoom, wait, screenshot, ...: see README)");
+                 "run the actions of FILE, one a line (backend, orbit, pan, zoom, wait, screenshot, ...: see README)")
+      ->check(FileName());
   app.add_flag("--exit-after", o.exitAfter, "quit when the --script is done (exit status 0)");
   app.add_flag("--hide-panels", o.hidePanels, "start with the panels hidden (H shows them)");
   app.add_flag("--validate", o.validate,
                "Vulkan validation layers on the window's device (presentation and panels); any error fails the run");
   auto* clusterGroup = app.add_option_group("Cluster", "render viewport 0 on tessera-node processes");
   clusterGroup->add_option("--cluster", o.cluster,
-                           "cluster config (configs/*.json): viewport 0 renders on its nodes while it shows their back-end");
+                           "cluster config (configs/*.json): viewport 0 renders on its nodes while it shows their back-end")
+      ->check(FileName());
   clusterGroup->add_option("--nodes", o.nodes, "HOST:PORT,... replacing the config's node addresses in order");
-  clusterGroup->add_option("--token-file", o.tokenFile, "the nodes' shared token");
+  clusterGroup->add_option("--token-file", o.tokenFile, "the nodes' shared token")->check(FileName());
   ImportLimitOptions limits;
   limits.add(app, o.import);
   if (!parseCommandLine(app, argc, argv)) return false;

@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <sstream>
+
+#include "text_file.hpp"
 
 namespace tsr::app {
 
@@ -155,13 +156,7 @@ std::vector<ScriptAction> parseScriptText(const std::string& text, const std::st
 }
 
 std::vector<ScriptAction> parseScript(const std::string& path, const ScriptLimits& limits) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ScriptError(path + ": cannot be read");
-  std::string text;
-  text.resize(kMaxScriptBytes + 1);
-  in.read(text.data(), std::streamsize(text.size()));
-  text.resize(std::size_t(in.gcount()));
-  return parseScriptText(text, path, limits);
+  return parseScriptText(readTextFile<ScriptError>(path, kMaxScriptBytes), path, limits);
 }
 
 }  // namespace tsr::app

@@ -1,5 +1,7 @@
 #include "tsr/cluster/node_address.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 
 namespace tsr::cluster {
@@ -11,6 +13,14 @@ NodeAddress parseNodeAddress(const std::string& text) {
   NodeAddress a;
   a.host = text.substr(0, colon);
   if (a.host.size() > 2 && a.host.front() == '[' && a.host.back() == ']') a.host = a.host.substr(1, a.host.size() - 2);
+  // A host name or an IP address, nothing else: addresses travel on to
+  // other programs' command lines (tessera-launch's --nodes A,B), where a
+  // comma or a space would split one address into two.
+  if (a.host.size() > 255 || !std::all_of(a.host.begin(), a.host.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '_' || c == ':' || c == '%';
+      }))
+    throw std::invalid_argument("node address '" + text.substr(0, 64) +
+                                "': the host must be a name or an IP address (letters, digits, '.', '-', '_', ':')");
   std::string port = text.substr(colon + 1);
   unsigned value = 0;
   auto [end, ec] = std::from_chars(port.data(), port.data() + port.size(), value);

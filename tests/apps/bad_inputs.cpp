@@ -105,4 +105,20 @@ std::vector<BadInput> writeBadSceneInputs(const fs::path& dir) {
   };
 }
 
+std::vector<BadInput> writeBadScriptFiles(const fs::path& dir) {
+  fs::create_directories(dir / "scripts" / "folder.txt");
+  write(dir / "scripts" / "binary.txt", std::string("\x7f" "ELF\0\0\0\x01\n", 9));
+  std::string large;
+  while (large.size() <= (std::size_t{2} << 20)) large += "# a comment line of padding\n";
+  write(dir / "scripts" / "large.txt", large);
+  write(dir / "scripts" / "unknown.txt", "# fine so far\nfly 3\n");
+  return {
+      {"missing script", "scripts/missing.txt", "scripts/missing.txt: no such file"},
+      {"script folder", "scripts/folder.txt", "scripts/folder.txt: it is a directory"},
+      {"binary script", "scripts/binary.txt", "a NUL byte"},
+      {"2 MiB script", "scripts/large.txt", "scripts/large.txt: larger than"},
+      {"unknown action", "scripts/unknown.txt", "unknown action 'fly'"},
+  };
+}
+
 }  // namespace tsr::test

@@ -175,6 +175,19 @@ TEST_F(ViewerWindow, SideBySideViewportsOrbitBookmarksAndLayeredExr) {
   EXPECT_LE(compare(image("back.png"), turned).maxAbs, 1.0 / 255 + 1e-6);
 }
 
+// A bookmarks file that does not parse (a typo by hand) is kept: saving a
+// bookmark would otherwise replace every bookmark in it with the new one.
+TEST_F(ViewerWindow, ABrokenBookmarksFileIsNotSavedOver) {
+  const std::string broken = R"({"version": 1, "bookmarks": [{"name": "door", "target": [0, 1, 0],)";
+  std::ofstream(dir / "builtin-cornell.bookmarks.json") << broken;
+  writeScript("save.txt", "wait frames 1\nbookmark save here\n");
+  const Outcome v = viewer("builtin:cornell --viewports coverage --size 64x64 --script save.txt --exit-after");
+  EXPECT_EQ(v.status, 2);
+  EXPECT_THAT(v.err,
+              HasSubstr("error: save.txt:2: not saving over builtin-cornell.bookmarks.json, which could not be read"));
+  EXPECT_EQ(slurp(dir / "builtin-cornell.bookmarks.json"), broken);
+}
+
 TEST_F(ViewerWindow, CoveragePickSelectsTheObjectUnderThePixel) {
   writeScript("pick.txt", "wait frames 2\nwindow-screenshot before.png\npick 0 80 100\nwait frames 2\n"
                           "window-screenshot picked.png\npick 0 0 0\nwait frames 2\nwindow-screenshot after.png\n");

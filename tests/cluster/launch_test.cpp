@@ -17,6 +17,7 @@
 #include "cluster_test_util.hpp"
 #include "directory_rendezvous.hpp"
 #include "launch_rank.hpp"
+#include "rendezvous_text.hpp"
 #include "socket_rendezvous.hpp"
 #include "tsr/med/image_file.hpp"
 
@@ -119,6 +120,21 @@ TEST(DirectoryRendezvous, HostileFilesAndJobNamesAreRefused) {
   } catch (const app::LaunchError& e) {
     EXPECT_THAT(e.what(), HasSubstr("bytes, not one HOST:PORT line"));
   }
+}
+
+// Addresses go on to the client's command line as --nodes A,B: one that
+// would split there, or carry more than one line, is refused.
+TEST(RendezvousText, AddressesAreOneHostAndPortOrNothing) {
+  EXPECT_EQ(app::parseAddressFile("host-a:7001\n", "f").text(), "host-a:7001");
+  EXPECT_EQ(app::parseAddressFile("::1:7002", "f").host, "::1");
+  for (const char* bad : {"a,b:7001\n", "a b:7001\n", "host-a:7001\nhost-b:7002\n", "host-a:0\n", ":7001\n", ""})
+    EXPECT_THROW(app::parseAddressFile(bad, "f"), app::LaunchError) << bad;
+  const auto line = app::parseRankLine("rank 3 host-c:7003", 4);
+  ASSERT_TRUE(line);
+  EXPECT_EQ(line->rank, 3u);
+  EXPECT_EQ(line->address.text(), "host-c:7003");
+  for (const char* bad : {"rank 4 host:1", "rank 0 host:1", "rank 1 a,b:1", "rank 1 host:1 extra", "rank x host:1"})
+    EXPECT_FALSE(app::parseRankLine(bad, 4)) << bad;
 }
 
 // A port that was free a moment ago (the socket rendezvous needs one every rank knows).

@@ -13,6 +13,17 @@ std::vector<Target> allTargets() {
 #ifdef TSR_FUZZ_HAVE_IMPORT
       {"gltf_import", &gltfImport},
 #endif
+#ifdef TSR_FUZZ_HAVE_LAUNCH
+      {"launch_address_file", &launchAddressFile},
+      {"launch_rank_line", &launchRankLine},
+#endif
+#ifdef TSR_FUZZ_HAVE_VIEWER
+      {"viewer_script", &viewerScript},
+      {"camera_bookmarks", &cameraBookmarks},
+#endif
+#ifdef TSR_FUZZ_HAVE_ANAGLYPH
+      {"anaglyph_script", &anaglyphScript},
+#endif
   };
 }
 

@@ -25,6 +25,14 @@ void pixelCodec(Bytes bytes);
 void gltfImport(Bytes bytes);
 // A cluster configuration file's text.
 void clusterConfig(Bytes bytes);
+// tessera-launch's rendezvous: an address file's contents, a node rank's line.
+void launchAddressFile(Bytes bytes);
+void launchRankLine(Bytes bytes);
+// tessera-viewer's --script file and camera bookmarks file.
+void viewerScript(Bytes bytes);
+void cameraBookmarks(Bytes bytes);
+// tessera-anaglyph's --script file.
+void anaglyphScript(Bytes bytes);
 
 struct Target {
   std::string_view name;  // the folder of its corpus and regressions

@@ -14,7 +14,8 @@ struct NodeAddress {
   bool operator==(const NodeAddress&) const = default;
 };
 
-// Throws std::invalid_argument for a missing host or a port outside 0..65535.
+// Throws std::invalid_argument for a missing host, one with other characters
+// than a host name or IP address has, or a port outside 0..65535.
 NodeAddress parseNodeAddress(const std::string& text);
 // "a:1,b:2" -> two addresses.
 std::vector<NodeAddress> parseNodeList(const std::string& text);
