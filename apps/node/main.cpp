@@ -16,6 +16,7 @@
 #include "backends.hpp"
 #include "tsr/cluster/auth.hpp"
 #include "tsr/cluster/node_server.hpp"
+#include "command_line.hpp"
 #include "error_line.hpp"
 #ifdef TSR_HAVE_WINDOW
 #include "window_presenter.hpp"
@@ -27,7 +28,8 @@ int main(int argc, char** argv) {
   unsigned threads = 0;
   app.add_option("--listen", listen, "HOST:PORT to listen on (port 0: a free port)");
   app.add_option("--token-file", tokenFile,
-                 "file holding the shared token clients must prove (required to listen beyond loopback)");
+                 "file holding the shared token clients must prove (required to listen beyond loopback)")
+      ->check(tsr::app::FileName());
   bool insecure = false;
   app.add_flag("--insecure", insecure, "without --token-file, listen on a non-loopback address anyway: anyone may connect");
   app.add_option("--name", name, "name reported to clients");

@@ -195,17 +195,19 @@ int main(int argc, char** argv) {
   app.add_option("CONFIG", o.config, "cluster config with \"mode\": \"tiled\" (a grid or screens, see configs/)")->required();
   app.add_option("SCENE", o.scene, "a .gltf/.glb file or builtin:cornell, builtin:animated, builtin:instances:N")->required();
   app.add_option("--nodes", o.nodes, "node addresses A:P,B:Q,... in screen order (default: the config's)");
-  app.add_option("--token-file", o.tokenFile, "file holding the token the nodes were started with");
+  app.add_option("--token-file", o.tokenFile, "file holding the token the nodes were started with")
+      ->check(tsr::app::FileName());
   app.add_option("--frames", o.frames, "frames to play (0: until interrupted)")->capture_default_str();
-  app.add_option("--spp", o.spp, "samples per pixel on every node (0: the config's)")->capture_default_str();
-  app.add_option("--fps", o.fps, "animation frames per second of scene time")->capture_default_str()->check(CLI::Range(0.001, 1000.0));
+  app.add_option("--spp", o.spp, "samples per pixel on every node (0: the config's)")->capture_default_str()->check(CLI::Range(std::int64_t{0}, std::int64_t{1} << 20));
+  app.add_option("--fps", o.fps, "animation frames per second of scene time")->capture_default_str()->check(tsr::app::FiniteRange(0.001, 1000.0));
   app.add_option("--max-fps", o.maxFps, "at most this many frames a second (0: as fast as the nodes render)")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 1000.0));
+      ->check(tsr::app::FiniteRange(0.0, 1000.0));
   app.add_option("--size", o.size, "virtual frame WxH (default: the config's wall frame, else 960x540)");
-  app.add_option("--status-every", o.statusEvery, "seconds between status lines")->capture_default_str()->check(CLI::Range(0.0, 3600.0));
+  app.add_option("--status-every", o.statusEvery, "seconds between status lines")->capture_default_str()->check(tsr::app::FiniteRange(0.0, 3600.0));
   app.add_option("--camera", o.camera, "the scene camera to play through: its name or index (default: the first)");
-  app.add_option("--output", o.output, "write the last stitched frame here (PNG, EXR, ...); only that frame's pixels come back from the nodes");
+  app.add_option("--output", o.output, "write the last stitched frame here (PNG, EXR, ...); only that frame's pixels come back from the nodes")
+      ->check(tsr::app::FileName());
   app.add_flag("--pixels-back", o.pixelsBack,
                "every frame's pixels come back to this client, as they would for a preview (default: they stay on "
                "the nodes, which present them)");

@@ -104,6 +104,9 @@ TEST_F(BadInput, NodeRefusesBadStartUpsWithoutListening) {
       {"--listen 127.0.0.1:99999", "99999"},
       {"--listen 0.0.0.0:0", "without --token-file"},
       {"--threads -1", "--threads"},
+      {"--token-file ''", "an empty file name"},
+      {"--present bogus", "--present"},
+      {"--present files:missing-folder", "missing-folder"},
       {"--no-such-option", "--no-such-option"},
   };
   for (const auto& c : cases) {
@@ -114,6 +117,47 @@ TEST_F(BadInput, NodeRefusesBadStartUpsWithoutListening) {
   }
 }
 
+
+#ifdef TSR_WALL_PATH
+// tessera-wall checks its config, options and scene before it contacts a
+// node (the config's one node does not exist) and writes no --output.
+TEST_F(BadInput, WallRefusesBadScenesConfigsAndOptions) {
+  std::ofstream(dir / "wall.json") << R"({"mode": "tiled", "backend": "embree", "nodes": [{"address": "127.0.0.1:1"}],
+    "wall": {"columns": 1, "rows": 1}, "timeouts": {"connectMs": 200}})";
+  std::ofstream(dir / "coop.json") << R"({"mode": "cooperative", "nodes": [{"address": "127.0.0.1:1"}]})";
+  struct Case {
+    std::string args, about;
+  };
+  std::vector<Case> cases = {
+      {"coop.json builtin:cornell", "a wall needs \"mode\": \"tiled\""},
+      {"wall.json builtin:cornell --size 0x0", "--size 0x0"},
+      {"wall.json builtin:cornell --size 100000x100000", "--size 100000x100000"},
+      {"wall.json builtin:cornell --fps nan", "--fps"},
+      {"wall.json builtin:cornell --max-fps -1", "--max-fps"},
+      {"wall.json builtin:cornell --status-every inf", "--status-every"},
+      {"wall.json builtin:cornell --spp -1", "--spp"},
+      {"wall.json builtin:cornell --nodes nohost", "nohost"},
+      {"wall.json builtin:cornell --nodes 127.0.0.1:1,127.0.0.1:2", "needs 1 nodes"},
+      {"wall.json builtin:cornell --token-file missing-token", "missing-token"},
+      {"wall.json builtin:cornell --token-file ''", "an empty file name"},
+      {"wall.json builtin:cornell --output ''", "an empty file name"},
+      {"wall.json builtin:cornell --camera nosuch", "nosuch"},
+      {"wall.json builtin:nosuch", "builtin:nosuch"},
+  };
+  for (const auto& config : writeBadConfigs(dir)) cases.push_back({config.file + " builtin:cornell", config.about});
+  for (const auto& input : tsr::test::writeBadSceneInputs(dir)) cases.push_back({"wall.json '" + input.path + "'", input.about});
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.args);
+    std::ofstream(dir / "out.png") << kGoodImage;
+    const std::string output = c.args.find("--output") == std::string::npos ? " --output out.png" : "";
+    const Outcome r = run(TSR_WALL_PATH, c.args + " --frames 1" + output);
+    expectOneErrorLine(r, c.about);
+    EXPECT_EQ(r.out.find("nodes online"), std::string::npos) << "refused before connecting";
+    EXPECT_EQ(slurp(dir / "out.png"), kGoodImage);
+    EXPECT_TRUE(temporaries().empty());
+  }
+}
+#endif
 
 #ifdef TSR_VIEWER_PATH
 TEST_F(BadInput, ViewerRefusesEveryBadSceneBeforeOpeningAWindow) {
