@@ -18,7 +18,8 @@ class FilePresenter : public Presenter {
                          "-" + std::to_string(rect.y0) + ".exr";
       try {
         // Captured by name: clang 14 (clang-tidy, the fuzz build) cannot capture a structured binding.
-        med::replaceFile(path, [&, &pixels = image](const std::string& temporary) { med::writeImage(temporary, pixels); });
+        med::replaceFile(path,
+                         [&, &pixels = image](const std::string& temporary) { med::writeImage(temporary, pixels); });
       } catch (const std::exception& e) {
         spdlog::error("cannot present to {}: {}", path, e.what());
       }
