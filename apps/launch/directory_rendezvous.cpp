@@ -27,7 +27,8 @@ DirectoryRendezvous::DirectoryRendezvous(fs::path directory, const std::string& 
   if (!validJobName(job))
     throw LaunchError("job name '" + job.substr(0, 64) +
                       "' must be 1 to 128 letters, digits, '.', '_' or '-' (it names the rendezvous folder)");
-  folder_ = std::move(directory) / ("tessera-" + job);
+  directory /= "tessera-" + job;
+  folder_ = std::move(directory);
 }
 
 fs::path DirectoryRendezvous::rankFile(unsigned rank) const {

@@ -39,7 +39,7 @@ std::vector<std::string> frameOutputs(const RenderOptions& options) {
   std::vector<std::string> outputs = options.aovs;
   if (options.temporal.method == "pca")
     for (const char* name : {"direct", "indirect"})
-      if (std::find(outputs.begin(), outputs.end(), name) == outputs.end()) outputs.push_back(name);
+      if (std::find(outputs.begin(), outputs.end(), name) == outputs.end()) outputs.emplace_back(name);
   return outputs;
 }
 

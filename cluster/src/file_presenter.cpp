@@ -17,7 +17,9 @@ class FilePresenter : public Presenter {
       std::string path = directory_ + "/" + node_ + "-frame" + std::to_string(frame) + "-" + std::to_string(rect.x0) +
                          "-" + std::to_string(rect.y0) + ".exr";
       try {
-        med::replaceFile(path, [&](const std::string& temporary) { med::writeImage(temporary, image); });
+        // Captured by name: clang 14 (clang-tidy, the fuzz build) cannot capture a structured binding.
+        med::replaceFile(path,
+                         [&, &pixels = image](const std::string& temporary) { med::writeImage(temporary, pixels); });
       } catch (const std::exception& e) {
         spdlog::error("cannot present to {}: {}", path, e.what());
       }

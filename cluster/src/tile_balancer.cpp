@@ -23,10 +23,10 @@ void TileBalancer::setNodes(const std::vector<std::size_t>& nodes) {
     for (std::size_t t = 0; t < owner_.size(); ++t) owner_[t] = nodes_[t * nodes_.size() / owner_.size()];
     return;
   }
-  for (std::size_t t = 0; t < owner_.size(); ++t)
-    if (owner_[t] == kNone || !std::binary_search(nodes_.begin(), nodes_.end(), owner_[t])) owner_[t] = kNone;
-  for (std::size_t t = 0; t < owner_.size(); ++t)
-    if (owner_[t] == kNone) owner_[t] = leastLoaded();
+  for (std::size_t& owner : owner_)
+    if (owner == kNone || !std::binary_search(nodes_.begin(), nodes_.end(), owner)) owner = kNone;
+  for (std::size_t& owner : owner_)
+    if (owner == kNone) owner = leastLoaded();
 }
 
 std::vector<std::size_t> TileBalancer::removeNode(std::size_t node) {

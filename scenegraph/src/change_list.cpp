@@ -100,7 +100,7 @@ void ChangeList::Builder::addEncoded(bool creation, ContainerId id, std::uint64_
 
   ChangeEntry& e = begin(creation, id, type, mask);
   ByteReader r(values, baseOffset);
-  FieldReadContext ctx{limits, /*scanOnly=*/true};
+  FieldReadContext ctx{limits, /*scan=*/true};
   for (FieldMask m = mask; m; m &= m - 1) {
     auto f = static_cast<FieldIndex>(std::countr_zero(m));
     ctx.sawRanges = false;

@@ -40,7 +40,7 @@ std::string writeAnimated(const test::TempDir& dir) {
                             {{"sampler", 1}, {"target", {{"node", 0}, {"path", "rotation"}}}},
                             {{"sampler", 2}, {"target", {{"node", 0}, {"path", "scale"}}}},
                             {{"sampler", 3}, {"target", {{"node", 1}, {"path", "rotation"}}}}}}}};
-  const std::string path = dir.file("animated.gltf");
+  std::string path = dir.file("animated.gltf");
   b.writeGltf(path);
   return path;
 }

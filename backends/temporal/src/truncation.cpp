@@ -24,8 +24,9 @@ std::vector<float> blur(const std::vector<float>& in, std::uint32_t w, std::uint
   if (sigma <= 0) return in;
   const int radius = static_cast<int>(std::ceil(3 * sigma));
   std::vector<float> kernel(static_cast<std::size_t>(2 * radius + 1));
+  float* const tap = kernel.data() + radius;  // tap[k] for k in [-radius, radius]
   float sum = 0;
-  for (int k = -radius; k <= radius; ++k) sum += kernel[static_cast<std::size_t>(k + radius)] = static_cast<float>(std::exp(-0.5 * k * k / (sigma * sigma)));
+  for (int k = -radius; k <= radius; ++k) sum += tap[k] = static_cast<float>(std::exp(-0.5 * k * k / (sigma * sigma)));
   for (float& k : kernel) k /= sum;
   auto pass = [&](const std::vector<float>& src, bool horizontal) {
     std::vector<float> dst(src.size());
@@ -35,7 +36,7 @@ std::vector<float> blur(const std::vector<float>& in, std::uint32_t w, std::uint
         for (int k = -radius; k <= radius; ++k) {
           const int sx = horizontal ? std::clamp(x + k, 0, static_cast<int>(w) - 1) : x;
           const int sy = horizontal ? y : std::clamp(y + k, 0, static_cast<int>(h) - 1);
-          acc += kernel[static_cast<std::size_t>(k + radius)] * src[static_cast<std::size_t>(sy) * w + static_cast<std::size_t>(sx)];
+          acc += tap[k] * src[static_cast<std::size_t>(sy) * w + static_cast<std::size_t>(sx)];
         }
         dst[static_cast<std::size_t>(y) * w + static_cast<std::size_t>(x)] = acc;
       }

@@ -23,7 +23,7 @@ IdScene::Material& IdScene::material(MaterialId id) {
 }
 
 MaterialId IdScene::addMaterial(Transparency m) {
-  materials_.push_back(Material{m.transparent, {}});
+  materials_.emplace_back(Material{m.transparent, {}});
   return MaterialId(materials_.size() - 1);
 }
 

@@ -428,7 +428,7 @@ class Converter {
         const int comps = out.path == Animation::Path::Rotation ? 4 : 3;
         const std::vector<float> v = reader_.floats(sampler.output, comps, true, what + " output");
         if (out.path != Animation::Path::Rotation)
-          for (std::size_t k = 0; k < v.size(); ++k) coordinate(v[k], what + " output value");
+          for (const float x : v) coordinate(x, what + " output value");
         for (std::size_t k = 0; k < v.size(); k += static_cast<std::size_t>(comps))
           out.values.emplace_back(v[k], v[k + 1], v[k + 2], comps == 4 ? v[k + 3] : 0.0f);
         try {

@@ -65,7 +65,7 @@ class TypeChecker {
     };
   }
   Check arrayOf(Check element) const {
-    return [this, element](const json& v, const std::string& p) {
+    return [this, element = std::move(element)](const json& v, const std::string& p) {
       if (!v.is_array()) fail(p, "an array");
       for (std::size_t i = 0; i < v.size(); ++i) element(v[i], p + "[" + std::to_string(i) + "]");
     };
@@ -78,7 +78,7 @@ class TypeChecker {
     };
   }
   Check mapOf(Check value) const {
-    return [this, value](const json& v, const std::string& p) {
+    return [this, value = std::move(value)](const json& v, const std::string& p) {
       if (!v.is_object()) fail(p, "an object");
       for (const auto& [key, item] : v.items()) value(item, p + "." + key);
     };

@@ -19,13 +19,15 @@ RandomScene randomScene(std::uint32_t seed, std::uint32_t count, std::uint32_t o
   RandomScene s;
   s.meshes.push_back(quad(-0.5f, 0.5f, -0.5f, 0.5f, 0.0f));
   MeshData box;
-  for (int i = 0; i < 8; ++i) box.positions.push_back({i & 1 ? 0.4f : -0.4f, i & 2 ? 0.4f : -0.4f, i & 4 ? 0.4f : -0.4f});
+  for (int i = 0; i < 8; ++i) box.positions.emplace_back(i & 1 ? 0.4f : -0.4f, i & 2 ? 0.4f : -0.4f, i & 4 ? 0.4f : -0.4f);
   box.indices = {0, 1, 3, 0, 3, 2, 4, 6, 7, 4, 7, 5, 0, 4, 5, 0, 5, 1, 2, 3, 7, 2, 7, 6, 0, 2, 6, 0, 6, 4, 1, 5, 7, 1, 7, 3};
   s.meshes.push_back(box);
   MeshData soup;
   for (int t = 0; t < 30; ++t)
     for (int k = 0; k < 3; ++k) {
-      soup.positions.push_back({u(rng) * 0.6f, u(rng) * 0.6f, u(rng) * 0.6f});
+      // Drawn one by one: argument order is unspecified, braces' is not.
+      const float x = u(rng) * 0.6f, y = u(rng) * 0.6f, z = u(rng) * 0.6f;
+      soup.positions.emplace_back(x, y, z);
       soup.indices.push_back(static_cast<std::uint32_t>(soup.positions.size() - 1));
     }
   s.meshes.push_back(soup);

@@ -30,6 +30,7 @@ class Scene {
 
   // Creates a container with the next free id; recorded as a creation.
   template <class T>
+  // NOLINTNEXTLINE(performance-unnecessary-value-param): moved below; clang-tidy misses moves in calls that depend on T
   T& create(std::string name = {}) {
     auto owned = std::make_unique<T>();
     T& c = *owned;
