@@ -23,7 +23,7 @@ MeshData sheet(float wave) {
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) {
       float x = -2.0f + 4.0f * float(i) / n, z = -2.0f + 4.0f * float(j) / n;
-      m.positions.push_back({x, wave * std::sin(2.0f * x) * std::cos(1.5f * z), z});
+      m.positions.emplace_back(x, wave * std::sin(2.0f * x) * std::cos(1.5f * z), z);
     }
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {

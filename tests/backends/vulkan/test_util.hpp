@@ -52,7 +52,7 @@ inline MeshData uvSphere(int rings, int segments, float radius = 1.0f) {
       glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), -std::sin(theta) * std::sin(phi));
       m.positions.push_back(radius * n);
       m.normals.push_back(n);
-      m.uvs.push_back({float(s) / float(segments), float(r) / float(rings)});
+      m.uvs.emplace_back(float(s) / float(segments), float(r) / float(rings));
     }
   }
   for (int r = 0; r < rings; ++r)

@@ -20,7 +20,7 @@ MeshData grid(int rings, int segments, F f) {
       f(float(r) / float(rings), float(s) / float(segments), p, n);
       m.positions.push_back(p);
       m.normals.push_back(n);
-      m.uvs.push_back({float(s) / float(segments), float(r) / float(rings)});
+      m.uvs.emplace_back(float(s) / float(segments), float(r) / float(rings));
     }
   for (int r = 0; r < rings; ++r)
     for (int s = 0; s < segments; ++s) {
