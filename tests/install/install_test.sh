@@ -4,11 +4,14 @@
 #   mediators and a back-end, and renders; a version the package is not refuses.
 # deb: cpack makes a .deb holding the programs and the CMake package, with
 #   its run-time dependencies.
-#   tests/install/install_test.sh consumer|deb BUILD_DIR SOURCE_DIR
+#   tests/install/install_test.sh consumer|deb BUILD_DIR SOURCE_DIR [SANITIZERS]
+# SANITIZERS (the build's TSR_SANITIZE, e.g. address,undefined): the installed
+#   libraries are instrumented, so the consumer is built with them too.
 set -euo pipefail
 mode="$1"
 build="$(realpath "$2")"
 source="$(realpath "$3")"
+sanitize="${4:-}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
@@ -28,8 +31,9 @@ if [[ "$mode" == deb ]]; then
 fi
 [[ "$mode" == consumer ]] || { echo "install_test: mode consumer or deb, not '$mode'" >&2; exit 2; }
 
-launcher=()
-command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+options=()
+command -v ccache > /dev/null && options=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+[[ -n "$sanitize" ]] && options+=(-DCMAKE_CXX_FLAGS="-fsanitize=$sanitize" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=$sanitize")
 
 cmake --install "$build" --prefix "$work/prefix" > "$work/install.log"
 for f in bin/tessera-render bin/tessera-node bin/tessera-launch lib/libtsr_scenegraph.a lib/libtsr_mediator_embree.a \
@@ -41,7 +45,7 @@ done
 echo "install_test: installed $(find "$work/prefix" -type f | wc -l) files"
 
 cmake -S "$source/tests/install/consumer" -B "$work/consumer" -G Ninja -DCMAKE_BUILD_TYPE=Release \
-  -DCMAKE_PREFIX_PATH="$work/prefix" "${launcher[@]}" > "$work/consumer.log" \
+  -DCMAKE_PREFIX_PATH="$work/prefix" "${options[@]}" > "$work/consumer.log" \
   || { cat "$work/consumer.log" >&2; exit 1; }
 cmake --build "$work/consumer" > "$work/build.log" || { cat "$work/build.log" >&2; exit 1; }
 "$work/consumer/tessera_consumer"
