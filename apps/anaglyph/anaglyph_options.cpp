@@ -12,14 +12,13 @@
 namespace tsr::app {
 
 namespace {
-const char* kScriptHelp =
-    "--script FILE: one action a line, '#' starts a comment:\n"
-    "  key NAME          press a key: w a s d q e [ ] - = m r\n"
-    "  orbit DX DY       drag with the left button by DX, DY pixels\n"
-    "  pan DX DY         drag with the right button\n"
-    "  scroll N          turn the wheel N notches (positive: closer)\n"
-    "  frames N          render and present N frames\n"
-    "  screenshot FILE   write what the window shows (PNG, EXR, ...)\n";
+const char* kScriptHelp = "--script FILE: one action a line, '#' starts a comment:\n"
+                          "  key NAME          press a key: w a s d q e [ ] - = m r\n"
+                          "  orbit DX DY       drag with the left button by DX, DY pixels\n"
+                          "  pan DX DY         drag with the right button\n"
+                          "  scroll N          turn the wheel N notches (positive: closer)\n"
+                          "  frames N          render and present N frames\n"
+                          "  screenshot FILE   write what the window shows (PNG, EXR, ...)\n";
 }  // namespace
 
 const char* methodName(med::AnaglyphMethod method) {
@@ -27,13 +26,11 @@ const char* methodName(med::AnaglyphMethod method) {
 }
 
 bool parseAnaglyphOptions(int argc, char** argv, AnaglyphOptions& o) {
-  CLI::App app{
-      "Red/cyan anaglyph of a scene: both eyes rendered here or on two render nodes, shown in a window or "
-      "written to a file"};
-  app.footer(
-      "Window keys: left drag orbit, right drag pan, wheel zoom, W/A/S/D/Q/E fly, [ ] eye separation, - = "
-      "zero-parallax "
-      "distance, M red-cyan/Dubois, R reset the view, Esc quit.");
+  CLI::App app{"Red/cyan anaglyph of a scene: both eyes rendered here or on two render nodes, shown in a window or "
+               "written to a file"};
+  app.footer("Window keys: left drag orbit, right drag pan, wheel zoom, W/A/S/D/Q/E fly, [ ] eye separation, - = "
+             "zero-parallax "
+             "distance, M red-cyan/Dubois, R reset the view, Esc quit.");
   std::string size = "640x480", method = "dubois";
   std::int64_t spp = 4, maxDepth = 8, seed = 0, threads = 0;
   float separation = 0, zeroParallax = 0;

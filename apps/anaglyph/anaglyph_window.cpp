@@ -27,19 +27,32 @@ CameraNavigation navigationFor(const SceneSession& session, const StereoSettings
 
 char keyName(int key) {
   switch (key) {
-    case GLFW_KEY_W: return 'w';
-    case GLFW_KEY_A: return 'a';
-    case GLFW_KEY_S: return 's';
-    case GLFW_KEY_D: return 'd';
-    case GLFW_KEY_Q: return 'q';
-    case GLFW_KEY_E: return 'e';
-    case GLFW_KEY_LEFT_BRACKET: return '[';
-    case GLFW_KEY_RIGHT_BRACKET: return ']';
-    case GLFW_KEY_MINUS: return '-';
-    case GLFW_KEY_EQUAL: return '=';
-    case GLFW_KEY_M: return 'm';
-    case GLFW_KEY_R: return 'r';
-    default: return 0;
+    case GLFW_KEY_W:
+      return 'w';
+    case GLFW_KEY_A:
+      return 'a';
+    case GLFW_KEY_S:
+      return 's';
+    case GLFW_KEY_D:
+      return 'd';
+    case GLFW_KEY_Q:
+      return 'q';
+    case GLFW_KEY_E:
+      return 'e';
+    case GLFW_KEY_LEFT_BRACKET:
+      return '[';
+    case GLFW_KEY_RIGHT_BRACKET:
+      return ']';
+    case GLFW_KEY_MINUS:
+      return '-';
+    case GLFW_KEY_EQUAL:
+      return '=';
+    case GLFW_KEY_M:
+      return 'm';
+    case GLFW_KEY_R:
+      return 'r';
+    default:
+      return 0;
   }
 }
 
@@ -131,10 +144,18 @@ void AnaglyphWindow::key(char name) {
       navigation_.fly({0, step, 0});
       moved_ = true;
       break;
-    case '[': stereo_.separation /= 1.25f; break;
-    case ']': stereo_.separation *= 1.25f; break;
-    case '-': stereo_.zeroParallax /= 1.25f; break;
-    case '=': stereo_.zeroParallax *= 1.25f; break;
+    case '[':
+      stereo_.separation /= 1.25f;
+      break;
+    case ']':
+      stereo_.separation *= 1.25f;
+      break;
+    case '-':
+      stereo_.zeroParallax /= 1.25f;
+      break;
+    case '=':
+      stereo_.zeroParallax *= 1.25f;
+      break;
     case 'm':
       stereo_.method =
           stereo_.method == med::AnaglyphMethod::Dubois ? med::AnaglyphMethod::RedCyan : med::AnaglyphMethod::Dubois;
@@ -144,7 +165,8 @@ void AnaglyphWindow::key(char name) {
       stereo_ = initialStereo_;
       moved_ = true;
       break;
-    default: return;
+    default:
+      return;
   }
   std::cout << "eye separation " << stereo_.separation << ", zero parallax " << stereo_.zeroParallax << ", "
             << methodName(stereo_.method) << std::endl;
@@ -203,10 +225,18 @@ void AnaglyphWindow::run(const std::vector<WindowAction>& script) {
   for (const auto& a : script) {
     glfwPollEvents();
     switch (a.kind) {
-      case WindowAction::Kind::Key: key(a.text[0]); break;
-      case WindowAction::Kind::Orbit: drag(a.x, a.y, false); break;
-      case WindowAction::Kind::Pan: drag(a.x, a.y, true); break;
-      case WindowAction::Kind::Scroll: scroll(a.x); break;
+      case WindowAction::Kind::Key:
+        key(a.text[0]);
+        break;
+      case WindowAction::Kind::Orbit:
+        drag(a.x, a.y, false);
+        break;
+      case WindowAction::Kind::Pan:
+        drag(a.x, a.y, true);
+        break;
+      case WindowAction::Kind::Scroll:
+        scroll(a.x);
+        break;
       case WindowAction::Kind::Frames:
         for (int i = 0; i < static_cast<int>(a.x); ++i) {
           dirty_ = true;
@@ -214,7 +244,9 @@ void AnaglyphWindow::run(const std::vector<WindowAction>& script) {
           glfwPollEvents();
         }
         break;
-      case WindowAction::Kind::Screenshot: screenshot(a.text); break;
+      case WindowAction::Kind::Screenshot:
+        screenshot(a.text);
+        break;
     }
   }
 }

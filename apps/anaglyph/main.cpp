@@ -10,11 +10,11 @@
 #include "anaglyph_options.hpp"
 #include "anaglyph_window.hpp"
 #include "backends.hpp"
+#include "error_line.hpp"
 #include "progress_bar.hpp"
 #include "tsr/cluster/auth.hpp"
 #include "tsr/med/image_file.hpp"
 #include "tsr/sg/import/scene_stats.hpp"
-#include "error_line.hpp"
 
 namespace {
 

@@ -17,11 +17,11 @@
 #include <thread>
 
 #include "child_process.hpp"
+#include "command_line.hpp"
 #include "directory_rendezvous.hpp"
+#include "error_line.hpp"
 #include "launch_rank.hpp"
 #include "socket_rendezvous.hpp"
-#include "command_line.hpp"
-#include "error_line.hpp"
 
 namespace {
 
@@ -115,8 +115,7 @@ int runClient(const LaunchOptions& o, const tsr::app::LaunchRank& rank, tsr::app
       try {
         meet.markDone();
         if (gathered) meet.cleanUp(size, std::chrono::seconds(10));
-      } catch (...) {
-      }
+      } catch (...) {}
     }
   } done{meet, rank.size};
   console.info("waiting for " + std::to_string(rank.size - 1) + " node(s) at " + meet.where());
@@ -205,9 +204,9 @@ int main(int argc, char** argv) {
     if (!o.rendezvous.empty()) {
       std::error_code ec;
       if (!fs::is_directory(o.rendezvous, ec))
-        throw LaunchError("--rendezvous " + o.rendezvous +
-                          (fs::exists(o.rendezvous, ec) ? ": not a folder"
-                                                         : ": no such folder (one every host of the job sees)"));
+        throw LaunchError(
+            "--rendezvous " + o.rendezvous +
+            (fs::exists(o.rendezvous, ec) ? ": not a folder" : ": no such folder (one every host of the job sees)"));
       meet = std::make_unique<tsr::app::DirectoryRendezvous>(o.rendezvous, rank.job);
     } else {
       meet = std::make_unique<tsr::app::SocketRendezvous>(rankZero, rank.rank == 0, waitLimit(o));

@@ -9,15 +9,15 @@
 #include <iostream>
 #include <thread>
 
-#include <CLI/CLI.hpp>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
 
 #include "backends.hpp"
-#include "tsr/cluster/auth.hpp"
-#include "tsr/cluster/node_server.hpp"
 #include "command_line.hpp"
 #include "error_line.hpp"
+#include "tsr/cluster/auth.hpp"
+#include "tsr/cluster/node_server.hpp"
 #ifdef TSR_HAVE_WINDOW
 #include "window_presenter.hpp"
 #endif
@@ -31,7 +31,8 @@ int main(int argc, char** argv) {
                  "file holding the shared token clients must prove (required to listen beyond loopback)")
       ->check(tsr::app::FileName());
   bool insecure = false;
-  app.add_flag("--insecure", insecure, "without --token-file, listen on a non-loopback address anyway: anyone may connect");
+  app.add_flag("--insecure", insecure,
+               "without --token-file, listen on a non-loopback address anyway: anyone may connect");
   app.add_option("--name", name, "name reported to clients");
   app.add_option("--threads", threads, "render threads per viewport (0: all cores)");
   std::string present = "none";

@@ -23,8 +23,8 @@ cluster::ClusterConfig clusterConfig(const RenderOptions& options) {
   return config;
 }
 
-std::unique_ptr<cluster::ClusterWindow> connectCluster(const cluster::ClusterConfig& config, const RenderOptions& options,
-                                                       std::vector<std::string> outputs,
+std::unique_ptr<cluster::ClusterWindow> connectCluster(const cluster::ClusterConfig& config,
+                                                       const RenderOptions& options, std::vector<std::string> outputs,
                                                        const med::ViewportRegistry& registry) {
   cluster::ClientOptions client;
   if (!options.sequence.tokenFile.empty()) client.token = cluster::readTokenFile(options.sequence.tokenFile);

@@ -17,8 +17,8 @@ cluster::ClusterConfig clusterConfig(const RenderOptions& options);
 // `outputs`: the named outputs every frame needs. `registry` (for the
 // client-side resolve of whole-frame image steps) must outlive the window.
 // Throws when no node answers (a wall renders offline tiles instead).
-std::unique_ptr<cluster::ClusterWindow> connectCluster(const cluster::ClusterConfig& config, const RenderOptions& options,
-                                                       std::vector<std::string> outputs,
+std::unique_ptr<cluster::ClusterWindow> connectCluster(const cluster::ClusterConfig& config,
+                                                       const RenderOptions& options, std::vector<std::string> outputs,
                                                        const med::ViewportRegistry& registry);
 
 }  // namespace tsr::app

@@ -9,7 +9,7 @@
 
 namespace tsr::app {
 
-bool isRankingPath(const std::string& path);  // ends in .json (any case)
+bool isRankingPath(const std::string& path);         // ends in .json (any case)
 inline constexpr const char* kRankingOutput = "id";  // the output writeRanking reads
 
 // Writes {"width", "height", "background", "objects": [{"id", "name",

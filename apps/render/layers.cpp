@@ -33,7 +33,8 @@ med::ParameterValue parameterValue(const std::string& layer, const std::string& 
   if (v.is_number_integer()) return v.get<std::int64_t>();
   if (v.is_number()) return v.get<double>();
   if (v.is_string()) return v.get<std::string>();
-  throw std::invalid_argument("--layers: layer " + layer + ": parameter " + name + " must be a boolean, number or string");
+  throw std::invalid_argument("--layers: layer " + layer + ": parameter " + name +
+                              " must be a boolean, number or string");
 }
 
 std::vector<LayerSpec> readLayerFile(const std::string& path) {
@@ -45,7 +46,8 @@ std::vector<LayerSpec> readLayerFile(const std::string& path) {
   } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument("--layers: " + path + ": " + e.what());
   }
-  if (!doc.is_array() || doc.empty()) throw std::invalid_argument("--layers: " + path + ": expected a non-empty array of layers");
+  if (!doc.is_array() || doc.empty())
+    throw std::invalid_argument("--layers: " + path + ": expected a non-empty array of layers");
   std::vector<LayerSpec> layers;
   for (std::size_t i = 0; i < doc.size(); ++i) {
     const auto& j = doc[i];
@@ -59,8 +61,10 @@ std::vector<LayerSpec> readLayerFile(const std::string& path) {
       layer.root = j["root"].get<std::string>();
     }
     if (j.contains("parameters")) {
-      if (!j["parameters"].is_object()) throw std::invalid_argument("--layers: " + where + ": \"parameters\" must be an object");
-      for (const auto& [name, value] : j["parameters"].items()) layer.parameters.set(name, parameterValue(where, name, value));
+      if (!j["parameters"].is_object())
+        throw std::invalid_argument("--layers: " + where + ": \"parameters\" must be an object");
+      for (const auto& [name, value] : j["parameters"].items())
+        layer.parameters.set(name, parameterValue(where, name, value));
     }
     layers.push_back(std::move(layer));
   }
@@ -73,7 +77,8 @@ std::vector<LayerSpec> parseLayers(const std::string& value) {
   std::vector<LayerSpec> layers;
   std::stringstream in(value);
   for (std::string item; std::getline(in, item, ',');) layers.push_back(parseLayer(item));
-  if (layers.empty() || value.back() == ',') throw std::invalid_argument("--layers: expected BACKEND[:NODE],... got '" + value + "'");
+  if (layers.empty() || value.back() == ',')
+    throw std::invalid_argument("--layers: expected BACKEND[:NODE],... got '" + value + "'");
   return layers;
 }
 
@@ -82,7 +87,8 @@ sg::ContainerId findLayerRoot(const sg::Scene& scene, const std::string& name) {
   for (auto id : scene.ids()) {
     const sg::Container* c = scene.find(id);
     if (c->name() != name || !sg::isParentType(c->type())) continue;
-    if (found != sg::kNoContainer) throw std::invalid_argument("--layers: several groups or transforms are named '" + name + "'");
+    if (found != sg::kNoContainer)
+      throw std::invalid_argument("--layers: several groups or transforms are named '" + name + "'");
     found = id;
   }
   if (found == sg::kNoContainer) throw std::invalid_argument("--layers: no group or transform is named '" + name + "'");

@@ -8,6 +8,7 @@
 #include "backends.hpp"
 #include "cluster_layer.hpp"
 #include "coverage_output.hpp"
+#include "error_line.hpp"
 #include "layers.hpp"
 #include "progress_bar.hpp"
 #include "render_options.hpp"
@@ -16,7 +17,6 @@
 #include "stats_json.hpp"
 #include "tsr/med/image_file.hpp"
 #include "tsr/med/viewport_registry.hpp"
-#include "error_line.hpp"
 
 namespace {
 
@@ -24,7 +24,8 @@ int run(int argc, char** argv) {
   tsr::app::RenderOptions options;
   if (!tsr::app::parseRenderOptions(argc, argv, options)) return 0;
   // --layers: a layered window (layers.hpp)
-  const auto layers = options.layers.empty() ? std::vector<tsr::app::LayerSpec>{} : tsr::app::parseLayers(options.layers);
+  const auto layers =
+      options.layers.empty() ? std::vector<tsr::app::LayerSpec>{} : tsr::app::parseLayers(options.layers);
   const auto& sequence = options.sequence;
   // --frames renders sequences, locally or on nodes (sequence_render.cpp);
   // so does --cluster without --layers (the whole window on the nodes).
@@ -67,8 +68,8 @@ int run(int argc, char** argv) {
     tsr::med::writeImage(tsr::app::aovPath(options.output, aov), image, aov, options.display);
   if (!options.statsJson.empty()) tsr::app::writeStatsJson(options, stats, 1);
   if (!options.quiet)
-    std::cout << "wrote " << options.output << " (" << options.width << "x" << options.height << ", "
-              << stats.samples << " spp, " << stats.seconds << " s)\n";
+    std::cout << "wrote " << options.output << " (" << options.width << "x" << options.height << ", " << stats.samples
+              << " spp, " << stats.seconds << " s)\n";
   return 0;
 }
 

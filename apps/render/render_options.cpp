@@ -4,8 +4,8 @@
 #include "import_limit_options.hpp"
 
 #include <cctype>
-#include <cmath>
 #include <charconv>
+#include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <stdexcept>
@@ -72,7 +72,8 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
   std::int64_t spp = 16, maxDepth = 8, seed = 0, threads = 0;
   std::vector<std::string> params;
   app.add_option("scene", o.scene, "glTF file (.gltf/.glb) or builtin:NAME")->required();
-  auto* backendOption = app.add_option("--backend", o.backend, "embree, vulkan or coverage (with --cluster: the config's)");
+  auto* backendOption =
+      app.add_option("--backend", o.backend, "embree, vulkan or coverage (with --cluster: the config's)");
   app.add_option("--size", size, "image size WxH");
   auto* sppOption = app.add_option("--spp", spp, "samples per pixel")->check(CLI::Range(1, 1 << 20));
   auto* depthOption = app.add_option("--max-depth", maxDepth, "maximum path depth")->check(CLI::Range(0, 1024));
@@ -91,40 +92,49 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
   std::string filter, pathClass, filterKernel;
   double threshold = 0, sigmaS = 0, sigmaC = 0, sigmaD = 0;
   auto* filterGroup = app.add_option_group("Filtering (embree)", "low-noise previews: Schwenk, chapters 3 and 4");
+  filterOptions.emplace_back(filterGroup->add_option("--filter", filter, "none, pixel, atrous, radiance or hybrid")
+                                 ->check(CLI::IsMember({"none", "pixel", "atrous", "radiance", "hybrid"})),
+                             "filter");
   filterOptions.emplace_back(
-      filterGroup->add_option("--filter", filter, "none, pixel, atrous, radiance or hybrid")
-          ->check(CLI::IsMember({"none", "pixel", "atrous", "radiance", "hybrid"})),
-      "filter");
-  filterOptions.emplace_back(filterGroup->add_option("--threshold", threshold, "perceived variance kept under (default 0.01)")
-                                 ->check(FiniteNonNegative()),
-                             "threshold");
-  filterOptions.emplace_back(filterGroup->add_option("--sigma-s", sigmaS, "spatial std. dev., pixels (default 8)")
-                                 ->check(FinitePositive()),
-                             "sigmaS");
-  filterOptions.emplace_back(filterGroup->add_option("--sigma-c", sigmaC, "range colour std. dev. (default 0.02)")
-                                 ->check(FinitePositive()),
-                             "sigmaC");
+      filterGroup->add_option("--threshold", threshold, "perceived variance kept under (default 0.01)")
+          ->check(FiniteNonNegative()),
+      "threshold");
   filterOptions.emplace_back(
-      filterGroup->add_option("--sigma-d", sigmaD, "range depth std. dev., fraction of the frame's depth extent (default 0.1)")
+      filterGroup->add_option("--sigma-s", sigmaS, "spatial std. dev., pixels (default 8)")->check(FinitePositive()),
+      "sigmaS");
+  filterOptions.emplace_back(
+      filterGroup->add_option("--sigma-c", sigmaC, "range colour std. dev. (default 0.02)")->check(FinitePositive()),
+      "sigmaC");
+  filterOptions.emplace_back(
+      filterGroup
+          ->add_option("--sigma-d", sigmaD, "range depth std. dev., fraction of the frame's depth extent (default 0.1)")
           ->check(FinitePositive()),
       "sigmaD");
-  filterOptions.emplace_back(filterGroup->add_option("--path-class", pathClass, "paths filtered: indirect, caustic or all")
-                                 ->check(CLI::IsMember({"indirect", "caustic", "all"})),
-                             "pathClass");
-  filterOptions.emplace_back(filterGroup->add_option("--filter-kernel", filterKernel, "bilateral or separable (with --filter pixel)")
-                                 ->check(CLI::IsMember({"bilateral", "separable"})),
-                             "filterKernel");
+  filterOptions.emplace_back(
+      filterGroup->add_option("--path-class", pathClass, "paths filtered: indirect, caustic or all")
+          ->check(CLI::IsMember({"indirect", "caustic", "all"})),
+      "pathClass");
+  filterOptions.emplace_back(
+      filterGroup->add_option("--filter-kernel", filterKernel, "bilateral or separable (with --filter pixel)")
+          ->check(CLI::IsMember({"bilateral", "separable"})),
+      "filterKernel");
   std::string lookFrom, lookAt, tonemap = "none";
   double fov = 0, exposure = 0;
   auto* viewGroup = app.add_option_group("View", "camera, default lights and the picture's tone");
-  viewGroup->add_option("--camera", o.view.camera, "the scene camera to look through: its name or index (default: the first)");
-  auto* fromOption = viewGroup->add_option("--look-from", lookFrom, "eye position X,Y,Z (world units); overrides the camera");
-  auto* atOption = viewGroup->add_option("--look-at", lookAt, "point looked at X,Y,Z (default with --look-from: the bounds' centre)");
+  viewGroup->add_option("--camera", o.view.camera,
+                        "the scene camera to look through: its name or index (default: the first)");
+  auto* fromOption =
+      viewGroup->add_option("--look-from", lookFrom, "eye position X,Y,Z (world units); overrides the camera");
+  auto* atOption = viewGroup->add_option("--look-at", lookAt,
+                                         "point looked at X,Y,Z (default with --look-from: the bounds' centre)");
   auto* fovOption = viewGroup->add_option("--fov", fov, "vertical field of view in degrees, 0 < fov < 180");
   bool noDefaultLight = false;
-  viewGroup->add_flag("--no-default-light", noDefaultLight, "a scene without lights stays unlit (default: a grey dome and a camera light)");
-  auto* exposureOption = viewGroup->add_option("--exposure", exposure, "exposure in stops for 8-bit outputs (PNG, JPEG); EXR stays linear");
-  viewGroup->add_option("--tonemap", tonemap, "tone curve for 8-bit outputs: none or filmic (ACES fitted, Narkowicz 2015)")
+  viewGroup->add_flag("--no-default-light", noDefaultLight,
+                      "a scene without lights stays unlit (default: a grey dome and a camera light)");
+  auto* exposureOption = viewGroup->add_option("--exposure", exposure,
+                                               "exposure in stops for 8-bit outputs (PNG, JPEG); EXR stays linear");
+  viewGroup
+      ->add_option("--tonemap", tonemap, "tone curve for 8-bit outputs: none or filmic (ACES fitted, Narkowicz 2015)")
       ->check(CLI::IsMember({"none", "filmic"}));
   addTemporalOptions(app, o.temporal);
   addSequenceOptions(app, o.sequence);

@@ -22,14 +22,14 @@ struct RenderOptions {
   std::string output = "render.png";
   std::vector<std::string> aovs;
   std::string statsJson;
-  med::Parameters parameters;  // spp, maxDepth, seed, threads and --param extras
+  med::Parameters parameters;                // spp, maxDepth, seed, threads and --param extras
   std::set<std::string> explicitParameters;  // those the command line named (they beat a config's)
   bool quiet = false;
-  sg::ImportOptions import;  // --max-file-mb, --max-elements
-  TemporalOptions temporal;  // --temporal and its settings (with --frames)
-  SequenceOptions sequence;  // --frames, --fps, --cluster, --nodes, --token-file
-  std::string layers;        // --layers value (layers.hpp parses it); empty: one back-end
-  ViewChoice view;           // --camera, --look-from, --look-at, --fov, --no-default-light
+  sg::ImportOptions import;       // --max-file-mb, --max-elements
+  TemporalOptions temporal;       // --temporal and its settings (with --frames)
+  SequenceOptions sequence;       // --frames, --fps, --cluster, --nodes, --token-file
+  std::string layers;             // --layers value (layers.hpp parses it); empty: one back-end
+  ViewChoice view;                // --camera, --look-from, --look-at, --fov, --no-default-light
   med::DisplayTransform display;  // --exposure, --tonemap (8-bit outputs only)
 };
 

@@ -8,9 +8,10 @@ namespace tsr::app {
 
 void addSequenceOptions(CLI::App& app, SequenceOptions& o) {
   auto* g = app.add_option_group("Sequences and clusters", "animations, and rendering through tessera-node processes");
-  auto* frames = g->add_option("--frames", o.frames, "render N frames of the scene's animation (--output needs #### for the number)")
-      ->check(CLI::Range(1, 1000000))
-      ->each([&o](const std::string&) { o.framesGiven = true; });
+  auto* frames = g->add_option("--frames", o.frames,
+                               "render N frames of the scene's animation (--output needs #### for the number)")
+                     ->check(CLI::Range(1, 1000000))
+                     ->each([&o](const std::string&) { o.framesGiven = true; });
   g->add_option("--fps", o.fps, "frames per second of animation time (default 24)")
       ->check(FinitePositive())
       ->needs(frames);

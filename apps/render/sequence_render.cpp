@@ -60,11 +60,12 @@ struct LocalWindow {
 // the indirect output is read at --spp, the direct one at --direct-spp.
 // With --temporal photons, the path tracer's photon layer sees each frame
 // its lookahead ahead of the one shown. `stats` adds up every render.
-SequenceRenderer localRenderer(const RenderOptions& options, const std::vector<LayerSpec>& layers, const SceneSession& session,
-                            med::RenderStats& stats) {
+SequenceRenderer localRenderer(const RenderOptions& options, const std::vector<LayerSpec>& layers,
+                               const SceneSession& session, med::RenderStats& stats) {
   auto local = std::make_shared<LocalWindow>();
   registerBackends(local->registry);
-  med::ViewportSettings settings{options.backend, session.imported.root, session.imported.background, options.parameters, true};
+  med::ViewportSettings settings{options.backend, session.imported.root, session.imported.background,
+                                 options.parameters, true};
   RemoteLayers remote;
   if (!options.sequence.cluster.empty())
     remote = clusterLayer(options, layers, local->registry, *session.source.find<sg::Camera>(session.camera));
@@ -110,8 +111,9 @@ FrameRenderer clusterRenderer(const RenderOptions& options, const SceneSession& 
                                 "paths, at --spp (raise --spp or leave --direct-spp out)");
   auto registry = std::make_shared<med::ViewportRegistry>();
   registerBackends(*registry);
-  std::shared_ptr<cluster::ClusterWindow> window{connectCluster(clusterConfig(options), options, frameOutputs(options), *registry).release(),
-                                                 [registry](cluster::ClusterWindow* w) { delete w; }};
+  std::shared_ptr<cluster::ClusterWindow> window{
+      connectCluster(clusterConfig(options), options, frameOutputs(options), *registry).release(),
+      [registry](cluster::ClusterWindow* w) { delete w; }};
   window->setContent(session.imported.root, session.imported.background);
   return [window](SceneSession& s, const sg::ChangeListPtr& delta, const med::View& view, int) {
     const auto* camera = s.source.find<sg::Camera>(s.camera);
@@ -123,9 +125,11 @@ FrameRenderer clusterRenderer(const RenderOptions& options, const SceneSession& 
 
 }  // namespace
 
-int renderSequence(const RenderOptions& options, const SequenceOptions& sequence, const std::vector<LayerSpec>& layers) {
+int renderSequence(const RenderOptions& options, const SequenceOptions& sequence,
+                   const std::vector<LayerSpec>& layers) {
   if (sequence.frames > 1 && options.output.find("####") == std::string::npos)
-    throw std::invalid_argument("--frames " + std::to_string(sequence.frames) + " needs #### in --output for the frame number");
+    throw std::invalid_argument("--frames " + std::to_string(sequence.frames) +
+                                " needs #### in --output for the frame number");
   SceneSession session;
   session.load(options.scene, options.import, options.view);
   if (options.temporal.method == "pca" && !layers.empty())
@@ -134,8 +138,9 @@ int renderSequence(const RenderOptions& options, const SequenceOptions& sequence
   // A cluster without layers renders the whole window on the nodes.
   const bool local = sequence.cluster.empty() || !layers.empty();
   if (options.temporal.method == "photons" && (!sequence.cluster.empty() || options.backend != "embree"))
-    throw std::invalid_argument("--temporal photons renders with the local path tracer (--backend embree): its photon "
-                                "pass sees every frame ahead of the one shown, which the cluster protocol does not carry");
+    throw std::invalid_argument(
+        "--temporal photons renders with the local path tracer (--backend embree): its photon "
+        "pass sees every frame ahead of the one shown, which the cluster protocol does not carry");
   med::RenderStats stats;
   SequenceRenderer renderer = local ? localRenderer(options, layers, session, stats)
                                     : SequenceRenderer{clusterRenderer(options, session), 0, {}};
@@ -148,9 +153,8 @@ int renderSequence(const RenderOptions& options, const SequenceOptions& sequence
   ProgressBar bar(options.temporal.active() ? "rendering + " + options.temporal.method : "rendering", !options.quiet);
   std::unique_ptr<TemporalPcaSequence> pca;
   if (options.temporal.method == "pca")
-    pca = std::make_unique<TemporalPcaSequence>(options.temporal, [&](int frame, const med::FrameBuffer& image) {
-      write(frame, image);
-    });
+    pca = std::make_unique<TemporalPcaSequence>(options.temporal,
+                                                [&](int frame, const med::FrameBuffer& image) { write(frame, image); });
   double renderSeconds = 0;
   // With a lookahead, frames are posed and committed `lookahead` frames
   // before they are shown: their change lists reach a second replica (the
@@ -200,8 +204,8 @@ int renderSequence(const RenderOptions& options, const SequenceOptions& sequence
     bar.finish();
     if (!options.quiet)
       std::cout << "wrote " << sequence.frames << " frames " << framePath(options.output, 0) << ".. (rendering "
-                << renderSeconds << " s, pca " << pca->denoiseSeconds() << " s in " << pca->windows()
-                << " window(s), " << pca->meanModes() << " modes on average)\n";
+                << renderSeconds << " s, pca " << pca->denoiseSeconds() << " s in " << pca->windows() << " window(s), "
+                << pca->meanModes() << " modes on average)\n";
   }
   if (!options.statsJson.empty()) writeStatsJson(options, stats, sequence.frames);
   return 0;

@@ -7,7 +7,8 @@
 namespace tsr::app {
 
 void addTemporalOptions(CLI::App& app, TemporalOptions& o) {
-  auto* g = app.add_option_group("Temporal (with --frames)", "flicker-free animations: indirect light denoised over time");
+  auto* g =
+      app.add_option_group("Temporal (with --frames)", "flicker-free animations: indirect light denoised over time");
   g->add_option("--temporal", o.method,
                 "pca: project the indirect light onto its temporal PCA basis (Meyer & Anderson); photons: "
                 "spatio-temporal photon density estimation (--backend embree). With pca --spp is the indirect "
@@ -34,9 +35,11 @@ void addTemporalOptions(CLI::App& app, TemporalOptions& o) {
                 "frames whose photons reconstruct one frame, centred on it; odd (default 9)")
       ->check(CLI::Range(1, 255));
   g->add_flag("--temporal-global", o.global, "one truncation for the whole frame, not a smoothed per-pixel map");
-  g->add_option("--temporal-map-sigma", o.mapSigma, "Gaussian smoothing of the per-pixel truncation map, pixels (default 2)")
+  g->add_option("--temporal-map-sigma", o.mapSigma,
+                "Gaussian smoothing of the per-pixel truncation map, pixels (default 2)")
       ->check(FiniteRange(0.0, 64.0));
-  g->add_option("--temporal-window", o.window, "frames denoised together; longer sequences run in overlapping windows (default 64)")
+  g->add_option("--temporal-window", o.window,
+                "frames denoised together; longer sequences run in overlapping windows (default 64)")
       ->check(CLI::Range(2, 100000));
   g->add_option("--temporal-overlap", o.overlap, "frames two windows share, cross-faded (default 16)")
       ->check(CLI::Range(0, 100000));
@@ -54,10 +57,11 @@ void checkTemporalOptions(const TemporalOptions& o, int spp) {
     throw std::invalid_argument("--direct-spp with --temporal photons: photons carry the indirect light, so --spp "
                                 "is already the direct-light sample count");
   if (o.overlap >= o.window)
-    throw std::invalid_argument("--temporal-overlap " + std::to_string(o.overlap) + " must be smaller than --temporal-window " +
-                                std::to_string(o.window));
+    throw std::invalid_argument("--temporal-overlap " + std::to_string(o.overlap) +
+                                " must be smaller than --temporal-window " + std::to_string(o.window));
   if (o.directSpp && o.directSpp < spp)
-    throw std::invalid_argument("--direct-spp " + std::to_string(o.directSpp) + " is below --spp " + std::to_string(spp) +
+    throw std::invalid_argument("--direct-spp " + std::to_string(o.directSpp) + " is below --spp " +
+                                std::to_string(spp) +
                                 ": direct light comes from the same paths as the indirect, so it gets at least --spp");
 }
 

@@ -20,7 +20,7 @@ struct TemporalOptions {
   int modes = 0;       // 0: automatic
   double epsilon = 0.005, epsilonChange = 0.001;
   bool plainRule = false;  // --temporal-plain-rule: no noise measurement
-  bool global = false;  // one truncation for the whole frame instead of 3.2's map
+  bool global = false;     // one truncation for the whole frame instead of 3.2's map
   double mapSigma = 2.0;
   int window = 64, overlap = 16;
   int photonsPerFrame = 0;  // 0: from the photon pilot pass

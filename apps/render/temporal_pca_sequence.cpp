@@ -40,7 +40,8 @@ TemporalPcaSequence::TemporalPcaSequence(const TemporalOptions& options, Writer 
 
 void TemporalPcaSequence::add(int frame, med::FrameBuffer image) {
   if (!image.outputs.count(kDirect) || !image.outputs.count(kIndirect))
-    throw std::invalid_argument("--temporal pca: the back-end returned no direct/indirect outputs (use --backend embree)");
+    throw std::invalid_argument(
+        "--temporal pca: the back-end returned no direct/indirect outputs (use --backend embree)");
   temporal::Frame indirect = toTemporalFrame(image.outputs[kIndirect], image.width, image.height);
   waiting_.emplace(frame, std::move(image));
   const auto start = std::chrono::steady_clock::now();
@@ -64,7 +65,8 @@ void TemporalPcaSequence::emit(std::vector<temporal::DenoisedFrame> ready) {
       ++windowsCounted_;
     }
     auto it = waiting_.find(d.index);
-    if (it == waiting_.end()) throw std::logic_error("temporal: frame " + std::to_string(d.index) + " was never rendered");
+    if (it == waiting_.end())
+      throw std::logic_error("temporal: frame " + std::to_string(d.index) + " was never rendered");
     med::FrameBuffer image = std::move(it->second);
     waiting_.erase(it);
     // The beauty is direct + denoised indirect; coverage (alpha) stays.
@@ -72,7 +74,8 @@ void TemporalPcaSequence::emit(std::vector<temporal::DenoisedFrame> ready) {
     auto& indirect = image.outputs[kIndirect];
     for (std::size_t p = 0; p < image.colour.size(); ++p) {
       // A projection can dip under zero where the noise was; radiance cannot.
-      const glm::vec3 denoised = glm::max(glm::vec3(d.frame.rgb[p * 3], d.frame.rgb[p * 3 + 1], d.frame.rgb[p * 3 + 2]), 0.0f);
+      const glm::vec3 denoised =
+          glm::max(glm::vec3(d.frame.rgb[p * 3], d.frame.rgb[p * 3 + 1], d.frame.rgb[p * 3 + 2]), 0.0f);
       indirect[p] = glm::vec4(denoised, 1.0f);
       image.colour[p] = glm::vec4(glm::vec3(direct[p]) + denoised, image.colour[p].a);
     }

@@ -92,7 +92,8 @@ void BookmarkFile::load(const std::string& bookmarkPath) {
 }
 
 void BookmarkFile::save(const Bookmark& bookmark) {
-  if (bookmark.name.empty() || bookmark.name.size() > kMaxName) throw BookmarkError("a bookmark name has 1 to 128 characters");
+  if (bookmark.name.empty() || bookmark.name.size() > kMaxName)
+    throw BookmarkError("a bookmark name has 1 to 128 characters");
   if (!loadError.empty())
     throw BookmarkError("not saving over " + path + ", which could not be read (" + loadError + "): fix or remove it");
   std::vector<Bookmark> next = bookmarks;

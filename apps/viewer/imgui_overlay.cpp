@@ -4,16 +4,17 @@
 #include <stdexcept>
 #include <string>
 
-#include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_vulkan.h>
+#include <imgui.h>
 
 namespace tsr::app {
 
 namespace {
 
 void check(VkResult result, const char* what) {
-  if (result != VK_SUCCESS) throw std::runtime_error(std::string(what) + " failed (VkResult " + std::to_string(result) + ")");
+  if (result != VK_SUCCESS)
+    throw std::runtime_error(std::string(what) + " failed (VkResult " + std::to_string(result) + ")");
 }
 
 void checkFromImGui(VkResult result) {

@@ -6,9 +6,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include "error_line.hpp"
 #include "viewer.hpp"
 #include "viewer_options.hpp"
-#include "error_line.hpp"
 
 int main(int argc, char** argv) {
   spdlog::set_level(spdlog::level::warn);

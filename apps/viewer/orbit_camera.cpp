@@ -85,7 +85,7 @@ bool OrbitCamera::apply(sg::Camera& camera) {
   changed_ = false;
   camera.lookAt(eye(), target_);
   // Near and far bracket the scene from wherever the eye went.
-  const float reach = distance_ + radius_ * 4.0f + glm::length(target_) ;
+  const float reach = distance_ + radius_ * 4.0f + glm::length(target_);
   camera.setNearPlane(std::max(std::min(distance_ * 1e-3f, radius_ * 1e-3f), 1e-5f));
   camera.setFarPlane(std::max(reach * 2.0f, camera.nearPlane() * 10.0f));
   return true;

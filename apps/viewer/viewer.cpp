@@ -11,8 +11,8 @@
 
 #include "backends.hpp"
 #include "cluster_connection.hpp"
-#include "tsr/cluster/cluster_viewport.hpp"
 #include "imgui_overlay.hpp"
+#include "tsr/cluster/cluster_viewport.hpp"
 #include "tsr/med/coverage/ranking.hpp"
 #include "tsr/sg/import/scene_stats.hpp"
 #include "tsr/vk/device.hpp"
@@ -88,7 +88,8 @@ void Viewer::loadScene(const std::string& scene) {
   std::string markMessage;
   try {
     marks.load(BookmarkFile::pathFor(scene));
-    if (!marks.bookmarks.empty()) markMessage = std::to_string(marks.bookmarks.size()) + " bookmarks from " + marks.path;
+    if (!marks.bookmarks.empty())
+      markMessage = std::to_string(marks.bookmarks.size()) + " bookmarks from " + marks.path;
   } catch (const BookmarkError& e) {
     marks.path = BookmarkFile::pathFor(scene);
     marks.loadError = e.what();
@@ -107,11 +108,13 @@ void Viewer::loadScene(const std::string& scene) {
   selected_ = sg::kNoContainer;
   animationTime_ = 0;
   animationDuration_ = 0;
-  for (const auto& a : session_->imported.animations) animationDuration_ = std::max<double>(animationDuration_, a.duration());
+  for (const auto& a : session_->imported.animations)
+    animationDuration_ = std::max<double>(animationDuration_, a.duration());
   playing_ = animationDuration_ > 0;
 
   const auto stats = sg::computeSceneStats(session_->source, session_->imported.root);
-  const glm::vec3 lo = stats.hasBounds ? stats.boundsMin : glm::vec3(-1), hi = stats.hasBounds ? stats.boundsMax : glm::vec3(1);
+  const glm::vec3 lo = stats.hasBounds ? stats.boundsMin : glm::vec3(-1),
+                  hi = stats.hasBounds ? stats.boundsMax : glm::vec3(1);
   centre_ = (lo + hi) * 0.5f;
   radius_ = std::max(glm::length(hi - lo) * 0.5f, 1e-3f);
   orbit_.reset(*session_->source.find<sg::Camera>(session_->camera), centre_, radius_);
@@ -135,8 +138,9 @@ void Viewer::openWindow() {
   glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
   glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
   window_ = glfwCreateWindow(int(options_.width), int(options_.height), "tessera-viewer", nullptr, nullptr);
-  if (!window_) throw std::runtime_error("cannot open a window of " + std::to_string(options_.width) + "x" +
-                                         std::to_string(options_.height));
+  if (!window_)
+    throw std::runtime_error("cannot open a window of " + std::to_string(options_.width) + "x" +
+                             std::to_string(options_.height));
   glfwSetWindowUserPointer(window_, this);
   // Set before ImGui installs its callbacks, which chain to these.
   glfwSetDropCallback(window_, [](GLFWwindow* w, int count, const char** paths) {
@@ -192,12 +196,15 @@ void Viewer::handleInput() {
       mouse_.pressY = y;
     }
     if (left && !shift) orbit_.orbit(-dx * 0.3f, dy * 0.3f);
-    if (right || (left && shift)) orbit_.pan(-dx / float(std::max(height_, 1u)), dy / float(std::max(height_, 1u)), fov);
+    if (right || (left && shift))
+      orbit_.pan(-dx / float(std::max(height_, 1u)), dy / float(std::max(height_, 1u)), fov);
     if (io.MouseWheel != 0.0f) orbit_.zoom(std::pow(0.9f, io.MouseWheel));
     // A click that did not drag picks the object under it (coverage viewports).
-    if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) && std::abs(x - mouse_.pressX) < 3 && std::abs(y - mouse_.pressY) < 3) {
+    if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) && std::abs(x - mouse_.pressX) < 3 &&
+        std::abs(y - mouse_.pressY) < 3) {
       const int pane = paneAt(x);
-      if (pane >= 0 && y >= 0) pick(std::size_t(pane), std::uint32_t(x) - std::uint32_t(pane) * paneWidth(width_), std::uint32_t(y));
+      if (pane >= 0 && y >= 0)
+        pick(std::size_t(pane), std::uint32_t(x) - std::uint32_t(pane) * paneWidth(width_), std::uint32_t(y));
     }
   }
   std::vector<int> pressed;
@@ -239,7 +246,8 @@ void Viewer::renderPanes() {
   auto* camera = session_->source.find<sg::Camera>(session_->camera);
   const auto now = std::chrono::steady_clock::now();
   if (orbit_.apply(*camera)) lastMove_ = now;
-  const double dt = lastFrame_.time_since_epoch().count() ? std::chrono::duration<double>(now - lastFrame_).count() : 0.0;
+  const double dt =
+      lastFrame_.time_since_epoch().count() ? std::chrono::duration<double>(now - lastFrame_).count() : 0.0;
   lastFrame_ = now;
   if (playing_ && animationDuration_ > 0) setAnimationTime(std::fmod(animationTime_ + dt, animationDuration_));
   // Only frames with edits are published: the replica's change log keeps
@@ -265,9 +273,9 @@ void Viewer::renderPanes() {
     if (auto report = panes_[i].takeSwitchReport()) {
       const char* how = report->second.update == med::SceneAdapter::Update::Converted ? "converted"
                         : report->second.update == med::SceneAdapter::Update::Synced  ? "synced"
-                                                                                        : "up to date";
-      std::cout << "viewport " << i << ": " << report->first << ", scene " << how << " in " << report->second.syncSeconds
-                << " s" << std::endl;
+                                                                                      : "up to date";
+      std::cout << "viewport " << i << ": " << report->first << ", scene " << how << " in "
+                << report->second.syncSeconds << " s" << std::endl;
     }
 }
 

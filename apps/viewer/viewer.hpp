@@ -10,13 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "camera_bookmarks.hpp"
 #include "orbit_camera.hpp"
 #include "scene_session.hpp"
+#include "tsr/med/viewport_registry.hpp"
 #include "viewer_options.hpp"
 #include "viewer_pane.hpp"
 #include "viewer_script.hpp"
-#include "camera_bookmarks.hpp"
-#include "tsr/med/viewport_registry.hpp"
 
 struct GLFWwindow;
 

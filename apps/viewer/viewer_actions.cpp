@@ -41,7 +41,8 @@ bool Viewer::runScript() {
         done = false;
     // A pane that has not rendered yet counts as not there yet.
     for (const auto& pane : panes_)
-      if (pane.backend() == "embree" && (pane.shownBackend() != "embree" || (!pane.isRemote("embree") && pane.samples() == 0)))
+      if (pane.backend() == "embree" &&
+          (pane.shownBackend() != "embree" || (!pane.isRemote("embree") && pane.samples() == 0)))
         done = false;
     if (convergence_.paused) done = true;  // paused: it would never come
     if (!done) return true;
@@ -104,8 +105,9 @@ void Viewer::runAction(const ScriptAction& a) {
 
 void Viewer::screenshotPane(std::size_t pane, const std::string& path) {
   ViewerPane& p = panes_.at(pane);
-  if (p.frame().width == 0) throw std::runtime_error("screenshot " + path + ": viewport " + std::to_string(pane) +
-                                                     " has not rendered yet (wait frames 1 first)");
+  if (p.frame().width == 0)
+    throw std::runtime_error("screenshot " + path + ": viewport " + std::to_string(pane) +
+                             " has not rendered yet (wait frames 1 first)");
   if (endsWith(path, ".exr")) {
     const auto* camera = session_->replica.scene().find<sg::Camera>(session_->camera);
     const med::View view = med::View::fromCamera(*camera, p.frame().width, p.frame().height);
@@ -150,8 +152,8 @@ void Viewer::pick(std::size_t pane, std::uint32_t x, std::uint32_t y) {
   }
   const glm::vec4 id = it->second[fb.index(x, y)];
   selected_ = id.a > 0 ? med::decodeObjectId(id) : sg::kNoContainer;
-  std::cout << "viewport " << pane << ": picked " << (selected_ == sg::kNoContainer ? std::string("nothing")
-                                                                                    : "object " + std::to_string(selected_))
+  std::cout << "viewport " << pane << ": picked "
+            << (selected_ == sg::kNoContainer ? std::string("nothing") : "object " + std::to_string(selected_))
             << std::endl;
 }
 

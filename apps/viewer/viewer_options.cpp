@@ -52,8 +52,9 @@ bool parseViewerOptions(int argc, char** argv, ViewerOptions& o) {
   app.add_flag("--validate", o.validate,
                "Vulkan validation layers on the window's device (presentation and panels); any error fails the run");
   auto* clusterGroup = app.add_option_group("Cluster", "render viewport 0 on tessera-node processes");
-  clusterGroup->add_option("--cluster", o.cluster,
-                           "cluster config (configs/*.json): viewport 0 renders on its nodes while it shows their back-end")
+  clusterGroup
+      ->add_option("--cluster", o.cluster,
+                   "cluster config (configs/*.json): viewport 0 renders on its nodes while it shows their back-end")
       ->check(FileName());
   clusterGroup->add_option("--nodes", o.nodes, "HOST:PORT,... replacing the config's node addresses in order");
   clusterGroup->add_option("--token-file", o.tokenFile, "the nodes' shared token")->check(FileName());

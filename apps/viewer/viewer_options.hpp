@@ -12,16 +12,16 @@ namespace tsr::app {
 struct ViewerOptions {
   std::string scene = "builtin:cornell";
   std::vector<std::string> viewports{"embree"};  // one back-end per viewport, left to right
-  std::uint32_t width = 1024, height = 576;       // the window
-  std::uint32_t sampleLimit = 1024;               // the path tracer stops converging here
-  bool rasterWhileMoving = false;                 // figure 5.6: rasterise while the camera moves
-  std::string script;                             // --script FILE
-  bool exitAfter = false;                         // --exit-after: quit when the script is done
+  std::uint32_t width = 1024, height = 576;      // the window
+  std::uint32_t sampleLimit = 1024;              // the path tracer stops converging here
+  bool rasterWhileMoving = false;                // figure 5.6: rasterise while the camera moves
+  std::string script;                            // --script FILE
+  bool exitAfter = false;                        // --exit-after: quit when the script is done
   bool hidePanels = false;
-  bool validate = false;  // Vulkan validation on the window's device; errors fail the run
+  bool validate = false;                  // Vulkan validation on the window's device; errors fail the run
   std::string cluster, nodes, tokenFile;  // --cluster CONFIG [--nodes A:P,...] [--token-file F]
-  med::Parameters parameters;  // --max-depth, --threads, --param extras: every viewport
-  sg::ImportOptions import;    // --max-file-mb, --max-elements
+  med::Parameters parameters;             // --max-depth, --threads, --param extras: every viewport
+  sg::ImportOptions import;               // --max-file-mb, --max-elements
 };
 
 // The keys the window answers to, as --help lists them.

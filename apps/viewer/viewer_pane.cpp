@@ -34,8 +34,10 @@ med::Viewport& ViewerPane::viewport(const std::string& backend, const med::Viewp
     med::ViewportSettings settings = defaults_;
     settings.backend = backend;
     std::unique_ptr<med::Viewport> made = remote_ ? remote_(settings) : nullptr;
-    if (made) remoteBackends_.insert(backend);
-    else made = registry.create(settings, contexts);
+    if (made)
+      remoteBackends_.insert(backend);
+    else
+      made = registry.create(settings, contexts);
     it = viewports_.emplace(backend, std::move(made)).first;
   }
   return *it->second;

@@ -4,11 +4,11 @@
 // (and so its converted scene) alive, so switching back catches up with
 // the change list instead of converting the scene again.
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
-#include <utility>
-#include <memory>
 #include <string>
+#include <utility>
 
 #include "layers.hpp"
 #include "tsr/med/viewport_registry.hpp"
@@ -24,7 +24,8 @@ struct ConvergenceSettings {
 
 class ViewerPane {
  public:
-  ViewerPane(std::string backend, med::ViewportSettings defaults) : defaults_(std::move(defaults)), backend_(std::move(backend)) {}
+  ViewerPane(std::string backend, med::ViewportSettings defaults)
+      : defaults_(std::move(defaults)), backend_(std::move(backend)) {}
 
   const std::string& backend() const { return backend_; }
   // The back-end shown from the next frame on; its viewport is created on
@@ -72,7 +73,8 @@ class ViewerPane {
   bool hasViewport(const std::string& backend) const { return viewports_.count(backend) != 0; }
 
  private:
-  med::Viewport& viewport(const std::string& backend, const med::ViewportRegistry& registry, med::ContextPool& contexts);
+  med::Viewport& viewport(const std::string& backend, const med::ViewportRegistry& registry,
+                          med::ContextPool& contexts);
 
   med::ViewportSettings defaults_;
   std::string backend_;

@@ -77,8 +77,10 @@ void Viewer::drawPanels() {
 
   if (ImGui::CollapsingHeader("Path tracer", ImGuiTreeNodeFlags_DefaultOpen)) {
     int limit = int(convergence_.sampleLimit);
-    if (ImGui::InputInt("sample limit", &limit, 16, 256)) convergence_.sampleLimit = std::uint32_t(std::clamp(limit, 1, 1 << 20));
-    if (ImGui::Button(convergence_.paused ? "Resume (Space)" : "Pause (Space)")) convergence_.paused = !convergence_.paused;
+    if (ImGui::InputInt("sample limit", &limit, 16, 256))
+      convergence_.sampleLimit = std::uint32_t(std::clamp(limit, 1, 1 << 20));
+    if (ImGui::Button(convergence_.paused ? "Resume (Space)" : "Pause (Space)"))
+      convergence_.paused = !convergence_.paused;
   }
   ImGui::PopItemWidth();
   ImGui::End();
@@ -104,7 +106,9 @@ void Viewer::drawPanels() {
       ImGui::Text("rendered on the cluster's nodes (%s)", options_.cluster.c_str());
     } else if (pane.backend() == "embree") {
       ImGui::Text("%u spp of %u %s", pane.samples(), convergence_.sampleLimit,
-                  convergence_.paused ? "(paused)" : pane.converging() ? "" : "(done)");
+                  convergence_.paused ? "(paused)"
+                  : pane.converging() ? ""
+                                      : "(done)");
       ImGui::Text("%.2f spp/s, %.2f Mrays/s (since restart)", pane.samplesPerSecond(), pane.raysPerSecond() * 1e-6);
       const med::Parameters& p = pane.parameters();
       int depth = int(p.getInt("maxDepth", 8, 0, 1024));
@@ -117,7 +121,8 @@ void Viewer::drawPanels() {
       }
       if (filter != "none") {
         float threshold = float(realParameter(p, "threshold", 0.01));
-        if (ImGui::SliderFloat("threshold", &threshold, 0.0f, 0.2f, "%.3f")) pane.setParameter("threshold", double(threshold));
+        if (ImGui::SliderFloat("threshold", &threshold, 0.0f, 0.2f, "%.3f"))
+          pane.setParameter("threshold", double(threshold));
         float sigmaS = float(realParameter(p, "sigmaS", 8.0));
         if (ImGui::SliderFloat("sigma s (px)", &sigmaS, 0.5f, 32.0f)) pane.setParameter("sigmaS", double(sigmaS));
         float sigmaC = float(realParameter(p, "sigmaC", 0.02));

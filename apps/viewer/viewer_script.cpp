@@ -38,8 +38,10 @@ class LineParser {
   std::int64_t integer(const std::string& text, const char* what, std::int64_t lo, std::int64_t hi) const {
     std::int64_t v = 0;
     auto [end, err] = std::from_chars(text.data(), text.data() + text.size(), v);
-    if (err != std::errc() || end != text.data() + text.size()) fail(std::string(what) + " '" + text + "' is not an integer");
-    if (v < lo || v > hi) fail(std::string(what) + " " + text + " is outside " + std::to_string(lo) + " .. " + std::to_string(hi));
+    if (err != std::errc() || end != text.data() + text.size())
+      fail(std::string(what) + " '" + text + "' is not an integer");
+    if (v < lo || v > hi)
+      fail(std::string(what) + " " + text + " is outside " + std::to_string(lo) + " .. " + std::to_string(hi));
     return v;
   }
   std::uint32_t viewport(const std::string& text) const {
@@ -138,7 +140,8 @@ ScriptAction parseLine(const std::vector<std::string>& w, const std::string& whe
 
 }  // namespace
 
-std::vector<ScriptAction> parseScriptText(const std::string& text, const std::string& name, const ScriptLimits& limits) {
+std::vector<ScriptAction> parseScriptText(const std::string& text, const std::string& name,
+                                          const ScriptLimits& limits) {
   if (text.size() > kMaxScriptBytes) throw ScriptError(name + ": larger than 1 MiB");
   std::vector<ScriptAction> actions;
   std::istringstream in(text);

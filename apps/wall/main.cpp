@@ -12,9 +12,9 @@
 #include <sstream>
 #include <thread>
 
-#include <CLI/CLI.hpp>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
 
 #include "command_line.hpp"
 #include "error_line.hpp"
@@ -47,10 +47,14 @@ struct Options {
 
 const char* stateName(NodeState s) {
   switch (s) {
-    case NodeState::Offline: return "OFFLINE";
-    case NodeState::Connecting: return "connecting";
-    case NodeState::Joined: return "joined";
-    case NodeState::Synced: return "ok";
+    case NodeState::Offline:
+      return "OFFLINE";
+    case NodeState::Connecting:
+      return "connecting";
+    case NodeState::Joined:
+      return "joined";
+    case NodeState::Synced:
+      return "ok";
   }
   return "?";
 }
@@ -126,8 +130,9 @@ int run(const Options& o) {
   for (std::uint64_t frame = 0; (o.frames == 0 || frame < o.frames) && !interrupted; ++frame) {
     if (o.maxFps > 0) {
       std::this_thread::sleep_until(nextFrameAt);
-      nextFrameAt = std::max(nextFrameAt + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / o.maxFps)),
-                             Clock::now() - std::chrono::seconds(1));
+      nextFrameAt = std::max(
+          nextFrameAt + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / o.maxFps)),
+          Clock::now() - std::chrono::seconds(1));
     }
     for (const auto& animation : session.imported.animations)
       animation.apply(session.source, static_cast<float>(static_cast<double>(frame) / o.fps));
@@ -155,9 +160,10 @@ int run(const Options& o) {
     for (std::size_t i = 0; i < status.size(); ++i) {
       bool wasIn = before[i] == NodeState::Synced, isIn = status[i].state == NodeState::Synced;
       if (wasIn && !isIn)
-        std::cout << "node " << status[i].address.text() << " dropped out (" << status[i].lastError
-                  << "): screen " << i << " marked offline" << std::endl;
-      if (!wasIn && isIn && frame > 0) std::cout << "node " << status[i].address.text() << " is back on screen " << i << std::endl;
+        std::cout << "node " << status[i].address.text() << " dropped out (" << status[i].lastError << "): screen " << i
+                  << " marked offline" << std::endl;
+      if (!wasIn && isIn && frame > 0)
+        std::cout << "node " << status[i].address.text() << " is back on screen " << i << std::endl;
       before[i] = status[i].state;
     }
     auto now = Clock::now();
@@ -192,21 +198,31 @@ int main(int argc, char** argv) {
   CLI::App app{"Tessera display wall: plays a scene on the nodes of a tiled config, swapping their screens together"};
   Options o;
   std::string logLevel = "warn";
-  app.add_option("CONFIG", o.config, "cluster config with \"mode\": \"tiled\" (a grid or screens, see configs/)")->required();
-  app.add_option("SCENE", o.scene, "a .gltf/.glb file or builtin:cornell, builtin:animated, builtin:instances:N")->required();
+  app.add_option("CONFIG", o.config, "cluster config with \"mode\": \"tiled\" (a grid or screens, see configs/)")
+      ->required();
+  app.add_option("SCENE", o.scene, "a .gltf/.glb file or builtin:cornell, builtin:animated, builtin:instances:N")
+      ->required();
   app.add_option("--nodes", o.nodes, "node addresses A:P,B:Q,... in screen order (default: the config's)");
   app.add_option("--token-file", o.tokenFile, "file holding the token the nodes were started with")
       ->check(tsr::app::FileName());
   app.add_option("--frames", o.frames, "frames to play (0: until interrupted)")->capture_default_str();
-  app.add_option("--spp", o.spp, "samples per pixel on every node (0: the config's)")->capture_default_str()->check(CLI::Range(std::int64_t{0}, std::int64_t{1} << 20));
-  app.add_option("--fps", o.fps, "animation frames per second of scene time")->capture_default_str()->check(tsr::app::FiniteRange(0.001, 1000.0));
+  app.add_option("--spp", o.spp, "samples per pixel on every node (0: the config's)")
+      ->capture_default_str()
+      ->check(CLI::Range(std::int64_t{0}, std::int64_t{1} << 20));
+  app.add_option("--fps", o.fps, "animation frames per second of scene time")
+      ->capture_default_str()
+      ->check(tsr::app::FiniteRange(0.001, 1000.0));
   app.add_option("--max-fps", o.maxFps, "at most this many frames a second (0: as fast as the nodes render)")
       ->capture_default_str()
       ->check(tsr::app::FiniteRange(0.0, 1000.0));
   app.add_option("--size", o.size, "virtual frame WxH (default: the config's wall frame, else 960x540)");
-  app.add_option("--status-every", o.statusEvery, "seconds between status lines")->capture_default_str()->check(tsr::app::FiniteRange(0.0, 3600.0));
+  app.add_option("--status-every", o.statusEvery, "seconds between status lines")
+      ->capture_default_str()
+      ->check(tsr::app::FiniteRange(0.0, 3600.0));
   app.add_option("--camera", o.camera, "the scene camera to play through: its name or index (default: the first)");
-  app.add_option("--output", o.output, "write the last stitched frame here (PNG, EXR, ...); only that frame's pixels come back from the nodes")
+  app.add_option(
+         "--output", o.output,
+         "write the last stitched frame here (PNG, EXR, ...); only that frame's pixels come back from the nodes")
       ->check(tsr::app::FileName());
   app.add_flag("--pixels-back", o.pixelsBack,
                "every frame's pixels come back to this client, as they would for a preview (default: they stay on "

@@ -40,11 +40,16 @@ struct Reader {
     if (!p.is_object()) fail("'parameters' must be an object");
     for (auto it = p.begin(); it != p.end(); ++it) {
       const json& v = it.value();
-      if (v.is_boolean()) base.set(it.key(), v.get<bool>());
-      else if (v.is_number_integer()) base.set(it.key(), v.get<std::int64_t>());
-      else if (v.is_number()) base.set(it.key(), v.get<double>());
-      else if (v.is_string()) base.set(it.key(), v.get<std::string>());
-      else fail("parameter '" + it.key() + "' must be a boolean, number or string");
+      if (v.is_boolean())
+        base.set(it.key(), v.get<bool>());
+      else if (v.is_number_integer())
+        base.set(it.key(), v.get<std::int64_t>());
+      else if (v.is_number())
+        base.set(it.key(), v.get<double>());
+      else if (v.is_string())
+        base.set(it.key(), v.get<std::string>());
+      else
+        fail("parameter '" + it.key() + "' must be a boolean, number or string");
     }
     return base;
   }
@@ -59,7 +64,8 @@ struct Reader {
 }  // namespace
 
 void ClusterConfig::replaceAddresses(const std::vector<NodeAddress>& addresses) {
-  if (nodes.empty() && !addresses.empty()) throw ConfigError("config names no node to take the addresses' settings from");
+  if (nodes.empty() && !addresses.empty())
+    throw ConfigError("config names no node to take the addresses' settings from");
   for (std::size_t i = 0; i < addresses.size(); ++i) {
     if (i >= nodes.size()) nodes.push_back(nodes.front());
     nodes[i].address = addresses[i];
@@ -72,10 +78,11 @@ void ClusterConfig::validate() const {
     if (n.backend.empty()) throw ConfigError("node " + n.address.text() + " has no back-end");
   if (mode == ClusterMode::Tiled && wall.screens.empty() && std::size_t{wall.columns} * wall.rows != nodes.size())
     throw ConfigError("a " + std::to_string(wall.columns) + "x" + std::to_string(wall.rows) + " wall needs " +
-                      std::to_string(wall.columns * wall.rows) + " nodes, the config has " + std::to_string(nodes.size()));
-  if (mode == ClusterMode::Tiled && !wall.screens.empty() && wall.screens.size() != nodes.size())
-    throw ConfigError("a wall of " + std::to_string(wall.screens.size()) + " screens needs as many nodes, the config has " +
+                      std::to_string(wall.columns * wall.rows) + " nodes, the config has " +
                       std::to_string(nodes.size()));
+  if (mode == ClusterMode::Tiled && !wall.screens.empty() && wall.screens.size() != nodes.size())
+    throw ConfigError("a wall of " + std::to_string(wall.screens.size()) +
+                      " screens needs as many nodes, the config has " + std::to_string(nodes.size()));
   if (!wall.screens.empty()) {
     if (wall.frameWidth == 0 || wall.frameHeight == 0) throw ConfigError("wall 'frame' must be [width, height]");
     for (std::size_t i = 0; i < wall.screens.size(); ++i) {
@@ -105,16 +112,24 @@ ClusterConfig parseClusterConfig(const std::string& text, const std::string& sou
   if (!j.is_object()) r.fail("the top level must be an object");
   ClusterConfig c;
   std::string mode = r.get<std::string>(j, "mode", "cooperative");
-  if (mode == "cooperative") c.mode = ClusterMode::Cooperative;
-  else if (mode == "tiled" || mode == "wall") c.mode = ClusterMode::Tiled;
-  else if (mode == "stereo") c.mode = ClusterMode::Stereo;
-  else r.fail("unknown mode '" + mode + "' (cooperative, tiled, stereo)");
+  if (mode == "cooperative")
+    c.mode = ClusterMode::Cooperative;
+  else if (mode == "tiled" || mode == "wall")
+    c.mode = ClusterMode::Tiled;
+  else if (mode == "stereo")
+    c.mode = ClusterMode::Stereo;
+  else
+    r.fail("unknown mode '" + mode + "' (cooperative, tiled, stereo)");
 
   std::string compression = r.get<std::string>(j, "compression", "lz4");
-  if (compression == "lz4") c.compression = Compression::Lz4;
-  else if (compression == "zstd") c.compression = Compression::Zstd;
-  else if (compression == "none") c.compression = Compression::None;
-  else r.fail("unknown compression '" + compression + "' (lz4, zstd, none)");
+  if (compression == "lz4")
+    c.compression = Compression::Lz4;
+  else if (compression == "zstd")
+    c.compression = Compression::Zstd;
+  else if (compression == "none")
+    c.compression = Compression::None;
+  else
+    r.fail("unknown compression '" + compression + "' (lz4, zstd, none)");
 
   std::string backend = r.get<std::string>(j, "backend", "embree");
   med::Parameters defaults = r.parameters(j, {});
@@ -150,7 +165,8 @@ ClusterConfig parseClusterConfig(const std::string& text, const std::string& sou
       r.fail("wall 'frame' must be [width, height] in pixels, each 1..1048576");
     c.wall.frameWidth = static_cast<std::uint32_t>(frame[0]);
     c.wall.frameHeight = static_cast<std::uint32_t>(frame[1]);
-    if (!wall.at("screens").is_array() || wall.at("screens").size() > 4096) r.fail("'screens' must be an array (at most 4096)");
+    if (!wall.at("screens").is_array() || wall.at("screens").size() > 4096)
+      r.fail("'screens' must be an array (at most 4096)");
     for (const json& sj : wall.at("screens")) {
       if (!sj.is_object()) r.fail("each screen must be an object");
       ScreenConfig s;
@@ -168,16 +184,20 @@ ClusterConfig parseClusterConfig(const std::string& text, const std::string& sou
       s.bezel = static_cast<std::int32_t>(b);
       if (sj.contains("eye")) {
         std::string eye = r.get<std::string>(sj, "eye", "");
-        if (eye == "left") s.eye = med::Eye::Left;
-        else if (eye == "right") s.eye = med::Eye::Right;
-        else r.fail("unknown eye '" + eye + "' (left, right)");
+        if (eye == "left")
+          s.eye = med::Eye::Left;
+        else if (eye == "right")
+          s.eye = med::Eye::Right;
+        else
+          r.fail("unknown eye '" + eye + "' (left, right)");
       }
       if (sj.contains("window")) {
         const json& wj = r.object(sj, "window");
         WindowPlacement w;
         auto pos = r.get<std::vector<std::int64_t>>(wj, "position", {0, 0});
         auto size = r.get<std::vector<std::int64_t>>(wj, "size", {0, 0});
-        if (pos.size() != 2 || size.size() != 2) r.fail("a window's 'position' and 'size' must be [x, y] and [width, height]");
+        if (pos.size() != 2 || size.size() != 2)
+          r.fail("a window's 'position' and 'size' must be [x, y] and [width, height]");
         for (std::int64_t v : pos)
           if (v < -(1 << 20) || v > 1 << 20) r.fail("a window's 'position' must lie within +-1048576");
         for (std::int64_t v : size)
@@ -200,9 +220,12 @@ ClusterConfig parseClusterConfig(const std::string& text, const std::string& sou
 
   const json& stereo = r.object(j, "stereo");
   std::string compose = r.get<std::string>(stereo, "compose", "anaglyph");
-  if (compose == "anaglyph") c.stereo.compose = StereoCompose::Anaglyph;
-  else if (compose == "side-by-side") c.stereo.compose = StereoCompose::SideBySide;
-  else r.fail("unknown stereo composition '" + compose + "' (anaglyph, side-by-side)");
+  if (compose == "anaglyph")
+    c.stereo.compose = StereoCompose::Anaglyph;
+  else if (compose == "side-by-side")
+    c.stereo.compose = StereoCompose::SideBySide;
+  else
+    r.fail("unknown stereo composition '" + compose + "' (anaglyph, side-by-side)");
   if (stereo.contains("eyeSeparation")) c.stereo.eyeSeparation = r.get<float>(stereo, "eyeSeparation", 0);
   if (stereo.contains("zeroParallax")) c.stereo.zeroParallax = r.get<float>(stereo, "zeroParallax", 0);
   if (c.stereo.zeroParallax && !(*c.stereo.zeroParallax > 0)) r.fail("'zeroParallax' must be positive");

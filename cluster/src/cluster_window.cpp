@@ -19,11 +19,16 @@ using Clock = std::chrono::steady_clock;
 
 const char* name(NodePhase phase) {
   switch (phase) {
-    case NodePhase::Idle: return "idle";
-    case NodePhase::Connect: return "connect";
-    case NodePhase::Snapshot: return "snapshot";
-    case NodePhase::Render: return "render";
-    case NodePhase::Barrier: return "barrier";
+    case NodePhase::Idle:
+      return "idle";
+    case NodePhase::Connect:
+      return "connect";
+    case NodePhase::Snapshot:
+      return "snapshot";
+    case NodePhase::Render:
+      return "render";
+    case NodePhase::Barrier:
+      return "barrier";
   }
   return "?";
 }
@@ -47,7 +52,8 @@ struct Node {
 
 // A steady-clock instant as wall-clock time of day, for people reading logs.
 std::string timeOfDay(Clock::time_point t) {
-  auto wall = std::chrono::system_clock::now() - std::chrono::duration_cast<std::chrono::system_clock::duration>(Clock::now() - t);
+  auto wall = std::chrono::system_clock::now() -
+              std::chrono::duration_cast<std::chrono::system_clock::duration>(Clock::now() - t);
   std::time_t tt = std::chrono::system_clock::to_time_t(wall);
   std::tm tm{};
   localtime_r(&tt, &tm);
@@ -92,7 +98,8 @@ struct ClusterWindow::Impl {
     for (auto& n : nodes)
       if (n.link) n.link->finish(makeFrame(Bye{}));
     auto until = Clock::now() + std::chrono::milliseconds(500);
-    while (Clock::now() < until && std::any_of(nodes.begin(), nodes.end(), [](const Node& n) { return n.link && n.link->running(); }))
+    while (Clock::now() < until &&
+           std::any_of(nodes.begin(), nodes.end(), [](const Node& n) { return n.link && n.link->running(); }))
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
     for (auto& n : nodes)
       if (n.link) n.link->close();
@@ -210,7 +217,8 @@ struct ClusterWindow::Impl {
         n.name = e.welcome.nodeName;
         n.applied = 0;
         // Kept even without the back-end: it still mirrors the scene; its renders fail and drop it then.
-        if (std::find(e.welcome.backends.begin(), e.welcome.backends.end(), n.config.backend) == e.welcome.backends.end())
+        if (std::find(e.welcome.backends.begin(), e.welcome.backends.end(), n.config.backend) ==
+            e.welcome.backends.end())
           spdlog::warn("node {} has no back-end '{}'", n.config.address.text(), n.config.backend);
         spdlog::info("node {} ({}) joined", n.config.address.text(), n.name);
         return;
@@ -236,7 +244,9 @@ struct ClusterWindow::Impl {
   // `round` is the frame being rendered, null between frames.
   void receive(std::size_t i, const Message& m, FrameRound* round) {
     switch (m.type) {
-      case MessageType::Applied: nodes[i].applied = parse<Applied>(m).version; return;
+      case MessageType::Applied:
+        nodes[i].applied = parse<Applied>(m).version;
+        return;
       case MessageType::RenderTile: {
         RenderTile tile = parse<RenderTile>(m);
         if (!round) return;
@@ -254,7 +264,9 @@ struct ClusterWindow::Impl {
         if (r.token == hashToken) nodes[i].hash = r;
         return;
       }
-      case MessageType::HeartbeatAck: parse<HeartbeatAck>(m); return;
+      case MessageType::HeartbeatAck:
+        parse<HeartbeatAck>(m);
+        return;
       case MessageType::Error:
         nodes[i].lastError = parse<ErrorReport>(m).reason;
         spdlog::warn("node {}: {}", nodes[i].config.address.text(), nodes[i].lastError);
@@ -263,7 +275,8 @@ struct ClusterWindow::Impl {
         if (round && nodes[i].lastError.rfind("render failed", 0) == 0)
           round->fail("node " + nodes[i].config.address.text() + ": " + nodes[i].lastError);
         return;
-      default: throw ProtocolError(ProtocolError::Kind::Unexpected, std::string(name(m.type)) + " after the handshake");
+      default:
+        throw ProtocolError(ProtocolError::Kind::Unexpected, std::string(name(m.type)) + " after the handshake");
     }
   }
 
@@ -439,7 +452,8 @@ ClusterFrame ClusterWindow::render(const med::View& view) {
     s.makeResolver();
     s.askOutputs(items, targets);
   }
-  FrameRound round(result.frame, std::move(items), targets, result.pixelsKept ? Compression::Kept : s.config.compression);
+  FrameRound round(result.frame, std::move(items), targets,
+                   result.pixelsKept ? Compression::Kept : s.config.compression);
   s.reassigned = 0;
 
   for (std::size_t i = 0; i < round.items().size(); ++i)
@@ -453,10 +467,12 @@ ClusterFrame ClusterWindow::render(const med::View& view) {
   auto deadline = Clock::now() + s.config.timeouts.frame;
   while (!round.finished()) {
     if (!round.error().empty()) throw ClusterError(round.error());
-    if (s.strategy->needsNodes() && s.synced().empty()) throw ClusterError("every cluster node was lost during the frame");
+    if (s.strategy->needsNodes() && s.synced().empty())
+      throw ClusterError("every cluster node was lost during the frame");
     // Wakes now and then to say who is late, short of the deadline.
     auto wake = std::min(deadline, Clock::now() + s.config.timeouts.late / 4);
-    bool done = s.pump(wake, [&] { return round.finished() || !round.error().empty(); }, &round);
+    bool done = s.pump(
+        wake, [&] { return round.finished() || !round.error().empty(); }, &round);
     s.reportLate(round, result.lateNodes);
     if (!done && Clock::now() >= deadline) {
       // Nodes that missed the frame deadline are dropped; their work moves or shows as offline.
@@ -504,8 +520,8 @@ std::vector<NodeStatus> ClusterWindow::status() const {
   for (std::size_t i = 0; i < impl_->nodes.size(); ++i) {
     const Node& n = impl_->nodes[i];
     auto [phase, since] = impl_->phaseOf(i, nullptr);
-    out.push_back({n.config.address, n.name, n.state, n.applied, n.link->bytesSent(), n.link->bytesReceived(), n.lastError,
-                   phase, since});
+    out.push_back({n.config.address, n.name, n.state, n.applied, n.link->bytesSent(), n.link->bytesReceived(),
+                   n.lastError, phase, since});
   }
   return out;
 }

@@ -21,8 +21,7 @@ asio::awaitable<Message> Connection::receive() {
   received(header.size());
   FrameHeader h = decodeFrameHeader(header);
   const MessageSpec& s = spec(h.type);
-  if (s.sender != peer_)
-    throw ProtocolError(Kind::Unexpected, std::string(s.name) + " may not be sent by this side");
+  if (s.sender != peer_) throw ProtocolError(Kind::Unexpected, std::string(s.name) + " may not be sent by this side");
   if (!authenticated_ && !s.beforeAuth)
     throw ProtocolError(Kind::Unexpected, std::string(s.name) + " before the handshake finished");
   Message m;
@@ -61,7 +60,8 @@ void Connection::send(Frame frame) {
 }
 
 void Connection::post(Frame frame) {
-  asio::post(socket_.get_executor(), [self = shared_from_this(), f = std::move(frame)]() mutable { self->send(std::move(f)); });
+  asio::post(socket_.get_executor(),
+             [self = shared_from_this(), f = std::move(frame)]() mutable { self->send(std::move(f)); });
 }
 
 void Connection::closeAfterFlush() {
@@ -112,7 +112,8 @@ void Connection::startWatchdog(std::chrono::milliseconds idle, std::chrono::mill
   idle_ = idle;
   writeStall_ = writeStall;
   lastReceived_ = Clock::now();
-  asio::co_spawn(socket_.get_executor(), [self = shared_from_this()] { return self->watchdog(); }, asio::detached);
+  asio::co_spawn(
+      socket_.get_executor(), [self = shared_from_this()] { return self->watchdog(); }, asio::detached);
 }
 
 asio::awaitable<void> Connection::watchdog() {

@@ -12,7 +12,8 @@ class FilePresenter : public Presenter {
  public:
   FilePresenter(std::string directory, std::string node) : directory_(std::move(directory)), node_(std::move(node)) {}
 
-  void present(std::uint64_t frame, const std::vector<PresentedTile>& tiles, const std::optional<WindowPlacement>&) override {
+  void present(std::uint64_t frame, const std::vector<PresentedTile>& tiles,
+               const std::optional<WindowPlacement>&) override {
     for (const auto& [rect, image] : tiles) {
       std::string path = directory_ + "/" + node_ + "-frame" + std::to_string(frame) + "-" + std::to_string(rect.x0) +
                          "-" + std::to_string(rect.y0) + ".exr";

@@ -43,16 +43,26 @@ void writeFrameHeader(std::vector<std::uint8_t>& out, const FrameHeader& header)
 
 const char* name(ProtocolError::Kind kind) {
   switch (kind) {
-    case Kind::BadMagic: return "bad magic";
-    case Kind::VersionMismatch: return "version mismatch";
-    case Kind::UnknownType: return "unknown type";
-    case Kind::Oversized: return "oversized";
-    case Kind::Unexpected: return "unexpected";
-    case Kind::Malformed: return "malformed";
-    case Kind::AuthFailed: return "authentication failed";
-    case Kind::Rejected: return "rejected";
-    case Kind::Timeout: return "timeout";
-    case Kind::Closed: return "closed";
+    case Kind::BadMagic:
+      return "bad magic";
+    case Kind::VersionMismatch:
+      return "version mismatch";
+    case Kind::UnknownType:
+      return "unknown type";
+    case Kind::Oversized:
+      return "oversized";
+    case Kind::Unexpected:
+      return "unexpected";
+    case Kind::Malformed:
+      return "malformed";
+    case Kind::AuthFailed:
+      return "authentication failed";
+    case Kind::Rejected:
+      return "rejected";
+    case Kind::Timeout:
+      return "timeout";
+    case Kind::Closed:
+      return "closed";
   }
   return "unknown";
 }

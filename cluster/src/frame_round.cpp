@@ -59,7 +59,8 @@ const WorkItem* FrameRound::onTile(std::size_t node, const RenderTile& tile) {
       return &it;
     }
     auto started = std::chrono::steady_clock::now();
-    med::FrameBuffer px = decodePixels(tile.rect.width(), tile.rect.height(), tile.compression, tile.pixels, tile.outputs);
+    med::FrameBuffer px =
+        decodePixels(tile.rect.width(), tile.rect.height(), tile.compression, tile.pixels, tile.outputs);
     med::FrameBuffer& out = targets_.at(it.target);
     auto place = [&](auto& to, const auto& from) {
       for (std::uint32_t y = 0; y < px.height; ++y)

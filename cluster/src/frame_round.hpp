@@ -18,7 +18,7 @@ struct WorkItem {
   std::uint32_t viewport = 0;  // on the node
   med::View view;              // the full image
   med::PixelRect rect;
-  std::size_t target = 0;      // output buffer
+  std::size_t target = 0;              // output buffer
   std::size_t tile = ~std::size_t{0};  // balancer tile, in cooperative mode
   std::size_t node = 0;
   bool done = false;

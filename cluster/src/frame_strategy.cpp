@@ -12,14 +12,18 @@ void FrameStrategy::compose(std::vector<med::FrameBuffer>& targets, ClusterFrame
 void composeEyes(std::vector<med::FrameBuffer>& targets, StereoCompose compose, ClusterFrame& out) {
   out.left = std::move(targets.at(0));
   out.right = std::move(targets.at(1));
-  out.image = compose == StereoCompose::Anaglyph ? med::anaglyph(out.left, out.right) : med::sideBySide(out.left, out.right);
+  out.image =
+      compose == StereoCompose::Anaglyph ? med::anaglyph(out.left, out.right) : med::sideBySide(out.left, out.right);
 }
 
 std::unique_ptr<FrameStrategy> makeFrameStrategy(const ClusterConfig& config) {
   switch (config.mode) {
-    case ClusterMode::Cooperative: return makeCooperativeStrategy(config.cooperative);
-    case ClusterMode::Tiled: return makeWallStrategy(config.wall, config.stereo.compose);
-    case ClusterMode::Stereo: return makeStereoStrategy(config.stereo.compose);
+    case ClusterMode::Cooperative:
+      return makeCooperativeStrategy(config.cooperative);
+    case ClusterMode::Tiled:
+      return makeWallStrategy(config.wall, config.stereo.compose);
+    case ClusterMode::Stereo:
+      return makeStereoStrategy(config.stereo.compose);
   }
   throw ConfigError("unknown cluster mode");
 }

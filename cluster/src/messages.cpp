@@ -12,14 +12,19 @@ namespace tsr::cluster {
 namespace {
 
 template <std::size_t N>
-void writeBytes(sg::ByteWriter& w, const std::array<std::uint8_t, N>& a) { w.raw(a.data(), N); }
+void writeBytes(sg::ByteWriter& w, const std::array<std::uint8_t, N>& a) {
+  w.raw(a.data(), N);
+}
 template <std::size_t N>
-void readBytes(sg::ByteReader& r, std::array<std::uint8_t, N>& a, const char* what) { r.copy(a.data(), N, what); }
+void readBytes(sg::ByteReader& r, std::array<std::uint8_t, N>& a, const char* what) {
+  r.copy(a.data(), N, what);
+}
 
 std::uint32_t readU32Varint(sg::ByteReader& r, std::uint32_t max, const char* what) {
   std::size_t at = r.offset();
   std::uint64_t v = r.varint();
-  if (v > max) throw sg::DecodeError(at, std::string(what) + " " + std::to_string(v) + " exceeds " + std::to_string(max));
+  if (v > max)
+    throw sg::DecodeError(at, std::string(what) + " " + std::to_string(v) + " exceeds " + std::to_string(max));
   return static_cast<std::uint32_t>(v);
 }
 
@@ -78,10 +83,14 @@ void writeParameters(sg::ByteWriter& w, const med::Parameters& p) {
     std::visit(
         [&](const auto& x) {
           using T = std::decay_t<decltype(x)>;
-          if constexpr (std::is_same_v<T, bool>) w.u8(x ? 1 : 0);
-          else if constexpr (std::is_same_v<T, std::int64_t>) w.svarint(x);
-          else if constexpr (std::is_same_v<T, double>) w.f64(x);
-          else w.string(x);
+          if constexpr (std::is_same_v<T, bool>)
+            w.u8(x ? 1 : 0);
+          else if constexpr (std::is_same_v<T, std::int64_t>)
+            w.svarint(x);
+          else if constexpr (std::is_same_v<T, double>)
+            w.f64(x);
+          else
+            w.string(x);
         },
         value);
   }
@@ -101,10 +110,17 @@ med::Parameters readParameters(sg::ByteReader& r) {
         p.set(name, b == 1);
         break;
       }
-      case 1: p.set(name, r.svarint()); break;
-      case 2: p.set(name, r.f64()); break;
-      case 3: p.set(name, r.string(kMaxReasonBytes)); break;
-      default: throw sg::DecodeError(at, "unknown parameter kind");
+      case 1:
+        p.set(name, r.svarint());
+        break;
+      case 2:
+        p.set(name, r.f64());
+        break;
+      case 3:
+        p.set(name, r.string(kMaxReasonBytes));
+        break;
+      default:
+        throw sg::DecodeError(at, "unknown parameter kind");
     }
   }
   return p;
@@ -113,7 +129,8 @@ med::Parameters readParameters(sg::ByteReader& r) {
 Compression readCompression(sg::ByteReader& r) {
   std::size_t at = r.offset();
   std::uint8_t c = r.u8();
-  if (c > static_cast<std::uint8_t>(Compression::Kept)) throw sg::DecodeError(at, "unknown compression " + std::to_string(c));
+  if (c > static_cast<std::uint8_t>(Compression::Kept))
+    throw sg::DecodeError(at, "unknown compression " + std::to_string(c));
   return static_cast<Compression>(c);
 }
 
@@ -348,8 +365,9 @@ ErrorReport ErrorReport::read(sg::ByteReader& r) { return {r.string(kMaxReasonBy
 
 Frame frameFromPayload(MessageType type, std::span<const std::uint8_t> payload) {
   if (payload.size() > spec(type).maxPayload)
-    throw ProtocolError(ProtocolError::Kind::Oversized,
-                        std::string(name(type)) + " of " + std::to_string(payload.size()) + " bytes exceeds its maximum");
+    throw ProtocolError(
+        ProtocolError::Kind::Oversized,
+        std::string(name(type)) + " of " + std::to_string(payload.size()) + " bytes exceeds its maximum");
   auto bytes = std::make_shared<std::vector<std::uint8_t>>();
   bytes->reserve(kFrameHeaderBytes + payload.size());
   writeFrameHeader(*bytes, {kProtocolVersion, type, static_cast<std::uint32_t>(payload.size())});

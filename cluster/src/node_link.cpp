@@ -9,7 +9,12 @@ namespace tsr::cluster {
 
 NodeLink::NodeLink(asio::io_context& io, std::size_t node, NodeAddress address, std::string token, Timeouts timeouts,
                    Inbox& inbox)
-    : io_(io), node_(node), address_(std::move(address)), token_(std::move(token)), timeouts_(timeouts), inbox_(inbox) {}
+    : io_(io),
+      node_(node),
+      address_(std::move(address)),
+      token_(std::move(token)),
+      timeouts_(timeouts),
+      inbox_(inbox) {}
 
 void NodeLink::start(std::uint64_t generation) {
   asio::post(io_, [self = shared_from_this(), generation] {

@@ -11,8 +11,7 @@
 namespace tsr::cluster {
 
 struct NodeServer::Impl {
-  Impl(NodeOptions o, const med::ViewportRegistry& registry)
-      : context{std::move(o), registry, worker}, acceptor(io) {}
+  Impl(NodeOptions o, const med::ViewportRegistry& registry) : context{std::move(o), registry, worker}, acceptor(io) {}
 
   // A failed accept (out of file descriptors under a flood of connections,
   // a connection reset before it was taken) must not end the loop: the node
@@ -53,8 +52,8 @@ NodeServer::~NodeServer() = default;
 NodeAddress NodeServer::listen() {
   const NodeAddress& want = impl_->context.options.listen;
   tcp::resolver resolver(impl_->io);
-  auto results = resolver.resolve(want.host, std::to_string(want.port),
-                                  tcp::resolver::passive | tcp::resolver::numeric_service);
+  auto results =
+      resolver.resolve(want.host, std::to_string(want.port), tcp::resolver::passive | tcp::resolver::numeric_service);
   tcp::endpoint ep = results.begin()->endpoint();
   const NodeOptions& o = impl_->context.options;
   if (o.token.empty() && !o.insecure && !ep.address().is_loopback())
@@ -91,6 +90,8 @@ void NodeServer::stopOnSignals() {
 
 void NodeServer::run() { impl_->io.run(); }
 
-void NodeServer::stop() { asio::post(impl_->io, [this] { impl_->io.stop(); }); }
+void NodeServer::stop() {
+  asio::post(impl_->io, [this] { impl_->io.stop(); });
+}
 
 }  // namespace tsr::cluster

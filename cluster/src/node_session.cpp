@@ -25,8 +25,7 @@ std::string peerName(const tcp::socket& s) {
 }
 }  // namespace
 
-NodeSession::NodeSession(tcp::socket socket, NodeContext& context)
-    : ctx_(context), peer_(peerName(socket)) {
+NodeSession::NodeSession(tcp::socket socket, NodeContext& context) : ctx_(context), peer_(peerName(socket)) {
   conn_ = std::make_shared<Connection>(std::move(socket), Sender::Client);
 }
 
@@ -34,7 +33,8 @@ NodeSession::~NodeSession() { spdlog::info("session {} ended", peer_); }
 
 void NodeSession::start() {
   conn_->startWatchdog(ctx_.options.handshakeTimeout, ctx_.options.idleTimeout);
-  asio::co_spawn(conn_->executor(), [self = shared_from_this()] { return self->run(); }, asio::detached);
+  asio::co_spawn(
+      conn_->executor(), [self = shared_from_this()] { return self->run(); }, asio::detached);
 }
 
 asio::awaitable<void> NodeSession::run() {
@@ -62,8 +62,10 @@ asio::awaitable<void> NodeSession::run() {
       conn_->close();
     }
   } catch (const boost::system::system_error& e) {
-    if (conn_->timedOut()) spdlog::warn("session {}: peer went quiet; disconnecting", peer_);
-    else spdlog::info("session {}: {}", peer_, e.code().message());
+    if (conn_->timedOut())
+      spdlog::warn("session {}: peer went quiet; disconnecting", peer_);
+    else
+      spdlog::info("session {}: {}", peer_, e.code().message());
     conn_->close();
   }
   state_->cancelled = true;  // queued work for this client is skipped
@@ -101,14 +103,22 @@ asio::awaitable<bool> NodeSession::handshake() {
 
 void NodeSession::dispatch(Message& m) {
   switch (m.type) {
-    case MessageType::Snapshot: return onReplicaBytes(m, true);
-    case MessageType::Changes: return onReplicaBytes(m, false);
-    case MessageType::SetViewports: return onSetViewports(m);
-    case MessageType::RenderRequest: return onRenderRequest(m);
-    case MessageType::Swap: return onSwap(m);
-    case MessageType::HashQuery: return onHashQuery(m);
-    case MessageType::Heartbeat: return onHeartbeat(m);
-    case MessageType::Bye: return conn_->closeAfterFlush();
+    case MessageType::Snapshot:
+      return onReplicaBytes(m, true);
+    case MessageType::Changes:
+      return onReplicaBytes(m, false);
+    case MessageType::SetViewports:
+      return onSetViewports(m);
+    case MessageType::RenderRequest:
+      return onRenderRequest(m);
+    case MessageType::Swap:
+      return onSwap(m);
+    case MessageType::HashQuery:
+      return onHashQuery(m);
+    case MessageType::Heartbeat:
+      return onHeartbeat(m);
+    case MessageType::Bye:
+      return conn_->closeAfterFlush();
     default:
       // Handshake messages after the handshake; node-side types are refused by receive().
       throw ProtocolError(Kind::Unexpected, std::string(name(m.type)) + " after the handshake");
@@ -199,8 +209,10 @@ void NodeSession::render(State& st, const NodeContext& ctx, const RenderRequest&
       State::Key key{job.viewport, rect.x0, rect.y0, rect.x1, rect.y1};
       auto& vp = used[key];
       if (!vp) {
-        if (auto held = st.viewports.find(key); held != st.viewports.end()) vp = std::move(held->second);
-        else vp = ctx.registry.create(settings->second, st.contexts);
+        if (auto held = st.viewports.find(key); held != st.viewports.end())
+          vp = std::move(held->second);
+        else
+          vp = ctx.registry.create(settings->second, st.contexts);
       }
       med::FrameBuffer fb;
       med::RenderControl control;

@@ -65,12 +65,14 @@ med::FrameBuffer decodePixels(std::uint32_t width, std::uint32_t height, Compres
   if (outputs.size() > kMaxOutputs) malformed(std::to_string(outputs.size()) + " named outputs");
   std::size_t expected = static_cast<std::size_t>(pixels) * (kBytesPerPixel + outputs.size() * kBytesPerOutputPixel);
   // As large as a RenderTile may be: a tile's header cannot make us allocate more.
-  if (expected > kMaxDecodedTileBytes) malformed(std::to_string(expected) + " bytes of pixels, more than a tile may hold");
+  if (expected > kMaxDecodedTileBytes)
+    malformed(std::to_string(expected) + " bytes of pixels, more than a tile may hold");
   std::vector<std::uint8_t> plain;
   const std::vector<std::uint8_t>* src = &bytes;
   switch (compression) {
     case Compression::None:
-      if (bytes.size() != expected) malformed("expected " + std::to_string(expected) + " bytes, got " + std::to_string(bytes.size()));
+      if (bytes.size() != expected)
+        malformed("expected " + std::to_string(expected) + " bytes, got " + std::to_string(bytes.size()));
       break;
     case Compression::Lz4: {
       if (bytes.size() > static_cast<std::size_t>(LZ4_MAX_INPUT_SIZE)) malformed("lz4 block too large");

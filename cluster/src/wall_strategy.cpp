@@ -31,7 +31,8 @@ class WallStrategy : public FrameStrategy {
 
   bool needsNodes() const override { return false; }
 
-  std::map<std::size_t, std::vector<std::size_t>> takeOver(const FrameRound&, std::size_t, const std::vector<std::size_t>&,
+  std::map<std::size_t, std::vector<std::size_t>> takeOver(const FrameRound&, std::size_t,
+                                                           const std::vector<std::size_t>&,
                                                            const std::vector<std::size_t>&) override {
     return {};
   }
@@ -39,8 +40,10 @@ class WallStrategy : public FrameStrategy {
   bool frameDone() override { return true; }
 
   void compose(std::vector<med::FrameBuffer>& targets, ClusterFrame& out) const override {
-    if (wall_.stereo()) composeEyes(targets, compose_, out);
-    else FrameStrategy::compose(targets, out);
+    if (wall_.stereo())
+      composeEyes(targets, compose_, out);
+    else
+      FrameStrategy::compose(targets, out);
   }
 
  private:

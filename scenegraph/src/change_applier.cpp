@@ -42,9 +42,8 @@ void ChangeApplier::checkIds() {
     if (!changed_.emplace(e.id, &e).second) fail("changes container " + std::to_string(e.id) + " twice");
     for (const auto& edit : e.rangedEdits)
       if (c->arrayLength(edit.field) != edit.length)
-        fail("edits " + std::string(c->fieldInfo(edit.field).name) + " of container " + std::to_string(e.id) +
-             " as " + std::to_string(edit.length) + " elements, it has " +
-             std::to_string(c->arrayLength(edit.field)));
+        fail("edits " + std::string(c->fieldInfo(edit.field).name) + " of container " + std::to_string(e.id) + " as " +
+             std::to_string(edit.length) + " elements, it has " + std::to_string(c->arrayLength(edit.field)));
   }
   for (const auto& d : list_.destructions()) {
     const Container* c = scene_.find(d.id);

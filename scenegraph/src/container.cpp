@@ -21,7 +21,8 @@ void Container::setAttachment(std::string key, AttachmentValue value) {
   if (key.empty()) throw SceneError("attachment names must not be empty");
   if (const auto* d = std::get_if<double>(&value); d && !std::isfinite(*d))
     throw SceneError("attachment " + key + ": non-finite value");
-  if (const auto* v = std::get_if<std::vector<float>>(&value); v && !std::all_of(v->begin(), v->end(), [](float f) { return std::isfinite(f); }))
+  if (const auto* v = std::get_if<std::vector<float>>(&value);
+      v && !std::all_of(v->begin(), v->end(), [](float f) { return std::isfinite(f); }))
     throw SceneError("attachment " + key + ": non-finite value");
   attachments_.insert_or_assign(std::move(key), std::move(value));
   touch(kAttachments);

@@ -9,15 +9,24 @@ namespace tsr::sg {
 
 std::unique_ptr<Container> makeContainer(ContainerType type) {
   switch (type) {
-    case ContainerType::Group: return std::make_unique<Group>();
-    case ContainerType::Transform: return std::make_unique<Transform>();
-    case ContainerType::Geometry: return std::make_unique<Geometry>();
-    case ContainerType::Image: return std::make_unique<Image>();
-    case ContainerType::SimpleMaterial: return std::make_unique<SimpleMaterial>();
-    case ContainerType::SurfaceMaterial: return std::make_unique<SurfaceMaterial>();
-    case ContainerType::Light: return std::make_unique<Light>();
-    case ContainerType::Camera: return std::make_unique<Camera>();
-    case ContainerType::Background: return std::make_unique<Background>();
+    case ContainerType::Group:
+      return std::make_unique<Group>();
+    case ContainerType::Transform:
+      return std::make_unique<Transform>();
+    case ContainerType::Geometry:
+      return std::make_unique<Geometry>();
+    case ContainerType::Image:
+      return std::make_unique<Image>();
+    case ContainerType::SimpleMaterial:
+      return std::make_unique<SimpleMaterial>();
+    case ContainerType::SurfaceMaterial:
+      return std::make_unique<SurfaceMaterial>();
+    case ContainerType::Light:
+      return std::make_unique<Light>();
+    case ContainerType::Camera:
+      return std::make_unique<Camera>();
+    case ContainerType::Background:
+      return std::make_unique<Background>();
   }
   throw std::invalid_argument("unknown container type " + std::to_string(static_cast<unsigned>(type)));
 }

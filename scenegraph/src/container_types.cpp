@@ -10,16 +10,15 @@
 namespace tsr::sg {
 
 std::optional<std::string> Geometry::invalidReason() const {
-  if (indices_.size() % 3 != 0)
-    return "index count " + std::to_string(indices_.size()) + " is not a multiple of 3";
+  if (indices_.size() % 3 != 0) return "index count " + std::to_string(indices_.size()) + " is not a multiple of 3";
   for (std::size_t i = 0; i < indices_.size(); ++i)
     if (indices_[i] >= positions_.size())
       return "index " + std::to_string(indices_[i]) + " at " + std::to_string(i) + " exceeds " +
              std::to_string(positions_.size()) + " vertices";
   auto attribute = [&](std::size_t n, const char* what) -> std::optional<std::string> {
     if (n != 0 && n != positions_.size())
-      return std::string(what) + " count " + std::to_string(n) + " differs from " +
-             std::to_string(positions_.size()) + " positions";
+      return std::string(what) + " count " + std::to_string(n) + " differs from " + std::to_string(positions_.size()) +
+             " positions";
     return std::nullopt;
   };
   if (auto r = attribute(normals_.size(), "normal")) return r;
@@ -39,7 +38,8 @@ void Image::setPixels(std::uint32_t width, std::uint32_t height, std::uint32_t c
   std::size_t expected = std::size_t{width} * height * channels * (format == PixelFormat::Float32 ? 4 : 1);
   if (pixels.size() != expected)
     throw SceneError("Image: " + std::to_string(pixels.size()) + " bytes given for " + std::to_string(width) + "x" +
-                     std::to_string(height) + "x" + std::to_string(channels) + ", expected " + std::to_string(expected));
+                     std::to_string(height) + "x" + std::to_string(channels) + ", expected " +
+                     std::to_string(expected));
   if (format == PixelFormat::Float32) {
     for (std::size_t i = 0; i < pixels.size(); i += 4) {
       float v;

@@ -42,9 +42,15 @@ void read(ByteReader& r, Attachments& attachments, FieldReadContext& ctx) {
     std::uint8_t tag = r.u8();
     AttachmentValue value;
     switch (static_cast<AttachmentTag>(tag)) {
-      case AttachmentTag::Integer: value = r.svarint(); break;
-      case AttachmentTag::Real: value = r.f64(); break;
-      case AttachmentTag::Text: value = r.string(ctx.limits.maxStringBytes); break;
+      case AttachmentTag::Integer:
+        value = r.svarint();
+        break;
+      case AttachmentTag::Real:
+        value = r.f64();
+        break;
+      case AttachmentTag::Text:
+        value = r.string(ctx.limits.maxStringBytes);
+        break;
       case AttachmentTag::Floats: {
         std::size_t count = r.count(ctx.limits.maxArrayElements, sizeof(float), "attachment float");
         std::vector<float> floats(count);
@@ -52,7 +58,8 @@ void read(ByteReader& r, Attachments& attachments, FieldReadContext& ctx) {
         value = std::move(floats);
         break;
       }
-      default: r.fail("unknown attachment value tag " + std::to_string(tag));
+      default:
+        r.fail("unknown attachment value tag " + std::to_string(tag));
     }
     if (!result.emplace(std::move(key), std::move(value)).second) throw DecodeError(at, "attachment name repeated");
   }

@@ -9,7 +9,6 @@
 
 namespace tsr::sg {
 
-
 const RangedEdit* MergedChanges::Entry::rangedEdit(FieldIndex f) const {
   for (const auto& e : rangedEdits)
     if (e.field == f) return &e;

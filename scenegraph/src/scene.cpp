@@ -26,7 +26,8 @@ void Scene::destroy(ContainerId id) {
   if (auto refs = referrers_.find(id); refs != referrers_.end()) {
     std::vector<ReferrerKey> from;
     for (const auto& [key, count] : refs->second) from.push_back(key);
-    std::sort(from.begin(), from.end(), [](auto& a, auto& b) { return std::tie(a.from, a.field) < std::tie(b.from, b.field); });
+    std::sort(from.begin(), from.end(),
+              [](auto& a, auto& b) { return std::tie(a.from, a.field) < std::tie(b.from, b.field); });
     for (const auto& key : from) containers_.at(key.from)->dropReference(key.field, id);
   }
   unlinkAll(c);

@@ -50,11 +50,12 @@ std::vector<std::uint8_t> encode(const ChangeList& list) {
 std::size_t decodeHeader(std::span<const std::uint8_t> header, const DecodeLimits& limits) {
   ByteReader r(header);
   auto magic = r.take(sizeof kMagic, "magic");
-  if (std::memcmp(magic.data(), kMagic, sizeof kMagic) != 0) throw DecodeError(0, "not a Tessera change list (bad magic)");
+  if (std::memcmp(magic.data(), kMagic, sizeof kMagic) != 0)
+    throw DecodeError(0, "not a Tessera change list (bad magic)");
   std::uint8_t protocol = r.u8();
   if (protocol != kProtocolVersion)
-    throw DecodeError(4, "protocol version " + std::to_string(protocol) + ", this build speaks " +
-                             std::to_string(kProtocolVersion));
+    throw DecodeError(
+        4, "protocol version " + std::to_string(protocol) + ", this build speaks " + std::to_string(kProtocolVersion));
   std::uint8_t kind = r.u8();
   if (kind > 1) throw DecodeError(5, "unknown change list kind " + std::to_string(kind));
   std::uint32_t length = r.u32();
@@ -80,8 +81,7 @@ ChangeListPtr decode(std::span<const std::uint8_t> bytes, const DecodeLimits& li
   std::size_t nCreations = r.count(limits.maxEntries, 4, "creation");
   std::size_t nChanges = r.count(limits.maxEntries, 4, "change");
   std::size_t nDestructions = r.count(limits.maxEntries, 2, "destruction");
-  if (kind == ChangeList::Kind::Snapshot && (nChanges || nDestructions))
-    r.fail("a snapshot holds creations only");
+  if (kind == ChangeList::Kind::Snapshot && (nChanges || nDestructions)) r.fail("a snapshot holds creations only");
 
   ChangeList::Builder builder(kind, version);
   ContainerId previous = 0;

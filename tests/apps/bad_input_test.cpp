@@ -42,7 +42,9 @@ std::vector<BadConfig> writeBadConfigs(const fs::path& dir) {
   std::ofstream(dir / "bad.json") << R"({"mode": "cooperative", "nodes": [)";
   std::ofstream(dir / "wrong-type.json") << R"({"mode": 7, "nodes": [{"address": "127.0.0.1:1"}]})";
   std::ofstream(dir / "empty.json") << "";
-  return {{"bad.json", "bad.json"}, {"wrong-type.json", "mode"}, {"empty.json", "empty.json"},
+  return {{"bad.json", "bad.json"},
+          {"wrong-type.json", "mode"},
+          {"empty.json", "empty.json"},
           {"missing.json", "missing.json"}};
 }
 
@@ -117,7 +119,6 @@ TEST_F(BadInput, NodeRefusesBadStartUpsWithoutListening) {
   }
 }
 
-
 #ifdef TSR_WALL_PATH
 // tessera-wall checks its config, options and scene before it contacts a
 // node (the config's one node does not exist) and writes no --output.
@@ -145,7 +146,8 @@ TEST_F(BadInput, WallRefusesBadScenesConfigsAndOptions) {
       {"wall.json builtin:nosuch", "builtin:nosuch"},
   };
   for (const auto& config : writeBadConfigs(dir)) cases.push_back({config.file + " builtin:cornell", config.about});
-  for (const auto& input : tsr::test::writeBadSceneInputs(dir)) cases.push_back({"wall.json '" + input.path + "'", input.about});
+  for (const auto& input : tsr::test::writeBadSceneInputs(dir))
+    cases.push_back({"wall.json '" + input.path + "'", input.about});
   for (const auto& c : cases) {
     SCOPED_TRACE(c.args);
     std::ofstream(dir / "out.png") << kGoodImage;

@@ -21,13 +21,16 @@ std::string triangleGltf(const std::string& uri, const std::string& node = "\"me
                          const std::string& byteLength = "36", const std::string& count = "3") {
   return R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{)" + node +
          R"(}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
-  "accessors": [{"bufferView": 0, "componentType": 5126, "count": )" + count + R"(, "type": "VEC3"}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": )" +
+         count + R"(, "type": "VEC3"}],
   "bufferViews": [{"buffer": 0, "byteLength": 36}],
-  "buffers": [{"byteLength": )" + byteLength + R"(, "uri": ")" + uri + R"("}]})";
+  "buffers": [{"byteLength": )" +
+         byteLength + R"(, "uri": ")" + uri + R"("}]})";
 }
 
 // A triangle whose node is animated to an infinite translation at t = 1.
-constexpr const char* kInfiniteAnimation = R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+constexpr const char* kInfiniteAnimation =
+    R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
   "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
   "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"},
                 {"bufferView": 1, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [1]},
@@ -74,12 +77,14 @@ std::vector<BadInput> writeBadSceneInputs(const fs::path& dir) {
   write(dir / "scene" / "http-scheme.gltf", triangleGltf("http://127.0.0.1:9/secret.bin"));
   write(dir / "scene" / "huge-buffer.gltf", triangleGltf(dataUri(kTriangle), "\"mesh\": 0", "1000000000000000"));
   write(dir / "scene" / "huge-count.gltf", triangleGltf(dataUri(kTriangle), "\"mesh\": 0", "36", "4000000000"));
-  write(dir / "scene" / "inf-translation.gltf", triangleGltf(dataUri(kTriangle), "\"mesh\": 0, \"translation\": [0, 1e400, 0]"));
+  write(dir / "scene" / "inf-translation.gltf",
+        triangleGltf(dataUri(kTriangle), "\"mesh\": 0, \"translation\": [0, 1e400, 0]"));
   write(dir / "scene" / "inf-vertex.gltf", triangleGltf(dataUri(kInfVertex)));
   write(dir / "scene" / "nan-vertex.gltf", triangleGltf(dataUri(kNanVertex)));
   write(dir / "scene" / "inf-animation.gltf", kInfiniteAnimation);
   write(dir / "scene" / "bad-image-uri.gltf", imageGltf("data:image/png;base64,iVBORw0KGgoAAAA="));
-  write(dir / "scene" / "bad-jpeg.gltf", imageGltf("data:image/jpeg;base64,/9j/4AAQSkZJRgABAQAAAQABAAD/2wBDAAgGBgcGBQ=="));
+  write(dir / "scene" / "bad-jpeg.gltf",
+        imageGltf("data:image/jpeg;base64,/9j/4AAQSkZJRgABAQAAAQABAAD/2wBDAAgGBgcGBQ=="));
   write(dir / "scene" / "not-a.png", "this is no PNG");
   write(dir / "scene" / "bad-image-file.gltf", imageGltf("not-a.png"));
   return {
@@ -98,7 +103,8 @@ std::vector<BadInput> writeBadSceneInputs(const fs::path& dir) {
       {"infinite translation", "scene/inf-translation.gltf", "1e400"},
       {"infinite vertex", "scene/inf-vertex.gltf", "finite"},
       {"NaN vertex", "scene/nan-vertex.gltf", "finite"},
-      {"infinite animated translation", "scene/inf-animation.gltf", "animation 0 channel 0 output) element 1 is not finite"},
+      {"infinite animated translation", "scene/inf-animation.gltf",
+       "animation 0 channel 0 output) element 1 is not finite"},
       {"truncated PNG", "scene/bad-image-uri.gltf", "image 0 is a truncated PNG"},
       {"JPEG that does not decode", "scene/bad-jpeg.gltf", "image 0"},
       {"image file that is no image", "scene/bad-image-file.gltf", "image 0 ('not-a.png') is neither PNG nor JPEG"},
@@ -107,7 +113,9 @@ std::vector<BadInput> writeBadSceneInputs(const fs::path& dir) {
 
 std::vector<BadInput> writeBadScriptFiles(const fs::path& dir) {
   fs::create_directories(dir / "scripts" / "folder.txt");
-  write(dir / "scripts" / "binary.txt", std::string("\x7f" "ELF\0\0\0\x01\n", 9));
+  write(dir / "scripts" / "binary.txt", std::string("\x7f"
+                                                    "ELF\0\0\0\x01\n",
+                                                    9));
   std::string large;
   while (large.size() <= (std::size_t{2} << 20)) large += "# a comment line of padding\n";
   write(dir / "scripts" / "large.txt", large);

@@ -44,8 +44,8 @@ class CommandTest : public ::testing::Test {
 
   Outcome runBinary(const std::string& binary, const std::string& args) {
     const auto out = dir / "out.txt", err = dir / "err.txt";
-    const std::string cmd = "cd '" + dir.string() + "' && '" + binary + "' " + args + " > '" + out.string() +
-                            "' 2> '" + err.string() + "' < /dev/null";
+    const std::string cmd = "cd '" + dir.string() + "' && '" + binary + "' " + args + " > '" + out.string() + "' 2> '" +
+                            err.string() + "' < /dev/null";
     const int raw = std::system(cmd.c_str());
     Outcome r;
     r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;

@@ -55,7 +55,8 @@ TEST_F(CoverageCommand, BadInputIsOneErrorLine) {
   expectOneErrorLine(run("builtin:cornell --backend coverage --size 0x8 --output r.json"), "--size");
   expectOneErrorLine(run("builtin:cornell --size 8x8 --spp 1 --output r.json"), "--backend coverage");
   expectOneErrorLine(run("builtin:cornell --backend coverage --size 8x8 --output nosuchdir/r.json"), "cannot write");
-  expectOneErrorLine(run("builtin:cornell --backend coverage --size 8x8 --param threads=-1 --output r.json"), "threads");
+  expectOneErrorLine(run("builtin:cornell --backend coverage --size 8x8 --param threads=-1 --output r.json"),
+                     "threads");
   expectOneErrorLine(run("missing.gltf --backend coverage --size 8x8 --output r.json"), "missing.gltf");
 }
 

@@ -3,9 +3,9 @@
 #include <fstream>
 
 #include "command_runner.hpp"
-#include "two_root_scene.hpp"
 #include "layers.hpp"
 #include "tsr/med/image_file.hpp"
+#include "two_root_scene.hpp"
 
 namespace {
 
@@ -82,7 +82,8 @@ TEST_F(LayersCommand, RasterisedMarkerOverPathTracedBoxIsOccludedWhereTheBoxIsNe
 
 TEST_F(LayersCommand, EveryFrameOfASequenceIsALayeredWindow) {
   std::ofstream(dir / "two_roots.gltf") << tsr::test::twoRootScene();
-  const std::string common = "two_roots.gltf --size 32x32 --spp 2 --max-depth 2 --seed 1 --quiet --layers embree:box,vulkan:markers ";
+  const std::string common =
+      "two_roots.gltf --size 32x32 --spp 2 --max-depth 2 --seed 1 --quiet --layers embree:box,vulkan:markers ";
   Outcome r = run(common + "--output single.exr --aov depth");
   ASSERT_EQ(r.status, 0) << r.err;
   r = run(common + "--frames 2 --output seq.####.exr --aov depth");
@@ -93,7 +94,8 @@ TEST_F(LayersCommand, EveryFrameOfASequenceIsALayeredWindow) {
   for (const char* frame : {"0000", "0001"}) {
     const auto image = tsr::med::readImage((dir / ("seq." + std::string(frame) + ".exr")).string());
     EXPECT_EQ(image.colour, single.colour) << frame;
-    EXPECT_EQ(tsr::med::readImage((dir / ("seq." + std::string(frame) + ".depth.exr")).string()).colour, singleDepth.colour);
+    EXPECT_EQ(tsr::med::readImage((dir / ("seq." + std::string(frame) + ".depth.exr")).string()).colour,
+              singleDepth.colour);
   }
   expectOneErrorLine(run(common + "--frames 2 --temporal pca --output t.####.exr"), "--temporal pca with --layers");
 }

@@ -41,8 +41,10 @@ inline void writeLitSceneGltf(const std::string& path) {
     bin.resize(offset + values.size() * 4);
     std::memcpy(bin.data() + offset, values.data(), values.size() * 4);
     views.push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", values.size() * 4}});
-    nlohmann::json a = {{"bufferView", views.size() - 1}, {"componentType", 5126},
-                        {"count", values.size() / components}, {"type", type}};
+    nlohmann::json a = {{"bufferView", views.size() - 1},
+                        {"componentType", 5126},
+                        {"count", values.size() / components},
+                        {"type", type}};
     if (bounds) {
       std::vector<float> lo(components, 1e30f), hi(components, -1e30f);
       for (std::size_t i = 0; i < values.size(); ++i) {
@@ -60,16 +62,17 @@ inline void writeLitSceneGltf(const std::string& path) {
     bin.resize(offset + values.size() * 4);
     std::memcpy(bin.data() + offset, values.data(), values.size() * 4);
     views.push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", values.size() * 4}});
-    accessors.push_back({{"bufferView", views.size() - 1}, {"componentType", 5125}, {"count", values.size()}, {"type", "SCALAR"}});
+    accessors.push_back(
+        {{"bufferView", views.size() - 1}, {"componentType", 5125}, {"count", values.size()}, {"type", "SCALAR"}});
     return int(accessors.size() - 1);
   };
   // A unit cube centred at the origin, four vertices a face with its normal.
   std::vector<float> p, n;
   std::vector<std::uint32_t> idx;
   // Each face: its normal a and two edges with t1 x t2 = a.
-  const float faces[6][3][3] = {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}},  {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
-                                {{0, 1, 0}, {0, 0, 1}, {1, 0, 0}},  {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}},
-                                {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}},  {{0, 0, -1}, {0, 1, 0}, {1, 0, 0}}};
+  const float faces[6][3][3] = {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
+                                {{0, 1, 0}, {0, 0, 1}, {1, 0, 0}}, {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}},
+                                {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}}, {{0, 0, -1}, {0, 1, 0}, {1, 0, 0}}};
   for (const auto& [a, t1, t2] : faces) {
     const std::uint32_t base = std::uint32_t(p.size() / 3);
     const float corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
@@ -90,25 +93,32 @@ inline void writeLitSceneGltf(const std::string& path) {
   nlohmann::json doc;
   doc["asset"] = {{"version", "2.0"}};
   auto diffuse = [](float r, float g, float b) {
-    return nlohmann::json{{"pbrMetallicRoughness", {{"baseColorFactor", {r, g, b, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}}};
+    return nlohmann::json{{"pbrMetallicRoughness",
+                           {{"baseColorFactor", {r, g, b, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}}};
   };
   doc["materials"] = {diffuse(0.8f, 0.8f, 0.8f), diffuse(0.8f, 0.25f, 0.2f)};
-  doc["meshes"] = {{{"primitives", {{{"attributes", {{"POSITION", floorP}, {"NORMAL", floorN}}}, {"indices", floorI}, {"material", 0}}}}},
-                   {{"primitives", {{{"attributes", {{"POSITION", boxP}, {"NORMAL", boxN}}}, {"indices", boxI}, {"material", 1}}}}}};
+  doc["meshes"] = {
+      {{"primitives",
+        {{{"attributes", {{"POSITION", floorP}, {"NORMAL", floorN}}}, {"indices", floorI}, {"material", 0}}}}},
+      {{"primitives", {{{"attributes", {{"POSITION", boxP}, {"NORMAL", boxN}}}, {"indices", boxI}, {"material", 1}}}}}};
   auto camera = [](const char* name) {
-    return nlohmann::json{{"name", name}, {"type", "perspective"}, {"perspective", {{"yfov", kCameraYfov}, {"znear", 0.05}, {"zfar", 100.0}}}};
+    return nlohmann::json{{"name", name},
+                          {"type", "perspective"},
+                          {"perspective", {{"yfov", kCameraYfov}, {"znear", 0.05}, {"zfar", 100.0}}}};
   };
   doc["cameras"] = {camera("front"), camera("top"), camera("tracking")};
   const std::vector<float> eye(kFrontEye, kFrontEye + 3);
-  doc["nodes"] = {
-      {{"name", "floor"}, {"mesh", 0}},
-      {{"name", "box a"}, {"mesh", 1}, {"translation", {-0.8, 0.5, 0.0}}},
-      {{"name", "box b"}, {"mesh", 1}, {"translation", {0.9, 0.75, -0.4}}, {"scale", {1.0, 1.5, 1.0}}},
-      {{"name", "front camera"}, {"camera", 0}, {"translation", eye}},
-      // Looking straight down (-90 degrees about X).
-      {{"name", "top camera"}, {"camera", 1}, {"translation", {0.0, 8.0, 0.0}}, {"rotation", {-0.70710678, 0.0, 0.0, 0.70710678}}},
-      {{"name", "dolly"}, {"children", {6}}},
-      {{"name", "tracking camera"}, {"camera", 2}, {"translation", eye}}};
+  doc["nodes"] = {{{"name", "floor"}, {"mesh", 0}},
+                  {{"name", "box a"}, {"mesh", 1}, {"translation", {-0.8, 0.5, 0.0}}},
+                  {{"name", "box b"}, {"mesh", 1}, {"translation", {0.9, 0.75, -0.4}}, {"scale", {1.0, 1.5, 1.0}}},
+                  {{"name", "front camera"}, {"camera", 0}, {"translation", eye}},
+                  // Looking straight down (-90 degrees about X).
+                  {{"name", "top camera"},
+                   {"camera", 1},
+                   {"translation", {0.0, 8.0, 0.0}},
+                   {"rotation", {-0.70710678, 0.0, 0.0, 0.70710678}}},
+                  {{"name", "dolly"}, {"children", {6}}},
+                  {{"name", "tracking camera"}, {"camera", 2}, {"translation", eye}}};
   doc["scenes"] = {{{"nodes", {0, 1, 2, 3, 4, 5}}}};
   doc["scene"] = 0;
   nlohmann::json sampler = {{"input", times}, {"output", moves}, {"interpolation", "LINEAR"}};

@@ -45,7 +45,8 @@ TEST_F(RenderCommand, RendersTheCornellBoxWithStatsAndOutputs) {
   EXPECT_GT(sync, 0.0);
   EXPECT_GT(render, 0.0);
   EXPECT_NEAR(sync + render, stats["seconds"].get<double>(), 1e-9);
-  EXPECT_NEAR(stats["rays_per_second"].get<double>(), stats["rays"].get<double>() / render, 1e-6 * stats["rays_per_second"].get<double>());
+  EXPECT_NEAR(stats["rays_per_second"].get<double>(), stats["rays"].get<double>() / render,
+              1e-6 * stats["rays_per_second"].get<double>());
 }
 
 // The options the README's Commands section shows for tessera-render (a
@@ -117,7 +118,8 @@ TEST_F(RenderCommand, BadInputIsOneErrorLine) {
   expectOneErrorLine(run("builtin:cornell --size 8x8 --nodes 127.0.0.1:1"), "--cluster");
   expectOneErrorLine(run("builtin:cornell --size 8x8 --frames 0 --output f.####.png"), "--frames");
   expectOneErrorLine(run("builtin:cornell --size 8x8 --fps 0 --frames 2 --output f.####.png"), "--fps");
-  expectOneErrorLine(run("builtin:cornell --size 8x8 --cluster c.json --stats-json s.json"), "--stats-json with --cluster");
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --cluster c.json --stats-json s.json"),
+                     "--stats-json with --cluster");
   expectOneErrorLine(run("builtin:cornell --size 8x8 --fps 12"), "--frames");
   expectOneErrorLine(run("builtin:cornell --size 8x8 --param spp=lots"), "parameter spp");
   expectOneErrorLine(run(""), "scene");
@@ -173,7 +175,8 @@ TEST_F(RenderCommand, TemporalPcaWritesDirectPlusDenoisedIndirect) {
 TEST_F(RenderCommand, TemporalPcaTruncationSeesThroughTheNoise) {
   auto modes = [&](const std::string& extra) {
     const auto r = run("builtin:animated --size 24x24 --spp 2 --threads 1 --frames 8 --fps 4 --temporal pca "
-                       "--temporal-global --output m.####.exr " + extra);
+                       "--temporal-global --output m.####.exr " +
+                       extra);
     EXPECT_EQ(r.status, 0) << r.err;
     const auto at = r.out.find(" modes on average");
     EXPECT_NE(at, std::string::npos) << r.out;

@@ -22,7 +22,8 @@ inline std::string twoRootScene() {
     for (std::size_t k = 0; k < 4; ++k) base64 += i + k <= bytes.size() ? table[(v >> (18 - 6 * k)) & 63] : '=';
   }
   return R"({"asset": {"version": "2.0"},
-  "buffers": [{"byteLength": 60, "uri": "data:application/octet-stream;base64,)" + base64 + R"("}],
+  "buffers": [{"byteLength": 60, "uri": "data:application/octet-stream;base64,)" +
+         base64 + R"("}],
   "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 12}],
   "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-0.5, -0.5, 0], "max": [0.5, 0.5, 0]},
                 {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}],

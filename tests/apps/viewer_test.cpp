@@ -21,8 +21,7 @@ TEST_F(ViewerCommand, HelpListsEveryOptionAndKey) {
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* option : {"--viewports", "--size", "--spp", "--max-depth", "--threads", "--param",
                              "--raster-while-moving", "--script", "--exit-after", "--hide-panels", "--validate",
-                             "--cluster", "--nodes", "--token-file", "--max-file-mb",
-                             "--max-elements"})
+                             "--cluster", "--nodes", "--token-file", "--max-file-mb", "--max-elements"})
     EXPECT_THAT(r.out, HasSubstr(option));
   for (const char* key : {"left drag", "right drag", "wheel", "W A S D", "F12", "Space", "cycle the back-end", "Drop"})
     EXPECT_THAT(r.out, HasSubstr(key));
@@ -99,12 +98,13 @@ TEST(CameraBookmarks, RoundTripAndValidation) {
   EXPECT_EQ(back[0].target, glm::vec3(1, 2, 3));
   EXPECT_FLOAT_EQ(back[0].distance, 4.5f);
   EXPECT_FLOAT_EQ(back[0].pitch, -10.0f);
-  for (const char* bad : {"[1]", "{\"version\": 2, \"bookmarks\": []}", "{\"version\": 1}",
-                          R"({"version": 1, "bookmarks": [{"name": "", "target": [0,0,0], "distance": 1, "yaw": 0, "pitch": 0}]})",
-                          R"({"version": 1, "bookmarks": [{"name": "a", "target": [0,0], "distance": 1, "yaw": 0, "pitch": 0}]})",
-                          R"({"version": 1, "bookmarks": [{"name": "a", "target": [0,0,0], "distance": -1, "yaw": 0, "pitch": 0}]})",
-                          R"({"version": 1, "bookmarks": [{"name": "a", "target": [0,0,0], "distance": 1, "yaw": 0, "pitch": 91}]})",
-                          R"({"version": 1, "bookmarks": [{"name": "a", "target": [0,0,0], "distance": 1, "yaw": 0}]})", "{"})
+  for (const char* bad :
+       {"[1]", "{\"version\": 2, \"bookmarks\": []}", "{\"version\": 1}",
+        R"({"version": 1, "bookmarks": [{"name": "", "target": [0,0,0], "distance": 1, "yaw": 0, "pitch": 0}]})",
+        R"({"version": 1, "bookmarks": [{"name": "a", "target": [0,0], "distance": 1, "yaw": 0, "pitch": 0}]})",
+        R"({"version": 1, "bookmarks": [{"name": "a", "target": [0,0,0], "distance": -1, "yaw": 0, "pitch": 0}]})",
+        R"({"version": 1, "bookmarks": [{"name": "a", "target": [0,0,0], "distance": 1, "yaw": 0, "pitch": 91}]})",
+        R"({"version": 1, "bookmarks": [{"name": "a", "target": [0,0,0], "distance": 1, "yaw": 0}]})", "{"})
     EXPECT_THROW(tsr::app::parseBookmarks(bad, "b.json"), tsr::app::BookmarkError) << bad;
 }
 

@@ -82,22 +82,21 @@ class ViewerWindow : public tsr::test::CommandTest {
 // by index, so 8 samples taken one a frame match an 8-spp batch render to
 // a mean of 0.5/255 (and 4/255 in any pixel: float sums in another order).
 TEST_F(ViewerWindow, ScriptedBackendSwitchesMatchHeadlessRenders) {
-  writeScript("switch.txt",
-              "# every back-end in turn, one viewport of 160x120; animations held at 0 s\n"
-              "time 0\n"
-              "backend 0 vulkan\n"
-              "wait frames 2\n"
-              "screenshot vulkan.png\n"
-              "backend 0 coverage\n"
-              "wait frames 2\n"
-              "screenshot coverage.png\n"
-              "backend 0 embree\n"
-              "wait samples 8\n"
-              "screenshot embree.png\n"
-              "backend 0 vulkan\n"
-              "wait frames 2\n"
-              "screenshot vulkan-again.png\n"
-              "window-screenshot window.png\n");
+  writeScript("switch.txt", "# every back-end in turn, one viewport of 160x120; animations held at 0 s\n"
+                            "time 0\n"
+                            "backend 0 vulkan\n"
+                            "wait frames 2\n"
+                            "screenshot vulkan.png\n"
+                            "backend 0 coverage\n"
+                            "wait frames 2\n"
+                            "screenshot coverage.png\n"
+                            "backend 0 embree\n"
+                            "wait samples 8\n"
+                            "screenshot embree.png\n"
+                            "backend 0 vulkan\n"
+                            "wait frames 2\n"
+                            "screenshot vulkan-again.png\n"
+                            "window-screenshot window.png\n");
   const Outcome v = viewer("builtin:animated --size 160x120 --spp 8 --max-depth 4 --script switch.txt --exit-after");
   ASSERT_EQ(v.status, 0) << v.err;
   // Each back-end converts the scene once; going back to the rasteriser syncs its kept viewport.
@@ -140,16 +139,15 @@ TEST_F(ViewerWindow, ScriptedBackendSwitchesMatchHeadlessRenders) {
 }
 
 TEST_F(ViewerWindow, SideBySideViewportsOrbitBookmarksAndLayeredExr) {
-  writeScript("orbit.txt",
-              "time 0\n"
-              "wait frames 2\n"
-              "screenshot left.png 0\n"
-              "orbit 40\n"
-              "tilt 10\n"
-              "wait frames 2\n"
-              "screenshot left-orbit.png 0\n"
-              "screenshot right.exr 1\n"
-              "bookmark save side\n");
+  writeScript("orbit.txt", "time 0\n"
+                           "wait frames 2\n"
+                           "screenshot left.png 0\n"
+                           "orbit 40\n"
+                           "tilt 10\n"
+                           "wait frames 2\n"
+                           "screenshot left-orbit.png 0\n"
+                           "screenshot right.exr 1\n"
+                           "bookmark save side\n");
   const Outcome v = viewer("builtin:animated --viewports vulkan,embree --size 200x100 --spp 2 --max-depth 2 "
                            "--script orbit.txt --exit-after");
   ASSERT_EQ(v.status, 0) << v.err;
@@ -191,7 +189,8 @@ TEST_F(ViewerWindow, ABrokenBookmarksFileIsNotSavedOver) {
 TEST_F(ViewerWindow, CoveragePickSelectsTheObjectUnderThePixel) {
   writeScript("pick.txt", "wait frames 2\nwindow-screenshot before.png\npick 0 80 100\nwait frames 2\n"
                           "window-screenshot picked.png\npick 0 0 0\nwait frames 2\nwindow-screenshot after.png\n");
-  const Outcome v = viewer("builtin:cornell --viewports coverage --size 160x120 --hide-panels --script pick.txt --exit-after");
+  const Outcome v =
+      viewer("builtin:cornell --viewports coverage --size 160x120 --hide-panels --script pick.txt --exit-after");
   ASSERT_EQ(v.status, 0) << v.err;
   EXPECT_THAT(v.out, HasSubstr("viewport 0: picked object "));
   EXPECT_THAT(v.out, HasSubstr("viewport 0: picked nothing"));
@@ -204,10 +203,9 @@ TEST_F(ViewerWindow, CoveragePickSelectsTheObjectUnderThePixel) {
 // Figure 5.6's option: while the camera moves the path-traced viewport
 // shows the rasteriser's picture, and path traces once it rests.
 TEST_F(ViewerWindow, RasterisesWhileMovingThenPathTraces) {
-  writeScript("move.txt",
-              "time 0\nraster-while-moving on\nwait frames 2\norbit 10\n"
-              "screenshot moving.png 0\nscreenshot raster.png 1\n"
-              "wait samples 2\nscreenshot resting.png 0\n");
+  writeScript("move.txt", "time 0\nraster-while-moving on\nwait frames 2\norbit 10\n"
+                          "screenshot moving.png 0\nscreenshot raster.png 1\n"
+                          "wait samples 2\nscreenshot resting.png 0\n");
   const Outcome v = viewer("builtin:animated --viewports embree,vulkan --size 192x72 --spp 2 --max-depth 2 "
                            "--script move.txt --exit-after");
   ASSERT_EQ(v.status, 0) << v.err;
@@ -217,9 +215,8 @@ TEST_F(ViewerWindow, RasterisesWhileMovingThenPathTraces) {
 
 // The time action (the panel's slider) poses the animation; open replaces the scene.
 TEST_F(ViewerWindow, AnimationTimeAndOpeningAnotherScene) {
-  writeScript("time.txt",
-              "time 0\nwait frames 2\nscreenshot t0.png\ntime 1.5\nwait frames 2\nscreenshot t15.png\n"
-              "open builtin:cornell\nwait frames 2\nscreenshot cornell.png\n");
+  writeScript("time.txt", "time 0\nwait frames 2\nscreenshot t0.png\ntime 1.5\nwait frames 2\nscreenshot t15.png\n"
+                          "open builtin:cornell\nwait frames 2\nscreenshot cornell.png\n");
   const Outcome v = viewer("builtin:animated --viewports coverage --size 96x72 --script time.txt --exit-after");
   ASSERT_EQ(v.status, 0) << v.err;
   const Difference moved = compare(image("t0.png"), image("t15.png"));
@@ -238,7 +235,8 @@ TEST_F(ViewerWindow, ABackendSwitchedBackAfterLongNavigationSyncs) {
   for (int i = 0; i < 300; ++i) script += "orbit 1\n";
   script += "backend 0 vulkan\nwait frames 1\n";
   writeScript("long.txt", script);
-  const Outcome v = viewer("builtin:animated --viewports embree --size 48x32 --hide-panels --script long.txt --exit-after");
+  const Outcome v =
+      viewer("builtin:animated --viewports embree --size 48x32 --hide-panels --script long.txt --exit-after");
   ASSERT_EQ(v.status, 0) << v.err;
   const auto back = v.out.rfind("viewport 0: vulkan, scene ");
   ASSERT_NE(back, std::string::npos) << v.out;
@@ -256,14 +254,11 @@ TEST_F(ViewerWindow, KeysCycleTheBackendScreenshotAndQuit) {
   std::ofstream(dir / "keys.sh")
       << "'" TSR_VIEWER_PATH "' builtin:animated --viewports vulkan --size 200x150 --script forever.txt &\n"
          "pid=$!\n"
-         "for i in $(seq 100); do w=$(" TSR_XDOTOOL " search --name tessera-viewer | head -1); [ -n \"$w\" ] && break; sleep 0.2; done\n"
-         TSR_XDOTOOL " windowfocus --sync $w\n"
-         TSR_XDOTOOL " mousemove --window $w 50 50\n"
-         "sleep 0.5\n"
-         TSR_XDOTOOL " key b\n"
-         TSR_XDOTOOL " key F12\n"
-         "for i in $(seq 100); do [ -f viewer-1-0.png ] && break; sleep 0.2; done\n"
-         TSR_XDOTOOL " key Escape\n"
+         "for i in $(seq 100); do w=$(" TSR_XDOTOOL
+         " search --name tessera-viewer | head -1); [ -n \"$w\" ] && break; sleep 0.2; done\n" TSR_XDOTOOL
+         " windowfocus --sync $w\n" TSR_XDOTOOL " mousemove --window $w 50 50\n"
+         "sleep 0.5\n" TSR_XDOTOOL " key b\n" TSR_XDOTOOL " key F12\n"
+         "for i in $(seq 100); do [ -f viewer-1-0.png ] && break; sleep 0.2; done\n" TSR_XDOTOOL " key Escape\n"
          "wait $pid\n";
   const Outcome v = runBinary("/bin/sh", "keys.sh");
   EXPECT_EQ(v.status, 0) << v.err;
@@ -278,7 +273,8 @@ TEST_F(ViewerWindow, KeysCycleTheBackendScreenshotAndQuit) {
 // under Vulkan's validation layers, through a resize-free run.
 TEST_F(ViewerWindow, PresentsPanelsWithoutValidationErrors) {
   writeScript("valid.txt", "wait frames 3\nwindow-screenshot w.png\nbackend 0 coverage\nwait frames 2\n");
-  const Outcome v = viewer("builtin:animated --viewports vulkan --size 320x200 --validate --script valid.txt --exit-after");
+  const Outcome v =
+      viewer("builtin:animated --viewports vulkan --size 320x200 --validate --script valid.txt --exit-after");
   EXPECT_EQ(v.status, 0) << v.err;
   EXPECT_THAT(v.err, ::testing::Not(HasSubstr("error")));
 }
@@ -298,7 +294,8 @@ TEST_F(ViewerWindow, ClusterClientRendersOnNodes) {
   auto nodes = tsr::cluster::test::startNodes(2, {"--token-file", token.path()});
   const std::string cluster = std::string(" --cluster ") + TSR_CONFIG_DIR + "/cooperative-2.json --nodes " +
                               nodes[0]->text() + "," + nodes[1]->text() + " --token-file " + token.path();
-  writeScript("cluster.txt", "time 0\nwait frames 2\nscreenshot cluster.png\norbit 20\nwait frames 2\nscreenshot turned.png\n");
+  writeScript("cluster.txt",
+              "time 0\nwait frames 2\nscreenshot cluster.png\norbit 20\nwait frames 2\nscreenshot turned.png\n");
   const Outcome v = viewer("builtin:animated --size 96x72" + cluster + " --script cluster.txt --exit-after");
   ASSERT_EQ(v.status, 0) << v.err;
   EXPECT_THAT(v.out, HasSubstr("2 of 2 nodes online"));

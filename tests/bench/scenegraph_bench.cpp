@@ -42,7 +42,8 @@ static void BM_CommitEncodeDecodeApply(benchmark::State& state) {
   float x = 0;
   for (auto _ : state) {
     x += 1;
-    for (std::size_t i = 0; i < perFrame; ++i) m.transforms[(i * 7919) % m.transforms.size()]->setMatrix(translation(x));
+    for (std::size_t i = 0; i < perFrame; ++i)
+      m.transforms[(i * 7919) % m.transforms.size()]->setMatrix(translation(x));
     auto list = m.source.commit();
     auto wire = encode(*list);
     auto decoded = decode(wire);

@@ -106,7 +106,8 @@ TEST(ClusterFilter, RadianceFilteredTilesWithHaloMatchWithinTolerance) {
   double meanError = 0.0;
   for (std::size_t i = 0; i < reference.colour.size(); ++i)
     for (int ch = 0; ch < 3; ++ch)
-      meanError += std::abs(f.image.colour[i][ch] - reference.colour[i][ch]) / (std::abs(reference.colour[i][ch]) + 0.01);
+      meanError +=
+          std::abs(f.image.colour[i][ch] - reference.colour[i][ch]) / (std::abs(reference.colour[i][ch]) + 0.01);
   meanError /= 3.0 * reference.colour.size();
   EXPECT_LT(meanError, 0.01);
 }

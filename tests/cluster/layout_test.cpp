@@ -73,27 +73,32 @@ TEST(ClusterConfig, RejectsWhatCannotWork) {
   EXPECT_THROW(parseClusterConfig("{"), ConfigError);
   EXPECT_THROW(parseClusterConfig(R"({"mode": "spiral", "nodes": [{}]})"), ConfigError);
   EXPECT_THROW(parseClusterConfig(R"({"nodes": []})"), ConfigError);
-  EXPECT_THROW(parseClusterConfig(R"({"mode": "tiled", "nodes": [{}], "wall": {"columns": 2, "rows": 2}})"), ConfigError);
+  EXPECT_THROW(parseClusterConfig(R"({"mode": "tiled", "nodes": [{}], "wall": {"columns": 2, "rows": 2}})"),
+               ConfigError);
   EXPECT_THROW(parseClusterConfig(R"({"nodes": [{"address": "nohost"}]})"), ConfigError);
   EXPECT_THROW(parseClusterConfig(R"({"nodes": [{"parameters": {"x": [1]}}]})"), ConfigError);
   // Screens: a count that differs from the nodes', no frame, a screen wholly outside, eyes on some only.
   const std::string two = R"({"mode": "tiled", "nodes": [{}, {}], "wall": )";
   EXPECT_THROW(parseClusterConfig(two + R"({"frame": [10, 10], "screens": [{"rect": [0, 0, 5, 5]}]}})"), ConfigError);
-  EXPECT_THROW(parseClusterConfig(two + R"({"screens": [{"rect": [0, 0, 5, 5]}, {"rect": [5, 0, 5, 5]}]}})"), ConfigError);
-  EXPECT_THROW(parseClusterConfig(two + R"({"frame": [10, 10], "screens": [{"rect": [0, 0, 5, 5]}, {"rect": [20, 0, 5, 5]}]}})"),
+  EXPECT_THROW(parseClusterConfig(two + R"({"screens": [{"rect": [0, 0, 5, 5]}, {"rect": [5, 0, 5, 5]}]}})"),
                ConfigError);
+  EXPECT_THROW(
+      parseClusterConfig(two + R"({"frame": [10, 10], "screens": [{"rect": [0, 0, 5, 5]}, {"rect": [20, 0, 5, 5]}]}})"),
+      ConfigError);
   EXPECT_THROW(parseClusterConfig(two + R"({"frame": [10, 10], "screens": [{"rect": [0, 0, 5, 5], "eye": "left"},
                                                                           {"rect": [5, 0, 5, 5]}]}})"),
                ConfigError);
   EXPECT_THROW(parseClusterConfig(two + R"({"frame": [10, 10], "screens": [{"rect": [0, 0, 4, 4], "bezel": 2},
                                                                           {"rect": [5, 0, 5, 5]}]}})"),
-               ConfigError) << "a bezel that hides the whole screen";
+               ConfigError)
+      << "a bezel that hides the whole screen";
 }
 
 // Non-uniform screens scale from the wall's frame to the rendered size; a
 // negative bezel grows a screen (clipped to the frame).
 TEST(WallLayout, ScreensScaleAndBezelsShrinkOrGrow) {
-  ClusterConfig c = parseClusterConfig(R"({"mode": "tiled", "nodes": [{}, {}, {}], "wall": {"frame": [200, 100], "screens": [
+  ClusterConfig c =
+      parseClusterConfig(R"({"mode": "tiled", "nodes": [{}, {}, {}], "wall": {"frame": [200, 100], "screens": [
       {"rect": [0, 0, 100, 100], "bezel": 10, "eye": "left"},
       {"rect": [100, 0, 100, 50], "bezel": -20, "eye": "right", "window": {"position": [-1920, 0], "fullscreen": true}},
       {"rect": [100, 50, 100, 50], "eye": "right"}]}})");

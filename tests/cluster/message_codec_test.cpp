@@ -84,24 +84,59 @@ std::vector<Frame> everyMessage() {
 // Parses a message of any type; what the node and client do on receipt.
 void parseAny(const Message& m) {
   switch (m.type) {
-    case MessageType::Hello: parse<Hello>(m); break;
-    case MessageType::Challenge: parse<Challenge>(m); break;
-    case MessageType::Auth: parse<Auth>(m); break;
-    case MessageType::Welcome: parse<Welcome>(m); break;
-    case MessageType::Reject: parse<Reject>(m); break;
-    case MessageType::Applied: parse<Applied>(m); break;
-    case MessageType::SetViewports: parse<SetViewports>(m); break;
-    case MessageType::RenderRequest: parse<RenderRequest>(m); break;
-    case MessageType::RenderTile: parse<RenderTile>(m); break;
-    case MessageType::FrameDone: parse<FrameDone>(m); break;
-    case MessageType::Swap: parse<Swap>(m); break;
-    case MessageType::HashQuery: parse<HashQuery>(m); break;
-    case MessageType::HashReply: parse<HashReply>(m); break;
-    case MessageType::Heartbeat: parse<Heartbeat>(m); break;
-    case MessageType::HeartbeatAck: parse<HeartbeatAck>(m); break;
-    case MessageType::Error: parse<ErrorReport>(m); break;
-    case MessageType::Bye: parse<Bye>(m); break;
-    default: break;
+    case MessageType::Hello:
+      parse<Hello>(m);
+      break;
+    case MessageType::Challenge:
+      parse<Challenge>(m);
+      break;
+    case MessageType::Auth:
+      parse<Auth>(m);
+      break;
+    case MessageType::Welcome:
+      parse<Welcome>(m);
+      break;
+    case MessageType::Reject:
+      parse<Reject>(m);
+      break;
+    case MessageType::Applied:
+      parse<Applied>(m);
+      break;
+    case MessageType::SetViewports:
+      parse<SetViewports>(m);
+      break;
+    case MessageType::RenderRequest:
+      parse<RenderRequest>(m);
+      break;
+    case MessageType::RenderTile:
+      parse<RenderTile>(m);
+      break;
+    case MessageType::FrameDone:
+      parse<FrameDone>(m);
+      break;
+    case MessageType::Swap:
+      parse<Swap>(m);
+      break;
+    case MessageType::HashQuery:
+      parse<HashQuery>(m);
+      break;
+    case MessageType::HashReply:
+      parse<HashReply>(m);
+      break;
+    case MessageType::Heartbeat:
+      parse<Heartbeat>(m);
+      break;
+    case MessageType::HeartbeatAck:
+      parse<HeartbeatAck>(m);
+      break;
+    case MessageType::Error:
+      parse<ErrorReport>(m);
+      break;
+    case MessageType::Bye:
+      parse<Bye>(m);
+      break;
+    default:
+      break;
   }
 }
 
@@ -130,7 +165,8 @@ TEST(MessageCodec, RoundTripsCarryEveryField) {
   EXPECT_EQ(h.hash, 0xdeadbeefcafef00dull);
   EXPECT_EQ(h.version, 9u);
 
-  RenderTile t = parse<RenderTile>(unframe(makeFrame(RenderTile{5, 1, {1, 2, 3, 4}, 0.5, Compression::Lz4, {1, 2, 3}})));
+  RenderTile t =
+      parse<RenderTile>(unframe(makeFrame(RenderTile{5, 1, {1, 2, 3, 4}, 0.5, Compression::Lz4, {1, 2, 3}})));
   EXPECT_EQ(t.rect, (med::PixelRect{1, 2, 3, 4}));
   EXPECT_EQ(t.seconds, 0.5);
   EXPECT_EQ(t.compression, Compression::Lz4);
@@ -176,7 +212,8 @@ TEST(MessageCodec, RandomCorruptionOnlyEverGivesTypedErrors) {
     for (int round = 0; round < 300; ++round) {
       Message bad = whole;
       int flips = 1 + static_cast<int>(rng() % 4);
-      for (int k = 0; k < flips; ++k) bad.payload[rng() % bad.payload.size()] ^= static_cast<std::uint8_t>(1 + rng() % 255);
+      for (int k = 0; k < flips; ++k)
+        bad.payload[rng() % bad.payload.size()] ^= static_cast<std::uint8_t>(1 + rng() % 255);
       ++total;
       try {
         parseAny(bad);
@@ -258,7 +295,8 @@ TEST(FrameHeader, ChecksMagicVersionTypeAndSize) {
   EXPECT_EQ(kindOf(header(kProtocolVersion, 0, 0)), Kind::UnknownType);
   EXPECT_EQ(kindOf(header(kProtocolVersion, 200, 0)), Kind::UnknownType);
   EXPECT_EQ(kindOf(header(kProtocolVersion, static_cast<std::uint8_t>(MessageType::Hello), 1u << 20)), Kind::Oversized);
-  EXPECT_EQ(kindOf(header(kProtocolVersion, static_cast<std::uint8_t>(MessageType::Snapshot), 0xffffffffu)), Kind::Oversized);
+  EXPECT_EQ(kindOf(header(kProtocolVersion, static_cast<std::uint8_t>(MessageType::Snapshot), 0xffffffffu)),
+            Kind::Oversized);
 }
 
 TEST(FrameHeader, EveryTypeHasABoundedSpec) {

@@ -119,7 +119,8 @@ class TokenFile {
     if (fd < 0) throw std::runtime_error("mkstemp failed");
     path_ = name;
     std::string text = token + "\n";
-    if (write(fd, text.data(), text.size()) != static_cast<ssize_t>(text.size())) throw std::runtime_error("write failed");
+    if (write(fd, text.data(), text.size()) != static_cast<ssize_t>(text.size()))
+      throw std::runtime_error("write failed");
     close(fd);
   }
   ~TokenFile() { unlink(path_.c_str()); }

@@ -1,7 +1,7 @@
 // Real tessera-node processes on 127.0.0.1: authentication, version check,
 // hostile bytes, and replicas that follow the client's scene frame by frame.
-#include <random>
 #include <sys/resource.h>
+#include <random>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -169,7 +169,8 @@ TEST_F(HostileInput, CorruptChangeListClosesThatClientOnly) {
   ASSERT_EQ(raw.read(m), Outcome::Message);
   raw.send(hs.onChallenge(m));
   ASSERT_EQ(raw.read(m), Outcome::Message);
-  raw.send(frameFromPayload(MessageType::Snapshot, std::vector<std::uint8_t>{'T', 'S', 'R', 'C', 1, 1, 50, 0, 0, 0, 9}));
+  raw.send(
+      frameFromPayload(MessageType::Snapshot, std::vector<std::uint8_t>{'T', 'S', 'R', 'C', 1, 1, 50, 0, 0, 0, 9}));
   ASSERT_EQ(raw.read(m), Outcome::Message);
   EXPECT_EQ(m.type, MessageType::Error);
   EXPECT_EQ(raw.waitClosed(), Outcome::Closed);

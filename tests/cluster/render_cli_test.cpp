@@ -9,8 +9,8 @@
 #include <gtest/gtest.h>
 
 #include "cluster_test_util.hpp"
-#include "two_root_scene.hpp"
 #include "tsr/med/image_file.hpp"
+#include "two_root_scene.hpp"
 
 namespace tsr::cluster::test {
 namespace {
@@ -22,7 +22,8 @@ int run(const std::string& args) {
   return std::system(command.c_str());
 }
 
-std::string writeConfig(const fs::path& dir, const std::string& mode, std::size_t nodes, const std::string& extra = "") {
+std::string writeConfig(const fs::path& dir, const std::string& mode, std::size_t nodes,
+                        const std::string& extra = "") {
   std::string json = R"({"mode": ")" + mode + R"(", "backend": "embree",
     "parameters": {"spp": 2, "maxDepth": 3, "seed": 5, "threads": 1}, "nodes": [)";
   for (std::size_t i = 0; i < nodes; ++i) json += std::string(i ? "," : "") + R"({"address": "127.0.0.1:1"})";
@@ -45,8 +46,8 @@ TEST(RenderCli, ClusterImageEqualsLocalImage) {
   TokenFile token("cli token");
   auto nodes = startNodes(2, {"--token-file", token.path()});
   std::string config = writeConfig(dir.path, "cooperative", 2, R"(, "cooperative": {"tileSize": 16})");
-  ASSERT_EQ(run("builtin:cornell --cluster " + config + " --nodes " + addresses(nodes) + " --token-file " + token.path() +
-                " --size 48x40 --output " + (dir.path / "cluster.exr").string()),
+  ASSERT_EQ(run("builtin:cornell --cluster " + config + " --nodes " + addresses(nodes) + " --token-file " +
+                token.path() + " --size 48x40 --output " + (dir.path / "cluster.exr").string()),
             0);
   ASSERT_EQ(run("builtin:cornell" + kLocal + " --output " + (dir.path / "local.exr").string()), 0);
   EXPECT_TRUE(bitwiseEqual(med::readImage((dir.path / "cluster.exr").string()),
@@ -61,8 +62,8 @@ TEST(RenderCli, PixelFilteredClusterImageAndItsAovsEqualTheLocalOnes) {
   auto nodes = startNodes(2, {"--token-file", token.path()});
   std::string config = writeConfig(dir.path, "cooperative", 2, R"(, "cooperative": {"tileSize": 16})");
   const std::string filter = " --spp 4 --filter pixel --aov blend --aov indirect";
-  ASSERT_EQ(run("builtin:cornell --cluster " + config + " --nodes " + addresses(nodes) + " --token-file " + token.path() +
-                " --size 48x40" + filter + " --output " + (dir.path / "cluster.exr").string()),
+  ASSERT_EQ(run("builtin:cornell --cluster " + config + " --nodes " + addresses(nodes) + " --token-file " +
+                token.path() + " --size 48x40" + filter + " --output " + (dir.path / "cluster.exr").string()),
             0);
   ASSERT_EQ(run("builtin:cornell --max-depth 3 --seed 5 --threads 1 --size 48x40" + filter + " --output " +
                 (dir.path / "local.exr").string()),
@@ -78,8 +79,8 @@ TEST(RenderCli, CommandLineParametersBeatTheConfigs) {
   TokenFile token("cli token");
   auto nodes = startNodes(1, {"--token-file", token.path()});
   std::string config = writeConfig(dir.path, "cooperative", 1);  // says spp 2, seed 5
-  ASSERT_EQ(run("builtin:cornell --cluster " + config + " --nodes " + addresses(nodes) + " --token-file " + token.path() +
-                " --size 32x24 --spp 3 --seed 9 --output " + (dir.path / "cluster.exr").string()),
+  ASSERT_EQ(run("builtin:cornell --cluster " + config + " --nodes " + addresses(nodes) + " --token-file " +
+                token.path() + " --size 32x24 --spp 3 --seed 9 --output " + (dir.path / "cluster.exr").string()),
             0);
   ASSERT_EQ(run("builtin:cornell --spp 3 --max-depth 3 --seed 9 --threads 1 --size 32x24 --output " +
                 (dir.path / "local.exr").string()),
@@ -93,8 +94,8 @@ TEST(RenderCli, WrongTokenFailsWithAnError) {
   TokenFile right("right"), wrong("wrong");
   auto nodes = startNodes(1, {"--token-file", right.path()});
   std::string config = writeConfig(dir.path, "cooperative", 1, R"(, "timeouts": {"connectMs": 1000})");
-  EXPECT_NE(run("builtin:cornell --cluster " + config + " --nodes " + addresses(nodes) + " --token-file " + wrong.path() +
-                " --output " + (dir.path / "x.exr").string() + " 2>/dev/null"),
+  EXPECT_NE(run("builtin:cornell --cluster " + config + " --nodes " + addresses(nodes) + " --token-file " +
+                wrong.path() + " --output " + (dir.path / "x.exr").string() + " 2>/dev/null"),
             0);
   EXPECT_FALSE(fs::exists(dir.path / "x.exr"));
 }
@@ -107,9 +108,9 @@ TEST(RenderCli, AnOutputTheNodesCannotFillFailsTheFrameWithTheirReason) {
   auto nodes = startNodes(2, {"--token-file", token.path()});
   std::string config = writeConfig(dir.path, "cooperative", 2);
   const fs::path err = dir.path / "err.txt";
-  const int status = run("builtin:cornell --cluster " + config + " --nodes " + addresses(nodes) + " --token-file " +
-                         token.path() + " --size 32x24 --aov nosuch --output " + (dir.path / "x.exr").string() + " 2>" +
-                         err.string());
+  const int status =
+      run("builtin:cornell --cluster " + config + " --nodes " + addresses(nodes) + " --token-file " + token.path() +
+          " --size 32x24 --aov nosuch --output " + (dir.path / "x.exr").string() + " 2>" + err.string());
   EXPECT_EQ(WEXITSTATUS(status), 2);
   std::ifstream in(err);
   std::string message((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -124,7 +125,8 @@ TEST(RenderCli, AnimatedFramesThroughAWallEqualLocalFrames) {
   ASSERT_EQ(run("builtin:animated --cluster " + config + " --nodes " + addresses(nodes) +
                 " --size 48x40 --frames 3 --fps 4 --output " + (dir.path / "wall.####.exr").string()),
             0);
-  ASSERT_EQ(run("builtin:animated" + kLocal + " --frames 3 --fps 4 --output " + (dir.path / "local.####.exr").string()), 0);
+  ASSERT_EQ(run("builtin:animated" + kLocal + " --frames 3 --fps 4 --output " + (dir.path / "local.####.exr").string()),
+            0);
   for (const char* f : {"0000", "0001", "0002"}) {
     auto wall = med::readImage((dir.path / ("wall." + std::string(f) + ".exr")).string());
     auto local = med::readImage((dir.path / ("local." + std::string(f) + ".exr")).string());

@@ -10,13 +10,13 @@
 
 #include "cluster_test_util.hpp"
 #include "raw_client.hpp"
-#include "tsr/cluster/handshake.hpp"
 #include "tsr/cluster/cluster_viewport.hpp"
 #include "tsr/cluster/cluster_window.hpp"
+#include "tsr/cluster/handshake.hpp"
 #include "tsr/cluster/wall_layout.hpp"
 #include "tsr/med/compositing.hpp"
-#include "tsr/med/image_file.hpp"
 #include "tsr/med/embree/register.hpp"
+#include "tsr/med/image_file.hpp"
 #include "tsr/med/viewport_registry.hpp"
 #include "tsr/sg/replica.hpp"
 #include "tsr/sg/wire_codec.hpp"
@@ -154,7 +154,8 @@ TEST(ClusterRender, WallBezelsHidePixelsButTilesStillMatch) {
   med::FrameBuffer ref = app.reference(app.view());
   for (const auto& r : wallLayout(kSize, kSize, 2, 2, 6))
     for (std::uint32_t y = r.y0; y < r.y1; ++y)
-      for (std::uint32_t x = r.x0; x < r.x1; ++x) ASSERT_EQ(f.image.colour[f.image.index(x, y)], ref.colour[ref.index(x, y)]);
+      for (std::uint32_t x = r.x0; x < r.x1; ++x)
+        ASSERT_EQ(f.image.colour[f.image.index(x, y)], ref.colour[ref.index(x, y)]);
   EXPECT_EQ(f.image.colour[f.image.index(32, 5)], glm::vec4(0.0f)) << "bezel pixels are not rendered";
 }
 
@@ -240,7 +241,8 @@ TEST(ClusterRender, WallNodesPresentTheirTilesWhenTheBarrierReleases) {
   std::string dir = mkdtemp(dirName);
   std::vector<std::unique_ptr<NodeProcess>> nodes;
   for (int i = 0; i < 4; ++i)
-    nodes.push_back(std::make_unique<NodeProcess>(std::vector<std::string>{"--present", "files:" + dir, "--name", "n" + std::to_string(i)}));
+    nodes.push_back(std::make_unique<NodeProcess>(
+        std::vector<std::string>{"--present", "files:" + dir, "--name", "n" + std::to_string(i)}));
   Session app("builtin:cornell", configFor(ClusterMode::Tiled, nodes, pathTracer()), pathTracer());
   ASSERT_EQ(app.connect(), 4u);
   app.publish();
@@ -311,7 +313,8 @@ TEST(ClusterRender, StereoWallInOneConfigEqualsLocalEyes) {
   c.wall.frameWidth = c.wall.frameHeight = kSize;
   const std::uint32_t half = kSize / 2;
   for (med::Eye eye : {med::Eye::Left, med::Eye::Right})
-    for (std::int32_t x : {0, static_cast<std::int32_t>(half)}) c.wall.screens.push_back({x, 0, half, kSize, 0, eye, {}});
+    for (std::int32_t x : {0, static_cast<std::int32_t>(half)})
+      c.wall.screens.push_back({x, 0, half, kSize, 0, eye, {}});
   c.stereo.compose = StereoCompose::Anaglyph;
   Session app("builtin:cornell", c, pathTracer());
   app.window->setEyes(0.1f, 3.0f);
@@ -400,7 +403,8 @@ TEST(ClusterRender, EyeBeyondTheCoordinateLimitIsRefusedAndTheNodeServesOn) {
     ASSERT_TRUE(raw.send(frameFromPayload(MessageType::Snapshot, sg::encode(*app.s.scene.snapshot()))));
     ASSERT_EQ(raw.read(m), RawClient::Outcome::Message);
     ASSERT_EQ(m.type, MessageType::Applied);
-    ASSERT_TRUE(raw.send(makeFrame(SetViewports{{{0, "embree", app.s.imported.root, app.s.imported.background, pathTracer(1)}}})));
+    ASSERT_TRUE(raw.send(
+        makeFrame(SetViewports{{{0, "embree", app.s.imported.root, app.s.imported.background, pathTracer(1)}}})));
 
     med::View view = app.view();
     view.cameraToWorld[3][2] = eye;

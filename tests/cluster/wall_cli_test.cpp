@@ -65,7 +65,8 @@ TEST(WallCli, KilledNodeIsMarkedWhileTheOthersPresentAndIsTakenBack) {
   std::uint64_t othersAt = wall.newestFrame(0);
   ASSERT_TRUE(waitFor([&] { return slurp(log).find("tile(s) marked offline") != std::string::npos; })) << slurp(log);
   ASSERT_TRUE(waitFor([&] { return wall.newestFrame(0) >= othersAt + 5 && wall.newestFrame(1) >= othersAt + 5; }))
-      << "the others keep presenting\n" << slurp(log);
+      << "the others keep presenting\n"
+      << slurp(log);
   EXPECT_EQ(wall.newestFrame(3), killedAt);
   std::string out = slurp(log);
   EXPECT_NE(out.find("node " + address + " dropped out"), std::string::npos) << out;
@@ -95,8 +96,8 @@ TEST(WallCli, NonUniformWallStitchesToTheLocalRender) {
   std::ofstream(config) << json;
   fs::path log = dir.path / "wall.log";
   // Rendered at half the frame's size: rectangles and bezels scale with it.
-  ASSERT_EQ(runWall(config.string() + " builtin:animated --nodes " + wall.addresses() + " --frames 2 --size 48x40 --output " +
-                        (dir.path / "wall.exr").string(),
+  ASSERT_EQ(runWall(config.string() + " builtin:animated --nodes " + wall.addresses() +
+                        " --frames 2 --size 48x40 --output " + (dir.path / "wall.exr").string(),
                     log),
             0)
       << slurp(log);

@@ -55,7 +55,8 @@ struct Wall {
     for (std::size_t i = 0; i < count; ++i) nodes.push_back(std::make_unique<NodeProcess>(args(i)));
   }
   std::vector<std::string> args(std::size_t i) const {
-    return {"--present", windows ? std::string("window") : "files:" + present.string(), "--name", "n" + std::to_string(i)};
+    return {"--present", windows ? std::string("window") : "files:" + present.string(), "--name",
+            "n" + std::to_string(i)};
   }
   std::string addresses() const {
     std::string out;
@@ -104,6 +105,7 @@ class WallProcess {
     pid_ = -1;
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   }
+
  private:
   pid_t pid_ = -1;
 };
@@ -130,12 +132,14 @@ inline med::FrameBuffer localFrame(int frame, std::uint32_t width, std::uint32_t
   med::ContextPool contexts;
   auto local = registry.create({"embree", s.imported.root, s.imported.background, pathTracer(), true}, contexts);
   med::FrameBuffer fb;
-  local->render(replica, med::View::fromCamera(*s.scene.find<sg::Camera>(s.imported.cameras.front()), width, height), fb);
+  local->render(replica, med::View::fromCamera(*s.scene.find<sg::Camera>(s.imported.cameras.front()), width, height),
+                fb);
   return fb;
 }
 
 // `tile` (r's size, or a whole frame) shows ref's pixels of r.
-inline void expectTileEquals(const med::FrameBuffer& tile, const med::FrameBuffer& ref, const med::PixelRect& r, const std::string& what) {
+inline void expectTileEquals(const med::FrameBuffer& tile, const med::FrameBuffer& ref, const med::PixelRect& r,
+                             const std::string& what) {
   bool whole = tile.width == ref.width && tile.height == ref.height;
   ASSERT_TRUE(whole || (tile.width == r.width() && tile.height == r.height())) << what;
   for (std::uint32_t y = r.y0; y < r.y1; ++y)

@@ -19,7 +19,9 @@ using namespace std::chrono_literals;
 struct XScreen {
   std::uint32_t width = 0, height = 0;
   std::vector<std::array<std::uint8_t, 3>> rgb;
-  const std::array<std::uint8_t, 3>& at(std::uint32_t x, std::uint32_t y) const { return rgb[std::size_t{y} * width + x]; }
+  const std::array<std::uint8_t, 3>& at(std::uint32_t x, std::uint32_t y) const {
+    return rgb[std::size_t{y} * width + x];
+  }
 };
 
 std::optional<XScreen> readXvfbScreen(const fs::path& file) {
@@ -52,8 +54,9 @@ std::optional<XScreen> readXvfbScreen(const fs::path& file) {
   for (std::uint32_t y = 0; y < height; ++y)
     for (std::uint32_t x = 0; x < width; ++x) {
       const std::uint8_t* p = bytes.data() + pixels + std::size_t{y} * bytesPerLine + 4 * x;
-      std::uint32_t v = byteOrder == 0 ? (std::uint32_t{p[3]} << 24 | std::uint32_t{p[2]} << 16 | std::uint32_t{p[1]} << 8 | p[0])
-                                       : (std::uint32_t{p[0]} << 24 | std::uint32_t{p[1]} << 16 | std::uint32_t{p[2]} << 8 | p[3]);
+      std::uint32_t v = byteOrder == 0
+                            ? (std::uint32_t{p[3]} << 24 | std::uint32_t{p[2]} << 16 | std::uint32_t{p[1]} << 8 | p[0])
+                            : (std::uint32_t{p[0]} << 24 | std::uint32_t{p[1]} << 16 | std::uint32_t{p[2]} << 8 | p[3]);
       s.rgb[std::size_t{y} * width + x] = {channel(v, redMask), channel(v, greenMask), channel(v, blueMask)};
     }
   return s;

@@ -24,8 +24,8 @@ using Bytes = std::vector<std::uint8_t>;
 
 void put(const fs::path& dir, const std::string& name, const Bytes& bytes) {
   fs::create_directories(dir);
-  std::ofstream(dir / name, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
-                                                   static_cast<std::streamsize>(bytes.size()));
+  std::ofstream(dir / name, std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
 }
 
 Bytes concat(const std::vector<Bytes>& parts) {
@@ -81,12 +81,14 @@ void clusterMessages(const fs::path& dir) {
   Challenge challenge;
   challenge.nodeNonce.fill(3);
   Welcome welcome{"node-a", 2, {"embree", "vulkan", "coverage"}};
-  put(dir, "handshake", concat({frame(makeFrame(hello)), frame(makeFrame(challenge)), frame(makeFrame(Auth{})),
-                                frame(makeFrame(welcome)), frame(makeFrame(Reject{"wrong token"}))}));
+  put(dir, "handshake",
+      concat({frame(makeFrame(hello)), frame(makeFrame(challenge)), frame(makeFrame(Auth{})), frame(makeFrame(welcome)),
+              frame(makeFrame(Reject{"wrong token"}))}));
 
   const std::vector<Bytes> lists = richStream();
   std::vector<Bytes> replica{frame(frameFromPayload(MessageType::Snapshot, lists[0]))};
-  for (std::size_t i = 1; i < lists.size(); ++i) replica.push_back(frame(frameFromPayload(MessageType::Changes, lists[i])));
+  for (std::size_t i = 1; i < lists.size(); ++i)
+    replica.push_back(frame(frameFromPayload(MessageType::Changes, lists[i])));
   replica.push_back(frame(makeFrame(Applied{2})));
   put(dir, "replica", concat(replica));
 
@@ -108,11 +110,13 @@ void clusterMessages(const fs::path& dir) {
   EncodedPixels px = encodePixels(gradient(8, 8, tile.outputs), Compression::Lz4, tile.outputs);
   tile.compression = px.compression;
   tile.pixels = px.bytes;
-  put(dir, "frame", concat({frame(makeFrame(SetViewports{{spec}})), frame(makeFrame(request)), frame(makeFrame(tile)),
-                            frame(makeFrame(FrameDone{9, 0.02})), frame(makeFrame(Swap{9}))}));
-  put(dir, "service", concat({frame(makeFrame(HashQuery{5})), frame(makeFrame(HashReply{5, 2, 0xabcdef})),
-                              frame(makeFrame(Heartbeat{1})), frame(makeFrame(HeartbeatAck{1})),
-                              frame(makeFrame(ErrorReport{"no such viewport"})), frame(makeFrame(Bye{}))}));
+  put(dir, "frame",
+      concat({frame(makeFrame(SetViewports{{spec}})), frame(makeFrame(request)), frame(makeFrame(tile)),
+              frame(makeFrame(FrameDone{9, 0.02})), frame(makeFrame(Swap{9}))}));
+  put(dir, "service",
+      concat({frame(makeFrame(HashQuery{5})), frame(makeFrame(HashReply{5, 2, 0xabcdef})),
+              frame(makeFrame(Heartbeat{1})), frame(makeFrame(HeartbeatAck{1})),
+              frame(makeFrame(ErrorReport{"no such viewport"})), frame(makeFrame(Bye{}))}));
 }
 
 void pixelCodec(const fs::path& dir) {
@@ -134,12 +138,14 @@ void gltfImport(const fs::path& dir) {
   tsr::test::tinyScene().writeGlb(tmp.file("tiny.glb"));
   tsr::test::richScene(tmp).writeGltf(tmp.file("rich.gltf"), true);
   tsr::test::richScene(tmp).writeGlb(tmp.file("rich.glb"));
-  for (const char* name : {"tiny.gltf", "tiny.glb", "rich.gltf", "rich.glb"}) put(dir, name, tsr::test::readBytes(tmp.file(name)));
+  for (const char* name : {"tiny.gltf", "tiny.glb", "rich.gltf", "rich.glb"})
+    put(dir, name, tsr::test::readBytes(tmp.file(name)));
 }
 
 void clusterConfig(const fs::path& dir, const fs::path& configs) {
   for (const auto& e : fs::directory_iterator(configs))
-    if (e.path().extension() == ".json") put(dir, e.path().filename().string(), tsr::test::readBytes(e.path().string()));
+    if (e.path().extension() == ".json")
+      put(dir, e.path().filename().string(), tsr::test::readBytes(e.path().string()));
 }
 
 }  // namespace

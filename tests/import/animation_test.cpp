@@ -1,7 +1,7 @@
 #include <cmath>
 
-#include <glm/gtc/constants.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/constants.hpp>
 
 #include "import_test_util.hpp"
 #include "test_scenes.hpp"
@@ -110,10 +110,12 @@ TEST_F(GltfAnimation, ApplyChangesExactlyTheAnimatedMatrices) {
 
 TEST(Animation, RejectsBadKeys) {
   Animation a;
-  EXPECT_THROW(a.addChannel({1, Animation::Path::Translation, Animation::Interpolation::Linear, {1, 0}, {Vec4(0), Vec4(0)}}),
-               std::invalid_argument);
-  EXPECT_THROW(a.addChannel({1, Animation::Path::Scale, Animation::Interpolation::CubicSpline, {0, 1}, {Vec4(0), Vec4(0)}}),
-               std::invalid_argument);
+  EXPECT_THROW(
+      a.addChannel({1, Animation::Path::Translation, Animation::Interpolation::Linear, {1, 0}, {Vec4(0), Vec4(0)}}),
+      std::invalid_argument);
+  EXPECT_THROW(
+      a.addChannel({1, Animation::Path::Scale, Animation::Interpolation::CubicSpline, {0, 1}, {Vec4(0), Vec4(0)}}),
+      std::invalid_argument);
   EXPECT_THROW(a.addChannel({1, Animation::Path::Scale, Animation::Interpolation::Step, {0}, {Vec4(NAN)}}),
                std::invalid_argument);
   EXPECT_TRUE(a.channels().empty());
@@ -122,7 +124,8 @@ TEST(Animation, RejectsBadKeys) {
 TEST(Animation, LoopingWrapsTime) {
   Animation a;
   a.setLooping(true);
-  a.addChannel({7, Animation::Path::Translation, Animation::Interpolation::Linear, {0, 4}, {Vec4(0), Vec4(4, 0, 0, 0)}});
+  a.addChannel(
+      {7, Animation::Path::Translation, Animation::Interpolation::Linear, {0, 4}, {Vec4(0), Vec4(4, 0, 0, 0)}});
   EXPECT_NEAR(a.poseAt(7, 5.0f).translation.x, 1.0f, kEps);
   EXPECT_NEAR(a.poseAt(7, -1.0f).translation.x, 3.0f, kEps);
   a.setLooping(false);

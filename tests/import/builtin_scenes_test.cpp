@@ -80,7 +80,8 @@ TEST(BuiltinScenes, InstancesShareAFewMeshes) {
   const Mat4 view = glm::inverse(tsr::sg::cameraWorldPose(*cam));
   const float tanHalf = std::tan(cam->verticalFov() / 2);
   for (ContainerId id : scene.ids())
-    if (const Transform* t = scene.find<Transform>(id); t && !t->children().empty() && scene.find<Geometry>(t->children()[0])) {
+    if (const Transform* t = scene.find<Transform>(id);
+        t && !t->children().empty() && scene.find<Geometry>(t->children()[0])) {
       const Vec3 p = Vec3(view * t->matrix()[3]);
       ASSERT_LT(p.z, 0.0f);
       EXPECT_LT(std::abs(p.y / -p.z), tanHalf);

@@ -94,7 +94,7 @@ TEST_F(RichScene, ReadsAttributesOfEveryLayout) {
   EXPECT_EQ(quad->indices(), (std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3}));
   ASSERT_EQ(quad->uvs().size(), 4u);
   EXPECT_EQ(quad->uvs()[1], Vec2(1, 1));  // from the interleaved view
-  EXPECT_TRUE(quad->normals().empty());  // none in the file: shaded flat
+  EXPECT_TRUE(quad->normals().empty());   // none in the file: shaded flat
   EXPECT_FALSE(quad->invalidReason());
 
   auto* m = byName<Transform>(scene, "matrix");

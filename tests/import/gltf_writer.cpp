@@ -57,9 +57,7 @@ void writePng(const std::string& path, int width, int height, int channels, cons
     throw std::runtime_error("cannot write " + path);
 }
 
-GltfBuilder::GltfBuilder() {
-  doc = {{"asset", {{"version", "2.0"}, {"generator", "tsr import tests"}}}};
-}
+GltfBuilder::GltfBuilder() { doc = {{"asset", {{"version", "2.0"}, {"generator", "tsr import tests"}}}}; }
 
 int GltfBuilder::addView(const void* data, std::size_t bytes, std::size_t stride) {
   while (bin.size() % 4) bin.push_back(0);

@@ -5,8 +5,8 @@
 #include <random>
 
 #include <gmock/gmock.h>
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "test_scenes.hpp"
 #include "tsr/sg/import/importer.hpp"
@@ -279,8 +279,9 @@ TEST_F(MalformedFiles, RandomMutationsNeverCrash) {
   const json original = json::parse(test::readBytes(dir.file("base.gltf")));
 
   std::mt19937 rng(1234);
-  const json replacements[] = {json(-1), json(0), json(4294967296LL), json(1e300), json(-1e300), json("text"),
-                               json(nullptr), json::array(), json::object(), json(true), json(7), json(2.5)};
+  const json replacements[] = {json(-1),     json(0),       json(4294967296LL), json(1e300),    json(-1e300),
+                               json("text"), json(nullptr), json::array(),      json::object(), json(true),
+                               json(7),      json(2.5)};
   int accepted = 0, rejected = 0;
   for (int iteration = 0; iteration < 300; ++iteration) {
     json doc = original;
@@ -288,7 +289,8 @@ TEST_F(MalformedFiles, RandomMutationsNeverCrash) {
     for (int e = 0; e < edits; ++e) {
       // Pick a random value in the tree, but never the large data URIs.
       std::vector<json::json_pointer> pointers;
-      std::function<void(const json&, const json::json_pointer&)> collect = [&](const json& v, const json::json_pointer& p) {
+      std::function<void(const json&, const json::json_pointer&)> collect = [&](const json& v,
+                                                                                const json::json_pointer& p) {
         if (p.back() != "uri") pointers.push_back(p);
         if (v.is_object())
           for (auto it = v.begin(); it != v.end(); ++it) collect(it.value(), p / it.key());
@@ -299,8 +301,10 @@ TEST_F(MalformedFiles, RandomMutationsNeverCrash) {
       const json::json_pointer target = pointers[rng() % pointers.size()];
       if (rng() % 3 == 0) {
         json& parent = doc[target.parent_pointer()];
-        if (parent.is_object()) parent.erase(target.back());
-        else if (parent.is_array() && !parent.empty()) parent.erase(parent.size() - 1);
+        if (parent.is_object())
+          parent.erase(target.back());
+        else if (parent.is_array() && !parent.empty())
+          parent.erase(parent.size() - 1);
       } else {
         doc[target] = replacements[rng() % std::size(replacements)];
       }

@@ -21,7 +21,8 @@ GltfBuilder richScene(const TempDir& dir) {
   const int triNrm = b.addFloats({0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3");
   const int triCol = b.addAccessor(b.addView(std::vector<std::uint8_t>{255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 51}),
                                    kUByte, 3, "VEC4", true);
-  const int triUv = b.addAccessor(b.addView(std::vector<std::uint16_t>{0, 0, 65535, 0, 0, 65535}), kUShort, 3, "VEC2", true);
+  const int triUv =
+      b.addAccessor(b.addView(std::vector<std::uint16_t>{0, 0, 65535, 0, 0, 65535}), kUShort, 3, "VEC2", true);
   const int triIdx = b.addIndices(std::vector<std::uint8_t>{0, 1, 2});
 
   // Mesh 2: five points used by a strip, a fan and points; a loose triangle.
@@ -33,7 +34,8 @@ GltfBuilder richScene(const TempDir& dir) {
 
   b.doc["meshes"] = json::array({
       {{"name", "quad"},
-       {"primitives", {{{"attributes", {{"POSITION", quadPos}, {"TEXCOORD_0", quadUv}}}, {"indices", quadIdx}, {"material", 0}}}}},
+       {"primitives",
+        {{{"attributes", {{"POSITION", quadPos}, {"TEXCOORD_0", quadUv}}}, {"indices", quadIdx}, {"material", 0}}}}},
       {{"name", "triangle"},
        {"primitives",
         {{{"attributes", {{"POSITION", triPos}, {"NORMAL", triNrm}, {"COLOR_0", triCol}, {"TEXCOORD_0", triUv}}},
@@ -56,7 +58,9 @@ GltfBuilder richScene(const TempDir& dir) {
   b.doc["materials"] = json::array({
       {{"name", "fancy"},
        {"pbrMetallicRoughness",
-        {{"baseColorFactor", {0.5, 0.25, 1.0, 0.5}}, {"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0.3},
+        {{"baseColorFactor", {0.5, 0.25, 1.0, 0.5}},
+         {"baseColorTexture", {{"index", 0}}},
+         {"metallicFactor", 0.3},
          {"roughnessFactor", 0.7}}},
        {"alphaMode", "BLEND"},
        {"emissiveFactor", {1.0, 0.5, 0.0}},
@@ -77,7 +81,8 @@ GltfBuilder richScene(const TempDir& dir) {
       {{"type", "spot"}, {"intensity", 5.0}, {"spot", {{"innerConeAngle", 0.2}, {"outerConeAngle", 0.6}}}},
       {{"type", "directional"}, {"intensity", 3.0}},
   });
-  b.doc["cameras"] = json::array({{{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.5}, {"zfar", 200.0}}}}});
+  b.doc["cameras"] =
+      json::array({{{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.5}, {"zfar", 200.0}}}}});
   b.doc["nodes"] = json::array({
       {{"name", "parent"}, {"translation", {10.0, 0.0, 0.0}}, {"children", {1, 2, 5}}},
       {{"name", "childA"}, {"translation", {0.0, 5.0, 0.0}}, {"mesh", 0}},

@@ -36,7 +36,8 @@ TEST(UriConfinement, UrisInsideTheFolderLoad) {
 TEST(UriConfinement, UrisLeavingTheFolderAreRefusedBeforeReading) {
   TempDir dir;
   const std::string outside = dir.file("tiny.bin");
-  for (const std::string& uri : std::vector<std::string>{"../tiny.bin", "data/../../tiny.bin", "..%2Ftiny.bin", "..\\tiny.bin", outside,
+  for (const std::string& uri :
+       std::vector<std::string>{"../tiny.bin", "data/../../tiny.bin", "..%2Ftiny.bin", "..\\tiny.bin", outside,
                                 "file://" + outside, "FILE:" + outside}) {
     tsr::sg::Scene scene;
     try {

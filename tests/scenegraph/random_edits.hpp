@@ -20,7 +20,9 @@ class RandomEditor {
   // Creates one container of a random type, wired into the graph.
   void createOne() {
     switch (pick(8)) {
-      case 0: link(scene_.create<Group>("group").id()); break;
+      case 0:
+        link(scene_.create<Group>("group").id());
+        break;
       case 1: {
         auto& t = scene_.create<Transform>("transform");
         t.setMatrix(randomMatrix());
@@ -50,7 +52,9 @@ class RandomEditor {
         m.setAttachment("embree.maxDepth", std::int64_t(pick(16)));
         break;
       }
-      case 4: scene_.create<SimpleMaterial>("simple").setDiffuse({real(0, 1), 0.5f, 0.25f}); break;
+      case 4:
+        scene_.create<SimpleMaterial>("simple").setDiffuse({real(0, 1), 0.5f, 0.25f});
+        break;
       case 5: {
         auto& img = scene_.create<Image>("image");
         std::uint32_t w = 1 + static_cast<std::uint32_t>(pick(8)), h = 1 + static_cast<std::uint32_t>(pick(8));
@@ -66,7 +70,9 @@ class RandomEditor {
         link(l.id());
         break;
       }
-      default: scene_.create<Camera>("camera").lookAt(vec3(), vec3() + Vec3(0.5f, 0.25f, 1.0f)); break;
+      default:
+        scene_.create<Camera>("camera").lookAt(vec3(), vec3() + Vec3(0.5f, 0.25f, 1.0f));
+        break;
     }
   }
 
@@ -79,7 +85,9 @@ class RandomEditor {
     if (chance(0.1)) return c->setName("renamed" + std::to_string(pick(100)));
     if (chance(0.05)) return c->setAttachment("note", std::string("x") + std::to_string(pick(9)));
     switch (c->type()) {
-      case ContainerType::Transform: static_cast<Transform*>(c)->setMatrix(randomMatrix()); break;
+      case ContainerType::Transform:
+        static_cast<Transform*>(c)->setMatrix(randomMatrix());
+        break;
       case ContainerType::Group:
         if (auto child = any(kNodeTypes); child && chance(0.5)) {
           try {
@@ -104,12 +112,24 @@ class RandomEditor {
         if (chance(0.2)) g->setMaterial(any(kMaterialTypes).value_or(kNoContainer));
         break;
       }
-      case ContainerType::SurfaceMaterial: static_cast<SurfaceMaterial*>(c)->setMetallic(real(0, 1)); break;
-      case ContainerType::SimpleMaterial: static_cast<SimpleMaterial*>(c)->setShininess(real(1, 100)); break;
-      case ContainerType::Light: static_cast<Light*>(c)->setColor({real(0, 1), real(0, 1), real(0, 1)}); break;
-      case ContainerType::Camera: static_cast<Camera*>(c)->setVerticalFov(real(0.2f, 1.5f)); break;
-      case ContainerType::Image: static_cast<Image*>(c)->setColorSpace(ColorSpace::Linear); break;
-      case ContainerType::Background: static_cast<Background*>(c)->setIntensity(real(0, 2)); break;
+      case ContainerType::SurfaceMaterial:
+        static_cast<SurfaceMaterial*>(c)->setMetallic(real(0, 1));
+        break;
+      case ContainerType::SimpleMaterial:
+        static_cast<SimpleMaterial*>(c)->setShininess(real(1, 100));
+        break;
+      case ContainerType::Light:
+        static_cast<Light*>(c)->setColor({real(0, 1), real(0, 1), real(0, 1)});
+        break;
+      case ContainerType::Camera:
+        static_cast<Camera*>(c)->setVerticalFov(real(0.2f, 1.5f));
+        break;
+      case ContainerType::Image:
+        static_cast<Image*>(c)->setColorSpace(ColorSpace::Linear);
+        break;
+      case ContainerType::Background:
+        static_cast<Background*>(c)->setIntensity(real(0, 2));
+        break;
     }
   }
 
@@ -140,8 +160,7 @@ class RandomEditor {
         static_cast<Group*>(p)->addChild(node);
       else
         static_cast<Transform*>(p)->addChild(node);
-    } catch (const SceneError&) {
-    }
+    } catch (const SceneError&) {}
   }
 
   Scene& scene_;

@@ -3,10 +3,10 @@
 #include "embree_device.hpp"
 #include "tsr/cov/error.hpp"
 
-#include <glm/mat3x3.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#include <glm/mat3x3.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -70,8 +70,8 @@ void fillGeometry(MeshRecord& m, RTCDevice device) {
   m.geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                         3 * sizeof(float), d.positions.size()));
-  auto* i = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
-      m.geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), d.indices.size() / 3));
+  auto* i = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(m.geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                3 * sizeof(std::uint32_t), d.indices.size() / 3));
   if (!v || !i) throw Error("Embree could not allocate mesh buffers");
   std::memcpy(v, d.positions.data(), d.positions.size() * sizeof(glm::vec3));
   std::memcpy(i, d.indices.data(), d.indices.size() * sizeof(std::uint32_t));
@@ -242,7 +242,8 @@ void EmbreeIdRenderer::removeInstance(InstanceId id) {
 }
 
 std::size_t EmbreeIdRenderer::meshCount() const {
-  return static_cast<std::size_t>(std::count_if(state_->meshes.begin(), state_->meshes.end(), [](auto& m) { return m != nullptr; }));
+  return static_cast<std::size_t>(
+      std::count_if(state_->meshes.begin(), state_->meshes.end(), [](auto& m) { return m != nullptr; }));
 }
 
 std::size_t EmbreeIdRenderer::instanceCount() const {

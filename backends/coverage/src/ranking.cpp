@@ -29,9 +29,10 @@ void countRuns(std::span<const ObjectId> ids, Histogram& into) {
 std::vector<Coverage> rank(std::span<const ObjectId> ids) {
   tbb::enumerable_thread_specific<Histogram> perThread;
   constexpr std::size_t kChunk = 1 << 14;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ids.size(), kChunk), [&](const tbb::blocked_range<std::size_t>& r) {
-    countRuns(ids.subspan(r.begin(), r.size()), perThread.local());
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ids.size(), kChunk),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      countRuns(ids.subspan(r.begin(), r.size()), perThread.local());
+                    });
   Histogram total;
   for (const Histogram& h : perThread)
     for (const auto& [id, n] : h) total[id] += n;

@@ -106,8 +106,8 @@ glm::vec3 Bsdf::evalOther(const glm::vec3& wo, const glm::vec3& wi) const {
       if (oh <= 0.0f || ih >= 0.0f) return glm::vec3(0.0f);
       float f = fresnelDielectric(oh, eta);
       float denom = oh + eta * ih;
-      float value = (1.0f - f) * ggxD(h, alpha) * ggxG2(wo, wi, alpha) * eta * eta * std::abs(ih) * oh /
-                    (wo.z * denom * denom);
+      float value =
+          (1.0f - f) * ggxD(h, alpha) * ggxG2(wo, wi, alpha) * eta * eta * std::abs(ih) * oh / (wo.z * denom * denom);
       return colour * value;
     }
     case MaterialType::Mirror:

@@ -56,7 +56,8 @@ glm::vec3 Tracer::traceFlash(glm::vec3 org, glm::vec3 dir, const glm::vec3& eye)
       if (mat.material.isEmissive()) c += kEmissionShare * glm::min(emission(mat, h.uv), glm::vec3(1.0f));
       const float mirrored = glossy && r.depth < kMaxSpecularDepth && top < kStack ? 1.0f - alpha / kGlossyAlpha : 0.0f;
       result += r.weight * (1.0f - mirrored) * c;
-      if (mirrored > 0.0f) stack[top++] = {h.p + ng * eps, glm::reflect(r.dir, n), r.weight * mirrored * base, r.depth + 1};
+      if (mirrored > 0.0f)
+        stack[top++] = {h.p + ng * eps, glm::reflect(r.dir, n), r.weight * mirrored * base, r.depth + 1};
       continue;
     }
     const glm::vec3 reflected = glm::reflect(r.dir, n);

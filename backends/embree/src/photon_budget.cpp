@@ -15,7 +15,8 @@ namespace {
 std::vector<float> luminanceImage(const FrameBuffer& fb) {
   std::vector<float> out(std::size_t(fb.width()) * fb.height());
   for (std::uint32_t y = 0; y < fb.height(); ++y)
-    for (std::uint32_t x = 0; x < fb.width(); ++x) out[std::size_t(y) * fb.width() + x] = luminance(glm::vec3(fb.colour(x, y)));
+    for (std::uint32_t x = 0; x < fb.width(); ++x)
+      out[std::size_t(y) * fb.width() + x] = luminance(glm::vec3(fb.colour(x, y)));
   return out;
 }
 
@@ -43,8 +44,8 @@ PhotonBudget choosePhotonsPerFrame(Scene& scene, Renderer& renderer, const Camer
     FrameBuffer even(region.regionWidth(), region.regionHeight()), odd(region.regionWidth(), region.regionHeight());
     renderer.renderWithIrradiance(scene, camera, region, even, seq.reconstruct(keyFrame, PhotonHalf::Even).field);
     renderer.renderWithIrradiance(scene, camera, region, odd, seq.reconstruct(keyFrame, PhotonHalf::Odd).field);
-    const VisibleDifference d = predictVisibleDifference(luminanceImage(even), luminanceImage(odd), even.width(),
-                                                         even.height(), budget.vdp);
+    const VisibleDifference d =
+        predictVisibleDifference(luminanceImage(even), luminanceImage(odd), even.width(), even.height(), budget.vdp);
     result.photonsPerFrame = seq.photonsPerFrame();
     result.fractionVisible = d.fractionVisible;
     result.rounds = round + 1;

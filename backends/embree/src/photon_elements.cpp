@@ -81,7 +81,8 @@ ElementSet buildElements(const SceneState& scene, float elementSize, std::uint32
     float longest = 0.0f;
     for (std::size_t t = 0; t < v.mesh->indices.size(); t += 3) {
       glm::vec3 p[3];
-      for (int k = 0; k < 3; ++k) p[k] = glm::vec3(v.transform * glm::vec4(v.mesh->positions[v.mesh->indices[t + k]], 1.0f));
+      for (int k = 0; k < 3; ++k)
+        p[k] = glm::vec3(v.transform * glm::vec4(v.mesh->positions[v.mesh->indices[t + k]], 1.0f));
       for (int k = 0; k < 3; ++k) longest = std::max(longest, glm::length(p[k] - p[(k + 1) % 3]));
     }
     const float levels = elementSize > 0.0f ? std::ceil(longest / elementSize) : 1.0f;
@@ -142,7 +143,8 @@ ElementSet buildElements(const SceneState& scene, float elementSize, std::uint32
   for (std::size_t v = 0; v < set.vertexCount(); ++v) set.vertexStart[v + 1] += set.vertexStart[v];
   set.vertexElements.resize(set.corners.size());
   std::vector<std::uint32_t> fill(set.vertexStart.begin(), set.vertexStart.end() - 1);
-  for (std::size_t k = 0; k < set.corners.size(); ++k) set.vertexElements[fill[set.corners[k]]++] = std::uint32_t(k / 3);
+  for (std::size_t k = 0; k < set.corners.size(); ++k)
+    set.vertexElements[fill[set.corners[k]]++] = std::uint32_t(k / 3);
   return set;
 }
 
@@ -150,7 +152,8 @@ ElementGeometry elementGeometry(const ElementSet& set, const SceneState& scene) 
   std::vector<glm::vec3> world(set.vertexCount());
   for (std::size_t v = 0; v < world.size(); ++v) {
     const InstanceView& view = scene.views[set.vertexInstance[v]];
-    world[v] = glm::vec3(view.transform * glm::vec4(objectPoint(*view.mesh, set.vertexPrim[v], set.vertexBary[v]), 1.0f));
+    world[v] =
+        glm::vec3(view.transform * glm::vec4(objectPoint(*view.mesh, set.vertexPrim[v], set.vertexBary[v]), 1.0f));
   }
   ElementGeometry g;
   const std::size_t n = set.elementCount();
@@ -161,7 +164,8 @@ ElementGeometry elementGeometry(const ElementSet& set, const SceneState& scene) 
   g.upper = -g.lower;
   for (const glm::vec3& p : world) g.lower = glm::min(g.lower, p), g.upper = glm::max(g.upper, p);
   for (std::size_t e = 0; e < n; ++e) {
-    const glm::vec3 &a = world[set.corners[3 * e]], &b = world[set.corners[3 * e + 1]], &c = world[set.corners[3 * e + 2]];
+    const glm::vec3 &a = world[set.corners[3 * e]], &b = world[set.corners[3 * e + 1]],
+                    &c = world[set.corners[3 * e + 2]];
     const glm::vec3 cr = glm::cross(b - a, c - a);
     const float len = glm::length(cr);
     g.centroid[e] = (a + b + c) / 3.0f;

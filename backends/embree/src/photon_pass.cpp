@@ -36,11 +36,13 @@ std::vector<Source> sources(const SceneState& scene, const ElementGeometry& boun
   const Disc disc = coveringDisc(bounds);
   for (std::uint32_t i = 0; i < scene.activeLights.size(); ++i) {
     const Light& l = scene.activeLights[i];
-    if (const auto* p = std::get_if<PointLight>(&l)) out.push_back({Source::Point, i, 4.0f * kPi * p->intensity});
+    if (const auto* p = std::get_if<PointLight>(&l))
+      out.push_back({Source::Point, i, 4.0f * kPi * p->intensity});
     else if (const auto* s = std::get_if<SpotLight>(&l))
       out.push_back({Source::Spot, i, coneSolidAngle(s->outerAngle) * s->intensity});
     else
-      out.push_back({Source::Directional, i, kPi * disc.radius * disc.radius * std::get<DirectionalLight>(l).irradiance});
+      out.push_back(
+          {Source::Directional, i, kPi * disc.radius * disc.radius * std::get<DirectionalLight>(l).irradiance});
   }
   for (const EmissiveRange& r : scene.emissiveRanges) {
     const InstanceView& v = scene.views[r.instance];

@@ -6,10 +6,10 @@
 #include "tsr/embree/rng.hpp"
 #include "tsr/embree/sampling.hpp"
 
-#include <glm/geometric.hpp>
 #include <oneapi/tbb/blocked_range.h>
 #include <oneapi/tbb/enumerable_thread_specific.h>
 #include <oneapi/tbb/parallel_for.h>
+#include <glm/geometric.hpp>
 
 #include <atomic>
 #include <cmath>
@@ -25,7 +25,7 @@ std::atomic<std::uint64_t> nextFieldUid{1};
 // them: counts and energies of the chosen photons, with prefix sums over time.
 struct Window {
   std::size_t frames = 0, centre = 0, elements = 0;
-  std::vector<std::uint32_t> count;  // [k * elements + e]
+  std::vector<std::uint32_t> count;     // [k * elements + e]
   std::vector<glm::vec3> energyPrefix;  // [k * elements + e]: frames < k; k in [0, frames]
   std::vector<std::uint32_t> countPrefix;
 
@@ -265,32 +265,32 @@ Reconstruction PhotonSequence::reconstruct(std::int64_t frame, PhotonHalf half) 
   };
 
   s.arena->execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, elements, 256),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t q = r.begin(); q != r.end(); ++q) element(q);
-                      });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, elements, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t q = r.begin(); q != r.end(); ++q) element(q);
+    });
   });
 
   // Corner values: area-weighted means over the elements at each corner
   // that lie within the crease angle of this one.
   std::vector<glm::vec3> corner(3 * elements);
   s.arena->execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, elements, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t e = r.begin(); e != r.end(); ++e) {
-        for (int k = 0; k < 3; ++k) {
-          const std::uint32_t v = set.corners[3 * e + k];
-          glm::vec3 sum(0.0f);
-          float area = 0.0f;
-          for (std::uint32_t i = set.vertexStart[v]; i < set.vertexStart[v + 1]; ++i) {
-            const std::uint32_t p = set.vertexElements[i];
-            if (glm::dot(geo.normal[p], geo.normal[e]) < cosCrease) continue;
-            sum += geo.area[p] * filtered[p];
-            area += geo.area[p];
-          }
-          corner[3 * e + k] = area > 0.0f ? sum / area : filtered[e];
-        }
-      }
-    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, elements, 1024),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t e = r.begin(); e != r.end(); ++e) {
+                          for (int k = 0; k < 3; ++k) {
+                            const std::uint32_t v = set.corners[3 * e + k];
+                            glm::vec3 sum(0.0f);
+                            float area = 0.0f;
+                            for (std::uint32_t i = set.vertexStart[v]; i < set.vertexStart[v + 1]; ++i) {
+                              const std::uint32_t p = set.vertexElements[i];
+                              if (glm::dot(geo.normal[p], geo.normal[e]) < cosCrease) continue;
+                              sum += geo.area[p] * filtered[p];
+                              area += geo.area[p];
+                            }
+                            corner[3 * e + k] = area > 0.0f ? sum / area : filtered[e];
+                          }
+                        }
+                      });
   });
 
   std::size_t lit = 0, cutLit = 0;

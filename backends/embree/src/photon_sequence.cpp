@@ -4,8 +4,8 @@
 #include "tsr/embree/rng.hpp"
 #include "tsr/embree/sampling.hpp"
 
-#include <glm/geometric.hpp>
 #include <spdlog/spdlog.h>
+#include <glm/geometric.hpp>
 
 #include <cmath>
 #include <string>
@@ -16,7 +16,7 @@ namespace {
 
 constexpr std::uint64_t kFrameStream = 0x50484F544F4E5331ull;  // photons of a frame
 constexpr std::uint64_t kPilotStream = 0x50494C4F54504153ull;  // the pilot pass
-constexpr float kMaxBrightening = 64.0f;  // photons per frame at most this times N_frame
+constexpr float kMaxBrightening = 64.0f;                       // photons per frame at most this times N_frame
 
 float sceneDiagonal(const SceneState& scene) {
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
@@ -51,7 +51,8 @@ void PhotonSettings::validate() const {
   if (!(elementSize >= 0.0f) || !std::isfinite(elementSize)) throw Error("photon elementSize must be finite and >= 0");
   if (maxElements == 0) throw Error("photon maxElements must be at least 1");
   if (tMax == 0 || tMax > 255) throw Error("photon tMax must be in [1, 255], got " + std::to_string(tMax));
-  if (photonsPerFrame == 0 && pilotPhotons == 0) throw Error("photon pilotPhotons must be >= 1 without photonsPerFrame");
+  if (photonsPerFrame == 0 && pilotPhotons == 0)
+    throw Error("photon pilotPhotons must be >= 1 without photonsPerFrame");
   if (!(maxError > 0.0f) || !(accuracy > 0.0f) || !(influence > 0.0f) || !(validityK > 0.0f))
     throw Error("photon maxError, accuracy, influence and validityK must be > 0");
   if (!(emissionStep >= 0.0f) || !std::isfinite(emissionStep))
@@ -64,7 +65,8 @@ void PhotonSettings::validate() const {
 PhotonSequence::PhotonSequence(PhotonSettings settings) : s_(std::make_unique<State>()) {
   settings.validate();
   s_->settings = settings;
-  s_->arena = std::make_unique<tbb::task_arena>(settings.threads > 0 ? settings.threads : int(tbb::task_arena::automatic));
+  s_->arena =
+      std::make_unique<tbb::task_arena>(settings.threads > 0 ? settings.threads : int(tbb::task_arena::automatic));
   s_->ring.resize(settings.tMax);
 }
 PhotonSequence::~PhotonSequence() = default;
@@ -81,7 +83,8 @@ std::vector<glm::vec3> PhotonSequence::rawIrradiance(std::int64_t frame) const {
   const State::Slot* slot = &s_->buffered(frame);
   std::vector<glm::vec3> out(slot->geometry.area.size(), glm::vec3(0.0f));
   for (std::size_t e = 0; e < out.size(); ++e)
-    if (slot->geometry.area[e] > 0.0f) out[e] = (slot->energy[2 * e] + slot->energy[2 * e + 1]) / slot->geometry.area[e];
+    if (slot->geometry.area[e] > 0.0f)
+      out[e] = (slot->energy[2 * e] + slot->energy[2 * e + 1]) / slot->geometry.area[e];
   return out;
 }
 
@@ -111,9 +114,9 @@ FrameStats PhotonSequence::addFrame(Scene& scene, std::int64_t frame) {
     s.photonsPerFrame = cfg.photonsPerFrame;
     if (s.photonsPerFrame == 0) {
       // Weber eq. 3: N_frame = E_pilot^2 / E_max^2 * N_pilot / t_max.
-      PhotonPassResult pilot = tracePhotons(state, elements, geometry, cfg.pilotPhotons,
-                                            Rng::pixelKey(cfg.seed ^ kPilotStream, std::uint32_t(frame), 0),
-                                            cfg.maxBounces, *s.arena);
+      PhotonPassResult pilot =
+          tracePhotons(state, elements, geometry, cfg.pilotPhotons,
+                       Rng::pixelKey(cfg.seed ^ kPilotStream, std::uint32_t(frame), 0), cfg.maxBounces, *s.arena);
       stats.rays += pilot.rays;
       s.pilotError = passError(pilot.hits, elements.elementCount());
       const double n = double(s.pilotError) * s.pilotError / (double(cfg.maxError) * cfg.maxError) *
@@ -130,10 +133,11 @@ FrameStats PhotonSequence::addFrame(Scene& scene, std::int64_t frame) {
   // Photons of fixed energy: a frame's count follows its emitted power.
   std::uint64_t photons = 0;
   if (s.photonEnergy > 0.0f && power > 0.0f)
-    photons = std::uint64_t(std::min(double(power) / s.photonEnergy, double(kMaxBrightening) * s.photonsPerFrame) + 0.5);
-  PhotonPassResult pass = tracePhotons(state, elements, geometry, photons,
-                                       Rng::pixelKey(cfg.seed ^ kFrameStream, std::uint32_t(frame), 1),
-                                       cfg.maxBounces, *s.arena);
+    photons =
+        std::uint64_t(std::min(double(power) / s.photonEnergy, double(kMaxBrightening) * s.photonsPerFrame) + 0.5);
+  PhotonPassResult pass =
+      tracePhotons(state, elements, geometry, photons, Rng::pixelKey(cfg.seed ^ kFrameStream, std::uint32_t(frame), 1),
+                   cfg.maxBounces, *s.arena);
 
   const std::size_t size = s.ring.size();
   State::Slot& slot = s.ring[std::size_t(((frame % std::int64_t(size)) + std::int64_t(size)) % std::int64_t(size))];

@@ -17,9 +17,9 @@ struct PhotonSequence::State {
   struct Slot {
     std::int64_t frame = 0;
     bool used = false;
-    std::vector<std::uint32_t> count;  // 2 per element: even and odd photons
-    std::vector<glm::vec3> energy;     // 2 per element
-    ElementGeometry geometry;          // element centroids, normals, areas at this frame's pose
+    std::vector<std::uint32_t> count;    // 2 per element: even and odd photons
+    std::vector<glm::vec3> energy;       // 2 per element
+    ElementGeometry geometry;            // element centroids, normals, areas at this frame's pose
     std::vector<glm::vec3> sourcePower;  // per light and emissive triangle, in the scene's order
   };
 

@@ -24,8 +24,8 @@ glm::vec3 sane(const glm::vec3& v) { return finite(v) ? v : glm::vec3(0.0f); }
 
 void checkSize(std::size_t got, std::size_t want, const char* name) {
   if (got != want)
-    throw Error(std::string("pixel filter: ") + name + " has " + std::to_string(got) + " entries, expected width*height = " +
-                std::to_string(want));
+    throw Error(std::string("pixel filter: ") + name + " has " + std::to_string(got) +
+                " entries, expected width*height = " + std::to_string(want));
 }
 
 std::size_t checkInput(const PixelFilterInput& in) {
@@ -122,9 +122,9 @@ float luminance(const glm::vec3& c) { return glm::dot(kLuma, c); }
 
 float blendFactor(float u, float f, float t) {
   if (!(u >= 0.0f) || !std::isfinite(u)) return 0.0f;  // no trustworthy variance: filtered only
-  if (u <= t) return 1.0f;                              // case 2 (also u = f = 0)
+  if (u <= t) return 1.0f;                             // case 2 (also u = f = 0)
   const float d = t * u + t * f - u * f;
-  if (!(d >= 0.0f)) return 0.0f;                        // case 1 (also t = 0, u > 0)
+  if (!(d >= 0.0f)) return 0.0f;                                // case 1 (also t = 0, u > 0)
   return std::clamp((f + std::sqrt(d)) / (u + f), 0.0f, 1.0f);  // case 3, 3.12
 }
 
@@ -160,9 +160,15 @@ FilteredBuffer filterHighVariance(const PixelFilterInput& in, const PixelFilterS
   const pf::KernelParams params{settings.threads, settings.iterations, settings.antialiasRecovery};
   pf::Plane r;
   switch (settings.kernel) {
-    case FilterKernel::Bilateral: pf::bilateral(im, range, sigma, st, r, params); break;
-    case FilterKernel::Separable: pf::separable(im, range, sigma, st, r, params); break;
-    case FilterKernel::Atrous: pf::atrous(im, range, sigma, st, r, params); break;
+    case FilterKernel::Bilateral:
+      pf::bilateral(im, range, sigma, st, r, params);
+      break;
+    case FilterKernel::Separable:
+      pf::separable(im, range, sigma, st, r, params);
+      break;
+    case FilterKernel::Atrous:
+      pf::atrous(im, range, sigma, st, r, params);
+      break;
   }
 
   FilteredBuffer out;
@@ -197,7 +203,7 @@ BlendResult blend(const PixelFilterInput& in, const FilteredBuffer& fb, const Pi
       const glm::vec3 llv = sane(in.lowVariance[i]);
       glm::vec3 lu = sane(in.highVariance[i]);
       const float lb = std::max(luminance(lf + llv), settings.minBackground);  // 3.10
-      const float varF = fb.reduction[i] * fb.variance[i];                      // 3.5
+      const float varF = fb.reduction[i] * fb.variance[i];                     // 3.5
       const float u = fb.variance[i] * age / (lb * lb);
       const float f = varF / (lb * lb);
       const float s = blendFactor(u, f, t);
@@ -205,7 +211,7 @@ BlendResult blend(const PixelFilterInput& in, const FilteredBuffer& fb, const Pi
       // unfiltered pixel meets the threshold (s = 1) it is shown as it is,
       // or the clamp's bias would never vanish.
       if (settings.spikeRemoval && s < 1.0f) lu = glm::clamp(lu, 0.5f * lf, 2.0f * lf);
-      out.radiance[i] = llv + s * lu + (1.0f - s) * lf;                        // 3.1
+      out.radiance[i] = llv + s * lu + (1.0f - s) * lf;  // 3.1
       out.blendFactor[i] = s;
     }
   });

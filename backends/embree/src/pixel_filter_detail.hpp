@@ -20,7 +20,7 @@ using Plane = std::vector<float>;
 struct Range {
   Plane r, g, b, d;
 };
-inline constexpr float kBackground = 1e15f;  // squared: 1e30, finite; exp(-1e30) = 0
+inline constexpr float kBackground = 1e15f;      // squared: 1e30, finite; exp(-1e30) = 0
 inline constexpr float kMaxScaledDepth = 1e12f;  // clamp of scaled finite colours and depths
 
 // The data that is filtered, plus the first and second moments of each
@@ -45,10 +45,11 @@ struct Image {
 inline float fastExp(float x) {
   const float xc = x < -87.0f ? -87.0f : x;
   const float y = xc * 1.44269504f;
-  const int n = static_cast<int>(y);              // towards zero: n <= 0
+  const int n = static_cast<int>(y);                           // towards zero: n <= 0
   const float t = (y - static_cast<float>(n)) * 0.693147181f;  // (-ln2, 0]
   const float p =
-      1.0f + t * (1.0f + t * (0.5f + t * (1.0f / 6 + t * (1.0f / 24 + t * (1.0f / 120 + t * (1.0f / 720 + t * (1.0f / 5040)))))));
+      1.0f + t * (1.0f + t * (0.5f + t * (1.0f / 6 +
+                                          t * (1.0f / 24 + t * (1.0f / 120 + t * (1.0f / 720 + t * (1.0f / 5040)))))));
   const float scale = std::bit_cast<float>(static_cast<std::int32_t>((n + 127) << 23));
   return x < -87.0f ? 0.0f : p * scale;
 }
@@ -80,11 +81,8 @@ struct KernelParams {
 
 // Each writes the filtered state (radiance, variance, moments) and r.
 // sigma: per-pixel spatial sigma (combined over passes).
-void bilateral(const Image& im, const Range& range, const Plane& sigma, State& s, Plane& r,
-               const KernelParams& p);
-void separable(const Image& im, const Range& range, const Plane& sigma, State& s, Plane& r,
-               const KernelParams& p);
-void atrous(const Image& im, const Range& range, const Plane& sigma, State& s, Plane& r,
-            const KernelParams& p);
+void bilateral(const Image& im, const Range& range, const Plane& sigma, State& s, Plane& r, const KernelParams& p);
+void separable(const Image& im, const Range& range, const Plane& sigma, State& s, Plane& r, const KernelParams& p);
+void atrous(const Image& im, const Range& range, const Plane& sigma, State& s, Plane& r, const KernelParams& p);
 
 }  // namespace tsr::embree::pf

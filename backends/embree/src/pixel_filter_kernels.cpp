@@ -69,12 +69,14 @@ void transpose(const Range& in, int w, int h, Range& out, int threads) {
 }
 
 void transpose(const State& in, int w, int h, State& out, int threads) {
-  for (auto m : {&State::lr, &State::lg, &State::lb, &State::v, &State::mx, &State::vx, &State::my, &State::vy, &State::q})
+  for (auto m :
+       {&State::lr, &State::lg, &State::lb, &State::v, &State::mx, &State::vx, &State::my, &State::vy, &State::q})
     transpose(in.*m, w, h, out.*m, threads);
 }
 
 void resize(State& s, std::size_t n) {
-  for (auto m : {&State::lr, &State::lg, &State::lb, &State::v, &State::mx, &State::vx, &State::my, &State::vy, &State::q})
+  for (auto m :
+       {&State::lr, &State::lg, &State::lb, &State::v, &State::mx, &State::vx, &State::my, &State::vy, &State::q})
     (s.*m).resize(n);
 }
 
@@ -242,8 +244,8 @@ AntialiasModel fitEdge(const Range& rg, int w, int h, int x, int y) {
 // One 1-D pass along the rows of `in` (w x h in the current orientation).
 // alongX says whether rows run along the image's x axis (else the data is
 // transposed and rows run along y); it picks which moment planes are "a".
-void pass(int w, int h, const Range& rg, const Plane& sigma, float factor, const State& in, State& out,
-          bool alongX, const KernelParams& p) {
+void pass(int w, int h, const Range& rg, const Plane& sigma, float factor, const State& in, State& out, bool alongX,
+          const KernelParams& p) {
   const Plane& ma = alongX ? in.mx : in.my;
   const Plane& va = alongX ? in.vx : in.vy;
   const Plane& mo = alongX ? in.my : in.mx;
@@ -256,10 +258,9 @@ void pass(int w, int h, const Range& rg, const Plane& sigma, float factor, const
     SpatialTable table;
     for (int y = y0; y < y1; ++y) {
       const std::size_t row = std::size_t(y) * w;
-      const Row rw{rg.r.data() + row, rg.g.data() + row, rg.b.data() + row, rg.d.data() + row,
-                   in.lr.data() + row, in.lg.data() + row, in.lb.data() + row, in.v.data() + row,
-                   ma.data() + row,    va.data() + row,    mo.data() + row,    vo.data() + row,
-                   in.q.data() + row};
+      const Row rw{rg.r.data() + row,  rg.g.data() + row,  rg.b.data() + row, rg.d.data() + row, in.lr.data() + row,
+                   in.lg.data() + row, in.lb.data() + row, in.v.data() + row, ma.data() + row,   va.data() + row,
+                   mo.data() + row,    vo.data() + row,    in.q.data() + row};
       for (int x = 0; x < w; ++x) {
         const std::size_t j = row + x;
         const float* sp = table.centre(sigma[j] * factor, w);

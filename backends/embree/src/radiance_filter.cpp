@@ -35,8 +35,7 @@ namespace {
 constexpr float kBlendBackgroundFloor = 0.01f;
 }  // namespace
 
-RadianceAccumulator::RadianceAccumulator(std::uint32_t width, std::uint32_t height)
-    : width_(width), height_(height) {
+RadianceAccumulator::RadianceAccumulator(std::uint32_t width, std::uint32_t height) : width_(width), height_(height) {
   if (width == 0 || height == 0) throw Error("radiance accumulator size must be non-zero");
   reset();
 }
@@ -215,7 +214,7 @@ void RadianceFilterStep::run(const FrameBuffer& fb, RadianceAccumulator& acc, co
           const float rangeScale = -0.5f / std::max(1e-12f, (kRangeSigma * rangeX) * (kRangeSigma * rangeX));
 
           glm::vec3 sum(0.0f);
-          float weights = 0.0f, weights2 = 0.0f;  // modified kernel (with the range term)
+          float weights = 0.0f, weights2 = 0.0f;                   // modified kernel (with the range term)
           float plain = 0.0f, variance = 0.0f, irradiance = 0.0f;  // unmodified kernel
           float occluded = 0.0f, neighbours = 0.0f;
           const int ri = int(std::floor(radius));
@@ -294,8 +293,10 @@ void RadianceFilterStep::run(const FrameBuffer& fb, RadianceAccumulator& acc, co
         px.frames = k;
         // A pixel left to pixel filtering holds the unfiltered mean of all its
         // paths, also of frames filtered before the mask showed up.
-        if (masked) px.indirect = fb.mean(Channel::Indirect, x, y) - fb.mean(Channel::Caustic, x, y);
-        else px.indirect += (estimate - px.indirect) / float(k);
+        if (masked)
+          px.indirect = fb.mean(Channel::Indirect, x, y) - fb.mean(Channel::Caustic, x, y);
+        else
+          px.indirect += (estimate - px.indirect) / float(k);
       }
   });
 }

@@ -36,8 +36,8 @@ constexpr std::uint64_t kRadianceEstimator = 0x3C6EF372FE94F82Bull;
 
 }  // namespace
 
-PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos,
-                              const glm::vec3& forward, RadianceSample* record) {
+PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos, const glm::vec3& forward,
+                              RadianceSample* record) {
   PixelSample out;
   const Environment& env = scene.environment;
   const bool envActive = !env.isBlack();
@@ -47,8 +47,8 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
   // an emitter (or emission seen through perfect specular chains); a path
   // that passes a specular surface after a non-specular one is a caustic,
   // the hardest to sample, and is indirect however few vertices it has.
-  std::uint32_t nonSpecular = 0;       // non-specular scattering vertices so far
-  bool specularAfterDiffuse = false;   // a specular vertex followed one of them
+  std::uint32_t nonSpecular = 0;      // non-specular scattering vertices so far
+  bool specularAfterDiffuse = false;  // a specular vertex followed one of them
   // With a radiance record, throughput restarts at 1 after the first
   // non-specular vertex, so that indirect contributions arrive as the
   // incident radiance there; scale carries the weight from the eye to that
@@ -190,8 +190,10 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
       }
       if (depth + 1 >= settings.rouletteDepth) {
         float q = std::min(maxComponent(nextThroughput * nextScale), 0.95f);
-        if (!(q > 0.0f) || rng.uniform() >= q) continues = false;
-        else nextThroughput /= q;
+        if (!(q > 0.0f) || rng.uniform() >= q)
+          continues = false;
+        else
+          nextThroughput /= q;
       }
     }
     const glm::vec3 nextOrg = spawn(nextDir);
@@ -216,9 +218,7 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
           wi = d / dist;
           float c = glm::dot(glm::normalize(sl->direction), -wi);
           float cosOuter = std::cos(sl->outerAngle), cosInner = std::cos(sl->innerAngle);
-          float falloff = c >= cosInner ? 1.0f
-                          : c <= cosOuter ? 0.0f
-                                          : glm::smoothstep(cosOuter, cosInner, c);
+          float falloff = c >= cosInner ? 1.0f : c <= cosOuter ? 0.0f : glm::smoothstep(cosOuter, cosInner, c);
           if (falloff <= 0.0f) continue;
           li = sl->intensity * (falloff / d2);
           tfar = dist * (1.0f - 1e-4f);
@@ -269,8 +269,10 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
       mask |= kMaskSpecular;
       if (bsdf.type == MaterialType::Glass) mask |= kMaskReflectRefract;
     }
-    if (bs.delta) specularAfterDiffuse = specularAfterDiffuse || nonSpecular > 0;
-    else ++nonSpecular;
+    if (bs.delta)
+      specularAfterDiffuse = specularAfterDiffuse || nonSpecular > 0;
+    else
+      ++nonSpecular;
     throughput = nextThroughput;
     scale = nextScale;
     prevPdf = bs.pdf;
@@ -383,7 +385,9 @@ struct Eye {
   glm::vec3 forward;
   glm::mat3 rotation;
   explicit Eye(const Camera& c)
-      : position(c.cameraToWorld[3]), forward(glm::normalize(-glm::vec3(c.cameraToWorld[2]))), rotation(c.cameraToWorld) {}
+      : position(c.cameraToWorld[3]),
+        forward(glm::normalize(-glm::vec3(c.cameraToWorld[2]))),
+        rotation(c.cameraToWorld) {}
 };
 
 // The flash samples' random stream, apart from the path samples'.
@@ -434,22 +438,23 @@ PassResult Renderer::renderRadiancePass(Scene& scene, const Camera& camera, cons
   const Eye eye(camera);
   const std::uint64_t seed = settings_.seed;
   // Angle of one pixel on the axis; off the axis it shrinks with cos^1.5.
-  const float pixelAngle = std::sqrt((camera.right - camera.left) / float(region.width) *
-                                     (camera.top - camera.bottom) / float(region.height)) / camera.near;
-  PassResult result =
-      runTiles(scene, camera, region, fb,
-               [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
-                 Rng rng(Rng::pixelKey(seed, px, py), fb.sampleCount(x, y));
-                 glm::vec3 dir = cameraRay(camera, eye.rotation, region, px, py, rng.uniform2());
-                 RadianceSample& record = acc.samples_[acc.at(x, y)];
-                 record = RadianceSample{};
-                 PixelSample sample = tracer.tracePath(rng, eye.position, dir, eye.position, eye.forward, &record);
-                 const float c = glm::dot(dir, eye.forward);
-                 record.pixelAngle = pixelAngle * c * std::sqrt(c);
-                 record.unfiltered = sample.indirect - sample.caustic;
-                 fb.accumulate(x, y, sample);
-               },
-               kRadianceEstimator);
+  const float pixelAngle = std::sqrt((camera.right - camera.left) / float(region.width) * (camera.top - camera.bottom) /
+                                     float(region.height)) /
+                           camera.near;
+  PassResult result = runTiles(
+      scene, camera, region, fb,
+      [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
+        Rng rng(Rng::pixelKey(seed, px, py), fb.sampleCount(x, y));
+        glm::vec3 dir = cameraRay(camera, eye.rotation, region, px, py, rng.uniform2());
+        RadianceSample& record = acc.samples_[acc.at(x, y)];
+        record = RadianceSample{};
+        PixelSample sample = tracer.tracePath(rng, eye.position, dir, eye.position, eye.forward, &record);
+        const float c = glm::dot(dir, eye.forward);
+        record.pixelAngle = pixelAngle * c * std::sqrt(c);
+        record.unfiltered = sample.indirect - sample.caustic;
+        fb.accumulate(x, y, sample);
+      },
+      kRadianceEstimator);
   if (result.completed) arena_->arena.execute([&] { RadianceFilterStep::run(fb, acc, filter); });
   return result;
 }
@@ -458,17 +463,18 @@ PassResult Renderer::renderFlashPass(Scene& scene, const Camera& camera, const R
                                      std::uint32_t samples) {
   const Eye eye(camera);
   const std::uint64_t seed = settings_.seed ^ kFlashStream;
-  return runTiles(scene, camera, region, fb,
-                  [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
-                    const std::uint64_t pixelKey = Rng::pixelKey(seed, px, py);
-                    const std::uint32_t first = fb.rangeSamples(x, y);
-                    for (std::uint32_t s = 0; s < samples; ++s) {
-                      Rng rng(pixelKey, first + s);
-                      glm::vec3 dir = cameraRay(camera, eye.rotation, region, px, py, rng.uniform2());
-                      fb.accumulateRange(x, y, tracer.traceFlash(eye.position, dir, eye.position));
-                    }
-                  },
-                  std::nullopt);
+  return runTiles(
+      scene, camera, region, fb,
+      [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
+        const std::uint64_t pixelKey = Rng::pixelKey(seed, px, py);
+        const std::uint32_t first = fb.rangeSamples(x, y);
+        for (std::uint32_t s = 0; s < samples; ++s) {
+          Rng rng(pixelKey, first + s);
+          glm::vec3 dir = cameraRay(camera, eye.rotation, region, px, py, rng.uniform2());
+          fb.accumulateRange(x, y, tracer.traceFlash(eye.position, dir, eye.position));
+        }
+      },
+      std::nullopt);
 }
 
 }  // namespace tsr::embree

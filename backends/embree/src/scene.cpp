@@ -5,8 +5,8 @@
 #include "tsr/embree/limits.hpp"
 #include "tsr/embree/sampling.hpp"
 
-#include <glm/matrix.hpp>
 #include <spdlog/spdlog.h>
+#include <glm/matrix.hpp>
 
 #include <algorithm>
 #include <atomic>
@@ -57,8 +57,7 @@ void validateMesh(const MeshData& d) {
     }
   }
   for (const auto& p : d.positions)
-    if (!traceable(p))
-      throw Error("mesh position contains NaN, infinity or a value beyond 1e12 (kMaxCoordinate)");
+    if (!traceable(p)) throw Error("mesh position contains NaN, infinity or a value beyond 1e12 (kMaxCoordinate)");
   for (const auto& n : d.normals)
     if (!finite(n)) throw Error("mesh normal contains NaN or infinity");
   for (const auto& t : d.uvs)
@@ -83,16 +82,16 @@ void fillGeometry(MeshRecord& m, RTCDevice device) {
   m.geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                         3 * sizeof(float), d.positions.size()));
-  auto* i = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
-      m.geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), d.indices.size() / 3));
+  auto* i = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(m.geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                3 * sizeof(std::uint32_t), d.indices.size() / 3));
   if (!v || !i) throw Error("Embree could not allocate mesh buffers");
   std::memcpy(v, d.positions.data(), d.positions.size() * sizeof(glm::vec3));
   std::memcpy(i, d.indices.data(), d.indices.size() * sizeof(std::uint32_t));
   bool animated = d.usage == MeshUsage::Animated;
   rtcSetGeometryBuildQuality(m.geometry, animated ? RTC_BUILD_QUALITY_REFIT : RTC_BUILD_QUALITY_HIGH);
   // Every scene a top-level ray enters allows the tracer's context filter (ghosts).
-  rtcSetSceneFlags(m.scene, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION |
-                                (animated ? RTC_SCENE_FLAG_DYNAMIC : RTC_SCENE_FLAG_NONE));
+  rtcSetSceneFlags(m.scene,
+                   RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION | (animated ? RTC_SCENE_FLAG_DYNAMIC : RTC_SCENE_FLAG_NONE));
   rtcSetSceneBuildQuality(m.scene, animated ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_HIGH);
   rtcAttachGeometryByID(m.scene, m.geometry, 0);
   m.sceneStale = true;
@@ -152,15 +151,20 @@ void leaveMoving(SceneState& s, InstanceRecord& inst) {
 // Takes the instance out of whatever level holds it.
 void unplace(SceneState& s, InstanceRecord& inst, std::uint32_t id) {
   switch (inst.level) {
-    case Level::None: break;
+    case Level::None:
+      break;
     case Level::Merged:
       rtcDetachGeometry(s.merged, id);
       rtcReleaseGeometry(inst.flatGeometry);
       inst.flatGeometry = nullptr;
       s.mergedDirty = true;
       break;
-    case Level::Top: leaveTop(s, inst, id); break;
-    case Level::Moving: leaveMoving(s, inst); break;
+    case Level::Top:
+      leaveTop(s, inst, id);
+      break;
+    case Level::Moving:
+      leaveMoving(s, inst);
+      break;
     case Level::Ghosted:
       leaveTop(s, inst, id);
       leaveMoving(s, inst);
@@ -245,7 +249,8 @@ void Scene::updateMeshVertices(MeshId id, std::uint32_t first, std::span<const g
     throw Error("vertex range [" + std::to_string(first) + ", " + std::to_string(first + positions.size()) +
                 ") exceeds the mesh's " + std::to_string(n) + " vertices");
   }
-  if (!normals.empty() && normals.size() != positions.size()) throw Error("normal range size differs from position range");
+  if (!normals.empty() && normals.size() != positions.size())
+    throw Error("normal range size differs from position range");
   if (!normals.empty() && m.data.normals.empty()) throw Error("mesh has no normals to update");
   for (const auto& p : positions)
     if (!traceable(p)) throw Error("vertex update contains NaN, infinity or a value beyond 1e12 (kMaxCoordinate)");
@@ -434,8 +439,8 @@ namespace {
 // World-space copy of an instance's triangles for the merged scene.
 RTCGeometry worldGeometry(RTCDevice device, const MeshData& d, const glm::mat4& transform) {
   RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* v = static_cast<glm::vec3*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                            sizeof(glm::vec3), d.positions.size()));
+  auto* v = static_cast<glm::vec3*>(
+      rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(glm::vec3), d.positions.size()));
   auto* i = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                                 3 * sizeof(std::uint32_t), d.indices.size() / 3));
   if (!v || !i) {
@@ -484,9 +489,9 @@ std::vector<std::uint32_t> placeInstances(SceneState& s) {
     inst.placeDirty = false;
     const bool inTop = inst.level == Level::Top || inst.level == Level::Ghosted;
     const Level want = m.data.usage == MeshUsage::Static && m.users.size() == 1 ? Level::Merged
-                       : !inst.moved                                           ? Level::Top
-                       : inTop && !inst.meshChanged                            ? Level::Ghosted
-                                                                               : Level::Moving;
+                       : !inst.moved                                            ? Level::Top
+                       : inTop && !inst.meshChanged                             ? Level::Ghosted
+                                                                                : Level::Moving;
     inst.meshChanged = false;
     switch (want) {
       case Level::Merged:
@@ -528,7 +533,8 @@ std::vector<std::uint32_t> placeInstances(SceneState& s) {
         s.movingDirty = true;
         instanced.push_back(id);
         break;
-      case Level::None: break;
+      case Level::None:
+        break;
     }
     inst.level = want;
   }

@@ -57,8 +57,8 @@ struct InstanceRecord {
   std::uint32_t movingId = 0;  // its id in the moving level, while there
   bool moved = false;          // transform or mesh edited since it was placed: it belongs to the moving level
   bool meshChanged = false;    // its mesh changed: a ghost of it would trace the new mesh, so it leaves the top
-  bool placeDirty = true;  // bounds or level may have changed since the last commit
-  bool viewDirty = false;  // listed in Pending::instances
+  bool placeDirty = true;      // bounds or level may have changed since the last commit
+  bool viewDirty = false;      // listed in Pending::instances
 
   InstanceRecord() = default;
   InstanceRecord(const InstanceRecord&) = delete;
@@ -117,7 +117,7 @@ struct Edit {
   std::uint32_t mesh = kNoId;      // whose data changed: its BVH and its instances' bounds
   bool materials = false;          // resolved materials
   bool lights = false;
-  bool emitters = false;           // emission changed: the emitter distribution
+  bool emitters = false;  // emission changed: the emitter distribution
 };
 
 // Edits since the last commit, which refreshes exactly these.

@@ -30,9 +30,9 @@ Texture::Texture(std::uint32_t width, std::uint32_t height, std::vector<glm::vec
   }
 }
 
-Texture Texture::fromRgba8(std::uint32_t width, std::uint32_t height, std::span<const std::uint8_t> rgba,
-                           bool srgb) {
-  if (rgba.size() != std::size_t(width) * height * 4) throw Error("8-bit texture data size does not match width*height*4");
+Texture Texture::fromRgba8(std::uint32_t width, std::uint32_t height, std::span<const std::uint8_t> rgba, bool srgb) {
+  if (rgba.size() != std::size_t(width) * height * 4)
+    throw Error("8-bit texture data size does not match width*height*4");
   std::vector<glm::vec4> texels(std::size_t(width) * height);
   for (std::size_t i = 0; i < texels.size(); ++i) {
     glm::vec4 t;

@@ -18,7 +18,8 @@ void checkSequence(const std::vector<Frame>& frames) {
                                   " values; frame 0 is " + std::to_string(first.width) + "x" +
                                   std::to_string(first.height));
     for (float v : f.rgb)
-      if (!std::isfinite(v)) throw std::invalid_argument("temporal: frame " + std::to_string(t) + " holds a non-finite value");
+      if (!std::isfinite(v))
+        throw std::invalid_argument("temporal: frame " + std::to_string(t) + " holds a non-finite value");
   }
 }
 

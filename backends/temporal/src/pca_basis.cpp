@@ -49,7 +49,8 @@ PcaBasis::PcaBasis(const std::vector<Frame>& frames) {
     gram.noalias() += b.transpose() * b;
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(gram);
-  if (solver.info() != Eigen::Success) throw std::runtime_error("temporal: eigen-decomposition of the Gram matrix failed");
+  if (solver.info() != Eigen::Success)
+    throw std::runtime_error("temporal: eigen-decomposition of the Gram matrix failed");
   // Eigen sorts ascending; modes are wanted descending. The centred Gram
   // matrix has rank N - 1 at most (the constant vector is in its null
   // space): its smallest eigenvector is dropped, the mean takes its place.
@@ -110,7 +111,8 @@ Frame PcaBasis::reconstruct(int t, int modes) const {
 }
 
 Frame PcaBasis::reconstruct(int t, const std::vector<float>& truncation) const {
-  if (t < 0 || t >= modes_) throw std::out_of_range("temporal: frame " + std::to_string(t) + " of " + std::to_string(modes_));
+  if (t < 0 || t >= modes_)
+    throw std::out_of_range("temporal: frame " + std::to_string(t) + " of " + std::to_string(modes_));
   Frame out(width_, height_);
   if (truncation.size() != out.pixels()) throw std::invalid_argument("temporal: truncation map of the wrong size");
   for (std::size_t p = 0; p < out.pixels(); ++p) {

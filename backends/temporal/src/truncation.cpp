@@ -64,7 +64,6 @@ int truncationFor(const std::vector<double>& unexplained, const TruncationRule& 
   return n;
 }
 
-
 std::vector<float> truncationMap(const PcaBasis& basis, const TruncationRule& rule, double sigma) {
   const std::size_t pixels = std::size_t{basis.width()} * basis.height();
   std::vector<float> map(pixels);

@@ -9,7 +9,8 @@ namespace tsr::temporal {
 WindowedPca::WindowedPca(int window, int overlap, PcaSettings settings)
     : window_(window), overlap_(overlap), settings_(settings) {
   if (window < 2 || overlap < 0 || overlap >= window)
-    throw std::invalid_argument("temporal: window " + std::to_string(window) + " with overlap " + std::to_string(overlap) +
+    throw std::invalid_argument("temporal: window " + std::to_string(window) + " with overlap " +
+                                std::to_string(overlap) +
                                 ": need a window of at least 2 frames and 0 <= overlap < window");
 }
 
@@ -41,7 +42,8 @@ std::vector<DenoisedFrame> WindowedPca::process(bool last) {
       // Cross-fade from the previous window's basis to this one's.
       const float w = float(j + 1) / float(held_.size() + 1);
       const Frame& before = held_[static_cast<std::size_t>(j)].frame;
-      for (std::size_t k = 0; k < d.frame.rgb.size(); ++k) d.frame.rgb[k] = (1 - w) * before.rgb[k] + w * d.frame.rgb[k];
+      for (std::size_t k = 0; k < d.frame.rgb.size(); ++k)
+        d.frame.rgb[k] = (1 - w) * before.rgb[k] + w * d.frame.rgb[k];
       out.push_back(std::move(d));
     } else if (!last && j >= size - overlap_) {
       held.push_back(std::move(d));

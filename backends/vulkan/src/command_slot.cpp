@@ -17,7 +17,8 @@ CommandSlot::CommandSlot(const Device& device, const char* what) : device_(devic
   cpci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
   cpci.queueFamilyIndex = device.queueFamily();
   check(vkCreateCommandPool(dev, &cpci, nullptr, &pool_), label("vkCreateCommandPool", what).c_str());
-  VkCommandBufferAllocateInfo cai = vkStruct<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
+  VkCommandBufferAllocateInfo cai =
+      vkStruct<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
   cai.commandPool = pool_;
   cai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
   cai.commandBufferCount = 1;
@@ -56,7 +57,8 @@ DescriptorSlot::DescriptorSlot(const Device& device, std::span<const VkDescripto
   dpci.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
   dpci.pPoolSizes = sizes.data();
   check(vkCreateDescriptorPool(dev, &dpci, nullptr, &pool_), label("vkCreateDescriptorPool", what).c_str());
-  VkDescriptorSetAllocateInfo ai = vkStruct<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
+  VkDescriptorSetAllocateInfo ai =
+      vkStruct<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
   ai.descriptorPool = pool_;
   ai.descriptorSetCount = 1;
   ai.pSetLayouts = &layout;

@@ -62,7 +62,8 @@ std::shared_ptr<Device> Device::create(const DeviceOptions& options) {
   std::vector<const char*> extensions;
   for (const auto& e : options.instanceExtensions) extensions.push_back(e.c_str());
   if (options.validation) {
-    if (!validationLayerAvailable()) throw Error("validation requested but VK_LAYER_KHRONOS_validation is not installed");
+    if (!validationLayerAvailable())
+      throw Error("validation requested but VK_LAYER_KHRONOS_validation is not installed");
     layers.push_back(kValidationLayer);
     extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
   }
@@ -72,11 +73,11 @@ std::shared_ptr<Device> Device::create(const DeviceOptions& options) {
   app.pEngineName = "tsr::vk";
   app.apiVersion = VK_API_VERSION_1_3;
 
-  VkDebugUtilsMessengerCreateInfoEXT messenger = vkStruct<VkDebugUtilsMessengerCreateInfoEXT>(VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT);
+  VkDebugUtilsMessengerCreateInfoEXT messenger =
+      vkStruct<VkDebugUtilsMessengerCreateInfoEXT>(VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT);
   messenger.messageSeverity =
       VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-  messenger.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                          VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+  messenger.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
                           VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
   messenger.pfnUserCallback = &Device::onMessage;
   messenger.pUserData = d.get();
@@ -134,13 +135,16 @@ std::shared_ptr<Device> Device::create(const DeviceOptions& options) {
     throw Error("no Vulkan 1.3 device with a graphics queue matches (found: " + (seen.empty() ? "none" : seen) + ")");
   vkGetPhysicalDeviceMemoryProperties(d->physical_, &d->memory_);
 
-  VkPhysicalDeviceVulkan13Features f13 = vkStruct<VkPhysicalDeviceVulkan13Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES);
-  VkPhysicalDeviceFeatures2 supported = vkStruct<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2);
+  VkPhysicalDeviceVulkan13Features f13 =
+      vkStruct<VkPhysicalDeviceVulkan13Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES);
+  VkPhysicalDeviceFeatures2 supported =
+      vkStruct<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2);
   supported.pNext = &f13;
   vkGetPhysicalDeviceFeatures2(d->physical_, &supported);
   if (!f13.dynamicRendering) throw Error(std::string(d->properties_.deviceName) + " lacks dynamicRendering");
 
-  VkPhysicalDeviceVulkan13Features enable13 = vkStruct<VkPhysicalDeviceVulkan13Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES);
+  VkPhysicalDeviceVulkan13Features enable13 =
+      vkStruct<VkPhysicalDeviceVulkan13Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES);
   enable13.dynamicRendering = VK_TRUE;
   VkPhysicalDeviceFeatures2 enable = vkStruct<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2);
   enable.pNext = &enable13;
@@ -194,7 +198,8 @@ std::uint32_t Device::memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags r
 }
 
 void Device::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const {
-  VkCommandBufferAllocateInfo ai = vkStruct<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
+  VkCommandBufferAllocateInfo ai =
+      vkStruct<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
   ai.commandPool = uploadPool_;
   ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
   ai.commandBufferCount = 1;

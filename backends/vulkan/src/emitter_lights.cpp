@@ -149,7 +149,8 @@ glm::vec3 emitterAmbient(const SceneState& s, const std::vector<EmitterLight>& l
     const Material& m = s.materials[inst.material].material;
     if (m.isTransparent()) continue;
     // Uniform scale's effect on area; shears and stretches only roughly.
-    const double a = double(s.meshes[inst.mesh].area) * std::pow(std::abs(double(glm::determinant(glm::mat3(inst.transform)))), 2.0 / 3.0);
+    const double a = double(s.meshes[inst.mesh].area) *
+                     std::pow(std::abs(double(glm::determinant(glm::mat3(inst.transform)))), 2.0 / 3.0);
     area += a;
     reflecting += a * std::clamp(double(luminance(m.baseColor)), 0.0, 0.95);
   }

@@ -30,7 +30,8 @@ struct GpuLight {
   glm::vec4 position;   // xyz, type
   glm::vec4 direction;  // normalized travel direction, shadow layer (< 0: none)
   glm::vec4 intensity;  // W/sr, or W/m^2 for directional
-  glm::vec4 cone;       // cos inner, cos outer, normal offset (world units, per unit distance for spots/emitters), 1 / map size
+  glm::vec4
+      cone;  // cos inner, cos outer, normal offset (world units, per unit distance for spots/emitters), 1 / map size
   glm::mat4 shadowMatrix;
 };
 

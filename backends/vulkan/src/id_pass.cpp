@@ -1,8 +1,8 @@
 #include "id_pass.hpp"
 
+#include "readback.hpp"
 #include "scene_state.hpp"
 #include "spirv.hpp"
-#include "readback.hpp"
 #include "vk_struct.hpp"
 
 #include "tsr/vk/error.hpp"
@@ -25,7 +25,8 @@ IdPass::IdPass(const Device& device) : device_(device) {
     b[i].descriptorCount = 1;
     b[i].stageFlags = VK_SHADER_STAGE_VERTEX_BIT;
   }
-  VkDescriptorSetLayoutCreateInfo lci = vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
+  VkDescriptorSetLayoutCreateInfo lci =
+      vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
   lci.bindingCount = 4;
   lci.pBindings = b;
   check(vkCreateDescriptorSetLayout(dev, &lci, nullptr, &setLayout_), "vkCreateDescriptorSetLayout (ids)");
@@ -34,7 +35,8 @@ IdPass::IdPass(const Device& device) : device_(device) {
   pci.pSetLayouts = &setLayout_;
   check(vkCreatePipelineLayout(dev, &pci, nullptr, &layout_), "vkCreatePipelineLayout (ids)");
 
-  const VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3}};
+  const VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3}};
   descriptors_.emplace(device, sizes, setLayout_, "ids");
   set_ = descriptors_->set();
   commands_.emplace(device, "ids");
@@ -68,7 +70,8 @@ std::uint32_t IdPass::render(SceneState& s, const Camera& camera, const Region& 
   // Opaque instances only: transparent ones neither occlude nor count.
   const std::size_t drawn = std::max<std::size_t>(s.opaqueOrder.size(), 1);
   if (!drawOrder_ || drawOrder_.size() < drawn * 4)
-    drawOrder_ = Buffer(device_, std::max<VkDeviceSize>(drawn * 4, 1024), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, Buffer::kHost);
+    drawOrder_ =
+        Buffer(device_, std::max<VkDeviceSize>(drawn * 4, 1024), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, Buffer::kHost);
   if (!s.opaqueOrder.empty()) std::memcpy(drawOrder_.mapped(), s.opaqueOrder.data(), s.opaqueOrder.size() * 4);
   const glm::mat4 viewProj = camera.projection(region) * camera.worldToCamera();
   std::memcpy(frame_.mapped(), &viewProj, sizeof viewProj);

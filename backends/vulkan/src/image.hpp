@@ -50,8 +50,8 @@ class Image {
 };
 
 // One image memory barrier over all mips and the given layers.
-void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from,
-                  VkImageLayout to, VkPipelineStageFlags srcStage, VkAccessFlags srcAccess,
-                  VkPipelineStageFlags dstStage, VkAccessFlags dstAccess, std::uint32_t layers = 1);
+void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,
+                  VkPipelineStageFlags srcStage, VkAccessFlags srcAccess, VkPipelineStageFlags dstStage,
+                  VkAccessFlags dstAccess, std::uint32_t layers = 1);
 
 }  // namespace tsr::vk

@@ -61,20 +61,24 @@ Pipeline::Pipeline(const Device& device, const PipelineDesc& d) : device_(device
       {1, 1, VK_FORMAT_R32G32B32_SFLOAT, 0},
       {2, 2, VK_FORMAT_R32G32_SFLOAT, 0},
   };
-  VkPipelineVertexInputStateCreateInfo vi = vkStruct<VkPipelineVertexInputStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO);
+  VkPipelineVertexInputStateCreateInfo vi =
+      vkStruct<VkPipelineVertexInputStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO);
   vi.vertexBindingDescriptionCount = d.vertexStreams;
   vi.pVertexBindingDescriptions = allBindings;
   vi.vertexAttributeDescriptionCount = d.vertexStreams;
   vi.pVertexAttributeDescriptions = allAttributes;
 
-  VkPipelineInputAssemblyStateCreateInfo ia = vkStruct<VkPipelineInputAssemblyStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO);
+  VkPipelineInputAssemblyStateCreateInfo ia =
+      vkStruct<VkPipelineInputAssemblyStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO);
   ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
 
-  VkPipelineViewportStateCreateInfo vp = vkStruct<VkPipelineViewportStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO);
+  VkPipelineViewportStateCreateInfo vp =
+      vkStruct<VkPipelineViewportStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO);
   vp.viewportCount = 1;
   vp.scissorCount = 1;
 
-  VkPipelineRasterizationStateCreateInfo rs = vkStruct<VkPipelineRasterizationStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO);
+  VkPipelineRasterizationStateCreateInfo rs =
+      vkStruct<VkPipelineRasterizationStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO);
   rs.polygonMode = VK_POLYGON_MODE_FILL;
   rs.cullMode = d.cull;
   // The projection flips y, so counter-clockwise in the image (as the viewer
@@ -83,10 +87,12 @@ Pipeline::Pipeline(const Device& device, const PipelineDesc& d) : device_(device
   rs.depthBiasEnable = d.depthBias ? VK_TRUE : VK_FALSE;
   rs.lineWidth = 1.0f;
 
-  VkPipelineMultisampleStateCreateInfo ms = vkStruct<VkPipelineMultisampleStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO);
+  VkPipelineMultisampleStateCreateInfo ms =
+      vkStruct<VkPipelineMultisampleStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO);
   ms.rasterizationSamples = d.samples;
 
-  VkPipelineDepthStencilStateCreateInfo ds = vkStruct<VkPipelineDepthStencilStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO);
+  VkPipelineDepthStencilStateCreateInfo ds =
+      vkStruct<VkPipelineDepthStencilStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO);
   ds.depthTestEnable = VK_TRUE;
   ds.depthWriteEnable = d.depthWrite ? VK_TRUE : VK_FALSE;
   ds.depthCompareOp = d.depthCompare;
@@ -104,22 +110,26 @@ Pipeline::Pipeline(const Device& device, const PipelineDesc& d) : device_(device
     attachment.alphaBlendOp = VK_BLEND_OP_ADD;
   }
   const bool hasColour = d.colourFormat != VK_FORMAT_UNDEFINED;
-  VkPipelineColorBlendStateCreateInfo cb = vkStruct<VkPipelineColorBlendStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO);
+  VkPipelineColorBlendStateCreateInfo cb =
+      vkStruct<VkPipelineColorBlendStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO);
   cb.attachmentCount = hasColour ? 1 : 0;
   cb.pAttachments = &attachment;
 
   std::vector<VkDynamicState> dynamic = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
   if (d.depthBias) dynamic.push_back(VK_DYNAMIC_STATE_DEPTH_BIAS);
-  VkPipelineDynamicStateCreateInfo dyn = vkStruct<VkPipelineDynamicStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO);
+  VkPipelineDynamicStateCreateInfo dyn =
+      vkStruct<VkPipelineDynamicStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO);
   dyn.dynamicStateCount = std::uint32_t(dynamic.size());
   dyn.pDynamicStates = dynamic.data();
 
-  VkPipelineRenderingCreateInfo rendering = vkStruct<VkPipelineRenderingCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO);
+  VkPipelineRenderingCreateInfo rendering =
+      vkStruct<VkPipelineRenderingCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO);
   rendering.colorAttachmentCount = hasColour ? 1 : 0;
   rendering.pColorAttachmentFormats = &d.colourFormat;
   rendering.depthAttachmentFormat = d.depthFormat;
 
-  VkGraphicsPipelineCreateInfo ci = vkStruct<VkGraphicsPipelineCreateInfo>(VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO);
+  VkGraphicsPipelineCreateInfo ci =
+      vkStruct<VkGraphicsPipelineCreateInfo>(VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO);
   ci.pNext = &rendering;
   ci.stageCount = frag ? 2 : 1;
   ci.pStages = stages;

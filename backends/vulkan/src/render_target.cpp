@@ -26,8 +26,7 @@ VkFormat chooseColourFormat(const Device& device, VkSampleCountFlagBits samples)
                  VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT))
       return f;
   }
-  throw Error("no blendable float colour format with " + std::to_string(int(samples)) + " samples on " +
-              device.name());
+  throw Error("no blendable float colour format with " + std::to_string(int(samples)) + " samples on " + device.name());
 }
 
 RenderTarget::RenderTarget(const Device& device, std::uint32_t w, std::uint32_t h, VkFormat colourFormat_,

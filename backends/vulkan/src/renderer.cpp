@@ -3,8 +3,8 @@
 #include "buffer.hpp"
 #include "command_slot.hpp"
 #include "emitter_lights.hpp"
-#include "id_pass.hpp"
 #include "gpu_types.hpp"
+#include "id_pass.hpp"
 #include "pipeline.hpp"
 #include "readback.hpp"
 #include "render_target.hpp"
@@ -15,8 +15,8 @@
 #include "tsr/vk/error.hpp"
 #include "vk_struct.hpp"
 
-#include <glm/gtc/packing.hpp>
 #include <spdlog/spdlog.h>
+#include <glm/gtc/packing.hpp>
 
 #include <algorithm>
 #include <cstring>
@@ -43,8 +43,7 @@ VkSampleCountFlagBits sampleBits(std::uint32_t samples) {
 
 void ensureHost(const Device& device, Buffer& buffer, VkDeviceSize needed, VkBufferUsageFlags usage) {
   if (buffer && buffer.size() >= needed) return;
-  buffer = Buffer(device, std::max<VkDeviceSize>({needed, buffer ? 2 * buffer.size() : 0, 1024}), usage,
-                  Buffer::kHost);
+  buffer = Buffer(device, std::max<VkDeviceSize>({needed, buffer ? 2 * buffer.size() : 0, 1024}), usage, Buffer::kHost);
 }
 
 }  // namespace
@@ -59,7 +58,7 @@ struct Renderer::Impl {
   std::optional<CommandSlot> commands;
 
   std::map<std::uint32_t, VkFormat> colourFormats;  // by sample count
-  std::map<std::uint64_t, Pipeline> mainPipelines;   // by pipelineKey()
+  std::map<std::uint64_t, Pipeline> mainPipelines;  // by pipelineKey()
   Pipeline shadowPipeline;
 
   Buffer frameBuffer;  // GpuFrame uniform
@@ -107,7 +106,8 @@ Renderer::Impl::Impl(const Device& d) : device(d) {
     b[i].descriptorCount = 1;
     b[i].stageFlags = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
   }
-  VkDescriptorSetLayoutCreateInfo lci = vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
+  VkDescriptorSetLayoutCreateInfo lci =
+      vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
   lci.bindingCount = 6;
   lci.pBindings = b;
   check(vkCreateDescriptorSetLayout(dev, &lci, nullptr, &frameLayout), "vkCreateDescriptorSetLayout (frame)");
@@ -152,7 +152,8 @@ Renderer::Impl::~Impl() {
 
 VkFormat Renderer::Impl::colourFormat(std::uint32_t samples) {
   auto it = colourFormats.find(samples);
-  if (it == colourFormats.end()) it = colourFormats.emplace(samples, chooseColourFormat(device, sampleBits(samples))).first;
+  if (it == colourFormats.end())
+    it = colourFormats.emplace(samples, chooseColourFormat(device, sampleBits(samples))).first;
   return it->second;
 }
 
@@ -321,8 +322,7 @@ std::vector<glm::mat4> Renderer::Impl::gatherLights(SceneState& s, const RenderS
   addEmitterLights(s, settings, shadows, shadowViewProj);
   ensureHost(device, lightBuffer, std::max<std::size_t>(gpuLights.size(), 1) * sizeof(GpuLight),
              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  if (!gpuLights.empty())
-    std::memcpy(lightBuffer.mapped(), gpuLights.data(), gpuLights.size() * sizeof(GpuLight));
+  if (!gpuLights.empty()) std::memcpy(lightBuffer.mapped(), gpuLights.data(), gpuLights.size() * sizeof(GpuLight));
 
   return shadowViewProj;
 }
@@ -379,7 +379,7 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
 
   {
     VkDescriptorBufferInfo bufs[5] = {
-        {frameBuffer.handle(), 0, VK_WHOLE_SIZE},    {s.instanceBuffer.handle(), 0, VK_WHOLE_SIZE},
+        {frameBuffer.handle(), 0, VK_WHOLE_SIZE},     {s.instanceBuffer.handle(), 0, VK_WHOLE_SIZE},
         {drawOrderBuffer.handle(), 0, VK_WHOLE_SIZE}, {s.materialBuffer.handle(), 0, VK_WHOLE_SIZE},
         {lightBuffer.handle(), 0, VK_WHOLE_SIZE},
     };
@@ -406,17 +406,15 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
 }
 
 // Shadow passes: opaque instances only, positions only.
-void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s, const std::vector<glm::mat4>& shadowViewProj,
-                                   RenderStats& stats) {
+void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s,
+                                   const std::vector<glm::mat4>& shadowViewProj, RenderStats& stats) {
   const ShadowMap& sm = *shadowMap;
-  imageBarrier(cmd, sm.image().handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-               shadowViewProj.empty() ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL
-                                      : VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-               VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
-               shadowViewProj.empty() ? VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT
-                                      : VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT,
-               shadowViewProj.empty() ? VK_ACCESS_SHADER_READ_BIT : VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-               sm.layers());
+  imageBarrier(
+      cmd, sm.image().handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+      shadowViewProj.empty() ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+      VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
+      shadowViewProj.empty() ? VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT : VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT,
+      shadowViewProj.empty() ? VK_ACCESS_SHADER_READ_BIT : VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, sm.layers());
   for (std::uint32_t layer = 0; layer < shadowViewProj.size(); ++layer) {
     VkRenderingAttachmentInfo da = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
     da.imageView = sm.image().layerView(layer);
@@ -485,8 +483,7 @@ void Renderer::Impl::recordMain(VkCommandBuffer cmd, const SceneState& s, const 
   ca.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   ca.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
   ca.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  ca.clearValue.color = {{settings.background.r, settings.background.g, settings.background.b,
-                          settings.background.a}};
+  ca.clearValue.color = {{settings.background.r, settings.background.g, settings.background.b, settings.background.a}};
   VkRenderingAttachmentInfo da = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
   da.imageView = t.depth.view();
   da.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
@@ -525,8 +522,7 @@ void Renderer::Impl::recordMain(VkCommandBuffer cmd, const SceneState& s, const 
     VkDeviceSize off[3] = {0, m.normalOffset, m.uvOffset};
     vkCmdBindVertexBuffers(cmd, 0, 3, vb, off);
     vkCmdBindIndexBuffer(cmd, m.buffer.handle(), m.indexOffset, VK_INDEX_TYPE_UINT32);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &s.materials[material].set, 0,
-                            nullptr);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &s.materials[material].set, 0, nullptr);
     PushConstants pc;
     pc.material = material;
     vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
@@ -561,9 +557,8 @@ void Renderer::renderIds(Scene& scene, const Camera& camera, const Region& regio
   region.validate();
   if (ids.width != region.regionWidth() || ids.height != region.regionHeight() ||
       ids.ids.size() != std::size_t(ids.width) * ids.height || ids.depth.size() != ids.ids.size())
-    throw Error("id buffer is " + std::to_string(ids.width) + "x" + std::to_string(ids.height) +
-                " but the region is " + std::to_string(region.regionWidth()) + "x" +
-                std::to_string(region.regionHeight()));
+    throw Error("id buffer is " + std::to_string(ids.width) + "x" + std::to_string(ids.height) + " but the region is " +
+                std::to_string(region.regionWidth()) + "x" + std::to_string(region.regionHeight()));
   if (&scene.device() != device_.get()) throw Error("scene and renderer use different devices");
   if (!impl_->idPass) impl_->idPass = std::make_unique<IdPass>(*device_);
   stats_ = RenderStats{};

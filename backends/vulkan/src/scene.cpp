@@ -30,7 +30,8 @@ bool finite(const glm::mat4& m) {
 
 template <class Record>
 Record& lookup(std::vector<Record>& records, std::uint32_t i, const char* what) {
-  if (i >= records.size() || !records[i].alive) throw Error(std::string("unknown ") + what + " id " + std::to_string(i));
+  if (i >= records.size() || !records[i].alive)
+    throw Error(std::string("unknown ") + what + " id " + std::to_string(i));
   return records[i];
 }
 
@@ -83,8 +84,8 @@ Image uploadImage(const Device& device, std::uint32_t width, std::uint32_t heigh
     copy.imageExtent = {width, height, 1};
     vkCmdCopyBufferToImage(cmd, staging.handle(), image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
     imageBarrier(cmd, image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                 VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                 VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
   });
   return image;
 }
@@ -142,7 +143,8 @@ VkDescriptorSetLayout createMaterialSetLayout(VkDevice device) {
     bindings[i].descriptorCount = 1;
     bindings[i].stageFlags = VK_SHADER_STAGE_FRAGMENT_BIT;
   }
-  VkDescriptorSetLayoutCreateInfo ci = vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
+  VkDescriptorSetLayoutCreateInfo ci =
+      vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
   ci.bindingCount = 2;
   ci.pBindings = bindings;
   VkDescriptorSetLayout layout = VK_NULL_HANDLE;
@@ -268,14 +270,13 @@ MeshId Scene::addMesh(const MeshData& data) {
   if (data.indices.empty() || data.indices.size() % 3 != 0)
     throw Error("mesh index count must be a non-zero multiple of 3, got " + std::to_string(data.indices.size()));
   if (!data.normals.empty() && data.normals.size() != n)
-    throw Error("mesh has " + std::to_string(data.normals.size()) + " normals for " + std::to_string(n) +
-                " positions");
+    throw Error("mesh has " + std::to_string(data.normals.size()) + " normals for " + std::to_string(n) + " positions");
   if (!data.uvs.empty() && data.uvs.size() != n)
     throw Error("mesh has " + std::to_string(data.uvs.size()) + " uvs for " + std::to_string(n) + " positions");
   for (std::size_t i = 0; i < data.indices.size(); ++i)
     if (data.indices[i] >= n)
-      throw Error("mesh index " + std::to_string(i) + " = " + std::to_string(data.indices[i]) +
-                  " is out of range (" + std::to_string(n) + " vertices)");
+      throw Error("mesh index " + std::to_string(i) + " = " + std::to_string(data.indices[i]) + " is out of range (" +
+                  std::to_string(n) + " vertices)");
   for (const auto& p : data.positions)
     if (!finite(p)) throw Error("mesh positions contain NaN or infinity");
   for (const auto& v : data.normals)
@@ -297,10 +298,10 @@ MeshId Scene::addMesh(const MeshData& data) {
   if (!data.normals.empty()) std::memcpy(bytes.data() + m.normalOffset, data.normals.data(), vec3Bytes);
   if (!data.uvs.empty()) std::memcpy(bytes.data() + m.uvOffset, data.uvs.data(), n * sizeof(glm::vec2));
   std::memcpy(bytes.data() + m.indexOffset, data.indices.data(), data.indices.size() * sizeof(std::uint32_t));
-  m.buffer = Buffer(*s.device, total,
-                    VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT |
-                        VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                    Buffer::kDevice);
+  m.buffer =
+      Buffer(*s.device, total,
+             VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+             Buffer::kDevice);
   uploadToBuffer(*s.device, m.buffer, 0, bytes.data(), total);
   s.geometryBytes += total;
   m.positions = data.positions;
@@ -366,8 +367,7 @@ InstanceId Scene::addInstance(MeshId mesh, MaterialId material, const glm::mat4&
   MaterialRecord& mat = lookup(s.materials, index(material), "material");
   if (!finite(transform)) throw Error("instance transform contains NaN or infinity");
   const std::uint32_t slot = std::uint32_t(s.instances.size());
-  ensureHostCapacity(*s.device, s.instanceBuffer, (slot + 1) * sizeof(GpuInstance),
-                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  ensureHostCapacity(*s.device, s.instanceBuffer, (slot + 1) * sizeof(GpuInstance), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   ensureHostCapacity(*s.device, s.objectBuffer, (slot + 1) * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   s.instances.push_back({index(mesh), index(material), transform, true, slot + 1});
   static_cast<GpuInstance*>(s.instanceBuffer.mapped())[slot] = makeInstance(transform);
@@ -449,7 +449,8 @@ void retainTextures(SceneState& s, const Material& m, int delta) {
 
 void allocateMaterialSet(SceneState& s, MaterialRecord& r) {
   VkDevice dev = s.device->handle();
-  VkDescriptorSetAllocateInfo ai = vkStruct<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
+  VkDescriptorSetAllocateInfo ai =
+      vkStruct<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
   ai.descriptorSetCount = 1;
   ai.pSetLayouts = &s.materialSetLayout;
   VkDescriptorSet set = VK_NULL_HANDLE;

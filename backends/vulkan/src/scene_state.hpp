@@ -28,7 +28,7 @@ struct MeshRecord {
   VkDeviceSize normalOffset = 0;
   VkDeviceSize uvOffset = 0;
   VkDeviceSize indexOffset = 0;
-  std::vector<glm::vec3> positions;  // CPU copy for bounds and emitter patches
+  std::vector<glm::vec3> positions;    // CPU copy for bounds and emitter patches
   std::vector<std::uint32_t> indices;  // CPU copy for emitter patches
   std::vector<EmitterPatch> patches;   // made when an emissive instance first uses the mesh
   bool patchesDirty = true;

@@ -88,7 +88,8 @@ SwapchainTarget::SwapchainTarget(std::shared_ptr<Device> device, GLFWwindow* win
     pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
     pci.queueFamilyIndex = device_->queueFamily();
     check(vkCreateCommandPool(dev, &pci, nullptr, &impl_->pool), "vkCreateCommandPool");
-    VkCommandBufferAllocateInfo ai = vkStruct<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
+    VkCommandBufferAllocateInfo ai =
+        vkStruct<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
     ai.commandPool = impl_->pool;
     ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
     ai.commandBufferCount = 1;
@@ -159,13 +160,14 @@ void SwapchainTarget::createSwapchain() {
 
   if (format_ == VK_FORMAT_UNDEFINED) {
     std::uint32_t count = 0;
-    check(vkGetPhysicalDeviceSurfaceFormatsKHR(phys, impl_->surface, &count, nullptr), "vkGetPhysicalDeviceSurfaceFormatsKHR");
+    check(vkGetPhysicalDeviceSurfaceFormatsKHR(phys, impl_->surface, &count, nullptr),
+          "vkGetPhysicalDeviceSurfaceFormatsKHR");
     std::vector<VkSurfaceFormatKHR> formats(count);
     check(vkGetPhysicalDeviceSurfaceFormatsKHR(phys, impl_->surface, &count, formats.data()),
           "vkGetPhysicalDeviceSurfaceFormatsKHR");
     // The bytes written are sRGB-encoded either way; a copy does no conversion.
-    for (VkFormat want : {VK_FORMAT_B8G8R8A8_SRGB, VK_FORMAT_B8G8R8A8_UNORM, VK_FORMAT_R8G8B8A8_SRGB,
-                          VK_FORMAT_R8G8B8A8_UNORM}) {
+    for (VkFormat want :
+         {VK_FORMAT_B8G8R8A8_SRGB, VK_FORMAT_B8G8R8A8_UNORM, VK_FORMAT_R8G8B8A8_SRGB, VK_FORMAT_R8G8B8A8_UNORM}) {
       for (const auto& f : formats)
         if (f.format == want && f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR) {
           format_ = f.format;
@@ -174,7 +176,8 @@ void SwapchainTarget::createSwapchain() {
         }
       if (format_ != VK_FORMAT_UNDEFINED) break;
     }
-    if (format_ == VK_FORMAT_UNDEFINED) throw Error("SwapchainTarget: the surface offers no 8-bit BGRA/RGBA sRGB format");
+    if (format_ == VK_FORMAT_UNDEFINED)
+      throw Error("SwapchainTarget: the surface offers no 8-bit BGRA/RGBA sRGB format");
   }
 
   std::uint32_t imageCount = caps.minImageCount + 1;
@@ -193,8 +196,9 @@ void SwapchainTarget::createSwapchain() {
                         ? VK_SURFACE_TRANSFORM_IDENTITY_BIT_KHR
                         : caps.currentTransform;
   ci.compositeAlpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR;
-  for (VkCompositeAlphaFlagBitsKHR a : {VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR, VK_COMPOSITE_ALPHA_INHERIT_BIT_KHR,
-                                        VK_COMPOSITE_ALPHA_PRE_MULTIPLIED_BIT_KHR, VK_COMPOSITE_ALPHA_POST_MULTIPLIED_BIT_KHR})
+  for (VkCompositeAlphaFlagBitsKHR a :
+       {VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR, VK_COMPOSITE_ALPHA_INHERIT_BIT_KHR,
+        VK_COMPOSITE_ALPHA_PRE_MULTIPLIED_BIT_KHR, VK_COMPOSITE_ALPHA_POST_MULTIPLIED_BIT_KHR})
     if (caps.supportedCompositeAlpha & a) {
       ci.compositeAlpha = a;
       break;
@@ -325,8 +329,8 @@ bool SwapchainTarget::present(std::uint32_t width, std::uint32_t height, const s
     VkMemoryBarrier toHost = vkStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
     toHost.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
     toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr,
-                         0, nullptr);
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr, 0,
+                         nullptr);
     imageBarrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                  VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
                  VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0);

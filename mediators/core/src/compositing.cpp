@@ -13,12 +13,10 @@ namespace {
 // 2001), red/cyan matrices for linear RGB (rows: output R, G, B). They are
 // the least-squares fit, for typical filter and display spectra, of the
 // colours seen through each filter to those each eye's image should show.
-constexpr float kDuboisLeft[3][3] = {{0.4561f, 0.500484f, 0.176381f},
-                                     {-0.0400822f, -0.0378246f, -0.0157589f},
-                                     {-0.0152161f, -0.0205971f, -0.00546856f}};
-constexpr float kDuboisRight[3][3] = {{-0.0434706f, -0.0879388f, -0.00155529f},
-                                      {0.378476f, 0.73364f, -0.0184503f},
-                                      {-0.0721527f, -0.112961f, 1.2264f}};
+constexpr float kDuboisLeft[3][3] = {
+    {0.4561f, 0.500484f, 0.176381f}, {-0.0400822f, -0.0378246f, -0.0157589f}, {-0.0152161f, -0.0205971f, -0.00546856f}};
+constexpr float kDuboisRight[3][3] = {
+    {-0.0434706f, -0.0879388f, -0.00155529f}, {0.378476f, 0.73364f, -0.0184503f}, {-0.0721527f, -0.112961f, 1.2264f}};
 
 glm::vec3 dubois(const glm::vec4& l, const glm::vec4& r) {
   glm::vec3 out;

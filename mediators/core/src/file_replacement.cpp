@@ -13,7 +13,8 @@ namespace fs = std::filesystem;
 
 std::string temporaryPathFor(const std::string& path) {
   const fs::path p(path);
-  return (p.parent_path() / ("." + p.stem().string() + ".tmp-" + std::to_string(::getpid()) + p.extension().string())).string();
+  return (p.parent_path() / ("." + p.stem().string() + ".tmp-" + std::to_string(::getpid()) + p.extension().string()))
+      .string();
 }
 
 void replaceFile(const std::string& path, const std::function<void(const std::string&)>& write) {

@@ -45,7 +45,8 @@ std::vector<glm::vec4> pixelsOf(const FrameBuffer& fb, const std::string& output
 }
 
 // Writes `path` in the format `named` (the final name) says.
-void writeImageFile(const std::string& path, const std::string& named, const FrameBuffer& fb, const std::vector<glm::vec4>& pixels) {
+void writeImageFile(const std::string& path, const std::string& named, const FrameBuffer& fb,
+                    const std::vector<glm::vec4>& pixels) {
   auto file = OIIO::ImageOutput::create(named);
   if (!file) throw ImageFileError(named + ": " + OIIO::geterror());
   bool floats = isFloatFormat(named);

@@ -10,9 +10,12 @@ std::string describe(const ParameterValue& v) {
   return std::visit(
       [](const auto& x) -> std::string {
         using T = std::decay_t<decltype(x)>;
-        if constexpr (std::is_same_v<T, bool>) return x ? "true" : "false";
-        else if constexpr (std::is_same_v<T, std::string>) return "'" + x + "'";
-        else return std::to_string(x);
+        if constexpr (std::is_same_v<T, bool>)
+          return x ? "true" : "false";
+        else if constexpr (std::is_same_v<T, std::string>)
+          return "'" + x + "'";
+        else
+          return std::to_string(x);
       },
       v);
 }
@@ -57,8 +60,7 @@ std::string Parameters::getString(const std::string& name, const std::string& fa
 
 std::pair<std::string, ParameterValue> Parameters::parse(const std::string& assignment) {
   auto eq = assignment.find('=');
-  if (eq == std::string::npos || eq == 0)
-    throw ParameterError("parameter '" + assignment + "': expected name=value");
+  if (eq == std::string::npos || eq == 0) throw ParameterError("parameter '" + assignment + "': expected name=value");
   std::string name = assignment.substr(0, eq), text = assignment.substr(eq + 1);
   if (text == "true") return {name, true};
   if (text == "false") return {name, false};

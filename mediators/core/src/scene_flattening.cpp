@@ -59,11 +59,12 @@ FlatScene flatten(const sg::Scene& scene, sg::ContainerId root, std::size_t maxI
     const sg::Container* c = scene.find(r);
     if (!c) continue;
     if (!childrenOf(*c)) {
-      if (c->type() == sg::ContainerType::Geometry || c->type() == sg::ContainerType::Light) record(*c, glm::mat4(1.0f));
+      if (c->type() == sg::ContainerType::Geometry || c->type() == sg::ContainerType::Light)
+        record(*c, glm::mat4(1.0f));
       continue;
     }
-    glm::mat4 world = c->type() == sg::ContainerType::Transform ? static_cast<const sg::Transform*>(c)->matrix()
-                                                                 : glm::mat4(1.0f);
+    glm::mat4 world =
+        c->type() == sg::ContainerType::Transform ? static_cast<const sg::Transform*>(c)->matrix() : glm::mat4(1.0f);
     stack.push_back({r, world});
     path.push_back(r);
     while (!stack.empty()) {

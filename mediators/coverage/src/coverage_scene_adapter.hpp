@@ -27,13 +27,14 @@ struct CoverageTypes {
   using Environment = NoEnvironment;
   using Error = cov::Error;
   static constexpr const char* kName = "coverage";
-  static constexpr sg::FieldMask kMeshFields = sg::fieldBit(sg::Geometry::Positions) |
-                                               sg::fieldBit(sg::Geometry::Indices) |
-                                               sg::fieldBit(sg::Geometry::Motion);
+  static constexpr sg::FieldMask kMeshFields =
+      sg::fieldBit(sg::Geometry::Positions) | sg::fieldBit(sg::Geometry::Indices) | sg::fieldBit(sg::Geometry::Motion);
   static constexpr bool kResizableMeshes = true;
   static cov::MeshData mesh(const sg::Geometry& g) { return translateMesh(g); }
   template <class Textures>
-  static Transparency material(const sg::Container* m, const Textures&) { return {isTransparent(m)}; }
+  static Transparency material(const sg::Container* m, const Textures&) {
+    return {isTransparent(m)};
+  }
   static NoTexture texture(const sg::Image&) { return {}; }
   static NoLight light(const sg::Light&, const glm::mat4&) { return {}; }
   static NoEnvironment background(const sg::Scene&, sg::ContainerId) { return {}; }

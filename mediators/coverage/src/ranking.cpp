@@ -15,7 +15,8 @@ bool isCount(float v, std::uint64_t limit) { return v >= 0.0f && v < float(limit
 
 const std::vector<glm::vec4>& idOutput(const FrameBuffer& image) {
   auto it = image.outputs.find(kIdOutput);
-  if (it == image.outputs.end()) throw std::invalid_argument("the frame buffer has no 'id' output (render with the coverage back-end)");
+  if (it == image.outputs.end())
+    throw std::invalid_argument("the frame buffer has no 'id' output (render with the coverage back-end)");
   if (it->second.size() != std::size_t{image.width} * image.height)
     throw std::invalid_argument("the frame buffer's 'id' output does not match its size");
   return it->second;
@@ -39,7 +40,8 @@ glm::vec4 encodeObjectId(sg::ContainerId id) {
 
 sg::ContainerId decodeObjectId(const glm::vec4& v) {
   if (!isCount(v.r, kLow) || !isCount(v.g, kLow))
-    throw std::invalid_argument("id output value (" + std::to_string(v.r) + ", " + std::to_string(v.g) + ") is not an id");
+    throw std::invalid_argument("id output value (" + std::to_string(v.r) + ", " + std::to_string(v.g) +
+                                ") is not an id");
   return static_cast<sg::ContainerId>(v.g) * kLow + static_cast<sg::ContainerId>(v.r);
 }
 

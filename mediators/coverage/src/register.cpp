@@ -17,8 +17,7 @@ void registerCoverage(ViewportRegistry& registry) {
 #if !TSR_COVERAGE_HAVE_VULKAN
     if (engine == "vulkan") throw ParameterError("engine: this build has no Vulkan id pass");
 #endif
-    const std::string key =
-        "coverage:" + engine + ":" + std::to_string(settings.root) + ":" + std::to_string(threads);
+    const std::string key = "coverage:" + engine + ":" + std::to_string(settings.root) + ":" + std::to_string(threads);
     const sg::ContainerId root = settings.root;
     auto context = contexts.acquire<coverage_mediator::CoverageContext>(key, [&] {
       auto make = [threads, engine]() -> std::unique_ptr<cov::IdRenderer> {

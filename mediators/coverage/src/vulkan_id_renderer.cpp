@@ -186,8 +186,8 @@ cov::IdBuffer VulkanIdRenderer::render(const cov::Camera& camera, const cov::Reg
   region.validate();
   State& s = *state_;
   std::lock_guard lock(s.shared->mutex);
-  vk::Camera c{camera.cameraToWorld, camera.left, camera.right, camera.bottom, camera.top, camera.near,
-               camera.near * 1e7f};
+  vk::Camera c{camera.cameraToWorld, camera.left, camera.right,      camera.bottom,
+               camera.top,           camera.near, camera.near * 1e7f};
   vk::Region r{region.width, region.height, region.x0, region.y0, region.x1, region.y1};
   vk::IdBuffer ids(r.regionWidth(), r.regionHeight());
   translated([&] {

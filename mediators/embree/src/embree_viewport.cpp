@@ -47,7 +47,8 @@ void EmbreeViewport::writeFilterInputs(embree::Scene& scene, const embree::Camer
                                        const FilterSettings& filter, FrameBuffer& full) {
   embree::FrameBuffer& fb = *accumulation_;
   const std::uint32_t flash = flashSamplesFor(fb.sampleCount(0, 0));
-  if (fb.rangeSamples(0, 0) < flash) renderer_.renderFlashPass(scene, camera, traced, fb, flash - fb.rangeSamples(0, 0));
+  if (fb.rangeSamples(0, 0) < flash)
+    renderer_.renderFlashPass(scene, camera, traced, fb, flash - fb.rangeSamples(0, 0));
   writePixelFilterInputs(fb, filter.pathClass, full, filter.mode == FilterMode::Hybrid ? radiance_.get() : nullptr);
 }
 
@@ -68,7 +69,8 @@ void EmbreeViewport::resolveLocally(const FilterSettings& filter, std::uint32_t 
   const bool due = samples >= 2 && (embree::isFilterFrame(samples) || complete) && last != samples;
   if (due || last) pixelFilter_.resolve(out, filter, due, control.wants(kBlendOutput));
   auto explicitlyWanted = [&](const std::string& name) {
-    return control.outputs && std::find(control.outputs->begin(), control.outputs->end(), name) != control.outputs->end();
+    return control.outputs &&
+           std::find(control.outputs->begin(), control.outputs->end(), name) != control.outputs->end();
   };
   for (const auto& name : pixelFilterInputs())
     if (!explicitlyWanted(name)) out.outputs.erase(name);
@@ -122,7 +124,8 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
   if (!accumulation_ || accumulation_->width() != traced.regionWidth() ||
       accumulation_->height() != traced.regionHeight())
     accumulation_ = std::make_unique<embree::FrameBuffer>(traced.regionWidth(), traced.regionHeight());
-  if (radiance && (!radiance_ || radiance_->width() != traced.regionWidth() || radiance_->height() != traced.regionHeight()))
+  if (radiance &&
+      (!radiance_ || radiance_->width() != traced.regionWidth() || radiance_->height() != traced.regionHeight()))
     radiance_ = std::make_unique<embree::RadianceAccumulator>(traced.regionWidth(), traced.regionHeight());
 
   // Progressive: passes until the target sample count. The back-end decides
@@ -168,7 +171,8 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
     for (std::size_t i = 0; i < shown.size(); ++i) full.colour[i] = glm::vec4(shown[i], full.colour[i].a);
   }
   if (filter.usesPixelFilter() && stats.samples > 0) writeFilterInputs(scene, camera, traced, filter, full);
-  out = crop(std::move(full), region.x0 - traced.x0, region.y0 - traced.y0, region.regionWidth(), region.regionHeight());
+  out =
+      crop(std::move(full), region.x0 - traced.x0, region.y0 - traced.y0, region.regionWidth(), region.regionHeight());
   if (filter.usesPixelFilter() && stats.samples > 0) resolveLocally(filter, spp, out, control);
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;

@@ -42,10 +42,12 @@ FilterSettings FilterSettings::from(const Parameters& p) {
                                {"atrous", FilterMode::Atrous},
                                {"radiance", FilterMode::Radiance},
                                {"hybrid", FilterMode::Hybrid}});
-  s.pathClass = choose<PathClass>(p, "pathClass", "indirect",
-                                  {{"indirect", PathClass::Indirect}, {"caustic", PathClass::Caustic}, {"all", PathClass::All}});
+  s.pathClass =
+      choose<PathClass>(p, "pathClass", "indirect",
+                        {{"indirect", PathClass::Indirect}, {"caustic", PathClass::Caustic}, {"all", PathClass::All}});
   s.pixel.kernel = choose<embree::FilterKernel>(
-      p, "filterKernel", "bilateral", {{"bilateral", embree::FilterKernel::Bilateral}, {"separable", embree::FilterKernel::Separable}});
+      p, "filterKernel", "bilateral",
+      {{"bilateral", embree::FilterKernel::Bilateral}, {"separable", embree::FilterKernel::Separable}});
   if (s.mode == FilterMode::Atrous) s.pixel.kernel = embree::FilterKernel::Atrous;
   s.pixel.threshold = positive(p, "threshold", kDefaultThreshold, true);
   s.pixel.sigmaS = positive(p, "sigmaS", 8.0);

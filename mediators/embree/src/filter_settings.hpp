@@ -37,7 +37,9 @@ struct FilterSettings {
 
   // Throws ParameterError naming the parameter and what it accepts.
   static FilterSettings from(const Parameters& parameters);
-  bool usesPixelFilter() const { return mode == FilterMode::Pixel || mode == FilterMode::Atrous || mode == FilterMode::Hybrid; }
+  bool usesPixelFilter() const {
+    return mode == FilterMode::Pixel || mode == FilterMode::Atrous || mode == FilterMode::Hybrid;
+  }
   bool usesRadianceFilter() const { return mode == FilterMode::Radiance || mode == FilterMode::Hybrid; }
 };
 

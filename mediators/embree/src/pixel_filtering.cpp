@@ -35,9 +35,9 @@ void writePixelFilterInputs(const embree::FrameBuffer& fb, PathClass pathClass, 
       // Hybrid (4.6.1): pixels seen through glass get all their indirect
       // light pixel-filtered; elsewhere radiance filtering took the rest
       // and only the caustics are left, which it leaves unfiltered.
-      const embree::Channel c = !hybrid ? hv
+      const embree::Channel c = !hybrid                                              ? hv
                                 : (hybrid->mask(x, y) & embree::kMaskReflectRefract) ? embree::Channel::Indirect
-                                                                                      : embree::Channel::Caustic;
+                                                                                     : embree::Channel::Caustic;
       const glm::vec3 h = fb.mean(c, x, y);
       const glm::vec3 shown = hybrid ? glm::vec3(out.colour[i]) : fb.mean(embree::Channel::Colour, x, y);
       high[i] = glm::vec4(h, 0.0f);

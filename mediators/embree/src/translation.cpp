@@ -25,11 +25,20 @@ embree::Material translateMaterial(const sg::Container* material, const TextureL
   m.emission = s.emittedRadiance();
   m.emissionTexture = s.emissionTexture() ? textures(s.emissionTexture()) : std::nullopt;
   switch (classify(s)) {
-    case SurfaceClass::Glass: m.type = embree::MaterialType::Glass; break;
-    case SurfaceClass::Dielectric: m.type = embree::MaterialType::Dielectric; break;
-    case SurfaceClass::Mirror: m.type = embree::MaterialType::Mirror; break;
-    case SurfaceClass::Conductor: m.type = embree::MaterialType::Conductor; break;
-    case SurfaceClass::Diffuse: break;
+    case SurfaceClass::Glass:
+      m.type = embree::MaterialType::Glass;
+      break;
+    case SurfaceClass::Dielectric:
+      m.type = embree::MaterialType::Dielectric;
+      break;
+    case SurfaceClass::Mirror:
+      m.type = embree::MaterialType::Mirror;
+      break;
+    case SurfaceClass::Conductor:
+      m.type = embree::MaterialType::Conductor;
+      break;
+    case SurfaceClass::Diffuse:
+      break;
   }
   return m;
 }
@@ -41,9 +50,12 @@ embree::Texture translateImage(const sg::Image& image) {
 embree::Light translateLight(const sg::Light& light, const glm::mat4& world) {
   const PlacedLight l = placeLight(light, world);
   switch (l.kind) {
-    case sg::LightKind::Spot: return embree::SpotLight{l.position, l.direction, l.power, l.innerCone, l.outerCone};
-    case sg::LightKind::Directional: return embree::DirectionalLight{l.direction, l.power};
-    default: return embree::PointLight{l.position, l.power};
+    case sg::LightKind::Spot:
+      return embree::SpotLight{l.position, l.direction, l.power, l.innerCone, l.outerCone};
+    case sg::LightKind::Directional:
+      return embree::DirectionalLight{l.direction, l.power};
+    default:
+      return embree::PointLight{l.position, l.power};
   }
 }
 
@@ -60,7 +72,8 @@ embree::Environment translateBackground(const sg::Scene& scene, sg::ContainerId 
       if (const auto* image = scene.find<sg::Image>(bg->environment()); image && !image->invalidReason())
         return embree::Environment::latLong(translateImage(*image), k);
       return embree::Environment::constant(bg->color() * k);
-    default: return embree::Environment::constant(bg->color() * k);
+    default:
+      return embree::Environment::constant(bg->color() * k);
   }
 }
 
@@ -70,7 +83,8 @@ embree::MeshData translateMesh(const sg::Geometry& geometry) {
   data.normals = geometry.normals();
   data.uvs = geometry.uvs();
   data.indices = geometry.indices();
-  data.usage = geometry.motion() == sg::GeometryMotion::Animated ? embree::MeshUsage::Animated : embree::MeshUsage::Static;
+  data.usage =
+      geometry.motion() == sg::GeometryMotion::Animated ? embree::MeshUsage::Animated : embree::MeshUsage::Static;
   return data;
 }
 

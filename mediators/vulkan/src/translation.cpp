@@ -11,11 +11,16 @@ namespace {
 // The material models the rasterizer and the path tracer share.
 vk::MaterialType typeOf(SurfaceClass c) {
   switch (c) {
-    case SurfaceClass::Glass: return vk::MaterialType::Glass;
-    case SurfaceClass::Dielectric: return vk::MaterialType::Dielectric;
-    case SurfaceClass::Mirror: return vk::MaterialType::Mirror;
-    case SurfaceClass::Conductor: return vk::MaterialType::Conductor;
-    default: return vk::MaterialType::Diffuse;
+    case SurfaceClass::Glass:
+      return vk::MaterialType::Glass;
+    case SurfaceClass::Dielectric:
+      return vk::MaterialType::Dielectric;
+    case SurfaceClass::Mirror:
+      return vk::MaterialType::Mirror;
+    case SurfaceClass::Conductor:
+      return vk::MaterialType::Conductor;
+    default:
+      return vk::MaterialType::Diffuse;
   }
 }
 }  // namespace
@@ -70,9 +75,12 @@ vk::Texture translateImage(const sg::Image& image) {
 vk::Light translateLight(const sg::Light& light, const glm::mat4& world) {
   const PlacedLight l = placeLight(light, world);
   switch (l.kind) {
-    case sg::LightKind::Spot: return vk::SpotLight{l.position, l.direction, l.power, l.innerCone, l.outerCone};
-    case sg::LightKind::Directional: return vk::DirectionalLight{l.direction, l.power};
-    default: return vk::PointLight{l.position, l.power};
+    case sg::LightKind::Spot:
+      return vk::SpotLight{l.position, l.direction, l.power, l.innerCone, l.outerCone};
+    case sg::LightKind::Directional:
+      return vk::DirectionalLight{l.direction, l.power};
+    default:
+      return vk::PointLight{l.position, l.power};
   }
 }
 
@@ -92,11 +100,14 @@ vk::Environment translateBackground(const sg::Scene& scene, sg::ContainerId id) 
         return vk::Environment::latLong(image->width(), image->height(), texels, k);
       }
       return vk::Environment::constant(bg->color() * k);
-    default: return vk::Environment::constant(bg->color() * k);
+    default:
+      return vk::Environment::constant(bg->color() * k);
   }
 }
 
-glm::vec4 backgroundColour(const vk::Environment& environment) { return glm::vec4(environment.averageRadiance(), 0.0f); }
+glm::vec4 backgroundColour(const vk::Environment& environment) {
+  return glm::vec4(environment.averageRadiance(), 0.0f);
+}
 
 vk::MeshData translateMesh(const sg::Geometry& geometry) {
   vk::MeshData data;

@@ -3,9 +3,9 @@
 // the rasterizer's types and translations. Vulkan meshes are fixed in size,
 // so a topology edit builds the mesh again and places its instances again.
 #include "translation.hpp"
-#include "tsr/vk/error.hpp"
 #include "tsr/med/instancing_scene_adapter.hpp"
 #include "tsr/vk/device.hpp"
+#include "tsr/vk/error.hpp"
 #include "tsr/vk/scene.hpp"
 
 namespace tsr::med::vulkan_mediator {

@@ -6,9 +6,9 @@
 #include <memory>
 #include <mutex>
 
-#include "tsr/vk/shared_device.hpp"
 #include "tsr/med/viewport.hpp"
 #include "tsr/vk/renderer.hpp"
+#include "tsr/vk/shared_device.hpp"
 #include "vulkan_scene_adapter.hpp"
 
 namespace tsr::med::vulkan_mediator {

@@ -14,7 +14,9 @@ namespace {
 glm::quat toQuat(const Vec4& v) { return glm::quat(v.w, v.x, v.y, v.z); }
 Vec4 fromQuat(const glm::quat& q) { return Vec4(q.x, q.y, q.z, q.w); }
 
-bool finite(const Vec4& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w); }
+bool finite(const Vec4& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
+}
 
 // Index of the last key at or before t; t lies within [times.front(), times.back()].
 std::size_t keyBefore(const std::vector<float>& times, float t) {
@@ -118,9 +120,15 @@ Animation::Pose Animation::poseAt(ContainerId target, float t) const {
     if (c.target != target) continue;
     const Vec4 v = sample(c, local);
     switch (c.path) {
-      case Path::Translation: pose.translation = Vec3(v); break;
-      case Path::Rotation: pose.rotation = toQuat(v); break;
-      case Path::Scale: pose.scale = Vec3(v); break;
+      case Path::Translation:
+        pose.translation = Vec3(v);
+        break;
+      case Path::Rotation:
+        pose.rotation = toQuat(v);
+        break;
+      case Path::Scale:
+        pose.scale = Vec3(v);
+        break;
     }
   }
   return pose;

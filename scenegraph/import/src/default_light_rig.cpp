@@ -17,9 +17,12 @@ bool backgroundLights(const Scene& scene, ContainerId id) {
   const auto* bg = scene.find<Background>(id);
   if (!bg || !(bg->intensity() > 0.0f)) return false;
   switch (bg->kind()) {
-    case BackgroundKind::Gradient: return !black(bg->gradientTop()) || !black(bg->gradientBottom());
-    case BackgroundKind::Environment: return scene.find<Image>(bg->environment()) != nullptr || !black(bg->color());
-    default: return !black(bg->color());
+    case BackgroundKind::Gradient:
+      return !black(bg->gradientTop()) || !black(bg->gradientBottom());
+    case BackgroundKind::Environment:
+      return scene.find<Image>(bg->environment()) != nullptr || !black(bg->color());
+    default:
+      return !black(bg->color());
   }
 }
 
@@ -34,7 +37,8 @@ bool hasOwnLighting(const Scene& scene, ContainerId root, ContainerId background
 DefaultLightRig addDefaultLightRig(Scene& scene, ContainerId root, ContainerId background) {
   Container* parent = scene.find(root);
   if (!parent || !isParentType(parent->type()))
-    throw std::invalid_argument("default light rig: container " + std::to_string(root) + " is not a group or transform");
+    throw std::invalid_argument("default light rig: container " + std::to_string(root) +
+                                " is not a group or transform");
   DefaultLightRig rig;
   auto* dome = scene.find<Background>(background);
   if (!dome) dome = &scene.create<Background>("default dome");

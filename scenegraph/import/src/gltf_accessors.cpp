@@ -9,26 +9,37 @@ namespace {
 
 int componentCount(int type) {
   switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return 1;
-    case TINYGLTF_TYPE_VEC2: return 2;
-    case TINYGLTF_TYPE_VEC3: return 3;
+    case TINYGLTF_TYPE_SCALAR:
+      return 1;
+    case TINYGLTF_TYPE_VEC2:
+      return 2;
+    case TINYGLTF_TYPE_VEC3:
+      return 3;
     case TINYGLTF_TYPE_VEC4:
-    case TINYGLTF_TYPE_MAT2: return 4;
-    case TINYGLTF_TYPE_MAT3: return 9;
-    case TINYGLTF_TYPE_MAT4: return 16;
-    default: return 0;
+    case TINYGLTF_TYPE_MAT2:
+      return 4;
+    case TINYGLTF_TYPE_MAT3:
+      return 9;
+    case TINYGLTF_TYPE_MAT4:
+      return 16;
+    default:
+      return 0;
   }
 }
 
 int componentSize(int componentType) {
   switch (componentType) {
     case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return 1;
     case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return 2;
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-    default: return 0;
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return 4;
+    default:
+      return 0;
   }
 }
 
@@ -42,23 +53,29 @@ T load(const std::uint8_t* p) {
 // One component as a float; normalized integers as glTF's spec maps them.
 float decodeFloat(const std::uint8_t* p, int componentType, bool normalized) {
   switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return load<float>(p);
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? load<std::uint8_t>(p) / 255.0f : load<std::uint8_t>(p);
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return load<float>(p);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return normalized ? load<std::uint8_t>(p) / 255.0f : load<std::uint8_t>(p);
     case TINYGLTF_COMPONENT_TYPE_BYTE:
       return normalized ? std::max(load<std::int8_t>(p) / 127.0f, -1.0f) : load<std::int8_t>(p);
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
       return normalized ? load<std::uint16_t>(p) / 65535.0f : load<std::uint16_t>(p);
     case TINYGLTF_COMPONENT_TYPE_SHORT:
       return normalized ? std::max(load<std::int16_t>(p) / 32767.0f, -1.0f) : load<std::int16_t>(p);
-    default: return static_cast<float>(load<std::uint32_t>(p));
+    default:
+      return static_cast<float>(load<std::uint32_t>(p));
   }
 }
 
 std::uint32_t decodeIndex(const std::uint8_t* p, int componentType) {
   switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return load<std::uint8_t>(p);
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return load<std::uint16_t>(p);
-    default: return load<std::uint32_t>(p);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return load<std::uint8_t>(p);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return load<std::uint16_t>(p);
+    default:
+      return load<std::uint32_t>(p);
   }
 }
 
@@ -128,8 +145,8 @@ static Layout layoutOf(const tinygltf::Model& model, const tinygltf::Accessor& a
          ", which does not exist");
   const auto& data = model.buffers[static_cast<std::size_t>(view.buffer)].data;
   if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
-    fail("buffer view " + std::to_string(acc.bufferView) + " covers bytes [" + std::to_string(view.byteOffset) +
-         ", +" + std::to_string(view.byteLength) + ") of buffer " + std::to_string(view.buffer) + ", which has " +
+    fail("buffer view " + std::to_string(acc.bufferView) + " covers bytes [" + std::to_string(view.byteOffset) + ", +" +
+         std::to_string(view.byteLength) + ") of buffer " + std::to_string(view.buffer) + ", which has " +
          std::to_string(data.size()) + " bytes");
   const std::size_t elementSize = static_cast<std::size_t>(size) * static_cast<std::size_t>(l.components);
   l.stride = view.byteStride ? view.byteStride : elementSize;
@@ -146,7 +163,8 @@ static Layout layoutOf(const tinygltf::Model& model, const tinygltf::Accessor& a
   return l;
 }
 
-std::vector<float> AccessorReader::floats(int index, int components, bool normalizedInts, const std::string& what) const {
+std::vector<float> AccessorReader::floats(int index, int components, bool normalizedInts,
+                                          const std::string& what) const {
   const tinygltf::Accessor& acc = accessor(index, what);
   const std::string name = "accessor " + std::to_string(index) + " (" + what + ")";
   auto failFn = [&](const std::string& r) { fail(r + " (" + what + ")"); };
@@ -156,8 +174,7 @@ std::vector<float> AccessorReader::floats(int index, int components, bool normal
          std::to_string(components));
   if (l.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !(normalizedInts && l.normalized))
     fail(name + " must hold floats" + std::string(normalizedInts ? " or normalized integers" : ""));
-  if (l.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-    fail(name + ": 32-bit integers cannot be normalized");
+  if (l.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) fail(name + ": 32-bit integers cannot be normalized");
 
   const std::size_t cs = static_cast<std::size_t>(componentSize(l.componentType));
   std::vector<float> out(l.count * static_cast<std::size_t>(components), 0.0f);
@@ -195,7 +212,8 @@ std::vector<float> AccessorReader::floats(int index, int components, bool normal
   }
   for (std::size_t i = 0; i < out.size(); ++i)
     if (!std::isfinite(out[i]))
-      fail(name + " element " + std::to_string(i / static_cast<std::size_t>(components)) + " is not finite (NaN or infinity)");
+      fail(name + " element " + std::to_string(i / static_cast<std::size_t>(components)) +
+           " is not finite (NaN or infinity)");
   return out;
 }
 

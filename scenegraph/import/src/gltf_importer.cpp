@@ -4,8 +4,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <glm/gtc/type_ptr.hpp>
 #include <spdlog/spdlog.h>
+#include <glm/gtc/type_ptr.hpp>
 
 #include "gltf_accessors.hpp"
 #include "gltf_loader.hpp"
@@ -90,7 +90,8 @@ class Converter {
   void images() {
     for (std::size_t i = 0; i < m_.images.size(); ++i) {
       const tinygltf::Image& src = m_.images[i];
-      const std::string what = "image " + str(i) + (src.uri.empty() || src.uri.rfind("data:", 0) == 0 ? "" : " ('" + src.uri + "')");
+      const std::string what =
+          "image " + str(i) + (src.uri.empty() || src.uri.rfind("data:", 0) == 0 ? "" : " ('" + src.uri + "')");
       std::vector<std::uint8_t> bytes;
       if (src.bufferView >= 0) {
         bytes = reader_.viewBytes(src.bufferView, what);
@@ -150,7 +151,8 @@ class Converter {
       mat.baseColorImage = texture(pbr.baseColorTexture.index, what + " baseColorTexture", true);
       mat.metallic = finite(pbr.metallicFactor, what + " metallicFactor");
       mat.roughness = finite(pbr.roughnessFactor, what + " roughnessFactor");
-      mat.metallicRoughnessImage = texture(pbr.metallicRoughnessTexture.index, what + " metallicRoughnessTexture", false);
+      mat.metallicRoughnessImage =
+          texture(pbr.metallicRoughnessTexture.index, what + " metallicRoughnessTexture", false);
       mat.emission = vec<3>(src.emissiveFactor, what + " emissiveFactor");
       mat.emissionImage = texture(src.emissiveTexture.index, what + " emissiveTexture", true);
       mat.normalImage = texture(src.normalTexture.index, what + " normalTexture", false);
@@ -158,10 +160,12 @@ class Converter {
       mat.emissionStrength =
           finite(extensionNumber(src.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1.0),
                  what + " emissiveStrength");
-      mat.transmission = finite(
-          extensionNumber(src.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0), what + " transmissionFactor");
-      mat.transmissionImage = texture(extensionTexture(src.extensions, "KHR_materials_transmission", "transmissionTexture"),
-                                      what + " transmissionTexture", false);
+      mat.transmission =
+          finite(extensionNumber(src.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0),
+                 what + " transmissionFactor");
+      mat.transmissionImage =
+          texture(extensionTexture(src.extensions, "KHR_materials_transmission", "transmissionTexture"),
+                  what + " transmissionTexture", false);
       mat.ior = finite(extensionNumber(src.extensions, "KHR_materials_ior", "ior", 1.5), what + " ior");
       out_.materials.push_back(mat);
     }
@@ -189,8 +193,10 @@ class Converter {
         std::vector<std::uint32_t> list;
         for (std::size_t i = 0; i + 2 < idx.size(); ++i) {
           // Every other triangle flips so all keep the strip's winding.
-          if (i % 2 == 0) list.insert(list.end(), {idx[i], idx[i + 1], idx[i + 2]});
-          else list.insert(list.end(), {idx[i + 1], idx[i], idx[i + 2]});
+          if (i % 2 == 0)
+            list.insert(list.end(), {idx[i], idx[i + 1], idx[i + 2]});
+          else
+            list.insert(list.end(), {idx[i + 1], idx[i], idx[i + 2]});
         }
         idx = std::move(list);
         return true;
@@ -244,7 +250,8 @@ class Converter {
         if (const int c = attr("COLOR_0"); c >= 0) {
           const std::size_t comps = c < static_cast<int>(m_.accessors.size()) &&
                                             m_.accessors[static_cast<std::size_t>(c)].type == TINYGLTF_TYPE_VEC3
-                                        ? 3 : 4;
+                                        ? 3
+                                        : 4;
           if (comps == 3) {
             for (const Vec3& rgb : attribute<3>(c, true, what + " COLOR_0")) p.colors.emplace_back(rgb, 1.0f);
           } else {
@@ -280,10 +287,14 @@ class Converter {
       const std::string what = "light " + str(i);
       parsed::Light l;
       l.name = src.name;
-      if (src.type == "point") l.kind = LightKind::Point;
-      else if (src.type == "spot") l.kind = LightKind::Spot;
-      else if (src.type == "directional") l.kind = LightKind::Directional;
-      else fail(what + " has unknown type '" + src.type + "'");
+      if (src.type == "point")
+        l.kind = LightKind::Point;
+      else if (src.type == "spot")
+        l.kind = LightKind::Spot;
+      else if (src.type == "directional")
+        l.kind = LightKind::Directional;
+      else
+        fail(what + " has unknown type '" + src.type + "'");
       if (!src.color.empty()) l.color = vec<3>(src.color, what + " color");
       l.intensity = finite(src.intensity, what + " intensity");
       l.range = finite(src.range, what + " range");
@@ -366,7 +377,8 @@ class Converter {
         if (!hasParent[i]) out_.roots.push_back(static_cast<int>(i));
       return;
     }
-    const int sceneIndex = m_.defaultScene < 0 ? 0 : checked(m_.defaultScene, m_.scenes.size(), "the document", "scene");
+    const int sceneIndex =
+        m_.defaultScene < 0 ? 0 : checked(m_.defaultScene, m_.scenes.size(), "the document", "scene");
     std::vector<char> listed(m_.nodes.size(), 0);
     for (int r : m_.scenes[static_cast<std::size_t>(sceneIndex)].nodes) {
       const std::string what = "scene " + std::to_string(sceneIndex);
@@ -392,8 +404,9 @@ class Converter {
       for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r)
           if (!withinCoordinateLimit(world[c][r]))
-            fail("node " + str(static_cast<std::size_t>(index)) + (camera && c == 3 ? " places its camera at " : " has world transform entry ") +
-                 number(world[c][r]) + ", beyond " + number(kMaxCoordinate) +
+            fail("node " + str(static_cast<std::size_t>(index)) +
+                 (camera && c == 3 ? " places its camera at " : " has world transform entry ") + number(world[c][r]) +
+                 ", beyond " + number(kMaxCoordinate) +
                  ", the largest coordinate Tessera renders (the node hierarchy composes to it)");
       for (int child : n.children) stack.emplace_back(child, world);
     }
@@ -409,21 +422,29 @@ class Converter {
         const std::string what = "animation " + str(ai) + " channel " + str(ci);
         parsed::AnimationChannel out;
         out.node = checked(ch.target_node, m_.nodes.size(), what, "node");
-        if (ch.target_path == "translation") out.path = Animation::Path::Translation;
-        else if (ch.target_path == "rotation") out.path = Animation::Path::Rotation;
-        else if (ch.target_path == "scale") out.path = Animation::Path::Scale;
+        if (ch.target_path == "translation")
+          out.path = Animation::Path::Translation;
+        else if (ch.target_path == "rotation")
+          out.path = Animation::Path::Rotation;
+        else if (ch.target_path == "scale")
+          out.path = Animation::Path::Scale;
         else if (ch.target_path == "weights") {
           warn(what + ": morph target weights are not supported; channel skipped");
           continue;
-        } else fail(what + " has unknown target path '" + ch.target_path + "'");
+        } else
+          fail(what + " has unknown target path '" + ch.target_path + "'");
         if (!out_.nodes[static_cast<std::size_t>(out.node)].trs)
           fail(what + " animates node " + std::to_string(out.node) + ", which has a matrix instead of TRS");
         const auto& sampler =
             src.samplers[static_cast<std::size_t>(checked(ch.sampler, src.samplers.size(), what, "sampler"))];
-        if (sampler.interpolation == "LINEAR" || sampler.interpolation.empty()) out.interpolation = Animation::Interpolation::Linear;
-        else if (sampler.interpolation == "STEP") out.interpolation = Animation::Interpolation::Step;
-        else if (sampler.interpolation == "CUBICSPLINE") out.interpolation = Animation::Interpolation::CubicSpline;
-        else fail(what + " has unknown interpolation '" + sampler.interpolation + "'");
+        if (sampler.interpolation == "LINEAR" || sampler.interpolation.empty())
+          out.interpolation = Animation::Interpolation::Linear;
+        else if (sampler.interpolation == "STEP")
+          out.interpolation = Animation::Interpolation::Step;
+        else if (sampler.interpolation == "CUBICSPLINE")
+          out.interpolation = Animation::Interpolation::CubicSpline;
+        else
+          fail(what + " has unknown interpolation '" + sampler.interpolation + "'");
         out.times = reader_.floats(sampler.input, 1, false, what + " input");
         const int comps = out.path == Animation::Path::Rotation ? 4 : 3;
         const std::vector<float> v = reader_.floats(sampler.output, comps, true, what + " output");

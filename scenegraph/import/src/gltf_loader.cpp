@@ -42,7 +42,7 @@ std::vector<unsigned char> readWholeFile(const std::string& path, std::uint64_t 
 // working directory, and a uri may climb out through "..".
 struct FsContext {
   std::uint64_t limit;
-  fs::path base;  // canonical folder of the glTF file
+  fs::path base;                            // canonical folder of the glTF file
   std::optional<ImportLimitError> refused;  // rethrown with its kind after tinygltf gives up
 };
 bool insideBase(const std::string& path, const FsContext& ctx) {
@@ -80,8 +80,8 @@ bool refuseWrite(std::string* err, const std::string&, const std::vector<unsigne
 // Keeps the encoded bytes of images given by uri; decoding happens later
 // with OpenImageIO. Images in buffer views are not touched here because
 // tinygltf hands them over without checking the view against its buffer.
-bool keepImageBytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
-                    const unsigned char* bytes, int size, void*) {
+bool keepImageBytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int, const unsigned char* bytes,
+                    int size, void*) {
   if (image->bufferView < 0 && bytes && size > 0) image->image.assign(bytes, bytes + size);
   image->as_is = true;
   return true;
@@ -199,10 +199,11 @@ LoadedFile loadBytes(std::span<const unsigned char> bytes, const std::string& so
 
   LoadedFile out;
   std::string err, warn;
-  const bool ok = binary ? loader.LoadBinaryFromMemory(&out.model, &err, &warn, bytes.data(),
-                                                       static_cast<unsigned>(bytes.size()), baseDir)
-                         : loader.LoadASCIIFromString(&out.model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
-                                                      static_cast<unsigned>(bytes.size()), baseDir);
+  const bool ok = binary
+                      ? loader.LoadBinaryFromMemory(&out.model, &err, &warn, bytes.data(),
+                                                    static_cast<unsigned>(bytes.size()), baseDir)
+                      : loader.LoadASCIIFromString(&out.model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                                   static_cast<unsigned>(bytes.size()), baseDir);
   while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
   // Messages stay on one line: callers print them as one.
   for (std::size_t p = err.find('\n'); p != std::string::npos; p = err.find('\n', p)) err.replace(p, 1, "; ");

@@ -89,16 +89,15 @@ class TypeChecker {
 };
 
 TypeChecker::Check documentSchema(const TypeChecker& t) {
-  const auto textureInfo = t.object({{"index", t.index()}, {"texCoord", t.index()}, {"scale", t.number()},
-                                     {"strength", t.number()}});
+  const auto textureInfo =
+      t.object({{"index", t.index()}, {"texCoord", t.index()}, {"scale", t.number()}, {"strength", t.number()}});
   const auto material = t.object({
       {"name", t.string()},
-      {"pbrMetallicRoughness",
-       t.object({{"baseColorFactor", t.numbers(4)},
-                 {"baseColorTexture", textureInfo},
-                 {"metallicFactor", t.number()},
-                 {"roughnessFactor", t.number()},
-                 {"metallicRoughnessTexture", textureInfo}})},
+      {"pbrMetallicRoughness", t.object({{"baseColorFactor", t.numbers(4)},
+                                         {"baseColorTexture", textureInfo},
+                                         {"metallicFactor", t.number()},
+                                         {"roughnessFactor", t.number()},
+                                         {"metallicRoughnessTexture", textureInfo}})},
       {"normalTexture", textureInfo},
       {"occlusionTexture", textureInfo},
       {"emissiveTexture", textureInfo},
@@ -136,11 +135,11 @@ TypeChecker::Check documentSchema(const TypeChecker& t) {
       {"type", t.string()},
       {"min", t.numbers()},
       {"max", t.numbers()},
-      {"sparse", t.object({{"count", t.index()},
-                           {"indices", t.object({{"bufferView", t.index()},
-                                                 {"byteOffset", t.index()},
-                                                 {"componentType", t.integer()}})},
-                           {"values", t.object({{"bufferView", t.index()}, {"byteOffset", t.index()}})}})},
+      {"sparse",
+       t.object({{"count", t.index()},
+                 {"indices",
+                  t.object({{"bufferView", t.index()}, {"byteOffset", t.index()}, {"componentType", t.integer()}})},
+                 {"values", t.object({{"bufferView", t.index()}, {"byteOffset", t.index()}})}})},
   });
   const auto light = t.object({{"type", t.string()},
                                {"color", t.numbers(3)},
@@ -163,20 +162,23 @@ TypeChecker::Check documentSchema(const TypeChecker& t) {
       {"buffers", t.arrayOf(t.object({{"byteLength", t.index()}, {"uri", t.string()}}))},
       {"images", t.arrayOf(t.object({{"uri", t.string()}, {"mimeType", t.string()}, {"bufferView", t.index()}}))},
       {"textures", t.arrayOf(t.object({{"sampler", t.index()}, {"source", t.index()}}))},
-      {"samplers", t.arrayOf(t.object({{"magFilter", t.integer()}, {"minFilter", t.integer()},
-                                       {"wrapS", t.integer()}, {"wrapT", t.integer()}}))},
-      {"cameras", t.arrayOf(t.object({{"type", t.string()},
-                                      {"perspective", t.object({{"yfov", t.number()}, {"znear", t.number()},
-                                                                {"zfar", t.number()}, {"aspectRatio", t.number()}})},
-                                      {"orthographic", t.object({{"xmag", t.number()}, {"ymag", t.number()},
-                                                                 {"znear", t.number()}, {"zfar", t.number()}})}}))},
+      {"samplers",
+       t.arrayOf(t.object(
+           {{"magFilter", t.integer()}, {"minFilter", t.integer()}, {"wrapS", t.integer()}, {"wrapT", t.integer()}}))},
+      {"cameras",
+       t.arrayOf(t.object(
+           {{"type", t.string()},
+            {"perspective",
+             t.object(
+                 {{"yfov", t.number()}, {"znear", t.number()}, {"zfar", t.number()}, {"aspectRatio", t.number()}})},
+            {"orthographic",
+             t.object({{"xmag", t.number()}, {"ymag", t.number()}, {"znear", t.number()}, {"zfar", t.number()}})}}))},
       {"animations",
-       t.arrayOf(t.object({{"channels", t.arrayOf(t.object({{"sampler", t.index()},
-                                                            {"target", t.object({{"node", t.index()},
-                                                                                 {"path", t.string()}})}}))},
-                           {"samplers", t.arrayOf(t.object({{"input", t.index()},
-                                                            {"output", t.index()},
-                                                            {"interpolation", t.string()}}))}}))},
+       t.arrayOf(t.object(
+           {{"channels", t.arrayOf(t.object({{"sampler", t.index()},
+                                             {"target", t.object({{"node", t.index()}, {"path", t.string()}})}}))},
+            {"samplers",
+             t.arrayOf(t.object({{"input", t.index()}, {"output", t.index()}, {"interpolation", t.string()}}))}}))},
       {"extensionsUsed", t.arrayOf(t.string())},
       {"extensionsRequired", t.arrayOf(t.string())},
       {"extensions", t.object({{"KHR_lights_punctual", t.object({{"lights", t.arrayOf(light)}})}})},
@@ -218,7 +220,8 @@ std::string uriProblem(const std::string& uri) {
   const std::size_t slash = uri.find_first_of("/\\");
   if (colon != std::string::npos && (slash == std::string::npos || colon < slash))
     return "has a scheme; only files beside the glTF and data: uris are read";
-  if (!uri.empty() && (uri[0] == '/' || uri[0] == '\\')) return "is an absolute path; only files beside the glTF are read";
+  if (!uri.empty() && (uri[0] == '/' || uri[0] == '\\'))
+    return "is an absolute path; only files beside the glTF are read";
   if (uri.find('\0') != std::string::npos) return "holds a NUL byte";
   int depth = 0;
   std::size_t start = 0;
@@ -280,9 +283,10 @@ void checkNodeGraph(const tinygltf::Model& model, const std::string& source) {
   for (std::size_t i = 0; i < n; ++i)
     for (int c : model.nodes[i].children) {
       if (c < 0 || static_cast<std::size_t>(c) >= n)
-        throw ImportError(source, "node " + std::to_string(i) + " has child " + std::to_string(c) +
-                                      ", but there are " + std::to_string(n) + " nodes");
-      if (static_cast<std::size_t>(c) == i) throw ImportError(source, "node " + std::to_string(i) + " is its own child");
+        throw ImportError(source, "node " + std::to_string(i) + " has child " + std::to_string(c) + ", but there are " +
+                                      std::to_string(n) + " nodes");
+      if (static_cast<std::size_t>(c) == i)
+        throw ImportError(source, "node " + std::to_string(i) + " is its own child");
       if (parent[static_cast<std::size_t>(c)] != -1)
         throw ImportError(source, "node " + std::to_string(c) + " is a child of two parents (nodes " +
                                       std::to_string(parent[static_cast<std::size_t>(c)]) + " and " +
@@ -297,7 +301,8 @@ void checkNodeGraph(const tinygltf::Model& model, const std::string& source) {
     std::size_t k = i;
     while (!done[k] && parent[k] != -1) {
       k = static_cast<std::size_t>(parent[k]);
-      if (++steps > n) throw ImportError(source, "node " + std::to_string(i) + " is its own ancestor (cyclic node graph)");
+      if (++steps > n)
+        throw ImportError(source, "node " + std::to_string(i) + " is its own ancestor (cyclic node graph)");
     }
     for (k = i; !done[k]; k = parent[k] == -1 ? k : static_cast<std::size_t>(parent[k])) {
       done[k] = 1;

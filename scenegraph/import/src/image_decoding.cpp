@@ -24,13 +24,14 @@ std::string formatName(const std::vector<std::uint8_t>& b, const std::string& mi
 
 }  // namespace
 
-parsed::Image decodeImage(const std::vector<std::uint8_t>& bytes, const std::string& mimeType,
-                          std::uint64_t maxPixels, const std::string& source, const std::string& what) {
+parsed::Image decodeImage(const std::vector<std::uint8_t>& bytes, const std::string& mimeType, std::uint64_t maxPixels,
+                          const std::string& source, const std::string& what) {
   if (bytes.empty()) throw ImportError(source, what + " has no data");
   const std::string name = formatName(bytes, mimeType);
   if (name.empty()) throw ImportError(source, what + " is neither PNG nor JPEG");
   if (name == "memory.png")
-    if (const std::string problem = pngStructureProblem(bytes); !problem.empty()) throw ImportError(source, what + " " + problem);
+    if (const std::string problem = pngStructureProblem(bytes); !problem.empty())
+      throw ImportError(source, what + " " + problem);
 
   OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
   // glTF colours are straight (unassociated) alpha; keep them as stored.

@@ -11,7 +11,7 @@ namespace tsr::sg {
 
 // Throws ImportError(source, "<what>: ...") for bytes it cannot decode or
 // images with more than maxPixels pixels.
-parsed::Image decodeImage(const std::vector<std::uint8_t>& bytes, const std::string& mimeType,
-                          std::uint64_t maxPixels, const std::string& source, const std::string& what);
+parsed::Image decodeImage(const std::vector<std::uint8_t>& bytes, const std::string& mimeType, std::uint64_t maxPixels,
+                          const std::string& source, const std::string& what);
 
 }  // namespace tsr::sg

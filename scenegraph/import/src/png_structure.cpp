@@ -34,7 +34,8 @@ std::string pngStructureProblem(const std::vector<std::uint8_t>& bytes) {
   std::size_t at = sizeof(signature);
   bool first = true;
   while (at < bytes.size()) {
-    if (bytes.size() - at < 12) return "is a truncated PNG (a chunk header is cut off at byte " + std::to_string(at) + ")";
+    if (bytes.size() - at < 12)
+      return "is a truncated PNG (a chunk header is cut off at byte " + std::to_string(at) + ")";
     const std::uint32_t length = bigEndian(&bytes[at]);
     if (length > bytes.size() - at - 12)
       return "is a truncated PNG (a chunk at byte " + std::to_string(at) + " runs past the end)";

@@ -11,8 +11,7 @@ namespace {
 // reach (unused materials, images, nodes outside the scene) is created.
 class Builder {
  public:
-  Builder(Scene& scene, const parsed::Scene& data, ImportResult& result)
-      : scene_(scene), data_(data), result_(result) {
+  Builder(Scene& scene, const parsed::Scene& data, ImportResult& result) : scene_(scene), data_(data), result_(result) {
     images_.assign(data.images.size(), kNoContainer);
     materials_.assign(data.materials.size(), kNoContainer);
     geometries_.assign(data.primitives.size(), kNoContainer);

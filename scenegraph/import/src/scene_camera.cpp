@@ -109,8 +109,9 @@ ContainerId applyLookOverride(Scene& scene, ContainerId root, ContainerId base, 
   const Vec3 from = look.from.value_or(Vec3(basePose[3]));
   const Vec3 at = look.at.value_or(bounds.centre);
   if (glm::length(at - from) <= 1e-6f * std::max(1.0f, glm::length(from)))
-    throw std::invalid_argument(std::string(look.from ? "--look-from " + text(from) + " is the centre of the scene's bounds"
-                                                      : "--look-at " + text(at) + " is where the camera stands") +
+    throw std::invalid_argument(std::string(look.from
+                                                ? "--look-from " + text(from) + " is the centre of the scene's bounds"
+                                                : "--look-at " + text(at) + " is where the camera stands") +
                                 ": the view has no direction (give both --look-from and --look-at)");
   auto& camera = scene.create<Camera>("look camera");
   camera.setVerticalFov(fov);

@@ -63,7 +63,8 @@ TEST_F(Incremental, RemoveAndAddInstances) {
     handles.pop_back();
     scene.instances.pop_back();
   }
-  Instance big{MeshId(0), glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, -3)), glm::vec3(2.0f)), 999, false};
+  Instance big{MeshId(0), glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, -3)), glm::vec3(2.0f)), 999,
+               false};
   scene.instances.push_back(big);
   big.mesh = MeshId(0);  // the first mesh loaded keeps handle 0
   renderer.addInstance(big);

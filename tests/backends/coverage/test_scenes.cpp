@@ -19,8 +19,10 @@ RandomScene randomScene(std::uint32_t seed, std::uint32_t count, std::uint32_t o
   RandomScene s;
   s.meshes.push_back(quad(-0.5f, 0.5f, -0.5f, 0.5f, 0.0f));
   MeshData box;
-  for (int i = 0; i < 8; ++i) box.positions.emplace_back(i & 1 ? 0.4f : -0.4f, i & 2 ? 0.4f : -0.4f, i & 4 ? 0.4f : -0.4f);
-  box.indices = {0, 1, 3, 0, 3, 2, 4, 6, 7, 4, 7, 5, 0, 4, 5, 0, 5, 1, 2, 3, 7, 2, 7, 6, 0, 2, 6, 0, 6, 4, 1, 5, 7, 1, 7, 3};
+  for (int i = 0; i < 8; ++i)
+    box.positions.emplace_back(i & 1 ? 0.4f : -0.4f, i & 2 ? 0.4f : -0.4f, i & 4 ? 0.4f : -0.4f);
+  box.indices = {0, 1, 3, 0, 3, 2, 4, 6, 7, 4, 7, 5, 0, 4, 5, 0, 5, 1,
+                 2, 3, 7, 2, 7, 6, 0, 2, 6, 0, 6, 4, 1, 5, 7, 1, 7, 3};
   s.meshes.push_back(box);
   MeshData soup;
   for (int t = 0; t < 30; ++t)
@@ -35,7 +37,8 @@ RandomScene randomScene(std::uint32_t seed, std::uint32_t count, std::uint32_t o
     Instance inst;
     inst.mesh = MeshId(rng() % s.meshes.size());
     glm::vec3 at(u(rng) * 4.0f, u(rng) * 4.0f, -6.0f + u(rng) * 3.0f);
-    inst.transform = glm::rotate(glm::translate(glm::mat4(1.0f), at), u(rng) * 3.0f, glm::normalize(glm::vec3(u(rng), u(rng), 1.0f)));
+    inst.transform = glm::rotate(glm::translate(glm::mat4(1.0f), at), u(rng) * 3.0f,
+                                 glm::normalize(glm::vec3(u(rng), u(rng), 1.0f)));
     inst.object = 1 + rng() % objects;
     s.instances.push_back(inst);
   }

@@ -66,7 +66,9 @@ TEST(EmbreeBadInput, IdsTransformsAndEdits) {
   m = {};
   m.baseColorTexture = TextureId(5);
   EXPECT_THAT(errorOf([&] { scene.addMaterial(m); }), HasSubstr("unknown texture id 5"));
-  EXPECT_THAT(errorOf([&] { scene.addLight(SpotLight{{0, 0, 0}, {0, -1, 0}, glm::vec3(1), 0.5f, 0.2f}); }),
+  EXPECT_THAT(errorOf([&] {
+                scene.addLight(SpotLight{{0, 0, 0}, {0, -1, 0}, glm::vec3(1), 0.5f, 0.2f});
+              }),
               HasSubstr("inner <= outer"));
   EXPECT_THAT(errorOf([] { Texture(2, 2, std::vector<glm::vec4>(3)); }), HasSubstr("3 texels, expected 4"));
   EXPECT_THAT(errorOf([] { Environment::constant({-1, 0, 0}); }), HasSubstr("non-negative"));
@@ -79,7 +81,9 @@ TEST(EmbreeBadInput, ImagesCamerasAndSettings) {
   EXPECT_THAT(errorOf([] { FrameBuffer(0, 4); }), HasSubstr("non-zero"));
   FrameBuffer fb(8, 8);
   EXPECT_THAT(errorOf([&] { renderer.renderPass(scene, camera, Region::full(0, 0), fb); }), HasSubstr("non-zero"));
-  EXPECT_THAT(errorOf([&] { renderer.renderPass(scene, camera, Region{8, 8, 4, 0, 12, 8}, fb); }),
+  EXPECT_THAT(errorOf([&] {
+                renderer.renderPass(scene, camera, Region{8, 8, 4, 0, 12, 8}, fb);
+              }),
               HasSubstr("exceeds image 8x8"));
   EXPECT_THAT(errorOf([&] { renderer.renderPass(scene, camera, Region::full(16, 8), fb); }),
               HasSubstr("frame buffer is 8x8 but the region is 16x8"));

@@ -23,7 +23,8 @@ Camera richScene(Scene& scene) {
   scene.addInstance(scene.addMesh(quad({213, 548, 227}, {343, 548, 227}, {343, 548, 332}, {213, 548, 332})),
                     scene.addMaterial(lamp), glm::mat4(1.0f));
   std::vector<glm::vec4> texels;
-  for (int i = 0; i < 16; ++i) texels.push_back((i + i / 4) % 2 ? glm::vec4(0.9f, 0.8f, 0.2f, 1) : glm::vec4(0.2f, 0.3f, 0.9f, 1));
+  for (int i = 0; i < 16; ++i)
+    texels.push_back((i + i / 4) % 2 ? glm::vec4(0.9f, 0.8f, 0.2f, 1) : glm::vec4(0.2f, 0.3f, 0.9f, 1));
   Material rough;
   rough.type = MaterialType::Conductor;
   rough.roughness = 0.4f;

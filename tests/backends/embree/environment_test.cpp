@@ -63,7 +63,8 @@ TEST(EmbreeEnvironment, ImportanceSamplingAgreesAndReducesNoise) {
 }
 
 TEST(EmbreeEnvironment, ConstantMapEqualsConstantColour) {
-  Environment map = Environment::latLong(Texture(64, 32, std::vector<glm::vec4>(64 * 32, glm::vec4(0.3f, 0.4f, 0.5f, 1.0f))));
+  Environment map =
+      Environment::latLong(Texture(64, 32, std::vector<glm::vec4>(64 * 32, glm::vec4(0.3f, 0.4f, 0.5f, 1.0f))));
   Environment colour = Environment::constant({0.3f, 0.4f, 0.5f});
   glm::vec3 d = glm::normalize(glm::vec3(0.3f, 0.5f, -0.2f));
   EXPECT_EQ(map.radiance(d), colour.radiance(d));

@@ -21,8 +21,7 @@ struct CausticScene {
       Material glass;
       glass.type = MaterialType::Glass;
       glass.baseColor = glm::vec3(1.0f);
-      scene.addInstance(scene.addMesh(uvSphere({0, 2, 0}, 1.0f, 800, true)), scene.addMaterial(glass),
-                        glm::mat4(1.0f));
+      scene.addInstance(scene.addMesh(uvSphere({0, 2, 0}, 1.0f, 800, true)), scene.addMaterial(glass), glm::mat4(1.0f));
     }
   }
   FrameBuffer render(std::uint32_t passes) {
@@ -59,7 +58,8 @@ TEST(EmbreeFilterInputs, LightFocusedByGlassOntoTheFloorIsCausticAndIndirect) {
   EXPECT_LE(caustic.x, indirect.x * (1.0f + 1e-5f));
   for (std::uint32_t y = 0; y < kSize; ++y)
     for (std::uint32_t x = 0; x < kSize; ++x) {
-      glm::vec3 c = fb.mean(Channel::Colour, x, y), d = fb.mean(Channel::Direct, x, y), i = fb.mean(Channel::Indirect, x, y);
+      glm::vec3 c = fb.mean(Channel::Colour, x, y), d = fb.mean(Channel::Direct, x, y),
+                i = fb.mean(Channel::Indirect, x, y);
       ASSERT_NEAR(c.x, d.x + i.x, 1e-3f * (1.0f + c.x));
     }
 }

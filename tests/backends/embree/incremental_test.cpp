@@ -1,7 +1,7 @@
 #include "test_scenes.hpp"
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 namespace tsr::embree::test {
 namespace {
@@ -51,19 +51,22 @@ Built build(Scene& scene, const State& s) {
   ball.roughness = 0.2f;
   b.ballMaterial = scene.addMaterial(ball);
   b.ball = scene.addMesh(uvSphere({0, 0, 0}, 0.5f, 600, true));
-  b.ball1 = scene.addInstance(b.ball, b.ballMaterial, glm::translate(glm::mat4(1.0f), glm::vec3(-0.6f, 0.6f, 0) + s.ballOffset));
+  b.ball1 = scene.addInstance(b.ball, b.ballMaterial,
+                              glm::translate(glm::mat4(1.0f), glm::vec3(-0.6f, 0.6f, 0) + s.ballOffset));
   Material box;
   box.baseColor = s.boxColour;
   b.boxMaterial = scene.addMaterial(box);
   if (s.withBox) {
-    b.box = scene.addInstance(scene.addMesh(uvSphere({0.8f, 0.4f, 0.3f}, 0.4f, 100, false)), b.boxMaterial, glm::mat4(1.0f));
+    b.box = scene.addInstance(scene.addMesh(uvSphere({0.8f, 0.4f, 0.3f}, 0.4f, 100, false)), b.boxMaterial,
+                              glm::mat4(1.0f));
   }
   Material lamp;
   lamp.emission = glm::vec3(s.lampEmission);
   lamp.baseColor = glm::vec3(0.0f);
   b.lampMaterial = scene.addMaterial(lamp);
-  scene.addInstance(scene.addMesh(quad({-0.5f, 2.5f, -0.5f}, {0.5f, 2.5f, -0.5f}, {0.5f, 2.5f, 0.5f}, {-0.5f, 2.5f, 0.5f})),
-                    b.lampMaterial, glm::mat4(1.0f));
+  scene.addInstance(
+      scene.addMesh(quad({-0.5f, 2.5f, -0.5f}, {0.5f, 2.5f, -0.5f}, {0.5f, 2.5f, 0.5f}, {-0.5f, 2.5f, 0.5f})),
+      b.lampMaterial, glm::mat4(1.0f));
   if (s.withExtraBall) {
     b.extra = scene.addInstance(b.ball, b.boxMaterial, glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, 0.5f, -1.0f)));
   }
@@ -229,7 +232,6 @@ TEST(EmbreeIncremental, RemoveInstance) {
   expectEditEqualsFresh(s, [&](Scene& scene, const Built& b) { scene.removeInstance(b.box); });
 }
 
-
 // A crowd of instances of two shared meshes, one animated, on a merged
 // floor, edited many times: moves of many different instances (each leaves
 // a ghost in the top level, and the ghosts fold back into it when they grow
@@ -340,7 +342,8 @@ TEST(EmbreeIncremental, ManyMovesEqualAFreshScene) {
   move(70, {0.0f, 0.2f, 0.0f});
   move(72, {0.0f, 0.2f, 0.0f});
   for (glm::vec3 at : {glm::vec3(0.0f, 1.0f, 0.0f), glm::vec3(0.5f, 1.0f, 0.0f)}) {
-    ids.instances.push_back(scene.addInstance(ids.mesh(state.at.size()), ids.material, glm::translate(glm::mat4(1.0f), at)));
+    ids.instances.push_back(
+        scene.addInstance(ids.mesh(state.at.size()), ids.material, glm::translate(glm::mat4(1.0f), at)));
     state.at.push_back(at);
     state.present.push_back(true);
   }

@@ -68,7 +68,8 @@ Extents extents(float stepFactor, int stepFrame, float minCount, float emissionS
   settings.photonsPerFrame = 60000;  // about 10 photons a frame on a lit element
   PhotonSequence seq(settings);
   addFrames(seq, scene, 9, [&](int f) {
-    scene.setLight(LightId{0}, PointLight{{213.0f, 300.0f, 227.0f}, glm::vec3(kLight * (f >= stepFrame ? stepFactor : 1.0f))});
+    scene.setLight(LightId{0},
+                   PointLight{{213.0f, 300.0f, 227.0f}, glm::vec3(kLight * (f >= stepFrame ? stepFactor : 1.0f))});
   });
   const Reconstruction r = seq.reconstruct(4);
   const std::vector<glm::vec3> raw = seq.rawIrradiance(4);
@@ -166,7 +167,8 @@ TEST(EmbreePhotonSequence, IrradianceIsContinuousAcrossElementBorders) {
     prev = v;
   }
   for (std::size_t e = 1; e < 64; ++e)
-    elementJump = std::max(elementJump, double(std::abs(luminance(field.element(e)) - luminance(field.element(e - 1)))));
+    elementJump =
+        std::max(elementJump, double(std::abs(luminance(field.element(e)) - luminance(field.element(e - 1)))));
   ASSERT_GT(scale, 0.0);
   EXPECT_LT(maxStep, 0.01 * scale);
   EXPECT_GT(elementJump, 20.0 * maxStep);

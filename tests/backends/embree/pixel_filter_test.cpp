@@ -1,6 +1,6 @@
 // Properties of the pixel filter (Schwenk 2013, ch. 3) on synthetic images.
-#include "tsr/embree/error.hpp"
 #include "tsr/embree/pixel_filter.hpp"
+#include "tsr/embree/error.hpp"
 
 #include <gtest/gtest.h>
 
@@ -26,8 +26,13 @@ struct Images {
   std::uint32_t samples = 4;
 
   Images(std::uint32_t width, std::uint32_t height)
-      : w(width), h(height), lu(w * h, vec3(0.5f)), var(w * h, vec3(0.01f)), llv(w * h, vec3(0.0f)),
-        colour(w * h, vec3(0.5f)), depth(w * h, 1.0f) {}
+      : w(width),
+        h(height),
+        lu(w * h, vec3(0.5f)),
+        var(w * h, vec3(0.01f)),
+        llv(w * h, vec3(0.0f)),
+        colour(w * h, vec3(0.5f)),
+        depth(w * h, 1.0f) {}
 
   std::size_t at(std::uint32_t x, std::uint32_t y) const { return std::size_t(y) * w + x; }
   void each(const std::function<void(std::uint32_t, std::uint32_t, std::size_t)>& f) {
@@ -83,7 +88,7 @@ TEST(PixelFilterBlend, CasesOfEquation313) {
   EXPECT_EQ(blendFactor(1.0f, 0.5f, 0.01f), 0.0f);      // tu + tf - uf < 0: even Lf is too noisy
   EXPECT_EQ(blendFactor(0.0f, 0.0f, 0.01f), 1.0f);      // u = f = 0: case 2
   EXPECT_EQ(blendFactor(0.0f, 0.0f, 0.0f), 1.0f);
-  EXPECT_EQ(blendFactor(0.5f, 0.1f, 0.0f), 0.0f);       // t = 0, u > 0: case 1
+  EXPECT_EQ(blendFactor(0.5f, 0.1f, 0.0f), 0.0f);  // t = 0, u > 0: case 1
   EXPECT_EQ(blendFactor(0.5f, 0.0f, 0.0f), 0.0f);
   // Case 3 is 3.12.
   const float u = 0.02f, f = 0.002f, t = 0.01f;

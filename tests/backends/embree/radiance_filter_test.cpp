@@ -106,7 +106,8 @@ TEST(EmbreeRadianceFilter, OptionsStillBeatPathTracing) {
   blend.blend = 0.3f;
   RadianceFilterSettings plain;
   plain.ambientOcclusion = false;
-  for (auto [name, s] : {std::pair{"defaults", RadianceFilterSettings{}}, std::pair{"bilateral", bilateral}, std::pair{"blend 0.3", blend}, std::pair{"no AO", plain}}) {
+  for (auto [name, s] : {std::pair{"defaults", RadianceFilterSettings{}}, std::pair{"bilateral", bilateral},
+                         std::pair{"blend 0.3", blend}, std::pair{"no AO", plain}}) {
     const Errors e = compareAtSpp(s, 24);
     std::printf("relMSE at 24 spp, %s: filtered %.5f, unfiltered %.5f\n", name, e.filtered, e.unfiltered);
     EXPECT_LT(e.filtered, e.unfiltered) << name;
@@ -173,7 +174,7 @@ TEST(EmbreeRadianceFilter, TextureEdgesStaySharp) {
       const glm::vec3 al = ref.albedo(x, y);
       if (std::abs(al.x - al.y) > 0.02f || std::abs(al.y - al.z) > 0.02f) continue;
       const float a = al.x;
-      const bool isBright = a > 0.85f && a < 0.95f, isDark = a > 0.05f && a < 0.15f;
+      const bool isBright = a > 0.85f && a<0.95f, isDark = a> 0.05f && a < 0.15f;
       if (!isBright && !isDark) continue;
       bool nearEdge = false;  // a 4-neighbour of the other kind
       for (auto [dx, dy] : {std::pair{-1, 0}, std::pair{1, 0}, std::pair{0, -1}, std::pair{0, 1}}) {

@@ -94,8 +94,8 @@ Camera cornellBox(Scene& scene, int sphereTris, float aspect) {
   if (sphereTris > 0) {
     Material m;
     m.baseColor = glm::vec3(0.8f);
-    scene.addInstance(scene.addMesh(uvSphere({368.0f, 410.0f, 351.0f}, 80.0f, sphereTris, false)),
-                      scene.addMaterial(m), glm::mat4(1.0f));
+    scene.addInstance(scene.addMesh(uvSphere({368.0f, 410.0f, 351.0f}, 80.0f, sphereTris, false)), scene.addMaterial(m),
+                      glm::mat4(1.0f));
   }
   scene.addLight(PointLight{{213.0f, 300.0f, 227.0f}, glm::vec3(100000.0f)});
   return Camera::lookAt({278, 273, -800}, {278, 273, 0}, {0, 1, 0}, glm::radians(37.0f), aspect);
@@ -160,7 +160,8 @@ bool identical(const FrameBuffer& a, const FrameBuffer& b, std::uint32_t ax, std
         return false;
       }
       for (Channel c : {Channel::Colour, Channel::Direct, Channel::Indirect}) {
-        if (!same(a.mean(c, xa, ya), b.mean(c, x, y)) || !same(a.variance(c, xa, ya), b.variance(c, x, y))) return false;
+        if (!same(a.mean(c, xa, ya), b.mean(c, x, y)) || !same(a.variance(c, xa, ya), b.variance(c, x, y)))
+          return false;
       }
     }
   return true;

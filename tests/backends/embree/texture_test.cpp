@@ -9,7 +9,7 @@ TEST(EmbreeTexture, BilinearWrapsAndDecodesSrgb) {
   std::vector<std::uint8_t> rgba = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 128, 128, 128, 128};
   Texture t = Texture::fromRgba8(2, 2, rgba);
   EXPECT_EQ(t.sampleBilinear({0.25f, 0.25f}), glm::vec4(1, 0, 0, 1));
-  EXPECT_NEAR(t.texel(1, 1).x, 0.2158f, 1e-3f);     // sRGB 128
+  EXPECT_NEAR(t.texel(1, 1).x, 0.2158f, 1e-3f);       // sRGB 128
   EXPECT_NEAR(t.texel(1, 1).w, 128.0f / 255, 1e-6f);  // alpha stays linear
   // Half-way between texel 1 of row 0 and texel 0 (wrapped) of row 0.
   glm::vec4 edge = t.sampleBilinear({1.0f, 0.25f});

@@ -31,7 +31,8 @@ std::vector<float> busy() {
 
 // img plus zero-mean white noise of amplitude a (relative to 0.5).
 std::vector<float> noisy(std::vector<float> img, float a) {
-  for (std::uint32_t i = 0; i < img.size(); ++i) img[i] += 0.5f * a * (2.0f * Rng(Rng::pixelKey(3, i, 0), 0).uniform() - 1.0f);
+  for (std::uint32_t i = 0; i < img.size(); ++i)
+    img[i] += 0.5f * a * (2.0f * Rng(Rng::pixelKey(3, i, 0), 0).uniform() - 1.0f);
   return img;
 }
 
@@ -83,7 +84,8 @@ TEST(EmbreePhotonBudget, DoublesPhotonsUntilTheNoiseIsInvisible) {
     PhotonBudgetSettings b;
     b.threshold = threshold;
     b.maxRounds = 8;
-    return choosePhotonsPerFrame(scene, renderer, camera, region, [](Scene&, std::int64_t) {}, 2, 5, ps, b);
+    return choosePhotonsPerFrame(
+        scene, renderer, camera, region, [](Scene&, std::int64_t) {}, 2, 5, ps, b);
   };
   const PhotonBudget loose = choose(0.3f), strict = choose(0.05f);
   EXPECT_GT(strict.photonsPerFrame, ps.photonsPerFrame);

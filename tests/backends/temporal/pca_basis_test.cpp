@@ -21,7 +21,8 @@ TEST(PcaBasis, AllModesReproduceTheInput) {
     ASSERT_EQ(basis.modes(), frames);
     for (int t = 0; t < frames; ++t) {
       const Frame back = basis.reconstruct(t, frames);
-      for (std::size_t i = 0; i < back.rgb.size(); ++i) EXPECT_NEAR(back.rgb[i], input[size_t(t)].rgb[i], 1e-4f) << frames;
+      for (std::size_t i = 0; i < back.rgb.size(); ++i)
+        EXPECT_NEAR(back.rgb[i], input[size_t(t)].rgb[i], 1e-4f) << frames;
     }
   }
 }
@@ -61,7 +62,8 @@ TEST(PcaBasis, AScaledImageNeedsTheMeanAndOneMode) {
 }
 
 TEST(PcaBasis, AStaticSequenceIsItsMean) {
-  std::vector<Frame> input = test::sequence(6, 5, 4, [](std::uint32_t x, std::uint32_t y, int) { return float(x + 2 * y); });
+  std::vector<Frame> input =
+      test::sequence(6, 5, 4, [](std::uint32_t x, std::uint32_t y, int) { return float(x + 2 * y); });
   const PcaBasis basis(input);
   EXPECT_NEAR(basis.unexplained()[1], 0.0, 1e-9);
   const Frame r = basis.reconstruct(3, 1);

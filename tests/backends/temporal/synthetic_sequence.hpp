@@ -20,7 +20,8 @@ inline std::vector<Frame> sequence(int frames, std::uint32_t w, std::uint32_t h,
     Frame f(w, h);
     for (std::uint32_t y = 0; y < h; ++y)
       for (std::uint32_t x = 0; x < w; ++x)
-        for (std::size_t c = 0; c < 3; ++c) f.rgb[(std::size_t{y} * w + x) * 3 + c] = value(x, y, t) * (1.0f - 0.2f * float(c));
+        for (std::size_t c = 0; c < 3; ++c)
+          f.rgb[(std::size_t{y} * w + x) * 3 + c] = value(x, y, t) * (1.0f - 0.2f * float(c));
     out.push_back(std::move(f));
   }
   return out;

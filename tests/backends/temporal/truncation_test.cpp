@@ -13,7 +13,9 @@ namespace {
 constexpr int kFrames = 24;
 constexpr std::uint32_t kSize = 16;
 
-float pattern(std::uint32_t x, std::uint32_t y) { return 1.0f + 0.5f * std::sin(float(x) / 3.0f) * std::cos(float(y) / 4.0f); }
+float pattern(std::uint32_t x, std::uint32_t y) {
+  return 1.0f + 0.5f * std::sin(float(x) / 3.0f) * std::cos(float(y) / 4.0f);
+}
 
 // A light switched on harder at frame 12 plus a slow drift of another
 // pattern: rank 2, with a discontinuity in time.

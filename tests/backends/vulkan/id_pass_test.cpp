@@ -6,8 +6,8 @@
 #include "tsr/vk/renderer.hpp"
 #include "tsr/vk/scene.hpp"
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 namespace tsr::vk {
 namespace {
@@ -24,8 +24,8 @@ struct Rig {
   Rig() {
     MeshId quad = scene.addMesh(test::quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}));
     wall = scene.addInstance(quad, opaque, glm::scale(glm::mat4(1.0f), glm::vec3(1.5f)));
-    front = scene.addInstance(quad, opaque, glm::translate(glm::mat4(1.0f), {0, 0, 1}) *
-                                                glm::scale(glm::mat4(1.0f), glm::vec3(0.4f)));
+    front = scene.addInstance(
+        quad, opaque, glm::translate(glm::mat4(1.0f), {0, 0, 1}) * glm::scale(glm::mat4(1.0f), glm::vec3(0.4f)));
     scene.setInstanceObject(wall, 7);
     scene.setInstanceObject(front, 42);
   }

@@ -152,8 +152,7 @@ TEST(VulkanLighting, EmissionOnlyFromFrontFace) {
   // Left quad faces the camera (+Z), right quad faces away.
   scene.addInstance(scene.addMesh(test::quad({-2, -1, 0}, {-0.5f, -1, 0}, {-0.5f, 1, 0}, {-2, 1, 0})), m,
                     glm::mat4(1.0f));
-  scene.addInstance(scene.addMesh(test::quad({2, -1, 0}, {0.5f, -1, 0}, {0.5f, 1, 0}, {2, 1, 0})), m,
-                    glm::mat4(1.0f));
+  scene.addInstance(scene.addMesh(test::quad({2, -1, 0}, {0.5f, -1, 0}, {0.5f, 1, 0}, {2, 1, 0})), m, glm::mat4(1.0f));
   const Camera cam = Camera::lookAt({0, 0, 3}, {0, 0, 0}, {0, 1, 0}, 1.2f, 1.0f);
   const Region full = Region::full(64, 64);
   FrameBuffer fb(64, 64);

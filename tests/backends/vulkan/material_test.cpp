@@ -86,8 +86,8 @@ TEST(VulkanMaterial, BaseColourTextureLookupAtKnownUv) {
   Material m;
   m.baseColor = glm::vec3(1.0f);
   m.baseColorTexture = tex;
-  scene.addInstance(scene.addMesh(test::quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0})),
-                    scene.addMaterial(m), glm::mat4(1.0f));
+  scene.addInstance(scene.addMesh(test::quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0})), scene.addMaterial(m),
+                    glm::mat4(1.0f));
   scene.setEnvironment(Environment::constant(glm::vec3(1.0f)));  // radiance = albedo
   Renderer renderer(device());
   FrameBuffer fb(64, 64);
@@ -139,8 +139,8 @@ TEST(VulkanMaterial, ConductorHighlightPeaksAtMirrorDirection) {
   metal.type = MaterialType::Conductor;
   metal.baseColor = glm::vec3(0.9f);
   metal.roughness = 0.3f;
-  scene.addInstance(scene.addMesh(test::quad({-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0})),
-                    scene.addMaterial(metal), glm::mat4(1.0f));
+  scene.addInstance(scene.addMesh(test::quad({-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0})), scene.addMaterial(metal),
+                    glm::mat4(1.0f));
   scene.addLight(PointLight{{0, 0, 3}, glm::vec3(10.0f)});  // at the eye: mirror point is the centre
   Renderer renderer(device());
   FrameBuffer fb(64, 64);

@@ -41,7 +41,8 @@ FrameBuffer render(Scene& scene) {
 
 TEST(VulkanSceneUpdate, InstanceMoveWritesOnlyTheInstanceRecord) {
   const glm::mat4 before = glm::translate(glm::mat4(1.0f), {1.0f, 0, 0});
-  const glm::mat4 after = glm::translate(glm::mat4(1.0f), {0.3f, 0.4f, 0.8f}) * glm::scale(glm::mat4(1.0f), glm::vec3(0.7f));
+  const glm::mat4 after =
+      glm::translate(glm::mat4(1.0f), {0.3f, 0.4f, 0.8f}) * glm::scale(glm::mat4(1.0f), glm::vec3(0.7f));
   Scene scene(device());
   Built b = build(scene, before);
   FrameBuffer first = render(scene);

@@ -93,8 +93,9 @@ void VulkanSwapchain::presentScenario(const std::shared_ptr<Device>& device) {
   InstanceId ball = scene.addInstance(scene.addMesh(test::uvSphere(12, 16, 0.5f)), redId, glm::mat4(1.0f));
   scene.addLight(PointLight{{0, 2, 2}, glm::vec3(10.0f)});
   scene.setEnvironment(Environment::constant(glm::vec3(0.05f)));
-  Renderer renderer(device, {.msaaSamples = 4, .shadows = false, .shadowMapSize = 256,
-                             .background = glm::vec4(0.1f, 0.2f, 0.4f, 1.0f)});
+  Renderer renderer(
+      device,
+      {.msaaSamples = 4, .shadows = false, .shadowMapSize = 256, .background = glm::vec4(0.1f, 0.2f, 0.4f, 1.0f)});
   const Camera cam96 = Camera::lookAt({0, 1.2f, 3}, {0, 0, 0}, {0, 1, 0}, 0.9f, 1.5f);
 
   {

@@ -10,8 +10,8 @@
 #include <cstdio>
 #include <numeric>
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <spdlog/spdlog.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "cluster_test_util.hpp"
 #include "tsr/cluster/cluster_window.hpp"
@@ -74,7 +74,8 @@ void wireBytes() {
   w.publish(s.scene, s.scene.commit());
   std::uint64_t oneEdit = sent(w) - before;
   w.waitApplied(s.scene.version(), 5s);
-  std::printf("wire: snapshot %zu bytes; animated delta %.1f bytes/frame (%.4f of the snapshot); one transform edit %llu bytes\n",
+  std::printf("wire: snapshot %zu bytes; animated delta %.1f bytes/frame (%.4f of the snapshot); one transform edit "
+              "%llu bytes\n",
               snapshotBytes, perFrame, perFrame / double(snapshotBytes), static_cast<unsigned long long>(oneEdit));
 }
 
@@ -112,8 +113,8 @@ void loopbackOverhead(std::uint32_t size, int frames) {
       remote.push_back(tc);
     }
   }
-  std::printf("loopback: %ux%u spp 4, median local %.1f ms, 1-node cluster %.1f ms, ratio %.3f (target <= 1.10)\n", size,
-              size, median(here) * 1e3, median(remote) * 1e3, median(remote) / median(here));
+  std::printf("loopback: %ux%u spp 4, median local %.1f ms, 1-node cluster %.1f ms, ratio %.3f (target <= 1.10)\n",
+              size, size, median(here) * 1e3, median(remote) * 1e3, median(remote) / median(here));
 }
 
 void cornerImbalance(int frames, float backOff, const std::string& imagePath, bool verbose) {
@@ -164,7 +165,8 @@ void cornerImbalance(int frames, float backOff, const std::string& imagePath, bo
     }
   }
   std::printf("cooperative: %zu nodes, 128x128, 16-px tiles, cost in one corner: imbalance after warm-up median %.3f "
-              "(balancer's estimate %.3f; target <= 1.15)\n", n, median(ratios), median(estimates));
+              "(balancer's estimate %.3f; target <= 1.15)\n",
+              n, median(ratios), median(estimates));
 }
 
 void replicationLatency(int frames) {

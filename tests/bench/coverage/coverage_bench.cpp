@@ -6,9 +6,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "../instances_fixture.hpp"
 #include "tsr/med/coverage/ranking.hpp"
 #include "tsr/med/coverage/register.hpp"
-#include "../instances_fixture.hpp"
 
 using namespace tsr;
 

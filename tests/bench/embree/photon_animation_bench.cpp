@@ -170,11 +170,16 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "%s needs a positive number\n", k.c_str());
       return 2;
     }
-    if (k == "--frames") o.frames = int(v);
-    else if (k == "--size") o.size = std::uint32_t(v);
-    else if (k == "--spp") o.spp = std::uint32_t(v);
-    else if (k == "--ref-spp") o.refSpp = std::uint32_t(v);
-    else if (k == "--photons") o.photons = std::uint32_t(v);
+    if (k == "--frames")
+      o.frames = int(v);
+    else if (k == "--size")
+      o.size = std::uint32_t(v);
+    else if (k == "--spp")
+      o.spp = std::uint32_t(v);
+    else if (k == "--ref-spp")
+      o.refSpp = std::uint32_t(v);
+    else if (k == "--photons")
+      o.photons = std::uint32_t(v);
     else {
       std::fprintf(stderr, "unknown option %s\n", k.c_str());
       return 2;

@@ -57,9 +57,21 @@ void BM_PixelFilterBlend(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK_CAPTURE(run, Bilateral, FilterKernel::Bilateral, false)->Name("BM_PixelFilter/Bilateral")->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(run, Separable, FilterKernel::Separable, false)->Name("BM_PixelFilter/Separable")->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(run, Atrous, FilterKernel::Atrous, false)->Name("BM_PixelFilter/Atrous")->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(run, SeparableAdaptiveAA, FilterKernel::Separable, true)->Name("BM_PixelFilter/SeparableAdaptiveAA")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run, Bilateral, FilterKernel::Bilateral, false)
+    ->Name("BM_PixelFilter/Bilateral")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(run, Separable, FilterKernel::Separable, false)
+    ->Name("BM_PixelFilter/Separable")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(run, Atrous, FilterKernel::Atrous, false)
+    ->Name("BM_PixelFilter/Atrous")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(run, SeparableAdaptiveAA, FilterKernel::Separable, true)
+    ->Name("BM_PixelFilter/SeparableAdaptiveAA")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(BM_PixelFilterBlend)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_MAIN();

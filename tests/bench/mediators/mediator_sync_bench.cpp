@@ -16,8 +16,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "tsr/med/embree/register.hpp"
 #include "../instances_fixture.hpp"
+#include "tsr/med/embree/register.hpp"
 
 using namespace tsr;
 
@@ -53,14 +53,17 @@ void moveOneTransform(Instances& s, int i) {
 // the top level, and every 2 sqrt(N)-th folds the ghosts back (a rebuild of the
 // top level); between folds only the moving level rebuilds.
 void moveAnotherTransform(Instances& s, int i) {
-  s.transforms[std::size_t(i) % s.transforms.size()]->setMatrix(glm::translate(glm::mat4(1.0f), glm::vec3(0, 0.01f * i, 0)));
+  s.transforms[std::size_t(i) % s.transforms.size()]->setMatrix(
+      glm::translate(glm::mat4(1.0f), glm::vec3(0, 0.01f * i, 0)));
 }
 // A millimetre, to an instance spread over the grid: the frame stays the same.
 void nudgeAnotherTransform(Instances& s, int i) {
   sg::Transform& t = *s.transforms[std::size_t(i) * 7919 % s.transforms.size()];
   t.setMatrix(glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, 1e-3f)) * t.matrix());
 }
-void tintOneMaterial(Instances& s, int i) { s.materials.front()->setBaseColor(glm::vec3(0.5f, 0.5f, (i % 100) / 100.0f)); }
+void tintOneMaterial(Instances& s, int i) {
+  s.materials.front()->setBaseColor(glm::vec3(0.5f, 0.5f, (i % 100) / 100.0f));
+}
 void nudgeTwoVertices(Instances& s, int i) {
   sg::Geometry& g = *s.geometries.front();
   std::vector<sg::Vec3> run(g.positions().begin(), g.positions().begin() + 2);
@@ -84,8 +87,8 @@ void syncAfterEdit(benchmark::State& state, Edit edit, bool endToEnd) {
     edit(s, nextEdit());
     replica.apply(s.source.commit());
     state.ResumeTiming();
-    auto update = endToEnd ? viewport->render(replica, s.onePixel(replica.scene()), out).update
-                           : viewport->synchronize(replica);
+    auto update =
+        endToEnd ? viewport->render(replica, s.onePixel(replica.scene()), out).update : viewport->synchronize(replica);
     if (update != med::SceneAdapter::Update::Synced) state.SkipWithError("expected a sync");
   }
   state.counters["instances"] = static_cast<double>(state.range(0));
@@ -115,7 +118,8 @@ static void BM_MediatorConvertOnly(benchmark::State& state) {
   for (auto _ : state) {
     med::ContextPool contexts;
     auto viewport = s.registry.create(s.settings(), contexts);
-    if (viewport->synchronize(replica) != med::SceneAdapter::Update::Converted) state.SkipWithError("expected a conversion");
+    if (viewport->synchronize(replica) != med::SceneAdapter::Update::Converted)
+      state.SkipWithError("expected a conversion");
   }
 }
 BENCHMARK(BM_MediatorConvertOnly)->Apply(sizes)->Unit(benchmark::kMillisecond);
@@ -124,9 +128,13 @@ static void BM_SyncOneTransformEdit(benchmark::State& state) { syncAfterEdit(sta
 static void BM_SyncFirstTransformEdit(benchmark::State& state) { syncAfterEdit(state, moveAnotherTransform, true); }
 static void BM_SyncMaterialEdit(benchmark::State& state) { syncAfterEdit(state, tintOneMaterial, true); }
 static void BM_SyncPointsRangeEdit(benchmark::State& state) { syncAfterEdit(state, nudgeTwoVertices, true); }
-static void BM_MediatorSyncOnlyOneTransformEdit(benchmark::State& state) { syncAfterEdit(state, moveOneTransform, false); }
+static void BM_MediatorSyncOnlyOneTransformEdit(benchmark::State& state) {
+  syncAfterEdit(state, moveOneTransform, false);
+}
 static void BM_MediatorSyncOnlyMaterialEdit(benchmark::State& state) { syncAfterEdit(state, tintOneMaterial, false); }
-static void BM_MediatorSyncOnlyPointsRangeEdit(benchmark::State& state) { syncAfterEdit(state, nudgeTwoVertices, false); }
+static void BM_MediatorSyncOnlyPointsRangeEdit(benchmark::State& state) {
+  syncAfterEdit(state, nudgeTwoVertices, false);
+}
 // What ghosts cost a frame: one sample per pixel of a 64x64 view after
 // `moved` different instances moved (a millimetre) once each (their ghosts stay in the top
 // level until 2 sqrt(N) of them), against the same frame with none moved.

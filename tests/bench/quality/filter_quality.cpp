@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "quality_scene.hpp"
 #include "rel_mse.hpp"
@@ -45,7 +45,7 @@ struct Options {
   std::string cache = "build/quality-cache";
   std::string out;
   std::string pngDir;
-  std::string gltf;  // make_cornell.py's cornell.gltf; empty: built-in scene only
+  std::string gltf;                 // make_cornell.py's cornell.gltf; empty: built-in scene only
   std::vector<std::string> scenes;  // subset of keys; empty: all
   std::vector<std::string> extra;   // name=value for every filtered render
   bool quick = false;
@@ -78,8 +78,8 @@ void note(const std::string& s) { std::cerr << "[filter_quality] " << s << std::
 // The reference, from the cache when it holds one: never recomputed.
 med::FrameBuffer reference(QualityScene& scene, const Options& o, std::uint32_t size) {
   namespace fs = std::filesystem;
-  const std::string name = fmt::format("{}_{}x{}_spp{}_seed{}_depth{}.exr", scene.key(), size, size, o.refSpp,
-                                       o.refSeed, o.maxDepth);
+  const std::string name =
+      fmt::format("{}_{}x{}_spp{}_seed{}_depth{}.exr", scene.key(), size, size, o.refSpp, o.refSeed, o.maxDepth);
   const fs::path path = fs::path(o.cache) / name;
   if (fs::exists(path)) {
     med::FrameBuffer fb = med::readImage(path.string());
@@ -236,7 +236,8 @@ SceneResult measure(QualityScene& scene, const Options& o) {
     for (double t : kThresholds) {
       vp->setParameter("threshold", t);
       Shot s = scene.render(*vp, o.size, true);
-      sweep += fmt::format("{}{}: {} (s {})", sweep.empty() ? "" : "; ", num(t), num(quality::relMse(s.image.colour, ref.colour)),
+      sweep += fmt::format("{}{}: {} (s {})", sweep.empty() ? "" : "; ", num(t),
+                           num(quality::relMse(s.image.colour, ref.colour)),
                            num(quality::meanRed(s.image.outputs["blend"])));
     }
     cell["sweep"] = sweep;
@@ -246,8 +247,7 @@ SceneResult measure(QualityScene& scene, const Options& o) {
 
   // Consistency: at high spp filtering must fade out (s -> 1).
   {
-    const med::FrameBuffer cref =
-        o.consistencySize == o.size ? ref : reference(scene, o, o.consistencySize);
+    const med::FrameBuffer cref = o.consistencySize == o.size ? ref : reference(scene, o, o.consistencySize);
     auto vp = scene.viewport(baseParameters(o, o.consistencySpp, "none"));
     Shot u = scene.render(*vp, o.consistencySize);
     const double eu = quality::relMse(u.image.colour, cref.colour);
@@ -311,8 +311,9 @@ std::string table(const std::vector<QualityScene*>& scenes, const std::vector<Sc
       {"eq_hybrid", "hybrid / pixel relMSE at T", "< 1"},
       {"eq_atrous", "a-trous / cross bilateral relMSE at T", "~1 (cheaper)"},
       {"sweep", "pixel 8 spp: relMSE (mean s) by threshold", ""},
-      {"consistency", fmt::format("consistency, {} spp at {}x{}: relMSE (vs unfiltered, mean s)", o.consistencySpp,
-                                  o.consistencySize, o.consistencySize),
+      {"consistency",
+       fmt::format("consistency, {} spp at {}x{}: relMSE (vs unfiltered, mean s)", o.consistencySpp, o.consistencySize,
+                   o.consistencySize),
        "within 5 %, s > 0.95"},
       {"overhead", "32 progressive 1-spp frames: time (overhead)", "7-18 %"},
   };
@@ -333,9 +334,10 @@ std::string table(const std::vector<QualityScene*>& scenes, const std::vector<Sc
   std::string fit, timed;
   for (auto n : o.fitSpp) fit += (fit.empty() ? "" : ",") + std::to_string(n);
   for (auto n : o.timedSpp) timed += (timed.empty() ? "" : ",") + std::to_string(n);
-  md << "\n" << o.size << "x" << o.size << " pixels unless stated; reference " << o.refSpp
-     << " spp (seed " << o.refSeed << ", maxDepth " << o.maxDepth << ") by the same path tracer; measured renders seed "
-     << o.seed << ". relMSE = mean over pixels and RGB of (y^-y)^2/(y^2+0.01), linear HDR.\n"
+  md << "\n"
+     << o.size << "x" << o.size << " pixels unless stated; reference " << o.refSpp << " spp (seed " << o.refSeed
+     << ", maxDepth " << o.maxDepth << ") by the same path tracer; measured renders seed " << o.seed
+     << ". relMSE = mean over pixels and RGB of (y^-y)^2/(y^2+0.01), linear HDR.\n"
      << "Equivalent spp = a / relMSE(filtered, 8 spp), a from the unfiltered renders at spp " << fit
      << " (least squares of relMSE*spp = a; the reference's own noise, about a/" << o.refSpp
      << ", caps it).\nEqual time: filtered renders at spp " << timed

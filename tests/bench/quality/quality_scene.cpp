@@ -60,7 +60,8 @@ void QualityScene::pose(float seconds, float lightScale) {
     for (auto id : source_.ids())
       if (const auto* light = source_.find<sg::Light>(id)) lightIntensities_.emplace_back(id, light->intensity());
   for (const auto& animation : imported_.animations) animation.apply(source_, seconds);
-  for (const auto& [id, intensity] : lightIntensities_) source_.find<sg::Light>(id)->setIntensity(intensity * lightScale);
+  for (const auto& [id, intensity] : lightIntensities_)
+    source_.find<sg::Light>(id)->setIntensity(intensity * lightScale);
   lastCommit_ = source_.commit();
   replica_.apply(lastCommit_);
 }

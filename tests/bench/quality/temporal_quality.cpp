@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "quality_scene.hpp"
 #include "rel_mse.hpp"
@@ -44,7 +44,7 @@ struct Options {
   std::uint32_t refSpp = 2048;
   std::uint64_t refSeed = 900001;
   std::uint64_t seed = 1;
-  int switchFrame = -1;  // -1: frames / 2; 0: no switch
+  int switchFrame = -1;     // -1: frames / 2; 0: no switch
   float switchFrom = 0.3f;  // light intensity scale before the switch
   int threads = 0;
   std::string cache = "build/quality-cache";
@@ -81,8 +81,8 @@ struct Split {
 };
 
 Split split(quality::Shot shot) {
-  return {std::move(shot.image.colour), std::move(shot.image.outputs["direct"]), std::move(shot.image.outputs["indirect"]),
-          shot.seconds};
+  return {std::move(shot.image.colour), std::move(shot.image.outputs["direct"]),
+          std::move(shot.image.outputs["indirect"]), shot.seconds};
 }
 
 // The frame's reference (colour and indirect), from the cache when there.
@@ -95,7 +95,8 @@ Split reference(quality::QualityScene& scene, const Options& o, int frame, float
     Split s;
     s.colour = med::readImage(colour.string()).colour;
     s.indirect = med::readImage(indirect.string()).colour;
-    if (s.colour.size() != std::size_t{o.size} * o.size) throw std::runtime_error(colour.string() + ": wrong size; delete it");
+    if (s.colour.size() != std::size_t{o.size} * o.size)
+      throw std::runtime_error(colour.string() + ": wrong size; delete it");
     return s;
   }
   note(fmt::format("rendering reference frame {} ({} spp); cached afterwards", frame, o.refSpp));
@@ -119,7 +120,8 @@ temporal::Frame toFrame(const Image& image, std::uint32_t size) {
 Image toImage(const temporal::Frame& f) {
   Image out(f.pixels());
   for (std::size_t p = 0; p < out.size(); ++p)
-    out[p] = glm::vec4(std::max(f.rgb[p * 3], 0.0f), std::max(f.rgb[p * 3 + 1], 0.0f), std::max(f.rgb[p * 3 + 2], 0.0f), 1.0f);
+    out[p] = glm::vec4(std::max(f.rgb[p * 3], 0.0f), std::max(f.rgb[p * 3 + 1], 0.0f), std::max(f.rgb[p * 3 + 2], 0.0f),
+                       1.0f);
   return out;
 }
 
@@ -184,7 +186,8 @@ int main(int argc, char** argv) {
     med::ViewportRegistry registry;
     med::registerEmbree(registry);
     std::string key = o.scene;
-    std::replace_if(key.begin(), key.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
+    std::replace_if(
+        key.begin(), key.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
     quality::QualityScene scene(key, o.scene, o.scene, false, registry);
 
     Sequence refColour, refIndirect;
@@ -241,13 +244,15 @@ int main(int argc, char** argv) {
       for (int t = 0; t < o.frames; ++t) {
         m.indirect.push_back(toImage(r.frames[std::size_t(t)]));
         Image beauty = kDirect[std::size_t(t)];
-        for (std::size_t p = 0; p < beauty.size(); ++p) beauty[p] = glm::vec4(glm::vec3(beauty[p]) + glm::vec3(m.indirect.back()[p]), 1.0f);
+        for (std::size_t p = 0; p < beauty.size(); ++p)
+          beauty[p] = glm::vec4(glm::vec3(beauty[p]) + glm::vec3(m.indirect.back()[p]), 1.0f);
         m.beauty.push_back(std::move(beauty));
       }
       note(fmt::format("{}: {} ({:.3f} s denoising)", name, m.modes, denoise));
       return m;
     };
-    const std::string kName = fmt::format("{} spp{}", o.k, directSpp > o.k ? fmt::format(", direct {} spp", directSpp) : "");
+    const std::string kName =
+        fmt::format("{} spp{}", o.k, directSpp > o.k ? fmt::format(", direct {} spp", directSpp) : "");
     temporal::PcaSettings perPixel, global;
     global.perPixel = false;
     methods.push_back(pca("PCA, per-pixel map, " + kName, perPixel));
@@ -268,9 +273,12 @@ int main(int argc, char** argv) {
       p.set("photonFrames", std::int64_t{o.photonFrames});
       auto vp = scene.viewport(p);
       note("photons: tracing and rendering the sequence");
-      auto shots = scene.renderAhead(*vp, o.size, o.frames, [&](int t) {
-        scene.pose(static_cast<float>(t / o.fps), (o.switchFrame > 0 && t < o.switchFrame) ? o.switchFrom : 1.0f);
-      }, {"direct", "indirect"});
+      auto shots = scene.renderAhead(*vp, o.size, o.frames,
+                                     [&](int t) {
+                                       scene.pose(static_cast<float>(t / o.fps),
+                                                  (o.switchFrame > 0 && t < o.switchFrame) ? o.switchFrom : 1.0f);
+                                     },
+                                     {"direct", "indirect"});
       Method m;
       m.name = fmt::format("photons, t_max {}, direct {} spp", o.photonFrames, o.k);
       for (auto& shot : shots) {
@@ -309,10 +317,14 @@ int main(int argc, char** argv) {
     std::ostringstream table;
     table << fmt::format("## Temporal quality: {} , {} frames at {}x{}, {} fps, light x{} until frame {}\n\n", o.scene,
                          o.frames, o.size, o.size, o.fps, o.switchFrom, o.switchFrame);
-    table << fmt::format("reference: {} spp per frame (cached); fit over frame by frame: relMSE = {:.4g}/spp, time = {:.4g} s/spp for all frames\n\n", o.refSpp, a, b);
-    table << "| method | relMSE beauty | relMSE indirect | tRelMSE indirect | flicker vs frame by frame | time s | equal-quality speedup | modes |\n";
+    table << fmt::format("reference: {} spp per frame (cached); fit over frame by frame: relMSE = {:.4g}/spp, time = "
+                         "{:.4g} s/spp for all frames\n\n",
+                         o.refSpp, a, b);
+    table << "| method | relMSE beauty | relMSE indirect | tRelMSE indirect | flicker vs frame by frame | time s | "
+             "equal-quality speedup | modes |\n";
     table << "|---|---|---|---|---|---|---|---|\n";
-    const std::size_t kIndex = static_cast<std::size_t>(std::find(o.fitSpp.begin(), o.fitSpp.end(), o.k) - o.fitSpp.begin());
+    const std::size_t kIndex =
+        static_cast<std::size_t>(std::find(o.fitSpp.begin(), o.fitSpp.end(), o.k) - o.fitSpp.begin());
     for (std::size_t i = 0; i < methods.size(); ++i) {
       const double rel = mean(scores[i].beauty);
       const double equalTime = b * (a / rel);  // frame by frame to the same relMSE
@@ -325,7 +337,8 @@ int main(int argc, char** argv) {
 
     table << fmt::format("relMSE per frame (beauty / indirect), frame by frame at {} spp vs {}:\n\n", o.k,
                          methods[byFrame.size() + (o.modes.empty() ? 0 : 2)].name);
-    table << "| frame | frame by frame | PCA | photons | mean indirect luminance: reference | frame by frame | PCA | photons "
+    table << "| frame | frame by frame | PCA | photons | mean indirect luminance: reference | frame by frame | PCA | "
+             "photons "
              "|\n|---|---|---|---|---|---|---|---|\n";
     // Per frame, the switch and the PNGs: the first fixed truncation (with
     // path-traced noise 2.3's rule keeps every mode; see the README).
@@ -333,19 +346,20 @@ int main(int argc, char** argv) {
     for (int t = 0; t < o.frames; ++t) {
       const auto u = std::size_t(t);
       const bool ph = o.photons;
-      table << fmt::format("| {}{} | {} / {} | {} / {} | {} / {} | {} | {} | {} | {} |\n", t,
-                           t == o.switchFrame ? " (switch)" : "", num(scores[kIndex].beauty[u]),
-                           num(scores[kIndex].indirect[u]), num(scores[pcaIndex].beauty[u]),
-                           num(scores[pcaIndex].indirect[u]), ph ? num(scores[photonIndex].beauty[u]) : "",
-                           ph ? num(scores[photonIndex].indirect[u]) : "", num(meanLuminance(refIndirect[u])),
-                           num(meanLuminance(methods[kIndex].indirect[u])),
-                           num(meanLuminance(methods[pcaIndex].indirect[u])),
-                           ph ? num(meanLuminance(methods[photonIndex].indirect[u])) : "");
+      table << fmt::format(
+          "| {}{} | {} / {} | {} / {} | {} / {} | {} | {} | {} | {} |\n", t, t == o.switchFrame ? " (switch)" : "",
+          num(scores[kIndex].beauty[u]), num(scores[kIndex].indirect[u]), num(scores[pcaIndex].beauty[u]),
+          num(scores[pcaIndex].indirect[u]), ph ? num(scores[photonIndex].beauty[u]) : "",
+          ph ? num(scores[photonIndex].indirect[u]) : "", num(meanLuminance(refIndirect[u])),
+          num(meanLuminance(methods[kIndex].indirect[u])), num(meanLuminance(methods[pcaIndex].indirect[u])),
+          ph ? num(meanLuminance(methods[photonIndex].indirect[u])) : "");
     }
     if (o.switchFrame > 0 && o.switchFrame < o.frames) {
       const auto s = std::size_t(o.switchFrame);
       auto step = [&](const Sequence& seq) { return meanLuminance(seq[s]) - meanLuminance(seq[s - 1]); };
-      auto before = [&](const Sequence& seq) { return meanLuminance(seq[s - 1]) / meanLuminance(refIndirect[s - 1]) - 1; };
+      auto before = [&](const Sequence& seq) {
+        return meanLuminance(seq[s - 1]) / meanLuminance(refIndirect[s - 1]) - 1;
+      };
       table << fmt::format(
           "\nlight switch at frame {}: indirect step (mean luminance) reference {}, PCA {} ({:.0f}% of it); the frame "
           "before the switch is off by {:.1f}% (PCA) vs {:.1f}% (frame by frame)\n",

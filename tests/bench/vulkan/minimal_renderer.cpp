@@ -220,12 +220,12 @@ MinimalRenderer::MinimalRenderer(std::shared_ptr<Device> device, const BenchScen
   m.instances = m.buffer(models.size() * sizeof(glm::mat4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, host);
   std::memcpy(m.instances.mapped, models.data(), models.size() * sizeof(glm::mat4));
 
-  m.colourImage = m.image(VK_FORMAT_R32G32B32A32_SFLOAT,
-                          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                          VK_IMAGE_ASPECT_COLOR_BIT, m.colourView);
-  m.depthImage = m.image(VK_FORMAT_D32_SFLOAT,
-                         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                         VK_IMAGE_ASPECT_DEPTH_BIT, m.depthView);
+  m.colourImage =
+      m.image(VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+              VK_IMAGE_ASPECT_COLOR_BIT, m.colourView);
+  m.depthImage =
+      m.image(VK_FORMAT_D32_SFLOAT, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+              VK_IMAGE_ASPECT_DEPTH_BIT, m.depthView);
   const VkDeviceSize pixels = VkDeviceSize(width) * height;
   m.colourHost = m.buffer(pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, host | VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
   m.depthHost = m.buffer(pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, host | VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
@@ -282,8 +282,8 @@ MinimalRenderer::~MinimalRenderer() {
   vkDestroyDescriptorSetLayout(m.dev, m.setLayout, nullptr);
   vkDestroyImageView(m.dev, m.colourView, nullptr);
   vkDestroyImageView(m.dev, m.depthView, nullptr);
-  for (Allocation* a : {&m.vertices, &m.indices, &m.instances, &m.colourImage, &m.depthImage, &m.colourHost,
-                        &m.depthHost})
+  for (Allocation* a :
+       {&m.vertices, &m.indices, &m.instances, &m.colourImage, &m.depthImage, &m.colourHost, &m.depthHost})
     m.release(*a);
 }
 

@@ -102,10 +102,9 @@ class RatioReporter : public benchmark::ConsoleReporter {
     ConsoleReporter::Finalize();
     auto base = times_.find("BM_MinimalVulkan/min_time:2.000/real_time");
     if (base == times_.end()) return;
-    std::printf("\n%u x %u, %u instances; frame time relative to the minimal Vulkan program (target <= 1.3):\n",
-                kWidth, kHeight, kInstances);
-    for (const auto& [name, t] : times_)
-      std::printf("  %-60s %8.1f ms  x%.2f\n", name.c_str(), t, t / base->second);
+    std::printf("\n%u x %u, %u instances; frame time relative to the minimal Vulkan program (target <= 1.3):\n", kWidth,
+                kHeight, kInstances);
+    for (const auto& [name, t] : times_) std::printf("  %-60s %8.1f ms  x%.2f\n", name.c_str(), t, t / base->second);
   }
 
  private:

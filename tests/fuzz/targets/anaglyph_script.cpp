@@ -11,8 +11,7 @@ void anaglyphScript(Bytes bytes) {
   const std::string text(bytes.begin(), bytes.end());
   try {
     app::parseWindowScriptText(text, "fuzz-input");
-  } catch (const std::invalid_argument&) {
-  }
+  } catch (const std::invalid_argument&) {}
 }
 
 }  // namespace tsr::fuzz

@@ -9,8 +9,7 @@ void clusterConfig(Bytes bytes) {
   const std::string text(bytes.begin(), bytes.end());
   try {
     cluster::parseClusterConfig(text, "fuzz-input").validate();
-  } catch (const cluster::ConfigError&) {
-  }
+  } catch (const cluster::ConfigError&) {}
 }
 
 }  // namespace tsr::fuzz

@@ -13,11 +13,21 @@ namespace {
 // for bulk data decode what it carries.
 void decodePayload(const Message& m) {
   switch (m.type) {
-    case MessageType::Hello: parse<Hello>(m); return;
-    case MessageType::Challenge: parse<Challenge>(m); return;
-    case MessageType::Auth: parse<Auth>(m); return;
-    case MessageType::Welcome: parse<Welcome>(m); return;
-    case MessageType::Reject: parse<Reject>(m); return;
+    case MessageType::Hello:
+      parse<Hello>(m);
+      return;
+    case MessageType::Challenge:
+      parse<Challenge>(m);
+      return;
+    case MessageType::Auth:
+      parse<Auth>(m);
+      return;
+    case MessageType::Welcome:
+      parse<Welcome>(m);
+      return;
+    case MessageType::Reject:
+      parse<Reject>(m);
+      return;
     case MessageType::Snapshot:
     case MessageType::Changes: {
       sg::DecodeLimits limits;
@@ -25,22 +35,44 @@ void decodePayload(const Message& m) {
       sg::decode(m.payload, limits);
       return;
     }
-    case MessageType::Applied: parse<Applied>(m); return;
-    case MessageType::SetViewports: parse<SetViewports>(m); return;
-    case MessageType::RenderRequest: parse<RenderRequest>(m); return;
+    case MessageType::Applied:
+      parse<Applied>(m);
+      return;
+    case MessageType::SetViewports:
+      parse<SetViewports>(m);
+      return;
+    case MessageType::RenderRequest:
+      parse<RenderRequest>(m);
+      return;
     case MessageType::RenderTile: {
       const RenderTile tile = parse<RenderTile>(m);
       decodePixels(tile.rect.width(), tile.rect.height(), tile.compression, tile.pixels, tile.outputs);
       return;
     }
-    case MessageType::FrameDone: parse<FrameDone>(m); return;
-    case MessageType::Swap: parse<Swap>(m); return;
-    case MessageType::HashQuery: parse<HashQuery>(m); return;
-    case MessageType::HashReply: parse<HashReply>(m); return;
-    case MessageType::Heartbeat: parse<Heartbeat>(m); return;
-    case MessageType::HeartbeatAck: parse<HeartbeatAck>(m); return;
-    case MessageType::Error: parse<ErrorReport>(m); return;
-    case MessageType::Bye: parse<Bye>(m); return;
+    case MessageType::FrameDone:
+      parse<FrameDone>(m);
+      return;
+    case MessageType::Swap:
+      parse<Swap>(m);
+      return;
+    case MessageType::HashQuery:
+      parse<HashQuery>(m);
+      return;
+    case MessageType::HashReply:
+      parse<HashReply>(m);
+      return;
+    case MessageType::Heartbeat:
+      parse<Heartbeat>(m);
+      return;
+    case MessageType::HeartbeatAck:
+      parse<HeartbeatAck>(m);
+      return;
+    case MessageType::Error:
+      parse<ErrorReport>(m);
+      return;
+    case MessageType::Bye:
+      parse<Bye>(m);
+      return;
   }
 }
 
@@ -67,8 +99,7 @@ void clusterMessages(Bytes bytes) {
     try {
       decodePayload(m);
     } catch (const ProtocolError&) {
-    } catch (const sg::DecodeError&) {
-    }
+    } catch (const sg::DecodeError&) {}
   }
 }
 

@@ -23,8 +23,7 @@ void gltfImport(Bytes bytes) {
   sg::Scene scene;
   try {
     sg::importGltf(scene, bytes, "fuzz-input", base.string(), options);
-  } catch (const sg::ImportError&) {
-  }
+  } catch (const sg::ImportError&) {}
 }
 
 }  // namespace tsr::fuzz

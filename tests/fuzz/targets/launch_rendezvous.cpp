@@ -28,8 +28,8 @@ void launchRankLine(Bytes bytes) {
   const auto line = app::parseRankLine(buffer.substr(0, buffer.find('\n')), app::kMaxJobSize);
   if (!line) return;
   if (line->rank == 0 || line->rank >= app::kMaxJobSize || line->address.port == 0) std::abort();
-  const auto again = app::parseRankLine("rank " + std::to_string(line->rank) + " " + line->address.text(),
-                                        app::kMaxJobSize);
+  const auto again =
+      app::parseRankLine("rank " + std::to_string(line->rank) + " " + line->address.text(), app::kMaxJobSize);
   if (!again || again->rank != line->rank || again->address != line->address) std::abort();
 }
 

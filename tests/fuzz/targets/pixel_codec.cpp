@@ -25,7 +25,8 @@ void pixelCodec(Bytes bytes) {
     return;
   }
   // Lossless: what decoded encodes and decodes to the same bits.
-  const EncodedPixels again = encodePixels(fb, compression == Compression::Zstd ? Compression::Zstd : Compression::Lz4, outputs);
+  const EncodedPixels again =
+      encodePixels(fb, compression == Compression::Zstd ? Compression::Zstd : Compression::Lz4, outputs);
   const med::FrameBuffer back = decodePixels(width, height, again.compression, again.bytes, outputs);
   const auto same = [](const auto& a, const auto& b) {
     return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0;

@@ -11,8 +11,7 @@ void viewerScript(Bytes bytes) {
   const app::ScriptLimits limits{2, {"embree", "vulkan", "coverage"}};
   try {
     app::parseScriptText(text, "fuzz-input", limits);
-  } catch (const app::ScriptError&) {
-  }
+  } catch (const app::ScriptError&) {}
 }
 
 }  // namespace tsr::fuzz

@@ -40,8 +40,7 @@ void wireCodec(Bytes bytes) {
     }
     try {
       replica.apply(list);
-    } catch (const sg::ApplyError&) {
-    }
+    } catch (const sg::ApplyError&) {}
   }
 }
 

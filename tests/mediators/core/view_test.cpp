@@ -65,7 +65,9 @@ TEST(View, ACameraUnderATransformFollowsIt) {
   auto& cam = s.create<sg::Camera>("camera");
   cam.lookAt({0, 0, 5}, {0, 0, 0});
   dolly.addChild(cam.id());
-  const auto eyeAt = [](const View& v, glm::vec3 expected) { return glm::length(glm::vec3(v.cameraToWorld[3]) - expected) < 1e-5f; };
+  const auto eyeAt = [](const View& v, glm::vec3 expected) {
+    return glm::length(glm::vec3(v.cameraToWorld[3]) - expected) < 1e-5f;
+  };
   EXPECT_TRUE(eyeAt(View::fromCamera(cam, 8, 8), {0, 0, 5}));
   sg::Scene replica;
   replica.apply(*s.commit());

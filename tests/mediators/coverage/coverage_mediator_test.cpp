@@ -7,11 +7,11 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "../viewport_rig.hpp"
 #include "tsr/med/coverage/false_colour.hpp"
 #include "tsr/med/coverage/ranking.hpp"
 #include "tsr/med/coverage/register.hpp"
 #include "tsr/sg/import/importer.hpp"
-#include "../viewport_rig.hpp"
 
 using namespace tsr;
 

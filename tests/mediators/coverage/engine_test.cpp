@@ -39,8 +39,8 @@ struct Engines {
       viewport = registry.create(s, contexts);
     }
     med::FrameBuffer image;
-    viewport->render(replica, med::View::fromCamera(*replica.scene().find<sg::Camera>(imported.cameras.front()), 96, 96),
-                     image);
+    viewport->render(replica,
+                     med::View::fromCamera(*replica.scene().find<sg::Camera>(imported.cameras.front()), 96, 96), image);
     return image;
   }
 };
@@ -54,7 +54,8 @@ void expectAgreement(const med::FrameBuffer& traced, const med::FrameBuffer& ras
   for (std::size_t i = 0; i < a.size(); ++i) {
     if (a[i] != b[i]) continue;
     ++same;
-    if (std::isfinite(traced.depth[i]) && std::abs(traced.depth[i] - raster.depth[i]) > 1e-3f * traced.depth[i]) ++depthOff;
+    if (std::isfinite(traced.depth[i]) && std::abs(traced.depth[i] - raster.depth[i]) > 1e-3f * traced.depth[i])
+      ++depthOff;
   }
   EXPECT_GE(same, a.size() * 99 / 100) << what;
   EXPECT_EQ(depthOff, 0u) << what;
@@ -63,7 +64,8 @@ void expectAgreement(const med::FrameBuffer& traced, const med::FrameBuffer& ras
   const auto ranked = med::rankObjects(traced, scene);
   ASSERT_GT(ranked.size(), 3u) << what;
   for (const auto& o : ranked)
-    EXPECT_LE(std::abs(double(o.pixels) - double(rasterPixels[o.id])), 0.02 * double(o.pixels) + 3) << what << " " << o.id;
+    EXPECT_LE(std::abs(double(o.pixels) - double(rasterPixels[o.id])), 0.02 * double(o.pixels) + 3)
+        << what << " " << o.id;
   EXPECT_EQ(med::backgroundPixels(traced) > 0, med::backgroundPixels(raster) > 0) << what;
 }
 }  // namespace
@@ -115,7 +117,8 @@ TEST(CoverageEngines, VulkanIdPassSharesTheRasterizersDevice) {
   s.root = rig.imported.root;
   auto raster = rig.registry.create(s, rig.contexts);
   med::FrameBuffer image;
-  raster->render(rig.replica, med::View::fromCamera(*rig.replica.scene().find<sg::Camera>(rig.imported.cameras.front()), 32, 32),
+  raster->render(rig.replica,
+                 med::View::fromCamera(*rig.replica.scene().find<sg::Camera>(rig.imported.cameras.front()), 32, 32),
                  image);
   EXPECT_EQ(held.use_count(), before + 2) << "one device for both, not one each";
 }

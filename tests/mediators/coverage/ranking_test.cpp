@@ -8,8 +8,9 @@
 using namespace tsr;
 
 TEST(IdOutput, EncodingIsExactBeyondFloatIntegers) {
-  for (sg::ContainerId id : {sg::ContainerId{1}, sg::ContainerId{(1u << 24) - 1}, sg::ContainerId{1u << 24},
-                             sg::ContainerId{(1ull << 24) + 1}, sg::ContainerId{123456789012ull}, sg::ContainerId{(1ull << 48) - 1}}) {
+  for (sg::ContainerId id :
+       {sg::ContainerId{1}, sg::ContainerId{(1u << 24) - 1}, sg::ContainerId{1u << 24},
+        sg::ContainerId{(1ull << 24) + 1}, sg::ContainerId{123456789012ull}, sg::ContainerId{(1ull << 48) - 1}}) {
     EXPECT_EQ(med::decodeObjectId(med::encodeObjectId(id)), id) << id;
   }
   EXPECT_EQ(med::encodeObjectId(77).r, 77.0f) << "small ids are the red channel";

@@ -5,9 +5,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "../viewport_rig.hpp"
 #include "tsr/med/embree/register.hpp"
 #include "tsr/sg/import/importer.hpp"
-#include "../viewport_rig.hpp"
 
 using namespace tsr;
 
@@ -15,7 +15,8 @@ namespace {
 constexpr std::uint32_t kSize = 48;
 
 struct Rig : test::ViewportRig {
-  explicit Rig(const std::string& scene = "builtin:cornell") : ViewportRig("embree", med::registerEmbree, scene, kSize) {
+  explicit Rig(const std::string& scene = "builtin:cornell")
+      : ViewportRig("embree", med::registerEmbree, scene, kSize) {
     parameters.set("spp", std::int64_t{4});
     parameters.set("seed", std::int64_t{7});
     parameters.set("maxDepth", std::int64_t{4});
@@ -123,7 +124,8 @@ class EmbreeMediator : public ::testing::Test {
 // 2 sqrt(400) = 40 of them); moved again, they stay in the moving level.
 TEST(EmbreeMediatorManyMoves, RenderAfterManyMovesEqualsAFreshConversion) {
   Rig rig("builtin:instances:400");
-  std::vector<sg::Transform*> carriers;  // the unnamed transforms that each carry one object (not the camera's, the sun's)
+  std::vector<sg::Transform*>
+      carriers;  // the unnamed transforms that each carry one object (not the camera's, the sun's)
   for (auto id : rig.source.ids())
     if (auto* t = rig.source.find<sg::Transform>(id); t && t->children().size() == 1 && t->name().empty())
       carriers.push_back(t);

@@ -7,9 +7,9 @@
 
 #include <cmath>
 
+#include "../viewport_rig.hpp"
 #include "tsr/embree/error.hpp"
 #include "tsr/med/embree/register.hpp"
-#include "../viewport_rig.hpp"
 
 using namespace tsr;
 
@@ -61,7 +61,8 @@ TEST(EmbreePhotonViewport, ShowsEachFrameAsPosedWhilePhotonsRunAhead) {
   ahead.apply(list0);
   viewport->prepare(ahead, 0);
   const med::FrameBuffer reference0 = pathTraced(rig);
-  auto* box = rig.source.find<sg::Transform>(test::findNamed(rig.source, sg::ContainerType::Transform, "mirror sphere"));
+  auto* box =
+      rig.source.find<sg::Transform>(test::findNamed(rig.source, sg::ContainerType::Transform, "mirror sphere"));
   ASSERT_NE(box, nullptr);
   box->setMatrix(glm::translate(box->matrix(), glm::vec3(-100, -250, -250)));
   auto list1 = rig.source.commit();

@@ -45,8 +45,10 @@ struct Rig {
     metal.setBaseColor({0.9f, 0.7f, 0.3f});
     metal.setMetallic(1.0f);
     metal.setRoughness(0.5f);
-    test::addQuad(source, root, "floor", {-3, 0, 3}, {3, 0, 3}, {3, 0, -3}, {-3, 0, -3}, diffuse("floor", {0.7f, 0.7f, 0.7f}));
-    test::addQuad(source, root, "wall", {-3, 0, -3}, {3, 0, -3}, {3, 3, -3}, {-3, 3, -3}, diffuse("wall", {0.3f, 0.5f, 0.8f}));
+    test::addQuad(source, root, "floor", {-3, 0, 3}, {3, 0, 3}, {3, 0, -3}, {-3, 0, -3},
+                  diffuse("floor", {0.7f, 0.7f, 0.7f}));
+    test::addQuad(source, root, "wall", {-3, 0, -3}, {3, 0, -3}, {3, 3, -3}, {-3, 3, -3},
+                  diffuse("wall", {0.3f, 0.5f, 0.8f}));
     test::addSphere(source, root, "red sphere", {-0.9f, 0.7f, 0.0f}, 0.7f, 48, diffuse("red", {0.8f, 0.3f, 0.2f}));
     test::addSphere(source, root, "gold sphere", {0.9f, 0.7f, 0.0f}, 0.7f, 48, metal.id());
     auto& light = source.create<sg::Light>("eye light");
@@ -74,7 +76,8 @@ struct Rig {
       s.parameters.set("shadows", false);
     }
     med::FrameBuffer image;
-    registry.create(s, contexts)->render(replica, med::View::fromCamera(*replica.scene().find<sg::Camera>(camera), kSize, kSize), image);
+    registry.create(s, contexts)
+        ->render(replica, med::View::fromCamera(*replica.scene().find<sg::Camera>(camera), kSize, kSize), image);
     return image;
   }
 };
@@ -131,8 +134,8 @@ TEST(CrossBackEnd, DirectLightAndDepthAgreeWithThePathTracer) {
   EXPECT_EQ(depthOutliers, 0u) << "depth differs by more than one pixel's depth change";
 
   // The comparison can fail: a different light colour is far outside it.
-  rig.source.find<sg::Light>(
-      test::findNamed(rig.source, sg::ContainerType::Light, "eye light"))->setColor({1.0f, 0.6f, 0.6f});
+  rig.source.find<sg::Light>(test::findNamed(rig.source, sg::ContainerType::Light, "eye light"))
+      ->setColor({1.0f, 0.6f, 0.6f});
   rig.replica.apply(rig.source.commit());
   const med::FrameBuffer tinted = rig.render("vulkan");
   double tintedMse = 0;

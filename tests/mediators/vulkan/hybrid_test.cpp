@@ -92,7 +92,9 @@ TEST(Hybrid, RasterisedMarkerIsOccludedByPathTracedGeometry) {
   auto at = [&](const med::FrameBuffer& fb, glm::ivec2 p) {
     return fb.colour[fb.index(static_cast<std::uint32_t>(p.x), static_cast<std::uint32_t>(p.y))];
   };
-  auto index = [&](glm::ivec2 p) { return marker.index(static_cast<std::uint32_t>(p.x), static_cast<std::uint32_t>(p.y)); };
+  auto index = [&](glm::ivec2 p) {
+    return marker.index(static_cast<std::uint32_t>(p.x), static_cast<std::uint32_t>(p.y));
+  };
   EXPECT_GT(traced.depth[index(visible)], marker.depth[index(visible)]) << "the back wall is behind the marker";
   EXPECT_LT(traced.depth[index(occluded)], marker.depth[index(occluded)]) << "the block is in front of it";
   // Visible: marker colour over the back wall; occluded: the path-traced block.

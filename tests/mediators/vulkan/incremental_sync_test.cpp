@@ -33,7 +33,8 @@ struct Follower : test::Follower {
 med::FrameBuffer fresh(const Rig& rig) { return test::freshRender(rig); }
 
 sg::ContainerId cubeGeometry(const Rig& rig) {
-  const auto* t = rig.source.find<sg::Transform>(test::findNamed(rig.source, sg::ContainerType::Transform, "moving cube"));
+  const auto* t =
+      rig.source.find<sg::Transform>(test::findNamed(rig.source, sg::ContainerType::Transform, "moving cube"));
   for (auto child : t->children())
     if (rig.source.find<sg::Geometry>(child)) return child;
   return sg::kNoContainer;
@@ -59,7 +60,8 @@ class IncrementalSync : public ::testing::Test {
     EXPECT_EQ(stats.update, med::SceneAdapter::Update::Synced) << what;
     const med::FrameBuffer reference = fresh(rig);
     test::keepImage(std::string("vulkan_incremental_") + what, follower.image);
-    EXPECT_EQ(test::differingPixels(follower.image, reference), 0u) << what << ": pixels that differ from a fresh conversion";
+    EXPECT_EQ(test::differingPixels(follower.image, reference), 0u)
+        << what << ": pixels that differ from a fresh conversion";
     EXPECT_EQ(follower.image.depth, reference.depth) << what;
     EXPECT_GT(test::differingPixels(before, follower.image), 0u) << what << ": the edit is visible";
   }
@@ -85,7 +87,8 @@ TEST_F(IncrementalSync, TransformEditRewritesOnlyTheInstancesBelow) {
 }
 
 TEST_F(IncrementalSync, MaterialEdit) {
-  auto* m = rig.source.find<sg::SurfaceMaterial>(test::findNamed(rig.source, sg::ContainerType::SurfaceMaterial, "white"));
+  auto* m =
+      rig.source.find<sg::SurfaceMaterial>(test::findNamed(rig.source, sg::ContainerType::SurfaceMaterial, "white"));
   ASSERT_NE(m, nullptr);
   m->setBaseColor({0.1f, 0.2f, 0.9f});
   check("material");
@@ -156,8 +159,9 @@ TEST(VulkanMediator, TilesAreCropsAndViewportsShareOneScene) {
   std::size_t same = 0;
   for (std::uint32_t y = 0; y < tile.height; ++y)
     for (std::uint32_t x = 0; x < tile.width; ++x)
-      same += glm::all(glm::lessThan(glm::abs(tile.colour[tile.index(x, y)] - whole.colour[whole.index(x + rect.x0, y + rect.y0)]),
-                                     glm::vec4(1e-3f)));
+      same += glm::all(
+          glm::lessThan(glm::abs(tile.colour[tile.index(x, y)] - whole.colour[whole.index(x + rect.x0, y + rect.y0)]),
+                        glm::vec4(1e-3f)));
   EXPECT_GE(same, tile.colour.size() * 95 / 100);
   EXPECT_EQ(contexts.live(), 1u);
 }

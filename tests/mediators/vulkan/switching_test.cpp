@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <chrono>
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <spdlog/spdlog.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "test_scenes.hpp"
 #include "tsr/med/embree/register.hpp"

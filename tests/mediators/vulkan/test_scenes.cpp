@@ -73,7 +73,8 @@ sg::Geometry& addSphere(sg::Scene& scene, sg::ContainerId parent, const std::str
 }
 
 void keepImage(const std::string& name, const med::FrameBuffer& image) {
-  if (const char* dir = std::getenv("TSR_TEST_IMAGE_DIR")) med::writeImage(std::string(dir) + "/" + name + ".png", image);
+  if (const char* dir = std::getenv("TSR_TEST_IMAGE_DIR"))
+    med::writeImage(std::string(dir) + "/" + name + ".png", image);
 }
 
 }  // namespace tsr::test

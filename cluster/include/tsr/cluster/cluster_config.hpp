@@ -78,7 +78,7 @@ struct StereoConfig {
 
 struct Timeouts {
   std::chrono::milliseconds connect{3000};
-  std::chrono::milliseconds frame{120000};   // a node that misses this is dropped for the frame
+  std::chrono::milliseconds frame{120000};  // a node that misses this is dropped for the frame
   std::chrono::milliseconds heartbeat{500};
   std::chrono::milliseconds deadAfter{4000};  // no message for this long: the node is gone
   std::chrono::milliseconds retry{1000};      // between reconnection attempts

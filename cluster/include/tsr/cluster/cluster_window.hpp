@@ -46,7 +46,7 @@ const char* name(NodePhase phase);
 
 struct NodeStatus {
   NodeAddress address;
-  std::string name;       // as the node calls itself
+  std::string name;  // as the node calls itself
   NodeState state = NodeState::Offline;
   std::uint64_t appliedVersion = 0;
   std::uint64_t bytesSent = 0;      // messages sent to this node, heartbeats aside
@@ -58,8 +58,8 @@ struct NodeStatus {
 
 struct ClusterFrame {
   std::uint64_t frame = 0;
-  med::FrameBuffer image;        // stitched wall, composited tiles, or the composed stereo pair
-  med::FrameBuffer left, right;  // stereo only
+  med::FrameBuffer image;           // stitched wall, composited tiles, or the composed stereo pair
+  med::FrameBuffer left, right;     // stereo only
   std::vector<double> busySeconds;  // per node (config order): its whole requests; 0 where it did nothing
   std::vector<double> tileSeconds;  // per node: the part spent rendering its tiles
   std::size_t offlineTiles = 0;     // wall tiles shown as offline fill

@@ -19,12 +19,25 @@
 namespace tsr::cluster {
 
 enum class MessageType : std::uint8_t {
-  Hello = 1, Challenge, Auth, Welcome, Reject,
-  Snapshot, Changes, Applied,
-  SetViewports, RenderRequest, RenderTile, FrameDone, Swap,
-  HashQuery, HashReply,
-  Heartbeat, HeartbeatAck,
-  Error, Bye,
+  Hello = 1,
+  Challenge,
+  Auth,
+  Welcome,
+  Reject,
+  Snapshot,
+  Changes,
+  Applied,
+  SetViewports,
+  RenderRequest,
+  RenderTile,
+  FrameDone,
+  Swap,
+  HashQuery,
+  HashReply,
+  Heartbeat,
+  HeartbeatAck,
+  Error,
+  Bye,
 };
 
 enum class Sender : std::uint8_t { Client, Node };
@@ -33,8 +46,8 @@ struct MessageSpec {
   MessageType type;
   const char* name;
   Sender sender;
-  std::size_t maxPayload;   // a header announcing more is a protocol violation
-  bool beforeAuth;          // allowed while the handshake is running
+  std::size_t maxPayload;  // a header announcing more is a protocol violation
+  bool beforeAuth;         // allowed while the handshake is running
 };
 
 // Null for a byte that names no message.

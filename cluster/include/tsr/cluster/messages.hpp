@@ -110,7 +110,7 @@ struct WindowPlacement {
 
 struct SetViewports {
   static constexpr MessageType kType = MessageType::SetViewports;
-  std::vector<ViewportSpec> viewports;  // replaces every viewport the node holds for us
+  std::vector<ViewportSpec> viewports;         // replaces every viewport the node holds for us
   std::optional<WindowPlacement> window = {};  // a wall screen's window, where the config places it
   void write(sg::ByteWriter& w) const;
   static SetViewports read(sg::ByteReader& r);
@@ -122,10 +122,10 @@ enum class Compression : std::uint8_t { None = 0, Lz4 = 1, Zstd = 2, Kept = 3 };
 
 struct RenderJob {
   std::uint32_t viewport = 0;
-  med::View view;                      // the full image; region unused
-  std::vector<med::PixelRect> rects;   // the pixels to render, each a crop of view
+  med::View view;                         // the full image; region unused
+  std::vector<med::PixelRect> rects;      // the pixels to render, each a crop of view
   std::vector<std::string> outputs = {};  // named outputs to return with each tile, in this order
-  bool resolve = true;                // false: the client resolves the assembled frame (med::Viewport::resolve)
+  bool resolve = true;                    // false: the client resolves the assembled frame (med::Viewport::resolve)
   bool operator==(const RenderJob&) const = default;
 };
 

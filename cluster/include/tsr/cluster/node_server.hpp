@@ -15,13 +15,13 @@
 namespace tsr::cluster {
 
 struct NodeOptions {
-  NodeAddress listen;             // port 0 picks a free port
-  std::string token;              // empty: no token file given (any client that also has none may connect)
+  NodeAddress listen;  // port 0 picks a free port
+  std::string token;   // empty: no token file given (any client that also has none may connect)
   // Without a token a node serves anyone who can reach it, so it listens
   // only on loopback addresses unless this is set (--insecure).
   bool insecure = false;
   std::string name = "node";
-  unsigned threads = 0;           // default "threads" parameter of viewports; 0 leaves it to the back-end
+  unsigned threads = 0;  // default "threads" parameter of viewports; 0 leaves it to the back-end
   // What the node does with its wall tiles when the swap barrier releases a
   // frame (null: nothing, and tiles are not kept for it).
   std::shared_ptr<Presenter> presenter;

@@ -28,8 +28,10 @@ class Background final : public ContainerOf<Background, ContainerType::Backgroun
   void setIntensity(float v) { assign(Intensity, intensity_, v); }
 
   static constexpr auto fieldSpecs() {
-    return std::tuple{valueField("kind", &Background::kind_),          valueField("color", &Background::color_),
-                      valueField("gradientTop", &Background::top_),     valueField("gradientBottom", &Background::bottom_),
+    return std::tuple{valueField("kind", &Background::kind_),
+                      valueField("color", &Background::color_),
+                      valueField("gradientTop", &Background::top_),
+                      valueField("gradientBottom", &Background::bottom_),
                       referenceField("environment", &Background::environment_, kImageTypes),
                       valueField("intensity", &Background::intensity_)};
   }

@@ -51,7 +51,9 @@ class ByteReader {
   std::size_t count(std::size_t max, std::size_t minElementBytes, const char* what) {
     std::size_t at = offset();
     std::uint64_t n = varint();
-    if (n > max) throw DecodeError(at, std::string(what) + " count " + std::to_string(n) + " exceeds limit " + std::to_string(max));
+    if (n > max)
+      throw DecodeError(at,
+                        std::string(what) + " count " + std::to_string(n) + " exceeds limit " + std::to_string(max));
     if (minElementBytes && n > remaining() / minElementBytes)
       throw DecodeError(at, std::string(what) + " count " + std::to_string(n) + " exceeds the bytes that remain");
     return static_cast<std::size_t>(n);

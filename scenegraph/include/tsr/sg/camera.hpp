@@ -16,7 +16,7 @@ class Camera final : public ContainerOf<Camera, ContainerType::Camera> {
   float verticalFov() const { return verticalFov_; }  // radians
   float nearPlane() const { return near_; }
   float farPlane() const { return far_; }
-  float eyeSeparation() const { return eyeSeparation_; }         // scene units between the eyes
+  float eyeSeparation() const { return eyeSeparation_; }        // scene units between the eyes
   float zeroParallaxDistance() const { return zeroParallax_; }  // distance of the screen plane
 
   void setPose(const Mat4& m) { assign(Pose, pose_, m); }
@@ -30,8 +30,10 @@ class Camera final : public ContainerOf<Camera, ContainerType::Camera> {
   void lookAt(const Vec3& eye, const Vec3& target, const Vec3& up = Vec3(0, 1, 0));
 
   static constexpr auto fieldSpecs() {
-    return std::tuple{valueField("pose", &Camera::pose_),       valueField("verticalFov", &Camera::verticalFov_),
-                      valueField("near", &Camera::near_),       valueField("far", &Camera::far_),
+    return std::tuple{valueField("pose", &Camera::pose_),
+                      valueField("verticalFov", &Camera::verticalFov_),
+                      valueField("near", &Camera::near_),
+                      valueField("far", &Camera::far_),
                       valueField("eyeSeparation", &Camera::eyeSeparation_),
                       valueField("zeroParallaxDistance", &Camera::zeroParallax_)};
   }

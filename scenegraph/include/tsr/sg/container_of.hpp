@@ -49,8 +49,10 @@ bool acceptable(const std::vector<E>& v) {
 }
 template <class E>
 bool acceptableElement(const E& e) {
-  if constexpr (requires { traceable(e); }) return traceable(e);
-  else return true;
+  if constexpr (requires { traceable(e); })
+    return traceable(e);
+  else
+    return true;
 }
 
 inline std::span<const ContainerId> idsOf(const ContainerId& id) {
@@ -163,7 +165,8 @@ class ContainerOf : public Container {
       } else if constexpr (std::is_same_v<T, std::vector<ContainerId>>) {
         if (spec.kind == FieldKind::Reference) {
           T kept;
-          std::copy_if(value.begin(), value.end(), std::back_inserter(kept), [&](ContainerId c) { return c != target; });
+          std::copy_if(value.begin(), value.end(), std::back_inserter(kept),
+                       [&](ContainerId c) { return c != target; });
           if (kept.size() != value.size()) assignReference(f, value, std::move(kept));
         }
       }
@@ -193,7 +196,8 @@ class ContainerOf : public Container {
     [&]<std::size_t... I>(std::index_sequence<I...>) {
       [[maybe_unused]] bool found = ((f == kFirstOwnField + I ? (fn(std::get<I>(specs)), true) : false) || ...);
       assert(found && "field index out of range");
-    }(std::make_index_sequence<ownFieldCount()>{});
+    }
+    (std::make_index_sequence<ownFieldCount()>{});
   }
 };
 

@@ -61,7 +61,9 @@ inline void read(ByteReader& r, float& v, FieldReadContext&) { v = r.f32(); }
 
 // Enumerations end with a Count enumerator, which bounds what a read accepts.
 template <Enum E>
-void write(ByteWriter& w, E v) { w.u8(static_cast<std::uint8_t>(v)); }
+void write(ByteWriter& w, E v) {
+  w.u8(static_cast<std::uint8_t>(v));
+}
 template <Enum E>
 void read(ByteReader& r, E& v, FieldReadContext&) {
   std::uint8_t b = r.u8();
@@ -70,7 +72,9 @@ void read(ByteReader& r, E& v, FieldReadContext&) {
 }
 
 template <int N>
-void write(ByteWriter& w, const glm::vec<N, float>& v) { w.raw(&v[0], sizeof(float) * N); }
+void write(ByteWriter& w, const glm::vec<N, float>& v) {
+  w.raw(&v[0], sizeof(float) * N);
+}
 template <int N>
 void read(ByteReader& r, glm::vec<N, float>& v, FieldReadContext&) {
   for (int i = 0; i < N; ++i) v[i] = r.f32();
@@ -83,8 +87,8 @@ inline void read(ByteReader& r, Mat4& m, FieldReadContext&) {
     for (int i = 0; i < 4; ++i) {
       m[c][i] = r.f32();
       if (!withinCoordinateLimit(m[c][i]))
-        throw DecodeError(r.offset() - sizeof(float), "matrix entry " + std::to_string(m[c][i]) +
-                                                           " is beyond the coordinate limit of 1e12");
+        throw DecodeError(r.offset() - sizeof(float),
+                          "matrix entry " + std::to_string(m[c][i]) + " is beyond the coordinate limit of 1e12");
     }
 }
 
@@ -108,8 +112,8 @@ void read(ByteReader& r, Attachments& a, FieldReadContext& ctx);
 // Plain-old-data array elements: copied as bytes; float ones (positions,
 // normals, uvs, colours) must be finite and within kMaxCoordinate.
 template <class E>
-concept ArrayElement = std::is_same_v<E, std::uint8_t> || std::is_same_v<E, std::uint32_t> ||
-                       std::is_same_v<E, Vec2> || std::is_same_v<E, Vec3> || std::is_same_v<E, Vec4>;
+concept ArrayElement = std::is_same_v<E, std::uint8_t> || std::is_same_v<E, std::uint32_t> || std::is_same_v<E, Vec2> ||
+    std::is_same_v<E, Vec3> || std::is_same_v<E, Vec4>;
 
 template <ArrayElement E>
 bool allWithinLimit(const E* data, std::size_t n) {
@@ -160,8 +164,8 @@ void readArray(ByteReader& r, std::vector<E>& a, FieldReadContext& ctx) {
   std::uint64_t total = r.varint();
   if (total > ctx.limits.maxArrayElements) throw DecodeError(totalAt, "array length exceeds limit");
   if (!ctx.scanOnly && total != a.size())
-    throw DecodeError(totalAt, "ranged edit expects " + std::to_string(total) + " elements, array has " +
-                                   std::to_string(a.size()));
+    throw DecodeError(
+        totalAt, "ranged edit expects " + std::to_string(total) + " elements, array has " + std::to_string(a.size()));
   ctx.sawRanges = true;
   ctx.rangedTotal = total;
   ctx.ranges.clear();

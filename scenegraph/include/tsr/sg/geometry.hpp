@@ -48,8 +48,10 @@ class Geometry final : public ContainerOf<Geometry, ContainerType::Geometry> {
   std::optional<std::string> invalidReason() const;
 
   static constexpr auto fieldSpecs() {
-    return std::tuple{arrayField("positions", &Geometry::positions_), arrayField("normals", &Geometry::normals_),
-                      arrayField("uvs", &Geometry::uvs_),           arrayField("colors", &Geometry::colors_),
+    return std::tuple{arrayField("positions", &Geometry::positions_),
+                      arrayField("normals", &Geometry::normals_),
+                      arrayField("uvs", &Geometry::uvs_),
+                      arrayField("colors", &Geometry::colors_),
                       arrayField("indices", &Geometry::indices_),
                       referenceField("material", &Geometry::material_, kMaterialTypes),
                       valueField("motion", &Geometry::motion_)};

@@ -35,9 +35,12 @@ class Image final : public ContainerOf<Image, ContainerType::Image> {
   std::optional<std::string> invalidReason() const;
 
   static constexpr auto fieldSpecs() {
-    return std::tuple{valueField("width", &Image::width_),       valueField("height", &Image::height_),
-                      valueField("channels", &Image::channels_), valueField("format", &Image::format_),
-                      valueField("colorSpace", &Image::colorSpace_), arrayField("pixels", &Image::pixels_),
+    return std::tuple{valueField("width", &Image::width_),
+                      valueField("height", &Image::height_),
+                      valueField("channels", &Image::channels_),
+                      valueField("format", &Image::format_),
+                      valueField("colorSpace", &Image::colorSpace_),
+                      arrayField("pixels", &Image::pixels_),
                       valueField("uri", &Image::uri_)};
   }
 

@@ -33,10 +33,14 @@ class Light final : public ContainerOf<Light, ContainerType::Light> {
   void setRange(float v) { assign(Range, range_, v); }
 
   static constexpr auto fieldSpecs() {
-    return std::tuple{valueField("kind", &Light::kind_),           valueField("color", &Light::color_),
-                      valueField("intensity", &Light::intensity_), valueField("position", &Light::position_),
-                      valueField("direction", &Light::direction_), valueField("innerConeAngle", &Light::innerCone_),
-                      valueField("outerConeAngle", &Light::outerCone_), valueField("range", &Light::range_)};
+    return std::tuple{valueField("kind", &Light::kind_),
+                      valueField("color", &Light::color_),
+                      valueField("intensity", &Light::intensity_),
+                      valueField("position", &Light::position_),
+                      valueField("direction", &Light::direction_),
+                      valueField("innerConeAngle", &Light::innerCone_),
+                      valueField("outerConeAngle", &Light::outerCone_),
+                      valueField("range", &Light::range_)};
   }
 
  private:

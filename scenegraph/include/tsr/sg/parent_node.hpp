@@ -45,9 +45,7 @@ class Transform final : public ParentNode<Transform, ContainerType::Transform> {
   const Mat4& matrix() const { return matrix_; }
   void setMatrix(const Mat4& m) { assign(Matrix, matrix_, m); }
 
-  static constexpr auto fieldSpecs() {
-    return std::tuple{childrenSpec(), valueField("matrix", &Transform::matrix_)};
-  }
+  static constexpr auto fieldSpecs() { return std::tuple{childrenSpec(), valueField("matrix", &Transform::matrix_)}; }
 
  private:
   Mat4 matrix_{1.0f};

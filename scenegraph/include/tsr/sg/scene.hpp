@@ -79,7 +79,7 @@ class Scene {
   struct PendingChange {
     bool created = false;
     FieldMask mask = 0;
-    FieldMask wholeArrays = 0;            // array fields replaced whole this frame
+    FieldMask wholeArrays = 0;                            // array fields replaced whole this frame
     std::vector<std::pair<FieldIndex, RangeSet>> ranges;  // array fields edited only by range
   };
   struct ReferrerKey {

@@ -51,7 +51,9 @@ class SurfaceMaterial final : public ContainerOf<SurfaceMaterial, ContainerType:
   void setOpacity(float v) { assign(Opacity, opacity_, v); }
   void setMetallic(float v) { assign(Metallic, metallic_, v); }
   void setRoughness(float v) { assign(Roughness, roughness_, v); }
-  void setMetallicRoughnessTexture(ContainerId i) { assignReference(MetallicRoughnessTexture, metallicRoughnessTexture_, i); }
+  void setMetallicRoughnessTexture(ContainerId i) {
+    assignReference(MetallicRoughnessTexture, metallicRoughnessTexture_, i);
+  }
   void setSpecular(float v) { assign(Specular, specular_, v); }
   void setSpecularTexture(ContainerId i) { assignReference(SpecularTexture, specularTexture_, i); }
   void setEmission(const Vec3& v) { assign(Emission, emission_, v); }

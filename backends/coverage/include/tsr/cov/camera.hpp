@@ -18,8 +18,7 @@ struct Camera {
   float near = 1.0f;
 
   // Symmetric frustum; fovY is the full vertical angle in radians.
-  static Camera lookAt(const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up, float fovY,
-                       float aspect);
+  static Camera lookAt(const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up, float fovY, float aspect);
 
   // Throws Error on non-finite values, an empty window, near <= 0 or a
   // singular transform.

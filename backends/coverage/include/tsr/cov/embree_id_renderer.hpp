@@ -7,8 +7,8 @@
 namespace tsr::cov {
 
 struct EmbreeIdSettings {
-  int threads = 0;               // 0 = all hardware threads
-  std::uint32_t tileSize = 32;   // pixels per tile side; tiles are the unit of parallel work
+  int threads = 0;              // 0 = all hardware threads
+  std::uint32_t tileSize = 32;  // pixels per tile side; tiles are the unit of parallel work
 };
 
 // The id pass as Embree 3 primary rays: one Embree scene per mesh, instanced

@@ -14,8 +14,8 @@ enum class MeshUsage { Static, Animated };
 
 struct MeshData {
   std::vector<glm::vec3> positions;
-  std::vector<glm::vec3> normals;  // empty, or one per position
-  std::vector<glm::vec2> uvs;      // empty, or one per position
+  std::vector<glm::vec3> normals;      // empty, or one per position
+  std::vector<glm::vec2> uvs;          // empty, or one per position
   std::vector<std::uint32_t> indices;  // three per triangle
   MeshUsage usage = MeshUsage::Static;
 };

@@ -16,8 +16,8 @@ namespace tsr::embree {
 // while predictVisibleDifference finds more than `threshold` of the pixels
 // above one JND. Halving is conservative: all photons are sqrt(2) less noisy.
 struct PhotonBudgetSettings {
-  float threshold = 0.02f;        // d_thr: fraction of pixels allowed above 1 JND
-  std::uint32_t maxRounds = 6;    // doublings at most
+  float threshold = 0.02f;      // d_thr: fraction of pixels allowed above 1 JND
+  std::uint32_t maxRounds = 6;  // doublings at most
   VisibleDifferenceSettings vdp;
 };
 

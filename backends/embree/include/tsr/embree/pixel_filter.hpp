@@ -23,10 +23,11 @@ enum class FilterKernel {
 
 struct PixelFilterSettings {
   FilterKernel kernel = FilterKernel::Bilateral;  // filter used by filterHighVariance
-  float threshold = 0.01f;   // t of 3.11 on perceived variance Var/Lb^2; 0.01 = 10% relative std. dev., the default of 3.5.2
-  float sigmaS = 8.0f;       // spatial std. dev. in pixels (combined over passes); kernel truncated at 3 sigma
-  float sigmaC = 0.02f;      // range std. dev. of the Euclidean distance of linear-RGB range colours
-  float sigmaD = 1.0f;       // range std. dev. of depth, world units; +inf ignores depth (background is still kept apart)
+  float threshold =
+      0.01f;            // t of 3.11 on perceived variance Var/Lb^2; 0.01 = 10% relative std. dev., the default of 3.5.2
+  float sigmaS = 8.0f;  // spatial std. dev. in pixels (combined over passes); kernel truncated at 3 sigma
+  float sigmaC = 0.02f;  // range std. dev. of the Euclidean distance of linear-RGB range colours
+  float sigmaD = 1.0f;   // range std. dev. of depth, world units; +inf ignores depth (background is still kept apart)
   bool adaptiveWidth = false;      // per-pixel sigma from u and the target f (3.15-3.17, c = 4)
   float adaptiveTarget = 0.5f;     // target f of 3.15 as a fraction of threshold (f < t so the blend can reach t)
   bool spikeRemoval = false;       // clamp Lu to [Lf/c, c Lf] per channel before blending (3.18, c = 2)
@@ -51,13 +52,13 @@ struct PixelFilterInput {
 
 // Result of the expensive step, recomputed on the isFilterFrame schedule.
 struct FilteredBuffer {
-  std::uint32_t width = 0;              // same size as the input
-  std::uint32_t height = 0;             // same size as the input
-  std::uint32_t samples = 0;            // n of the input it was filtered from (blend rescales Var[Lu] by this/n)
-  std::vector<glm::vec3> radiance;      // Lf: filtered Lu
-  std::vector<float> variance;          // filtered scalar Var[Lu]: luminance-weighted sum of channel variances
-  std::vector<float> reduction;         // r ~ sum (a_i/A)^2 of the (composite) kernel, in (0, 1]
-  std::vector<float> sigma;             // spatial sigma used per pixel (sigmaS unless adaptiveWidth)
+  std::uint32_t width = 0;          // same size as the input
+  std::uint32_t height = 0;         // same size as the input
+  std::uint32_t samples = 0;        // n of the input it was filtered from (blend rescales Var[Lu] by this/n)
+  std::vector<glm::vec3> radiance;  // Lf: filtered Lu
+  std::vector<float> variance;      // filtered scalar Var[Lu]: luminance-weighted sum of channel variances
+  std::vector<float> reduction;     // r ~ sum (a_i/A)^2 of the (composite) kernel, in (0, 1]
+  std::vector<float> sigma;         // spatial sigma used per pixel (sigmaS unless adaptiveWidth)
 };
 
 // Filters Lu (and its variance) with the cross bilateral weights of the range
@@ -79,8 +80,7 @@ float blendFactor(float u, float f, float t);
 // Blends the current Lu with a (possibly older) FilteredBuffer of the same
 // size: Lb = lum(Lf + Llv) (3.10), u = Var/Lb^2, f = r u (3.5), s (3.13),
 // optional spike removal (3.18). Throws tsr::embree::Error on size mismatch.
-BlendResult blend(const PixelFilterInput& input, const FilteredBuffer& filtered,
-                  const PixelFilterSettings& settings);
+BlendResult blend(const PixelFilterInput& input, const FilteredBuffer& filtered, const PixelFilterSettings& settings);
 
 // True on the frames (1-based count of rendered frames) on which the filter
 // is re-run: 4, 8, 16, 32, ...

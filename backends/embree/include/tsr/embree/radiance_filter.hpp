@@ -19,14 +19,14 @@ class FrameBuffer;
 // Parameters of the filtering step. They may change while an image
 // converges; changing them does not restart accumulation.
 struct RadianceFilterSettings {
-  float threshold = 0.01f;      // T_u: target perceived variance (variance / background radiance^2) of the result
-  float warmupRadius = 8.0f;    // r_w1: kernel radius in pixels of frame 1; frame k <= warmupFrames uses r_w1/sqrt(k)
+  float threshold = 0.01f;    // T_u: target perceived variance (variance / background radiance^2) of the result
+  float warmupRadius = 8.0f;  // r_w1: kernel radius in pixels of frame 1; frame k <= warmupFrames uses r_w1/sqrt(k)
   std::uint32_t warmupFrames = 4;  // frames with the warm-up radius before the variance estimate is trusted (>= 1)
-  float maxRadius = 12.0f;      // hard cap on the kernel radius in pixels; a crop needs a halo this wide, see README
-  bool ambientOcclusion = true;  // scale radii by screen-space ambient occlusion of the previous frame (4.3.1)
-  bool bilateral = false;       // range term on the filtered irradiance (4.6.2), from frame kBilateralStart on
-  float blend = 0.0f;           // share of T_k left to unfiltered samples (4.6.3 blending operator); 0 = off, < 1
-  bool hybrid = true;           // leave pixels seen through a reflecting-and-refracting surface unfiltered (4.6.1)
+  float maxRadius = 12.0f;         // hard cap on the kernel radius in pixels; a crop needs a halo this wide, see README
+  bool ambientOcclusion = true;    // scale radii by screen-space ambient occlusion of the previous frame (4.3.1)
+  bool bilateral = false;          // range term on the filtered irradiance (4.6.2), from frame kBilateralStart on
+  float blend = 0.0f;              // share of T_k left to unfiltered samples (4.6.3 blending operator); 0 = off, < 1
+  bool hybrid = true;              // leave pixels seen through a reflecting-and-refracting surface unfiltered (4.6.1)
 
   // Throws Error on values outside the ranges above or non-finite ones.
   void validate() const;
@@ -42,22 +42,22 @@ enum RadianceMask : std::uint8_t {
 
 // One path's radiance sample, at its first non-specular vertex (4.3.1 steps 1-2).
 struct RadianceSample {
-  bool valid = false;         // the path reached a non-specular surface
-  glm::vec3 position{0.0f};   // x_j, world space
-  glm::vec3 normal{0.0f};     // shading normal on the side of wo
-  glm::vec3 wo{0.0f};         // towards the previous vertex (the eye or the last specular surface)
-  glm::vec3 wi{0.0f};         // sampled incident direction (zero if the path ended here)
-  glm::vec3 radiance{0.0f};   // Ľ_i: indirect radiance arriving from wi, not divided by pdf
-  float pdf = 0.0f;           // solid-angle density of wi at x_j (0 if the path ended here)
-  glm::vec3 throughput{1.0f};  // product of the specular chain's weights from the eye to x_j
-  float distance = 0.0f;      // path length from the eye to x_j through the specular chain
-  float pixelAngle = 0.0f;    // angle one pixel subtends at the eye along this camera ray (radians)
+  bool valid = false;                         // the path reached a non-specular surface
+  glm::vec3 position{0.0f};                   // x_j, world space
+  glm::vec3 normal{0.0f};                     // shading normal on the side of wo
+  glm::vec3 wo{0.0f};                         // towards the previous vertex (the eye or the last specular surface)
+  glm::vec3 wi{0.0f};                         // sampled incident direction (zero if the path ended here)
+  glm::vec3 radiance{0.0f};                   // Ľ_i: indirect radiance arriving from wi, not divided by pdf
+  float pdf = 0.0f;                           // solid-angle density of wi at x_j (0 if the path ended here)
+  glm::vec3 throughput{1.0f};                 // product of the specular chain's weights from the eye to x_j
+  float distance = 0.0f;                      // path length from the eye to x_j through the specular chain
+  float pixelAngle = 0.0f;                    // angle one pixel subtends at the eye along this camera ray (radians)
   MaterialType type = MaterialType::Diffuse;  // BSDF at x_j, to re-evaluate it for other samples
-  glm::vec3 colour{0.0f};     // base colour (textured) at x_j
-  float alpha = 1.0f;         // GGX alpha at x_j
-  float eta = 1.0f;           // index ratio across the surface seen from wo
-  glm::vec3 unfiltered{0.0f};  // this path's indirect pixel estimate: throughput * f cos / pdf * Ľ_i
-  std::uint8_t mask = 0;      // RadianceMask bits met before x_j
+  glm::vec3 colour{0.0f};                     // base colour (textured) at x_j
+  float alpha = 1.0f;                         // GGX alpha at x_j
+  float eta = 1.0f;                           // index ratio across the surface seen from wo
+  glm::vec3 unfiltered{0.0f};                 // this path's indirect pixel estimate: throughput * f cos / pdf * Ľ_i
+  std::uint8_t mask = 0;                      // RadianceMask bits met before x_j
 };
 
 // Region-sized state of radiance filtering: per pixel the running mean of

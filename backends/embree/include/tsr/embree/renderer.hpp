@@ -33,9 +33,9 @@ struct RenderSettings {
 };
 
 struct PassResult {
-  bool completed = false;  // false if cancelled midway
-  bool restarted = false;  // accumulation was reset before this pass
-  std::uint64_t rays = 0;  // camera, bounce and shadow rays cast in this pass
+  bool completed = false;         // false if cancelled midway
+  bool restarted = false;         // accumulation was reset before this pass
+  std::uint64_t rays = 0;         // camera, bounce and shadow rays cast in this pass
   std::uint64_t refusedRays = 0;  // rays not traceable (limits.hpp), dropped instead of cast
 };
 
@@ -104,8 +104,8 @@ class Renderer {
   // flash samples do), then calls perPixel(tracer, x, y, fullImageX,
   // fullImageY) over parallel tiles.
   template <class PerPixel>
-  PassResult runTiles(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
-                      PerPixel&& perPixel, std::optional<std::uint64_t> estimator);
+  PassResult runTiles(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb, PerPixel&& perPixel,
+                      std::optional<std::uint64_t> estimator);
   bool restartIfStale(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
                       std::optional<std::uint64_t> estimator);
   // Path samples for renderPass; with a field, for renderWithIrradiance.

@@ -23,7 +23,7 @@ namespace tsr::embree {
 // orientation-selective cortex bands, colour (luminance only), and the
 // psychometric probability summation (a hard 1-JND threshold instead).
 struct VisibleDifferenceSettings {
-  float pixelsPerDegree = 30.0f;  // viewing geometry: about 17 degrees across 512 px
+  float pixelsPerDegree = 30.0f;   // viewing geometry: about 17 degrees across 512 px
   float peakSensitivity = 100.0f;  // 1% contrast is just visible at the CSF's peak
   float maskingSlope = 0.7f;       // Daly's threshold-elevation exponent
   float adaptationFloor = 1e-3f;   // adaptation luminance floor (image units)
@@ -33,7 +33,7 @@ struct VisibleDifferenceSettings {
 struct VisibleDifference {
   float fractionVisible = 0.0f;  // pixels above one JND (the AQM's d)
   float meanJnd = 0.0f;
-  std::vector<float> jnd;        // per pixel, row-major
+  std::vector<float> jnd;  // per pixel, row-major
 };
 
 // a and b: luminance images of width x height, row-major, non-negative.

@@ -48,8 +48,12 @@ class PcaBasis {
 
  private:
   // Mode i >= 1 of a row.
-  float mode(std::size_t row, int i) const { return images_[row * static_cast<std::size_t>(modes_ - 1) + static_cast<std::size_t>(i - 1)]; }
-  double weight(int t, int i) const { return weights_[static_cast<std::size_t>(t) * modes_ + static_cast<std::size_t>(i)]; }
+  float mode(std::size_t row, int i) const {
+    return images_[row * static_cast<std::size_t>(modes_ - 1) + static_cast<std::size_t>(i - 1)];
+  }
+  double weight(int t, int i) const {
+    return weights_[static_cast<std::size_t>(t) * modes_ + static_cast<std::size_t>(i)];
+  }
 
   std::uint32_t width_ = 0, height_ = 0;
   int modes_ = 0;

@@ -10,15 +10,15 @@ namespace tsr::temporal {
 
 struct PcaSettings {
   TruncationRule rule;
-  int fixedModes = 0;      // > 0: keep this many modes everywhere (capped at N)
-  bool perPixel = true;    // 3.2's truncation map (ignored with fixedModes)
-  double mapSigma = 2.0;   // Gaussian smoothing of the map, pixels
+  int fixedModes = 0;     // > 0: keep this many modes everywhere (capped at N)
+  bool perPixel = true;   // 3.2's truncation map (ignored with fixedModes)
+  double mapSigma = 2.0;  // Gaussian smoothing of the map, pixels
 };
 
 struct PcaResult {
-  std::vector<Frame> frames;       // reconstructed, one per input frame
-  int globalModes = 0;             // 2.3's M for the whole stack (or the fixed one)
-  std::vector<float> truncation;   // the per-pixel map used (all globalModes without one)
+  std::vector<Frame> frames;      // reconstructed, one per input frame
+  int globalModes = 0;            // 2.3's M for the whole stack (or the fixed one)
+  std::vector<float> truncation;  // the per-pixel map used (all globalModes without one)
   double meanTruncation() const;
 };
 

@@ -36,9 +36,9 @@ class WindowedPca {
 
   int window_, overlap_;
   PcaSettings settings_;
-  std::vector<Frame> inputs_;          // the current window's frames
-  int firstIndex_ = 0;                 // sequence index of inputs_[0]
-  std::vector<DenoisedFrame> held_;    // the previous window's overlap, not yet emitted
+  std::vector<Frame> inputs_;        // the current window's frames
+  int firstIndex_ = 0;               // sequence index of inputs_[0]
+  std::vector<DenoisedFrame> held_;  // the previous window's overlap, not yet emitted
   int windows_ = 0;
 };
 

@@ -21,8 +21,8 @@ struct Camera {
   float far = 1000.0f;
 
   // Symmetric frustum; fovY is the full vertical angle in radians.
-  static Camera lookAt(const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up, float fovY,
-                       float aspect, float near = 0.1f, float far = 1000.0f);
+  static Camera lookAt(const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up, float fovY, float aspect,
+                       float near = 0.1f, float far = 1000.0f);
 
   // Throws Error on non-finite values, an empty window, near <= 0 or far <= near.
   void validate() const;

@@ -12,7 +12,8 @@ namespace tsr::vk {
 inline constexpr std::uint32_t kNoObject = 0;
 
 struct IdBuffer {
-  IdBuffer(std::uint32_t w, std::uint32_t h) : width(w), height(h), ids(std::size_t(w) * h), depth(std::size_t(w) * h) {}
+  IdBuffer(std::uint32_t w, std::uint32_t h)
+      : width(w), height(h), ids(std::size_t(w) * h), depth(std::size_t(w) * h) {}
   std::size_t index(std::uint32_t x, std::uint32_t y) const { return std::size_t(y) * width + x; }
 
   std::uint32_t width;

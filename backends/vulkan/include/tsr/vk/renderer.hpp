@@ -26,13 +26,13 @@ struct RenderSettings {
   // term, see src/emitter_lights.hpp), so a room lit by a panel is not
   // black wherever the panel does not shine directly.
   bool emitterAmbient = true;
-  glm::vec4 background{0.0f};     // colour and alpha where nothing is drawn
+  glm::vec4 background{0.0f};  // colour and alpha where nothing is drawn
 };
 
 struct RenderStats {
-  std::uint32_t drawCalls = 0;       // main pass
-  std::uint64_t triangles = 0;       // main pass, all instances
-  std::uint32_t shadowMaps = 0;      // shadow passes rendered
+  std::uint32_t drawCalls = 0;   // main pass
+  std::uint64_t triangles = 0;   // main pass, all instances
+  std::uint32_t shadowMaps = 0;  // shadow passes rendered
   std::uint64_t shadowTriangles = 0;
 };
 

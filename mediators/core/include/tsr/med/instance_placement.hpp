@@ -22,7 +22,9 @@
 namespace tsr::med {
 
 template <class Types>
-concept TagsObjects = requires(const sg::Scene& scene, const FlatNode& node) { Types::object(scene, node); };
+concept TagsObjects = requires(const sg::Scene& scene, const FlatNode& node) {
+  Types::object(scene, node);
+};
 
 template <class Types>
 class InstancePlacement {
@@ -162,8 +164,8 @@ class InstancePlacement {
   Iterator remove(Iterator it, BackendScene& backend) {
     const Placed& p = it->second;
     backend.removeInstance(p.id);
-    if (auto keys = byGeometry_.find(p.geometry); keys != byGeometry_.end() && keys->second.erase(it->first) &&
-                                                  keys->second.empty())
+    if (auto keys = byGeometry_.find(p.geometry);
+        keys != byGeometry_.end() && keys->second.erase(it->first) && keys->second.empty())
       byGeometry_.erase(keys);
     release(p.material);
     return instances_.erase(it);

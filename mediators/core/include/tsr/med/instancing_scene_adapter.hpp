@@ -50,7 +50,8 @@ class InstancingSceneAdapter final : public SceneAdapter {
     std::uint64_t flattenings = 0;
   };
 
-  InstancingSceneAdapter(std::shared_ptr<typename Types::Device> device, sg::ContainerId root, sg::ContainerId background)
+  InstancingSceneAdapter(std::shared_ptr<typename Types::Device> device, sg::ContainerId root,
+                         sg::ContainerId background)
       : device_(std::move(device)), root_(root), background_(background) {}
 
   BackendScene& scene() { return *scene_; }
@@ -207,7 +208,8 @@ class InstancingSceneAdapter final : public SceneAdapter {
   bool backgroundDirty(const sg::Scene& scene, const sg::MergedChanges& changes) const {
     if (background_ == sg::kNoContainer) return false;
     bool dirty = changes.entries().count(background_) != 0;
-    if (const auto* b = scene.find<sg::Background>(background_)) dirty |= changes.entries().count(b->environment()) != 0;
+    if (const auto* b = scene.find<sg::Background>(background_))
+      dirty |= changes.entries().count(b->environment()) != 0;
     return dirty;
   }
 
@@ -250,7 +252,8 @@ class InstancingSceneAdapter final : public SceneAdapter {
     });
     std::unordered_set<sg::ContainerId> usedImages;
     for (const auto& [matId, handle] : materials_)
-      if (const sg::Container* m = scene.find(matId)) forEachReference(*m, [&](sg::ContainerId r) { usedImages.insert(r); });
+      if (const sg::Container* m = scene.find(matId))
+        forEachReference(*m, [&](sg::ContainerId r) { usedImages.insert(r); });
     std::erase_if(textures_, [&](const auto& kv) {
       if (usedImages.count(kv.first)) return false;
       scene_->removeTexture(kv.second);
@@ -315,7 +318,7 @@ class InstancingSceneAdapter final : public SceneAdapter {
   typename Types::Environment environment_;
   InstancePlacement<Types> placement_;
   std::unordered_map<sg::ContainerId, typename Types::MeshId> meshes_;
-  std::unordered_set<sg::ContainerId> unrenderable_;  // invalid or empty geometry, skipped
+  std::unordered_set<sg::ContainerId> unrenderable_;                           // invalid or empty geometry, skipped
   std::unordered_map<sg::ContainerId, typename Types::MaterialId> materials_;  // kNoContainer: the default
   std::unordered_map<sg::ContainerId, typename Types::TextureId> textures_;
   Counters counters_;

@@ -23,7 +23,7 @@ struct PixelRect {
 enum class Eye { Left, Right };
 
 struct View {
-  glm::mat4 cameraToWorld{1.0f};  // camera looks down -Z, +Y up
+  glm::mat4 cameraToWorld{1.0f};                     // camera looks down -Z, +Y up
   float left = -1, right = 1, bottom = -1, top = 1;  // window on the plane z = -near
   float nearPlane = 0.1f, farPlane = 1000.0f;
   std::uint32_t width = 0, height = 0;  // the full image

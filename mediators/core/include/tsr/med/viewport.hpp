@@ -2,8 +2,8 @@
 // A region of a window rendered by one back-end: what to show (root,
 // camera, background), back-end parameters, and whether it is active. The
 // only way applications and the cluster reach a back-end.
-#include <atomic>
 #include <algorithm>
+#include <atomic>
 #include <functional>
 #include <optional>
 #include <string>
@@ -46,8 +46,8 @@ struct RenderControl {
 struct RenderStats {
   std::uint64_t rays = 0;     // rays cast, for ray tracers
   std::uint32_t samples = 0;  // samples per pixel accumulated so far
-  double seconds = 0;      // the whole render call
-  double syncSeconds = 0;  // of which catching up: conversion and acceleration structures
+  double seconds = 0;         // the whole render call
+  double syncSeconds = 0;     // of which catching up: conversion and acceleration structures
   SceneAdapter::Update update = SceneAdapter::Update::None;  // what catching up took
 };
 

@@ -40,8 +40,8 @@ struct ImportOptions {
 
 // What an import produced, in numbers.
 struct ImportCounts {
-  std::size_t nodes = 0;           // Transforms created for source nodes
-  std::size_t geometries = 0;      // Geometry containers (unique meshes' primitives)
+  std::size_t nodes = 0;       // Transforms created for source nodes
+  std::size_t geometries = 0;  // Geometry containers (unique meshes' primitives)
   std::size_t materials = 0;
   std::size_t images = 0;
   std::size_t uniqueTriangles = 0;  // over Geometry containers, not instances

@@ -22,7 +22,7 @@ struct SceneStats {
   std::size_t lights = 0;  // Light containers
   std::size_t cameras = 0;
   std::size_t emissiveGeometries = 0;  // reachable Geometry whose SurfaceMaterial emits
-  bool hasBounds = false;               // false when no vertex is reachable
+  bool hasBounds = false;              // false when no vertex is reachable
   Vec3 boundsMin{0.0f};
   Vec3 boundsMax{0.0f};
 };
