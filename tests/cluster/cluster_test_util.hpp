@@ -1,8 +1,7 @@
 #pragma once
 // Shared set-up of the cluster integration tests: configs for nodes
 // started on free ports, and the animated built-in scene.
-#include <stdlib.h>
-
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 

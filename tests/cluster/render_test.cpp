@@ -48,7 +48,7 @@ struct Session {
 
   Session(const std::string& scene, ClusterConfig config, med::Parameters parameters) : s(scene) {
     med::registerEmbree(registry);
-    med::ViewportSettings vs{"embree", s.imported.root, s.imported.background, parameters, true};
+    med::ViewportSettings vs{"embree", s.imported.root, s.imported.background, std::move(parameters), true};
     local = registry.create(vs, contexts);
     window = std::make_unique<ClusterWindow>(std::move(config));
     window->setContent(s.imported.root, s.imported.background);

@@ -92,8 +92,9 @@ TEST(ContextPool, SharesByKeyAndFreesWithTheLastUser) {
 
 TEST(ViewportRegistry, UnknownBackendListsTheKnownOnes) {
   med::ViewportRegistry registry;
-  registry.add("alpha",
-               [](med::ViewportSettings, med::ContextPool&) -> std::unique_ptr<med::Viewport> { return nullptr; });
+  registry.add("alpha", [](const med::ViewportSettings&, med::ContextPool&) -> std::unique_ptr<med::Viewport> {
+    return nullptr;
+  });
   med::ContextPool pool;
   try {
     med::ViewportSettings settings;
