@@ -25,12 +25,22 @@ bool displayRequired() {
 
 class VulkanSwapchain : public ::testing::Test {
  protected:
+  // The previous test's disconnect may find Xvfb briefly refusing new
+  // clients (a server reset when xvfb-run runs it without -noreset, or a
+  // loaded machine): try for up to 5 s before calling the display broken.
+  static bool initGlfw() {
+    for (int attempt = 0; attempt < 50; ++attempt) {
+      if (glfwInit()) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    return false;
+  }
   void SetUp() override {
     const char* display = std::getenv("DISPLAY");
     std::string why;
     if (!display || !*display) {
       why = "no DISPLAY (run through xvfb-run -a)";
-    } else if (!glfwInit()) {
+    } else if (!initGlfw()) {
       const char* err = nullptr;
       glfwGetError(&err);
       why = std::string("glfwInit failed: ") + (err ? err : "?");
