@@ -12,8 +12,21 @@ namespace {
 namespace fs = std::filesystem;
 using tsr::test::Outcome;
 
+const std::string kGoodImage = "a good image from an earlier run";
+
 class BadInput : public tsr::test::CommandTest {
  protected:
+  // A case refused with a good out.png already there: one "error:" line
+  // naming `about`, out.png as it was, and no temporary file beside it.
+  Outcome expectRefusedKeepingImage(const std::string& binary, const std::string& args, const std::string& about,
+                                    const std::string& env = "") {
+    std::ofstream(dir / "out.png") << kGoodImage;
+    Outcome r = run(binary, args, env);
+    expectOneErrorLine(r, about);
+    EXPECT_EQ(slurp(dir / "out.png"), kGoodImage);
+    EXPECT_TRUE(temporaries().empty());
+    return r;
+  }
   // `env` sets or (-u NAME) removes environment variables for this run only.
   Outcome run(const std::string& binary, const std::string& args, const std::string& env = "") {
     return runBinary("/usr/bin/env", env + " /usr/bin/timeout 60 '" + binary + "' " + args);
@@ -26,8 +39,6 @@ class BadInput : public tsr::test::CommandTest {
     return found;
   }
 };
-
-const std::string kGoodImage = "a good image from an earlier run";
 
 // The viewer and the anaglyph window check everything they read before a
 // window opens: without a display, a case that got as far as the window
@@ -51,11 +62,8 @@ std::vector<BadConfig> writeBadConfigs(const fs::path& dir) {
 TEST_F(BadInput, RenderRefusesEveryBadSceneAndKeepsTheOldImage) {
   for (const auto& input : tsr::test::writeBadSceneInputs(dir)) {
     SCOPED_TRACE(input.name);
-    std::ofstream(dir / "out.png") << kGoodImage;
-    const Outcome r = run(TSR_RENDER_PATH, "'" + input.path + "' --size 16x16 --spp 1 --quiet --output out.png");
-    expectOneErrorLine(r, input.about);
-    EXPECT_EQ(slurp(dir / "out.png"), kGoodImage);
-    EXPECT_TRUE(temporaries().empty());
+    expectRefusedKeepingImage(TSR_RENDER_PATH, "'" + input.path + "' --size 16x16 --spp 1 --quiet --output out.png",
+                              input.about);
   }
 }
 
@@ -84,12 +92,9 @@ TEST_F(BadInput, RenderRefusesBadOptionsAndConfigs) {
     cases.push_back({"--cluster " + config.file + " --nodes 127.0.0.1:1", config.about});
   for (const auto& c : cases) {
     SCOPED_TRACE(c.args);
-    std::ofstream(dir / "out.png") << kGoodImage;
     const std::string output = c.args.find("--output") == std::string::npos ? " --output out.png" : "";
-    expectOneErrorLine(run(TSR_RENDER_PATH, "builtin:cornell --spp 1 --quiet " + c.args + output), c.about);
-    EXPECT_EQ(slurp(dir / "out.png"), kGoodImage);
+    expectRefusedKeepingImage(TSR_RENDER_PATH, "builtin:cornell --spp 1 --quiet " + c.args + output, c.about);
     EXPECT_FALSE(fs::exists(dir / "out.unknownformat"));
-    EXPECT_TRUE(temporaries().empty());
   }
 }
 
@@ -150,13 +155,9 @@ TEST_F(BadInput, WallRefusesBadScenesConfigsAndOptions) {
     cases.push_back({"wall.json '" + input.path + "'", input.about});
   for (const auto& c : cases) {
     SCOPED_TRACE(c.args);
-    std::ofstream(dir / "out.png") << kGoodImage;
     const std::string output = c.args.find("--output") == std::string::npos ? " --output out.png" : "";
-    const Outcome r = run(TSR_WALL_PATH, c.args + " --frames 1" + output);
-    expectOneErrorLine(r, c.about);
+    const Outcome r = expectRefusedKeepingImage(TSR_WALL_PATH, c.args + " --frames 1" + output, c.about);
     EXPECT_EQ(r.out.find("nodes online"), std::string::npos) << "refused before connecting";
-    EXPECT_EQ(slurp(dir / "out.png"), kGoodImage);
-    EXPECT_TRUE(temporaries().empty());
   }
 }
 #endif
@@ -208,11 +209,8 @@ TEST_F(BadInput, ViewerRefusesBadOptionsScriptsAndConfigs) {
 TEST_F(BadInput, AnaglyphRefusesEveryBadSceneAndKeepsTheOldImage) {
   for (const auto& input : tsr::test::writeBadSceneInputs(dir)) {
     SCOPED_TRACE(input.name);
-    std::ofstream(dir / "out.png") << kGoodImage;
-    const Outcome r = run(TSR_ANAGLYPH_PATH, "'" + input.path + "' --size 16x16 --spp 1 --output out.png", kNoDisplay);
-    expectOneErrorLine(r, input.about);
-    EXPECT_EQ(slurp(dir / "out.png"), kGoodImage);
-    EXPECT_TRUE(temporaries().empty());
+    expectRefusedKeepingImage(TSR_ANAGLYPH_PATH, "'" + input.path + "' --size 16x16 --spp 1 --output out.png",
+                              input.about, kNoDisplay);
   }
 }
 
@@ -242,16 +240,13 @@ TEST_F(BadInput, AnaglyphRefusesBadOptionsAndScripts) {
   cases.push_back({"--script nan.script", "nan.script line 1: orbit needs a number"});
   for (const auto& c : cases) {
     SCOPED_TRACE(c.args);
-    std::ofstream(dir / "out.png") << kGoodImage;
     // A script needs the window, so those cases go without --output.
     const bool headless = c.args.find("--output") == std::string::npos && c.args.find("--script") == std::string::npos;
     const std::string output = headless ? " --output out.png" : "";
     const std::string size = c.args.find("--size") == std::string::npos ? " --size 16x16" : "";
-    expectOneErrorLine(run(TSR_ANAGLYPH_PATH, "builtin:cornell --spp 1 " + c.args + size + output, kNoDisplay),
-                       c.about);
-    EXPECT_EQ(slurp(dir / "out.png"), kGoodImage);
+    expectRefusedKeepingImage(TSR_ANAGLYPH_PATH, "builtin:cornell --spp 1 " + c.args + size + output, c.about,
+                              kNoDisplay);
     EXPECT_FALSE(fs::exists(dir / "out.unknownformat"));
-    EXPECT_TRUE(temporaries().empty());
   }
 }
 #endif
