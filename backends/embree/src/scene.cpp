@@ -1,5 +1,6 @@
 #include "tsr/embree/scene.hpp"
 
+#include "scene_levels.hpp"
 #include "scene_state.hpp"
 #include "tsr/embree/error.hpp"
 #include "tsr/embree/limits.hpp"
@@ -97,94 +98,29 @@ void fillGeometry(MeshRecord& m, RTCDevice device) {
   m.sceneStale = true;
 }
 
-// Lists an instance for commit() to refresh, without an edit of its own.
-void mark(SceneState& s, std::uint32_t id, bool placed) {
-  if (!s.instances[id]) {
-    s.pending.instances.push_back(id);  // removed: its view is cleared
-    return;
-  }
-  InstanceRecord& inst = *s.instances[id];
-  inst.placeDirty |= placed;
-  if (!inst.viewDirty) s.pending.instances.push_back(id);
-  inst.viewDirty = true;
-}
-
-// Takes the instance's copy out of the top level, a ghost's included (which
-// rebuilds the top level).
-void leaveTop(SceneState& s, InstanceRecord& inst, std::uint32_t id) {
-  rtcDetachGeometry(s.top, topId(id));
-  --s.topInstances;
-  s.topDirty = true;
-  if (inst.level == Level::Ghosted) {
-    s.ghosts[topId(id)] = 0;
-    --s.ghostCount;
-  }
-}
-
-void enterMoving(SceneState& s, InstanceRecord& inst, std::uint32_t id) {
-  if (!inst.movingGeometry) {
-    inst.movingGeometry = rtcNewGeometry(s.device->handle(), RTC_GEOMETRY_TYPE_INSTANCE);
-    rtcSetGeometryInstancedScene(inst.movingGeometry, s.meshes[index(inst.mesh)]->scene);
-    rtcSetGeometryTimeStepCount(inst.movingGeometry, 1);
-  }
-  inst.movingId = std::uint32_t(s.movingIds.size());
-  rtcAttachGeometryByID(s.moving, inst.movingGeometry, inst.movingId);
-  s.movingIds.push_back(id);
-  s.movingDirty = true;
-}
-
-void leaveMoving(SceneState& s, InstanceRecord& inst) {
-  // Keep the moving level's ids dense: the last one takes the freed id.
-  const std::uint32_t last = std::uint32_t(s.movingIds.size() - 1);
-  rtcDetachGeometry(s.moving, inst.movingId);
-  if (inst.movingId != last) {
-    InstanceRecord& other = *s.instances[s.movingIds[last]];
-    rtcDetachGeometry(s.moving, last);
-    rtcAttachGeometryByID(s.moving, other.movingGeometry, inst.movingId);
-    other.movingId = inst.movingId;
-    s.movingIds[inst.movingId] = s.movingIds[last];
-  }
-  s.movingIds.pop_back();
-  s.movingDirty = true;
-}
-
-// Takes the instance out of whatever level holds it.
-void unplace(SceneState& s, InstanceRecord& inst, std::uint32_t id) {
-  switch (inst.level) {
-    case Level::None:
-      break;
-    case Level::Merged:
-      rtcDetachGeometry(s.merged, id);
-      rtcReleaseGeometry(inst.flatGeometry);
-      inst.flatGeometry = nullptr;
-      s.mergedDirty = true;
-      break;
-    case Level::Top:
-      leaveTop(s, inst, id);
-      break;
-    case Level::Moving:
-      leaveMoving(s, inst);
-      break;
-    case Level::Ghosted:
-      leaveTop(s, inst, id);
-      leaveMoving(s, inst);
-      break;
-  }
-  inst.level = Level::None;
-}
-
 // The instances of a mesh whose user count crossed one: the merged copy is
 // only for meshes used once.
 void replaceUsers(SceneState& s, const MeshRecord& m) {
   if (m.users.size() > 2) return;
-  for (std::uint32_t u : m.users) mark(s, u, true);
+  for (std::uint32_t u : m.users) s.mark(u, true);
 }
 
 }  // namespace
 
+void SceneState::mark(std::uint32_t id, bool placed) {
+  if (!instances[id]) {
+    pending.instances.push_back(id);  // removed: its view is cleared
+    return;
+  }
+  InstanceRecord& inst = *instances[id];
+  inst.placeDirty |= placed;
+  if (!inst.viewDirty) pending.instances.push_back(id);
+  inst.viewDirty = true;
+}
+
 void SceneState::edit(const Edit& e) {
   ++version;
-  if (e.instance != kNoId) mark(*this, e.instance, e.placed);
+  if (e.instance != kNoId) mark(e.instance, e.placed);
   if (e.mesh != kNoId && meshes[e.mesh] && !meshes[e.mesh]->dirty) {
     meshes[e.mesh]->dirty = true;
     pending.meshes.push_back(e.mesh);
@@ -436,175 +372,6 @@ void Scene::setEnvironment(Environment environment) {
 }
 
 namespace {
-// World-space copy of an instance's triangles for the merged scene.
-RTCGeometry worldGeometry(RTCDevice device, const MeshData& d, const glm::mat4& transform) {
-  RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* v = static_cast<glm::vec3*>(
-      rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(glm::vec3), d.positions.size()));
-  auto* i = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                3 * sizeof(std::uint32_t), d.indices.size() / 3));
-  if (!v || !i) {
-    rtcReleaseGeometry(g);
-    throw Error("Embree could not allocate merged mesh buffers");
-  }
-  for (std::size_t k = 0; k < d.positions.size(); ++k) v[k] = glm::vec3(transform * glm::vec4(d.positions[k], 1.0f));
-  std::memcpy(i, d.indices.data(), d.indices.size() * sizeof(std::uint32_t));
-  rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);
-  rtcCommitGeometry(g);
-  return g;
-}
-
-// Commit step 1: a changed mesh changes the bounds of every instance of it,
-// which therefore join the moving level.
-void spreadMeshEdits(SceneState& s) {
-  for (std::uint32_t id : s.pending.meshes) {
-    if (!s.meshes[id]) continue;
-    MeshRecord& m = *s.meshes[id];
-    m.dirty = false;
-    m.sceneStale = true;
-    for (std::uint32_t u : m.users) {
-      s.instances[u]->moved = true;
-      s.instances[u]->meshChanged = true;
-      mark(s, u, true);
-    }
-  }
-}
-
-void setTransform(RTCGeometry g, const glm::mat4& transform) {
-  rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &transform[0][0]);
-}
-
-// Commit step 2: each changed instance goes where it belongs: static meshes
-// nobody else uses into the merged scene, instances that moved into the
-// moving level, the rest into the top level. An instance that moves out of
-// the top level leaves a ghost there instead of rebuilding it, unless its
-// mesh changed (the ghost would trace the new mesh, with bounds of the old).
-// Returns the instanced ones.
-std::vector<std::uint32_t> placeInstances(SceneState& s) {
-  std::vector<std::uint32_t> instanced;
-  for (std::uint32_t id : s.pending.instances) {
-    if (!s.instances[id] || !s.instances[id]->placeDirty) continue;
-    InstanceRecord& inst = *s.instances[id];
-    const MeshRecord& m = *s.meshes[index(inst.mesh)];
-    inst.placeDirty = false;
-    const bool inTop = inst.level == Level::Top || inst.level == Level::Ghosted;
-    const Level want = m.data.usage == MeshUsage::Static && m.users.size() == 1 ? Level::Merged
-                       : !inst.moved                                            ? Level::Top
-                       : inTop && !inst.meshChanged                             ? Level::Ghosted
-                                                                                : Level::Moving;
-    inst.meshChanged = false;
-    switch (want) {
-      case Level::Merged:
-        // A merged copy is in world space: any change rebuilds it.
-        unplace(s, inst, id);
-        inst.flatGeometry = worldGeometry(s.device->handle(), m.data, inst.transform);
-        rtcAttachGeometryByID(s.merged, inst.flatGeometry, id);
-        s.mergedDirty = true;
-        break;
-      case Level::Top:
-        if (inst.level != Level::Top) {
-          unplace(s, inst, id);
-          setTransform(inst.geometry, inst.transform);
-          rtcAttachGeometryByID(s.top, inst.geometry, topId(id));
-          ++s.topInstances;
-          s.topDirty = true;
-        }
-        instanced.push_back(id);
-        break;
-      case Level::Ghosted:
-        if (inst.level == Level::Top) {
-          if (s.ghosts.size() <= topId(id)) s.ghosts.resize(s.instances.size() + 1);
-          s.ghosts[topId(id)] = 1;
-          ++s.ghostCount;
-          enterMoving(s, inst, id);
-        }
-        setTransform(inst.movingGeometry, inst.transform);
-        s.movingDirty = true;
-        instanced.push_back(id);
-        break;
-      case Level::Moving:
-        if (inst.level == Level::Ghosted) {
-          leaveTop(s, inst, id);
-        } else if (inst.level != Level::Moving) {
-          unplace(s, inst, id);
-          enterMoving(s, inst, id);
-        }
-        setTransform(inst.movingGeometry, inst.transform);
-        s.movingDirty = true;
-        instanced.push_back(id);
-        break;
-      case Level::None:
-        break;
-    }
-    inst.level = want;
-  }
-  return instanced;
-}
-
-// How many ghosts the top level carries before it rebuilds. Each edit
-// rebuilds the moving level over its L ghosts (c L, c about 0.7 us here),
-// each L-th folds them, rebuilding the top level over all n instances
-// (about 2c n): the mean cost per edit, 2c n / L + c L / 2, is least at
-// L = 2 sqrt(n).
-std::uint32_t ghostLimit(std::uint32_t topInstances) {
-  return std::max<std::uint32_t>(32, std::uint32_t(2.0 * std::sqrt(double(topInstances))));
-}
-
-// Commit step 3a: when the top level rebuilds anyway, or the ghosts grew too
-// many, the ghosted instances go back to the top level at their transform.
-void foldGhosts(SceneState& s) {
-  if (s.ghostCount == 0 || (!s.topDirty && s.ghostCount <= ghostLimit(s.topInstances))) return;
-  std::vector<std::uint32_t> ghosted;
-  for (std::uint32_t id : s.movingIds)
-    if (s.instances[id]->level == Level::Ghosted) ghosted.push_back(id);
-  for (std::uint32_t id : ghosted) {
-    InstanceRecord& inst = *s.instances[id];
-    leaveMoving(s, inst);
-    s.ghosts[topId(id)] = 0;
-    inst.level = Level::Top;
-    inst.moved = false;
-    setTransform(inst.geometry, inst.transform);
-    rtcCommitGeometry(inst.geometry);
-  }
-  s.ghostCount = 0;
-  s.topDirty = true;
-}
-
-// Commit step 3b: the BVH of each mesh an instance traverses, then the
-// instances (whose bounds come from it), then the levels over them.
-void commitLevels(SceneState& s, const std::vector<std::uint32_t>& instanced) {
-  for (std::uint32_t id : instanced) {
-    MeshRecord& m = *s.meshes[index(s.instances[id]->mesh)];
-    if (!m.sceneStale) continue;
-    rtcCommitGeometry(m.geometry);
-    rtcCommitScene(m.scene);
-    m.sceneStale = false;
-  }
-  for (std::uint32_t id : instanced) {
-    const InstanceRecord& inst = *s.instances[id];
-    rtcCommitGeometry(inst.level == Level::Top ? inst.geometry : inst.movingGeometry);
-  }
-  if (s.mergedDirty) {
-    rtcCommitScene(s.merged);
-    rtcCommitGeometry(s.mergedInstance);
-    s.mergedDirty = false;
-    s.topDirty = true;
-  }
-  foldGhosts(s);
-  if (s.topDirty) {
-    rtcCommitScene(s.top);
-    s.topDirty = false;
-  }
-  if (s.movingDirty) {
-    rtcCommitScene(s.moving);
-    s.movingDirty = false;
-  }
-  // Without instances there is no top level to cross.
-  s.traversable = s.topInstances > 0 ? s.top : s.merged;
-  s.movingTraversable = s.movingIds.empty() ? nullptr : s.moving;
-  s.device->check("commit");
-}
-
 // Commit step 4: materials as the renderer reads them. Returns whether they
 // moved in memory (every view points into them).
 bool refreshMaterials(SceneState& s) {
@@ -685,8 +452,7 @@ void rebuildEmitters(SceneState& s) {
 
 void Scene::commit() {
   SceneState& s = *state_;
-  spreadMeshEdits(s);
-  commitLevels(s, placeInstances(s));
+  commitLevels(s);
   const bool allViews = s.pending.materials && refreshMaterials(s);
   if (s.pending.lights) {
     s.activeLights.clear();

@@ -24,6 +24,12 @@ struct MeshRecord {
   std::vector<std::uint32_t> users;  // ids of the instances referencing this mesh
   bool dirty = false;                // data changed since the last commit (listed in Pending)
   bool sceneStale = true;            // its own BVH not built for the current data
+  // Bounds that every level holding an instance of this mesh was built with
+  // (or around): a ray reaches the mesh's own BVH through the instance at
+  // trace time, so a vertex edit that keeps the mesh inside them rebuilds
+  // that BVH alone and touches no instance and no level.
+  RTCBounds levelBounds{};
+  bool shrunk = false;  // inside levelBounds but smaller: listed in SceneState::shrunkMeshes
 
   MeshRecord() = default;
   MeshRecord(const MeshRecord&) = delete;
@@ -158,12 +164,17 @@ struct SceneState {
   // below the highest, so the moving level's ids are dense, not topId().
   std::vector<std::uint32_t> movingIds;
   bool topDirty = true, movingDirty = false;
+  // Meshes edited to less than their levelBounds: a level that rebuilds
+  // takes their current bounds, so levelBounds shrinks to them then.
+  std::vector<std::uint32_t> shrunkMeshes;
   std::uint64_t uid = 0;
   std::uint64_t version = 1;
 
   // The one way to edit: restarts accumulation (bumps the version) and
   // records what commit() must refresh.
   void edit(const Edit& e);
+  // Lists an instance for commit() to refresh, without an edit of its own.
+  void mark(std::uint32_t instance, bool placed);
   Pending pending;
 
   std::vector<std::unique_ptr<MeshRecord>> meshes;

@@ -236,8 +236,9 @@ TEST(EmbreeIncremental, RemoveInstance) {
 // floor, edited many times: moves of many different instances (each leaves
 // a ghost in the top level, and the ghosts fold back into it when they grow
 // past the limit or when the top level rebuilds anyway), moves again of
-// moved ones, a vertex edit of the animated mesh under ghosts, a removal
-// and an addition. After each round the render equals a scene built fresh
+// moved ones, vertex edits of the animated mesh (under ghosts, inside its
+// bounds, and back out after a level rebuilt around it), a removal and an
+// addition. After each round the render equals a scene built fresh
 // in that state.
 struct Crowd {
   std::vector<glm::vec3> at;  // per instance, in id order
@@ -339,6 +340,16 @@ TEST(EmbreeIncremental, ManyMovesEqualAFreshScene) {
   state.present[62] = false;  // a ghost goes
   scene.removeInstance(ids.instances[62]);
   expectFresh("a vertex edit under ghosts, a ghost removed");
+  auto reshapeBlob = [&](float scale) {
+    state.blobScale = scale;
+    scene.updateMeshVertices(ids.blob, 0, blob(scale).positions);
+    renderCrowd(scene, commits);
+  };
+  reshapeBlob(0.8f);  // inside the bounds its instances' levels hold: only the blob's own BVH rebuilds
+  expectFresh("a vertex edit inside the mesh's bounds");
+  move(64, {0.0f, 0.0f, 0.1f});  // the moving level, which holds the blobs, rebuilds around the smaller blob
+  reshapeBlob(1.6f);             // so growing back must move them again
+  expectFresh("a vertex edit back out of bounds a level rebuild shrank");
   move(70, {0.0f, 0.2f, 0.0f});
   move(72, {0.0f, 0.2f, 0.0f});
   for (glm::vec3 at : {glm::vec3(0.0f, 1.0f, 0.0f), glm::vec3(0.5f, 1.0f, 0.0f)}) {

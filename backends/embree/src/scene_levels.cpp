@@ -1,0 +1,303 @@
+#include "scene_levels.hpp"
+
+#include "tsr/embree/error.hpp"
+
+#include <glm/mat4x4.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace tsr::embree {
+
+namespace {
+
+// Takes the instance's copy out of the top level, a ghost's included (which
+// rebuilds the top level).
+void leaveTop(SceneState& s, InstanceRecord& inst, std::uint32_t id) {
+  rtcDetachGeometry(s.top, topId(id));
+  --s.topInstances;
+  s.topDirty = true;
+  if (inst.level == Level::Ghosted) {
+    s.ghosts[topId(id)] = 0;
+    --s.ghostCount;
+  }
+}
+
+void enterMoving(SceneState& s, InstanceRecord& inst, std::uint32_t id) {
+  if (!inst.movingGeometry) {
+    inst.movingGeometry = rtcNewGeometry(s.device->handle(), RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(inst.movingGeometry, s.meshes[index(inst.mesh)]->scene);
+    rtcSetGeometryTimeStepCount(inst.movingGeometry, 1);
+  }
+  inst.movingId = std::uint32_t(s.movingIds.size());
+  rtcAttachGeometryByID(s.moving, inst.movingGeometry, inst.movingId);
+  s.movingIds.push_back(id);
+  s.movingDirty = true;
+}
+
+void leaveMoving(SceneState& s, InstanceRecord& inst) {
+  // Keep the moving level's ids dense: the last one takes the freed id.
+  const std::uint32_t last = std::uint32_t(s.movingIds.size() - 1);
+  rtcDetachGeometry(s.moving, inst.movingId);
+  if (inst.movingId != last) {
+    InstanceRecord& other = *s.instances[s.movingIds[last]];
+    rtcDetachGeometry(s.moving, last);
+    rtcAttachGeometryByID(s.moving, other.movingGeometry, inst.movingId);
+    other.movingId = inst.movingId;
+    s.movingIds[inst.movingId] = s.movingIds[last];
+  }
+  s.movingIds.pop_back();
+  s.movingDirty = true;
+}
+
+}  // namespace
+
+void unplace(SceneState& s, InstanceRecord& inst, std::uint32_t id) {
+  switch (inst.level) {
+    case Level::None:
+      break;
+    case Level::Merged:
+      rtcDetachGeometry(s.merged, id);
+      rtcReleaseGeometry(inst.flatGeometry);
+      inst.flatGeometry = nullptr;
+      s.mergedDirty = true;
+      break;
+    case Level::Top:
+      leaveTop(s, inst, id);
+      break;
+    case Level::Moving:
+      leaveMoving(s, inst);
+      break;
+    case Level::Ghosted:
+      leaveTop(s, inst, id);
+      leaveMoving(s, inst);
+      break;
+  }
+  inst.level = Level::None;
+}
+
+namespace {
+
+// World-space copy of an instance's triangles for the merged scene.
+RTCGeometry worldGeometry(RTCDevice device, const MeshData& d, const glm::mat4& transform) {
+  RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* v = static_cast<glm::vec3*>(
+      rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(glm::vec3), d.positions.size()));
+  auto* i = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                3 * sizeof(std::uint32_t), d.indices.size() / 3));
+  if (!v || !i) {
+    rtcReleaseGeometry(g);
+    throw Error("Embree could not allocate merged mesh buffers");
+  }
+  for (std::size_t k = 0; k < d.positions.size(); ++k) v[k] = glm::vec3(transform * glm::vec4(d.positions[k], 1.0f));
+  std::memcpy(i, d.indices.data(), d.indices.size() * sizeof(std::uint32_t));
+  rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);
+  rtcCommitGeometry(g);
+  return g;
+}
+
+bool inside(const RTCBounds& a, const RTCBounds& b) {
+  return a.lower_x >= b.lower_x && a.lower_y >= b.lower_y && a.lower_z >= b.lower_z && a.upper_x <= b.upper_x &&
+         a.upper_y <= b.upper_y && a.upper_z <= b.upper_z;
+}
+
+bool same(const RTCBounds& a, const RTCBounds& b) { return inside(a, b) && inside(b, a); }
+
+RTCBounds sceneBounds(RTCScene scene) {
+  RTCBounds b;
+  rtcGetSceneBounds(scene, &b);
+  return b;
+}
+
+// Whether an instance of the mesh is copied to world space in the merged scene.
+bool merged(const SceneState& s, const MeshRecord& m) {
+  return m.users.size() == 1 && s.instances[m.users.front()]->level == Level::Merged;
+}
+
+// Commit step 1: a changed mesh's own BVH. If the mesh stays inside the
+// bounds its instances' levels were built with, nothing else changes (cost
+// O(mesh), whatever its instance count). Otherwise it changes the bounds of
+// every instance of it, which therefore join the moving level.
+void spreadMeshEdits(SceneState& s) {
+  for (std::uint32_t id : s.pending.meshes) {
+    if (!s.meshes[id]) continue;
+    MeshRecord& m = *s.meshes[id];
+    m.dirty = false;
+    m.sceneStale = true;
+    if (m.users.empty()) continue;  // built when an instance needs it
+    rtcCommitGeometry(m.geometry);
+    rtcCommitScene(m.scene);
+    m.sceneStale = false;
+    const RTCBounds now = sceneBounds(m.scene);
+    if (inside(now, m.levelBounds) && !merged(s, m)) {
+      if (!m.shrunk && !same(now, m.levelBounds)) {
+        m.shrunk = true;
+        s.shrunkMeshes.push_back(id);
+      }
+      for (const EmissiveRange& r : s.emissiveRanges)
+        s.pending.emitters |= s.instances[r.instance] && index(s.instances[r.instance]->mesh) == id;
+      continue;
+    }
+    m.levelBounds = now;  // every level holding a user rebuilds below
+    for (std::uint32_t u : m.users) {
+      s.instances[u]->moved = true;
+      s.instances[u]->meshChanged = true;
+      s.mark(u, true);
+    }
+  }
+}
+
+void setTransform(RTCGeometry g, const glm::mat4& transform) {
+  rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &transform[0][0]);
+}
+
+// Commit step 2: each changed instance goes where it belongs: static meshes
+// nobody else uses into the merged scene, instances that moved into the
+// moving level, the rest into the top level. An instance that moves out of
+// the top level leaves a ghost there instead of rebuilding it, unless its
+// mesh changed (the ghost would trace the new mesh, with bounds of the old).
+// Returns the instanced ones.
+std::vector<std::uint32_t> placeInstances(SceneState& s) {
+  std::vector<std::uint32_t> instanced;
+  for (std::uint32_t id : s.pending.instances) {
+    if (!s.instances[id] || !s.instances[id]->placeDirty) continue;
+    InstanceRecord& inst = *s.instances[id];
+    const MeshRecord& m = *s.meshes[index(inst.mesh)];
+    inst.placeDirty = false;
+    const bool inTop = inst.level == Level::Top || inst.level == Level::Ghosted;
+    const Level want = m.data.usage == MeshUsage::Static && m.users.size() == 1 ? Level::Merged
+                       : !inst.moved                                            ? Level::Top
+                       : inTop && !inst.meshChanged                             ? Level::Ghosted
+                                                                                : Level::Moving;
+    inst.meshChanged = false;
+    switch (want) {
+      case Level::Merged:
+        // A merged copy is in world space: any change rebuilds it.
+        unplace(s, inst, id);
+        inst.flatGeometry = worldGeometry(s.device->handle(), m.data, inst.transform);
+        rtcAttachGeometryByID(s.merged, inst.flatGeometry, id);
+        s.mergedDirty = true;
+        break;
+      case Level::Top:
+        if (inst.level != Level::Top) {
+          unplace(s, inst, id);
+          setTransform(inst.geometry, inst.transform);
+          rtcAttachGeometryByID(s.top, inst.geometry, topId(id));
+          ++s.topInstances;
+          s.topDirty = true;
+        }
+        instanced.push_back(id);
+        break;
+      case Level::Ghosted:
+        if (inst.level == Level::Top) {
+          if (s.ghosts.size() <= topId(id)) s.ghosts.resize(s.instances.size() + 1);
+          s.ghosts[topId(id)] = 1;
+          ++s.ghostCount;
+          enterMoving(s, inst, id);
+        }
+        setTransform(inst.movingGeometry, inst.transform);
+        s.movingDirty = true;
+        instanced.push_back(id);
+        break;
+      case Level::Moving:
+        if (inst.level == Level::Ghosted) {
+          leaveTop(s, inst, id);
+        } else if (inst.level != Level::Moving) {
+          unplace(s, inst, id);
+          enterMoving(s, inst, id);
+        }
+        setTransform(inst.movingGeometry, inst.transform);
+        s.movingDirty = true;
+        instanced.push_back(id);
+        break;
+      case Level::None:
+        break;
+    }
+    inst.level = want;
+  }
+  return instanced;
+}
+
+// How many ghosts the top level carries before it rebuilds. Each edit
+// rebuilds the moving level over its L ghosts (c L, c about 0.7 us here),
+// each L-th folds them, rebuilding the top level over all n instances
+// (about 2c n): the mean cost per edit, 2c n / L + c L / 2, is least at
+// L = 2 sqrt(n).
+std::uint32_t ghostLimit(std::uint32_t topInstances) {
+  return std::max<std::uint32_t>(32, std::uint32_t(2.0 * std::sqrt(double(topInstances))));
+}
+
+// Commit step 3a: when the top level rebuilds anyway, or the ghosts grew too
+// many, the ghosted instances go back to the top level at their transform.
+void foldGhosts(SceneState& s) {
+  if (s.ghostCount == 0 || (!s.topDirty && s.ghostCount <= ghostLimit(s.topInstances))) return;
+  std::vector<std::uint32_t> ghosted;
+  for (std::uint32_t id : s.movingIds)
+    if (s.instances[id]->level == Level::Ghosted) ghosted.push_back(id);
+  for (std::uint32_t id : ghosted) {
+    InstanceRecord& inst = *s.instances[id];
+    leaveMoving(s, inst);
+    s.ghosts[topId(id)] = 0;
+    inst.level = Level::Top;
+    inst.moved = false;
+    setTransform(inst.geometry, inst.transform);
+    rtcCommitGeometry(inst.geometry);
+  }
+  s.ghostCount = 0;
+  s.topDirty = true;
+}
+
+// Commit step 3b: the BVH of each mesh an instance traverses, then the
+// instances (whose bounds come from it), then the levels over them.
+void buildLevels(SceneState& s, const std::vector<std::uint32_t>& instanced) {
+  for (std::uint32_t id : instanced) {
+    MeshRecord& m = *s.meshes[index(s.instances[id]->mesh)];
+    if (!m.sceneStale) continue;
+    rtcCommitGeometry(m.geometry);
+    rtcCommitScene(m.scene);
+    m.sceneStale = false;
+    m.levelBounds = sceneBounds(m.scene);  // no level held it while stale
+  }
+  for (std::uint32_t id : instanced) {
+    const InstanceRecord& inst = *s.instances[id];
+    rtcCommitGeometry(inst.level == Level::Top ? inst.geometry : inst.movingGeometry);
+  }
+  if (s.mergedDirty) {
+    rtcCommitScene(s.merged);
+    rtcCommitGeometry(s.mergedInstance);
+    s.mergedDirty = false;
+    s.topDirty = true;
+  }
+  foldGhosts(s);
+  const bool rebuilt = s.topDirty || s.movingDirty;
+  if (s.topDirty) {
+    rtcCommitScene(s.top);
+    s.topDirty = false;
+  }
+  if (s.movingDirty) {
+    rtcCommitScene(s.moving);
+    s.movingDirty = false;
+  }
+  if (rebuilt) {
+    for (std::uint32_t id : s.shrunkMeshes) {
+      if (!s.meshes[id] || !s.meshes[id]->shrunk) continue;
+      s.meshes[id]->levelBounds = sceneBounds(s.meshes[id]->scene);
+      s.meshes[id]->shrunk = false;
+    }
+    s.shrunkMeshes.clear();
+  }
+  // Without instances there is no top level to cross.
+  s.traversable = s.topInstances > 0 ? s.top : s.merged;
+  s.movingTraversable = s.movingIds.empty() ? nullptr : s.moving;
+  s.device->check("commit");
+}
+
+}  // namespace
+
+void commitLevels(SceneState& s) {
+  spreadMeshEdits(s);
+  buildLevels(s, placeInstances(s));
+}
+
+}  // namespace tsr::embree
