@@ -6,6 +6,8 @@
 #include <functional>
 #include <iostream>
 #include <stdexcept>
+#include <unordered_map>
+#include <unordered_set>
 
 #include "backends.hpp"
 #include "cluster_connection.hpp"
@@ -37,7 +39,7 @@ struct SequenceRenderer {
 // split the PCA step works on.
 std::vector<std::string> frameOutputs(const RenderOptions& options) {
   std::vector<std::string> outputs = options.aovs;
-  if (options.temporal.method == "pca")
+  if (options.temporal.imagePca())
     for (const char* name : {"direct", "indirect"})
       if (std::find(outputs.begin(), outputs.end(), name) == outputs.end()) outputs.emplace_back(name);
   return outputs;
@@ -73,7 +75,7 @@ SequenceRenderer localRenderer(const RenderOptions& options, const std::vector<L
   checkOutputsOffered(options.aovs, local->window);
   med::RenderControl shown;
   shown.outputs = frameOutputs(options);
-  const bool temporal = options.temporal.method == "pca";
+  const bool temporal = options.temporal.imagePca();
   const std::int64_t seed = options.parameters.getInt("seed", 0, 0);
   const std::int64_t spp = options.parameters.getInt("spp", 16, 1, 1 << 20);
   const std::int64_t directSpp = std::max<std::int64_t>(spp, options.temporal.directSpp);
@@ -105,6 +107,33 @@ SequenceRenderer localRenderer(const RenderOptions& options, const std::vector<L
   return sequence;
 }
 
+// Whether an animation moves the camera (its node or one above it).
+bool cameraMoves(const SceneSession& session) {
+  std::unordered_set<sg::ContainerId> animated;
+  for (const auto& animation : session.imported.animations)
+    for (sg::ContainerId target : animation.targets()) animated.insert(target);
+  if (animated.empty()) return false;
+  const sg::Scene& scene = session.source;
+  std::unordered_map<sg::ContainerId, std::vector<sg::ContainerId>> parents;
+  auto note = [&](sg::ContainerId parent, const std::vector<sg::ContainerId>& children) {
+    for (sg::ContainerId child : children) parents[child].push_back(parent);
+  };
+  for (sg::ContainerId id : scene.ids()) {
+    if (const auto* t = scene.find<sg::Transform>(id)) note(id, t->children());
+    if (const auto* g = scene.find<sg::Group>(id)) note(id, g->children());
+  }
+  std::vector<sg::ContainerId> above{session.camera};
+  std::unordered_set<sg::ContainerId> seen;
+  while (!above.empty()) {
+    const sg::ContainerId id = above.back();
+    above.pop_back();
+    if (animated.count(id)) return true;
+    if (!seen.insert(id).second) continue;
+    for (sg::ContainerId parent : parents[id]) above.push_back(parent);
+  }
+  return false;
+}
+
 FrameRenderer clusterRenderer(const RenderOptions& options, const SceneSession& session) {
   if (options.temporal.active() && options.temporal.directSpp > options.parameters.getInt("spp", 16, 1, 1 << 20))
     throw std::invalid_argument("--direct-spp: with --cluster the nodes render direct and indirect light in the same "
@@ -125,22 +154,33 @@ FrameRenderer clusterRenderer(const RenderOptions& options, const SceneSession& 
 
 }  // namespace
 
-int renderSequence(const RenderOptions& options, const SequenceOptions& sequence,
-                   const std::vector<LayerSpec>& layers) {
-  if (sequence.frames > 1 && options.output.find("####") == std::string::npos)
+int renderSequence(const RenderOptions& given, const SequenceOptions& sequence, const std::vector<LayerSpec>& layers) {
+  if (sequence.frames > 1 && given.output.find("####") == std::string::npos)
     throw std::invalid_argument("--frames " + std::to_string(sequence.frames) +
                                 " needs #### in --output for the frame number");
   SceneSession session;
-  session.load(options.scene, options.import, options.view);
-  if (options.temporal.method == "pca" && !layers.empty())
+  session.load(given.scene, given.import, given.view);
+  // --temporal-space auto settles on the scene's camera.
+  RenderOptions options = given;
+  const bool moves = cameraMoves(session);
+  options.temporal.resolveSpace(moves);
+  if (given.temporal.method == "pca" && given.temporal.space == "auto" && !given.quiet)
+    std::cout << "--temporal pca in " << options.temporal.space << " space: the camera "
+              << (moves ? "moves" : "stays still") << " (--temporal-space chooses)\n";
+  checkTemporalOptions(options.temporal, static_cast<int>(options.parameters.getInt("spp", 16, 1, 1 << 20)));
+  options.temporal.applyTo(options.parameters);
+  const std::string method =
+      options.temporal.method + (options.temporal.method == "pca" ? " (" + options.temporal.space + " space)" : "");
+  if (options.temporal.imagePca() && !layers.empty())
     throw std::invalid_argument("--temporal pca with --layers: each frame is rebuilt from the bottom layer's direct "
                                 "and indirect light, so the layers above it would be lost");
   // A cluster without layers renders the whole window on the nodes.
   const bool local = sequence.cluster.empty() || !layers.empty();
-  if (options.temporal.method == "photons" && (!sequence.cluster.empty() || options.backend != "embree"))
+  if (options.temporal.inBackend() && (!sequence.cluster.empty() || options.backend != "embree"))
     throw std::invalid_argument(
-        "--temporal photons renders with the local path tracer (--backend embree): its photon "
-        "pass sees every frame ahead of the one shown, which the cluster protocol does not carry");
+        "--temporal " + method +
+        " renders with the local path tracer (--backend embree): its photon pass sees every frame ahead of the one "
+        "shown, which the cluster protocol does not carry");
   med::RenderStats stats;
   SequenceRenderer renderer = local ? localRenderer(options, layers, session, stats)
                                     : SequenceRenderer{clusterRenderer(options, session), 0, {}};
@@ -150,9 +190,9 @@ int renderSequence(const RenderOptions& options, const SequenceOptions& sequence
     for (const auto& aov : options.aovs) med::writeImage(aovPath(path, aov), image, aov, options.display);
     return path;
   };
-  ProgressBar bar(options.temporal.active() ? "rendering + " + options.temporal.method : "rendering", !options.quiet);
+  ProgressBar bar(options.temporal.active() ? "rendering + " + method : "rendering", !options.quiet);
   std::unique_ptr<TemporalPcaSequence> pca;
-  if (options.temporal.method == "pca")
+  if (options.temporal.imagePca())
     pca = std::make_unique<TemporalPcaSequence>(options.temporal,
                                                 [&](int frame, const med::FrameBuffer& image) { write(frame, image); });
   double renderSeconds = 0;

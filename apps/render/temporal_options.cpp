@@ -14,6 +14,12 @@ void addTemporalOptions(CLI::App& app, TemporalOptions& o) {
                 "spatio-temporal photon density estimation (--backend embree). With pca --spp is the indirect "
                 "sample count, with photons the direct one")
       ->check(CLI::IsMember({"pca", "photons"}));
+  g->add_option("--temporal-space", o.space,
+                "where pca projects: image (the frames' indirect light), object (irradiance on surface elements "
+                "fixed to the meshes, estimated by --photons-per-frame photons per frame; --spp is then the direct "
+                "sample count) or auto (default): object when the camera moves, so visibility changes are not "
+                "taken for lighting changes")
+      ->check(CLI::IsMember({"auto", "image", "object"}));
   g->add_option("--direct-spp", o.directSpp,
                 "direct-light samples per pixel and frame (default: --spp; direct light has the lower variance, "
                 "so its noise stays under the denoised indirect's)")
@@ -56,6 +62,11 @@ void checkTemporalOptions(const TemporalOptions& o, int spp) {
   if (o.method == "photons" && o.directSpp)
     throw std::invalid_argument("--direct-spp with --temporal photons: photons carry the indirect light, so --spp "
                                 "is already the direct-light sample count");
+  if (o.method == "pca" && o.space == "object" && o.directSpp)
+    throw std::invalid_argument("--direct-spp with object-space pca: photons on surface elements carry the indirect "
+                                "light, so --spp is already the direct-light sample count");
+  if (o.method != "pca" && o.space != "auto")
+    throw std::invalid_argument("--temporal-space is where pca projects: it needs --temporal pca");
   if (o.overlap >= o.window)
     throw std::invalid_argument("--temporal-overlap " + std::to_string(o.overlap) +
                                 " must be smaller than --temporal-window " + std::to_string(o.window));
@@ -65,11 +76,25 @@ void checkTemporalOptions(const TemporalOptions& o, int spp) {
                                 ": direct light comes from the same paths as the indirect, so it gets at least --spp");
 }
 
+void TemporalOptions::resolveSpace(bool cameraMoves) {
+  if (method == "pca" && space == "auto") space = cameraMoves ? "object" : "image";
+}
+
 void TemporalOptions::applyTo(med::Parameters& parameters) const {
-  if (method != "photons") return;
-  parameters.set("temporal", std::string("photons"));
+  if (!inBackend()) return;
   parameters.set("photonsPerFrame", std::int64_t{photonsPerFrame});
-  parameters.set("photonFrames", std::int64_t{photonFrames});
+  if (method == "photons") {
+    parameters.set("temporal", std::string("photons"));
+    parameters.set("photonFrames", std::int64_t{photonFrames});
+    return;
+  }
+  parameters.set("temporal", std::string("objectPca"));
+  parameters.set("pcaWindow", std::int64_t{window});
+  parameters.set("pcaOverlap", std::int64_t{overlap});
+  parameters.set("pcaModes", std::int64_t{modes});
+  parameters.set("pcaEpsilon", epsilon);
+  parameters.set("pcaEpsilonChange", epsilonChange);
+  parameters.set("pcaPlainRule", plainRule);
 }
 
 }  // namespace tsr::app

@@ -6,6 +6,7 @@
 //   --temporal-epsilon E, --temporal-epsilon-change C, --temporal-global,
 //   --temporal-map-sigma S, --temporal-window W, --temporal-overlap O
 //   --photons-per-frame N, --photon-frames T (photons)
+//   --temporal-space auto|image|object (pca)
 #include <CLI/CLI.hpp>
 
 #include <string>
@@ -25,17 +26,28 @@ struct TemporalOptions {
   int window = 64, overlap = 16;
   int photonsPerFrame = 0;  // 0: from the photon pilot pass
   int photonFrames = 9;     // the photon method's temporal window (odd)
+  // Where pca projects: image (the rendered frames' indirect output, on the
+  // client), object (irradiance on surface elements, in the path tracer) or
+  // auto: object when the camera moves during the sequence.
+  std::string space = "auto";
   bool active() const { return !method.empty(); }
+  // pca on the rendered frames, in the application.
+  bool imagePca() const { return method == "pca" && space == "image"; }
+  // The method runs in the path tracer's temporal viewport.
+  bool inBackend() const { return method == "photons" || (method == "pca" && space == "object"); }
+  // Settles space "auto" (pca only): object when the camera moves.
+  void resolveSpace(bool cameraMoves);
   // The viewport parameters that select the method in the back-end
-  // (photons: the path tracer's photon viewport); none for pca, which
-  // works on the rendered frames.
+  // (photons, or object-space pca: the path tracer's temporal viewport);
+  // none for image-space pca, which works on the rendered frames.
   void applyTo(med::Parameters& parameters) const;
 };
 
 // Declares the options on `app` (so --help lists them), in their own group.
 void addTemporalOptions(CLI::App& app, TemporalOptions& options);
 
-// Checks combinations CLI11 cannot: throws std::invalid_argument.
+// Checks combinations CLI11 cannot: throws std::invalid_argument. Those that
+// depend on the space are checked again once it is resolved.
 void checkTemporalOptions(const TemporalOptions& options, int spp);
 
 }  // namespace tsr::app

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command_runner.hpp"
+#include "lit_scene_gltf.hpp"
 #include "tsr/med/image_file.hpp"
 
 namespace {
@@ -204,6 +205,42 @@ double flicker(const std::vector<std::vector<glm::vec4>>& frames) {
 }
 
 }  // namespace
+
+// --temporal pca with a moving camera projects in object space (irradiance
+// on surface elements), with a still one on the frames' indirect light;
+// either way the beauty is direct + indirect.
+TEST_F(RenderCommand, TemporalPcaProjectsInObjectSpaceWhenTheCameraMoves) {
+  tsr::test::writeLitSceneGltf((dir / "lit.gltf").string());
+  const std::string common = "lit.gltf --size 16x16 --spp 2 --threads 1 --frames 4 --fps 4 --temporal pca "
+                             "--temporal-window 4 --temporal-overlap 1 --photons-per-frame 20000 --aov direct --aov "
+                             "indirect ";
+  const Outcome moving = run(common + "--camera tracking --output o.####.exr");
+  ASSERT_EQ(moving.status, 0) << moving.err;
+  EXPECT_THAT(moving.out, HasSubstr("object space: the camera moves"));
+  for (int f = 0; f < 4; ++f) {
+    const std::string stem = (dir / ("o.000" + std::to_string(f))).string();
+    const auto beauty = tsr::med::readImage(stem + ".exr");
+    const auto direct = tsr::med::readImage(stem + ".direct.exr");
+    const auto indirect = tsr::med::readImage(stem + ".indirect.exr");
+    double light = 0;
+    for (std::size_t p = 0; p < beauty.colour.size(); ++p)
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(beauty.colour[p][c], direct.colour[p][c] + indirect.colour[p][c], 1e-3f);
+        light += indirect.colour[p][c];
+      }
+    EXPECT_GT(light, 0.0) << "frame " << f << ": photons bring indirect light";
+  }
+  const Outcome still = run(common + "--camera front --output i.####.exr");
+  ASSERT_EQ(still.status, 0) << still.err;
+  EXPECT_THAT(still.out, HasSubstr("image space: the camera stays still"));
+  expectOneErrorLine(run(common + "--camera front --temporal-space object --direct-spp 4 --output d.####.exr"),
+                     "--direct-spp");
+  expectOneErrorLine(run("lit.gltf --frames 2 --temporal photons --temporal-space object --output p.####.png"),
+                     "--temporal-space");
+  expectOneErrorLine(run("lit.gltf --frames 2 --temporal pca --temporal-space object --backend vulkan --output "
+                         "p.####.png"),
+                     "--backend embree");
+}
 
 // --temporal photons: indirect light from photons traced over the frames
 // around each one; it flickers far less than frame-by-frame path tracing

@@ -21,6 +21,35 @@ namespace {
 
 std::atomic<std::uint64_t> nextFieldUid{1};
 
+// Corner values: area-weighted means over the elements at each corner that
+// lie within the crease angle of this one, so the lookup is continuous
+// across element borders on smooth surfaces.
+std::vector<glm::vec3> cornerValues(const ElementSet& set, const ElementGeometry& geo,
+                                    const std::vector<glm::vec3>& value, float cosCrease, tbb::task_arena& arena) {
+  const std::size_t elements = value.size();
+  std::vector<glm::vec3> corner(3 * elements);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, elements, 1024),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t e = r.begin(); e != r.end(); ++e) {
+                          for (int k = 0; k < 3; ++k) {
+                            const std::uint32_t v = set.corners[3 * e + k];
+                            glm::vec3 sum(0.0f);
+                            float area = 0.0f;
+                            for (std::uint32_t i = set.vertexStart[v]; i < set.vertexStart[v + 1]; ++i) {
+                              const std::uint32_t p = set.vertexElements[i];
+                              if (glm::dot(geo.normal[p], geo.normal[e]) < cosCrease) continue;
+                              sum += geo.area[p] * value[p];
+                              area += geo.area[p];
+                            }
+                            corner[3 * e + k] = area > 0.0f ? sum / area : value[e];
+                          }
+                        }
+                      });
+  });
+  return corner;
+}
+
 // The buffered frames around t0, oldest first, as the reconstruction reads
 // them: counts and energies of the chosen photons, with prefix sums over time.
 struct Window {
@@ -270,28 +299,7 @@ Reconstruction PhotonSequence::reconstruct(std::int64_t frame, PhotonHalf half) 
     });
   });
 
-  // Corner values: area-weighted means over the elements at each corner
-  // that lie within the crease angle of this one.
-  std::vector<glm::vec3> corner(3 * elements);
-  s.arena->execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, elements, 1024),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t e = r.begin(); e != r.end(); ++e) {
-                          for (int k = 0; k < 3; ++k) {
-                            const std::uint32_t v = set.corners[3 * e + k];
-                            glm::vec3 sum(0.0f);
-                            float area = 0.0f;
-                            for (std::uint32_t i = set.vertexStart[v]; i < set.vertexStart[v + 1]; ++i) {
-                              const std::uint32_t p = set.vertexElements[i];
-                              if (glm::dot(geo.normal[p], geo.normal[e]) < cosCrease) continue;
-                              sum += geo.area[p] * filtered[p];
-                              area += geo.area[p];
-                            }
-                            corner[3 * e + k] = area > 0.0f ? sum / area : filtered[e];
-                          }
-                        }
-                      });
-  });
+  std::vector<glm::vec3> corner = cornerValues(set, geo, filtered, cosCrease, *s.arena);
 
   std::size_t lit = 0, cutLit = 0;
   for (std::size_t e = 0; e < elements; ++e) {
@@ -305,6 +313,21 @@ Reconstruction PhotonSequence::reconstruct(std::int64_t frame, PhotonHalf half) 
   out.field.corner_ = std::move(corner);
   out.field.sceneUid_ = s.sceneUid;
   out.field.uid_ = nextFieldUid.fetch_add(1);
+  return out;
+}
+
+IrradianceField PhotonSequence::field(std::vector<glm::vec3> irradiance) const {
+  const State& s = *s_;
+  const ElementGeometry& geo = s.buffered(s.last).geometry;
+  if (irradiance.size() != s.elements->elementCount())
+    throw Error("irradiance for " + std::to_string(irradiance.size()) + " elements, the sequence has " +
+                std::to_string(s.elements->elementCount()));
+  IrradianceField out;
+  out.corner_ = cornerValues(*s.elements, geo, irradiance, std::cos(s.settings.creaseAngle), *s.arena);
+  out.elements_ = s.elements;
+  out.element_ = std::move(irradiance);
+  out.sceneUid_ = s.sceneUid;
+  out.uid_ = nextFieldUid.fetch_add(1);
   return out;
 }
 

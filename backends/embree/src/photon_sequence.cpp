@@ -113,14 +113,15 @@ FrameStats PhotonSequence::addFrame(Scene& scene, std::int64_t frame) {
   if (!s.started) {
     s.photonsPerFrame = cfg.photonsPerFrame;
     if (s.photonsPerFrame == 0) {
-      // Weber eq. 3: N_frame = E_pilot^2 / E_max^2 * N_pilot / t_max.
+      // Weber eq. 3: N_frame = E_pilot^2 / E_max^2 * N_pilot / t_max (the
+      // frames whose photons one estimate combines).
       PhotonPassResult pilot =
           tracePhotons(state, elements, geometry, cfg.pilotPhotons,
                        Rng::pixelKey(cfg.seed ^ kPilotStream, std::uint32_t(frame), 0), cfg.maxBounces, *s.arena);
       stats.rays += pilot.rays;
       s.pilotError = passError(pilot.hits, elements.elementCount());
       const double n = double(s.pilotError) * s.pilotError / (double(cfg.maxError) * cfg.maxError) *
-                       double(cfg.pilotPhotons) / double(cfg.tMax);
+                       double(cfg.pilotPhotons) / double(cfg.budgetFrames ? cfg.budgetFrames : cfg.tMax);
       s.photonsPerFrame = std::uint32_t(std::clamp(std::ceil(n), 256.0, double(1u << 24)));
       spdlog::debug("tsr::embree: photon pilot E = {:.3f} over {} elements -> {} photons per frame", s.pilotError,
                     elements.elementCount(), s.photonsPerFrame);

@@ -9,10 +9,33 @@
 
 namespace tsr::med::embree_mediator {
 
+namespace {
+bool objectPca(const Parameters& p) { return p.getString("temporal", "") == "objectPca"; }
+
+int pcaWindow(const Parameters& p) { return static_cast<int>(p.getInt("pcaWindow", 64, 2, 100000)); }
+
+temporal::WindowedPca pcaFrom(const Parameters& p) {
+  temporal::PcaSettings s;
+  s.rule.epsilon = p.getReal("pcaEpsilon", s.rule.epsilon);
+  s.rule.epsilonChange = p.getReal("pcaEpsilonChange", s.rule.epsilonChange);
+  s.rule.noiseAware = !p.getBool("pcaPlainRule", false);
+  s.fixedModes = static_cast<int>(p.getInt("pcaModes", 0, 0, 1 << 20));
+  s.perPixel = false;
+  const int window = pcaWindow(p);
+  try {
+    return temporal::WindowedPca(window, static_cast<int>(p.getInt("pcaOverlap", std::min(16, window - 1), 0)), s);
+  } catch (const std::invalid_argument& e) {
+    throw ParameterError(e.what());
+  }
+}
+}  // namespace
+
 embree::PhotonSettings photonSettingsFrom(const Parameters& p) {
   embree::PhotonSettings s;
   s.photonsPerFrame = static_cast<std::uint32_t>(p.getInt("photonsPerFrame", 0, 0, 1 << 30));
-  s.tMax = static_cast<std::uint32_t>(p.getInt("photonFrames", 9, 1, 255));
+  // Object-space PCA reads each frame's photons once, as they are traced.
+  s.tMax = objectPca(p) ? 1 : static_cast<std::uint32_t>(p.getInt("photonFrames", 9, 1, 255));
+  if (objectPca(p)) s.budgetFrames = static_cast<std::uint32_t>(pcaWindow(p));
   if (s.tMax % 2 == 0)
     throw ParameterError("photonFrames = " + std::to_string(s.tMax) +
                          ": the window is centred on the frame it reconstructs, so it must be odd");
@@ -30,11 +53,48 @@ PhotonViewport::PhotonViewport(ViewportSettings settings, const std::shared_ptr<
     : Viewport(std::move(settings)),
       ahead_(device, settings_.root, settings_.background),
       shown_(device, settings_.root, settings_.background),
-      photons_(photonSettingsFrom(settings_.parameters)) {}
+      photons_(photonSettingsFrom(settings_.parameters)) {
+  if (objectPca(settings_.parameters)) pca_.emplace(pcaFrom(settings_.parameters));
+}
+
+// A frame's element irradiance leaves the PCA at most a window minus one
+// frames after it went in.
+std::uint32_t PhotonViewport::lookahead() const {
+  return pca_ ? static_cast<std::uint32_t>(pcaWindow(settings_.parameters) - 1) : photons_.lookahead();
+}
 
 void PhotonViewport::prepare(const sg::Replica& ahead, std::int64_t frame) {
   ahead_.catchUp(ahead);
   photons_.addFrame(ahead_.scene(), frame);
+  if (!pca_) return;
+  if (firstFrame_ < 0) firstFrame_ = frame;
+  const std::vector<glm::vec3> raw = photons_.rawIrradiance(frame);
+  temporal::Frame f(static_cast<std::uint32_t>(raw.size()), 1);
+  for (std::size_t e = 0; e < raw.size(); ++e)
+    for (int c = 0; c < 3; ++c) f.rgb[3 * e + std::size_t(c)] = raw[e][c];
+  keep(pca_->push(std::move(f)));
+}
+
+void PhotonViewport::keep(std::vector<temporal::DenoisedFrame> denoised) {
+  for (auto& d : denoised) {
+    std::vector<glm::vec3> values(d.frame.pixels());
+    // A projection can dip under zero where the noise was; irradiance cannot.
+    for (std::size_t e = 0; e < values.size(); ++e)
+      values[e] = glm::max(glm::vec3(d.frame.rgb[3 * e], d.frame.rgb[3 * e + 1], d.frame.rgb[3 * e + 2]), 0.0f);
+    denoised_[firstFrame_ + d.index] = std::move(values);
+  }
+}
+
+embree::IrradianceField PhotonViewport::field(std::int64_t frame) {
+  if (!pca_) return photons_.reconstruct(frame).field;  // throws embree::Error for a frame not buffered
+  // Not denoised yet, a lookahead after it was prepared: the sequence ended.
+  if (!denoised_.count(frame)) keep(pca_->finish());
+  auto it = denoised_.find(frame);
+  if (it == denoised_.end())
+    throw std::invalid_argument("temporal = objectPca: frame " + std::to_string(frame) + " was not prepared");
+  embree::IrradianceField f = photons_.field(std::move(it->second));
+  denoised_.erase(denoised_.begin(), std::next(it));  // frames are shown in order
+  return f;
 }
 
 SceneAdapter::Update PhotonViewport::synchronize(const sg::Replica& replica) { return shown_.catchUp(replica); }
@@ -45,7 +105,8 @@ RenderStats PhotonViewport::render(const sg::Replica& replica, const View& view,
                                    const RenderControl& control) {
   view.validate();
   if (control.frame < 0)
-    throw std::invalid_argument("temporal = photons renders frames of an animation: RenderControl::frame is not set");
+    throw std::invalid_argument("temporal = " + settings_.parameters.getString("temporal", "") +
+                                " renders frames of an animation: RenderControl::frame is not set");
   const auto start = std::chrono::steady_clock::now();
   const auto spp = static_cast<std::uint32_t>(settings_.parameters.getInt("spp", 16, 1, 1 << 20));
   RenderStats stats;
@@ -53,8 +114,7 @@ RenderStats PhotonViewport::render(const sg::Replica& replica, const View& view,
   embree::Scene& scene = shown_.scene();
   scene.commit();
   stats.syncSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  // Throws embree::Error for a frame that was not prepared or left the window.
-  const embree::IrradianceField field = photons_.reconstruct(control.frame).field;
+  const embree::IrradianceField field = this->field(control.frame);
 
   const embree::Camera camera = cameraOf(view);
   const embree::Region region = regionOf(view);

@@ -12,7 +12,8 @@ void registerEmbree(ViewportRegistry& registry) {
     sg::ContainerId root = settings.root, background = settings.background;
     // Photon animations keep two scenes of their own (the one shown and one
     // posed ahead), shared with no other viewport.
-    if (settings.parameters.getString("temporal", "") == "photons") {
+    if (const auto temporal = settings.parameters.getString("temporal", "");
+        temporal == "photons" || temporal == "objectPca") {
       return std::make_unique<embree_mediator::PhotonViewport>(std::move(settings), std::make_shared<embree::Device>());
     }
     auto context = contexts.acquire<embree_mediator::EmbreeContext>(key, [&] {

@@ -8,6 +8,8 @@
 #include "tsr/med/view.hpp"
 #include "tsr/med/viewport.hpp"
 #include "tsr/sg/camera.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
 #include "tsr/sg/light.hpp"
 #include "tsr/sg/surface_material.hpp"
 
@@ -55,13 +57,17 @@ std::unique_ptr<med::Viewport> QualityScene::viewport(const med::Parameters& par
   return registry_.create(s, contexts_);
 }
 
-void QualityScene::pose(float seconds, float lightScale) {
+void QualityScene::pose(float seconds, float lightScale, float pan) {
   if (lightIntensities_.empty())
     for (auto id : source_.ids())
       if (const auto* light = source_.find<sg::Light>(id)) lightIntensities_.emplace_back(id, light->intensity());
   for (const auto& animation : imported_.animations) animation.apply(source_, seconds);
   for (const auto& [id, intensity] : lightIntensities_)
     source_.find<sg::Light>(id)->setIntensity(intensity * lightScale);
+  auto* camera = source_.find<sg::Camera>(imported_.cameras.front());
+  if (!cameraPose_) cameraPose_ = camera->pose();
+  if (pan != 0.0f || camera->pose() != *cameraPose_)
+    camera->setPose(*cameraPose_ * glm::translate(glm::mat4(1.0f), glm::vec3(pan, 0.0f, 0.0f)));
   lastCommit_ = source_.commit();
   replica_.apply(lastCommit_);
 }

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,9 +41,11 @@ class QualityScene {
   Shot render(med::Viewport& viewport, std::uint32_t size, bool wantBlend = false,
               const std::vector<std::string>& outputs = {});
 
-  // Poses the scene's animations at `seconds` and scales every light's
-  // intensity by `lightScale` (a light switch), then commits.
-  void pose(float seconds, float lightScale = 1.0f);
+  // Poses the scene's animations at `seconds`, scales every light's
+  // intensity by `lightScale` (a light switch) and moves the camera `pan`
+  // scene units to its right of where it was imported (a moving camera),
+  // then commits.
+  void pose(float seconds, float lightScale = 1.0f, float pan = 0.0f);
 
   // Renders frames 0..frames-1 of the animation through a viewport that
   // looks ahead (Viewport::lookahead, the photon viewport): frame f is posed
@@ -62,6 +65,7 @@ class QualityScene {
   med::ContextPool contexts_;
   std::unique_ptr<med::Viewport> anchor_;
   std::vector<std::pair<sg::ContainerId, float>> lightIntensities_;  // as imported
+  std::optional<glm::mat4> cameraPose_;                              // as imported
 };
 
 }  // namespace tsr::quality

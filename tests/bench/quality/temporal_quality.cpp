@@ -53,7 +53,11 @@ struct Options {
   bool photons = true;
   std::uint32_t photonsPerFrame = 0;  // 0: the pilot pass chooses
   std::uint32_t photonFrames = 9;
+  bool objectPca = true;
+  double pan = 0;  // camera moves this many scene units to its right per second
 };
+
+float panAt(const Options& o, int frame) { return static_cast<float>(o.pan * frame / o.fps); }
 
 void note(const std::string& s) { std::cerr << "[temporal_quality] " << s << std::endl; }
 
@@ -88,8 +92,9 @@ Split split(quality::Shot shot) {
 // The frame's reference (colour and indirect), from the cache when there.
 Split reference(quality::QualityScene& scene, const Options& o, int frame, float lightScale) {
   namespace fs = std::filesystem;
-  const std::string stem = fmt::format("{}_{}x{}_t{:.4f}_light{:.3f}_spp{}_seed{}", scene.key(), o.size, o.size,
-                                       frame / o.fps, lightScale, o.refSpp, o.refSeed + std::uint64_t(frame));
+  const std::string stem = fmt::format(
+      "{}_{}x{}_t{:.4f}_light{:.3f}{}_spp{}_seed{}", scene.key(), o.size, o.size, frame / o.fps, lightScale,
+      o.pan != 0 ? fmt::format("_pan{:.4f}", panAt(o, frame)) : "", o.refSpp, o.refSeed + std::uint64_t(frame));
   const fs::path colour = fs::path(o.cache) / (stem + ".exr"), indirect = fs::path(o.cache) / (stem + ".indirect.exr");
   if (fs::exists(colour) && fs::exists(indirect)) {
     Split s;
@@ -171,6 +176,8 @@ int main(int argc, char** argv) {
   app.add_option("--modes", o.modes, "fixed truncations to compare (--temporal-modes)");
   app.add_option("--threads", o.threads, "render threads (0: all)");
   app.add_flag("!--no-photons", o.photons, "leave out the photon method");
+  app.add_flag("!--no-object-pca", o.objectPca, "leave out object-space PCA");
+  app.add_option("--pan", o.pan, "camera moves this many scene units to its right per second (a moving camera)");
   app.add_option("--photons-per-frame", o.photonsPerFrame, "photons per frame (default: the pilot pass chooses)");
   app.add_option("--photon-frames", o.photonFrames, "the photon method's temporal window t_max (odd)");
   app.add_option("--cache", o.cache, "reference cache directory");
@@ -199,7 +206,7 @@ int main(int argc, char** argv) {
     auto directViewport = scene.viewport(parameters(o, directSpp, o.seed));
     for (int t = 0; t < o.frames; ++t) {
       const float light = (o.switchFrame > 0 && t < o.switchFrame) ? o.switchFrom : 1.0f;
-      scene.pose(static_cast<float>(t / o.fps), light);
+      scene.pose(static_cast<float>(t / o.fps), light, panAt(o, t));
       Split ref = reference(scene, o, t, light);
       refColour.push_back(std::move(ref.colour));
       refIndirect.push_back(std::move(ref.indirect));
@@ -263,7 +270,27 @@ int main(int argc, char** argv) {
       methods.push_back(pca(fmt::format("PCA, M = {}, {}", m, kName), fixed));
     }
 
-    std::size_t photonIndex = 0;
+    // A method whose viewport looks ahead (photons, object-space PCA), timed
+    // with every cost: photon passes, denoising, direct samples.
+    auto ahead = [&](med::Viewport& vp, const std::string& name) {
+      auto shots =
+          scene.renderAhead(vp, o.size, o.frames,
+                            [&](int t) {
+                              scene.pose(static_cast<float>(t / o.fps),
+                                         (o.switchFrame > 0 && t < o.switchFrame) ? o.switchFrom : 1.0f, panAt(o, t));
+                            },
+                            {"direct", "indirect"});
+      Method m;
+      m.name = name;
+      for (auto& shot : shots) {
+        Split s = split(std::move(shot));
+        m.beauty.push_back(std::move(s.colour));
+        m.indirect.push_back(std::move(s.indirect));
+        m.seconds += s.seconds;
+      }
+      return m;
+    };
+    std::size_t photonIndex = 0, objectIndex = 0;
     if (o.photons) {
       // Direct light at k spp per pixel, indirect from photons; every cost
       // (pilot and photon passes, reconstruction, direct samples) is timed.
@@ -273,22 +300,21 @@ int main(int argc, char** argv) {
       p.set("photonFrames", std::int64_t{o.photonFrames});
       auto vp = scene.viewport(p);
       note("photons: tracing and rendering the sequence");
-      auto shots = scene.renderAhead(*vp, o.size, o.frames,
-                                     [&](int t) {
-                                       scene.pose(static_cast<float>(t / o.fps),
-                                                  (o.switchFrame > 0 && t < o.switchFrame) ? o.switchFrom : 1.0f);
-                                     },
-                                     {"direct", "indirect"});
-      Method m;
-      m.name = fmt::format("photons, t_max {}, direct {} spp", o.photonFrames, o.k);
-      for (auto& shot : shots) {
-        Split s = split(std::move(shot));
-        m.beauty.push_back(std::move(s.colour));
-        m.indirect.push_back(std::move(s.indirect));
-        m.seconds += s.seconds;
-      }
+      Method m = ahead(*vp, fmt::format("photons, t_max {}, direct {} spp", o.photonFrames, o.k));
       photonIndex = methods.size();
       methods.push_back(std::move(m));
+    }
+    if (o.objectPca) {
+      // Object space (3.1): each element's photon irradiance per frame,
+      // projected over the whole sequence; direct light at k spp per pixel.
+      med::Parameters p = parameters(o, o.k, o.seed);
+      p.set("temporal", std::string("objectPca"));
+      p.set("photonsPerFrame", std::int64_t{o.photonsPerFrame});
+      p.set("pcaWindow", std::int64_t{o.frames});
+      auto vp = scene.viewport(p);
+      note("object-space PCA: tracing and rendering the sequence");
+      objectIndex = methods.size();
+      methods.push_back(ahead(*vp, fmt::format("PCA, object space, direct {} spp", o.k)));
     }
 
     // Per method: relMSE per frame (beauty and indirect), flicker.
@@ -366,12 +392,15 @@ int main(int argc, char** argv) {
           s, num(step(refIndirect)), num(step(methods[pcaIndex].indirect)),
           100 * step(methods[pcaIndex].indirect) / step(refIndirect), 100 * before(methods[pcaIndex].indirect),
           100 * before(methods[kIndex].indirect));
-      if (o.photons)
-        table << fmt::format("light switch, photons: indirect step {} ({:.0f}% of the reference's); the frame before "
+      auto switchLine = [&](const char* name, std::size_t index) {
+        table << fmt::format("light switch, {}: indirect step {} ({:.0f}% of the reference's); the frame before "
                              "is off by {:.1f}%\n",
-                             num(step(methods[photonIndex].indirect)),
-                             100 * step(methods[photonIndex].indirect) / step(refIndirect),
-                             100 * before(methods[photonIndex].indirect));
+                             name, num(step(methods[index].indirect)),
+                             100 * step(methods[index].indirect) / step(refIndirect),
+                             100 * before(methods[index].indirect));
+      };
+      if (o.photons) switchLine("photons", photonIndex);
+      if (o.objectPca) switchLine("object-space PCA", objectIndex);
     }
     std::cout << table.str();
     if (!o.out.empty()) {
@@ -388,6 +417,10 @@ int main(int argc, char** argv) {
     if (o.photons) {
       writePngs(o, "photons", methods[photonIndex].beauty);
       writePngs(o, "photons_indirect", methods[photonIndex].indirect);
+    }
+    if (o.objectPca) {
+      writePngs(o, "pca_object", methods[objectIndex].beauty);
+      writePngs(o, "pca_object_indirect", methods[objectIndex].indirect);
     }
   } catch (const std::exception& e) {
     std::cerr << "temporal_quality: " << e.what() << "\n";

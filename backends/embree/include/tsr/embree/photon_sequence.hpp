@@ -18,6 +18,7 @@ struct PhotonSettings {
   std::uint32_t tMax = 9;                // frames in the ring buffer; the window is centred, so odd
   std::uint32_t photonsPerFrame = 0;     // N_frame; 0 = from the pilot pass by eq. 3
   std::uint32_t pilotPhotons = 20000;    // N_pilot
+  std::uint32_t budgetFrames = 0;        // frames sharing eq. 3's error budget; 0 = tMax
   float maxError = 0.1f;                 // E_max of eq. 3 (relative, energy-weighted over elements)
   float accuracy = 0.05f;                // sigma_% of eq. 4: the spatial support gathers 1/accuracy^2 photons
   std::uint32_t maxRings = 6;            // ring neighbourhoods at most, before the extra ring
@@ -87,6 +88,13 @@ class PhotonSequence {
   // One buffered frame's unfiltered element irradiance (energy / area):
   // what density estimation without any filtering would give.
   std::vector<glm::vec3> rawIrradiance(std::int64_t frame) const;
+  // A field of given element irradiance (one value per element, as
+  // rawIrradiance gives), interpolated across elements as reconstruct()'s
+  // are: how irradiance denoised elsewhere (object-space PCA) is looked up
+  // at render time. Corners weigh the elements around them by area and
+  // normal at the newest frame's pose, the same at every pose for rigid
+  // motion; for deforming meshes the newest pose stands for all.
+  IrradianceField field(std::vector<glm::vec3> irradiance) const;
 
   std::uint32_t photonsPerFrame() const;  // N_frame, after the first addFrame
   float pilotError() const;               // E_pilot, 0 without a pilot pass
