@@ -88,6 +88,12 @@ std::vector<glm::vec3> PhotonSequence::rawIrradiance(std::int64_t frame) const {
   return out;
 }
 
+float PhotonSequence::emittedPower(std::int64_t frame) const {
+  float power = 0.0f;
+  for (const glm::vec3& p : s_->buffered(frame).sourcePower) power += luminance(p);
+  return power;
+}
+
 FrameStats PhotonSequence::addFrame(Scene& scene, std::int64_t frame) {
   State& s = *s_;
   const PhotonSettings& cfg = s.settings;

@@ -69,19 +69,30 @@ void PhotonViewport::prepare(const sg::Replica& ahead, std::int64_t frame) {
   if (!pca_) return;
   if (firstFrame_ < 0) firstFrame_ = frame;
   const std::vector<glm::vec3> raw = photons_.rawIrradiance(frame);
+  // Per unit of emitted power, which is known exactly: a light switched or
+  // dimmed as a whole is then no change for the projection to smooth over
+  // (with few photons an element's noise outweighs such a step, and the
+  // truncation would drop it), and keep() restores it exactly.
+  const float power = photons_.emittedPower(frame);
+  power_[frame] = power;
+  const float scale = power > 0.0f ? 1.0f / power : 0.0f;
   temporal::Frame f(static_cast<std::uint32_t>(raw.size()), 1);
   for (std::size_t e = 0; e < raw.size(); ++e)
-    for (int c = 0; c < 3; ++c) f.rgb[3 * e + std::size_t(c)] = raw[e][c];
+    for (int c = 0; c < 3; ++c) f.rgb[3 * e + std::size_t(c)] = raw[e][c] * scale;
   keep(pca_->push(std::move(f)));
 }
 
 void PhotonViewport::keep(std::vector<temporal::DenoisedFrame> denoised) {
   for (auto& d : denoised) {
+    const std::int64_t frame = firstFrame_ + d.index;
+    const auto power = power_.find(frame);
     std::vector<glm::vec3> values(d.frame.pixels());
     // A projection can dip under zero where the noise was; irradiance cannot.
     for (std::size_t e = 0; e < values.size(); ++e)
-      values[e] = glm::max(glm::vec3(d.frame.rgb[3 * e], d.frame.rgb[3 * e + 1], d.frame.rgb[3 * e + 2]), 0.0f);
-    denoised_[firstFrame_ + d.index] = std::move(values);
+      values[e] =
+          power->second * glm::max(glm::vec3(d.frame.rgb[3 * e], d.frame.rgb[3 * e + 1], d.frame.rgb[3 * e + 2]), 0.0f);
+    power_.erase(power);
+    denoised_[frame] = std::move(values);
   }
 }
 

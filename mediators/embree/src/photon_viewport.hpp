@@ -16,6 +16,8 @@
 //    deform with their meshes (the rest topology is the reference object).
 //    One truncation per window (2.3's rule; pcaModes fixes it): 3.2's map
 //    smooths over image neighbours, which elements in a list do not have.
+//    Projected per unit of the frame's emitted power, which is known
+//    exactly, so a light switch stays a step.
 //
 // Parameters besides the path tracer's: spp (direct-light samples per
 // pixel, default 16), photonsPerFrame (0: chosen by a pilot pass, Weber
@@ -64,6 +66,7 @@ class PhotonViewport final : public Viewport {
   std::optional<temporal::WindowedPca> pca_;
   std::int64_t firstFrame_ = -1;
   std::map<std::int64_t, std::vector<glm::vec3>> denoised_;
+  std::map<std::int64_t, float> power_;  // emitted by the frames in the projection
 };
 
 }  // namespace tsr::med::embree_mediator

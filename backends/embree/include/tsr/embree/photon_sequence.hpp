@@ -96,6 +96,9 @@ class PhotonSequence {
   // motion; for deforming meshes the newest pose stands for all.
   IrradianceField field(std::vector<glm::vec3> irradiance) const;
 
+  // The luminance of the power all sources emit in a buffered frame (known
+  // exactly, not estimated).
+  float emittedPower(std::int64_t frame) const;
   std::uint32_t photonsPerFrame() const;  // N_frame, after the first addFrame
   float pilotError() const;               // E_pilot, 0 without a pilot pass
   std::size_t elementCount() const;
