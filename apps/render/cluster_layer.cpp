@@ -22,11 +22,14 @@ RemoteLayers clusterLayer(const RenderOptions& options, const std::vector<LayerS
         ", the nodes' back-end; one cluster renders one layer (give the others another back-end)");
   std::shared_ptr<cluster::ClusterWindow> window = connectCluster(config, options, options.aovs, registry);
   window->setEyes(camera.eyeSeparation(), camera.zeroParallaxDistance());
-  // The window goes to the one layer of the nodes' back-end.
-  return [window, outputs = options.aovs,
-          backend](const med::ViewportSettings& settings) -> std::unique_ptr<med::Viewport> {
+  // The window goes to the one layer of the nodes' back-end, looking as far
+  // ahead as the nodes' viewports of it will (photons: a local one says).
+  return [window, outputs = options.aovs, backend,
+          registry = &registry](const med::ViewportSettings& settings) -> std::unique_ptr<med::Viewport> {
     if (settings.backend != backend) return nullptr;
-    return std::make_unique<cluster::ClusterViewport>(settings, window, outputs);
+    med::ContextPool contexts;
+    const std::uint32_t lookahead = registry->create(settings, contexts)->lookahead();
+    return std::make_unique<cluster::ClusterViewport>(settings, window, outputs, lookahead);
   };
 }
 

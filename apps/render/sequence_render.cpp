@@ -174,15 +174,18 @@ int renderSequence(const RenderOptions& given, const SequenceOptions& sequence, 
   if (options.temporal.imagePca() && !layers.empty())
     throw std::invalid_argument("--temporal pca with --layers: each frame is rebuilt from the bottom layer's direct "
                                 "and indirect light, so the layers above it would be lost");
-  // A cluster without layers renders the whole window on the nodes.
-  const bool local = sequence.cluster.empty() || !layers.empty();
-  if (options.temporal.inBackend() && (!sequence.cluster.empty() || options.backend != "embree"))
-    throw std::invalid_argument(
-        "--temporal " + method +
-        " renders with the local path tracer (--backend embree): its photon pass sees every frame ahead of the one "
-        "shown, which the cluster protocol does not carry");
+  if (options.temporal.inBackend() && options.backend != "embree")
+    throw std::invalid_argument("--temporal " + method +
+                                " runs in the path tracer's photon pass: it needs --backend embree");
+  // A cluster without layers renders the whole window on the nodes; one
+  // whose viewports look ahead (photons) is a layer of a window here, which
+  // sends the nodes every frame ahead of the one shown.
+  std::vector<LayerSpec> windowLayers = layers;
+  if (!sequence.cluster.empty() && layers.empty() && options.temporal.inBackend())
+    windowLayers.push_back(LayerSpec{options.backend, "", {}});
+  const bool local = sequence.cluster.empty() || !windowLayers.empty();
   med::RenderStats stats;
-  SequenceRenderer renderer = local ? localRenderer(options, layers, session, stats)
+  SequenceRenderer renderer = local ? localRenderer(options, windowLayers, session, stats)
                                     : SequenceRenderer{clusterRenderer(options, session), 0, {}};
   auto write = [&](int frame, const med::FrameBuffer& image) {
     std::string path = framePath(options.output, frame);

@@ -21,9 +21,27 @@ med::FrameBuffer cut(const med::FrameBuffer& frame, const med::PixelRect& rect) 
 }  // namespace
 
 ClusterViewport::ClusterViewport(med::ViewportSettings settings, std::shared_ptr<ClusterWindow> window,
-                                 std::vector<std::string> outputs)
-    : med::Viewport(std::move(settings)), window_(std::move(window)), outputs_(std::move(outputs)) {
+                                 std::vector<std::string> outputs, std::uint32_t lookahead)
+    : med::Viewport(std::move(settings)),
+      window_(std::move(window)),
+      outputs_(std::move(outputs)),
+      lookahead_(lookahead) {
   window_->setContent(settings_.root, settings_.background);
+}
+
+namespace {
+// The one list that brings a replica from `since` to now, if there is one.
+sg::ChangeListPtr deltaSince(const sg::Replica& replica, const std::optional<std::uint64_t>& since) {
+  if (!since || *since == replica.version()) return nullptr;
+  auto lists = replica.log().since(*since);
+  return lists.status == sg::ChangeLog::CatchUp::Deltas && lists.lists.size() == 1 ? lists.lists.front() : nullptr;
+}
+}  // namespace
+
+void ClusterViewport::prepare(const sg::Replica& ahead, std::int64_t frame) {
+  if (lookahead_ == 0) return;
+  window_->prepare(ahead.scene(), deltaSince(ahead, preparedVersion_), frame);
+  preparedVersion_ = ahead.version();
 }
 
 med::SceneAdapter::Update ClusterViewport::synchronize(const sg::Replica& replica) {
@@ -32,11 +50,7 @@ med::SceneAdapter::Update ClusterViewport::synchronize(const sg::Replica& replic
   const bool changed = published_ != replica.version();
   // ClusterWindow sends a delta only to nodes at its base version; the
   // others (and all of them when no single list bridges the gap) get a snapshot.
-  sg::ChangeListPtr delta;
-  if (published_ && changed) {
-    auto since = replica.log().since(*published_);
-    if (since.status == sg::ChangeLog::CatchUp::Deltas && since.lists.size() == 1) delta = since.lists.front();
-  }
+  const sg::ChangeListPtr delta = deltaSince(replica, published_);
   window_->publish(replica.scene(), delta);
   published_ = replica.version();
   if (!changed) return med::SceneAdapter::Update::None;
@@ -51,7 +65,7 @@ med::RenderStats ClusterViewport::render(const sg::Replica& replica, const med::
   stats.syncSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   med::View whole = view;
   whole.region = {0, 0, view.width, view.height};
-  ClusterFrame frame = window_->render(whole);
+  ClusterFrame frame = window_->render(whole, lookahead_ > 0 ? control.frame : -1);
   out = whole.region == view.region ? std::move(frame.image) : cut(frame.image, view.region);
   stats.samples = static_cast<std::uint32_t>(settings_.parameters.getInt("spp", 0, 0, 1 << 20));
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -43,6 +43,9 @@ struct Node {
   std::string name;
   std::uint64_t applied = 0;
   std::uint64_t sentVersion = 0;
+  // The scene ahead (prepare()): the version sent, none before the first.
+  std::optional<std::uint64_t> aheadVersion;
+  bool viewportsSent = false;  // SetViewports sent since it joined
   std::string lastError;
   std::optional<HashReply> hash;  // the answer to the latest HashQuery
   // When the phases the client may wait in began (see phaseOf).
@@ -119,6 +122,7 @@ struct ClusterWindow::Impl {
 
   void setState(Node& n, NodeState state) {
     if (n.state != state) n.stateSince = Clock::now();
+    if (state == NodeState::Joined || state == NodeState::Offline) n.viewportsSent = false;  // a new session
     n.state = state;
   }
 
@@ -399,12 +403,39 @@ void ClusterWindow::publish(const sg::Scene& scene, const sg::ChangeListPtr& del
       // A new node, or one that missed a list: it starts over from the whole scene.
       if (!snapshot) snapshot = frameFromPayload(MessageType::Snapshot, sg::encode(*scene.snapshot()));
       n.link->send(snapshot);
-      if (n.state == NodeState::Joined) n.link->send(s.viewportsFor(n));
+      if (!n.viewportsSent) n.link->send(s.viewportsFor(n));
+      n.viewportsSent = true;
       s.setState(n, NodeState::Synced);
     } else {
       continue;
     }
     n.sentVersion = scene.version();
+  }
+}
+
+void ClusterWindow::prepare(const sg::Scene& ahead, const sg::ChangeListPtr& delta, std::int64_t frame) {
+  Impl& s = *impl_;
+  s.drain();
+  Frame changes, snapshot;
+  for (auto& n : s.nodes) {
+    if (n.state != NodeState::Synced && n.state != NodeState::Joined) {
+      n.aheadVersion.reset();  // when it is back, it starts over from the whole scene ahead
+      continue;
+    }
+    if (!n.viewportsSent) {
+      // Before the first publish (the animation's first frames are prepared
+      // before any is shown): the viewports that prepare them.
+      n.link->send(s.viewportsFor(n));
+      n.viewportsSent = true;
+    }
+    if (delta && n.aheadVersion && *n.aheadVersion == delta->baseVersion()) {
+      if (!changes) changes = makeFrame(Prepare{frame, sg::encode(*delta)});
+      n.link->send(changes);
+    } else {
+      if (!snapshot) snapshot = makeFrame(Prepare{frame, sg::encode(*ahead.snapshot())});
+      n.link->send(snapshot);
+    }
+    n.aheadVersion = ahead.version();
   }
 }
 
@@ -435,7 +466,7 @@ std::vector<ReplicaHash> ClusterWindow::replicaHashes(std::chrono::milliseconds 
   return out;
 }
 
-ClusterFrame ClusterWindow::render(const med::View& view) {
+ClusterFrame ClusterWindow::render(const med::View& view, std::int64_t sequenceFrame) {
   Impl& s = *impl_;
   view.validate();
   s.drain();
@@ -453,7 +484,7 @@ ClusterFrame ClusterWindow::render(const med::View& view) {
     s.askOutputs(items, targets);
   }
   FrameRound round(result.frame, std::move(items), targets,
-                   result.pixelsKept ? Compression::Kept : s.config.compression);
+                   result.pixelsKept ? Compression::Kept : s.config.compression, sequenceFrame);
   s.reassigned = 0;
 
   for (std::size_t i = 0; i < round.items().size(); ++i)

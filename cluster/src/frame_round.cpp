@@ -8,13 +8,18 @@
 namespace tsr::cluster {
 
 FrameRound::FrameRound(std::uint64_t frame, std::vector<WorkItem> items, std::vector<med::FrameBuffer>& targets,
-                       Compression compression)
-    : frame_(frame), items_(std::move(items)), targets_(targets), compression_(compression) {}
+                       Compression compression, std::int64_t sequenceFrame)
+    : frame_(frame),
+      items_(std::move(items)),
+      targets_(targets),
+      compression_(compression),
+      sequenceFrame_(sequenceFrame) {}
 
 Frame FrameRound::request(const std::vector<std::size_t>& items) const {
   RenderRequest r;
   r.frame = frame_;
   r.compression = compression_;
+  r.sequenceFrame = sequenceFrame_;
   for (std::size_t i : items) {
     const WorkItem& it = items_.at(i);
     auto job = std::find_if(r.jobs.begin(), r.jobs.end(), [&](const RenderJob& j) {

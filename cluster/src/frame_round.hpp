@@ -29,8 +29,9 @@ struct WorkItem {
 
 class FrameRound {
  public:
+  // `sequenceFrame`: the animation frame shown (RenderRequest::sequenceFrame).
   FrameRound(std::uint64_t frame, std::vector<WorkItem> items, std::vector<med::FrameBuffer>& targets,
-             Compression compression);
+             Compression compression, std::int64_t sequenceFrame = -1);
 
   std::uint64_t frame() const { return frame_; }
   // The request for the given items (all for one node).
@@ -77,6 +78,7 @@ class FrameRound {
   std::vector<WorkItem> items_;
   std::vector<med::FrameBuffer>& targets_;
   Compression compression_;
+  std::int64_t sequenceFrame_ = -1;
   std::map<std::size_t, double> busy_;
   std::map<std::size_t, double> tileSeconds_;
   std::map<std::size_t, int> outstanding_;

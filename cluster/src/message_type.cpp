@@ -29,6 +29,7 @@ constexpr MessageSpec kSpecs[] = {
     {MessageType::HeartbeatAck, "HeartbeatAck", Sender::Node, 32, false},
     {MessageType::Error, "Error", Sender::Node, 8 * KiB, false},
     {MessageType::Bye, "Bye", Sender::Client, 0, false},
+    {MessageType::Prepare, "Prepare", Sender::Client, 1024 * MiB, false},
 };
 }  // namespace
 

@@ -28,6 +28,17 @@ std::uint32_t readU32Varint(sg::ByteReader& r, std::uint32_t max, const char* wh
   return static_cast<std::uint32_t>(v);
 }
 
+// An animation frame number: far beyond any sequence a person renders, yet
+// well inside std::int64_t.
+constexpr std::uint64_t kMaxSequenceFrame = std::uint64_t{1} << 40;
+std::int64_t readSequenceFrame(sg::ByteReader& r) {
+  std::size_t at = r.offset();
+  std::uint64_t v = r.varint();
+  if (v > kMaxSequenceFrame)
+    throw sg::DecodeError(at, "animation frame " + std::to_string(v) + " exceeds " + std::to_string(kMaxSequenceFrame));
+  return static_cast<std::int64_t>(v);
+}
+
 void writeRect(sg::ByteWriter& w, const med::PixelRect& rect) {
   w.varint(rect.x0);
   w.varint(rect.y0);
@@ -282,6 +293,7 @@ void RenderRequest::write(sg::ByteWriter& w) const {
     writeOutputNames(w, j.outputs);
     w.u8(j.resolve ? 1 : 0);
   }
+  w.varint(static_cast<std::uint64_t>(sequenceFrame + 1));  // 0: none
 }
 RenderRequest RenderRequest::read(sg::ByteReader& r) {
   RenderRequest m;
@@ -298,6 +310,19 @@ RenderRequest RenderRequest::read(sg::ByteReader& r) {
     j.resolve = readBool(r, "resolve flag");
     m.jobs.push_back(std::move(j));
   }
+  m.sequenceFrame = readSequenceFrame(r) - 1;
+  return m;
+}
+
+void Prepare::write(sg::ByteWriter& w) const {
+  w.varint(static_cast<std::uint64_t>(frame));
+  w.raw(changes.data(), changes.size());
+}
+Prepare Prepare::read(sg::ByteReader& r) {
+  Prepare m;
+  m.frame = readSequenceFrame(r);
+  auto rest = r.take(r.remaining(), "change list");
+  m.changes.assign(rest.begin(), rest.end());  // decoded by sg::decode, bounded as Changes are
   return m;
 }
 

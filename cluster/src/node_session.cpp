@@ -117,6 +117,8 @@ void NodeSession::dispatch(Message& m) {
       return onHashQuery(m);
     case MessageType::Heartbeat:
       return onHeartbeat(m);
+    case MessageType::Prepare:
+      return onPrepare(m);
     case MessageType::Bye:
       return conn_->closeAfterFlush();
     default:
@@ -145,6 +147,7 @@ void NodeSession::onReplicaBytes(Message& m, bool snapshot) {
       if (snapshot && st.replica->version() != 0) {
         // A client that resynchronises starts us over.
         st.viewports.clear();
+        st.sequences.clear();
         st.replica = std::make_unique<sg::Replica>();
       }
       st.replica->apply(list);
@@ -167,6 +170,7 @@ void NodeSession::onSetViewports(const Message& m) {
   ctx_.worker.post([self = shared_from_this(), sv = std::move(sv)] {
     State& st = *self->state_;
     st.viewports.clear();
+    st.sequences.clear();
     st.settings.clear();
     st.window = sv.window;
     for (const auto& v : sv.viewports) {
@@ -178,6 +182,38 @@ void NodeSession::onSetViewports(const Message& m) {
       if (self->ctx_.options.threads && !s.parameters.has("threads"))
         s.parameters.set("threads", std::int64_t{self->ctx_.options.threads});
       st.settings[v.id] = std::move(s);
+    }
+  });
+}
+
+void NodeSession::onPrepare(Message& m) {
+  Prepare prepare = parse<Prepare>(m);
+  ctx_.worker.post([self = shared_from_this(), prepare = std::move(prepare)] {
+    State& st = *self->state_;
+    if (st.cancelled) return;
+    try {
+      sg::ChangeListPtr list = sg::decode(prepare.changes);
+      if (list->isSnapshot()) {
+        // The sequence starts over (a node that joins late): its viewports too.
+        st.ahead = std::make_unique<sg::Replica>();
+        st.sequences.clear();
+      }
+      st.ahead->apply(list);
+      for (const auto& [id, settings] : st.settings) {
+        auto& vp = st.sequences[id];
+        if (!vp) vp = self->ctx_.registry.create(settings, st.contexts);
+        if (vp->lookahead() == 0) {
+          st.sequences.erase(id);  // renders each frame on its own, per rectangle
+          continue;
+        }
+        vp->prepare(*st.ahead, prepare.frame);
+      }
+    } catch (const sg::DecodeError& e) {
+      self->failFromWorker(std::string("change list ahead does not decode: ") + e.what());
+    } catch (const sg::ApplyError& e) {
+      self->failFromWorker(std::string("change list ahead does not apply: ") + e.what());
+    } catch (const std::exception& e) {
+      self->failFromWorker(std::string("preparing frame ") + std::to_string(prepare.frame) + " failed: " + e.what());
     }
   });
 }
@@ -204,21 +240,29 @@ void NodeSession::render(State& st, const NodeContext& ctx, const RenderRequest&
   for (const auto& job : request.jobs) {
     auto settings = st.settings.find(job.viewport);
     if (settings == st.settings.end()) throw std::runtime_error("no viewport " + std::to_string(job.viewport));
+    const auto sequence = st.sequences.find(job.viewport);
     for (const auto& rect : job.rects) {
       if (st.cancelled) return;
-      State::Key key{job.viewport, rect.x0, rect.y0, rect.x1, rect.y1};
-      auto& vp = used[key];
-      if (!vp) {
-        if (auto held = st.viewports.find(key); held != st.viewports.end())
-          vp = std::move(held->second);
-        else
-          vp = ctx.registry.create(settings->second, st.contexts);
+      med::Viewport* vp = nullptr;
+      if (sequence != st.sequences.end()) {
+        vp = sequence->second.get();
+      } else {
+        State::Key key{job.viewport, rect.x0, rect.y0, rect.x1, rect.y1};
+        auto& held = used[key];
+        if (!held) {
+          if (auto kept = st.viewports.find(key); kept != st.viewports.end())
+            held = std::move(kept->second);
+          else
+            held = ctx.registry.create(settings->second, st.contexts);
+        }
+        vp = held.get();
       }
       med::FrameBuffer fb;
       med::RenderControl control;
       control.cancel = &st.cancelled;
       control.outputs = job.outputs;
       control.resolve = job.resolve;
+      control.frame = request.sequenceFrame;
       auto t0 = Clock::now();
       vp->render(*st.replica, job.view.cropped(rect), fb, control);
       RenderTile tile;

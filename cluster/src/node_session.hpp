@@ -39,6 +39,11 @@ class NodeSession : public std::enable_shared_from_this<NodeSession> {
     std::map<std::uint32_t, med::ViewportSettings> settings;
     using Key = std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t>;
     std::map<Key, std::unique_ptr<med::Viewport>> viewports;  // one per (viewport, rect): tiles keep their samples
+    // Viewports that look ahead (photons, object-space PCA) see every frame
+    // of an animation before they show it: one per viewport id, for all its
+    // rectangles, fed by Prepare from a second replica, the scene ahead.
+    std::unique_ptr<sg::Replica> ahead = std::make_unique<sg::Replica>();
+    std::map<std::uint32_t, std::unique_ptr<med::Viewport>> sequences;
     std::uint64_t lastFrame = ~std::uint64_t{0};
     // The last frame's tiles, held until its Swap: what a wall node shows.
     std::vector<PresentedTile> backBuffer;
@@ -52,6 +57,7 @@ class NodeSession : public std::enable_shared_from_this<NodeSession> {
 
   void onReplicaBytes(Message& m, bool snapshot);
   void onSetViewports(const Message& m);
+  void onPrepare(Message& m);
   void onRenderRequest(const Message& m);
   void onSwap(const Message& m);
   void onHashQuery(const Message& m);

@@ -39,6 +39,7 @@ RenderRequest sampleRequest() {
   r.frame = 77;
   r.compression = Compression::Zstd;
   r.jobs.push_back({1, sampleView(), {{0, 0, 16, 16}, {16, 32, 64, 48}}});
+  r.sequenceFrame = 1234;
   return r;
 }
 
@@ -78,7 +79,8 @@ std::vector<Frame> everyMessage() {
           makeFrame(Heartbeat{300}),
           makeFrame(HeartbeatAck{300}),
           makeFrame(ErrorReport{"bad"}),
-          makeFrame(Bye{})};
+          makeFrame(Bye{}),
+          makeFrame(Prepare{12, {1, 2, 3, 4}})};
 }
 
 // Parses a message of any type; what the node and client do on receipt.
@@ -135,6 +137,9 @@ void parseAny(const Message& m) {
     case MessageType::Bye:
       parse<Bye>(m);
       break;
+    case MessageType::Prepare:
+      parse<Prepare>(m);
+      break;
     default:
       break;
   }
@@ -146,6 +151,14 @@ TEST(MessageCodec, RoundTripsCarryEveryField) {
   EXPECT_EQ(r.frame, want.frame);
   EXPECT_EQ(r.compression, want.compression);
   EXPECT_EQ(r.jobs, want.jobs);
+  EXPECT_EQ(r.sequenceFrame, 1234);
+  RenderRequest none = sampleRequest();
+  none.sequenceFrame = -1;
+  EXPECT_EQ(parse<RenderRequest>(unframe(makeFrame(none))).sequenceFrame, -1);
+  Prepare p = parse<Prepare>(unframe(makeFrame(Prepare{12, {1, 2, 3, 4}})));
+  EXPECT_EQ(p.frame, 12);
+  EXPECT_EQ(p.changes, (std::vector<std::uint8_t>{1, 2, 3, 4}));
+  EXPECT_THROW(parse<Prepare>(unframe(makeFrame(Prepare{std::int64_t{1} << 50, {}}))), ProtocolError);
 
   SetViewports sv = parse<SetViewports>(unframe(makeFrame(sampleViewports())));
   EXPECT_EQ(sv.viewports, sampleViewports().viewports);
@@ -183,8 +196,9 @@ TEST(MessageCodec, EveryMessageRoundTrips) {
 TEST(MessageCodec, EveryTruncationIsAMalformedError) {
   for (const Frame& f : everyMessage()) {
     Message whole = unframe(f);
-    // RenderTile's pixels run to the end: a shorter tile is caught by the pixel decoder.
-    if (whole.type == MessageType::RenderTile || whole.payload.empty()) continue;
+    // RenderTile's pixels and Prepare's change list run to the end: a shorter
+    // one is caught by the pixel decoder or the change list's.
+    if (whole.type == MessageType::RenderTile || whole.type == MessageType::Prepare || whole.payload.empty()) continue;
     for (std::size_t n = 0; n < whole.payload.size(); ++n) {
       Message cut{whole.type, std::vector<std::uint8_t>(whole.payload.begin(), whole.payload.begin() + n)};
       try {

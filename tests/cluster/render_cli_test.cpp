@@ -137,6 +137,44 @@ TEST(RenderCli, AnimatedFramesThroughAWallEqualLocalFrames) {
                             med::readImage((dir.path / "local.0002.exr").string())));
 }
 
+// --temporal photons and object-space pca with --cluster: each node traces
+// the photons of every frame ahead of the one shown (Prepare messages feed
+// its second replica), and renders its tiles from one viewport per
+// sequence; the frames and their direct/indirect parts equal a local
+// render's bit for bit, in the cooperative mode whose tiles move between
+// nodes as well as on a wall.
+TEST(RenderCli, TemporalFramesThroughTheClusterEqualLocalFrames) {
+  TempDir dir;
+  TokenFile token("temporal token");
+  auto nodes = startNodes(2, {"--token-file", token.path()});
+  const std::string cooperative =
+      writeConfig(dir.path, "cooperative", 2, R"(, "cooperative": {"tileSize": 16, "maxMovesPerFrame": 4})");
+  const std::string wall = writeConfig(dir.path, "tiled", 2, R"(, "wall": {"columns": 2, "rows": 1})");
+  const std::string animation = "builtin:animated --frames 4 --fps 4 --aov direct --aov indirect ";
+  const std::vector<std::pair<std::string, std::string>> methods = {
+      {"photons", "--temporal photons --photons-per-frame 20000 --photon-frames 3"},
+      {"objectpca", "--temporal pca --temporal-space object --temporal-window 4 --temporal-overlap 1 "
+                    "--photons-per-frame 20000"}};
+  for (const auto& [name, method] : methods) {
+    ASSERT_EQ(run(animation + kLocal + " " + method + " --output " + (dir.path / (name + ".local.####.exr")).string()),
+              0);
+    for (const auto& [mode, config] : {std::pair{"cooperative", cooperative}, std::pair{"wall", wall}}) {
+      ASSERT_EQ(
+          run(animation + method + " --size 48x40 --cluster " + config + " --nodes " + addresses(nodes) +
+              " --token-file " + token.path() + " --output " + (dir.path / (name + "." + mode + ".####.exr")).string()),
+          0)
+          << name << " " << mode;
+      for (const char* f : {"0000", "0001", "0002", "0003"})
+        for (const char* part : {"", ".direct", ".indirect"}) {
+          auto read = [&](const std::string& who) {
+            return med::readImage((dir.path / (name + "." + who + "." + f + part + ".exr")).string());
+          };
+          EXPECT_TRUE(bitwiseEqual(read(mode), read("local"))) << name << " " << mode << " frame " << f << part;
+        }
+    }
+  }
+}
+
 // --layers with --cluster: the path-traced layer renders cooperatively on
 // two nodes, the rasterised marker layer here; the composite equals the
 // one of a local layered render bit for bit (the cooperative layer is

@@ -113,6 +113,11 @@ void clusterMessages(const fs::path& dir) {
   put(dir, "frame",
       concat({frame(makeFrame(SetViewports{{spec}})), frame(makeFrame(request)), frame(makeFrame(tile)),
               frame(makeFrame(FrameDone{9, 0.02})), frame(makeFrame(Swap{9}))}));
+  // An animation for viewports that look ahead: frames ahead, then one shown.
+  RenderRequest shown{10, Compression::Lz4, {job}, 0};
+  put(dir, "sequence",
+      concat(
+          {frame(makeFrame(Prepare{0, lists[0]})), frame(makeFrame(Prepare{1, lists[1]})), frame(makeFrame(shown))}));
   put(dir, "service",
       concat({frame(makeFrame(HashQuery{5})), frame(makeFrame(HashReply{5, 2, 0xabcdef})),
               frame(makeFrame(Heartbeat{1})), frame(makeFrame(HeartbeatAck{1})),

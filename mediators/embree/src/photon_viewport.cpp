@@ -96,16 +96,22 @@ void PhotonViewport::keep(std::vector<temporal::DenoisedFrame> denoised) {
   }
 }
 
-embree::IrradianceField PhotonViewport::field(std::int64_t frame) {
-  if (!pca_) return photons_.reconstruct(frame).field;  // throws embree::Error for a frame not buffered
+const embree::IrradianceField& PhotonViewport::field(std::int64_t frame) {
+  // A frame may be rendered in several parts (a cluster node's tiles): its
+  // field is made once.
+  if (shownField_ && shownField_->first == frame) return shownField_->second;
+  if (!pca_) {
+    shownField_.emplace(frame, photons_.reconstruct(frame).field);  // throws embree::Error for a frame not buffered
+    return shownField_->second;
+  }
   // Not denoised yet, a lookahead after it was prepared: the sequence ended.
   if (!denoised_.count(frame)) keep(pca_->finish());
   auto it = denoised_.find(frame);
   if (it == denoised_.end())
     throw std::invalid_argument("temporal = objectPca: frame " + std::to_string(frame) + " was not prepared");
-  embree::IrradianceField f = photons_.field(std::move(it->second));
+  shownField_.emplace(frame, photons_.field(std::move(it->second)));
   denoised_.erase(denoised_.begin(), std::next(it));  // frames are shown in order
-  return f;
+  return shownField_->second;
 }
 
 SceneAdapter::Update PhotonViewport::synchronize(const sg::Replica& replica) { return shown_.catchUp(replica); }
@@ -125,7 +131,7 @@ RenderStats PhotonViewport::render(const sg::Replica& replica, const View& view,
   embree::Scene& scene = shown_.scene();
   scene.commit();
   stats.syncSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const embree::IrradianceField field = this->field(control.frame);
+  const embree::IrradianceField& field = this->field(control.frame);
 
   const embree::Camera camera = cameraOf(view);
   const embree::Region region = regionOf(view);

@@ -55,7 +55,7 @@ class PhotonViewport final : public Viewport {
   std::vector<std::string> outputNames() const override;
 
  private:
-  embree::IrradianceField field(std::int64_t frame);
+  const embree::IrradianceField& field(std::int64_t frame);
   void keep(std::vector<temporal::DenoisedFrame> denoised);
 
   EmbreeSceneAdapter ahead_;  // posed at the newest prepared frame
@@ -67,6 +67,7 @@ class PhotonViewport final : public Viewport {
   std::int64_t firstFrame_ = -1;
   std::map<std::int64_t, std::vector<glm::vec3>> denoised_;
   std::map<std::int64_t, float> power_;  // emitted by the frames in the projection
+  std::optional<std::pair<std::int64_t, embree::IrradianceField>> shownField_;  // the frame last shown
 };
 
 }  // namespace tsr::med::embree_mediator

@@ -73,6 +73,13 @@ void decodePayload(const Message& m) {
     case MessageType::Bye:
       parse<Bye>(m);
       return;
+    case MessageType::Prepare: {
+      const Prepare p = parse<Prepare>(m);
+      sg::DecodeLimits limits;
+      limits.maxArrayElements = 1 << 20;
+      sg::decode(p.changes, limits);
+      return;
+    }
   }
 }
 

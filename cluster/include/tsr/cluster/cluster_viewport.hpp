@@ -16,9 +16,15 @@ class ClusterViewport : public med::Viewport {
  public:
   // `settings` name the nodes' back-end and what the layer shows (root,
   // background); `outputs` are the ClientOptions outputs `window` was made
-  // with, the only named outputs it can fill.
+  // with, the only named outputs it can fill. `lookahead`: that of the
+  // nodes' viewports made with `settings` (the path tracer's photons look
+  // ahead); their prepare() runs on the nodes.
   ClusterViewport(med::ViewportSettings settings, std::shared_ptr<ClusterWindow> window,
-                  std::vector<std::string> outputs);
+                  std::vector<std::string> outputs, std::uint32_t lookahead = 0);
+
+  std::uint32_t lookahead() const override { return lookahead_; }
+  // Sends the nodes frame `frame` of the scene ahead (ClusterWindow::prepare).
+  void prepare(const sg::Replica& ahead, std::int64_t frame) override;
 
   // Sends the nodes what they miss of the replica: its newest list when
   // they saw the one before, else a snapshot.
@@ -34,6 +40,8 @@ class ClusterViewport : public med::Viewport {
   std::shared_ptr<ClusterWindow> window_;
   std::vector<std::string> outputs_;
   std::optional<std::uint64_t> published_;  // replica version the nodes were sent
+  std::uint32_t lookahead_ = 0;
+  std::optional<std::uint64_t> preparedVersion_;  // of the scene ahead
 };
 
 }  // namespace tsr::cluster

@@ -108,10 +108,20 @@ class ClusterWindow {
   // The version and content hash of every synchronised node's replica.
   std::vector<ReplicaHash> replicaHashes(std::chrono::milliseconds timeout);
 
-  // Renders `view` (the full image) on the nodes as the mode says.
-  // Throws ClusterError when no node is left to render (wall: never; its
-  // tiles show the offline fill).
-  ClusterFrame render(const med::View& view);
+  // Animations for viewports that look ahead (med::Viewport::lookahead, the
+  // path tracer's photons): sends every synchronised node frame `frame`
+  // posed in `ahead`, a second copy of the scene, `delta` (may be null) the
+  // list that brought it there from the frame before; a node that missed it
+  // gets a snapshot. Frames go in order, each before the frame shown
+  // lookahead() frames later is rendered. A node that joins during the
+  // animation cannot show its frames (it saw none before).
+  void prepare(const sg::Scene& ahead, const sg::ChangeListPtr& delta, std::int64_t frame);
+
+  // Renders `view` (the full image) on the nodes as the mode says;
+  // `sequenceFrame` is the animation frame shown, for viewports that look
+  // ahead (-1: none). Throws ClusterError when no node is left to render
+  // (wall: never; its tiles show the offline fill).
+  ClusterFrame render(const med::View& view, std::int64_t sequenceFrame = -1);
   // Wall (tiled) mode: true lets the nodes keep their pixels, present them
   // and send none back, so the client's traffic no longer grows with the
   // wall's pixel count. For a client that shows no picture itself; the

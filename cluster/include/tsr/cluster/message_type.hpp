@@ -13,6 +13,7 @@
 //   HashQuery                   HashReply        replica check
 //   Heartbeat                   HeartbeatAck     liveness
 //   Bye                                          orderly close
+//   Prepare                                      a frame ahead, for temporal viewports
 #include <cstddef>
 #include <cstdint>
 
@@ -38,6 +39,7 @@ enum class MessageType : std::uint8_t {
   HeartbeatAck,
   Error,
   Bye,
+  Prepare,
 };
 
 enum class Sender : std::uint8_t { Client, Node };

@@ -134,6 +134,9 @@ struct RenderRequest {
   std::uint64_t frame = 0;
   Compression compression = Compression::Lz4;  // what the client prefers for results
   std::vector<RenderJob> jobs;
+  // The animation frame shown, for viewports that look ahead (med::Viewport::
+  // lookahead, e.g. the path tracer's photons); -1: none.
+  std::int64_t sequenceFrame = -1;
   void write(sg::ByteWriter& w) const;
   static RenderRequest read(sg::ByteReader& r);
 };
@@ -210,6 +213,18 @@ struct Bye {
   static constexpr MessageType kType = MessageType::Bye;
   void write(sg::ByteWriter&) const {}
   static Bye read(sg::ByteReader&) { return {}; }
+};
+
+// Frame `frame` of an animation, posed ahead of the one shown: `changes`
+// (an encoded change list, a snapshot or the delta from the one before)
+// brings the node's second replica, the scene ahead, to it, and viewports
+// that look ahead prepare it (med::Viewport::prepare).
+struct Prepare {
+  static constexpr MessageType kType = MessageType::Prepare;
+  std::int64_t frame = 0;
+  std::vector<std::uint8_t> changes;
+  void write(sg::ByteWriter& w) const;
+  static Prepare read(sg::ByteReader& r);
 };
 
 // Header + payload of a message struct.
