@@ -270,11 +270,19 @@ int main(int argc, char** argv) {
       methods.push_back(pca(fmt::format("PCA, M = {}, {}", m, kName), fixed));
     }
 
-    // A method whose viewport looks ahead (photons, object-space PCA), timed
-    // with every cost: photon passes, denoising, direct samples.
-    auto ahead = [&](med::Viewport& vp, const std::string& name) {
+    // A method whose viewport looks ahead (photons, object-space PCA): direct
+    // light at k spp per pixel, indirect from photons; every cost (pilot and
+    // photon passes, denoising, direct samples) is timed.
+    auto ahead = [&](const std::string& temporal, const std::vector<std::pair<std::string, std::int64_t>>& settings,
+                     const std::string& name) {
+      med::Parameters p = parameters(o, o.k, o.seed);
+      p.set("temporal", temporal);
+      p.set("photonsPerFrame", std::int64_t{o.photonsPerFrame});
+      for (const auto& [key, value] : settings) p.set(key, value);
+      auto vp = scene.viewport(p);
+      note(name + ": tracing and rendering the sequence");
       auto shots =
-          scene.renderAhead(vp, o.size, o.frames,
+          scene.renderAhead(*vp, o.size, o.frames,
                             [&](int t) {
                               scene.pose(static_cast<float>(t / o.fps),
                                          (o.switchFrame > 0 && t < o.switchFrame) ? o.switchFrom : 1.0f, panAt(o, t));
@@ -292,29 +300,16 @@ int main(int argc, char** argv) {
     };
     std::size_t photonIndex = 0, objectIndex = 0;
     if (o.photons) {
-      // Direct light at k spp per pixel, indirect from photons; every cost
-      // (pilot and photon passes, reconstruction, direct samples) is timed.
-      med::Parameters p = parameters(o, o.k, o.seed);
-      p.set("temporal", std::string("photons"));
-      p.set("photonsPerFrame", std::int64_t{o.photonsPerFrame});
-      p.set("photonFrames", std::int64_t{o.photonFrames});
-      auto vp = scene.viewport(p);
-      note("photons: tracing and rendering the sequence");
-      Method m = ahead(*vp, fmt::format("photons, t_max {}, direct {} spp", o.photonFrames, o.k));
       photonIndex = methods.size();
-      methods.push_back(std::move(m));
+      methods.push_back(ahead("photons", {{"photonFrames", o.photonFrames}},
+                              fmt::format("photons, t_max {}, direct {} spp", o.photonFrames, o.k)));
     }
     if (o.objectPca) {
       // Object space (3.1): each element's photon irradiance per frame,
-      // projected over the whole sequence; direct light at k spp per pixel.
-      med::Parameters p = parameters(o, o.k, o.seed);
-      p.set("temporal", std::string("objectPca"));
-      p.set("photonsPerFrame", std::int64_t{o.photonsPerFrame});
-      p.set("pcaWindow", std::int64_t{o.frames});
-      auto vp = scene.viewport(p);
-      note("object-space PCA: tracing and rendering the sequence");
+      // projected over the whole sequence.
       objectIndex = methods.size();
-      methods.push_back(ahead(*vp, fmt::format("PCA, object space, direct {} spp", o.k)));
+      methods.push_back(
+          ahead("objectPca", {{"pcaWindow", o.frames}}, fmt::format("PCA, object space, direct {} spp", o.k)));
     }
 
     // Per method: relMSE per frame (beauty and indirect), flicker.
