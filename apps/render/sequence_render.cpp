@@ -12,6 +12,7 @@
 #include "backends.hpp"
 #include "cluster_connection.hpp"
 #include "cluster_layer.hpp"
+#include "high_sample_frames.hpp"
 #include "progress_bar.hpp"
 #include "scene_session.hpp"
 #include "stats_json.hpp"
@@ -194,10 +195,20 @@ int renderSequence(const RenderOptions& given, const SequenceOptions& sequence, 
     return path;
   };
   ProgressBar bar(options.temporal.active() ? "rendering + " + method : "rendering", !options.quiet);
+  std::unique_ptr<HighSampleFrames> high;
+  if (options.temporal.highSpp) {
+    if (!sequence.cluster.empty() || !layers.empty())
+      throw std::invalid_argument("--temporal-high-spp re-renders pixels here, with --backend alone: not with "
+                                  "--cluster or --layers");
+    high = std::make_unique<HighSampleFrames>(options, session);
+  }
   std::unique_ptr<TemporalPcaSequence> pca;
   if (options.temporal.imagePca())
-    pca = std::make_unique<TemporalPcaSequence>(options.temporal,
-                                                [&](int frame, const med::FrameBuffer& image) { write(frame, image); });
+    pca = std::make_unique<TemporalPcaSequence>(
+        options.temporal, [&](int frame, const med::FrameBuffer& image) { write(frame, image); },
+        high ? TemporalPcaSequence::HighSamples(
+                   [&](int frame, const std::vector<bool>& need) { return high->render(frame, need); })
+             : TemporalPcaSequence::HighSamples());
   double renderSeconds = 0;
   // With a lookahead, frames are posed and committed `lookahead` frames
   // before they are shown: their change lists reach a second replica (the
@@ -214,6 +225,7 @@ int renderSequence(const RenderOptions& given, const SequenceOptions& sequence, 
           animation.apply(session.source, static_cast<float>(posed / sequence.fps));
       if (lookahead == 0) {
         delta = session.publish();
+        if (high) high->follow(posed, delta);
       } else {
         pending.push_back(session.commit());
         ahead.apply(pending.back());
@@ -248,7 +260,12 @@ int renderSequence(const RenderOptions& given, const SequenceOptions& sequence, 
     if (!options.quiet)
       std::cout << "wrote " << sequence.frames << " frames " << framePath(options.output, 0) << ".. (rendering "
                 << renderSeconds << " s, pca " << pca->denoiseSeconds() << " s in " << pca->windows() << " window(s), "
-                << pca->meanModes() << " modes on average)\n";
+                << pca->meanModes() << " modes on average"
+                << (high ? ", " + std::to_string(high->pixelsRendered()) + " pixels re-rendered at " +
+                               std::to_string(options.temporal.highSpp) + " spp in " + std::to_string(high->seconds()) +
+                               " s"
+                         : std::string())
+                << ")\n";
   }
   if (!options.statsJson.empty()) writeStatsJson(options, stats, sequence.frames);
   return 0;

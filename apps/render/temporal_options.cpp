@@ -49,6 +49,15 @@ void addTemporalOptions(CLI::App& app, TemporalOptions& o) {
       ->check(CLI::Range(2, 100000));
   g->add_option("--temporal-overlap", o.overlap, "frames two windows share, cross-faded (default 16)")
       ->check(CLI::Range(0, 100000));
+  g->add_option("--temporal-high-spp", o.highSpp,
+                "image-space pca: pixels whose truncation map keeps more than --temporal-m-min modes (light the "
+                "basis holds poorly) are rendered again with this many indirect samples and blended in by "
+                "alpha = (m - m_min) / (N - m_min) (Meyer & Anderson 3.2; default 0: off)")
+      ->check(CLI::Range(1, 1 << 20));
+  g->add_option("--temporal-m-min", o.mMin,
+                "the truncation above which --temporal-high-spp re-renders a pixel (default: half the window's "
+                "frames)")
+      ->check(FiniteRange(1.0, 100000.0));
 }
 
 void checkTemporalOptions(const TemporalOptions& o, int spp) {
@@ -67,6 +76,19 @@ void checkTemporalOptions(const TemporalOptions& o, int spp) {
                                 "light, so --spp is already the direct-light sample count");
   if (o.method != "pca" && o.space != "auto")
     throw std::invalid_argument("--temporal-space is where pca projects: it needs --temporal pca");
+  if ((o.highSpp || o.mMin) && !(o.method == "pca" && o.space != "object"))
+    throw std::invalid_argument(
+        "--temporal-high-spp and --temporal-m-min re-render pixels of image-space pca: they need --temporal pca" +
+        std::string(o.method == "pca" ? " in image space (this run projects in object space; --temporal-space "
+                                        "image forces image space)"
+                                      : ""));
+  if (o.mMin && !o.highSpp) throw std::invalid_argument("--temporal-m-min needs --temporal-high-spp");
+  if (o.highSpp && (o.global || o.modes))
+    throw std::invalid_argument("--temporal-high-spp picks pixels by the per-pixel truncation map, which "
+                                "--temporal-global and --temporal-modes replace");
+  if (o.highSpp && o.highSpp <= spp)
+    throw std::invalid_argument("--temporal-high-spp " + std::to_string(o.highSpp) + " must exceed --spp " +
+                                std::to_string(spp));
   if (o.overlap >= o.window)
     throw std::invalid_argument("--temporal-overlap " + std::to_string(o.overlap) +
                                 " must be smaller than --temporal-window " + std::to_string(o.window));

@@ -7,6 +7,7 @@
 //   --temporal-map-sigma S, --temporal-window W, --temporal-overlap O
 //   --photons-per-frame N, --photon-frames T (photons)
 //   --temporal-space auto|image|object (pca)
+//   --temporal-high-spp N, --temporal-m-min M (pca, image space: 3.2's importance sampling)
 #include <CLI/CLI.hpp>
 
 #include <string>
@@ -24,6 +25,8 @@ struct TemporalOptions {
   bool global = false;     // one truncation for the whole frame instead of 3.2's map
   double mapSigma = 2.0;
   int window = 64, overlap = 16;
+  int highSpp = 0;          // 3.2's importance sampling: samples of the re-render (0: off)
+  double mMin = 0;          // pixels whose map keeps more modes get it; 0: half the window's frames
   int photonsPerFrame = 0;  // 0: from the photon pilot pass
   int photonFrames = 9;     // the photon method's temporal window (odd)
   // Where pca projects: image (the rendered frames' indirect output, on the

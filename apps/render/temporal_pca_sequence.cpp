@@ -1,5 +1,6 @@
 #include "temporal_pca_sequence.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include <glm/common.hpp>
@@ -35,8 +36,11 @@ temporal::Frame toTemporalFrame(const std::vector<glm::vec4>& pixels, std::uint3
   return f;
 }
 
-TemporalPcaSequence::TemporalPcaSequence(const TemporalOptions& options, Writer write)
-    : pca_(options.window, options.overlap, pcaSettings(options)), write_(std::move(write)) {}
+TemporalPcaSequence::TemporalPcaSequence(const TemporalOptions& options, Writer write, HighSamples highSamples)
+    : pca_(options.window, options.overlap, pcaSettings(options)),
+      write_(std::move(write)),
+      highSamples_(std::move(highSamples)),
+      mMin_(options.mMin) {}
 
 void TemporalPcaSequence::add(int frame, med::FrameBuffer image) {
   if (!image.outputs.count(kDirect) || !image.outputs.count(kIndirect))
@@ -69,6 +73,17 @@ void TemporalPcaSequence::emit(std::vector<temporal::DenoisedFrame> ready) {
       throw std::logic_error("temporal: frame " + std::to_string(d.index) + " was never rendered");
     med::FrameBuffer image = std::move(it->second);
     waiting_.erase(it);
+    if (highSamples_) {
+      // 3.2: where the map keeps many modes, blend towards a render with more samples.
+      const auto& map = d.window->truncation;
+      const float mMax = static_cast<float>(d.window->availableModes);
+      const float mMin = mMin_ > 0 ? static_cast<float>(mMin_) : mMax / 2;
+      const std::vector<bool> need = temporal::needsHighSamples(map, mMin);
+      if (mMin < mMax && std::find(need.begin(), need.end(), true) != need.end()) {
+        const temporal::Frame high = toTemporalFrame(highSamples_(d.index, need), image.width, image.height);
+        d.frame = temporal::blendHighSamples(d.frame, high, map, mMin, mMax);
+      }
+    }
     // The beauty is direct + denoised indirect; coverage (alpha) stays.
     const auto& direct = image.outputs[kDirect];
     auto& indirect = image.outputs[kIndirect];

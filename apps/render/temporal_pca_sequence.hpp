@@ -18,7 +18,10 @@ namespace tsr::app {
 class TemporalPcaSequence {
  public:
   using Writer = std::function<void(int frame, const med::FrameBuffer& image)>;
-  TemporalPcaSequence(const TemporalOptions& options, Writer write);
+  // The indirect light of a frame at more samples, on the pixels flagged
+  // (3.2's importance sampling; high_sample_frames.hpp).
+  using HighSamples = std::function<std::vector<glm::vec4>(int frame, const std::vector<bool>& need)>;
+  TemporalPcaSequence(const TemporalOptions& options, Writer write, HighSamples highSamples = {});
 
   // Throws std::invalid_argument when the frame lacks direct or indirect.
   void add(int frame, med::FrameBuffer image);
@@ -35,6 +38,8 @@ class TemporalPcaSequence {
 
   temporal::WindowedPca pca_;
   Writer write_;
+  HighSamples highSamples_;
+  double mMin_ = 0;
   std::map<int, med::FrameBuffer> waiting_;  // rendered, indirect not denoised yet
   double seconds_ = 0;
   const temporal::PcaResult* lastWindow_ = nullptr;

@@ -206,6 +206,36 @@ double flicker(const std::vector<std::vector<glm::vec4>>& frames) {
 
 }  // namespace
 
+// 3.2's importance sampling: where the truncation map keeps more than
+// --temporal-m-min modes, the indirect light is rendered again at
+// --temporal-high-spp and blended in; the beauty stays direct + indirect.
+TEST_F(RenderCommand, TemporalPcaReRendersPixelsTheBasisHoldsPoorly) {
+  const std::string common = "builtin:animated --size 16x16 --spp 2 --threads 1 --frames 8 --fps 4 --temporal pca "
+                             "--temporal-window 8 --temporal-overlap 0 --aov direct --aov indirect ";
+  const Outcome plain = run(common + "--output p.####.exr");
+  ASSERT_EQ(plain.status, 0) << plain.err;
+  const Outcome high = run(common + "--temporal-high-spp 32 --temporal-m-min 1 --output h.####.exr");
+  ASSERT_EQ(high.status, 0) << high.err;
+  EXPECT_THAT(high.out, HasSubstr("pixels re-rendered at 32 spp"));
+  EXPECT_THAT(high.out, Not(HasSubstr(" 0 pixels re-rendered")));
+  std::size_t changed = 0;
+  for (int f = 0; f < 8; ++f) {
+    const std::string stem = "000" + std::to_string(f);
+    const auto beauty = tsr::med::readImage((dir / ("h." + stem + ".exr")).string());
+    const auto direct = tsr::med::readImage((dir / ("h." + stem + ".direct.exr")).string());
+    const auto indirect = tsr::med::readImage((dir / ("h." + stem + ".indirect.exr")).string());
+    const auto before = tsr::med::readImage((dir / ("p." + stem + ".indirect.exr")).string());
+    for (std::size_t p = 0; p < beauty.colour.size(); ++p) {
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(beauty.colour[p][c], direct.colour[p][c] + indirect.colour[p][c], 1e-3f);
+      changed += indirect.colour[p] != before.colour[p];
+    }
+  }
+  EXPECT_GT(changed, 0u) << "blending towards the re-render changes pixels";
+  expectOneErrorLine(run(common + "--temporal-high-spp 32 --temporal-global --output g.####.exr"), "--temporal-global");
+  expectOneErrorLine(run(common + "--temporal-high-spp 2 --output g.####.exr"), "must exceed --spp");
+  expectOneErrorLine(run(common + "--temporal-m-min 3 --output g.####.exr"), "--temporal-high-spp");
+}
+
 // --temporal pca with a moving camera projects in object space (irradiance
 // on surface elements), with a still one on the frames' indirect light;
 // either way the beauty is direct + indirect.

@@ -19,6 +19,7 @@ PcaResult denoise(const std::vector<Frame>& frames, const PcaSettings& settings)
     throw std::invalid_argument("temporal: epsilon, epsilon_change and the map's sigma must be >= 0");
   const PcaBasis basis(frames);
   PcaResult out;
+  out.availableModes = basis.modes();
   if (settings.fixedModes > 0) {
     out.globalModes = std::min(settings.fixedModes, basis.modes());
   } else {

@@ -54,7 +54,8 @@ struct Options {
   std::uint32_t photonsPerFrame = 0;  // 0: the pilot pass chooses
   std::uint32_t photonFrames = 9;
   bool objectPca = true;
-  double pan = 0;  // camera moves this many scene units to its right per second
+  std::uint32_t highSpp = 64;  // 3.2's importance sampling rows (one of fitSpp; 0: none)
+  double pan = 0;              // camera moves this many scene units to its right per second
 };
 
 float panAt(const Options& o, int frame) { return static_cast<float>(o.pan * frame / o.fps); }
@@ -177,6 +178,8 @@ int main(int argc, char** argv) {
   app.add_option("--threads", o.threads, "render threads (0: all)");
   app.add_flag("!--no-photons", o.photons, "leave out the photon method");
   app.add_flag("!--no-object-pca", o.objectPca, "leave out object-space PCA");
+  app.add_option("--high-spp", o.highSpp,
+                 "3.2's importance sampling rows: the frame-by-frame render blended in (one of --fit-spp; 0: none)");
   app.add_option("--pan", o.pan, "camera moves this many scene units to its right per second (a moving camera)");
   app.add_option("--photons-per-frame", o.photonsPerFrame, "photons per frame (default: the pilot pass chooses)");
   app.add_option("--photon-frames", o.photonFrames, "the photon method's temporal window t_max (odd)");
@@ -238,7 +241,10 @@ int main(int argc, char** argv) {
 
     std::vector<Method> methods;
     for (auto& [spp, m] : byFrame) methods.push_back(m);
-    auto pca = [&](const std::string& name, temporal::PcaSettings settings) {
+    // highSpp > 0: 3.2's importance sampling, blending pixels whose map
+    // exceeds mMin towards the frame-by-frame render at highSpp, charged
+    // for the share of pixels it covers.
+    auto pca = [&](const std::string& name, temporal::PcaSettings settings, std::uint32_t highSpp = 0, float mMin = 0) {
       std::vector<temporal::Frame> stack;
       for (const auto& image : kIndirect) stack.push_back(toFrame(image, o.size));
       const auto start = std::chrono::steady_clock::now();
@@ -248,12 +254,25 @@ int main(int argc, char** argv) {
       m.name = name;
       m.seconds = kSeconds + denoise;
       m.modes = fmt::format("M = {}, mean map {:.2f}", r.globalModes, r.meanTruncation());
+      std::size_t covered = 0;
       for (int t = 0; t < o.frames; ++t) {
-        m.indirect.push_back(toImage(r.frames[std::size_t(t)]));
+        temporal::Frame f = r.frames[std::size_t(t)];
+        if (highSpp) {
+          const auto need = temporal::needsHighSamples(r.truncation, mMin);
+          covered += static_cast<std::size_t>(std::count(need.begin(), need.end(), true));
+          f = temporal::blendHighSamples(f, toFrame(byFrame.at(highSpp).indirect[std::size_t(t)], o.size), r.truncation,
+                                         mMin, float(r.availableModes));
+        }
+        m.indirect.push_back(toImage(f));
         Image beauty = kDirect[std::size_t(t)];
         for (std::size_t p = 0; p < beauty.size(); ++p)
           beauty[p] = glm::vec4(glm::vec3(beauty[p]) + glm::vec3(m.indirect.back()[p]), 1.0f);
         m.beauty.push_back(std::move(beauty));
+      }
+      if (highSpp) {
+        const double share = double(covered) / double(std::size_t{o.size} * o.size * std::size_t(o.frames));
+        m.seconds += share * byFrame.at(highSpp).seconds;
+        m.modes += fmt::format(", {:.0f}% of pixels at {} spp", 100 * share, highSpp);
       }
       note(fmt::format("{}: {} ({:.3f} s denoising)", name, m.modes, denoise));
       return m;
@@ -263,6 +282,10 @@ int main(int argc, char** argv) {
     temporal::PcaSettings perPixel, global;
     global.perPixel = false;
     methods.push_back(pca("PCA, per-pixel map, " + kName, perPixel));
+    if (o.highSpp && byFrame.count(o.highSpp))
+      for (float mMin : {4.0f, 8.0f})
+        methods.push_back(pca(fmt::format("PCA, per-pixel map, m > {} at {} spp (3.2), {}", mMin, o.highSpp, kName),
+                              perPixel, o.highSpp, mMin));
     methods.push_back(pca("PCA, global M, " + kName, global));
     for (int m : o.modes) {
       temporal::PcaSettings fixed;

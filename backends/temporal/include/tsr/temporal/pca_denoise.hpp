@@ -19,6 +19,7 @@ struct PcaResult {
   std::vector<Frame> frames;      // reconstructed, one per input frame
   int globalModes = 0;            // 2.3's M for the whole stack (or the fixed one)
   std::vector<float> truncation;  // the per-pixel map used (all globalModes without one)
+  int availableModes = 0;         // N: every mode of the stack (one per frame)
   double meanTruncation() const;
 };
 
