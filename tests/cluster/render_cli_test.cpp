@@ -166,8 +166,9 @@ TEST(RenderCli, TemporalFramesThroughTheClusterEqualLocalFrames) {
           << name << " " << mode;
       for (const char* f : {"0000", "0001", "0002", "0003"})
         for (const char* part : {"", ".direct", ".indirect"}) {
+          const std::string stem = name;  // clang 14 cannot capture a structured binding
           auto read = [&](const std::string& who) {
-            return med::readImage((dir.path / (name + "." + who + "." + f + part + ".exr")).string());
+            return med::readImage((dir.path / (stem + "." + who + "." + f + part + ".exr")).string());
           };
           EXPECT_TRUE(bitwiseEqual(read(mode), read("local"))) << name << " " << mode << " frame " << f << part;
         }

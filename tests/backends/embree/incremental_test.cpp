@@ -248,7 +248,7 @@ struct Crowd {
 
 Crowd crowd() {
   Crowd c;
-  for (int i = 0; i < 100; ++i) c.at.push_back({-1.8f + 0.4f * float(i % 10), 0.15f, -1.8f + 0.4f * float(i / 10)});
+  for (int i = 0; i < 100; ++i) c.at.emplace_back(-1.8f + 0.4f * float(i % 10), 0.15f, -1.8f + 0.4f * float(i / 10));
   c.present.assign(c.at.size(), true);
   return c;
 }
