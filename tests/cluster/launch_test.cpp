@@ -197,9 +197,9 @@ struct Run {
   std::string err;
 };
 
-// bash and mpirun are not ours: they run without the sanitizer test presets'
-// preloads (the ASan runtime fails them on their own leaks at exit; see
-// tests/sanitizers/outside.sh). What they start is ours and carries its own.
+// bash and mpirun are not ours: they run without the asan test preset's
+// preload of the ASan runtime, which fails them on their own leaks at exit
+// (tests/sanitizers/outside.sh). What they start is ours and carries its own.
 const std::string kOutside = "env -u LD_PRELOAD ";
 
 Run shell(const std::string& command, const fs::path& errFile) {
