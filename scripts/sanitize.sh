@@ -20,11 +20,15 @@ case "$which" in
   *) echo "error: expected asan, tsan or both, got '$which'" >&2; exit 2 ;;
 esac
 jobs=$(nproc)
+launcher=()
+command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
 status=0
 for p in "${presets[@]}"; do
   echo "sanitize: $p: configure and build" >&2
-  cmake --preset "$p" >/dev/null
+  start=$(date +%s)
+  cmake --preset "$p" "${launcher[@]}" >/dev/null
   cmake --build --preset "$p" -j"$jobs"
+  echo "sanitize: $p: built in $(( $(date +%s) - start )) s" >&2
   echo "sanitize: $p: every test" >&2
   start=$(date +%s)
   ctest --preset "$p" -j"$jobs" "$@" || status=1
