@@ -47,7 +47,8 @@ void addTemporalOptions(CLI::App& app, TemporalOptions& o) {
   g->add_option("--temporal-window", o.window,
                 "frames denoised together; longer sequences run in overlapping windows (default 64)")
       ->check(CLI::Range(2, 100000));
-  g->add_option("--temporal-overlap", o.overlap, "frames two windows share, cross-faded (default 16)")
+  g->add_option("--temporal-overlap", o.overlap,
+                "frames two windows share, cross-faded (default: a quarter of the window, at most 16)")
       ->check(CLI::Range(0, 100000));
   g->add_option("--temporal-high-spp", o.highSpp,
                 "image-space pca: pixels whose truncation map keeps more than --temporal-m-min modes (light the "
@@ -89,8 +90,8 @@ void checkTemporalOptions(const TemporalOptions& o, int spp) {
   if (o.highSpp && o.highSpp <= spp)
     throw std::invalid_argument("--temporal-high-spp " + std::to_string(o.highSpp) + " must exceed --spp " +
                                 std::to_string(spp));
-  if (o.overlap >= o.window)
-    throw std::invalid_argument("--temporal-overlap " + std::to_string(o.overlap) +
+  if (o.overlapFrames() >= o.window)
+    throw std::invalid_argument("--temporal-overlap " + std::to_string(o.overlapFrames()) +
                                 " must be smaller than --temporal-window " + std::to_string(o.window));
   if (o.directSpp && o.directSpp < spp)
     throw std::invalid_argument("--direct-spp " + std::to_string(o.directSpp) + " is below --spp " +
@@ -112,7 +113,7 @@ void TemporalOptions::applyTo(med::Parameters& parameters) const {
   }
   parameters.set("temporal", std::string("objectPca"));
   parameters.set("pcaWindow", std::int64_t{window});
-  parameters.set("pcaOverlap", std::int64_t{overlap});
+  parameters.set("pcaOverlap", std::int64_t{overlapFrames()});
   parameters.set("pcaModes", std::int64_t{modes});
   parameters.set("pcaEpsilon", epsilon);
   parameters.set("pcaEpsilonChange", epsilonChange);

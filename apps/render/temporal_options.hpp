@@ -10,6 +10,7 @@
 //   --temporal-high-spp N, --temporal-m-min M (pca, image space: 3.2's importance sampling)
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <string>
 
 #include "tsr/med/parameters.hpp"
@@ -24,7 +25,9 @@ struct TemporalOptions {
   bool plainRule = false;  // --temporal-plain-rule: no noise measurement
   bool global = false;     // one truncation for the whole frame instead of 3.2's map
   double mapSigma = 2.0;
-  int window = 64, overlap = 16;
+  int window = 64;
+  int overlap = -1;  // -1: a quarter of the window, at most 16 (overlapFrames())
+  int overlapFrames() const { return overlap >= 0 ? overlap : std::min(16, window / 4); }
   int highSpp = 0;          // 3.2's importance sampling: samples of the re-render (0: off)
   double mMin = 0;          // pixels whose map keeps more modes get it; 0: half the window's frames
   int photonsPerFrame = 0;  // 0: from the photon pilot pass

@@ -37,7 +37,7 @@ temporal::Frame toTemporalFrame(const std::vector<glm::vec4>& pixels, std::uint3
 }
 
 TemporalPcaSequence::TemporalPcaSequence(const TemporalOptions& options, Writer write, HighSamples highSamples)
-    : pca_(options.window, options.overlap, pcaSettings(options)),
+    : pca_(options.window, options.overlapFrames(), pcaSettings(options)),
       write_(std::move(write)),
       highSamples_(std::move(highSamples)),
       mMin_(options.mMin) {}

@@ -23,7 +23,7 @@ temporal::WindowedPca pcaFrom(const Parameters& p) {
   s.perPixel = false;
   const int window = pcaWindow(p);
   try {
-    return temporal::WindowedPca(window, static_cast<int>(p.getInt("pcaOverlap", std::min(16, window - 1), 0)), s);
+    return temporal::WindowedPca(window, static_cast<int>(p.getInt("pcaOverlap", std::min(16, window / 4), 0)), s);
   } catch (const std::invalid_argument& e) {
     throw ParameterError(e.what());
   }

@@ -26,9 +26,10 @@
 // of eq. 3, default 0.1), photonEmissionStep (a light's power changing by
 // more than this fraction between frames ends every temporal window there,
 // default 0.05). With objectPca: pcaWindow (default 64), pcaOverlap
-// (default 16), pcaModes (0: automatic), pcaEpsilon, pcaEpsilonChange,
-// pcaPlainRule (tsr::temporal's rule, see backends/temporal/README.md), and
-// photonsPerFrame's pilot shares eq. 3's budget over the window.
+// (default: a quarter of the window, at most 16), pcaModes (0:
+// automatic), pcaEpsilon, pcaEpsilonChange, pcaPlainRule (tsr::temporal's
+// rule, see backends/temporal/README.md), and photonsPerFrame's pilot
+// shares eq. 3's budget over the window.
 #include <map>
 #include <optional>
 
