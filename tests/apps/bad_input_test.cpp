@@ -45,6 +45,22 @@ class BadInput : public tsr::test::CommandTest {
 // would fail with "cannot open a window" instead of naming its problem.
 const std::string kNoDisplay = "-u DISPLAY -u WAYLAND_DISPLAY";
 
+// One bad option and what its error line must name.
+struct OptionCase {
+  std::string args, about;
+};
+
+// Image sizes every program that renders refuses, followed by `own`.
+std::vector<OptionCase> impossibleSizesAnd(std::vector<OptionCase> own) {
+  std::vector<OptionCase> cases = {
+      {"--size 0x0", "--size 0x0"},
+      {"--size 100000x100000", "--size 100000x100000"},
+      {"--size 20000x20000", "pixels"},
+  };
+  cases.insert(cases.end(), own.begin(), own.end());
+  return cases;
+}
+
 // Config files no cluster client accepts, and the phrase naming each.
 struct BadConfig {
   std::string file, about;
@@ -75,19 +91,13 @@ TEST_F(BadInput, InspectRefusesEveryBadScene) {
 }
 
 TEST_F(BadInput, RenderRefusesBadOptionsAndConfigs) {
-  struct Case {
-    std::string args, about;
-  };
-  std::vector<Case> cases = {
-      {"--size 0x0", "--size 0x0"},
-      {"--size 100000x100000", "--size 100000x100000"},
-      {"--size 20000x20000", "pixels"},
+  std::vector<OptionCase> cases = impossibleSizesAnd({
       {"--size 16", "expected WxH"},
       {"--backend nosuch", "nosuch"},
       {"--output out.unknownformat", "out.unknownformat"},
       {"--output ''", "--output: an empty file name"},
       {"--stats-json ''", "--stats-json: an empty file name"},
-  };
+  });
   for (const auto& config : writeBadConfigs(dir))
     cases.push_back({"--cluster " + config.file + " --nodes 127.0.0.1:1", config.about});
   for (const auto& c : cases) {
@@ -131,10 +141,7 @@ TEST_F(BadInput, WallRefusesBadScenesConfigsAndOptions) {
   std::ofstream(dir / "wall.json") << R"({"mode": "tiled", "backend": "embree", "nodes": [{"address": "127.0.0.1:1"}],
     "wall": {"columns": 1, "rows": 1}, "timeouts": {"connectMs": 200}})";
   std::ofstream(dir / "coop.json") << R"({"mode": "cooperative", "nodes": [{"address": "127.0.0.1:1"}]})";
-  struct Case {
-    std::string args, about;
-  };
-  std::vector<Case> cases = {
+  std::vector<OptionCase> cases = {
       {"coop.json builtin:cornell", "a wall needs \"mode\": \"tiled\""},
       {"wall.json builtin:cornell --size 0x0", "--size 0x0"},
       {"wall.json builtin:cornell --size 100000x100000", "--size 100000x100000"},
@@ -171,13 +178,7 @@ TEST_F(BadInput, ViewerRefusesEveryBadSceneBeforeOpeningAWindow) {
 }
 
 TEST_F(BadInput, ViewerRefusesBadOptionsScriptsAndConfigs) {
-  struct Case {
-    std::string args, about;
-  };
-  std::vector<Case> cases = {
-      {"--size 0x0", "--size 0x0"},
-      {"--size 100000x100000", "--size 100000x100000"},
-      {"--size 20000x20000", "pixels"},
+  std::vector<OptionCase> cases = impossibleSizesAnd({
       {"--size 16", "expected WxH"},
       {"--viewports nosuch", "nosuch"},
       {"--viewports coverage,,vulkan", "an empty back-end name"},
@@ -186,7 +187,7 @@ TEST_F(BadInput, ViewerRefusesBadOptionsScriptsAndConfigs) {
       {"--exit-after", "--exit-after needs --script"},
       {"--script ''", "--script: an empty file name"},
       {"--no-such-option", "--no-such-option"},
-  };
+  });
   for (const auto& config : writeBadConfigs(dir))
     cases.push_back({"--cluster " + config.file + " --nodes 127.0.0.1:1", config.about});
   for (const auto& script : tsr::test::writeBadScriptFiles(dir))
@@ -215,13 +216,7 @@ TEST_F(BadInput, AnaglyphRefusesEveryBadSceneAndKeepsTheOldImage) {
 }
 
 TEST_F(BadInput, AnaglyphRefusesBadOptionsAndScripts) {
-  struct Case {
-    std::string args, about;
-  };
-  std::vector<Case> cases = {
-      {"--size 0x0", "--size 0x0"},
-      {"--size 100000x100000", "--size 100000x100000"},
-      {"--size 20000x20000", "pixels"},
+  std::vector<OptionCase> cases = impossibleSizesAnd({
       {"--backend nosuch", "nosuch"},
       {"--output out.unknownformat", "out.unknownformat"},
       {"--method nosuch", "--method"},
@@ -233,7 +228,7 @@ TEST_F(BadInput, AnaglyphRefusesBadOptionsAndScripts) {
       {"--token-file missing-token", "--token-file needs --nodes"},
       {"--output ''", "--output: an empty file name"},
       {"--script ''", "--script: an empty file name"},
-  };
+  });
   for (const auto& script : tsr::test::writeBadScriptFiles(dir))
     cases.push_back({"--script " + script.path, script.about});
   std::ofstream(dir / "nan.script") << "orbit nan 0\n";
