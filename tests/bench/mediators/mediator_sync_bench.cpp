@@ -72,17 +72,26 @@ void nudgeTwoVertices(Instances& s, int i) {
   g.updatePositions(0, run);
 }
 
+// A replica of builtin:instances:N with a viewport that has converted it.
+struct Converted {
+  explicit Converted(Instances& s) : replica(4) {
+    replica.apply(s.source.snapshot());
+    viewport = s.registry.create(s.settings(), contexts);
+    viewport->render(replica, s.onePixel(replica.scene()), out);
+  }
+  sg::Replica replica;
+  med::ContextPool contexts;
+  std::unique_ptr<med::Viewport> viewport;
+  med::FrameBuffer out;
+};
+
 // A converted viewport; each iteration edits, ships the change list (not
 // timed: the scene graph's cost, measured elsewhere) and brings the viewport
 // up to date, end to end or the mediator's part only.
 void syncAfterEdit(benchmark::State& state, Edit edit, bool endToEnd) {
   Instances& s = scene(state.range(0));
-  sg::Replica replica(4);
-  replica.apply(s.source.snapshot());
-  med::ContextPool contexts;
-  auto viewport = s.registry.create(s.settings(), contexts);
-  med::FrameBuffer out;
-  viewport->render(replica, s.onePixel(replica.scene()), out);
+  Converted c(s);
+  auto& [replica, contexts, viewport, out] = c;
   for (auto _ : state) {
     state.PauseTiming();
     edit(s, nextEdit());
@@ -141,12 +150,8 @@ static void BM_MediatorSyncOnlyPointsRangeEdit(benchmark::State& state) {
 // level until 2 sqrt(N) of them), against the same frame with none moved.
 static void BM_RenderAfterMoves(benchmark::State& state) {
   Instances& s = scene(state.range(0));
-  sg::Replica replica(4);
-  replica.apply(s.source.snapshot());
-  med::ContextPool contexts;
-  auto viewport = s.registry.create(s.settings(), contexts);
-  med::FrameBuffer out;
-  viewport->render(replica, s.onePixel(replica.scene()), out);
+  Converted c(s);
+  auto& [replica, contexts, viewport, out] = c;
   for (int i = 0; i < state.range(1); ++i) {
     nudgeAnotherTransform(s, nextEdit());
     replica.apply(s.source.commit());
