@@ -1,6 +1,7 @@
 #include "quality_scene.hpp"
 
 #include <chrono>
+#include <cstring>
 #include <cmath>
 #include <deque>
 #include <stdexcept>
@@ -10,7 +11,13 @@
 #include "tsr/sg/camera.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
+#include "tsr/med/image_file.hpp"
+#include "tsr/sg/background.hpp"
+#include "tsr/sg/image.hpp"
+#include "tsr/sg/import/default_light_rig.hpp"
+#include "tsr/sg/import/scene_camera.hpp"
 #include "tsr/sg/light.hpp"
+#include "tsr/sg/node_world.hpp"
 #include "tsr/sg/surface_material.hpp"
 
 namespace tsr::quality {
@@ -33,14 +40,37 @@ void makeRedWallGlossy(sg::Scene& scene) {
   throw std::runtime_error("glossy variant: the scene has no red surface material to make glossy");
 }
 
+// The file's pixels as a linear float image behind an environment background.
+void lightByEnvironment(sg::Scene& scene, sg::ContainerId& background, const std::string& path) {
+  const med::FrameBuffer map = med::readImage(path);
+  std::vector<std::uint8_t> bytes(map.colour.size() * 4 * sizeof(float));
+  std::memcpy(bytes.data(), map.colour.data(), bytes.size());
+  auto& image = scene.create<sg::Image>(path);
+  image.setPixels(map.width, map.height, 4, sg::PixelFormat::Float32, std::move(bytes));
+  image.setColorSpace(sg::ColorSpace::Linear);
+  auto* bg = scene.find<sg::Background>(background);
+  if (!bg) {
+    bg = &scene.create<sg::Background>("environment");
+    background = bg->id();
+  }
+  bg->setKind(sg::BackgroundKind::Environment);
+  bg->setEnvironment(image.id());
+  bg->setIntensity(1.0f);
+}
+
 }  // namespace
 
 QualityScene::QualityScene(std::string key, std::string label, const std::string& source, bool glossy,
-                           const med::ViewportRegistry& registry)
+                           const med::ViewportRegistry& registry, const std::string& environment)
     : key_(std::move(key)), label_(std::move(label)), registry_(registry) {
   imported_ = sg::importScene(source_, source);
-  if (imported_.cameras.empty()) throw std::runtime_error(source + ": the scene has no camera");
+  camera_ = imported_.cameras.empty() ? sg::addFramingCamera(source_, imported_.root) : imported_.cameras.front();
   if (glossy) makeRedWallGlossy(source_);
+  if (!environment.empty()) lightByEnvironment(source_, imported_.background, environment);
+  if (!sg::hasOwnLighting(source_, imported_.root, imported_.background)) {
+    const sg::DefaultLightRig rig = sg::addDefaultLightRig(source_, imported_.root, imported_.background);
+    sg::followCamera(source_, rig, sg::cameraWorldPose(source_, camera_));
+  }
   replica_.apply(source_.commit());
   med::Parameters p;
   p.set("spp", std::int64_t{1});
@@ -64,7 +94,7 @@ void QualityScene::pose(float seconds, float lightScale, float pan) {
   for (const auto& animation : imported_.animations) animation.apply(source_, seconds);
   for (const auto& [id, intensity] : lightIntensities_)
     source_.find<sg::Light>(id)->setIntensity(intensity * lightScale);
-  auto* camera = source_.find<sg::Camera>(imported_.cameras.front());
+  auto* camera = source_.find<sg::Camera>(camera_);
   if (!cameraPose_) cameraPose_ = camera->pose();
   if (pan != 0.0f || camera->pose() != *cameraPose_)
     camera->setPose(*cameraPose_ * glm::translate(glm::mat4(1.0f), glm::vec3(pan, 0.0f, 0.0f)));
@@ -96,7 +126,7 @@ std::vector<Shot> QualityScene::renderAhead(med::Viewport& viewport, std::uint32
     if (frame < 0) continue;
     shown.apply(pending.front());
     pending.pop_front();
-    const auto view = med::View::fromCamera(*shown.scene().find<sg::Camera>(imported_.cameras.front()), size, size);
+    const auto view = med::View::fromCamera(*shown.scene().find<sg::Camera>(camera_), size, size);
     med::RenderControl control;
     control.outputs = outputs;
     control.frame = frame;
@@ -112,7 +142,7 @@ std::vector<Shot> QualityScene::renderAhead(med::Viewport& viewport, std::uint32
 
 Shot QualityScene::render(med::Viewport& viewport, std::uint32_t size, bool wantBlend,
                           const std::vector<std::string>& outputs) {
-  const auto view = med::View::fromCamera(*replica_.scene().find<sg::Camera>(imported_.cameras.front()), size, size);
+  const auto view = med::View::fromCamera(*replica_.scene().find<sg::Camera>(camera_), size, size);
   med::RenderControl control;
   control.outputs = outputs;
   if (wantBlend) control.outputs->push_back("blend");

@@ -28,8 +28,12 @@ class QualityScene {
  public:
   // key: file-name-safe name for caches; source: a path or builtin:NAME.
   // glossy: the red wall's material becomes a GGX conductor (roughness 0.2).
+  // environment: a latitude-longitude float image (EXR, PFM, HDR) that
+  // lights the scene instead of its background; empty: none. A scene with
+  // no light of its own gets the default light rig, as the programs give
+  // it, and one with no camera a framing camera.
   QualityScene(std::string key, std::string label, const std::string& source, bool glossy,
-               const med::ViewportRegistry& registry);
+               const med::ViewportRegistry& registry, const std::string& environment = {});
 
   const std::string& key() const { return key_; }
   const std::string& label() const { return label_; }
@@ -66,6 +70,7 @@ class QualityScene {
   std::unique_ptr<med::Viewport> anchor_;
   std::vector<std::pair<sg::ContainerId, float>> lightIntensities_;  // as imported
   std::optional<glm::mat4> cameraPose_;                              // as imported
+  sg::ContainerId camera_ = sg::kNoContainer;
 };
 
 }  // namespace tsr::quality
