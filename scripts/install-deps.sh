@@ -16,6 +16,7 @@ packages=(
   libcli11-dev libspdlog-dev libfmt-dev libglm-dev libimgui-dev
   libeigen3-dev
   openmpi-bin
+  assimp-testmodels   # real glTF models of the filter quality suite (tests/bench/quality/suite)
 )
 
 if [ "$(id -u)" -ne 0 ]; then

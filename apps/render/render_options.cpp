@@ -115,7 +115,7 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
           ->check(CLI::IsMember({"indirect", "caustic", "all"})),
       "pathClass");
   filterOptions.emplace_back(
-      filterGroup->add_option("--filter-kernel", filterKernel, "bilateral or separable (with --filter pixel)")
+      filterGroup->add_option("--filter-kernel", filterKernel, "separable (default) or bilateral (with --filter pixel)")
           ->check(CLI::IsMember({"bilateral", "separable"})),
       "filterKernel");
   std::string lookFrom, lookAt, tonemap = "none";

@@ -7,6 +7,19 @@ namespace {
 // Share of ambient light in the flash image; the head light gives the rest
 // through its cosine, so surfaces facing the eye reach their reflectivity.
 constexpr float kAmbient = 0.25f;
+// On glossy surfaces the head light's share is smaller: what they show is
+// a blurred reflection, not a cosine falloff, and a steep falloff would
+// cut a sphere into rings of equal cosine that the filter averages along.
+// The normal's share that is left still tells a cube's faces apart.
+constexpr float kGlossyAmbient = 0.75f;
+// Glossy surfaces smoother than this GGX alpha (roughness 0.2) show, in
+// part, what they reflect: their reflection is sharp at the scale of a
+// few pixels, and without its edges in the range buffer the filter washes
+// it out. The share falls linearly to 0 at this alpha, so a rougher
+// surface, whose reflection is as blurred as the filter's kernel, shows
+// only itself: followed, its reflection would look sharper filtered than
+// its roughness makes it.
+constexpr float kSharpGlossyAlpha = 0.04f;
 // Specular bounces followed per camera ray; glass splits into reflection
 // and refraction, so the ray tree is capped by a stack of pending rays.
 constexpr std::uint32_t kMaxSpecularDepth = 8;
@@ -14,10 +27,6 @@ constexpr int kStack = 16;
 // Emitters look like their own colour in the flash image (clamped to the
 // flash's range), so a lamp and the ceiling around it are told apart.
 constexpr float kEmissionShare = 0.5f;
-// Glossy surfaces smoother than this GGX alpha also show, in part, what
-// they reflect (3.6.2's extended range buffer): without it the filter has
-// no edge to stop at in a glossy reflection and blurs it away.
-constexpr float kGlossyAlpha = 0.25f;
 
 struct FlashRay {
   glm::vec3 org;
@@ -36,7 +45,12 @@ glm::vec3 Tracer::traceFlash(glm::vec3 org, glm::vec3 dir, const glm::vec3& eye)
   while (top > 0) {
     const FlashRay r = stack[--top];
     RTCRayHit rh;
-    if (!intersect(r.org, r.dir, rh)) continue;  // the background stays black
+    if (!intersect(r.org, r.dir, rh)) {
+      // The background seen directly is a class of its own; seen in a
+      // mirror it is black.
+      if (r.depth == 0) result = kFlashMiss;
+      continue;
+    }
     SurfaceHit h;
     if (!surface(r.org, r.dir, rh, h)) continue;
     const ResolvedMaterial& mat = *h.instance->material;
@@ -44,17 +58,21 @@ glm::vec3 Tracer::traceFlash(glm::vec3 org, glm::vec3 dir, const glm::vec3& eye)
     const bool front = glm::dot(r.dir, h.ng) < 0.0f;
     const glm::vec3 n = front ? h.ns : -h.ns;
     const MaterialType type = mat.material.type;
+    // Perfect specular surfaces are followed (3.3.3), near-perfect glossy
+    // ones in part (kSharpGlossyAlpha).
     const bool specular = type == MaterialType::Mirror || type == MaterialType::Glass;
     const float alpha = mat.material.roughness * mat.material.roughness;
-    const bool glossy = (type == MaterialType::Conductor || type == MaterialType::Dielectric) && alpha < kGlossyAlpha;
+    const bool glossy = type == MaterialType::Conductor || type == MaterialType::Dielectric;
     const float eps = rayEpsilon(h.p);
     const glm::vec3 ng = front ? h.ng : -h.ng;
     if (!specular || r.depth >= kMaxSpecularDepth) {
       const glm::vec3 toEye = glm::normalize(eye - h.p);
       const float head = std::max(0.0f, glm::dot(n, toEye));
-      glm::vec3 c = base * (kAmbient + (1.0f - kAmbient) * head);
+      const float ambient = type == MaterialType::Diffuse ? kAmbient : kGlossyAmbient;
+      glm::vec3 c = base * (ambient + (1.0f - ambient) * head);
       if (mat.material.isEmissive()) c += kEmissionShare * glm::min(emission(mat, h.uv), glm::vec3(1.0f));
-      const float mirrored = glossy && r.depth < kMaxSpecularDepth && top < kStack ? 1.0f - alpha / kGlossyAlpha : 0.0f;
+      const float mirrored =
+          glossy && r.depth < kMaxSpecularDepth && top < kStack ? std::max(0.0f, 1.0f - alpha / kSharpGlossyAlpha) : 0.0f;
       result += r.weight * (1.0f - mirrored) * c;
       if (mirrored > 0.0f)
         stack[top++] = {h.p + ng * eps, glm::reflect(r.dir, n), r.weight * mirrored * base, r.depth + 1};

@@ -2,7 +2,10 @@
 
 #include "tsr/embree/error.hpp"
 
+#include <glm/geometric.hpp>
+
 #include <algorithm>
+#include <cmath>
 #include <atomic>
 #include <limits>
 
@@ -40,7 +43,14 @@ void FrameBuffer::accumulate(std::uint32_t x, std::uint32_t y, const PixelSample
 
 void FrameBuffer::accumulateRange(std::uint32_t x, std::uint32_t y, const glm::vec3& flash) {
   Pixel& p = pixels_[at(x, y)];
-  p.range += (flash - p.range) / float(++p.rangeCount);
+  const glm::vec3 delta = flash - p.range;
+  p.range += delta / float(++p.rangeCount);
+  p.rangeM2 += glm::dot(delta, flash - p.range);
+}
+
+float FrameBuffer::rangeSpread(std::uint32_t x, std::uint32_t y) const {
+  const Pixel& p = pixels_[at(x, y)];
+  return p.rangeCount > 1 ? std::sqrt(std::max(0.0f, p.rangeM2) / float(p.rangeCount)) : 0.0f;
 }
 
 glm::vec4 FrameBuffer::colour(std::uint32_t x, std::uint32_t y) const {

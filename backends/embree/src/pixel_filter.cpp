@@ -37,6 +37,7 @@ std::size_t checkInput(const PixelFilterInput& in) {
   checkSize(in.lowVariance.size(), n, "lowVariance");
   checkSize(in.rangeColour.size(), n, "rangeColour");
   checkSize(in.rangeDepth.size(), n, "rangeDepth");
+  if (!in.rangeSpread.empty()) checkSize(in.rangeSpread.size(), n, "rangeSpread");
   return n;
 }
 
@@ -56,6 +57,7 @@ pf::Range scaledRange(const PixelFilterInput& in, const PixelFilterSettings& s, 
   r.g.resize(n);
   r.b.resize(n);
   r.d.resize(n);
+  r.e.resize(n);
   const float kc = 1.0f / (std::sqrt(2.0f) * s.sigmaC);
   const float kd = std::isfinite(s.sigmaD) ? 1.0f / (std::sqrt(2.0f) * s.sigmaD) : 0.0f;
   for (std::size_t i = 0; i < n; ++i) {
@@ -65,6 +67,8 @@ pf::Range scaledRange(const PixelFilterInput& in, const PixelFilterSettings& s, 
     r.b[i] = c.z;
     const float d = in.rangeDepth[i];
     r.d[i] = std::isfinite(d) ? std::clamp(d * kd, -pf::kMaxScaledDepth, pf::kMaxScaledDepth) : pf::kBackground;
+    const float e = in.rangeSpread.empty() ? 0.0f : in.rangeSpread[i];
+    r.e[i] = std::isfinite(e) ? std::clamp(e * kc, 0.0f, pf::kMaxScaledDepth) : 0.0f;
   }
   return r;
 }
@@ -114,6 +118,59 @@ pf::Plane adaptiveSigma(const PixelFilterInput& in, const PixelFilterSettings& s
     sigma[i] = std::clamp(sg, std::min(lo, hi), hi);
   }
   return sigma;
+}
+
+// Pixels that mix two surfaces (3.6.5's antialiased pixels, in 2-D and for
+// every kernel). The spread keeps them out of every kernel, so they would
+// show their own unfiltered radiance: at low spp in a dim room mostly
+// zero, a dotted dark outline along every silhouette. Instead each is
+// modelled as coverage a of one side and 1 - a of the other: of the four
+// pairs of neighbours opposite each other across it (at distance 1 or 2),
+// the pair whose range colours differ most and between which its own
+// range colour lies (projected onto the segment, as in 3.19-3.20) gives
+// the sides, and the pixel takes their filtered values mixed by a.
+void recoverMixedPixels(const pf::Image& im, const pf::Range& rg, pf::State& st, pf::Plane& r, int threads) {
+  constexpr float kMixed = 1.0f;  // scaled spread^2 above this: the flash samples disagree
+  const int w = im.w, h = im.h;
+  const pf::State in = st;
+  const pf::Plane rIn = r;
+  pf::parallelRows(threads, h, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < w; ++x) {
+        const std::size_t j = std::size_t(y) * w + x;
+        if (rg.e[j] * rg.e[j] <= kMixed) continue;
+        const glm::vec3 cj(rg.r[j], rg.g[j], rg.b[j]);
+        float bestScore = 0.0f, bestCover = 0.0f, bestFit = 0.0f;
+        std::size_t bestA = j, bestB = j;
+        for (int dist = 1; dist <= 2; ++dist)
+          for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}, std::pair{1, 1}, std::pair{1, -1}}) {
+            const int ax = x - dist * dx, ay = y - dist * dy, bx = x + dist * dx, by = y + dist * dy;
+            if (ax < 0 || ax >= w || ay < 0 || ay >= h || bx < 0 || bx >= w || by < 0 || by >= h) continue;
+            const std::size_t a = std::size_t(ay) * w + ax, b = std::size_t(by) * w + bx;
+            // A side must be purer than the pixel itself.
+            if (rg.e[a] >= rg.e[j] || rg.e[b] >= rg.e[j]) continue;
+            const glm::vec3 ca(rg.r[a], rg.g[a], rg.b[a]), cb(rg.r[b], rg.g[b], rg.b[b]);
+            const glm::vec3 g = cb - ca;
+            const float gg = glm::dot(g, g);
+            if (gg <= kMixed) continue;  // both sides alike: not an edge across this pair
+            const float cover = std::clamp(glm::dot(cj - ca, g) / gg, 0.0f, 1.0f);
+            const glm::vec3 off = cj - ca - cover * g;
+            const float fit = std::exp(-glm::dot(off, off));
+            const float score = gg * fit;
+            if (score > bestScore) bestScore = score, bestCover = cover, bestFit = fit, bestA = a, bestB = b;
+          }
+        if (bestA == j) continue;
+        const float ka = bestFit * (1.0f - bestCover), kb = bestFit * bestCover, kj = 1.0f - bestFit;
+        st.lr[j] = ka * in.lr[bestA] + kb * in.lr[bestB] + kj * in.lr[j];
+        st.lg[j] = ka * in.lg[bestA] + kb * in.lg[bestB] + kj * in.lg[j];
+        st.lb[j] = ka * in.lb[bestA] + kb * in.lb[bestB] + kj * in.lb[j];
+        const float va = in.v[bestA], vb = in.v[bestB], vj = in.v[j];
+        st.v[j] = (ka * va + kb * vb + kj * vj);
+        // Var[Lf] of the mix, the three filtered values taken as independent.
+        const float varF = ka * ka * rIn[bestA] * va + kb * kb * rIn[bestB] * vb + kj * kj * rIn[j] * vj;
+        r[j] = st.v[j] > 0.0f ? std::clamp(varF / st.v[j], 1e-6f, 1.0f) : rIn[j];
+      }
+  });
 }
 
 }  // namespace
@@ -170,6 +227,7 @@ FilteredBuffer filterHighVariance(const PixelFilterInput& in, const PixelFilterS
       pf::atrous(im, range, sigma, st, r, params);
       break;
   }
+  if (!in.rangeSpread.empty()) recoverMixedPixels(im, range, st, r, settings.threads);
 
   FilteredBuffer out;
   out.width = in.width;
@@ -194,6 +252,11 @@ BlendResult blend(const PixelFilterInput& in, const FilteredBuffer& fb, const Pi
   // keeps the variance it had when it was filtered.
   const float age = (fb.samples > 0 && in.samples > 0) ? float(fb.samples) / float(in.samples) : 1.0f;
   const float t = settings.threshold;
+  // 3.18's c = 2 is right for a few samples; kept fixed, its clamp biased
+  // every pixel whose blend stays below 1 (caustics, rooms lit only
+  // indirectly) at 1024 spp as much as at 8. Widened as the standard error
+  // shrinks, it removes the spikes of a preview and lets go as it converges.
+  const float spikeBound = 2.0f * std::sqrt(std::max(1.0f, float(in.samples) / 8.0f));
   BlendResult out;
   out.radiance.resize(n);
   out.blendFactor.resize(n);
@@ -210,7 +273,7 @@ BlendResult blend(const PixelFilterInput& in, const FilteredBuffer& fb, const Pi
       // 3.18, c = 2, only while the filtered buffer is blended in: once the
       // unfiltered pixel meets the threshold (s = 1) it is shown as it is,
       // or the clamp's bias would never vanish.
-      if (settings.spikeRemoval && s < 1.0f) lu = glm::clamp(lu, 0.5f * lf, 2.0f * lf);
+      if (settings.spikeRemoval && s < 1.0f) lu = glm::clamp(lu, lf / spikeBound, spikeBound * lf);
       out.radiance[i] = llv + s * lu + (1.0f - s) * lf;  // 3.1
       out.blendFactor[i] = s;
     }

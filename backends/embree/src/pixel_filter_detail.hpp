@@ -14,11 +14,15 @@ namespace tsr::embree::pf {
 using Plane = std::vector<float>;
 
 // Range buffer, pre-scaled so that the range exponent is a plain squared
-// distance: c / (sqrt(2) sigmaC) and d / (sqrt(2) sigmaD). Background
-// (non-finite depth) is kBackground, so background and hit pixels never
-// weigh each other while background pixels gather one another.
+// distance: c / (sqrt(2) sigmaC), d / (sqrt(2) sigmaD) and the flash's
+// spread e / (sqrt(2) sigmaC). Background (non-finite depth) is
+// kBackground, so background and hit pixels never weigh each other while
+// background pixels gather one another. The spread keeps pixels that mix
+// two surfaces (silhouettes, texture edges) apart from pixels of either:
+// their mean colour can match a third pixel whose radiance is not theirs,
+// which darkened or brightened silhouettes.
 struct Range {
-  Plane r, g, b, d;
+  Plane r, g, b, d, e;
 };
 inline constexpr float kBackground = 1e15f;      // squared: 1e30, finite; exp(-1e30) = 0
 inline constexpr float kMaxScaledDepth = 1e12f;  // clamp of scaled finite colours and depths

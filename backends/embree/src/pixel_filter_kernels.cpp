@@ -10,7 +10,9 @@
 #include <oneapi/tbb/task_arena.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 
 namespace tsr::embree::pf {
@@ -66,6 +68,7 @@ void transpose(const Range& in, int w, int h, Range& out, int threads) {
   transpose(in.g, w, h, out.g, threads);
   transpose(in.b, w, h, out.b, threads);
   transpose(in.d, w, h, out.d, threads);
+  transpose(in.e, w, h, out.e, threads);
 }
 
 void transpose(const State& in, int w, int h, State& out, int threads) {
@@ -98,7 +101,7 @@ void bilateral(const Image& im, const Range& rg, const Plane& sigma, State& s, P
         const float sg = sigma[j];
         const float* sp = table.centre(sg, std::max(w, h));
         const int R = table.radius;
-        const float cr = rg.r[j], cg = rg.g[j], cb = rg.b[j], cd = rg.d[j];
+        const float cr = rg.r[j], cg = rg.g[j], cb = rg.b[j], cd = rg.d[j], ce = rg.e[j];
         const float lr = s.lr[j], lg = s.lg[j], lb = s.lb[j], lv = s.v[j];
         const float disc = 9.0f * sg * sg;
         float a = 0, a2 = 0, sr = 0, sgn = 0, sb = 0, sv = 0;
@@ -111,14 +114,15 @@ void bilateral(const Image& im, const Range& rg, const Plane& sigma, State& s, P
           const float* RG = rg.g.data() + row;
           const float* RB = rg.b.data() + row;
           const float* RD = rg.d.data() + row;
+          const float* RE = rg.e.data() + row;
           const float* LR = s.lr.data() + row;
           const float* LG = s.lg.data() + row;
           const float* LB = s.lb.data() + row;
           const float* LV = s.v.data() + row;
           const int x0 = std::max(x - rx, 0), x1 = std::min(x + rx, w - 1);
           for (int i = x0; i <= x1; ++i) {
-            const float dr = RR[i] - cr, dg = RG[i] - cg, db = RB[i] - cb, dd = RD[i] - cd;
-            const float wt = fastExp(spy + sp[i - x] - (dr * dr + dg * dg + db * db + dd * dd));
+            const float dr = RR[i] - cr, dg = RG[i] - cg, db = RB[i] - cb, dd = RD[i] - cd, de = RE[i] - ce;
+            const float wt = fastExp(spy + sp[i - x] - (dr * dr + dg * dg + db * db + dd * dd + de * de));
             a += wt;
             a2 += wt * wt;
             sr += wt * (LR[i] - lr);
@@ -155,7 +159,7 @@ struct Acc {
 
 // Pointers to one row of the pass input; "a" = the pass axis, "o" = the other.
 struct Row {
-  const float *cr, *cg, *cb, *cd, *lr, *lg, *lb, *v, *ma, *va, *mo, *vo, *q;
+  const float *cr, *cg, *cb, *cd, *ce, *lr, *lg, *lb, *v, *ma, *va, *mo, *vo, *q;
 };
 
 struct Centre {
@@ -163,13 +167,13 @@ struct Centre {
 };
 
 // Sums over i in [lo, hi] with range value (cr, cg, cb, cd); x = centre.
-Acc window(const Row& rw, int x, int lo, int hi, const float* sp, float cr, float cg, float cb, float cd,
+Acc window(const Row& rw, int x, int lo, int hi, const float* sp, float cr, float cg, float cb, float cd, float ce,
            const Centre& c) {
   Acc s;
   for (int i = lo; i <= hi; ++i) {
     const int k = i - x;
-    const float dr = rw.cr[i] - cr, dg = rw.cg[i] - cg, db = rw.cb[i] - cb, dd = rw.cd[i] - cd;
-    const float wt = fastExp(sp[k] - (dr * dr + dg * dg + db * db + dd * dd));
+    const float dr = rw.cr[i] - cr, dg = rw.cg[i] - cg, db = rw.cb[i] - cb, dd = rw.cd[i] - cd, de = rw.ce[i] - ce;
+    const float wt = fastExp(sp[k] - (dr * dr + dg * dg + db * db + dd * dd + de * de));
     s.a += wt;
     s.lr += wt * (rw.lr[i] - c.lr);
     s.lg += wt * (rw.lg[i] - c.lg);
@@ -258,23 +262,23 @@ void pass(int w, int h, const Range& rg, const Plane& sigma, float factor, const
     SpatialTable table;
     for (int y = y0; y < y1; ++y) {
       const std::size_t row = std::size_t(y) * w;
-      const Row rw{rg.r.data() + row,  rg.g.data() + row,  rg.b.data() + row, rg.d.data() + row, in.lr.data() + row,
-                   in.lg.data() + row, in.lb.data() + row, in.v.data() + row, ma.data() + row,   va.data() + row,
-                   mo.data() + row,    vo.data() + row,    in.q.data() + row};
+      const Row rw{rg.r.data() + row, rg.g.data() + row, rg.b.data() + row,  rg.d.data() + row, rg.e.data() + row,
+                   in.lr.data() + row, in.lg.data() + row, in.lb.data() + row, in.v.data() + row, ma.data() + row,
+                   va.data() + row,    mo.data() + row,    vo.data() + row,    in.q.data() + row};
       for (int x = 0; x < w; ++x) {
         const std::size_t j = row + x;
         const float* sp = table.centre(sigma[j] * factor, w);
         const int R = table.radius;
         const Centre c{in.lr[j], in.lg[j], in.lb[j], in.v[j]};
         const int lo = std::max(x - R, 0), hi = std::min(x + R, w - 1);
-        const Acc centre = window(rw, x, lo, hi, sp, rg.r[j], rg.g[j], rg.b[j], rg.d[j], c);
+        const Acc centre = window(rw, x, lo, hi, sp, rg.r[j], rg.g[j], rg.b[j], rg.d[j], rg.e[j], c);
         Acc sum;
         if (p.antialiasRecovery && R > 0) {
           const AntialiasModel m = fitEdge(rg, w, h, x, y);
           if (m.edge) {
             // Left window: range of the -1 side, gathers only to the left; right likewise.
-            const Acc left = window(rw, x, lo, x - 1, sp, m.p0[0], m.p0[1], m.p0[2], rg.d[j - 1], c);
-            const Acc right = window(rw, x, x + 1, hi, sp, m.p2[0], m.p2[1], m.p2[2], rg.d[j + 1], c);
+            const Acc left = window(rw, x, lo, x - 1, sp, m.p0[0], m.p0[1], m.p0[2], rg.d[j - 1], rg.e[j - 1], c);
+            const Acc right = window(rw, x, x + 1, hi, sp, m.p2[0], m.p2[1], m.p2[2], rg.d[j + 1], rg.e[j + 1], c);
             if (left.a > 0.0f && right.a > 0.0f) {
               addNormalised(sum, left, m.fit * (1.0f - m.cover));
               addNormalised(sum, right, m.fit * m.cover);
@@ -328,6 +332,56 @@ void separable(const Image& im, const Range& rg, const Plane& sigma, State& s, P
 
 // ---------------------------------------------------------------- a-trous
 
+namespace {
+
+// A per-pixel, per-level rotation of the 5x5 tap pattern, and a sub-pixel
+// shift of it. With the same axis-aligned pattern everywhere, every bright
+// sample is copied onto the lattice of each level's step, and the image
+// prints that lattice (a grid over flat walls). Rotated by an angle drawn
+// from the pixel and the level, the copies land on no common lattice; the
+// kernel's spatial variance (the sum of the taps' squared offsets) is the
+// same at every angle. Tap positions fall between pixels; rounded, a step
+// of 1.75 would read only even offsets near 0 degrees (a pattern of
+// period 2), so they are rounded stochastically: down or up with the
+// probability of the fraction, by the shift drawn with the angle.
+struct Rotation {
+  float c, s;
+};
+
+struct TapPattern {
+  Rotation rotation;
+  float shiftX, shiftY;  // in [0, 1): floor(position + shift) rounds stochastically
+};
+
+// 64 angles over [0, pi/2), the square pattern's symmetry: a table, as a
+// sine and cosine per pixel and level would cost as much as the taps.
+constexpr int kAngles = 64;
+
+const std::array<Rotation, kAngles>& rotations() {
+  static const std::array<Rotation, kAngles> table = [] {
+    std::array<Rotation, kAngles> t{};
+    for (int i = 0; i < kAngles; ++i) {
+      const double angle = 0.5 * std::numbers::pi * (i + 0.5) / kAngles;
+      t[i] = {float(std::cos(angle)), float(std::sin(angle))};
+    }
+    return t;
+  }();
+  return table;
+}
+
+TapPattern tapPattern(int x, int y, unsigned level) {
+  std::uint64_t h = (std::uint64_t(std::uint32_t(x)) << 32 | std::uint32_t(y)) ^ (std::uint64_t(level) << 58);
+  h ^= h >> 33;
+  h *= 0xff51afd7ed558ccdull;
+  h ^= h >> 33;
+  h *= 0xc4ceb9fe1a85ec53ull;
+  h ^= h >> 33;
+  constexpr float kUnit = 1.0f / 65536.0f;
+  return {rotations()[h >> 58], float((h >> 16) & 0xFFFF) * kUnit, float(h & 0xFFFF) * kUnit};
+}
+
+}  // namespace
+
 void atrous(const Image& im, const Range& rg, const Plane& sigma, State& s, Plane& r, const KernelParams& p) {
   const int w = im.w, h = im.h;
   const unsigned N = std::max(1u, p.iterations);
@@ -344,26 +398,29 @@ void atrous(const Image& im, const Range& rg, const Plane& sigma, State& s, Plan
         for (int x = 0; x < w; ++x) {
           const std::size_t j = std::size_t(y) * w + x;
           const float step = std::min(sigma[j] * factor, float(std::max(w, h)));
-          int off[5];
-          for (int t = 0; t < 5; ++t) off[t] = static_cast<int>(std::lround(float(t - 2) * step));
-          const float cr = rg.r[j], cg = rg.g[j], cb = rg.b[j], cd = rg.d[j];
+          const TapPattern pattern = tapPattern(x, y, k);
+          const Rotation rot = pattern.rotation;
+          const float cr = rg.r[j], cg = rg.g[j], cb = rg.b[j], cd = rg.d[j], ce = rg.e[j];
           const float lr = s.lr[j], lg = s.lg[j], lb = s.lb[j], lv = s.v[j];
           float a = 0, sr = 0, sgn = 0, sb = 0, sv = 0, m1x = 0, m2x = 0, m1y = 0, m2y = 0, q = 0;
           for (int ty = 0; ty < 5; ++ty) {
-            const int yy = y + off[ty];
-            if (yy < 0 || yy >= h) continue;
             for (int tx = 0; tx < 5; ++tx) {
-              const int xx = x + off[tx];
-              if (xx < 0 || xx >= w) continue;
+              const float u = float(tx - 2) * step, v = float(ty - 2) * step;
+              // The centre tap stays on the pixel itself.
+              const int ox = tx == 2 && ty == 2 ? 0 : static_cast<int>(std::floor(rot.c * u - rot.s * v + pattern.shiftX));
+              const int oy = tx == 2 && ty == 2 ? 0 : static_cast<int>(std::floor(rot.s * u + rot.c * v + pattern.shiftY));
+              const int xx = x + ox, yy = y + oy;
+              if (xx < 0 || xx >= w || yy < 0 || yy >= h) continue;
               const std::size_t i = std::size_t(yy) * w + xx;
-              const float dr = rg.r[i] - cr, dg = rg.g[i] - cg, db = rg.b[i] - cb, dd = rg.d[i] - cd;
-              const float wt = B3[ty] * B3[tx] * fastExp(-(dr * dr + dg * dg + db * db + dd * dd));
+              const float dr = rg.r[i] - cr, dg = rg.g[i] - cg, db = rg.b[i] - cb, dd = rg.d[i] - cd,
+                          de = rg.e[i] - ce;
+              const float wt = B3[ty] * B3[tx] * fastExp(-(dr * dr + dg * dg + db * db + dd * dd + de * de));
               a += wt;
               sr += wt * (s.lr[i] - lr);
               sgn += wt * (s.lg[i] - lg);
               sb += wt * (s.lb[i] - lb);
               sv += wt * (s.v[i] - lv);
-              const float mx = float(off[tx]) + s.mx[i], my = float(off[ty]) + s.my[i];
+              const float mx = float(ox) + s.mx[i], my = float(oy) + s.my[i];
               m1x += wt * mx;
               m2x += wt * (s.vx[i] + mx * mx);
               m1y += wt * my;

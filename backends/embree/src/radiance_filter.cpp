@@ -33,6 +33,9 @@ namespace {
 // about 0.1 noise is judged in absolute terms, so dark pixels do not keep
 // the filtered estimate, and its bias, long after the rest let go.
 constexpr float kBlendBackgroundFloor = 0.01f;
+// Added to the squared background radiance of the perceived variance, so
+// that black pixels do not ask for infinite kernels.
+constexpr float kBackgroundFloor = 1e-4f;
 }  // namespace
 
 RadianceAccumulator::RadianceAccumulator(std::uint32_t width, std::uint32_t height) : width_(width), height_(height) {
@@ -54,13 +57,16 @@ glm::vec3 RadianceAccumulator::radiance(const FrameBuffer& fb, std::uint32_t x, 
   // same paths takes over as its perceived variance u falls from twice
   // the threshold to the threshold: the filtered estimate was built to
   // meet t, so it is kept while the unfiltered one is far noisier, and the
-  // image converges to the path tracer's.
+  // image converges to the path tracer's. u is the kernel-smoothed variance
+  // of the filtering step, not the pixel's own: where light arrives only
+  // by rare indirect paths, most pixels' few samples are all zero, their
+  // own variance 0, and they would show their unfiltered black.
   const glm::vec3 unfiltered = fb.mean(Channel::Indirect, x, y) - caustic;
   const std::uint32_t n = fb.sampleCount(x, y);
   float s = 0.0f;
   if (n > 1 && threshold_ > 0.0f) {
     const float lb = luminance(direct + p.indirect + caustic);
-    const float u = luminance(fb.variance(Channel::Indirect, x, y)) / float(n) / (lb * lb + kBlendBackgroundFloor);
+    const float u = p.variance * (lb * lb + kBackgroundFloor) / (lb * lb + kBlendBackgroundFloor) / float(n);
     s = std::clamp(2.0f - u / threshold_, 0.0f, 1.0f);
   }
   return direct + caustic + s * unfiltered + (1.0f - s) * p.indirect;
@@ -75,9 +81,6 @@ std::vector<glm::vec3> RadianceAccumulator::radianceImage(const FrameBuffer& fb)
 
 namespace {
 
-// Added to the squared background radiance of the perceived variance, so
-// that black pixels do not ask for infinite kernels.
-constexpr float kBackgroundFloor = 1e-4f;
 // Kernel radius (pixels) with which the variance and irradiance estimates are
 // still smoothed once the radiance is no longer filtered.
 constexpr float kVarianceRadius = 2.0f;
@@ -179,9 +182,20 @@ void RadianceFilterStep::run(const FrameBuffer& fb, RadianceAccumulator& acc, co
         if (own.valid) {
           // Step 3: the kernel radius (4.1, 4.2, 4.14, 4.15).
           const float target = float(2 * k - 1) * cfg.threshold * (1.0f - cfg.blend);
-          float r = k <= cfg.warmupFrames ? cfg.warmupRadius / std::sqrt(float(k))
-                                          : std::sqrt(px.variance / target / kEpanechnikovArea);
-          if (cfg.ambientOcclusion) r *= px.occlusion;
+          // After the warm-up the variance sets the radius, but never below
+          // the warm-up's own schedule r_w1/sqrt(k): where every neighbour
+          // so far missed the rare bright paths, the estimated variance is
+          // zero and a radius from it would leave the pixel unfiltered and
+          // black. The floor still shrinks to nothing as k grows.
+          const float schedule = cfg.warmupRadius / std::sqrt(float(k));
+          float r = k <= cfg.warmupFrames
+                        ? schedule
+                        : std::max(schedule, std::sqrt(px.variance / target / kEpanechnikovArea));
+          // Occlusion narrows the kernel in corners (4.3.1), but only by
+          // half: where light arrives only by rare indirect paths, a
+          // kernel shrunk below a pixel leaves the corner its own
+          // unfiltered, mostly black, samples.
+          if (cfg.ambientOcclusion) r *= 0.5f + 0.5f * px.occlusion;
           r = std::min(r, cfg.maxRadius);
           if (!std::isfinite(r)) r = 0.0f;
           const bool filter = r >= 1.0f && !masked;

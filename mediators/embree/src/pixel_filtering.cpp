@@ -8,7 +8,7 @@
 namespace tsr::med::embree_mediator {
 
 std::vector<std::string> pixelFilterInputs() {
-  return {kLowVarianceOutput, kHighVarianceOutput, kHighVarianceVarOutput, kRangeOutput};
+  return {kLowVarianceOutput, kHighVarianceOutput, kHighVarianceVarOutput, kRangeOutput, kRangeSpreadOutput};
 }
 
 std::uint32_t flashSamplesFor(std::uint32_t samples) {
@@ -24,7 +24,8 @@ void writePixelFilterInputs(const embree::FrameBuffer& fb, PathClass pathClass, 
   auto& high = out.outputs[kHighVarianceOutput];
   auto& var = out.outputs[kHighVarianceVarOutput];
   auto& range = out.outputs[kRangeOutput];
-  for (auto* image : {&low, &high, &var, &range}) image->assign(n, glm::vec4(0.0f));
+  auto& spread = out.outputs[kRangeSpreadOutput];
+  for (auto* image : {&low, &high, &var, &range, &spread}) image->assign(n, glm::vec4(0.0f));
   const embree::Channel hv = pathClass == PathClass::Indirect  ? embree::Channel::Indirect
                              : pathClass == PathClass::Caustic ? embree::Channel::Caustic
                                                                : embree::Channel::Colour;
@@ -44,6 +45,7 @@ void writePixelFilterInputs(const embree::FrameBuffer& fb, PathClass pathClass, 
       low[i] = glm::vec4(shown - h, 0.0f);
       var[i] = glm::vec4(count > 0 ? fb.variance(c, x, y) / float(count) : glm::vec3(0.0f), 0.0f);
       range[i] = glm::vec4(fb.rangeColour(x, y), float(count));
+      spread[i] = glm::vec4(fb.rangeSpread(x, y), 0.0f, 0.0f, 0.0f);
     }
 }
 
@@ -69,9 +71,11 @@ std::optional<std::uint32_t> PixelFilterResolver::filteredAt() const {
 void PixelFilterResolver::resolve(FrameBuffer& frame, const FilterSettings& settings, bool refilter, bool blendOutput) {
   const std::size_t n = frame.colour.size();
   std::vector<glm::vec3> low(n), high(n), var(n), range(n);
-  const std::vector<glm::vec4>* images[4] = {};
-  const char* names[4] = {kLowVarianceOutput, kHighVarianceOutput, kHighVarianceVarOutput, kRangeOutput};
-  for (int k = 0; k < 4; ++k) {
+  std::vector<float> spread(n);
+  const std::vector<glm::vec4>* images[5] = {};
+  const char* names[5] = {kLowVarianceOutput, kHighVarianceOutput, kHighVarianceVarOutput, kRangeOutput,
+                          kRangeSpreadOutput};
+  for (int k = 0; k < 5; ++k) {
     auto it = frame.outputs.find(names[k]);
     if (it == frame.outputs.end() || it->second.size() != n)
       throw std::invalid_argument(std::string("pixel filtering: the frame has no '") + names[k] + "' output");
@@ -83,6 +87,7 @@ void PixelFilterResolver::resolve(FrameBuffer& frame, const FilterSettings& sett
     high[i] = glm::vec3((*images[1])[i]);
     var[i] = glm::vec3((*images[2])[i]);
     range[i] = glm::vec3((*images[3])[i]);
+    spread[i] = (*images[4])[i].r;
     samples = std::max(samples, static_cast<std::uint32_t>((*images[3])[i].w));
   }
   embree::PixelFilterInput input;
@@ -93,6 +98,7 @@ void PixelFilterResolver::resolve(FrameBuffer& frame, const FilterSettings& sett
   input.highVarianceVar = var;
   input.rangeColour = range;
   input.rangeDepth = frame.depth;
+  input.rangeSpread = spread;
   input.samples = samples;
   embree::PixelFilterSettings pixel = settings.pixel;
   pixel.sigmaD = depthSigma(frame.depth, settings.sigmaDRelative);

@@ -18,6 +18,7 @@ inline constexpr const char* kLowVarianceOutput = "filter.lowVariance";    // rg
 inline constexpr const char* kHighVarianceOutput = "filter.highVariance";  // rgb: Lu
 inline constexpr const char* kHighVarianceVarOutput = "filter.variance";   // rgb: Var[Lu] of the mean
 inline constexpr const char* kRangeOutput = "filter.range";                // rgb: flash colour, a: samples n
+inline constexpr const char* kRangeSpreadOutput = "filter.rangeSpread";    // r: std. dev. of the flash samples
 inline constexpr const char* kBlendOutput = "blend";                       // r: blend factor s
 
 std::vector<std::string> pixelFilterInputs();

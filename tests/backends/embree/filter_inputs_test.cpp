@@ -81,30 +81,82 @@ TEST(EmbreeFilterInputs, FlashColourIsReflectivityUnderAmbientAndHeadLight) {
   const float expected = 0.5f * (0.25f + 0.75f * 0.7071f);
   EXPECT_NEAR(centre.x, expected, 0.05f);
   EXPECT_NEAR(centre.y, centre.x, 1e-6f);
-  // Nothing hit: black.
-  EXPECT_EQ(fb.rangeColour(kSize / 2, 0), glm::vec3(0.0f));
+  // Nothing hit: the miss colour, outside every surface's.
+  EXPECT_EQ(fb.rangeColour(kSize / 2, 0), kFlashMiss);
+  EXPECT_EQ(fb.rangeSpread(kSize / 2, 0), 0.0f);
 }
 
+// A quad of `facing`'s material filling the view of a camera at the
+// origin, and behind the camera a red wall that the quad reflects back.
+struct ReflectorScene {
+  Scene scene{sharedDevice()};
+  MaterialId reflector;
+  Camera camera = Camera::lookAt({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, glm::radians(30.0f), 1.0f);
+
+  explicit ReflectorScene(const Material& facing) : reflector(scene.addMaterial(facing)) {
+    scene.addInstance(scene.addMesh(quad({-2, -2, -2}, {2, -2, -2}, {2, 2, -2}, {-2, 2, -2})), reflector,
+                      glm::mat4(1.0f));
+    Material red;
+    red.baseColor = glm::vec3(0.8f, 0.1f, 0.1f);
+    scene.addInstance(scene.addMesh(quad({-9, -9, 3}, {-9, 9, 3}, {9, 9, 3}, {9, -9, 3})), scene.addMaterial(red),
+                      glm::mat4(1.0f));
+  }
+  // The centre pixel's flash colour of a fresh 16x16 buffer.
+  glm::vec3 flashAtCentre() {
+    Renderer renderer;
+    FrameBuffer fb(16, 16);
+    renderer.renderFlashPass(scene, camera, Region::full(16, 16), fb, 4);
+    return fb.rangeColour(8, 8);
+  }
+};
+
 TEST(EmbreeFilterInputs, FlashFollowsPerfectSpecularSurfaces) {
-  // A mirror facing the camera reflects the red wall behind the camera.
-  Scene scene(sharedDevice());
   Material mirror;
   mirror.type = MaterialType::Mirror;
   mirror.baseColor = glm::vec3(1.0f);
-  scene.addInstance(scene.addMesh(quad({-2, -2, -2}, {2, -2, -2}, {2, 2, -2}, {-2, 2, -2})), scene.addMaterial(mirror),
-                    glm::mat4(1.0f));
-  Material red;
-  red.baseColor = glm::vec3(0.8f, 0.1f, 0.1f);
-  scene.addInstance(scene.addMesh(quad({-9, -9, 3}, {-9, 9, 3}, {9, 9, 3}, {9, -9, 3})), scene.addMaterial(red),
-                    glm::mat4(1.0f));
-  Camera camera = Camera::lookAt({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, glm::radians(30.0f), 1.0f);
-  Renderer renderer;
-  FrameBuffer fb(16, 16);
-  renderer.renderFlashPass(scene, camera, Region::full(16, 16), fb, 4);
-  const glm::vec3 c = fb.rangeColour(8, 8);
+  const glm::vec3 c = ReflectorScene(mirror).flashAtCentre();
   // Reflected straight back: the red wall faces the eye, so ambient + head light = full reflectivity.
   EXPECT_NEAR(c.x, 0.8f, 0.02f);
   EXPECT_NEAR(c.y, 0.1f, 0.01f);
+}
+
+TEST(EmbreeFilterInputs, FlashShowsGlossySurfacesThemselves) {
+  // A rough metal (roughness 0.3, the sphere) in front of the red
+  // wall: the flash shows the metal's own colour, not the wall it
+  // reflects, so the filter smooths the glossy reflection as the surface
+  // blurs it instead of stopping at the edges of a mirror image. A
+  // smoother metal (roughness 0.1) shows the wall in part: its reflection
+  // is sharp at the scale of a few pixels.
+  Material metal;
+  metal.type = MaterialType::Conductor;
+  metal.baseColor = glm::vec3(0.9f);
+  metal.roughness = 0.3f;
+  ReflectorScene s(metal);
+  const glm::vec3 c = s.flashAtCentre();
+  EXPECT_NEAR(c.x, 0.9f, 0.03f);
+  EXPECT_NEAR(c.y, c.x, 1e-4f) << "grey, not the red wall";
+
+  metal.roughness = 0.1f;
+  s.scene.setMaterial(s.reflector, metal);
+  const glm::vec3 smooth = s.flashAtCentre();
+  EXPECT_GT(smooth.x, 2.0f * smooth.y) << "the red wall shows in part";
+}
+
+TEST(EmbreeFilterInputs, FlashSpreadMarksPixelsThatMixSurfaces) {
+  // A white quad's edge runs through the middle of pixel column 8; the
+  // background beyond it is the miss colour.
+  Scene scene(sharedDevice());
+  Material white;
+  white.baseColor = glm::vec3(0.8f);
+  scene.addInstance(scene.addMesh(quad({-4, -4, -2}, {0.01f, -4, -2}, {0.01f, 4, -2}, {-4, 4, -2})),
+                    scene.addMaterial(white), glm::mat4(1.0f));
+  Camera camera = Camera::lookAt({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, glm::radians(30.0f), 1.0f);
+  Renderer renderer;
+  FrameBuffer fb(16, 16);
+  renderer.renderFlashPass(scene, camera, Region::full(16, 16), fb, 64);
+  EXPECT_LT(fb.rangeSpread(4, 8), 0.01f) << "inside the quad (the head light varies a little across a pixel)";
+  EXPECT_EQ(fb.rangeSpread(12, 8), 0.0f) << "background only";
+  EXPECT_GT(fb.rangeSpread(8, 8), 0.5f) << "half quad, half background";
 }
 
 }  // namespace

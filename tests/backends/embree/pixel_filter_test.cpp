@@ -45,7 +45,7 @@ struct Images {
     for (auto& l : lu) l += vec3(n(rng));  // grey noise: the same offset in every channel
     for (auto& v : var) v = vec3(sd * sd);
   }
-  PixelFilterInput input() const { return {w, h, lu, var, llv, colour, depth, samples}; }
+  PixelFilterInput input() const { return {w, h, lu, var, llv, colour, depth, samples, {}}; }
 };
 
 PixelFilterSettings settingsFor(FilterKernel k) {
@@ -168,6 +168,26 @@ TEST(PixelFilterBlend, SpikeRemovalClampsToHalfAndTwiceTheFilteredValueWhileBlen
   }
   EXPECT_LT(clamped.radiance[spike].x, plain.radiance[spike].x);
   EXPECT_GT(clamped.radiance[dark].x, plain.radiance[dark].x);
+}
+
+TEST(PixelFilterBlend, SpikeRemovalWidensAsSamplesGrow) {
+  // The same spike at 8 and at 512 spp: clamped to 2 Lf, then to 16 Lf
+  // (2 sqrt(n/8)), so the clamp's bias fades as the image converges.
+  Images im(33, 33);
+  im.lu.assign(im.lu.size(), vec3(1.0f));
+  im.var.assign(im.var.size(), vec3(0.05f));
+  const std::size_t spike = im.at(16, 16);
+  im.lu[spike] = vec3(100.0f);
+  PixelFilterSettings s = settingsFor(FilterKernel::Bilateral);
+  s.spikeRemoval = true;
+  for (std::uint32_t n : {8u, 512u}) {
+    im.samples = n;
+    const FilteredBuffer fb = filterHighVariance(im.input(), s);
+    const BlendResult b = blend(im.input(), fb, s);
+    const float k = b.blendFactor[spike], bound = n == 8 ? 2.0f : 16.0f;
+    ASSERT_LT(k, 1.0f) << n;
+    EXPECT_NEAR(b.radiance[spike].x, k * bound * fb.radiance[spike].x + (1 - k) * fb.radiance[spike].x, 1e-3f) << n;
+  }
 }
 
 TEST(PixelFilterBlend, SpikeRemovalLetsGoOnceTheUnfilteredPixelMeetsTheThreshold) {
@@ -474,6 +494,44 @@ TEST(PixelFilter, AntialiasRecoveryFiltersPixelsOnAnAntialiasedEdge) {
   EXPECT_LT(recovered, 0.4 * plain) << "plain " << plain;
   EXPECT_LT(rAa, 0.4 * rPlain) << "plain " << rPlain;
   std::printf("edge rms: plain %.3f recovered %.3f; r: plain %.3f recovered %.3f\n", plain, recovered, rPlain, rAa);
+}
+
+// A flat wall lit by rare bright paths (a sparse field of spikes, as at 8
+// spp in a room lit only indirectly): the a-trous filter must not print
+// the lattice of its level steps. A periodic pattern of period P puts a
+// peak in the autocorrelation at lag P (a peak in the power spectrum at
+// frequency 1/P); the filtered image's autocorrelation at each level's
+// step must fall smoothly with the lag instead.
+TEST(PixelFilter, AtrousPrintsNoGridOfItsSteps) {
+  Images im(160, 160);
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  im.each([&](std::uint32_t, std::uint32_t, std::size_t i) {
+    im.lu[i] = vec3(u(rng) < 0.02f ? 50.0f : 0.0f);
+    im.var[i] = vec3(12.0f);
+  });
+  PixelFilterSettings s = settingsFor(FilterKernel::Atrous);
+  const FilteredBuffer fb = filterHighVariance(im.input(), s);
+  double mean = 0;
+  for (const auto& l : fb.radiance) mean += l.x;
+  mean /= double(fb.radiance.size());
+  // Autocorrelation along x and y, averaged, away from the borders.
+  auto correlation = [&](int lag) {
+    double sum = 0, norm = 0;
+    for (int y = 24; y < 136; ++y)
+      for (int x = 24; x < 136; ++x) {
+        const double a = fb.radiance[im.at(x, y)].x - mean;
+        sum += a * (fb.radiance[im.at(x + lag, y)].x - mean) + a * (fb.radiance[im.at(x, y + lag)].x - mean);
+        norm += 2 * a * a;
+      }
+    return sum / norm;
+  };
+  // Level steps of sigmaS 8 over 3 levels: 8 sqrt(3/63) 2^(k-1) = 1.75, 3.5, 7.
+  for (int lag : {2, 4, 7, 14}) {
+    const double before = correlation(lag - 1), at = correlation(lag), after = correlation(lag + 1);
+    EXPECT_LT(at, std::max(before, after) + 0.02) << "autocorrelation peaks at lag " << lag << ": " << before << ", "
+                                                  << at << ", " << after;
+  }
 }
 
 }  // namespace

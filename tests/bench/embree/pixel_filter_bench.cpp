@@ -34,7 +34,7 @@ struct Images {
         llv[i] = glm::vec3(0.5f);
       }
   }
-  PixelFilterInput input() const { return {size, size, lu, var, llv, colour, depth, 4}; }
+  PixelFilterInput input() const { return {size, size, lu, var, llv, colour, depth, 4, {}}; }
 };
 
 void run(benchmark::State& state, FilterKernel kernel, bool extras) {

@@ -5,7 +5,11 @@
 // setting that never throws samples away.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
+
 #include "../../bench/quality/rel_mse.hpp"
+#include "../../bench/quality/seen_error.hpp"
 #include "../viewport_rig.hpp"
 #include "tsr/med/embree/register.hpp"
 
@@ -14,11 +18,12 @@ using namespace tsr;
 namespace {
 constexpr std::uint32_t kSize = 48;
 
-class PixelFilterQuality : public ::testing::Test {
- protected:
-  PixelFilterQuality() : rig("embree", med::registerEmbree, "builtin:cornell", kSize) {
+// A scene followed by a replica, and fresh Embree viewports over it.
+struct FilterRig {
+  FilterRig(const std::string& scene, std::uint32_t size, std::int64_t maxDepth)
+      : rig("embree", med::registerEmbree, scene, size) {
     rig.parameters.set("seed", std::int64_t{1});
-    rig.parameters.set("maxDepth", std::int64_t{4});
+    rig.parameters.set("maxDepth", maxDepth);
     replica.apply(rig.source.commit());
   }
   std::unique_ptr<med::Viewport> viewport(std::int64_t spp, const std::string& filter) {
@@ -27,11 +32,26 @@ class PixelFilterQuality : public ::testing::Test {
     vp->setParameter("filter", filter);
     return vp;
   }
+  // With the blend factor where the viewport has one.
   med::RenderStats render(med::Viewport& vp, med::FrameBuffer& out) {
     med::RenderControl control;
-    control.outputs = std::vector<std::string>{"blend"};
+    if (vp.settings().parameters.getString("filter", "none") != "none") control.outputs = std::vector<std::string>{"blend"};
     return vp.render(replica, rig.view(replica.scene()), out, control);
   }
+  med::FrameBuffer render(med::Viewport& vp) {
+    med::FrameBuffer out;
+    render(vp, out);
+    return out;
+  }
+
+  test::ViewportRig rig;
+  sg::Replica replica;
+  med::ContextPool contexts;
+};
+
+class PixelFilterQuality : public ::testing::Test, protected FilterRig {
+ protected:
+  PixelFilterQuality() : FilterRig("builtin:cornell", kSize, 4) {}
   // Independent of the measured renders: another seed.
   const med::FrameBuffer& reference() {
     if (reference_.colour.empty()) {
@@ -42,9 +62,6 @@ class PixelFilterQuality : public ::testing::Test {
     return reference_;
   }
 
-  test::ViewportRig rig;
-  sg::Replica replica;
-  med::ContextPool contexts;
   med::FrameBuffer reference_;
 };
 
@@ -102,3 +119,70 @@ TEST_F(PixelFilterQuality, ChangingThresholdKeepsTheSamples) {
   EXPECT_EQ(render(*vp, third).samples, 16u) << "accumulation continues from 8";
   EXPECT_GT(test::differingPixels(second, third), 0u);
 }
+
+// Properties on scenes of the quality suite (tests/bench/quality/suite),
+// which nobody tuned the filters on, by the seen error of the harness:
+// what a person sees differ, once both images are displayed and de-grained.
+namespace {
+
+constexpr std::uint32_t kSuiteSize = 64;
+
+class SuiteFilter : public ::testing::TestWithParam<const char*>, protected FilterRig {
+ protected:
+  SuiteFilter() : FilterRig(std::string(TSR_QUALITY_SUITE) + "/" + GetParam() + ".gltf", kSuiteSize, 6) {}
+  quality::SeenError seen(const med::FrameBuffer& image, const med::FrameBuffer& against) {
+    return quality::seenError(image.colour, against.colour, kSuiteSize, kSuiteSize);
+  }
+};
+
+// At 8 spp the filtered worst tile beats the unfiltered one, on scenes of
+// diffuse light, fine textures and thin geometry. Not on every scene:
+// where the filter smears a focused caustic (caustics) or washes out a
+// roughness-0.3 sphere's reflection (rough-metal) its worst tile is worse
+// than the unfiltered one; docs/filtering.md lists those misses.
+using SuitePreview = SuiteFilter;
+
+TEST_P(SuitePreview, FilteredWorstTileBeatsUnfilteredAtEightSpp) {
+  auto ref = viewport(2048, "none");
+  ref->setParameter("seed", std::int64_t{777});
+  const med::FrameBuffer reference = render(*ref);
+  auto plainVp = viewport(8, "none");
+  auto pixelVp = viewport(8, "pixel");
+  const auto plain = seen(render(*plainVp), reference), filtered = seen(render(*pixelVp), reference);
+  EXPECT_LT(filtered.worstTile, plain.worstTile) << GetParam() << ": worst tile at (" << filtered.worstX << ", "
+                                                 << filtered.worstY << ")";
+  EXPECT_LT(filtered.whole, plain.whole) << GetParam();
+  std::printf("%s, 8 spp, seen error whole / worst tile: unfiltered %.4f / %.4f, pixel %.4f / %.4f\n", GetParam(),
+              plain.whole, plain.worstTile, filtered.whole, filtered.worstTile);
+}
+
+TEST_P(SuiteFilter, FilteredImageConvergesToTheUnfilteredOneTileByTile) {
+  // One viewport's samples, shown unfiltered and filtered: the filter's
+  // share fades as they grow, in every tile, so nothing it does survives.
+  auto vp = viewport(64, "none");
+  std::vector<double> gap;
+  for (std::int64_t spp : {64, 1024}) {
+    vp->setParameter("spp", spp);
+    vp->setParameter("filter", std::string("none"));
+    const med::FrameBuffer plain = render(*vp);
+    vp->setParameter("filter", std::string("pixel"));
+    gap.push_back(seen(render(*vp), plain).worstTile);
+  }
+  EXPECT_LT(gap[1], 0.5 * gap[0]) << GetParam() << ": worst tile gap at 64 spp " << gap[0] << ", at 1024 " << gap[1];
+  EXPECT_LT(gap[1], 0.02) << GetParam();
+  std::printf("%s: worst-tile gap filtered vs unfiltered: %.4f at 64 spp, %.4f at 1024\n", GetParam(), gap[0],
+              gap[1]);
+}
+
+std::string sceneName(const ::testing::TestParamInfo<const char*>& info) {
+  std::string name = info.param;
+  std::replace(name.begin(), name.end(), '-', '_');
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(QualitySuite, SuiteFilter, ::testing::Values("indirect-room", "rough-metal", "textures"),
+                         sceneName);
+INSTANTIATE_TEST_SUITE_P(QualitySuite, SuitePreview, ::testing::Values("indirect-room", "textures", "grille"),
+                         sceneName);
+
+}  // namespace

@@ -44,7 +44,15 @@ struct PixelSample {
 //  - albedo, normal: mean base colour and world shading normal (facing the
 //    camera) at the first hit; zero on misses
 //  - range colour: mean "virtual flash" colour (Renderer::renderFlashPass),
-//    the edge-stopping image of pixel filtering; zero until a flash pass ran
+//    the edge-stopping image of pixel filtering; zero until a flash pass ran;
+//    camera rays that hit nothing count as kFlashMiss
+//  - range spread: the standard deviation of the pixel's flash samples
+//    (the norm of the colour deviation), high where a pixel mixes surfaces
+// The flash colour of a camera ray that hits nothing: outside the colours
+// any surface reflects (they are never negative), so a pixel that mixes a
+// surface with the background matches neither, nor gathers either.
+inline constexpr glm::vec3 kFlashMiss{-1.0f};
+
 class FrameBuffer {
  public:
   FrameBuffer(std::uint32_t width, std::uint32_t height);
@@ -67,6 +75,7 @@ class FrameBuffer {
   glm::vec3 normal(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].normal; }
   glm::vec3 rangeColour(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].range; }
   std::uint32_t rangeSamples(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].rangeCount; }
+  float rangeSpread(std::uint32_t x, std::uint32_t y) const;
   void accumulateRange(std::uint32_t x, std::uint32_t y, const glm::vec3& flash);
 
   // Whole images, row-major, for hand-off to filters and compositors.
@@ -101,6 +110,7 @@ class FrameBuffer {
     glm::vec3 normal{0.0f};
     std::uint32_t rangeCount = 0;
     glm::vec3 range{0.0f};
+    float rangeM2 = 0.0f;  // sum of squared deviations of the flash samples from their mean
   };
 
   std::uint32_t width_;
