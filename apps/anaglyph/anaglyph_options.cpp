@@ -2,6 +2,7 @@
 
 #include "command_line.hpp"
 #include "import_limit_options.hpp"
+#include "preview_filter.hpp"
 
 #include <CLI/CLI.hpp>
 #include <iostream>
@@ -94,6 +95,7 @@ bool parseAnaglyphOptions(int argc, char** argv, AnaglyphOptions& o) {
     auto [name, value] = med::Parameters::parse(p);
     o.parameters.set(name, value);
   }
+  usePreviewFilterUnlessSet(o.parameters);
   return true;
 }
 

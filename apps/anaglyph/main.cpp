@@ -11,6 +11,7 @@
 #include "anaglyph_window.hpp"
 #include "backends.hpp"
 #include "error_line.hpp"
+#include "preview_filter.hpp"
 #include "progress_bar.hpp"
 #include "tsr/cluster/auth.hpp"
 #include "tsr/med/image_file.hpp"
@@ -88,6 +89,7 @@ int run(int argc, char** argv) {
               << stereo.zeroParallax << ")\n";
     return 0;
   }
+  if (o.backend == "embree") std::cout << tsr::app::previewFilterLine(o.parameters) << std::endl;
   tsr::app::AnaglyphWindow window(session, *renderer, stereo, o.width, o.height, !script.empty());
   if (script.empty())
     window.run();

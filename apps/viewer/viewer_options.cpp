@@ -2,6 +2,7 @@
 
 #include "command_line.hpp"
 #include "import_limit_options.hpp"
+#include "preview_filter.hpp"
 
 #include <iostream>
 #include <stdexcept>
@@ -87,6 +88,7 @@ bool parseViewerOptions(int argc, char** argv, ViewerOptions& o) {
   }
   if (*depthOption || !o.parameters.has("maxDepth")) o.parameters.set("maxDepth", maxDepth);
   if (*threadsOption || !o.parameters.has("threads")) o.parameters.set("threads", threads);
+  usePreviewFilterUnlessSet(o.parameters);
   return true;
 }
 

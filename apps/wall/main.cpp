@@ -19,6 +19,7 @@
 #include "command_line.hpp"
 #include "error_line.hpp"
 #include "import_limit_options.hpp"
+#include "preview_filter.hpp"
 #include "render_options.hpp"
 #include "scene_session.hpp"
 #include "tsr/cluster/auth.hpp"
@@ -89,8 +90,11 @@ int run(const Options& o) {
   if (config.mode != tsr::cluster::ClusterMode::Tiled)
     throw std::invalid_argument(o.config + ": a wall needs \"mode\": \"tiled\"");
   if (!o.nodes.empty()) config.replaceAddresses(tsr::cluster::parseNodeList(o.nodes));
-  if (o.spp > 0)
-    for (auto& n : config.nodes) n.parameters.set("spp", o.spp);
+  for (auto& n : config.nodes) {
+    if (o.spp > 0) n.parameters.set("spp", o.spp);
+    tsr::app::usePreviewFilterUnlessSet(n.parameters);
+  }
+  if (!config.nodes.empty()) std::cout << tsr::app::previewFilterLine(config.nodes.front().parameters) << std::endl;
   config.validate();
   std::uint32_t width = config.wall.frameWidth ? config.wall.frameWidth : 960;
   std::uint32_t height = config.wall.frameHeight ? config.wall.frameHeight : 540;

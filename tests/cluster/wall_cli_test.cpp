@@ -2,6 +2,7 @@
 // presented tiles stitch to one local render of the same frame; a node that
 // dies leaves the others presenting with its screen marked, and is taken
 // back when it returns; a wall that is not a grid stitches too.
+#include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -47,6 +48,32 @@ TEST(WallCli, FourNodesPresentTilesThatStitchToTheLocalRender) {
 // Liveness, not a stopwatch: with one node killed the others keep
 // presenting (their frame numbers advance) and its screen is marked; the
 // node restarted on its address presents again.
+// A config that names no filter gets the path tracer's filtered preview,
+// and the wall says so.
+TEST(WallCli, OpensWithTheFilteredPreview) {
+  TempDir dir;
+  Wall wall(dir.path, 4);
+  fs::path log = dir.path / "wall.log";
+  ASSERT_EQ(runWall(gridConfig(dir.path, kParametersWithDefaultFilter) + " builtin:animated --nodes " +
+                        wall.addresses() + " --frames 3 --size 48x40",
+                    log),
+            0)
+      << slurp(log);
+  const std::string out = slurp(log);
+  EXPECT_NE(out.find("path tracer preview filter: pixel"), std::string::npos) << out;
+  med::FrameBuffer unfiltered = localFrame(2, 48, 40);
+  auto rects = wallLayout(48, 40, 2, 2, 0);
+  for (int wait = 0; wait < 200 && wall.newestFrame(0) < 3; ++wait) std::this_thread::sleep_for(20ms);
+  ASSERT_EQ(wall.newestFrame(0), 3u);
+  const med::FrameBuffer tile = wall.tile(0, 3, rects[0]);
+  double difference = 0;
+  for (std::uint32_t y = 0; y < tile.height; ++y)
+    for (std::uint32_t x = 0; x < tile.width; ++x)
+      difference += std::abs(tile.colour[tile.index(x, y)].r -
+                             unfiltered.colour[unfiltered.index(rects[0].x0 + x, rects[0].y0 + y)].r);
+  EXPECT_GT(difference, 0.0) << "the tile is filtered, not the unfiltered render";
+}
+
 TEST(WallCli, KilledNodeIsMarkedWhileTheOthersPresentAndIsTakenBack) {
   TempDir dir;
   Wall wall(dir.path, 4);

@@ -32,10 +32,15 @@ inline med::Parameters pathTracer() {
   return p;
 }
 
-inline const char* kParameters = R"("parameters": {"spp": 2, "maxDepth": 3, "seed": 5, "threads": 1})";
+// The wall opens with the filtered preview; these tests compare tiles with
+// an unfiltered local render, so their configs say "filter": "none" (a
+// tile filtered alone is not a crop of the whole frame filtered).
+inline const char* kParameters =
+    R"("parameters": {"spp": 2, "maxDepth": 3, "seed": 5, "threads": 1, "filter": "none"})";
+inline const char* kParametersWithDefaultFilter = R"("parameters": {"spp": 2, "maxDepth": 3, "seed": 5, "threads": 1})";
 
-inline std::string gridConfig(const fs::path& dir) {
-  std::string json = std::string(R"({"mode": "tiled", "backend": "embree", )") + kParameters + R"(, "nodes": [)";
+inline std::string gridConfig(const fs::path& dir, const char* parameters = kParameters) {
+  std::string json = std::string(R"({"mode": "tiled", "backend": "embree", )") + parameters + R"(, "nodes": [)";
   for (int i = 0; i < 4; ++i) json += std::string(i ? "," : "") + R"({"address": "127.0.0.1:1"})";
   json += R"(], "wall": {"columns": 2, "rows": 2},
     "timeouts": {"heartbeatMs": 100, "deadAfterMs": 1000, "retryMs": 200, "connectMs": 3000}})";
