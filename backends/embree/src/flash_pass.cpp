@@ -37,7 +37,8 @@ struct FlashRay {
 
 }  // namespace
 
-glm::vec3 Tracer::traceFlash(glm::vec3 org, glm::vec3 dir, const glm::vec3& eye) {
+glm::vec3 Tracer::traceFlash(glm::vec3 org, glm::vec3 dir, const glm::vec3& eye, float& distance) {
+  distance = kInf;
   FlashRay stack[kStack];
   int top = 0;
   stack[top++] = {org, dir, glm::vec3(1.0f), 0};
@@ -53,6 +54,7 @@ glm::vec3 Tracer::traceFlash(glm::vec3 org, glm::vec3 dir, const glm::vec3& eye)
     }
     SurfaceHit h;
     if (!surface(r.org, r.dir, rh, h)) continue;
+    if (r.depth == 0) distance = rh.ray.tfar;
     const ResolvedMaterial& mat = *h.instance->material;
     const glm::vec3 base = baseColour(mat, h.uv);
     const bool front = glm::dot(r.dir, h.ng) < 0.0f;

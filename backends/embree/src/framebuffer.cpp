@@ -41,11 +41,17 @@ void FrameBuffer::accumulate(std::uint32_t x, std::uint32_t y, const PixelSample
   if (s.hit) p.depth = std::min(p.depth, s.depth);
 }
 
-void FrameBuffer::accumulateRange(std::uint32_t x, std::uint32_t y, const glm::vec3& flash) {
+void FrameBuffer::accumulateRange(std::uint32_t x, std::uint32_t y, const glm::vec3& flash, float depth) {
   Pixel& p = pixels_[at(x, y)];
+  if (std::isfinite(depth)) p.rangeDepth += (depth - p.rangeDepth) / float(++p.rangeHits);
   const glm::vec3 delta = flash - p.range;
   p.range += delta / float(++p.rangeCount);
   p.rangeM2 += glm::dot(delta, flash - p.range);
+}
+
+float FrameBuffer::rangeDepth(std::uint32_t x, std::uint32_t y) const {
+  const Pixel& p = pixels_[at(x, y)];
+  return p.rangeHits > 0 ? p.rangeDepth : std::numeric_limits<float>::infinity();
 }
 
 float FrameBuffer::rangeSpread(std::uint32_t x, std::uint32_t y) const {

@@ -113,24 +113,38 @@ pf::Plane adaptiveSigma(const PixelFilterInput& in, const PixelFilterSettings& s
   for (std::size_t i = 0; i < n; ++i) {
     const float lb = std::max(meanLum[i] + luminance(sane(in.lowVariance[i])), s.minBackground);
     const float u = meanVar[i] / (lb * lb);
+    // No variance around a pixel after a few samples is no evidence that it
+    // converged (where light comes by rare paths, all of them were 0): it
+    // gets the widest kernel, as at the first frames, not the narrowest,
+    // which left it its own black samples.
     float sg = hi;
-    if (target > 0.0f) sg = 1.5f * std::max(0.0f, 0.5f * std::sqrt(u / target) - 0.5f);
+    if (target > 0.0f && meanVar[i] > 0.0f) sg = 1.5f * std::max(0.0f, 0.5f * std::sqrt(u / target) - 0.5f);
     sigma[i] = std::clamp(sg, std::min(lo, hi), hi);
   }
   return sigma;
 }
 
 // Pixels that mix two surfaces (3.6.5's antialiased pixels, in 2-D and for
-// every kernel). The spread keeps them out of every kernel, so they would
-// show their own unfiltered radiance: at low spp in a dim room mostly
-// zero, a dotted dark outline along every silhouette. Instead each is
-// modelled as coverage a of one side and 1 - a of the other: of the four
-// pairs of neighbours opposite each other across it (at distance 1 or 2),
-// the pair whose range colours differ most and between which its own
-// range colour lies (projected onto the segment, as in 3.19-3.20) gives
-// the sides, and the pixel takes their filtered values mixed by a.
+// every kernel). The spread keeps them out of every kernel, and a line of
+// them along a silhouette gathers only itself, so they would show their
+// own few samples: at low spp in a dim room mostly zero, a dotted dark
+// outline along every silhouette. Instead each is modelled as coverage a
+// of one side and 1 - a of the other: of the four pairs of neighbours
+// opposite each other across it (at distance 1 or 2), the pair whose range
+// colours differ most and between which its own range colour lies
+// (projected onto the segment, fit exp(-b^2), as in 3.19-3.20) gives the
+// sides, and the pixel takes their filtered values mixed by a, and by the
+// fit with its own. A pixel is taken for mixed when its flash samples
+// disagree (spread), or when such a pair brackets it strictly (a within
+// [0.1, 0.9]): a silhouette pixel whose few flash samples agreed by chance
+// has a mixed colour too. A mixed pixel that no pair brackets (two
+// surfaces of one colour, a corner of three) takes the filtered value of
+// its purer neighbour nearest in range colour: at worst an edge shifted by
+// a pixel.
 void recoverMixedPixels(const pf::Image& im, const pf::Range& rg, pf::State& st, pf::Plane& r, int threads) {
-  constexpr float kMixed = 1.0f;  // scaled spread^2 above this: the flash samples disagree
+  constexpr float kDisagree = 1.0f;  // scaled spread^2 above this: the flash samples disagree
+  constexpr float kDistinct = 1.0f;  // scaled squared colour distance of two sides that differ
+  constexpr float kBetween = 0.1f;   // coverage kept from either end for a pixel the spread calls pure
   const int w = im.w, h = im.h;
   const pf::State in = st;
   const pf::Plane rIn = r;
@@ -138,28 +152,39 @@ void recoverMixedPixels(const pf::Image& im, const pf::Range& rg, pf::State& st,
     for (int y = y0; y < y1; ++y)
       for (int x = 0; x < w; ++x) {
         const std::size_t j = std::size_t(y) * w + x;
-        if (rg.e[j] * rg.e[j] <= kMixed) continue;
+        const bool disagree = rg.e[j] * rg.e[j] > kDisagree;
         const glm::vec3 cj(rg.r[j], rg.g[j], rg.b[j]);
         float bestScore = 0.0f, bestCover = 0.0f, bestFit = 0.0f;
         std::size_t bestA = j, bestB = j;
+        float nearest = std::numeric_limits<float>::infinity();
+        std::size_t nearestAt = j;
         for (int dist = 1; dist <= 2; ++dist)
           for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}, std::pair{1, 1}, std::pair{1, -1}}) {
             const int ax = x - dist * dx, ay = y - dist * dy, bx = x + dist * dx, by = y + dist * dy;
             if (ax < 0 || ax >= w || ay < 0 || ay >= h || bx < 0 || bx >= w || by < 0 || by >= h) continue;
             const std::size_t a = std::size_t(ay) * w + ax, b = std::size_t(by) * w + bx;
             // A side must be purer than the pixel itself.
-            if (rg.e[a] >= rg.e[j] || rg.e[b] >= rg.e[j]) continue;
+            if (rg.e[a] > rg.e[j] || rg.e[b] > rg.e[j]) continue;
             const glm::vec3 ca(rg.r[a], rg.g[a], rg.b[a]), cb(rg.r[b], rg.g[b], rg.b[b]);
+            for (const auto& [k, ck] : {std::pair{a, ca}, std::pair{b, cb}}) {
+              const glm::vec3 dk = ck - cj;
+              if (glm::dot(dk, dk) < nearest) nearest = glm::dot(dk, dk), nearestAt = k;
+            }
             const glm::vec3 g = cb - ca;
             const float gg = glm::dot(g, g);
-            if (gg <= kMixed) continue;  // both sides alike: not an edge across this pair
+            if (gg <= kDistinct) continue;  // both sides alike: not an edge across this pair
             const float cover = std::clamp(glm::dot(cj - ca, g) / gg, 0.0f, 1.0f);
+            if (!disagree && (cover < kBetween || cover > 1.0f - kBetween)) continue;
             const glm::vec3 off = cj - ca - cover * g;
             const float fit = std::exp(-glm::dot(off, off));
             const float score = gg * fit;
             if (score > bestScore) bestScore = score, bestCover = cover, bestFit = fit, bestA = a, bestB = b;
           }
-        if (bestA == j) continue;
+        if (bestA == j) {
+          if (!disagree || nearestAt == j) continue;
+          bestA = bestB = nearestAt;
+          bestFit = 1.0f;
+        }
         const float ka = bestFit * (1.0f - bestCover), kb = bestFit * bestCover, kj = 1.0f - bestFit;
         st.lr[j] = ka * in.lr[bestA] + kb * in.lr[bestB] + kj * in.lr[j];
         st.lg[j] = ka * in.lg[bestA] + kb * in.lg[bestB] + kj * in.lg[j];

@@ -471,7 +471,9 @@ PassResult Renderer::renderFlashPass(Scene& scene, const Camera& camera, const R
         for (std::uint32_t s = 0; s < samples; ++s) {
           Rng rng(pixelKey, first + s);
           glm::vec3 dir = cameraRay(camera, eye.rotation, region, px, py, rng.uniform2());
-          fb.accumulateRange(x, y, tracer.traceFlash(eye.position, dir, eye.position));
+          float distance = kInf;
+          const glm::vec3 flash = tracer.traceFlash(eye.position, dir, eye.position, distance);
+          fb.accumulateRange(x, y, flash, distance * glm::dot(dir, eye.forward));
         }
       },
       std::nullopt);

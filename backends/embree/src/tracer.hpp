@@ -260,7 +260,8 @@ struct Tracer {
   // reflectivity of the first non-specular surface, perfect specular
   // surfaces followed Whitted-style, lit by ambient light plus an
   // unoccluded head light at the eye.
-  glm::vec3 traceFlash(glm::vec3 org, glm::vec3 dir, const glm::vec3& eye);
+  // `distance` receives the camera ray's hit distance (+inf on a miss).
+  glm::vec3 traceFlash(glm::vec3 org, glm::vec3 dir, const glm::vec3& eye, float& distance);
 };
 
 }  // namespace tsr::embree

@@ -8,7 +8,7 @@
 namespace tsr::med::embree_mediator {
 
 std::vector<std::string> pixelFilterInputs() {
-  return {kLowVarianceOutput, kHighVarianceOutput, kHighVarianceVarOutput, kRangeOutput, kRangeSpreadOutput};
+  return {kLowVarianceOutput, kHighVarianceOutput, kHighVarianceVarOutput, kRangeOutput, kRangeGeometryOutput};
 }
 
 std::uint32_t flashSamplesFor(std::uint32_t samples) {
@@ -24,7 +24,7 @@ void writePixelFilterInputs(const embree::FrameBuffer& fb, PathClass pathClass, 
   auto& high = out.outputs[kHighVarianceOutput];
   auto& var = out.outputs[kHighVarianceVarOutput];
   auto& range = out.outputs[kRangeOutput];
-  auto& spread = out.outputs[kRangeSpreadOutput];
+  auto& spread = out.outputs[kRangeGeometryOutput];
   for (auto* image : {&low, &high, &var, &range, &spread}) image->assign(n, glm::vec4(0.0f));
   const embree::Channel hv = pathClass == PathClass::Indirect  ? embree::Channel::Indirect
                              : pathClass == PathClass::Caustic ? embree::Channel::Caustic
@@ -45,7 +45,7 @@ void writePixelFilterInputs(const embree::FrameBuffer& fb, PathClass pathClass, 
       low[i] = glm::vec4(shown - h, 0.0f);
       var[i] = glm::vec4(count > 0 ? fb.variance(c, x, y) / float(count) : glm::vec3(0.0f), 0.0f);
       range[i] = glm::vec4(fb.rangeColour(x, y), float(count));
-      spread[i] = glm::vec4(fb.rangeSpread(x, y), 0.0f, 0.0f, 0.0f);
+      spread[i] = glm::vec4(fb.rangeSpread(x, y), fb.rangeDepth(x, y), 0.0f, 0.0f);
     }
 }
 
@@ -71,10 +71,10 @@ std::optional<std::uint32_t> PixelFilterResolver::filteredAt() const {
 void PixelFilterResolver::resolve(FrameBuffer& frame, const FilterSettings& settings, bool refilter, bool blendOutput) {
   const std::size_t n = frame.colour.size();
   std::vector<glm::vec3> low(n), high(n), var(n), range(n);
-  std::vector<float> spread(n);
+  std::vector<float> spread(n), rangeDepth(n);
   const std::vector<glm::vec4>* images[5] = {};
   const char* names[5] = {kLowVarianceOutput, kHighVarianceOutput, kHighVarianceVarOutput, kRangeOutput,
-                          kRangeSpreadOutput};
+                          kRangeGeometryOutput};
   for (int k = 0; k < 5; ++k) {
     auto it = frame.outputs.find(names[k]);
     if (it == frame.outputs.end() || it->second.size() != n)
@@ -88,6 +88,7 @@ void PixelFilterResolver::resolve(FrameBuffer& frame, const FilterSettings& sett
     var[i] = glm::vec3((*images[2])[i]);
     range[i] = glm::vec3((*images[3])[i]);
     spread[i] = (*images[4])[i].r;
+    rangeDepth[i] = (*images[4])[i].g;
     samples = std::max(samples, static_cast<std::uint32_t>((*images[3])[i].w));
   }
   embree::PixelFilterInput input;
@@ -97,11 +98,11 @@ void PixelFilterResolver::resolve(FrameBuffer& frame, const FilterSettings& sett
   input.highVariance = high;
   input.highVarianceVar = var;
   input.rangeColour = range;
-  input.rangeDepth = frame.depth;
+  input.rangeDepth = rangeDepth;
   input.rangeSpread = spread;
   input.samples = samples;
   embree::PixelFilterSettings pixel = settings.pixel;
-  pixel.sigmaD = depthSigma(frame.depth, settings.sigmaDRelative);
+  pixel.sigmaD = depthSigma(rangeDepth, settings.sigmaDRelative);
   const bool stale = !filtered_ || filtered_->width != frame.width || filtered_->height != frame.height ||
                      filtered_->samples > samples;
   auto sameFilter = [](const embree::PixelFilterSettings& a, const embree::PixelFilterSettings& b) {

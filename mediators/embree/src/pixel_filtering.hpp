@@ -18,7 +18,8 @@ inline constexpr const char* kLowVarianceOutput = "filter.lowVariance";    // rg
 inline constexpr const char* kHighVarianceOutput = "filter.highVariance";  // rgb: Lu
 inline constexpr const char* kHighVarianceVarOutput = "filter.variance";   // rgb: Var[Lu] of the mean
 inline constexpr const char* kRangeOutput = "filter.range";                // rgb: flash colour, a: samples n
-inline constexpr const char* kRangeSpreadOutput = "filter.rangeSpread";    // r: std. dev. of the flash samples
+inline constexpr const char* kRangeGeometryOutput = "filter.rangeGeometry";  // r: std. dev. of the flash samples,
+                                                                           // g: their mean depth (inf: none hit)
 inline constexpr const char* kBlendOutput = "blend";                       // r: blend factor s
 
 std::vector<std::string> pixelFilterInputs();

@@ -48,6 +48,11 @@ struct PixelSample {
 //    camera rays that hit nothing count as kFlashMiss
 //  - range spread: the standard deviation of the pixel's flash samples
 //    (the norm of the colour deviation), high where a pixel mixes surfaces
+//  - range depth: the mean camera-space depth of the flash samples that hit
+//    (+infinity if none did), the depth that goes with the range colour:
+//    the depth output is the nearest over the path samples, which jitter
+//    apart from the flash samples, so a silhouette pixel could pair the
+//    wall's colour with the box's depth and match nothing
 // The flash colour of a camera ray that hits nothing: outside the colours
 // any surface reflects (they are never negative), so a pixel that mixes a
 // surface with the background matches neither, nor gathers either.
@@ -76,7 +81,9 @@ class FrameBuffer {
   glm::vec3 rangeColour(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].range; }
   std::uint32_t rangeSamples(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].rangeCount; }
   float rangeSpread(std::uint32_t x, std::uint32_t y) const;
-  void accumulateRange(std::uint32_t x, std::uint32_t y, const glm::vec3& flash);
+  float rangeDepth(std::uint32_t x, std::uint32_t y) const;
+  // depth: the flash ray's camera-space depth, non-finite on a miss.
+  void accumulateRange(std::uint32_t x, std::uint32_t y, const glm::vec3& flash, float depth);
 
   // Whole images, row-major, for hand-off to filters and compositors.
   std::vector<glm::vec4> colourImage() const;
@@ -111,6 +118,8 @@ class FrameBuffer {
     std::uint32_t rangeCount = 0;
     glm::vec3 range{0.0f};
     float rangeM2 = 0.0f;  // sum of squared deviations of the flash samples from their mean
+    std::uint32_t rangeHits = 0;
+    float rangeDepth = 0.0f;  // mean over the hits
   };
 
   std::uint32_t width_;
