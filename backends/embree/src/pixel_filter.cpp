@@ -95,8 +95,10 @@ pf::Plane boxBlur(const pf::Plane& in, int w, int h) {
 }
 
 // 3.15-3.17: the box extent e that would bring u down to the target f,
-// sigma = 1.5 e, clamped to [g/c, c g] around the guide g = sigmaS / sqrt(n),
-// c = 4, and never wider than sigmaS. u is estimated before filtering from
+// sigma = 1.5 e, clamped to [g, c g] above the guide g = sigmaS / sqrt(n),
+// c = 4, and never wider than sigmaS. The paper's lower end g/c left
+// pixels whose few samples happened to agree a kernel under a pixel: at
+// 8 spp in a room lit only indirectly, dark dots all over the walls. u is estimated before filtering from
 // 5x5 box means of the variance and of Lu (Lb = lum(mean Lu + Llv)).
 pf::Plane adaptiveSigma(const PixelFilterInput& in, const PixelFilterSettings& s, const pf::State& st) {
   const int w = int(in.width), h = int(in.height);
@@ -107,7 +109,7 @@ pf::Plane adaptiveSigma(const PixelFilterInput& in, const PixelFilterSettings& s
   const pf::Plane meanLum = boxBlur(lum, w, h);
   constexpr float c = 4.0f;
   const float guide = s.sigmaS / std::sqrt(float(std::max(in.samples, 1u)));
-  const float lo = guide / c, hi = std::min(guide * c, s.sigmaS);
+  const float lo = guide, hi = std::min(guide * c, s.sigmaS);
   const float target = s.adaptiveTarget * s.threshold;
   pf::Plane sigma(n);
   for (std::size_t i = 0; i < n; ++i) {

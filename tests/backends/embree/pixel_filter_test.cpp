@@ -438,16 +438,19 @@ TEST(PixelFilter, ThreadCountDoesNotChangeABit) {
 
 TEST(PixelFilter, AdaptiveWidthFollowsVarianceWithinTheGuideInterval) {
   Images im(16, 16);
-  im.samples = 16;  // guide = sigmaS / 4 = 2: sigma in [0.5, 8]
+  im.samples = 16;  // guide = sigmaS / 4 = 2: sigma in [2, 8]
   PixelFilterSettings s = settingsFor(FilterKernel::Bilateral);
   s.adaptiveWidth = true;
   im.var.assign(im.var.size(), vec3(1e-9f));
-  for (float sg : filterHighVariance(im.input(), s).sigma) EXPECT_FLOAT_EQ(sg, 0.5f);
+  for (float sg : filterHighVariance(im.input(), s).sigma) EXPECT_FLOAT_EQ(sg, 2.0f) << "never below the guide";
   im.var.assign(im.var.size(), vec3(100.0f));
   for (float sg : filterHighVariance(im.input(), s).sigma) EXPECT_FLOAT_EQ(sg, 8.0f);
-  // In between: u = 0.01 / 0.25 = 0.04, target f = 0.005, e = 0.5 sqrt(8) - 0.5.
-  im.var.assign(im.var.size(), vec3(0.01f));
-  const float want = 1.5f * (0.5f * std::sqrt(8.0f) - 0.5f);
+  // No variance at all is no evidence of convergence: the widest kernel.
+  im.var.assign(im.var.size(), vec3(0.0f));
+  for (float sg : filterHighVariance(im.input(), s).sigma) EXPECT_FLOAT_EQ(sg, 8.0f);
+  // In between: u = 0.05 / 0.25 = 0.2, target f = 0.005, e = 0.5 sqrt(40) - 0.5.
+  im.var.assign(im.var.size(), vec3(0.05f));
+  const float want = 1.5f * (0.5f * std::sqrt(40.0f) - 0.5f);
   EXPECT_NEAR(filterHighVariance(im.input(), s).sigma[im.at(8, 8)], want, 1e-3f);
 }
 
