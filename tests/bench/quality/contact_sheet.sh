@@ -32,5 +32,5 @@ for ref in "$dir"/*_reference.png; do
   rows=$((rows + 1))
 done
 [[ $rows -gt 0 ]] || { echo "$0: no *_reference.png in $dir" >&2; exit 1; }
-montage -font "$font" -pointsize 9 "${args[@]}" -tile "${#columns[@]}x$rows" -geometry +2+2 -background white "$out"
+montage -font "$font" -pointsize 9 "${args[@]}" -tile "${#columns[@]}x$rows" -geometry +2+2 -background white -depth 8 "$out"
 echo "wrote $out ($rows scenes x ${#columns[@]} columns)"
