@@ -98,8 +98,9 @@ pf::Plane boxBlur(const pf::Plane& in, int w, int h) {
 // sigma = 1.5 e, clamped to [g, c g] above the guide g = sigmaS / sqrt(n),
 // c = 4, and never wider than sigmaS. The paper's lower end g/c left
 // pixels whose few samples happened to agree a kernel under a pixel: at
-// 8 spp in a room lit only indirectly, dark dots all over the walls. u is estimated before filtering from
-// 5x5 box means of the variance and of Lu (Lb = lum(mean Lu + Llv)).
+// 8 spp in a room lit only indirectly, dark dots all over the walls. u is
+// estimated before filtering from 5x5 box means of the variance and of Lu
+// (Lb = lum(mean Lu + Llv)).
 pf::Plane adaptiveSigma(const PixelFilterInput& in, const PixelFilterSettings& s, const pf::State& st) {
   const int w = int(in.width), h = int(in.height);
   const std::size_t n = st.v.size();
@@ -148,7 +149,9 @@ void recoverMixedPixels(const pf::Image& im, const pf::Range& rg, pf::State& st,
   constexpr float kDistinct = 1.0f;  // scaled squared colour distance of two sides that differ
   constexpr float kBetween = 0.1f;   // coverage kept from either end for a pixel the spread calls pure
   const int w = im.w, h = im.h;
-  const pf::State in = st;
+  struct Filtered {
+    pf::Plane lr, lg, lb, v;
+  } const in{st.lr, st.lg, st.lb, st.v};  // the kernel's output, read while st is rewritten
   const pf::Plane rIn = r;
   pf::parallelRows(threads, h, [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y)

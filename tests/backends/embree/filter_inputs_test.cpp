@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 namespace tsr::embree::test {
 namespace {
 
@@ -157,6 +159,10 @@ TEST(EmbreeFilterInputs, FlashSpreadMarksPixelsThatMixSurfaces) {
   EXPECT_LT(fb.rangeSpread(4, 8), 0.01f) << "inside the quad (the head light varies a little across a pixel)";
   EXPECT_EQ(fb.rangeSpread(12, 8), 0.0f) << "background only";
   EXPECT_GT(fb.rangeSpread(8, 8), 0.5f) << "half quad, half background";
+  // The range depth is the flash samples' own: the quad's where they hit it.
+  EXPECT_NEAR(fb.rangeDepth(4, 8), 2.0f, 1e-3f);
+  EXPECT_NEAR(fb.rangeDepth(8, 8), 2.0f, 1e-3f) << "the hits' mean, not diluted by the misses";
+  EXPECT_EQ(fb.rangeDepth(12, 8), std::numeric_limits<float>::infinity());
 }
 
 }  // namespace

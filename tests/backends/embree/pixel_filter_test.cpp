@@ -23,6 +23,7 @@ struct Images {
   std::uint32_t w, h;
   std::vector<vec3> lu, var, llv, colour;
   std::vector<float> depth;
+  std::vector<float> spread;  // empty: no range spread
   std::uint32_t samples = 4;
 
   Images(std::uint32_t width, std::uint32_t height)
@@ -45,7 +46,7 @@ struct Images {
     for (auto& l : lu) l += vec3(n(rng));  // grey noise: the same offset in every channel
     for (auto& v : var) v = vec3(sd * sd);
   }
-  PixelFilterInput input() const { return {w, h, lu, var, llv, colour, depth, samples, {}}; }
+  PixelFilterInput input() const { return {w, h, lu, var, llv, colour, depth, samples, spread}; }
 };
 
 PixelFilterSettings settingsFor(FilterKernel k) {
@@ -452,6 +453,30 @@ TEST(PixelFilter, AdaptiveWidthFollowsVarianceWithinTheGuideInterval) {
   im.var.assign(im.var.size(), vec3(0.05f));
   const float want = 1.5f * (0.5f * std::sqrt(40.0f) - 0.5f);
   EXPECT_NEAR(filterHighVariance(im.input(), s).sigma[im.at(8, 8)], want, 1e-3f);
+}
+
+TEST(PixelFilter, MixedPixelsTakeTheirSidesByCoverage) {
+  // A silhouette column (x = 24) covering a quarter of the right-hand
+  // surface: its range colour lies a quarter of the way from the left's to
+  // the right's and its flash samples disagree. Its own few samples were
+  // all black, as at 8 spp in a dim room; the left shows 1, the right 3.
+  Images im(48, 32);
+  const std::uint32_t edge = 24;
+  im.spread.assign(im.lu.size(), 0.0f);
+  im.each([&](std::uint32_t x, std::uint32_t, std::size_t i) {
+    im.colour[i] = vec3(x < edge ? 0.2f : x > edge ? 0.8f : 0.35f);
+    im.lu[i] = vec3(x < edge ? 1.0f : x > edge ? 3.0f : 0.0f);
+    if (x == edge) im.spread[i] = 0.3f;
+  });
+  for (FilterKernel k : kKernels) {
+    const FilteredBuffer fb = filterHighVariance(im.input(), settingsFor(k));
+    EXPECT_NEAR(fb.radiance[im.at(edge, 16)].x, 0.75f * 1.0f + 0.25f * 3.0f, 0.05f) << name(k);
+    EXPECT_NEAR(fb.radiance[im.at(edge - 3, 16)].x, 1.0f, 1e-4f) << name(k) << ": the sides stay as they were";
+    EXPECT_NEAR(fb.radiance[im.at(edge + 3, 16)].x, 3.0f, 1e-4f) << name(k);
+  }
+  // Without the spread, the column gathers only itself: black.
+  im.spread.clear();
+  EXPECT_LT(filterHighVariance(im.input(), settingsFor(FilterKernel::Bilateral)).radiance[im.at(edge, 16)].x, 0.05f);
 }
 
 TEST(PixelFilter, AntialiasRecoveryFiltersPixelsOnAnAntialiasedEdge) {
