@@ -3,31 +3,21 @@
 #include <array>
 #include <stdexcept>
 
-#include "tsr/sg/scene.hpp"
+#include "tsr/sg/container_types.hpp"
 
 namespace tsr::sg {
 
+namespace {
+template <class... T>
+std::unique_ptr<Container> makeOneOf(ContainerType type, std::tuple<T...>*) {
+  std::unique_ptr<Container> made;
+  ((type == T::kType ? void(made = std::make_unique<T>()) : void()), ...);
+  return made;
+}
+}  // namespace
+
 std::unique_ptr<Container> makeContainer(ContainerType type) {
-  switch (type) {
-    case ContainerType::Group:
-      return std::make_unique<Group>();
-    case ContainerType::Transform:
-      return std::make_unique<Transform>();
-    case ContainerType::Geometry:
-      return std::make_unique<Geometry>();
-    case ContainerType::Image:
-      return std::make_unique<Image>();
-    case ContainerType::SimpleMaterial:
-      return std::make_unique<SimpleMaterial>();
-    case ContainerType::SurfaceMaterial:
-      return std::make_unique<SurfaceMaterial>();
-    case ContainerType::Light:
-      return std::make_unique<Light>();
-    case ContainerType::Camera:
-      return std::make_unique<Camera>();
-    case ContainerType::Background:
-      return std::make_unique<Background>();
-  }
+  if (auto made = makeOneOf(type, static_cast<ContainerTypes*>(nullptr))) return made;
   throw std::invalid_argument("unknown container type " + std::to_string(static_cast<unsigned>(type)));
 }
 

@@ -47,11 +47,11 @@ void Image::setPixels(std::uint32_t width, std::uint32_t height, std::uint32_t c
       if (!std::isfinite(v)) throw SceneError("Image: non-finite pixel value");
     }
   }
-  assign(Width, width_, width);
-  assign(Height, height_, height);
-  assign(Channels, channels_, channels);
-  assign(Format, format_, format);
-  assign(Pixels, pixels_, std::move(pixels));
+  set<&Image::width_>(width);
+  set<&Image::height_>(height);
+  set<&Image::channels_>(channels);
+  set<&Image::format_>(format);
+  set<&Image::pixels_>(std::move(pixels));
 }
 
 std::optional<std::string> Image::invalidReason() const {

@@ -18,22 +18,26 @@ class Background final : public ContainerOf<Background, ContainerType::Backgroun
   ContainerId environment() const { return environment_; }
   float intensity() const { return intensity_; }
 
-  void setKind(BackgroundKind k) { assign(Kind, kind_, k); }
-  void setColor(const Vec3& v) { assign(Color, color_, v); }
+  void setKind(BackgroundKind k) { set<&Background::kind_>(k); }
+  void setColor(const Vec3& v) { set<&Background::color_>(v); }
   void setGradient(const Vec3& top, const Vec3& bottom) {
-    assign(GradientTop, top_, top);
-    assign(GradientBottom, bottom_, bottom);
+    set<&Background::top_>(top);
+    set<&Background::bottom_>(bottom);
   }
-  void setEnvironment(ContainerId image) { assignReference(Environment, environment_, image); }
-  void setIntensity(float v) { assign(Intensity, intensity_, v); }
+  void setEnvironment(ContainerId image) { set<&Background::environment_>(image); }
+  void setIntensity(float v) { set<&Background::intensity_>(v); }
 
   static constexpr auto fieldSpecs() {
-    return std::tuple{valueField("kind", &Background::kind_),
-                      valueField("color", &Background::color_),
-                      valueField("gradientTop", &Background::top_),
-                      valueField("gradientBottom", &Background::bottom_),
-                      referenceField("environment", &Background::environment_, kImageTypes),
-                      valueField("intensity", &Background::intensity_)};
+    using M = Background;
+    // The gradient's ends change together, through setGradient.
+    constexpr auto kSetTop = +[](M& b, const Vec3& v) { b.setGradient(v, b.gradientBottom()); };
+    constexpr auto kSetBottom = +[](M& b, const Vec3& v) { b.setGradient(b.gradientTop(), v); };
+    return std::tuple{valueField(Kind, "kind", &M::kind_, &M::setKind),
+                      valueField(Color, "color", &M::color_, &M::setColor),
+                      valueField(GradientTop, "gradientTop", &M::top_, kSetTop),
+                      valueField(GradientBottom, "gradientBottom", &M::bottom_, kSetBottom),
+                      referenceField(Environment, "environment", &M::environment_, kImageTypes, &M::setEnvironment),
+                      valueField(Intensity, "intensity", &M::intensity_, &M::setIntensity)};
   }
 
  private:

@@ -19,23 +19,24 @@ class Camera final : public ContainerOf<Camera, ContainerType::Camera> {
   float eyeSeparation() const { return eyeSeparation_; }        // scene units between the eyes
   float zeroParallaxDistance() const { return zeroParallax_; }  // distance of the screen plane
 
-  void setPose(const Mat4& m) { assign(Pose, pose_, m); }
-  void setVerticalFov(float v) { assign(VerticalFov, verticalFov_, v); }
-  void setNearPlane(float v) { assign(Near, near_, v); }
-  void setFarPlane(float v) { assign(Far, far_, v); }
-  void setEyeSeparation(float v) { assign(EyeSeparation, eyeSeparation_, v); }
-  void setZeroParallaxDistance(float v) { assign(ZeroParallax, zeroParallax_, v); }
+  void setPose(const Mat4& m) { set<&Camera::pose_>(m); }
+  void setVerticalFov(float v) { set<&Camera::verticalFov_>(v); }
+  void setNearPlane(float v) { set<&Camera::near_>(v); }
+  void setFarPlane(float v) { set<&Camera::far_>(v); }
+  void setEyeSeparation(float v) { set<&Camera::eyeSeparation_>(v); }
+  void setZeroParallaxDistance(float v) { set<&Camera::zeroParallax_>(v); }
 
   // Points the camera from `eye` at `target`.
   void lookAt(const Vec3& eye, const Vec3& target, const Vec3& up = Vec3(0, 1, 0));
 
   static constexpr auto fieldSpecs() {
-    return std::tuple{valueField("pose", &Camera::pose_),
-                      valueField("verticalFov", &Camera::verticalFov_),
-                      valueField("near", &Camera::near_),
-                      valueField("far", &Camera::far_),
-                      valueField("eyeSeparation", &Camera::eyeSeparation_),
-                      valueField("zeroParallaxDistance", &Camera::zeroParallax_)};
+    using M = Camera;
+    return std::tuple{valueField(Pose, "pose", &M::pose_, &M::setPose),
+                      valueField(VerticalFov, "verticalFov", &M::verticalFov_, &M::setVerticalFov),
+                      valueField(Near, "near", &M::near_, &M::setNearPlane),
+                      valueField(Far, "far", &M::far_, &M::setFarPlane),
+                      valueField(EyeSeparation, "eyeSeparation", &M::eyeSeparation_, &M::setEyeSeparation),
+                      valueField(ZeroParallax, "zeroParallaxDistance", &M::zeroParallax_, &M::setZeroParallaxDistance)};
   }
 
  private:

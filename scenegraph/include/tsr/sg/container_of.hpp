@@ -124,6 +124,65 @@ class ContainerOf : public Container {
  protected:
   ContainerOf() : Container(Type) {}
 
+  // The number of the field that `Member` holds, from fieldSpecs().
+  template <auto Member>
+  static constexpr FieldIndex fieldOf() {
+    constexpr auto specs = Derived::fieldSpecs();
+    FieldIndex found = kMaxFields;
+    std::apply(
+        [&](const auto&... spec) {
+          (
+              [&] {
+                if constexpr (std::is_same_v<decltype(spec.member), decltype(Member)>)
+                  if (spec.member == Member) found = spec.number;
+              }(),
+              ...);
+        },
+        specs);
+    return found;
+  }
+
+  // Sets the field that `Member` holds: the one way setters change a field,
+  // so the number they mark is the one the codec writes.
+  template <auto Member, class V>
+  void set(V&& value) {
+    constexpr FieldIndex f = fieldOf<Member>();
+    static_assert(f < kMaxFields, "the member is not declared in fieldSpecs()");
+    auto& member = self().*Member;
+    using T = std::decay_t<decltype(member)>;
+    if constexpr (kindOf(f) == FieldKind::Reference)
+      assignReference(f, member, T(std::forward<V>(value)));
+    else
+      assign(f, member, T(std::forward<V>(value)));
+  }
+
+  // Overwrites elements [begin, begin + values.size()) of the array field
+  // that `Member` holds.
+  template <auto Member, class E>
+  void setElements(std::size_t begin, std::span<const E> values) {
+    constexpr FieldIndex f = fieldOf<Member>();
+    static_assert(f < kMaxFields && kindOf(f) == FieldKind::Array, "not an array field of fieldSpecs()");
+    assignRange(f, self().*Member, begin, values);
+  }
+
+  void dropReference(FieldIndex f, ContainerId target) override {
+    withSpec(f, [&](const auto& spec) {
+      auto& value = self().*spec.member;
+      using T = std::decay_t<decltype(value)>;
+      if constexpr (std::is_same_v<T, ContainerId>) {
+        if (spec.kind == FieldKind::Reference && value == target) assignReference(f, value, kNoContainer);
+      } else if constexpr (std::is_same_v<T, std::vector<ContainerId>>) {
+        if (spec.kind == FieldKind::Reference) {
+          T kept;
+          std::copy_if(value.begin(), value.end(), std::back_inserter(kept),
+                       [&](ContainerId c) { return c != target; });
+          if (kept.size() != value.size()) assignReference(f, value, std::move(kept));
+        }
+      }
+    });
+  }
+
+ private:
   // Assigns a plain or array value, rejecting non-finite floats and
   // coordinates beyond kMaxCoordinate.
   template <class T>
@@ -156,30 +215,29 @@ class ContainerOf : public Container {
     touchRange(f, begin, begin + values.size());
   }
 
-  void dropReference(FieldIndex f, ContainerId target) override {
-    withSpec(f, [&](const auto& spec) {
-      auto& value = self().*spec.member;
-      using T = std::decay_t<decltype(value)>;
-      if constexpr (std::is_same_v<T, ContainerId>) {
-        if (spec.kind == FieldKind::Reference && value == target) assignReference(f, value, kNoContainer);
-      } else if constexpr (std::is_same_v<T, std::vector<ContainerId>>) {
-        if (spec.kind == FieldKind::Reference) {
-          T kept;
-          std::copy_if(value.begin(), value.end(), std::back_inserter(kept),
-                       [&](ContainerId c) { return c != target; });
-          if (kept.size() != value.size()) assignReference(f, value, std::move(kept));
-        }
-      }
-    });
-  }
-
- private:
   // A function, not a constant, because Derived is incomplete while this
   // base is instantiated.
   static constexpr std::size_t ownFieldCount() {
     constexpr std::size_t n = std::tuple_size_v<decltype(Derived::fieldSpecs())>;
     static_assert(kFirstOwnField + n <= kMaxFields);
+    static_assert(numberedInOrder(), "fieldSpecs() must list the fields in number order from kFirstOwnField");
     return n;
+  }
+
+  // The wire uses positions, setters use numbers: they must agree.
+  static constexpr bool numberedInOrder() {
+    constexpr auto specs = Derived::fieldSpecs();
+    return [&]<std::size_t... I>(std::index_sequence<I...>) {
+      return ((std::get<I>(specs).number == kFirstOwnField + I) && ...);
+    }
+    (std::make_index_sequence<std::tuple_size_v<decltype(specs)>>{});
+  }
+
+  static constexpr FieldKind kindOf(FieldIndex f) {
+    FieldKind kind = FieldKind::Value;
+    std::apply([&](const auto&... spec) { ((spec.number == f ? (kind = spec.kind, 0) : 0), ...); },
+               Derived::fieldSpecs());
+    return kind;
   }
 
   std::string invalidValue(FieldIndex f) const {

@@ -27,20 +27,22 @@ class Geometry final : public ContainerOf<Geometry, ContainerType::Geometry> {
   GeometryMotion motion() const { return motion_; }
   std::size_t triangleCount() const { return indices_.size() / 3; }
 
-  void setPositions(std::vector<Vec3> v) { assign(Positions, positions_, std::move(v)); }
-  void setNormals(std::vector<Vec3> v) { assign(Normals, normals_, std::move(v)); }
-  void setUvs(std::vector<Vec2> v) { assign(Uvs, uvs_, std::move(v)); }
-  void setColors(std::vector<Vec4> v) { assign(Colors, colors_, std::move(v)); }
-  void setIndices(std::vector<std::uint32_t> v) { assign(Indices, indices_, std::move(v)); }
-  void setMaterial(ContainerId m) { assignReference(Material, material_, m); }
-  void setMotion(GeometryMotion m) { assign(Motion, motion_, m); }
+  void setPositions(std::vector<Vec3> v) { set<&Geometry::positions_>(std::move(v)); }
+  void setNormals(std::vector<Vec3> v) { set<&Geometry::normals_>(std::move(v)); }
+  void setUvs(std::vector<Vec2> v) { set<&Geometry::uvs_>(std::move(v)); }
+  void setColors(std::vector<Vec4> v) { set<&Geometry::colors_>(std::move(v)); }
+  void setIndices(std::vector<std::uint32_t> v) { set<&Geometry::indices_>(std::move(v)); }
+  void setMaterial(ContainerId m) { set<&Geometry::material_>(m); }
+  void setMotion(GeometryMotion m) { set<&Geometry::motion_>(m); }
 
   // Range edits: overwrite elements starting at `begin`; lengths do not change.
-  void updatePositions(std::size_t begin, std::span<const Vec3> v) { assignRange(Positions, positions_, begin, v); }
-  void updateNormals(std::size_t begin, std::span<const Vec3> v) { assignRange(Normals, normals_, begin, v); }
-  void updateUvs(std::size_t begin, std::span<const Vec2> v) { assignRange(Uvs, uvs_, begin, v); }
-  void updateColors(std::size_t begin, std::span<const Vec4> v) { assignRange(Colors, colors_, begin, v); }
-  void updateIndices(std::size_t begin, std::span<const std::uint32_t> v) { assignRange(Indices, indices_, begin, v); }
+  void updatePositions(std::size_t begin, std::span<const Vec3> v) { setElements<&Geometry::positions_>(begin, v); }
+  void updateNormals(std::size_t begin, std::span<const Vec3> v) { setElements<&Geometry::normals_>(begin, v); }
+  void updateUvs(std::size_t begin, std::span<const Vec2> v) { setElements<&Geometry::uvs_>(begin, v); }
+  void updateColors(std::size_t begin, std::span<const Vec4> v) { setElements<&Geometry::colors_>(begin, v); }
+  void updateIndices(std::size_t begin, std::span<const std::uint32_t> v) {
+    setElements<&Geometry::indices_>(begin, v);
+  }
 
   // Why this geometry cannot be rendered as it stands (index out of range,
   // attribute arrays of the wrong length), or nothing. The scene allows such
@@ -48,13 +50,14 @@ class Geometry final : public ContainerOf<Geometry, ContainerType::Geometry> {
   std::optional<std::string> invalidReason() const;
 
   static constexpr auto fieldSpecs() {
-    return std::tuple{arrayField("positions", &Geometry::positions_),
-                      arrayField("normals", &Geometry::normals_),
-                      arrayField("uvs", &Geometry::uvs_),
-                      arrayField("colors", &Geometry::colors_),
-                      arrayField("indices", &Geometry::indices_),
-                      referenceField("material", &Geometry::material_, kMaterialTypes),
-                      valueField("motion", &Geometry::motion_)};
+    using M = Geometry;
+    return std::tuple{arrayField(Positions, "positions", &M::positions_, &M::setPositions),
+                      arrayField(Normals, "normals", &M::normals_, &M::setNormals),
+                      arrayField(Uvs, "uvs", &M::uvs_, &M::setUvs),
+                      arrayField(Colors, "colors", &M::colors_, &M::setColors),
+                      arrayField(Indices, "indices", &M::indices_, &M::setIndices),
+                      referenceField(Material, "material", &M::material_, kMaterialTypes, &M::setMaterial),
+                      valueField(Motion, "motion", &M::motion_, &M::setMotion)};
   }
 
  private:

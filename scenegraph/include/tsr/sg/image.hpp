@@ -28,23 +28,40 @@ class Image final : public ContainerOf<Image, ContainerType::Image> {
   // byte count does not match.
   void setPixels(std::uint32_t width, std::uint32_t height, std::uint32_t channels, PixelFormat format,
                  std::vector<std::uint8_t> pixels);
-  void setColorSpace(ColorSpace c) { assign(Space, colorSpace_, c); }
-  void setUri(std::string uri) { assign(Uri, uri_, std::move(uri)); }
+  void setColorSpace(ColorSpace c) { set<&Image::colorSpace_>(c); }
+  void setUri(std::string uri) { set<&Image::uri_>(std::move(uri)); }
 
   std::size_t expectedByteCount() const;
   std::optional<std::string> invalidReason() const;
 
   static constexpr auto fieldSpecs() {
-    return std::tuple{valueField("width", &Image::width_),
-                      valueField("height", &Image::height_),
-                      valueField("channels", &Image::channels_),
-                      valueField("format", &Image::format_),
-                      valueField("colorSpace", &Image::colorSpace_),
-                      arrayField("pixels", &Image::pixels_),
-                      valueField("uri", &Image::uri_)};
+    using M = Image;
+    // The layout and the pixels change together, through setPixels; each
+    // of these keeps the rest of the layout (pixels zeroed to fit), and
+    // new pixels are read as one row of single bytes.
+    constexpr auto kSetWidth = +[](M& i, std::uint32_t w) { i.relayout(w, i.height_, i.channels_, i.format_); };
+    constexpr auto kSetHeight = +[](M& i, std::uint32_t h) { i.relayout(i.width_, h, i.channels_, i.format_); };
+    constexpr auto kSetChannels = +[](M& i, std::uint32_t c) { i.relayout(i.width_, i.height_, c, i.format_); };
+    constexpr auto kSetFormat = +[](M& i, PixelFormat f) { i.relayout(i.width_, i.height_, i.channels_, f); };
+    constexpr auto kSetPixels = +[](M& i, std::vector<std::uint8_t> p) {
+      auto n = static_cast<std::uint32_t>(p.size());
+      i.setPixels(n, 1, 1, PixelFormat::UInt8, std::move(p));
+    };
+    return std::tuple{valueField(Width, "width", &M::width_, kSetWidth),
+                      valueField(Height, "height", &M::height_, kSetHeight),
+                      valueField(Channels, "channels", &M::channels_, kSetChannels),
+                      valueField(Format, "format", &M::format_, kSetFormat),
+                      valueField(Space, "colorSpace", &M::colorSpace_, &M::setColorSpace),
+                      arrayField(Pixels, "pixels", &M::pixels_, kSetPixels),
+                      valueField(Uri, "uri", &M::uri_, &M::setUri)};
   }
 
  private:
+  void relayout(std::uint32_t width, std::uint32_t height, std::uint32_t channels, PixelFormat format) {
+    std::size_t bytes = std::size_t{width} * height * channels * (format == PixelFormat::Float32 ? 4 : 1);
+    setPixels(width, height, channels, format, std::vector<std::uint8_t>(bytes));
+  }
+
   std::uint32_t width_ = 0;
   std::uint32_t height_ = 0;
   std::uint32_t channels_ = 4;

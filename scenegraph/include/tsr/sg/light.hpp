@@ -23,24 +23,25 @@ class Light final : public ContainerOf<Light, ContainerType::Light> {
   float outerConeAngle() const { return outerCone_; }  // radians
   float range() const { return range_; }               // 0: unlimited
 
-  void setKind(LightKind k) { assign(Kind, kind_, k); }
-  void setColor(const Vec3& v) { assign(Color, color_, v); }
-  void setIntensity(float v) { assign(Intensity, intensity_, v); }
-  void setPosition(const Vec3& v) { assign(Position, position_, v); }
-  void setDirection(const Vec3& v) { assign(Direction, direction_, v); }
-  void setInnerConeAngle(float v) { assign(InnerCone, innerCone_, v); }
-  void setOuterConeAngle(float v) { assign(OuterCone, outerCone_, v); }
-  void setRange(float v) { assign(Range, range_, v); }
+  void setKind(LightKind k) { set<&Light::kind_>(k); }
+  void setColor(const Vec3& v) { set<&Light::color_>(v); }
+  void setIntensity(float v) { set<&Light::intensity_>(v); }
+  void setPosition(const Vec3& v) { set<&Light::position_>(v); }
+  void setDirection(const Vec3& v) { set<&Light::direction_>(v); }
+  void setInnerConeAngle(float v) { set<&Light::innerCone_>(v); }
+  void setOuterConeAngle(float v) { set<&Light::outerCone_>(v); }
+  void setRange(float v) { set<&Light::range_>(v); }
 
   static constexpr auto fieldSpecs() {
-    return std::tuple{valueField("kind", &Light::kind_),
-                      valueField("color", &Light::color_),
-                      valueField("intensity", &Light::intensity_),
-                      valueField("position", &Light::position_),
-                      valueField("direction", &Light::direction_),
-                      valueField("innerConeAngle", &Light::innerCone_),
-                      valueField("outerConeAngle", &Light::outerCone_),
-                      valueField("range", &Light::range_)};
+    using M = Light;
+    return std::tuple{valueField(Kind, "kind", &M::kind_, &M::setKind),
+                      valueField(Color, "color", &M::color_, &M::setColor),
+                      valueField(Intensity, "intensity", &M::intensity_, &M::setIntensity),
+                      valueField(Position, "position", &M::position_, &M::setPosition),
+                      valueField(Direction, "direction", &M::direction_, &M::setDirection),
+                      valueField(InnerCone, "innerConeAngle", &M::innerCone_, &M::setInnerConeAngle),
+                      valueField(OuterCone, "outerConeAngle", &M::outerCone_, &M::setOuterConeAngle),
+                      valueField(Range, "range", &M::range_, &M::setRange)};
   }
 
  private:

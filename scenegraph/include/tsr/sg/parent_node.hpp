@@ -15,7 +15,7 @@ class ParentNode : public ContainerOf<Derived, Type> {
 
   const std::vector<ContainerId>& children() const { return children_; }
   void setChildren(std::vector<ContainerId> children) {
-    this->assignReference(Children, children_, std::move(children));
+    this->template set<&ParentNode::children_>(std::move(children));
   }
   void addChild(ContainerId child) {
     std::span<const ContainerId> added(&child, 1);
@@ -28,7 +28,9 @@ class ParentNode : public ContainerOf<Derived, Type> {
   void removeChild(ContainerId child) { this->dropReference(Children, child); }
 
  protected:
-  static constexpr auto childrenSpec() { return referenceField("children", &ParentNode::children_, kNodeTypes); }
+  static constexpr auto childrenSpec() {
+    return referenceField(Children, "children", &ParentNode::children_, kNodeTypes, &ParentNode::setChildren);
+  }
 
  private:
   std::vector<ContainerId> children_;
@@ -43,9 +45,11 @@ class Transform final : public ParentNode<Transform, ContainerType::Transform> {
  public:
   enum Field : FieldIndex { Matrix = Children + 1 };
   const Mat4& matrix() const { return matrix_; }
-  void setMatrix(const Mat4& m) { assign(Matrix, matrix_, m); }
+  void setMatrix(const Mat4& m) { set<&Transform::matrix_>(m); }
 
-  static constexpr auto fieldSpecs() { return std::tuple{childrenSpec(), valueField("matrix", &Transform::matrix_)}; }
+  static constexpr auto fieldSpecs() {
+    return std::tuple{childrenSpec(), valueField(Matrix, "matrix", &Transform::matrix_, &Transform::setMatrix)};
+  }
 
  private:
   Mat4 matrix_{1.0f};

@@ -15,20 +15,22 @@ class SimpleMaterial final : public ContainerOf<SimpleMaterial, ContainerType::S
   const Vec3& emission() const { return emission_; }
   float transparency() const { return transparency_; }  // 0 opaque, 1 invisible
 
-  void setDiffuse(const Vec3& v) { assign(Diffuse, diffuse_, v); }
-  void setDiffuseTexture(ContainerId image) { assignReference(DiffuseTexture, diffuseTexture_, image); }
-  void setSpecular(const Vec3& v) { assign(Specular, specular_, v); }
-  void setShininess(float v) { assign(Shininess, shininess_, v); }
-  void setEmission(const Vec3& v) { assign(Emission, emission_, v); }
-  void setTransparency(float v) { assign(Transparency, transparency_, v); }
+  void setDiffuse(const Vec3& v) { set<&SimpleMaterial::diffuse_>(v); }
+  void setDiffuseTexture(ContainerId image) { set<&SimpleMaterial::diffuseTexture_>(image); }
+  void setSpecular(const Vec3& v) { set<&SimpleMaterial::specular_>(v); }
+  void setShininess(float v) { set<&SimpleMaterial::shininess_>(v); }
+  void setEmission(const Vec3& v) { set<&SimpleMaterial::emission_>(v); }
+  void setTransparency(float v) { set<&SimpleMaterial::transparency_>(v); }
 
   static constexpr auto fieldSpecs() {
-    return std::tuple{valueField("diffuse", &SimpleMaterial::diffuse_),
-                      referenceField("diffuseTexture", &SimpleMaterial::diffuseTexture_, kImageTypes),
-                      valueField("specular", &SimpleMaterial::specular_),
-                      valueField("shininess", &SimpleMaterial::shininess_),
-                      valueField("emission", &SimpleMaterial::emission_),
-                      valueField("transparency", &SimpleMaterial::transparency_)};
+    using M = SimpleMaterial;
+    return std::tuple{
+        valueField(Diffuse, "diffuse", &M::diffuse_, &M::setDiffuse),
+        referenceField(DiffuseTexture, "diffuseTexture", &M::diffuseTexture_, kImageTypes, &M::setDiffuseTexture),
+        valueField(Specular, "specular", &M::specular_, &M::setSpecular),
+        valueField(Shininess, "shininess", &M::shininess_, &M::setShininess),
+        valueField(Emission, "emission", &M::emission_, &M::setEmission),
+        valueField(Transparency, "transparency", &M::transparency_, &M::setTransparency)};
   }
 
  private:

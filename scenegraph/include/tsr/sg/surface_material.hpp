@@ -46,43 +46,45 @@ class SurfaceMaterial final : public ContainerOf<SurfaceMaterial, ContainerType:
   ContainerId normalTexture() const { return normalTexture_; }  // tangent space
   float normalScale() const { return normalScale_; }
 
-  void setBaseColor(const Vec3& v) { assign(BaseColor, baseColor_, v); }
-  void setBaseColorTexture(ContainerId i) { assignReference(BaseColorTexture, baseColorTexture_, i); }
-  void setOpacity(float v) { assign(Opacity, opacity_, v); }
-  void setMetallic(float v) { assign(Metallic, metallic_, v); }
-  void setRoughness(float v) { assign(Roughness, roughness_, v); }
-  void setMetallicRoughnessTexture(ContainerId i) {
-    assignReference(MetallicRoughnessTexture, metallicRoughnessTexture_, i);
-  }
-  void setSpecular(float v) { assign(Specular, specular_, v); }
-  void setSpecularTexture(ContainerId i) { assignReference(SpecularTexture, specularTexture_, i); }
-  void setEmission(const Vec3& v) { assign(Emission, emission_, v); }
-  void setEmissionStrength(float v) { assign(EmissionStrength, emissionStrength_, v); }
-  void setEmissionTexture(ContainerId i) { assignReference(EmissionTexture, emissionTexture_, i); }
-  void setTransmission(float v) { assign(Transmission, transmission_, v); }
-  void setTransmissionTexture(ContainerId i) { assignReference(TransmissionTexture, transmissionTexture_, i); }
-  void setIor(float v) { assign(Ior, ior_, v); }
-  void setNormalTexture(ContainerId i) { assignReference(NormalTexture, normalTexture_, i); }
-  void setNormalScale(float v) { assign(NormalScale, normalScale_, v); }
+  void setBaseColor(const Vec3& v) { set<&SurfaceMaterial::baseColor_>(v); }
+  void setBaseColorTexture(ContainerId i) { set<&SurfaceMaterial::baseColorTexture_>(i); }
+  void setOpacity(float v) { set<&SurfaceMaterial::opacity_>(v); }
+  void setMetallic(float v) { set<&SurfaceMaterial::metallic_>(v); }
+  void setRoughness(float v) { set<&SurfaceMaterial::roughness_>(v); }
+  void setMetallicRoughnessTexture(ContainerId i) { set<&SurfaceMaterial::metallicRoughnessTexture_>(i); }
+  void setSpecular(float v) { set<&SurfaceMaterial::specular_>(v); }
+  void setSpecularTexture(ContainerId i) { set<&SurfaceMaterial::specularTexture_>(i); }
+  void setEmission(const Vec3& v) { set<&SurfaceMaterial::emission_>(v); }
+  void setEmissionStrength(float v) { set<&SurfaceMaterial::emissionStrength_>(v); }
+  void setEmissionTexture(ContainerId i) { set<&SurfaceMaterial::emissionTexture_>(i); }
+  void setTransmission(float v) { set<&SurfaceMaterial::transmission_>(v); }
+  void setTransmissionTexture(ContainerId i) { set<&SurfaceMaterial::transmissionTexture_>(i); }
+  void setIor(float v) { set<&SurfaceMaterial::ior_>(v); }
+  void setNormalTexture(ContainerId i) { set<&SurfaceMaterial::normalTexture_>(i); }
+  void setNormalScale(float v) { set<&SurfaceMaterial::normalScale_>(v); }
 
   static constexpr auto fieldSpecs() {
     using M = SurfaceMaterial;
-    return std::tuple{valueField("baseColor", &M::baseColor_),
-                      referenceField("baseColorTexture", &M::baseColorTexture_, kImageTypes),
-                      valueField("opacity", &M::opacity_),
-                      valueField("metallic", &M::metallic_),
-                      valueField("roughness", &M::roughness_),
-                      referenceField("metallicRoughnessTexture", &M::metallicRoughnessTexture_, kImageTypes),
-                      valueField("specular", &M::specular_),
-                      referenceField("specularTexture", &M::specularTexture_, kImageTypes),
-                      valueField("emission", &M::emission_),
-                      valueField("emissionStrength", &M::emissionStrength_),
-                      referenceField("emissionTexture", &M::emissionTexture_, kImageTypes),
-                      valueField("transmission", &M::transmission_),
-                      referenceField("transmissionTexture", &M::transmissionTexture_, kImageTypes),
-                      valueField("ior", &M::ior_),
-                      referenceField("normalTexture", &M::normalTexture_, kImageTypes),
-                      valueField("normalScale", &M::normalScale_)};
+    return std::tuple{
+        valueField(BaseColor, "baseColor", &M::baseColor_, &M::setBaseColor),
+        referenceField(BaseColorTexture, "baseColorTexture", &M::baseColorTexture_, kImageTypes,
+                       &M::setBaseColorTexture),
+        valueField(Opacity, "opacity", &M::opacity_, &M::setOpacity),
+        valueField(Metallic, "metallic", &M::metallic_, &M::setMetallic),
+        valueField(Roughness, "roughness", &M::roughness_, &M::setRoughness),
+        referenceField(MetallicRoughnessTexture, "metallicRoughnessTexture", &M::metallicRoughnessTexture_, kImageTypes,
+                       &M::setMetallicRoughnessTexture),
+        valueField(Specular, "specular", &M::specular_, &M::setSpecular),
+        referenceField(SpecularTexture, "specularTexture", &M::specularTexture_, kImageTypes, &M::setSpecularTexture),
+        valueField(Emission, "emission", &M::emission_, &M::setEmission),
+        valueField(EmissionStrength, "emissionStrength", &M::emissionStrength_, &M::setEmissionStrength),
+        referenceField(EmissionTexture, "emissionTexture", &M::emissionTexture_, kImageTypes, &M::setEmissionTexture),
+        valueField(Transmission, "transmission", &M::transmission_, &M::setTransmission),
+        referenceField(TransmissionTexture, "transmissionTexture", &M::transmissionTexture_, kImageTypes,
+                       &M::setTransmissionTexture),
+        valueField(Ior, "ior", &M::ior_, &M::setIor),
+        referenceField(NormalTexture, "normalTexture", &M::normalTexture_, kImageTypes, &M::setNormalTexture),
+        valueField(NormalScale, "normalScale", &M::normalScale_, &M::setNormalScale)};
   }
 
  private:
