@@ -8,7 +8,8 @@
 #include <iostream>
 #include <stdexcept>
 
-#include "render_options.hpp"
+#include "option_values.hpp"
+#include "render_job.hpp"
 
 namespace tsr::app {
 

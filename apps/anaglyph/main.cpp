@@ -27,13 +27,13 @@ std::unique_ptr<tsr::app::StereoRenderer> makeRenderer(const tsr::app::AnaglyphO
     settings.backend = o.backend;
     settings.root = session.imported.root;
     settings.background = session.imported.background;
-    settings.parameters = o.parameters;
+    settings.parameters = registry.parametersFor(o.backend, o.parameters);
     return tsr::app::localStereo(registry, settings);
   }
   tsr::cluster::ClusterConfig config;
   config.mode = tsr::cluster::ClusterMode::Stereo;
   for (const auto& address : tsr::cluster::parseNodeList(o.nodes))
-    config.nodes.push_back({address, o.backend, o.parameters});
+    config.nodes.push_back({address, o.backend, registry.parametersFor(o.backend, o.parameters)});
   if (config.nodes.size() > 2)
     throw std::invalid_argument("--nodes: a stereo pair takes 1 or 2 nodes (left eye, right eye), not " +
                                 std::to_string(config.nodes.size()));
@@ -74,6 +74,7 @@ int run(int argc, char** argv) {
   tsr::med::ViewportRegistry registry;
   tsr::app::registerBackends(registry);
   if (!registry.has(o.backend)) throw std::invalid_argument("--backend " + o.backend + ": not in this build");
+  registry.requireDeclared(o.parameters, registry.backends());
   auto renderer = makeRenderer(o, session, registry);
 
   if (!o.output.empty()) {
@@ -89,7 +90,8 @@ int run(int argc, char** argv) {
               << stereo.zeroParallax << ")\n";
     return 0;
   }
-  if (o.backend == "embree") std::cout << tsr::app::previewFilterLine(o.parameters) << std::endl;
+  if (registry.capabilities(o.backend).parameters.declares("filter"))
+    std::cout << tsr::app::previewFilterLine(o.parameters) << std::endl;
   tsr::app::AnaglyphWindow window(session, *renderer, stereo, o.width, o.height, !script.empty());
   if (script.empty())
     window.run();

@@ -10,6 +10,7 @@
 #include "coverage_output.hpp"
 #include "error_line.hpp"
 #include "layers.hpp"
+#include "option_values.hpp"
 #include "progress_bar.hpp"
 #include "render_options.hpp"
 #include "scene_session.hpp"
@@ -21,11 +22,21 @@
 namespace {
 
 int run(int argc, char** argv) {
-  tsr::app::RenderOptions options;
-  if (!tsr::app::parseRenderOptions(argc, argv, options)) return 0;
+  tsr::app::RenderJob options;
+  std::string listParams;
+  if (!tsr::app::parseRenderOptions(argc, argv, options, listParams)) return 0;
+  if (!listParams.empty()) {
+    tsr::med::ViewportRegistry registry;
+    tsr::app::registerBackends(registry);
+    const auto& capabilities = registry.capabilities(listParams);  // unknown: names those it has
+    std::cout << listParams << (capabilities.progressive ? " (progressive)" : "") << ": --param NAME=VALUE\n"
+              << capabilities.parameters.describe();
+    return 0;
+  }
   // --layers: a layered window (layers.hpp)
   const auto layers =
       options.layers.empty() ? std::vector<tsr::app::LayerSpec>{} : tsr::app::parseLayers(options.layers);
+  tsr::app::checkRenderJob(options, layers);
   const auto& sequence = options.sequence;
   // --frames renders sequences, locally or on nodes (sequence_render.cpp);
   // so does --cluster without --layers (the whole window on the nodes).

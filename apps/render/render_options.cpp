@@ -2,76 +2,35 @@
 
 #include "command_line.hpp"
 #include "import_limit_options.hpp"
+#include "option_values.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <stdexcept>
+#include <string_view>
 
 #include <CLI/CLI.hpp>
 
 namespace tsr::app {
 
-namespace {
-constexpr std::uint64_t kMaxImagePixels = std::uint64_t{1} << 26;
-}  // namespace
-
-void parseSize(const std::string& text, std::uint32_t& width, std::uint32_t& height) {
-  auto x = text.find('x');
-  auto number = [&](std::string_view s) {
-    std::uint32_t v = 0;
-    auto [end, err] = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (err != std::errc() || end != s.data() + s.size() || v == 0 || v > 32768)
-      throw std::invalid_argument("--size " + text + ": expected WxH with each side 1..32768");
-    return v;
-  };
-  if (x == std::string::npos) throw std::invalid_argument("--size " + text + ": expected WxH, e.g. 512x512");
-  width = number(std::string_view(text).substr(0, x));
-  height = number(std::string_view(text).substr(x + 1));
-  // Colour, depth and outputs take 20+ bytes a pixel: refuse what no machine
-  // here could hold before a back-end tries to allocate it.
-  if (std::uint64_t{width} * height > kMaxImagePixels)
-    throw std::invalid_argument("--size " + text + ": more than " + std::to_string(kMaxImagePixels) +
-                                " pixels (8192x8192)");
-}
-
-sg::Vec3 parsePoint(const std::string& option, const std::string& text) {
-  sg::Vec3 p(0.0f);
-  std::size_t start = 0;
-  for (int i = 0; i < 3; ++i) {
-    const std::size_t comma = text.find(',', start);
-    if ((i < 2) != (comma != std::string::npos))
-      throw std::invalid_argument(option + " " + text + ": expected X,Y,Z (three numbers separated by commas)");
-    const std::string part = text.substr(start, i < 2 ? comma - start : std::string::npos);
-    const char* begin = part.c_str();
-    char* end = nullptr;
-    p[i] = std::strtof(begin, &end);
-    if (part.empty() || end != begin + part.size() || std::isspace(static_cast<unsigned char>(part.front())))
-      throw std::invalid_argument(option + " " + text + ": '" + part + "' is not a number");
-    start = comma + 1;
-  }
-  return p;
-}
-
-std::string aovPath(const std::string& output, const std::string& aov) {
-  auto dot = output.find_last_of('.');
-  auto slash = output.find_last_of('/');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return output + "." + aov;
-  return output.substr(0, dot) + "." + aov + output.substr(dot);
-}
-
-std::string importLimitOption(const sg::ImportLimitError& e) {
-  return e.limit() == sg::ImportLimitError::Limit::FileBytes ? "--max-file-mb" : "--max-elements";
-}
-
-bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
+bool parseRenderOptions(int argc, char** argv, RenderJob& o, std::string& listParams) {
   CLI::App app{"Render a scene with one of Tessera's back-ends"};
   std::string size = "512x512";
   std::int64_t spp = 16, maxDepth = 8, seed = 0, threads = 0;
   std::vector<std::string> params;
-  app.add_option("scene", o.scene, "glTF file (.gltf/.glb) or builtin:NAME")->required();
+  auto* sceneOption =
+      app.add_option("scene", o.scene, "glTF file (.gltf/.glb) or builtin:NAME (required unless --list-params)");
+  // Required, so options taking several values (--aov, --param) leave it be.
+  const bool listing = std::any_of(argv + 1, argv + argc,
+                                   [](const char* a) { return std::string_view(a).starts_with("--list-params"); });
+  if (!listing) sceneOption->required();
+  app.add_option("--list-params", listParams,
+                 "print the parameters a back-end takes (for --param NAME=VALUE): name, type and range, default, "
+                 "meaning; then stop");
   auto* backendOption =
       app.add_option("--backend", o.backend, "embree, vulkan or coverage (with --cluster: the config's)");
   app.add_option("--size", size, "image size WxH");
@@ -142,6 +101,7 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
                  "layered window, composited by depth: BACKEND[:NODE],... bottom first, or a .json file (see the "
                  "README); with --cluster the layer of the config's back-end renders on the nodes");
   if (!parseCommandLine(app, argc, argv)) return false;
+  if (!listParams.empty()) return true;
   parseSize(size, o.width, o.height);
   if (*fromOption) o.view.look.from = parsePoint("--look-from", lookFrom);
   if (*atOption) o.view.look.at = parsePoint("--look-at", lookAt);
@@ -153,21 +113,17 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
   o.display.exposureEv = static_cast<float>(exposure);
   o.display.curve = med::parseToneCurve(tonemap);
   o.backendGiven = backendOption->count() > 0;
-  checkTemporalOptions(o.temporal, static_cast<int>(spp));
-  if (!o.statsJson.empty() && !o.sequence.cluster.empty())
-    throw std::invalid_argument("--stats-json with --cluster: the nodes report no ray counts or conversion times to "
-                                "add up (measure a node with a local render)");
-  if (o.temporal.active() && !o.sequence.framesGiven)
-    throw std::invalid_argument("--temporal " + o.temporal.method + " needs --frames N");
   limits.apply(o.import);
   for (const auto& p : params) {
     auto [name, value] = med::Parameters::parse(p);
     o.parameters.set(name, value);
     o.explicitParameters.insert(name);
   }
+  // Unset, the back-end's own default applies (--list-params shows it).
   auto flag = [&](CLI::Option* option, const std::string& name, std::int64_t value) {
-    if (*option) o.explicitParameters.insert(name);
-    if (*option || !o.parameters.has(name)) o.parameters.set(name, value);
+    if (!*option) return;
+    o.explicitParameters.insert(name);
+    o.parameters.set(name, value);
   };
   flag(sppOption, "spp", spp);
   flag(depthOption, "maxDepth", maxDepth);
@@ -181,6 +137,25 @@ bool parseRenderOptions(int argc, char** argv, RenderOptions& o) {
   }
   o.temporal.applyTo(o.parameters);
   return true;
+}
+
+void checkRenderJob(const RenderJob& o, const std::vector<LayerSpec>& layers) {
+  const SequenceOptions& sequence = o.sequence;
+  checkTemporalOptions(o.temporal, static_cast<int>(samplesPerPixel(o)));
+  if (!o.statsJson.empty() && !sequence.cluster.empty())
+    throw std::invalid_argument("--stats-json with --cluster: the nodes report no ray counts or conversion times to "
+                                "add up (measure a node with a local render)");
+  if (o.temporal.active() && !sequence.framesGiven)
+    throw std::invalid_argument("--temporal " + o.temporal.method + " needs --frames N");
+  if (sequence.frames > 1 && o.output.find("####") == std::string::npos)
+    throw std::invalid_argument("--frames " + std::to_string(sequence.frames) +
+                                " needs #### in --output for the frame number");
+  if (o.temporal.highSpp && (!sequence.cluster.empty() || !layers.empty()))
+    throw std::invalid_argument("--temporal-high-spp re-renders pixels here, with --backend alone: not with "
+                                "--cluster or --layers");
+  if (!sequence.cluster.empty() && o.temporal.active() && o.temporal.directSpp > samplesPerPixel(o))
+    throw std::invalid_argument("--direct-spp: with --cluster the nodes render direct and indirect light in the same "
+                                "paths, at --spp (raise --spp or leave --direct-spp out)");
 }
 
 }  // namespace tsr::app

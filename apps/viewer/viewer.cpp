@@ -38,6 +38,7 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)), contexts_(
       unknown.backend = backend;
       registry_.create(unknown, *contexts_);  // throws, naming the back-ends it knows
     }
+  registry_.requireDeclared(options_.parameters, registry_.backends());  // a typo fails here, naming them
   convergence_.sampleLimit = options_.sampleLimit;
   convergence_.rasterWhileMoving = options_.rasterWhileMoving;
   showPanels_ = !options_.hidePanels;
@@ -56,7 +57,7 @@ Viewer::Viewer(ViewerOptions options) : options_(std::move(options)), contexts_(
 // --cluster: viewport 0 renders on the nodes whenever it shows their
 // back-end (its other back-ends render here); tessera-render's connection code.
 void Viewer::connectToCluster() {
-  RenderOptions render;
+  RenderJob render;
   render.sequence.cluster = options_.cluster;
   render.sequence.nodes = options_.nodes;
   render.sequence.tokenFile = options_.tokenFile;

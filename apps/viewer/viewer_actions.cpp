@@ -36,13 +36,13 @@ bool Viewer::runScript() {
     bool done = true;
     // Path tracers rendered here; a cluster's renders whole frames.
     for (const auto& pane : panes_)
-      if (pane.backend() == "embree" && !pane.isRemote("embree") && pane.converging() &&
+      if (registry_.capabilities(pane.backend()).progressive && pane.progressive() && pane.converging() &&
           pane.samples() < std::min<std::uint32_t>(std::uint32_t(samplesToWait_), convergence_.sampleLimit))
         done = false;
     // A pane that has not rendered yet counts as not there yet.
     for (const auto& pane : panes_)
-      if (pane.backend() == "embree" &&
-          (pane.shownBackend() != "embree" || (!pane.isRemote("embree") && pane.samples() == 0)))
+      if (registry_.capabilities(pane.backend()).progressive &&
+          (pane.shownBackend() != pane.backend() || (pane.progressive() && pane.samples() == 0)))
         done = false;
     if (convergence_.paused) done = true;  // paused: it would never come
     if (!done) return true;
@@ -77,7 +77,7 @@ void Viewer::runAction(const ScriptAction& a) {
     samplesToWait_ = a.count;
   } else if (a.verb == "param") {
     auto [name, value] = med::Parameters::parse(a.words[1]);
-    panes_[a.viewport].setParameter(name, value);
+    panes_[a.viewport].setParameter(registry_, name, value);
   } else if (a.verb == "limit") {
     convergence_.sampleLimit = std::uint32_t(a.count);
   } else if (a.verb == "pause" || a.verb == "resume") {

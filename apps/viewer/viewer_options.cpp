@@ -9,7 +9,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "render_options.hpp"
+#include "option_values.hpp"
+#include "render_job.hpp"
 
 namespace tsr::app {
 

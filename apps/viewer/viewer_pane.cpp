@@ -5,13 +5,18 @@
 namespace tsr::app {
 
 namespace {
-constexpr const char* kPathTracer = "embree";
+// What a progressive back-end shows while the camera moves, when asked to.
 constexpr const char* kRasteriser = "vulkan";
 }  // namespace
 
-void ViewerPane::setParameter(const std::string& name, const med::ParameterValue& value) {
+void ViewerPane::setParameter(const med::ViewportRegistry& registry, const std::string& name,
+                              const med::ParameterValue& value) {
+  med::Parameters one;
+  one.set(name, value);
+  registry.requireDeclared(one, registry.backends());
   defaults_.parameters.set(name, value);
-  for (auto& [backend, viewport] : viewports_) viewport->setParameter(name, value);
+  for (auto& [backend, viewport] : viewports_)
+    if (viewport->capabilities().parameters.declares(name) || isRemote(backend)) viewport->setParameter(name, value);
   restart_ = true;
 }
 
@@ -33,6 +38,7 @@ med::Viewport& ViewerPane::viewport(const std::string& backend, const med::Viewp
   if (it == viewports_.end()) {
     med::ViewportSettings settings = defaults_;
     settings.backend = backend;
+    settings.parameters = registry.parametersFor(backend, defaults_.parameters);
     std::unique_ptr<med::Viewport> made = remote_ ? remote_(settings) : nullptr;
     if (made)
       remoteBackends_.insert(backend);
@@ -46,10 +52,12 @@ med::Viewport& ViewerPane::viewport(const std::string& backend, const med::Viewp
 void ViewerPane::render(const med::ViewportRegistry& registry, med::ContextPool& contexts, const sg::Replica& replica,
                         const med::View& view, bool sceneChanged, const ConvergenceSettings& convergence) {
   std::string backend = backend_;
-  if (backend == kPathTracer && convergence.rasterWhileMoving && convergence.cameraMoving && registry.has(kRasteriser))
+  if (registry.capabilities(backend).progressive && convergence.rasterWhileMoving && convergence.cameraMoving &&
+      registry.has(kRasteriser))
     backend = kRasteriser;
   const bool switched = backend != shown_;
   shown_ = backend;
+  shownProgressive_ = registry.capabilities(backend).progressive && !isRemote(backend);
   if (sceneChanged || !(view == lastView_)) restart_ = true;
   lastView_ = view;
   med::Viewport& vp = viewport(backend, registry, contexts);
@@ -62,7 +70,9 @@ void ViewerPane::render(const med::ViewportRegistry& registry, med::ContextPool&
   const bool reportSwitch = switched;
   restart_ = false;
   const bool sized = frame_.width == view.region.width() && frame_.height == view.region.height();
-  if (backend != kPathTracer || isRemote(backend)) {
+  // isRemote is known once the viewport exists.
+  shownProgressive_ = registry.capabilities(backend).progressive && !isRemote(backend);
+  if (!shownProgressive_) {
     converging_ = false;
     if (restarted || !sized) stats_ = vp.render(replica, view, frame_, control);  // else the image stands
     if (reportSwitch) switchReport_.emplace(backend, stats_);
@@ -109,7 +119,7 @@ const med::FrameBuffer& ViewerPane::renderWithOutputs(const med::ViewportRegistr
                                                       const sg::Replica& replica, const med::View& view) {
   med::Viewport& vp = viewport(shown_.empty() ? backend_ : shown_, registry, contexts);
   med::RenderControl control;  // outputs unset: all it offers
-  const bool progressive = vp.backend() == kPathTracer && !isRemote(vp.backend());
+  const bool progressive = vp.capabilities().progressive && !isRemote(vp.backend());
   if (progressive) vp.setParameter("spp", std::int64_t(std::max<std::uint32_t>(samples_, 1)));
   stats_ = vp.render(replica, view, frame_, control);
   if (progressive) samples_ = stats_.samples;

@@ -35,8 +35,10 @@ class ViewerPane {
   // back-end; those it makes render whole frames, like a rasteriser.
   void setRemote(RemoteLayers remote) { remote_ = std::move(remote); }
   bool isRemote(const std::string& backend) const { return remoteBackends_.count(backend) != 0; }
-  // Sets a parameter of this pane's viewports (those alive and those to come).
-  void setParameter(const std::string& name, const med::ParameterValue& value);
+  // Sets a parameter of this pane's viewports whose back-end takes it (those
+  // alive and those to come); one no back-end of the registry takes, or a
+  // bad value, throws med::ParameterError and changes nothing.
+  void setParameter(const med::ViewportRegistry& registry, const std::string& name, const med::ParameterValue& value);
   const med::Parameters& parameters() const { return defaults_.parameters; }
   // A new scene: viewports of the old one are dropped.
   void resetScene(const med::ViewportSettings& defaults);
@@ -62,8 +64,9 @@ class ViewerPane {
   const med::RenderStats& stats() const { return stats_; }
   // The back-end of the last frame (the rasteriser while moving, with that option).
   const std::string& shownBackend() const { return shown_; }
-  std::uint32_t samples() const { return shown_ == "embree" ? samples_ : 0; }
-  bool progressive() const { return shown_ == "embree" && !isRemote(shown_); }
+  // Whether the last frame's back-end accumulates samples here (not remote).
+  bool progressive() const { return shownProgressive_; }
+  std::uint32_t samples() const { return shownProgressive_ ? samples_ : 0; }
   // Since the image last restarted.
   double samplesPerSecond() const { return samplesPerSecond_; }
   double raysPerSecond() const { return raysPerSecond_; }
@@ -79,6 +82,7 @@ class ViewerPane {
   med::ViewportSettings defaults_;
   std::string backend_;
   std::string shown_;
+  bool shownProgressive_ = false;
   std::map<std::string, std::unique_ptr<med::Viewport>> viewports_;
   RemoteLayers remote_;
   std::set<std::string> remoteBackends_;

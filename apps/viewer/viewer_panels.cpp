@@ -1,7 +1,9 @@
 // The viewer's ImGui panels: scene and camera, one panel per viewport (its
 // back-end, and for the path tracer its convergence and filter controls;
 // for coverage the ranked list), animation.
+#include <algorithm>
 #include <cstdio>
+#include <optional>
 
 #include <imgui.h>
 
@@ -12,22 +14,46 @@ namespace tsr::app {
 
 namespace {
 
-const char* const kFilters[] = {"none", "pixel", "atrous", "radiance", "hybrid"};
-
-std::string stringParameter(const med::Parameters& p, const std::string& name, const std::string& fallback) {
-  try {
-    return p.getString(name, fallback);
-  } catch (const med::ParameterError&) {
-    return fallback;
+// One control per parameter the back-end declares, from its table: a
+// checkbox, an integer or real field clamped to the range, or a combo.
+// Returns the edited parameter, if any.
+std::optional<std::pair<std::string, med::ParameterValue>> parameterControl(const med::ParameterTable& table,
+                                                                            const med::ParameterSpec& spec,
+                                                                            const med::Parameters& p) {
+  const char* label = spec.name.c_str();
+  std::optional<std::pair<std::string, med::ParameterValue>> edited;
+  switch (spec.type) {
+    case med::ParameterType::Flag: {
+      bool on = table.flag(p, spec.name);
+      if (ImGui::Checkbox(label, &on)) edited.emplace(spec.name, on);
+      break;
+    }
+    case med::ParameterType::Integer: {
+      int v = int(std::clamp<std::int64_t>(table.integer(p, spec.name), INT32_MIN, INT32_MAX));
+      if (ImGui::InputInt(label, &v, 1, 16))
+        edited.emplace(spec.name, std::int64_t(std::clamp(double(v), spec.min, spec.max)));
+      break;
+    }
+    case med::ParameterType::Real: {
+      double v = table.real(p, spec.name);
+      if (ImGui::InputDouble(label, &v, 0.0, 0.0, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue)) {
+        v = std::clamp(v, spec.min, spec.max);
+        if (!(spec.minExclusive && v == spec.min)) edited.emplace(spec.name, v);
+      }
+      break;
+    }
+    case med::ParameterType::Choice: {
+      const std::string current = table.choice(p, spec.name);
+      if (ImGui::BeginCombo(label, current.c_str())) {
+        for (const auto& c : spec.choices)
+          if (ImGui::Selectable(c.empty() ? "(none)" : c.c_str(), c == current)) edited.emplace(spec.name, c);
+        ImGui::EndCombo();
+      }
+      break;
+    }
   }
-}
-
-double realParameter(const med::Parameters& p, const std::string& name, double fallback) {
-  try {
-    return p.getReal(name, fallback);
-  } catch (const med::ParameterError&) {
-    return fallback;
-  }
+  if (ImGui::IsItemHovered() && !spec.help.empty()) ImGui::SetTooltip("%s", spec.help.c_str());
+  return edited;
 }
 
 }  // namespace
@@ -104,31 +130,27 @@ void Viewer::drawPanels() {
     ImGui::Text("showing %s, last render %.1f ms", pane.shownBackend().c_str(), stats.seconds * 1e3);
     if (pane.isRemote(pane.shownBackend())) {
       ImGui::Text("rendered on the cluster's nodes (%s)", options_.cluster.c_str());
-    } else if (pane.backend() == "embree") {
+    } else if (pane.progressive()) {
       ImGui::Text("%u spp of %u %s", pane.samples(), convergence_.sampleLimit,
                   convergence_.paused ? "(paused)"
                   : pane.converging() ? ""
                                       : "(done)");
       ImGui::Text("%.2f spp/s, %.2f Mrays/s (since restart)", pane.samplesPerSecond(), pane.raysPerSecond() * 1e-6);
-      const med::Parameters& p = pane.parameters();
-      int depth = int(p.getInt("maxDepth", 8, 0, 1024));
-      if (ImGui::SliderInt("max depth", &depth, 0, 32)) pane.setParameter("maxDepth", std::int64_t(depth));
-      const std::string filter = stringParameter(p, "filter", "none");
-      if (ImGui::BeginCombo("filter", filter.c_str())) {
-        for (const char* f : kFilters)
-          if (ImGui::Selectable(f, filter == f)) pane.setParameter("filter", std::string(f));
-        ImGui::EndCombo();
+    }
+    if (!pane.isRemote(pane.backend()) && ImGui::CollapsingHeader("Parameters")) {
+      // spp is the viewer's: the sample limit above sets where it stops.
+      const med::ParameterTable& table = registry_.capabilities(pane.backend()).parameters;
+      for (const auto& spec : table.specs()) {
+        if (spec.name == "spp") continue;
+        try {
+          if (auto edited = parameterControl(table, spec, pane.parameters()))
+            pane.setParameter(registry_, edited->first, edited->second);
+        } catch (const med::ParameterError& e) {
+          status_ = e.what();
+        }
       }
-      if (filter != "none") {
-        float threshold = float(realParameter(p, "threshold", 0.01));
-        if (ImGui::SliderFloat("threshold", &threshold, 0.0f, 0.2f, "%.3f"))
-          pane.setParameter("threshold", double(threshold));
-        float sigmaS = float(realParameter(p, "sigmaS", 8.0));
-        if (ImGui::SliderFloat("sigma s (px)", &sigmaS, 0.5f, 32.0f)) pane.setParameter("sigmaS", double(sigmaS));
-        float sigmaC = float(realParameter(p, "sigmaC", 0.02));
-        if (ImGui::SliderFloat("sigma c", &sigmaC, 0.001f, 0.5f, "%.3f")) pane.setParameter("sigmaC", double(sigmaC));
-      }
-    } else if (pane.backend() == "coverage" && pane.frame().outputs.count(med::kIdOutput)) {
+    }
+    if (pane.frame().outputs.count(med::kIdOutput)) {
       const auto ranked = med::rankObjects(pane.frame(), session_->replica.scene());
       ImGui::Text("%zu objects seen; click one here or in the image", ranked.size());
       ImGui::BeginChild("ranking", ImVec2(260, 140), true);

@@ -16,11 +16,13 @@
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
+#include "backends.hpp"
 #include "command_line.hpp"
 #include "error_line.hpp"
 #include "import_limit_options.hpp"
+#include "option_values.hpp"
 #include "preview_filter.hpp"
-#include "render_options.hpp"
+#include "render_job.hpp"
 #include "scene_session.hpp"
 #include "tsr/cluster/auth.hpp"
 #include "tsr/cluster/cluster_window.hpp"
@@ -90,9 +92,13 @@ int run(const Options& o) {
   if (config.mode != tsr::cluster::ClusterMode::Tiled)
     throw std::invalid_argument(o.config + ": a wall needs \"mode\": \"tiled\"");
   if (!o.nodes.empty()) config.replaceAddresses(tsr::cluster::parseNodeList(o.nodes));
+  tsr::med::ViewportRegistry registry;
+  tsr::app::registerBackends(registry);
   for (auto& n : config.nodes) {
-    if (o.spp > 0) n.parameters.set("spp", o.spp);
-    tsr::app::usePreviewFilterUnlessSet(n.parameters);
+    if (!registry.has(n.backend)) continue;  // config.validate names it
+    const tsr::med::ParameterTable& table = registry.capabilities(n.backend).parameters;
+    if (o.spp > 0 && table.declares("spp")) n.parameters.set("spp", o.spp);
+    tsr::app::usePreviewFilterUnlessSet(n.parameters, &table);
   }
   if (!config.nodes.empty()) std::cout << tsr::app::previewFilterLine(config.nodes.front().parameters) << std::endl;
   config.validate();

@@ -1,5 +1,6 @@
 #include "tsr/cluster/cluster_viewport.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 namespace tsr::cluster {
@@ -67,7 +68,10 @@ med::RenderStats ClusterViewport::render(const sg::Replica& replica, const med::
   whole.region = {0, 0, view.width, view.height};
   ClusterFrame frame = window_->render(whole, lookahead_ > 0 ? control.frame : -1);
   out = whole.region == view.region ? std::move(frame.image) : cut(frame.image, view.region);
-  stats.samples = static_cast<std::uint32_t>(settings_.parameters.getInt("spp", 0, 0, 1 << 20));
+  // The samples the client asked the nodes for; 0 where it left them their default.
+  const auto spp = settings_.parameters.all().find("spp");
+  const auto* asked = spp == settings_.parameters.all().end() ? nullptr : std::get_if<std::int64_t>(&spp->second);
+  stats.samples = asked ? static_cast<std::uint32_t>(std::clamp<std::int64_t>(*asked, 0, 1 << 20)) : 0;
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   if (control.progress) control.progress(1.0);
   return stats;

@@ -179,7 +179,8 @@ void NodeSession::onSetViewports(const Message& m) {
       s.root = v.root;
       s.background = v.background;
       s.parameters = v.parameters;
-      if (self->ctx_.options.threads && !s.parameters.has("threads"))
+      if (self->ctx_.options.threads && !s.parameters.has("threads") && self->ctx_.registry.has(s.backend) &&
+          self->ctx_.registry.capabilities(s.backend).parameters.declares("threads"))
         s.parameters.set("threads", std::int64_t{self->ctx_.options.threads});
       st.settings[v.id] = std::move(s);
     }

@@ -131,6 +131,35 @@ TEST_F(RenderCommand, BadInputIsOneErrorLine) {
   expectOneErrorLine(run("junk.gltf --size 8x8"), "junk.gltf");
 }
 
+// Parameters are declared per back-end: a typo or a value out of range is
+// refused naming what is valid, and --list-params prints the table.
+TEST_F(RenderCommand, UnknownParametersAreRefusedNamingTheValidOnes) {
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --param sigmaSS=4"), "(did you mean sigmaS?)");
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --backend vulkan --spp 4"),
+                     "unknown parameter 'spp' for the vulkan back-end; it takes: msaa");
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --param sigmaS=100"),
+                     "sigmaS = 100: expected a number in (0, 64]");
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --param filter=gauss"), "one of none|pixel|atrous");
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --layers embree,vulkan --param msaa=4 --param bogus=1"),
+                     "none of the back-ends embree, vulkan takes it");
+  EXPECT_FALSE(std::filesystem::exists(dir / "render.png"));
+  // Options for a window of several back-ends reach those that take them.
+  EXPECT_EQ(run("builtin:cornell --size 8x8 --spp 1 --layers embree,vulkan --param msaa=4").status, 0);
+}
+
+TEST_F(RenderCommand, ListParamsPrintsTheBackEndsTable) {
+  const Outcome embree = run("--list-params embree");
+  ASSERT_EQ(embree.status, 0) << embree.err;
+  for (const char* line : {"embree (progressive)", "spp ", "integer [1, 1048576]", "sigmaS ", "real (0, 64]", "filter ",
+                           "choice none|pixel|atrous|radiance|hybrid"})
+    EXPECT_NE(embree.out.find(line), std::string::npos) << line << " missing from\n" << embree.out;
+  const Outcome vulkan = run("--list-params vulkan");
+  ASSERT_EQ(vulkan.status, 0);
+  EXPECT_NE(vulkan.out.find("msaa "), std::string::npos);
+  EXPECT_EQ(vulkan.out.find("spp "), std::string::npos);
+  expectOneErrorLine(run("--list-params nosuch"), "unknown back-end 'nosuch' (known: coverage, embree, vulkan)");
+}
+
 TEST_F(RenderCommand, CameraBeyondTheCoordinateLimitIsOneErrorLineAndNoImage) {
   writeFarCameraGltf();
   expectOneErrorLine(run("far.gltf --size 8x8 --spp 1 --output far.png"), "node 0 translation -1e+20 is beyond 1e+12");

@@ -112,9 +112,10 @@ TEST_F(ViewerWindow, ScriptedBackendSwitchesMatchHeadlessRenders) {
 
   for (const char* backend : {"vulkan", "coverage", "embree"}) {
     // The path tracer's preview is filtered unless asked otherwise.
-    const std::string filter = std::string(backend) == "embree" ? " --filter pixel" : "";
-    const Outcome r = render(std::string("builtin:animated --size 160x120 --spp 8 --max-depth 4 --quiet --backend ") +
-                             backend + filter + " --output ref-" + backend + ".png");
+    // --spp and --max-depth are the path tracer's: the others refuse them.
+    const std::string pathTracer = std::string(backend) == "embree" ? " --filter pixel --spp 8 --max-depth 4" : "";
+    const Outcome r = render(std::string("builtin:animated --size 160x120 --quiet --backend ") + backend + pathTracer +
+                             " --output ref-" + backend + ".png");
     ASSERT_EQ(r.status, 0) << r.err;
     const auto shot = image(std::string(backend) + ".png");
     const auto ref = image(std::string("ref-") + backend + ".png");
@@ -287,6 +288,14 @@ TEST_F(ViewerWindow, AFailingActionNamesItsLine) {
   const Outcome v = viewer("builtin:cornell --viewports vulkan --size 64x64 --script fail.txt --exit-after");
   EXPECT_EQ(v.status, 2);
   EXPECT_THAT(v.err, HasSubstr("error: fail.txt:2: no bookmark 'nowhere'"));
+  // A parameter no back-end takes, in a script, names the line and the valid ones.
+  writeScript("typo.txt", "wait frames 1\nparam 0 sigmaSS=4\n");
+  const Outcome t = viewer("builtin:cornell --viewports vulkan --size 64x64 --script typo.txt --exit-after");
+  EXPECT_EQ(t.status, 2);
+  EXPECT_THAT(t.err, HasSubstr("error: typo.txt:2: unknown parameter 'sigmaSS'"));
+  const Outcome o = viewer("builtin:cornell --viewports vulkan --size 64x64 --param sigmaSS=4");
+  EXPECT_EQ(o.status, 2);
+  EXPECT_THAT(o.err, HasSubstr("unknown parameter 'sigmaSS'"));
 }
 
 // --cluster: viewport 0's path tracer renders on two real tessera-node

@@ -60,9 +60,9 @@ TEST(ClusterConfig, ParsesModesNodesAndParameters) {
     "timeouts": {"frameMs": 500}})");
   EXPECT_EQ(c.mode, ClusterMode::Tiled);
   ASSERT_EQ(c.nodes.size(), 2u);
-  EXPECT_EQ(c.nodes[0].parameters.getInt("spp", 0), 2);
-  EXPECT_EQ(c.nodes[1].parameters.getInt("spp", 0), 8);
-  EXPECT_EQ(c.nodes[1].parameters.getInt("seed", 0), 3);
+  EXPECT_EQ(c.nodes[0].parameters.all().at("spp"), tsr::med::ParameterValue(std::int64_t{2}));
+  EXPECT_EQ(c.nodes[1].parameters.all().at("spp"), tsr::med::ParameterValue(std::int64_t{8}));
+  EXPECT_EQ(c.nodes[1].parameters.all().at("seed"), tsr::med::ParameterValue(std::int64_t{3}));
   EXPECT_EQ(c.wall.bezel, 4u);
   EXPECT_EQ(c.timeouts.frame.count(), 500);
   c.replaceAddresses({parseNodeAddress("10.0.0.1:5"), parseNodeAddress("10.0.0.2:6")});

@@ -1,5 +1,7 @@
 #include "embree_viewport.hpp"
 
+#include "embree_parameters.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -99,7 +101,7 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
                                    const RenderControl& control) {
   view.validate();
   const auto start = std::chrono::steady_clock::now();
-  const auto spp = static_cast<std::uint32_t>(settings_.parameters.getInt("spp", 16, 1, 1 << 20));
+  const auto spp = static_cast<std::uint32_t>(embreeParameters().integer(settings_.parameters, "spp"));
   renderer_.setSettings(renderSettingsFrom(settings_.parameters));
   const FilterSettings filter = FilterSettings::from(settings_.parameters);
   const bool radiance = filter.usesRadianceFilter();

@@ -1,5 +1,7 @@
 #include "photon_viewport.hpp"
 
+#include "embree_parameters.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
@@ -10,20 +12,24 @@
 namespace tsr::med::embree_mediator {
 
 namespace {
-bool objectPca(const Parameters& p) { return p.getString("temporal", "") == "objectPca"; }
+const ParameterTable& table() { return embreeParameters(); }
 
-int pcaWindow(const Parameters& p) { return static_cast<int>(p.getInt("pcaWindow", 64, 2, 100000)); }
+bool objectPca(const Parameters& p) { return table().choice(p, "temporal") == "objectPca"; }
+
+int pcaWindow(const Parameters& p) { return static_cast<int>(table().integer(p, "pcaWindow")); }
 
 temporal::WindowedPca pcaFrom(const Parameters& p) {
   temporal::PcaSettings s;
-  s.rule.epsilon = p.getReal("pcaEpsilon", s.rule.epsilon);
-  s.rule.epsilonChange = p.getReal("pcaEpsilonChange", s.rule.epsilonChange);
-  s.rule.noiseAware = !p.getBool("pcaPlainRule", false);
-  s.fixedModes = static_cast<int>(p.getInt("pcaModes", 0, 0, 1 << 20));
+  s.rule.epsilon = table().real(p, "pcaEpsilon");
+  s.rule.epsilonChange = table().real(p, "pcaEpsilonChange");
+  s.rule.noiseAware = !table().flag(p, "pcaPlainRule");
+  s.fixedModes = static_cast<int>(table().integer(p, "pcaModes"));
   s.perPixel = false;
   const int window = pcaWindow(p);
   try {
-    return temporal::WindowedPca(window, static_cast<int>(p.getInt("pcaOverlap", std::min(16, window / 4), 0)), s);
+    const int overlap =
+        p.has("pcaOverlap") ? static_cast<int>(table().integer(p, "pcaOverlap")) : std::min(16, window / 4);
+    return temporal::WindowedPca(window, overlap, s);
   } catch (const std::invalid_argument& e) {
     throw ParameterError(e.what());
   }
@@ -32,19 +38,19 @@ temporal::WindowedPca pcaFrom(const Parameters& p) {
 
 embree::PhotonSettings photonSettingsFrom(const Parameters& p) {
   embree::PhotonSettings s;
-  s.photonsPerFrame = static_cast<std::uint32_t>(p.getInt("photonsPerFrame", 0, 0, 1 << 30));
+  s.photonsPerFrame = static_cast<std::uint32_t>(table().integer(p, "photonsPerFrame"));
   // Object-space PCA reads each frame's photons once, as they are traced.
-  s.tMax = objectPca(p) ? 1 : static_cast<std::uint32_t>(p.getInt("photonFrames", 9, 1, 255));
+  s.tMax = objectPca(p) ? 1 : static_cast<std::uint32_t>(table().integer(p, "photonFrames"));
   if (objectPca(p)) s.budgetFrames = static_cast<std::uint32_t>(pcaWindow(p));
   if (s.tMax % 2 == 0)
     throw ParameterError("photonFrames = " + std::to_string(s.tMax) +
                          ": the window is centred on the frame it reconstructs, so it must be odd");
-  s.accuracy = static_cast<float>(p.getReal("photonAccuracy", s.accuracy));
-  s.maxError = static_cast<float>(p.getReal("photonMaxError", s.maxError));
-  s.emissionStep = static_cast<float>(p.getReal("photonEmissionStep", s.emissionStep));
-  s.maxBounces = static_cast<std::uint32_t>(p.getInt("maxDepth", 8, 0, 1024));
-  s.seed = static_cast<std::uint64_t>(p.getInt("seed", 0, 0));
-  s.threads = static_cast<int>(p.getInt("threads", 0, 0, 4096));
+  s.accuracy = static_cast<float>(table().real(p, "photonAccuracy"));
+  s.maxError = static_cast<float>(table().real(p, "photonMaxError"));
+  s.emissionStep = static_cast<float>(table().real(p, "photonEmissionStep"));
+  s.maxBounces = static_cast<std::uint32_t>(table().integer(p, "maxDepth"));
+  s.seed = static_cast<std::uint64_t>(table().integer(p, "seed"));
+  s.threads = static_cast<int>(table().integer(p, "threads"));
   s.validate();  // an even window or a non-positive accuracy throws embree::Error naming it
   return s;
 }
@@ -122,10 +128,10 @@ RenderStats PhotonViewport::render(const sg::Replica& replica, const View& view,
                                    const RenderControl& control) {
   view.validate();
   if (control.frame < 0)
-    throw std::invalid_argument("temporal = " + settings_.parameters.getString("temporal", "") +
+    throw std::invalid_argument("temporal = " + table().choice(settings_.parameters, "temporal") +
                                 " renders frames of an animation: RenderControl::frame is not set");
   const auto start = std::chrono::steady_clock::now();
-  const auto spp = static_cast<std::uint32_t>(settings_.parameters.getInt("spp", 16, 1, 1 << 20));
+  const auto spp = static_cast<std::uint32_t>(table().integer(settings_.parameters, "spp"));
   RenderStats stats;
   stats.update = shown_.catchUp(replica);
   embree::Scene& scene = shown_.scene();

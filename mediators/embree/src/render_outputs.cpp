@@ -1,5 +1,7 @@
 #include "render_outputs.hpp"
 
+#include "embree_parameters.hpp"
+
 namespace tsr::med::embree_mediator {
 
 namespace {
@@ -14,11 +16,12 @@ std::vector<std::string> accumulatedOutputNames() { return {kAlbedo, kNormal, kD
 
 embree::RenderSettings renderSettingsFrom(const Parameters& p) {
   embree::RenderSettings s;
-  s.seed = static_cast<std::uint64_t>(p.getInt("seed", 0, 0));
-  s.maxDepth = static_cast<std::uint32_t>(p.getInt("maxDepth", 8, 0, 1024));
-  if (p.getBool("directOnly", false)) s.maxDepth = 1;
-  s.samplesPerPass = static_cast<std::uint32_t>(p.getInt("samplesPerPass", 1, 1, 4096));
-  s.threads = static_cast<int>(p.getInt("threads", 0, 0, 4096));
+  const ParameterTable& t = embreeParameters();
+  s.seed = static_cast<std::uint64_t>(t.integer(p, "seed"));
+  s.maxDepth = static_cast<std::uint32_t>(t.integer(p, "maxDepth"));
+  if (t.flag(p, "directOnly")) s.maxDepth = 1;
+  s.samplesPerPass = static_cast<std::uint32_t>(t.integer(p, "samplesPerPass"));
+  s.threads = static_cast<int>(t.integer(p, "threads"));
   return s;
 }
 

@@ -6,19 +6,31 @@
 
 namespace tsr::med::vulkan_mediator {
 
+const BackendCapabilities& vulkanCapabilities() {
+  static const BackendCapabilities capabilities{
+      ParameterTable("vulkan", {integerParameter("msaa", 1, 1, 4, "samples per pixel of multisampling: 1 or 4"),
+                                flagParameter("shadows", true, "shadow maps for spot and directional lights"),
+                                integerParameter("shadowMapSize", 1024, 16, 8192, "shadow map side, texels"),
+                                integerParameter("emitterLights", 32, 0, 256, "emissive triangles lit as point lights"),
+                                flagParameter("emitterAmbient", true, "emitters' remaining light as ambient")}),
+      false};
+  return capabilities;
+}
+
 VulkanViewport::VulkanViewport(ViewportSettings settings, std::shared_ptr<VulkanContext> context)
     : Viewport(std::move(settings)), context_(std::move(context)) {}
 
 vk::RenderSettings VulkanViewport::renderSettings() const {
   const Parameters& p = settings_.parameters;
   vk::RenderSettings s;
-  const auto msaa = p.getInt("msaa", 1, 1, 4);
-  if (msaa != 1 && msaa != 4) throw ParameterError("msaa: expected 1 or 4, got " + std::to_string(msaa));
+  const ParameterTable& t = vulkanCapabilities().parameters;
+  const auto msaa = t.integer(p, "msaa");
+  if (msaa != 1 && msaa != 4) throw BadParameterValue("parameter msaa = " + std::to_string(msaa) + ": expected 1 or 4");
   s.msaaSamples = static_cast<std::uint32_t>(msaa);
-  s.shadows = p.getBool("shadows", true);
-  s.shadowMapSize = static_cast<std::uint32_t>(p.getInt("shadowMapSize", 1024, 16, 8192));
-  s.emitterLights = static_cast<std::uint32_t>(p.getInt("emitterLights", 32, 0, 256));
-  s.emitterAmbient = p.getBool("emitterAmbient", true);
+  s.shadows = t.flag(p, "shadows");
+  s.shadowMapSize = static_cast<std::uint32_t>(t.integer(p, "shadowMapSize"));
+  s.emitterLights = static_cast<std::uint32_t>(t.integer(p, "emitterLights"));
+  s.emitterAmbient = t.flag(p, "emitterAmbient");
   s.background = backgroundColour(context_->adapter.environment());
   return s;
 }

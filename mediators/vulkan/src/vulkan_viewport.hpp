@@ -20,6 +20,9 @@ struct VulkanContext {
       : shared(s), adapter(s->device, root, background) {}
 };
 
+// The rasterizer's parameters, declared once; registered with it.
+const BackendCapabilities& vulkanCapabilities();
+
 class VulkanViewport final : public Viewport {
  public:
   VulkanViewport(ViewportSettings settings, std::shared_ptr<VulkanContext> context);

@@ -92,7 +92,8 @@ TEST(ContextPool, SharesByKeyAndFreesWithTheLastUser) {
 
 TEST(ViewportRegistry, UnknownBackendListsTheKnownOnes) {
   med::ViewportRegistry registry;
-  registry.add("alpha", [](const med::ViewportSettings&, med::ContextPool&) -> std::unique_ptr<med::Viewport> {
+  static const med::BackendCapabilities alpha;
+  registry.add("alpha", alpha, [](const med::ViewportSettings&, med::ContextPool&) -> std::unique_ptr<med::Viewport> {
     return nullptr;
   });
   med::ContextPool pool;

@@ -234,7 +234,14 @@ TEST_F(EmbreeMediator, FillsOnlyTheOutputsTheCallerReads) {
 TEST_F(EmbreeMediator, BadParametersAreTypedErrors) {
   auto settings = rig.settings();
   settings.parameters.set("spp", std::string("many"));
+  EXPECT_THROW(rig.registry.create(settings, contexts), med::BadParameterValue) << "refused before it renders";
+  settings.parameters = {};
   auto viewport = rig.registry.create(settings, contexts);
+  EXPECT_THROW(viewport->setParameter("sigmaS", 0.0), med::BadParameterValue);
+  EXPECT_THROW(viewport->setParameter("sigmaSS", 4.0), med::UnknownParameter);
+  viewport->setParameter("antialiasRecovery", true);
+  viewport->setParameter("filterKernel", std::string("bilateral"));
   med::FrameBuffer image;
-  EXPECT_THROW(viewport->render(replica, rig.view(replica.scene()), image), med::ParameterError);
+  EXPECT_THROW(viewport->render(replica, rig.view(replica.scene()), image), med::ParameterError)
+      << "a combination the table cannot see is refused when rendering";
 }

@@ -35,7 +35,8 @@ struct FilterRig {
   // With the blend factor where the viewport has one.
   med::RenderStats render(med::Viewport& vp, med::FrameBuffer& out) {
     med::RenderControl control;
-    if (vp.settings().parameters.getString("filter", "none") != "none") control.outputs = std::vector<std::string>{"blend"};
+    if (vp.settings().parameters.all().at("filter") != med::ParameterValue(std::string("none")))
+      control.outputs = std::vector<std::string>{"blend"};
     return vp.render(replica, rig.view(replica.scene()), out, control);
   }
   med::FrameBuffer render(med::Viewport& vp) {
@@ -149,8 +150,8 @@ TEST_P(SuitePreview, FilteredWorstTileBeatsUnfilteredAtEightSpp) {
   auto plainVp = viewport(8, "none");
   auto pixelVp = viewport(8, "pixel");
   const auto plain = seen(render(*plainVp), reference), filtered = seen(render(*pixelVp), reference);
-  EXPECT_LT(filtered.worstTile, plain.worstTile) << GetParam() << ": worst tile at (" << filtered.worstX << ", "
-                                                 << filtered.worstY << ")";
+  EXPECT_LT(filtered.worstTile, plain.worstTile)
+      << GetParam() << ": worst tile at (" << filtered.worstX << ", " << filtered.worstY << ")";
   EXPECT_LT(filtered.whole, plain.whole) << GetParam();
   std::printf("%s, 8 spp, seen error whole / worst tile: unfiltered %.4f / %.4f, pixel %.4f / %.4f\n", GetParam(),
               plain.whole, plain.worstTile, filtered.whole, filtered.worstTile);
@@ -170,8 +171,7 @@ TEST_P(SuiteFilter, FilteredImageConvergesToTheUnfilteredOneTileByTile) {
   }
   EXPECT_LT(gap[1], 0.5 * gap[0]) << GetParam() << ": worst tile gap at 64 spp " << gap[0] << ", at 1024 " << gap[1];
   EXPECT_LT(gap[1], 0.02) << GetParam();
-  std::printf("%s: worst-tile gap filtered vs unfiltered: %.4f at 64 spp, %.4f at 1024\n", GetParam(), gap[0],
-              gap[1]);
+  std::printf("%s: worst-tile gap filtered vs unfiltered: %.4f at 64 spp, %.4f at 1024\n", GetParam(), gap[0], gap[1]);
 }
 
 std::string sceneName(const ::testing::TestParamInfo<const char*>& info) {

@@ -37,6 +37,7 @@ struct Rig {
     s.background = imported.background;
     s.parameters.set("spp", std::int64_t{1});
     s.parameters.set("maxDepth", std::int64_t{2});
+    s.parameters = registry.parametersFor(backend, s.parameters);  // the path tracer's, not the rasterizer's
     return registry.create(s, pool);
   }
   med::View view(std::uint32_t size) const {

@@ -1,7 +1,7 @@
 #pragma once
 // Back-end parameters of a viewport (spp, max depth, seed, ...): named values
-// that may change while an image converges. Reads are typed; a value of the
-// wrong type is a ParameterError naming the parameter.
+// that may change while an image converges, as given; what they mean, their
+// types and defaults are the back-end's ParameterTable.
 #include <cstdint>
 #include <map>
 #include <stdexcept>
@@ -23,11 +23,8 @@ class Parameters {
   bool has(const std::string& name) const { return values_.count(name) != 0; }
   const std::map<std::string, ParameterValue>& all() const { return values_; }
 
-  bool getBool(const std::string& name, bool fallback) const;
-  std::int64_t getInt(const std::string& name, std::int64_t fallback, std::int64_t min = INT64_MIN,
-                      std::int64_t max = INT64_MAX) const;
-  double getReal(const std::string& name, double fallback) const;  // accepts integers too
-  std::string getString(const std::string& name, const std::string& fallback) const;
+  // Typed values with their defaults are read through the back-end's
+  // ParameterTable (parameter_table.hpp), which declares them once.
 
   // Parses "name=value" (true/false, integers, reals, else a string).
   static std::pair<std::string, ParameterValue> parse(const std::string& assignment);

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "tsr/med/frame_buffer.hpp"
-#include "tsr/med/parameters.hpp"
+#include "tsr/med/parameter_table.hpp"
 #include "tsr/med/scene_adapter.hpp"
 #include "tsr/med/view.hpp"
 
@@ -51,6 +51,15 @@ struct RenderStats {
   SceneAdapter::Update update = SceneAdapter::Update::None;  // what catching up took
 };
 
+// What a back-end can do, declared with it (ViewportRegistry::add) and
+// asked of its viewports: callers never infer it from the back-end's name.
+struct BackendCapabilities {
+  ParameterTable parameters;
+  // Renders of an unchanged view add samples to the image (RenderStats::
+  // samples counts them); false: every render is final.
+  bool progressive = false;
+};
+
 class Viewport {
  public:
   explicit Viewport(ViewportSettings settings) : settings_(std::move(settings)) {}
@@ -61,8 +70,14 @@ class Viewport {
   bool active() const { return settings_.active; }
   void setActive(bool active) { settings_.active = active; }
   // Parameters may change between renders (a progressive image restarts
-  // only when the change affects it).
-  void setParameter(const std::string& name, ParameterValue value) { settings_.parameters.set(name, std::move(value)); }
+  // only when the change affects it). A name or value the back-end does not
+  // take throws UnknownParameter or BadParameterValue, changing nothing.
+  void setParameter(const std::string& name, ParameterValue value) {
+    if (capabilities_ != &kUndeclared) capabilities_->parameters.validate(name, value);
+    settings_.parameters.set(name, std::move(value));
+  }
+  // What the back-end can do; the named outputs it offers are outputNames().
+  const BackendCapabilities& capabilities() const { return *capabilities_; }
 
   // Brings the back-end's scene up to the replica's version (the mediator's
   // part; back-ends may still build acceleration structures at render).
@@ -98,6 +113,16 @@ class Viewport {
 
  protected:
   ViewportSettings settings_;
+
+ private:
+  friend class ViewportRegistry;
+  // Set by the registry that made the viewport; viewports made directly
+  // (a client's stand-in for a node's) say what they can do themselves.
+  const BackendCapabilities* capabilities_ = &kUndeclared;
+  static const BackendCapabilities kUndeclared;
+
+ protected:
+  void declareCapabilities(const BackendCapabilities& c) { capabilities_ = &c; }
 };
 
 }  // namespace tsr::med

@@ -23,14 +23,30 @@ class ViewportRegistry {
  public:
   using Factory = std::function<std::unique_ptr<Viewport>(ViewportSettings, ContextPool&)>;
 
-  void add(const std::string& backend, Factory factory);
-  // Throws UnknownBackend naming the back-ends it knows.
+  // `capabilities` must outlive the registry (a back-end's static table).
+  void add(const std::string& backend, const BackendCapabilities& capabilities, Factory factory);
+  // Throws UnknownBackend naming the back-ends it knows, and UnknownParameter
+  // or BadParameterValue for parameters the back-end does not take.
   std::unique_ptr<Viewport> create(ViewportSettings settings, ContextPool& contexts) const;
+  // Throws UnknownBackend.
+  const BackendCapabilities& capabilities(const std::string& backend) const;
   std::vector<std::string> backends() const;
-  bool has(const std::string& backend) const { return factories_.count(backend) != 0; }
+  // The parameters of `offered` that `backend` declares: options meant for
+  // every viewport of a window (spp, threads) reach the back-ends that take them.
+  Parameters parametersFor(const std::string& backend, const Parameters& offered) const;
+  // Throws UnknownParameter for a parameter none of `backends` declares
+  // (BadParameterValue for a bad value of one that does), naming what they take.
+  void requireDeclared(const Parameters& given, const std::vector<std::string>& backends) const;
+  bool has(const std::string& backend) const { return entries_.count(backend) != 0; }
 
  private:
-  std::map<std::string, Factory> factories_;
+  struct Entry {
+    const BackendCapabilities* capabilities;
+    Factory factory;
+  };
+  const Entry& entry(const std::string& backend) const;
+
+  std::map<std::string, Entry> entries_;
 };
 
 }  // namespace tsr::med

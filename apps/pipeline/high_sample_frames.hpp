@@ -14,7 +14,7 @@
 
 #include <glm/vec4.hpp>
 
-#include "render_options.hpp"
+#include "render_job.hpp"
 #include "scene_session.hpp"
 #include "tsr/med/context_pool.hpp"
 #include "tsr/med/viewport_registry.hpp"
@@ -26,7 +26,7 @@ namespace tsr::app {
 class HighSampleFrames {
  public:
   // The window's layers are those of `options` (the --backend alone).
-  HighSampleFrames(const RenderOptions& options, const SceneSession& session);
+  HighSampleFrames(const RenderJob& options, const SceneSession& session);
 
   // The list that brought the shown replica to `frame`; frames in order.
   void follow(int frame, sg::ChangeListPtr list);
@@ -39,7 +39,7 @@ class HighSampleFrames {
   std::size_t pixelsRendered() const { return pixels_; }
 
  private:
-  const RenderOptions& options_;
+  const RenderJob& options_;
   const SceneSession& session_;
   med::ViewportRegistry registry_;
   med::ContextPool contexts_;

@@ -8,7 +8,7 @@
 
 namespace tsr::app {
 
-void writeStatsJson(const RenderOptions& options, const med::RenderStats& stats, int frames) {
+void writeStatsJson(const RenderJob& options, const med::RenderStats& stats, int frames) {
   // Like Embree's own benchmarks, rays per second count the time spent
   // rendering, not the one-off conversion and acceleration-structure build.
   const double renderSeconds = stats.seconds - stats.syncSeconds;

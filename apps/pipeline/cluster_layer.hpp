@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "layers.hpp"
-#include "render_options.hpp"
+#include "render_job.hpp"
 
 namespace tsr::app {
 
@@ -15,7 +15,7 @@ namespace tsr::app {
 // std::invalid_argument, saying why, unless exactly one of `layers` uses
 // that back-end (checked before connecting). `camera` gives a stereo
 // config its eyes.
-RemoteLayers clusterLayer(const RenderOptions& options, const std::vector<LayerSpec>& layers,
+RemoteLayers clusterLayer(const RenderJob& options, const std::vector<LayerSpec>& layers,
                           const med::ViewportRegistry& registry, const sg::Camera& camera);
 
 }  // namespace tsr::app

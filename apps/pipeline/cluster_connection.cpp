@@ -2,19 +2,25 @@
 
 #include <iostream>
 
+#include "backends.hpp"
 #include "tsr/cluster/auth.hpp"
 
 namespace tsr::app {
 
-cluster::ClusterConfig clusterConfig(const RenderOptions& options) {
+cluster::ClusterConfig clusterConfig(const RenderJob& options) {
   const SequenceOptions& sequence = options.sequence;
   cluster::ClusterConfig config = cluster::loadClusterConfig(sequence.cluster);
   if (!sequence.nodes.empty()) config.replaceAddresses(cluster::parseNodeList(sequence.nodes));
   // What the command line names beats the config; the config beats the
   // command line's defaults.
-  for (auto& node : config.nodes)
+  med::ViewportRegistry registry;
+  registerBackends(registry);
+  for (auto& node : config.nodes) {
+    if (!registry.has(node.backend)) continue;  // the node names what it has when it refuses
+    registry.requireDeclared(options.parameters, {node.backend});
     for (const auto& [name, value] : options.parameters.all())
       if (options.explicitParameters.count(name) || !node.parameters.has(name)) node.parameters.set(name, value);
+  }
   config.validate();
   for (const auto& node : config.nodes)
     if (options.backendGiven && node.backend != options.backend)
@@ -23,8 +29,8 @@ cluster::ClusterConfig clusterConfig(const RenderOptions& options) {
   return config;
 }
 
-std::unique_ptr<cluster::ClusterWindow> connectCluster(const cluster::ClusterConfig& config,
-                                                       const RenderOptions& options, std::vector<std::string> outputs,
+std::unique_ptr<cluster::ClusterWindow> connectCluster(const cluster::ClusterConfig& config, const RenderJob& options,
+                                                       std::vector<std::string> outputs,
                                                        const med::ViewportRegistry& registry) {
   cluster::ClientOptions client;
   if (!options.sequence.tokenFile.empty()) client.token = cluster::readTokenFile(options.sequence.tokenFile);

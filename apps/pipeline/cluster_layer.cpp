@@ -8,7 +8,7 @@
 
 namespace tsr::app {
 
-RemoteLayers clusterLayer(const RenderOptions& options, const std::vector<LayerSpec>& layers,
+RemoteLayers clusterLayer(const RenderJob& options, const std::vector<LayerSpec>& layers,
                           const med::ViewportRegistry& registry, const sg::Camera& camera) {
   const cluster::ClusterConfig config = clusterConfig(options);
   const std::string backend = config.nodes.front().backend;

@@ -99,7 +99,14 @@ med::Window makeLayeredWindow(const std::vector<LayerSpec>& layers, const sg::Sc
                               const med::ViewportSettings& defaults, const med::ViewportRegistry& registry,
                               med::ContextPool& contexts, const RemoteLayers& remote) {
   med::Window window;
-  auto add = [&](const med::ViewportSettings& settings) {
+  // Options given for the whole window (--spp, --param) reach each layer
+  // whose back-end takes them; one that no layer's back-end takes is an error.
+  std::vector<std::string> backends;
+  for (const LayerSpec& layer : layers) backends.push_back(layer.backend);
+  if (layers.empty()) backends.push_back(defaults.backend);
+  registry.requireDeclared(defaults.parameters, backends);
+  auto add = [&](med::ViewportSettings settings) {
+    settings.parameters = registry.parametersFor(settings.backend, settings.parameters);
     std::unique_ptr<med::Viewport> viewport = remote ? remote(settings) : nullptr;
     window.addLayer(viewport ? std::move(viewport) : registry.create(settings, contexts));
   };

@@ -15,7 +15,7 @@ constexpr std::uint32_t kTile = 16;
 constexpr std::int64_t kSeedOffset = 1 << 20;
 }  // namespace
 
-HighSampleFrames::HighSampleFrames(const RenderOptions& options, const SceneSession& session)
+HighSampleFrames::HighSampleFrames(const RenderJob& options, const SceneSession& session)
     : options_(options), session_(session) {
   registerBackends(registry_);
   med::ViewportSettings settings{options.backend, session.imported.root, session.imported.background,
@@ -39,7 +39,9 @@ std::vector<glm::vec4> HighSampleFrames::render(int frame, const std::vector<boo
   const auto* camera = behind_.scene().find<sg::Camera>(session_.camera);
   if (!camera) throw std::logic_error("high samples: frame " + std::to_string(frame) + " has no camera");
   const med::View view = med::View::fromCamera(*camera, width, height);
-  const std::int64_t seed = options_.parameters.getInt("seed", 0, 0) + frame + kSeedOffset;
+  const med::ParameterTable& table = registry_.capabilities(options_.backend).parameters;
+  const std::int64_t seed =
+      (table.declares("seed") ? table.integer(options_.parameters, "seed") : 0) + frame + kSeedOffset;
   for (const auto& layer : window_.layers()) layer->setParameter("seed", seed);
   med::RenderControl control;
   control.outputs = std::vector<std::string>{"indirect"};

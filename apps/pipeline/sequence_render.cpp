@@ -13,6 +13,7 @@
 #include "cluster_connection.hpp"
 #include "cluster_layer.hpp"
 #include "high_sample_frames.hpp"
+#include "option_values.hpp"
 #include "progress_bar.hpp"
 #include "scene_session.hpp"
 #include "stats_json.hpp"
@@ -38,7 +39,7 @@ struct SequenceRenderer {
 
 // The outputs every frame needs: the --aov ones, and with --temporal the
 // split the PCA step works on.
-std::vector<std::string> frameOutputs(const RenderOptions& options) {
+std::vector<std::string> frameOutputs(const RenderJob& options) {
   std::vector<std::string> outputs = options.aovs;
   if (options.temporal.imagePca())
     for (const char* name : {"direct", "indirect"})
@@ -63,7 +64,7 @@ struct LocalWindow {
 // the indirect output is read at --spp, the direct one at --direct-spp.
 // With --temporal photons, the path tracer's photon layer sees each frame
 // its lookahead ahead of the one shown. `stats` adds up every render.
-SequenceRenderer localRenderer(const RenderOptions& options, const std::vector<LayerSpec>& layers,
+SequenceRenderer localRenderer(const RenderJob& options, const std::vector<LayerSpec>& layers,
                                const SceneSession& session, med::RenderStats& stats) {
   auto local = std::make_shared<LocalWindow>();
   registerBackends(local->registry);
@@ -77,8 +78,9 @@ SequenceRenderer localRenderer(const RenderOptions& options, const std::vector<L
   med::RenderControl shown;
   shown.outputs = frameOutputs(options);
   const bool temporal = options.temporal.imagePca();
-  const std::int64_t seed = options.parameters.getInt("seed", 0, 0);
-  const std::int64_t spp = options.parameters.getInt("spp", 16, 1, 1 << 20);
+  const med::ParameterTable& table = local->registry.capabilities(options.backend).parameters;
+  const std::int64_t seed = table.declares("seed") ? table.integer(options.parameters, "seed") : 0;
+  const std::int64_t spp = table.declares("spp") ? table.integer(options.parameters, "spp") : 1;
   const std::int64_t directSpp = std::max<std::int64_t>(spp, options.temporal.directSpp);
   SequenceRenderer sequence;
   sequence.lookahead = local->window.lookahead();
@@ -135,10 +137,18 @@ bool cameraMoves(const SceneSession& session) {
   return false;
 }
 
-FrameRenderer clusterRenderer(const RenderOptions& options, const SceneSession& session) {
-  if (options.temporal.active() && options.temporal.directSpp > options.parameters.getInt("spp", 16, 1, 1 << 20))
-    throw std::invalid_argument("--direct-spp: with --cluster the nodes render direct and indirect light in the same "
-                                "paths, at --spp (raise --spp or leave --direct-spp out)");
+// The back-ends with a temporal photon pass: those that declare the
+// "temporal" parameter.
+std::vector<std::string> photonBackends() {
+  med::ViewportRegistry registry;
+  registerBackends(registry);
+  std::vector<std::string> names;
+  for (const auto& b : registry.backends())
+    if (registry.capabilities(b).parameters.declares("temporal")) names.push_back(b);
+  return names;
+}
+
+FrameRenderer clusterRenderer(const RenderJob& options, const SceneSession& session) {
   auto registry = std::make_shared<med::ViewportRegistry>();
   registerBackends(*registry);
   std::shared_ptr<cluster::ClusterWindow> window{
@@ -155,29 +165,30 @@ FrameRenderer clusterRenderer(const RenderOptions& options, const SceneSession& 
 
 }  // namespace
 
-int renderSequence(const RenderOptions& given, const SequenceOptions& sequence, const std::vector<LayerSpec>& layers) {
-  if (sequence.frames > 1 && given.output.find("####") == std::string::npos)
-    throw std::invalid_argument("--frames " + std::to_string(sequence.frames) +
-                                " needs #### in --output for the frame number");
+int renderSequence(const RenderJob& given, const SequenceOptions& sequence, const std::vector<LayerSpec>& layers) {
   SceneSession session;
   session.load(given.scene, given.import, given.view);
-  // --temporal-space auto settles on the scene's camera.
-  RenderOptions options = given;
+  // --temporal-space auto settles on the scene's camera; what depends on
+  // it is checked here, the rest with the command line.
+  RenderJob options = given;
   const bool moves = cameraMoves(session);
   options.temporal.resolveSpace(moves);
   if (given.temporal.method == "pca" && given.temporal.space == "auto" && !given.quiet)
     std::cout << "--temporal pca in " << options.temporal.space << " space: the camera "
               << (moves ? "moves" : "stays still") << " (--temporal-space chooses)\n";
-  checkTemporalOptions(options.temporal, static_cast<int>(options.parameters.getInt("spp", 16, 1, 1 << 20)));
+  checkTemporalOptions(options.temporal, static_cast<int>(samplesPerPixel(options)));
   options.temporal.applyTo(options.parameters);
   const std::string method =
       options.temporal.method + (options.temporal.method == "pca" ? " (" + options.temporal.space + " space)" : "");
   if (options.temporal.imagePca() && !layers.empty())
     throw std::invalid_argument("--temporal pca with --layers: each frame is rebuilt from the bottom layer's direct "
                                 "and indirect light, so the layers above it would be lost");
-  if (options.temporal.inBackend() && options.backend != "embree")
-    throw std::invalid_argument("--temporal " + method +
-                                " runs in the path tracer's photon pass: it needs --backend embree");
+  if (const auto able = photonBackends();
+      options.temporal.inBackend() && std::find(able.begin(), able.end(), options.backend) == able.end()) {
+    std::string names;
+    for (const auto& b : able) names += (names.empty() ? "--backend " : " or --backend ") + b;
+    throw std::invalid_argument("--temporal " + method + " runs in the path tracer's photon pass: it needs " + names);
+  }
   // A cluster without layers renders the whole window on the nodes; one
   // whose viewports look ahead (photons) is a layer of a window here, which
   // sends the nodes every frame ahead of the one shown.
@@ -196,12 +207,7 @@ int renderSequence(const RenderOptions& given, const SequenceOptions& sequence, 
   };
   ProgressBar bar(options.temporal.active() ? "rendering + " + method : "rendering", !options.quiet);
   std::unique_ptr<HighSampleFrames> high;
-  if (options.temporal.highSpp) {
-    if (!sequence.cluster.empty() || !layers.empty())
-      throw std::invalid_argument("--temporal-high-spp re-renders pixels here, with --backend alone: not with "
-                                  "--cluster or --layers");
-    high = std::make_unique<HighSampleFrames>(options, session);
-  }
+  if (options.temporal.highSpp) high = std::make_unique<HighSampleFrames>(options, session);
   std::unique_ptr<TemporalPcaSequence> pca;
   if (options.temporal.imagePca())
     pca = std::make_unique<TemporalPcaSequence>(

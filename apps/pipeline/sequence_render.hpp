@@ -5,11 +5,11 @@
 // (layers.hpp), a layer of it on the cluster with --cluster. Returns the
 // process exit status.
 #include "layers.hpp"
-#include "render_options.hpp"
+#include "render_job.hpp"
 #include "sequence_options.hpp"
 
 namespace tsr::app {
 
-int renderSequence(const RenderOptions& options, const SequenceOptions& sequence, const std::vector<LayerSpec>& layers);
+int renderSequence(const RenderJob& options, const SequenceOptions& sequence, const std::vector<LayerSpec>& layers);
 
 }  // namespace tsr::app

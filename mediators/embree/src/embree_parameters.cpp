@@ -1,0 +1,73 @@
+#include "embree_parameters.hpp"
+
+#include "tsr/embree/photon_sequence.hpp"
+#include "tsr/temporal/truncation.hpp"
+
+namespace tsr::med::embree_mediator {
+
+namespace {
+
+constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+constexpr std::int64_t kMaxSpp = 1 << 20;
+
+// Sampling, the filters (Schwenk, chapters 3 and 4) and the temporal
+// methods, in the order --list-params prints them.
+std::vector<ParameterSpec> specs() {
+  const embree::PhotonSettings photons;
+  const temporal::TruncationRule pca;
+  return {
+      integerParameter("spp", 16, 1, kMaxSpp, "samples per pixel the progressive image converges to"),
+      integerParameter("maxDepth", 8, 0, 1024, "maximum path depth"),
+      integerParameter("seed", 0, 0, INT64_MAX, "random seed"),
+      integerParameter("threads", 0, 0, 4096, "render threads (0: all)"),
+      flagParameter("directOnly", false, "direct light only (maxDepth 1)"),
+      integerParameter("samplesPerPass", 1, 1, 4096, "samples per pass (unset: passes grow 1, 2, 4, 8)"),
+      choiceParameter("filter", "none", {"none", "pixel", "atrous", "radiance", "hybrid"}, "preview filter"),
+      choiceParameter("pathClass", "indirect", {"indirect", "caustic", "all"}, "paths the filter smooths"),
+      choiceParameter("filterKernel", "separable", {"bilateral", "separable"}, "pixel filter kernel"),
+      // A 10 % relative standard deviation: low enough that 8 spp previews
+      // reach well over 64 equivalent spp, high enough that the blend lets go
+      // of the filtered image by ~1000 spp on a diffuse box (tests/bench/quality).
+      realParameter("threshold", 0.01, 0, 1e6, "perceived variance kept under"),
+      positiveParameter("sigmaS", 8.0, 64, "spatial std. dev., pixels"),
+      positiveParameter("sigmaC", 0.02, 1e6, "range colour std. dev."),
+      positiveParameter("sigmaD", 0.1, 1e6, "range depth std. dev., fraction of the frame's depth extent"),
+      // Defaults chosen on the quality suite (docs/filtering.md).
+      flagParameter("adaptiveWidth", true, "kernel narrows as samples grow (3.15-3.17)"),
+      flagParameter("spikeRemoval", true, "fireflies kept out of the preview (3.18)"),
+      flagParameter("antialiasRecovery", false, "mixed pixels recovered by coverage (separable kernel only)"),
+      // Weber's law fails in the dark (de Vries-Rose): below a background of
+      // about 0.1 noise is judged in absolute terms.
+      positiveParameter("minBackground", 0.1, 1e6, "background below which noise is judged absolutely"),
+      positiveParameter("warmupRadius", 8.0, 1e6, "radiance filter: radius of the first frames, pixels"),
+      integerParameter("warmupFrames", 4, 1, kMaxSpp, "radiance filter: frames at the warm-up radius"),
+      positiveParameter("maxRadius", 12.0, 64, "radiance filter: largest gather radius, pixels"),
+      flagParameter("ambientOcclusion", true, "radiance filter: occlusion-aware weights"),
+      flagParameter("bilateral", false, "radiance filter: bilateral weights"),
+      realParameter("radianceBlend", 0.0, 0, 1e6, "radiance filter: blend towards the unfiltered image"),
+      choiceParameter("temporal", "", {"", "photons", "objectPca"}, "temporal method of an animation"),
+      integerParameter("photonsPerFrame", 0, 0, 1 << 30, "photons traced per frame (0: automatic)"),
+      integerParameter("photonFrames", 9, 1, 255, "odd window of frames photons are gathered from"),
+      realParameter("photonAccuracy", photons.accuracy, -kUnbounded, kUnbounded, "sigma_% of eq. 4"),
+      realParameter("photonMaxError", photons.maxError, -kUnbounded, kUnbounded, "E_max of eq. 3"),
+      realParameter("photonEmissionStep", photons.emissionStep, -kUnbounded, kUnbounded,
+                    "relative change of a source's power that ends a window"),
+      integerParameter("pcaWindow", 64, 2, 100000, "frames per PCA window"),
+      integerParameter("pcaOverlap", 16, 0, INT64_MAX,
+                       "frames shared by neighbouring windows (unset: window/4, at most 16)"),
+      integerParameter("pcaModes", 0, 0, 1 << 20, "fixed number of PCA modes (0: by the truncation rule)"),
+      realParameter("pcaEpsilon", pca.epsilon, -kUnbounded, kUnbounded, "unexplained fraction allowed"),
+      realParameter("pcaEpsilonChange", pca.epsilonChange, -kUnbounded, kUnbounded,
+                    "improvement by one more mode below which it is noise"),
+      flagParameter("pcaPlainRule", false, "the paper's truncation rule, without the noise measure"),
+  };
+}
+
+}  // namespace
+
+const BackendCapabilities& embreeCapabilities() {
+  static const BackendCapabilities capabilities{ParameterTable("embree", specs()), true};
+  return capabilities;
+}
+
+}  // namespace tsr::med::embree_mediator
