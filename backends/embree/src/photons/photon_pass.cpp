@@ -1,6 +1,6 @@
-#include "photon_pass.hpp"
+#include "photons/photon_pass.hpp"
 
-#include "tracer.hpp"
+#include "tracing/tracer.hpp"
 
 #include <oneapi/tbb/blocked_range.h>
 #include <oneapi/tbb/parallel_for.h>

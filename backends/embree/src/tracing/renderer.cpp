@@ -1,7 +1,7 @@
 #include "tsr/embree/renderer.hpp"
 
-#include "radiance_filter_step.hpp"
-#include "tracer.hpp"
+#include "filters/radiance_filter_step.hpp"
+#include "tracing/tracer.hpp"
 #include "tsr/embree/error.hpp"
 
 #include <oneapi/tbb/blocked_range.h>
