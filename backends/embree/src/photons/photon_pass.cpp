@@ -1,5 +1,6 @@
 #include "photons/photon_pass.hpp"
 
+#include "tracing/delta_lights.hpp"
 #include "tracing/tracer.hpp"
 
 #include <oneapi/tbb/blocked_range.h>
@@ -70,13 +71,12 @@ bool emit(const SceneState& scene, const Source& s, const Disc& disc, Rng& rng, 
       return true;
     case Source::Spot: {
       const auto& sl = std::get<SpotLight>(scene.activeLights[s.index]);
-      const float cosOuter = std::cos(sl.outerAngle), cosInner = std::cos(sl.innerAngle);
-      const float c = 1.0f - u.x * (1.0f - cosOuter);  // uniform in the cone
+      const float c = 1.0f - u.x * (1.0f - std::cos(sl.outerAngle));  // uniform in the cone
       const float r = std::sqrt(std::max(0.0f, 1.0f - c * c));
       const Frame f(glm::normalize(sl.direction));
       out.org = sl.position;
       out.dir = f.toWorld({r * std::cos(2.0f * kPi * u.y), r * std::sin(2.0f * kPi * u.y), c});
-      out.power = glm::vec3(c >= cosInner ? 1.0f : c <= cosOuter ? 0.0f : glm::smoothstep(cosOuter, cosInner, c));
+      out.power = glm::vec3(spotFalloff(sl, c));
       return out.power.x > 0.0f;
     }
     case Source::Directional: {

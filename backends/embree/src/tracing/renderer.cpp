@@ -1,6 +1,7 @@
 #include "tsr/embree/renderer.hpp"
 
 #include "filters/radiance_filter_step.hpp"
+#include "tracing/delta_lights.hpp"
 #include "tracing/tracer.hpp"
 #include "tsr/embree/error.hpp"
 
@@ -12,7 +13,6 @@
 
 #include <string>
 #include <type_traits>
-#include <variant>
 
 namespace tsr::embree {
 
@@ -200,36 +200,11 @@ PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm:
 
     if (nextEvent) {
       for (const Light& light : scene.activeLights) {
-        glm::vec3 wi, li;
-        float tfar = kInf;
-        if (const auto* pl = std::get_if<PointLight>(&light)) {
-          glm::vec3 d = pl->position - h.p;
-          float d2 = glm::dot(d, d);
-          if (!(d2 > 0.0f)) continue;
-          float dist = std::sqrt(d2);
-          wi = d / dist;
-          li = pl->intensity / d2;
-          tfar = dist * (1.0f - 1e-4f);
-        } else if (const auto* sl = std::get_if<SpotLight>(&light)) {
-          glm::vec3 d = sl->position - h.p;
-          float d2 = glm::dot(d, d);
-          if (!(d2 > 0.0f)) continue;
-          float dist = std::sqrt(d2);
-          wi = d / dist;
-          float c = glm::dot(glm::normalize(sl->direction), -wi);
-          float cosOuter = std::cos(sl->outerAngle), cosInner = std::cos(sl->innerAngle);
-          float falloff = c >= cosInner ? 1.0f : c <= cosOuter ? 0.0f : glm::smoothstep(cosOuter, cosInner, c);
-          if (falloff <= 0.0f) continue;
-          li = sl->intensity * (falloff / d2);
-          tfar = dist * (1.0f - 1e-4f);
-        } else {
-          const auto& dl = std::get<DirectionalLight>(light);
-          wi = -glm::normalize(dl.direction);
-          li = dl.irradiance;
-        }
-        glm::vec3 f = evalWorld(wi, nullptr);  // delta lights: no MIS
+        LightArrival a;
+        if (!lightArriving(light, h.p, a)) continue;
+        glm::vec3 f = evalWorld(a.wi, nullptr);  // delta lights: no MIS
         if (maxComponent(f) <= 0.0f) continue;
-        if (!occluded(spawn(wi), wi, tfar)) add(throughput * f * li, nonSpecular + 1);
+        if (!occluded(spawn(a.wi), a.wi, a.tfar)) add(throughput * f * a.li, nonSpecular + 1);
       }
       if (sampleEmitters) {
         EmitterSample es;
