@@ -193,9 +193,9 @@ bool PathWalk::scatter(const ScatteringPoint& sp, const SurfaceHit& h, const RTC
 
 VertexSamples PathWalk::drawSamples(const Bsdf& bsdf) {
   VertexSamples u;
-  const bool nextEvent = !bsdf.isDelta() && mode_ != LightSampling::BsdfOnly;
-  u.emitters = nextEvent && !scene_.emitters.empty();
-  u.environment = nextEvent && envActive_;
+  const bool sampleLights = !bsdf.isDelta() && mode_ != LightSampling::BsdfOnly;
+  u.emitters = sampleLights && !scene_.emitters.empty();
+  u.environment = sampleLights && envActive_;
   if (u.emitters) {
     u.emitterSelect = rng_.uniform();
     u.emitterPoint = rng_.uniform2();
