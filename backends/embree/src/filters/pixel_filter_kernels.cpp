@@ -3,7 +3,7 @@
 // exp of a summed exponent (the range planes are pre-scaled, see Range).
 // Sums accumulate w * (x_i - x_j) around the centre value x_j, so a constant
 // image comes out bit-exact and large offsets lose no precision.
-#include "pixel_filter_detail.hpp"
+#include "filters/pixel_filter_detail.hpp"
 
 #include <oneapi/tbb/blocked_range.h>
 #include <oneapi/tbb/parallel_for.h>

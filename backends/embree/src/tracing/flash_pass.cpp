@@ -1,4 +1,4 @@
-#include "tracer.hpp"
+#include "tracing/tracer.hpp"
 
 namespace tsr::embree {
 

@@ -1,4 +1,4 @@
-#include "bsdf.hpp"
+#include "tracing/bsdf.hpp"
 
 #include "tsr/embree/sampling.hpp"
 

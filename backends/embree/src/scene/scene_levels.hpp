@@ -4,7 +4,7 @@
 // moving level) and the commit steps that keep the levels and the meshes'
 // own BVHs up to date with the edits of SceneState::pending.
 
-#include "scene_state.hpp"
+#include "scene/scene_state.hpp"
 
 #include <cstdint>
 

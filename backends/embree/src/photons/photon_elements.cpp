@@ -1,4 +1,4 @@
-#include "photon_elements.hpp"
+#include "photons/photon_elements.hpp"
 
 #include "tsr/embree/rng.hpp"
 

@@ -4,7 +4,7 @@
 // (about) the same energy, followed through the scene; every hit on a
 // Diffuse surface after the first scattering event (light arriving
 // indirectly, caustics included) is recorded on its element. Private.
-#include "photon_elements.hpp"
+#include "photons/photon_elements.hpp"
 
 #include <oneapi/tbb/task_arena.h>
 

@@ -6,7 +6,7 @@
 // render meshes are untouched. Grid points are welded by position within an
 // instance, so elements that touch share corners (ring neighbourhoods and
 // continuous interpolation need that). Private to the back-end.
-#include "scene_state.hpp"
+#include "scene/scene_state.hpp"
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>

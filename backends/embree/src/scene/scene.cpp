@@ -1,7 +1,7 @@
 #include "tsr/embree/scene.hpp"
 
-#include "scene_levels.hpp"
-#include "scene_state.hpp"
+#include "scene/scene_levels.hpp"
+#include "scene/scene_state.hpp"
 #include "tsr/embree/error.hpp"
 #include "tsr/embree/limits.hpp"
 #include "tsr/embree/sampling.hpp"

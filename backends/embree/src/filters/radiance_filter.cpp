@@ -2,9 +2,9 @@
 // each pixel's kernel radius to its variance, projects the kernel into the
 // tangent plane of the pixel's radiance sample and reflects the neighbours'
 // incident radiance with the pixel's own BSDF (eqs. 4.8-4.12).
-#include "radiance_filter_step.hpp"
+#include "filters/radiance_filter_step.hpp"
 
-#include "bsdf.hpp"
+#include "tracing/bsdf.hpp"
 #include "tsr/embree/error.hpp"
 #include "tsr/embree/framebuffer.hpp"
 #include "tsr/embree/sampling.hpp"

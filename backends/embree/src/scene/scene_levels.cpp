@@ -1,4 +1,4 @@
-#include "scene_levels.hpp"
+#include "scene/scene_levels.hpp"
 
 #include "tsr/embree/error.hpp"
 

@@ -1,7 +1,7 @@
 // PhotonSequence::reconstruct: the validity test of Myszkowski et al. 2001
 // (eq. 1) bounds each element's temporal window, then the space-time
 // bilateral filter of Weber et al. 2004 (eq. 2) runs inside it.
-#include "photon_sequence_state.hpp"
+#include "photons/photon_sequence_state.hpp"
 #include "tsr/embree/error.hpp"
 #include "tsr/embree/rng.hpp"
 #include "tsr/embree/sampling.hpp"

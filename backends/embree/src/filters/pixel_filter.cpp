@@ -1,6 +1,6 @@
 #include "tsr/embree/pixel_filter.hpp"
 
-#include "pixel_filter_detail.hpp"
+#include "filters/pixel_filter_detail.hpp"
 #include "tsr/embree/error.hpp"
 
 #include <glm/common.hpp>

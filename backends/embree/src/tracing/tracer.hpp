@@ -1,10 +1,11 @@
 #pragma once
 // The ray-casting core shared by the renderer's passes: rays filled for
 // Embree, hit records turned into surface points, emitter sampling. The
-// path tracer (renderer.cpp) and the range-buffer pass (flash_pass.cpp)
-// build on it. Private to the back-end.
-#include "bsdf.hpp"
-#include "scene_state.hpp"
+// path tracer (path_tracer.cpp), the range-buffer pass (flash_pass.cpp)
+// and the photon pass (photons/photon_pass.cpp) build on it. Private to
+// the back-end.
+#include "scene/scene_state.hpp"
+#include "tracing/bsdf.hpp"
 #include "tsr/embree/framebuffer.hpp"
 #include "tsr/embree/irradiance_field.hpp"
 #include "tsr/embree/limits.hpp"

@@ -1,5 +1,5 @@
-#include "photon_pass.hpp"
-#include "photon_sequence_state.hpp"
+#include "photons/photon_pass.hpp"
+#include "photons/photon_sequence_state.hpp"
 #include "tsr/embree/error.hpp"
 #include "tsr/embree/rng.hpp"
 #include "tsr/embree/sampling.hpp"

@@ -1,6 +1,8 @@
-#include "photon_pass.hpp"
+#include "photons/photon_pass.hpp"
 
-#include "tracer.hpp"
+#include "tracing/delta_lights.hpp"
+#include "tracing/scattering_point.hpp"
+#include "tracing/tracer.hpp"
 
 #include <oneapi/tbb/blocked_range.h>
 #include <oneapi/tbb/parallel_for.h>
@@ -70,13 +72,12 @@ bool emit(const SceneState& scene, const Source& s, const Disc& disc, Rng& rng, 
       return true;
     case Source::Spot: {
       const auto& sl = std::get<SpotLight>(scene.activeLights[s.index]);
-      const float cosOuter = std::cos(sl.outerAngle), cosInner = std::cos(sl.innerAngle);
-      const float c = 1.0f - u.x * (1.0f - cosOuter);  // uniform in the cone
+      const float c = 1.0f - u.x * (1.0f - std::cos(sl.outerAngle));  // uniform in the cone
       const float r = std::sqrt(std::max(0.0f, 1.0f - c * c));
       const Frame f(glm::normalize(sl.direction));
       out.org = sl.position;
       out.dir = f.toWorld({r * std::cos(2.0f * kPi * u.y), r * std::sin(2.0f * kPi * u.y), c});
-      out.power = glm::vec3(c >= cosInner ? 1.0f : c <= cosOuter ? 0.0f : glm::smoothstep(cosOuter, cosInner, c));
+      out.power = glm::vec3(spotFalloff(sl, c));
       return out.power.x > 0.0f;
     }
     case Source::Directional: {
@@ -99,6 +100,47 @@ bool emit(const SceneState& scene, const Source& s, const Disc& disc, Rng& rng, 
     }
   }
   return false;
+}
+
+// A photon leaving its source.
+struct Photon {
+  glm::vec3 org, dir, power;
+  std::uint32_t parity;  // its half-set, PhotonHit::parity
+};
+
+// Follows one photon through the scene: every hit on a Diffuse surface
+// after the first scattering is recorded.
+void follow(Tracer& tracer, const ElementSet& elements, std::uint32_t maxBounces, Rng& rng, const Photon& photon,
+            std::vector<PhotonHit>& hits) {
+  glm::vec3 org = photon.org, dir = photon.dir, power = photon.power;
+  bool scattered = false;
+  for (std::uint32_t bounce = 0; bounce <= maxBounces; ++bounce) {
+    RTCRayHit rh;
+    if (!traceable(org, dir, kInf) || !tracer.intersect(org, dir, rh)) break;
+    SurfaceHit h;
+    if (!tracer.surface(org, dir, rh, h)) break;
+    const ResolvedMaterial& mat = *h.instance->material;
+    if (scattered && mat.material.type == MaterialType::Diffuse) {
+      const auto inst = std::uint32_t(h.instance - tracer.scene.views.data());
+      const std::uint32_t el = elements.locate(inst, h.prim, rh.hit.u, rh.hit.v, nullptr);
+      if (el != kNoElement && finite(power)) hits.push_back({el, photon.parity, power});
+    }
+    if (bounce == maxBounces) break;
+    const ScatteringPoint sp(h, dir, mat.material, Tracer::baseColour(mat, h.uv));
+    if (sp.facesAway()) break;
+    const glm::vec2 u = rng.uniform2();
+    const float uLobe = rng.uniform();
+    BsdfSample bs;
+    glm::vec3 next(0.0f);
+    if (!sp.sample(u, uLobe, bs, next)) break;
+    // Roulette by the weight's largest channel keeps photon energies even.
+    const float q = std::min(1.0f, maxComponent(bs.weight));
+    if (!(q > 0.0f) || rng.uniform() >= q) break;
+    power *= bs.weight / q;
+    org = sp.spawn(next);
+    dir = next;
+    scattered = true;
+  }
 }
 
 const RenderSettings kPhotonSettings{};  // the Tracer reads none of it for photons
@@ -142,47 +184,8 @@ PhotonPassResult tracePhotons(const SceneState& scene, const ElementSet& element
       const Source& s = src[pick.sampleDiscrete(rng.uniform(), &prob)];
       Emission e;
       if (!(prob > 0.0f) || !emit(scene, s, disc, rng, e)) continue;
-      glm::vec3 power = e.power * s.power / (prob * float(photons));
-      glm::vec3 org = e.org, dir = e.dir;
-      bool scattered = false;
-      for (std::uint32_t bounce = 0; bounce <= maxBounces; ++bounce) {
-        RTCRayHit rh;
-        if (!traceable(org, dir, kInf) || !tracer.intersect(org, dir, rh)) break;
-        SurfaceHit h;
-        if (!tracer.surface(org, dir, rh, h)) break;
-        const ResolvedMaterial& mat = *h.instance->material;
-        const std::uint32_t inst = std::uint32_t(h.instance - scene.views.data());
-        if (scattered && mat.material.type == MaterialType::Diffuse) {
-          const std::uint32_t el = elements.locate(inst, h.prim, rh.hit.u, rh.hit.v, nullptr);
-          if (el != kNoElement && finite(power)) hits.push_back({el, std::uint32_t(i & 1), power});
-        }
-        if (bounce == maxBounces) break;
-        const glm::vec3 wo = -dir;
-        const bool front = glm::dot(wo, h.ng) > 0.0f;
-        const glm::vec3 ng = front ? h.ng : -h.ng;
-        const Frame frame(front ? h.ns : -h.ns);
-        const glm::vec3 woL = frame.toLocal(wo);
-        if (woL.z <= 1e-6f) break;
-        Bsdf bsdf;
-        bsdf.type = mat.material.type;
-        bsdf.colour = Tracer::baseColour(mat, h.uv);
-        bsdf.alpha = std::max(1e-3f, mat.material.roughness * mat.material.roughness);
-        bsdf.eta = front ? mat.material.ior : 1.0f / mat.material.ior;
-        const glm::vec2 u = rng.uniform2();
-        const float uLobe = rng.uniform();
-        BsdfSample bs;
-        if (!bsdf.sample(woL, u, uLobe, bs)) break;
-        const glm::vec3 next = glm::normalize(frame.toWorld(bs.wi));
-        if ((glm::dot(next, ng) > 0.0f) != (bs.wi.z > 0.0f)) break;
-        // Roulette by the weight's largest channel keeps photon energies even.
-        const float q = std::min(1.0f, maxComponent(bs.weight));
-        if (!(q > 0.0f) || rng.uniform() >= q) break;
-        power *= bs.weight / q;
-        const float eps = rayEpsilon(h.p);
-        org = h.p + ng * (glm::dot(next, ng) > 0.0f ? eps : -eps);
-        dir = next;
-        scattered = true;
-      }
+      const glm::vec3 power = e.power * s.power / (prob * float(photons));
+      follow(tracer, elements, maxBounces, rng, {e.org, e.dir, power, std::uint32_t(i & 1)}, hits);
     }
     blockRays[block] = tracer.rays;
   };

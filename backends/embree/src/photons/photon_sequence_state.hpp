@@ -1,7 +1,7 @@
 #pragma once
 // PhotonSequence's state: the elements and the ring buffer of per-frame
 // counters (Weber et al. 2004 §4). Private.
-#include "photon_elements.hpp"
+#include "photons/photon_elements.hpp"
 #include "tsr/embree/error.hpp"
 #include "tsr/embree/photon_sequence.hpp"
 

@@ -1,0 +1,308 @@
+// Tracer::tracePath: one path from the eye, vertex by vertex. At each
+// vertex: emission seen there (weighted against light sampling), the AOVs
+// of the first hit, the next direction sampled from the BSDF with its
+// throughput and Russian roulette, direct light (sampleDirect), and the
+// bookkeeping that sorts contributions into the filters' buffers.
+#include "tracing/delta_lights.hpp"
+#include "tracing/scattering_point.hpp"
+#include "tracing/tracer.hpp"
+
+namespace tsr::embree {
+
+namespace {
+
+// MIS weight for an emitter reached by BSDF sampling.
+float bsdfHitWeight(LightSampling mode, float bsdfPdf, float lightPdf) {
+  if (mode == LightSampling::BsdfOnly) return 1.0f;
+  if (mode == LightSampling::LightOnly) return 0.0f;
+  return powerHeuristic(bsdfPdf, lightPdf);
+}
+
+// MIS weight for an emitter reached by light sampling.
+float lightSampleWeight(LightSampling mode, float lightPdf, float bsdfPdf) {
+  return mode == LightSampling::LightOnly ? 1.0f : powerHeuristic(lightPdf, bsdfPdf);
+}
+
+// The random numbers of one vertex. They are drawn in a fixed order:
+// emitter, environment, BSDF (then roulette, when the path goes on).
+struct VertexSamples {
+  bool emitters = false;  // an emitter triangle is sampled for direct light
+  bool environment = false;
+  float emitterSelect = 0.0f;
+  glm::vec2 emitterPoint{0.0f};
+  glm::vec2 environmentDir{0.0f};
+  glm::vec2 bsdf{0.0f};
+  float bsdfLobe = 0.0f;
+};
+
+// Where a path goes from a vertex and with what weight.
+struct Continuation {
+  bool continues = false;
+  BsdfSample bs;
+  glm::vec3 dir{0.0f};
+  glm::vec3 throughput{0.0f};
+  glm::vec3 scale{0.0f};
+};
+
+// One path's state and its steps. Classification relative to the first
+// non-specular vertex, as pixel filtering needs it: direct is light
+// reaching that vertex straight from an emitter (or emission seen through
+// perfect specular chains); a path that passes a specular surface after a
+// non-specular one is a caustic, the hardest to sample, and is indirect
+// however few vertices it has.
+class PathWalk {
+ public:
+  PathWalk(Tracer& tracer, Rng& rng, RadianceSample* record)
+      : tracer_(tracer),
+        scene_(tracer.scene),
+        env_(tracer.scene.environment),
+        envActive_(!env_.isBlack()),
+        mode_(tracer.settings.lightSampling),
+        rng_(rng),
+        record_(record) {}
+
+  PixelSample run(glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos, const glm::vec3& forward);
+
+ private:
+  void add(const glm::vec3& c, std::uint32_t nonSpecularVertices);
+  // Whether light found by BSDF sampling counts in full: at the eye and
+  // after a delta lobe, light sampling could not have found it.
+  bool unweighted(std::uint32_t depth) const { return depth == 0 || prevDelta_; }
+  void addEscaped(const glm::vec3& dir, std::uint32_t depth);
+  void addEmitted(const SurfaceHit& h, const ResolvedMaterial& mat, const glm::vec3& dir, float t, std::uint32_t depth);
+  bool scatter(const ScatteringPoint& sp, const SurfaceHit& h, const RTCHit& hit, std::uint32_t depth, glm::vec3& org,
+               glm::vec3& dir);
+  VertexSamples drawSamples(const Bsdf& bsdf);
+  void recordRadiance(const ScatteringPoint& sp, const Continuation& next);
+  void roulette(std::uint32_t depth, bool restart, Continuation& next);
+  void sampleDirect(const ScatteringPoint& sp, const VertexSamples& u, bool fromField);
+  void classify(const BsdfSample& bs, MaterialType type);
+
+  Tracer& tracer_;
+  const SceneState& scene_;
+  const Environment& env_;
+  const bool envActive_;
+  const LightSampling mode_;
+  Rng& rng_;
+  RadianceSample* record_;
+  PixelSample out_;
+  std::uint32_t nonSpecular_ = 0;      // non-specular scattering vertices so far
+  bool specularAfterDiffuse_ = false;  // a specular vertex followed one of them
+  // With a radiance record, throughput restarts at 1 after the first
+  // non-specular vertex, so that indirect contributions arrive as the
+  // incident radiance there; scale_ carries the weight from the eye to that
+  // vertex's outgoing ray (exactly 1 otherwise).
+  glm::vec3 scale_{1.0f};
+  glm::vec3 throughput_{1.0f};
+  float pathLength_ = 0.0f;
+  std::uint8_t mask_ = 0;
+  float prevPdf_ = 0.0f;
+  bool prevDelta_ = true;
+};
+
+PixelSample PathWalk::run(glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos, const glm::vec3& forward) {
+  for (std::uint32_t depth = 0;; ++depth) {
+    if (!traceable(org, dir, kInf)) {
+      ++tracer_.refused;
+      break;
+    }
+    RTCRayHit rh;
+    if (!tracer_.intersect(org, dir, rh)) {
+      if (envActive_) addEscaped(dir, depth);
+      break;
+    }
+    SurfaceHit h;
+    if (!tracer_.surface(org, dir, rh, h)) break;
+    if (nonSpecular_ == 0) pathLength_ += rh.ray.tfar;
+    const ResolvedMaterial& mat = *h.instance->material;
+    const glm::vec3 base = Tracer::baseColour(mat, h.uv);
+    if (depth == 0) {  // the first hit's AOVs
+      out_.hit = true;
+      out_.depth = glm::dot(h.p - camPos, forward);
+      out_.albedo = base;
+      out_.normal = glm::dot(h.ns, dir) > 0.0f ? -h.ns : h.ns;
+    }
+    if (mat.material.isEmissive() && glm::dot(h.faceNormal, dir) < 0.0f) addEmitted(h, mat, dir, rh.ray.tfar, depth);
+    if (depth >= tracer_.settings.maxDepth) break;
+    const ScatteringPoint sp(h, dir, mat.material, base);
+    if (sp.facesAway() || !scatter(sp, h, rh.hit, depth, org, dir)) break;
+  }
+  if (record_) record_->mask = mask_;
+  return out_;
+}
+
+void PathWalk::add(const glm::vec3& c, std::uint32_t nonSpecularVertices) {
+  if (!finite(c)) return;  // a NaN sample would poison the running mean forever
+  const glm::vec3 v = c * scale_;
+  if (specularAfterDiffuse_ || nonSpecularVertices > 1) {
+    out_.indirect += v;
+    if (specularAfterDiffuse_) out_.caustic += v;
+    if (record_ && !specularAfterDiffuse_) record_->radiance += c;
+  } else {
+    out_.direct += v;
+  }
+}
+
+// The environment seen where the path leaves the scene.
+void PathWalk::addEscaped(const glm::vec3& dir, std::uint32_t depth) {
+  float w = unweighted(depth) ? 1.0f : bsdfHitWeight(mode_, prevPdf_, env_.pdf(dir));
+  add(throughput_ * env_.radiance(dir) * w, nonSpecular_);
+}
+
+// Emission of the surface the path hit, seen from its front.
+void PathWalk::addEmitted(const SurfaceHit& h, const ResolvedMaterial& mat, const glm::vec3& dir, float t,
+                          std::uint32_t depth) {
+  float w = unweighted(depth) ? 1.0f : bsdfHitWeight(mode_, prevPdf_, tracer_.emitterPdf(h, dir, t));
+  add(throughput_ * Tracer::emission(mat, h.uv) * w, nonSpecular_);
+}
+
+// One scattering vertex; false when the path ends there, else org and dir
+// become the next segment's. The continuation is computed before the
+// shadow rays are traced: it does not depend on them, and its chain of
+// square roots, divisions and sincos then runs while Embree traverses,
+// instead of after it (out-of-order execution does not reach past the
+// mispredicted branches of a traversal into the code that follows the call).
+bool PathWalk::scatter(const ScatteringPoint& sp, const SurfaceHit& h, const RTCHit& hit, std::uint32_t depth,
+                       glm::vec3& org, glm::vec3& dir) {
+  const VertexSamples u = drawSamples(sp.bsdf);
+  Continuation next;
+  next.continues = sp.sample(u.bsdf, u.bsdfLobe, next.bs, next.dir);
+  const bool nextEvent = !sp.bsdf.isDelta();
+  const bool recordHere = record_ && nextEvent && nonSpecular_ == 0;
+  const bool fromField = tracer_.irradiance && nonSpecular_ == 0 && sp.bsdf.type == MaterialType::Diffuse;
+  if (recordHere) recordRadiance(sp, next);
+  roulette(depth, recordHere, next);
+  const glm::vec3 nextOrg = sp.spawn(next.dir);
+
+  if (nextEvent) sampleDirect(sp, u, fromField);
+  if (fromField) {
+    const auto inst = std::uint32_t(h.instance - scene_.views.data());
+    add(throughput_ * sp.bsdf.colour * kInvPi * tracer_.irradiance->at(inst, h.prim, hit.u, hit.v), nonSpecular_ + 2);
+    return false;
+  }
+  if (!next.continues) return false;
+  classify(next.bs, sp.bsdf.type);
+  throughput_ = next.throughput;
+  scale_ = next.scale;
+  prevPdf_ = next.bs.pdf;
+  prevDelta_ = next.bs.delta;
+  org = nextOrg;
+  dir = next.dir;
+  return true;
+}
+
+VertexSamples PathWalk::drawSamples(const Bsdf& bsdf) {
+  VertexSamples u;
+  const bool sampleLights = !bsdf.isDelta() && mode_ != LightSampling::BsdfOnly;
+  u.emitters = sampleLights && !scene_.emitters.empty();
+  u.environment = sampleLights && envActive_;
+  if (u.emitters) {
+    u.emitterSelect = rng_.uniform();
+    u.emitterPoint = rng_.uniform2();
+  }
+  if (u.environment) u.environmentDir = rng_.uniform2();
+  u.bsdf = rng_.uniform2();
+  u.bsdfLobe = rng_.uniform();
+  return u;
+}
+
+// The radiance sample at the first non-specular vertex.
+void PathWalk::recordRadiance(const ScatteringPoint& sp, const Continuation& next) {
+  RadianceSample& r = *record_;
+  r.valid = true;
+  r.position = sp.p;
+  r.normal = sp.frame.n;
+  r.wo = sp.wo;
+  r.wi = next.continues ? next.dir : glm::vec3(0.0f);
+  r.pdf = next.continues ? next.bs.pdf : 0.0f;
+  r.throughput = throughput_;
+  r.distance = pathLength_;
+  r.type = sp.bsdf.type;
+  r.colour = sp.bsdf.colour;
+  r.alpha = sp.bsdf.alpha;
+  r.eta = sp.bsdf.eta;
+}
+
+// The next segment's throughput and scale (restart: a radiance record was
+// taken here), then Russian roulette from settings.rouletteDepth on.
+void PathWalk::roulette(std::uint32_t depth, bool restart, Continuation& next) {
+  next.throughput = throughput_;
+  next.scale = scale_;
+  if (!next.continues) return;
+  if (restart) {
+    next.scale = throughput_ * next.bs.weight;
+    next.throughput = glm::vec3(1.0f);
+  } else {
+    next.throughput *= next.bs.weight;
+  }
+  if (depth + 1 >= tracer_.settings.rouletteDepth) {
+    float q = std::min(maxComponent(next.throughput * next.scale), 0.95f);
+    if (!(q > 0.0f) || rng_.uniform() >= q)
+      next.continues = false;
+    else
+      next.throughput /= q;
+  }
+}
+
+// Direct light at a non-specular vertex (after pbrt-v4's SampleLd): every
+// point, spot and directional light, one point on an emitter triangle
+// picked by power and one environment direction, each behind a shadow ray;
+// the sampled ones weighted against BSDF sampling (not with an irradiance
+// field: emitters are found by light sampling alone there).
+void PathWalk::sampleDirect(const ScatteringPoint& sp, const VertexSamples& u, bool fromField) {
+  for (const Light& light : scene_.activeLights) {
+    LightArrival a;
+    if (!lightArriving(light, sp.p, a)) continue;
+    glm::vec3 f = sp.eval(a.wi, nullptr);  // delta lights: no MIS
+    if (maxComponent(f) <= 0.0f) continue;
+    if (!tracer_.occluded(sp.spawn(a.wi), a.wi, a.tfar)) add(throughput_ * f * a.li, nonSpecular_ + 1);
+  }
+  if (u.emitters) {
+    Tracer::EmitterSample es;
+    if (tracer_.sampleEmitter(sp.p, u.emitterSelect, u.emitterPoint, es)) {
+      float bsdfPdf;
+      glm::vec3 f = sp.eval(es.wi, &bsdfPdf);
+      if (maxComponent(f) > 0.0f) {
+        glm::vec3 o = sp.spawn(es.wi);
+        float dist = glm::length(es.point - o);
+        if (!tracer_.occluded(o, es.wi, dist - rayEpsilon(es.point))) {
+          const float w = fromField ? 1.0f : lightSampleWeight(mode_, es.pdf, bsdfPdf);
+          add(throughput_ * f * es.radiance * (w / es.pdf), nonSpecular_ + 1);
+        }
+      }
+    }
+  }
+  if (u.environment) {
+    Environment::Sample es = env_.sample(u.environmentDir);
+    if (es.pdf > 0.0f) {
+      float bsdfPdf;
+      glm::vec3 f = sp.eval(es.direction, &bsdfPdf);
+      if (maxComponent(f) > 0.0f && !tracer_.occluded(sp.spawn(es.direction), es.direction, kInf)) {
+        const float w = fromField ? 1.0f : lightSampleWeight(mode_, es.pdf, bsdfPdf);
+        add(throughput_ * f * es.radiance * (w / es.pdf), nonSpecular_ + 1);
+      }
+    }
+  }
+}
+
+// What the path's next segment counts as for the filters: the mask of
+// specular first vertices, caustic paths, non-specular vertices so far.
+void PathWalk::classify(const BsdfSample& bs, MaterialType type) {
+  if (bs.delta && nonSpecular_ == 0) {
+    mask_ |= kMaskSpecular;
+    if (type == MaterialType::Glass) mask_ |= kMaskReflectRefract;
+  }
+  if (bs.delta)
+    specularAfterDiffuse_ = specularAfterDiffuse_ || nonSpecular_ > 0;
+  else
+    ++nonSpecular_;
+}
+
+}  // namespace
+
+PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos, const glm::vec3& forward,
+                              RadianceSample* record) {
+  return PathWalk(*this, rng, record).run(org, dir, camPos, forward);
+}
+
+}  // namespace tsr::embree
