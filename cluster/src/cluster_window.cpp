@@ -248,10 +248,10 @@ struct ClusterWindow::Impl {
   // `round` is the frame being rendered, null between frames.
   void receive(std::size_t i, const Message& m, FrameRound* round) {
     switch (m.type) {
-      case MessageType::Applied:
+      case Applied::kType:
         nodes[i].applied = parse<Applied>(m).version;
         return;
-      case MessageType::RenderTile: {
+      case RenderTile::kType: {
         RenderTile tile = parse<RenderTile>(m);
         if (!round) return;
         if (const WorkItem* done = round->onTile(i, tile)) {
@@ -260,18 +260,18 @@ struct ClusterWindow::Impl {
         }
         return;
       }
-      case MessageType::FrameDone:
+      case FrameDone::kType:
         if (round) round->onDone(i, parse<FrameDone>(m));
         return;
-      case MessageType::HashReply: {
+      case HashReply::kType: {
         HashReply r = parse<HashReply>(m);
         if (r.token == hashToken) nodes[i].hash = r;
         return;
       }
-      case MessageType::HeartbeatAck:
+      case HeartbeatAck::kType:
         parse<HeartbeatAck>(m);
         return;
-      case MessageType::Error:
+      case ErrorReport::kType:
         nodes[i].lastError = parse<ErrorReport>(m).reason;
         spdlog::warn("node {}: {}", nodes[i].config.address.text(), nodes[i].lastError);
         // A node that cannot render the frame (a bad parameter, an output its
@@ -397,11 +397,11 @@ void ClusterWindow::publish(const sg::Scene& scene, const sg::ChangeListPtr& del
     if (n.state == NodeState::Synced && !delta && n.sentVersion == scene.version()) continue;
     if (n.applied >= n.sentVersion) n.listSentAt = Clock::now();  // it was caught up: a new wait begins
     if (follows) {
-      if (!changes) changes = frameFromPayload(MessageType::Changes, sg::encode(*delta));
+      if (!changes) changes = frameFromPayload(Changes::kType, sg::encode(*delta));
       n.link->send(changes);
     } else if (n.state == NodeState::Synced || n.state == NodeState::Joined) {
       // A new node, or one that missed a list: it starts over from the whole scene.
-      if (!snapshot) snapshot = frameFromPayload(MessageType::Snapshot, sg::encode(*scene.snapshot()));
+      if (!snapshot) snapshot = frameFromPayload(Snapshot::kType, sg::encode(*scene.snapshot()));
       n.link->send(snapshot);
       if (!n.viewportsSent) n.link->send(s.viewportsFor(n));
       n.viewportsSent = true;

@@ -101,32 +101,6 @@ asio::awaitable<bool> NodeSession::handshake() {
   co_return true;
 }
 
-void NodeSession::dispatch(Message& m) {
-  switch (m.type) {
-    case MessageType::Snapshot:
-      return onReplicaBytes(m, true);
-    case MessageType::Changes:
-      return onReplicaBytes(m, false);
-    case MessageType::SetViewports:
-      return onSetViewports(m);
-    case MessageType::RenderRequest:
-      return onRenderRequest(m);
-    case MessageType::Swap:
-      return onSwap(m);
-    case MessageType::HashQuery:
-      return onHashQuery(m);
-    case MessageType::Heartbeat:
-      return onHeartbeat(m);
-    case MessageType::Prepare:
-      return onPrepare(m);
-    case MessageType::Bye:
-      return conn_->closeAfterFlush();
-    default:
-      // Handshake messages after the handshake; node-side types are refused by receive().
-      throw ProtocolError(Kind::Unexpected, std::string(name(m.type)) + " after the handshake");
-  }
-}
-
 void NodeSession::failFromWorker(const std::string& reason) {
   spdlog::warn("session {}: {}; disconnecting", peer_, reason);
   state_->cancelled = true;
@@ -136,6 +110,17 @@ void NodeSession::failFromWorker(const std::string& reason) {
   });
 }
 
+template <>
+void NodeSession::on<Snapshot>(Message& m) {
+  onReplicaBytes(m, true);
+}
+
+template <>
+void NodeSession::on<Changes>(Message& m) {
+  onReplicaBytes(m, false);
+}
+
+// The change list is the whole payload: decoded where it is applied, not copied.
 void NodeSession::onReplicaBytes(Message& m, bool snapshot) {
   // Decoding and applying run on the worker, in order with rendering.
   ctx_.worker.post([self = shared_from_this(), bytes = std::move(m.payload), snapshot] {
@@ -160,7 +145,8 @@ void NodeSession::onReplicaBytes(Message& m, bool snapshot) {
   });
 }
 
-void NodeSession::onSetViewports(const Message& m) {
+template <>
+void NodeSession::on<SetViewports>(Message& m) {
   SetViewports sv = parse<SetViewports>(m);
   // An unknown back-end is the client's configuration error, not an attack:
   // say so now; the replica keeps following, rendering that viewport fails.
@@ -186,7 +172,8 @@ void NodeSession::onSetViewports(const Message& m) {
   });
 }
 
-void NodeSession::onPrepare(Message& m) {
+template <>
+void NodeSession::on<Prepare>(Message& m) {
   Prepare prepare = parse<Prepare>(m);
   ctx_.worker.post([self = shared_from_this(), prepare = std::move(prepare)] {
     State& st = *self->state_;
@@ -218,7 +205,8 @@ void NodeSession::onPrepare(Message& m) {
   });
 }
 
-void NodeSession::onRenderRequest(const Message& m) {
+template <>
+void NodeSession::on<RenderRequest>(Message& m) {
   RenderRequest request = parse<RenderRequest>(m);
   ctx_.worker.post([self = shared_from_this(), request = std::move(request)] {
     if (self->state_->cancelled) return;
@@ -289,7 +277,8 @@ void NodeSession::render(State& st, const NodeContext& ctx, const RenderRequest&
   conn->post(makeFrame(FrameDone{request.frame, busy}));
 }
 
-void NodeSession::onSwap(const Message& m) {
+template <>
+void NodeSession::on<Swap>(Message& m) {
   // The wall's barrier released: show the tiles rendered for this frame.
   Swap swap = parse<Swap>(m);
   ctx_.worker.post([self = shared_from_this(), swap] {
@@ -300,7 +289,8 @@ void NodeSession::onSwap(const Message& m) {
   });
 }
 
-void NodeSession::onHashQuery(const Message& m) {
+template <>
+void NodeSession::on<HashQuery>(Message& m) {
   HashQuery q = parse<HashQuery>(m);
   ctx_.worker.post([self = shared_from_this(), q] {
     const sg::Replica& r = *self->state_->replica;
@@ -308,6 +298,27 @@ void NodeSession::onHashQuery(const Message& m) {
   });
 }
 
-void NodeSession::onHeartbeat(const Message& m) { conn_->send(makeFrame(HeartbeatAck{parse<Heartbeat>(m).sequence})); }
+template <>
+void NodeSession::on<Heartbeat>(Message& m) {
+  conn_->send(makeFrame(HeartbeatAck{parse<Heartbeat>(m).sequence}));
+}
+
+template <>
+void NodeSession::on<Bye>(Message& m) {
+  parse<Bye>(m);
+  conn_->closeAfterFlush();
+}
+
+// Every message a client sends after the handshake goes to its on<M>; the
+// handshake's messages and the node's own are refused.
+void NodeSession::dispatch(Message& m) {
+  bool known = Messages::visit(m.type, [&]<class M>() {
+    if constexpr (M::kSpec.sender == Sender::Client && !M::kSpec.beforeAuth)
+      on<M>(m);
+    else
+      throw ProtocolError(Kind::Unexpected, std::string(M::kSpec.name) + " after the handshake");
+  });
+  if (!known) throw ProtocolError(Kind::UnknownType, "unknown message type " + std::to_string(int(m.type)));
+}
 
 }  // namespace tsr::cluster

@@ -77,10 +77,10 @@ TEST(NodeAuth, ForgedProofGetsRejectAndHangUp) {
   ASSERT_TRUE(raw.send(hs.hello()));
   Message m;
   ASSERT_EQ(raw.read(m), Outcome::Message);
-  EXPECT_EQ(m.type, MessageType::Challenge);
+  EXPECT_EQ(m.type, Challenge::kType);
   ASSERT_TRUE(raw.send(makeFrame(Auth{})));  // a guess
   ASSERT_EQ(raw.read(m), Outcome::Message);
-  EXPECT_EQ(m.type, MessageType::Reject);
+  EXPECT_EQ(m.type, Reject::kType);
   EXPECT_EQ(raw.waitClosed(), Outcome::Closed);
 }
 
@@ -94,7 +94,7 @@ TEST(NodeAuth, OtherProtocolVersionIsRejectedWithAReason) {
   ASSERT_TRUE(raw.send(bytes));
   Message m;
   ASSERT_EQ(raw.read(m), Outcome::Message);
-  ASSERT_EQ(m.type, MessageType::Reject);
+  ASSERT_EQ(m.type, Reject::kType);
   EXPECT_NE(parse<Reject>(m).reason.find("version"), std::string::npos);
   EXPECT_EQ(raw.waitClosed(), Outcome::Closed);
 }
@@ -132,7 +132,7 @@ TEST_F(HostileInput, RandomBytesCloseThatConnectionOnly) {
 TEST_F(HostileInput, OversizedFrameClosesBeforeThePayload) {
   RawClient raw(nodes[0]->address());
   std::vector<std::uint8_t> header;
-  writeFrameHeader(header, {kProtocolVersion, MessageType::Hello, 1u << 30});
+  writeFrameHeader(header, {kProtocolVersion, Hello::kType, 1u << 30});
   raw.send(header);  // no payload follows: the node must not wait for it
   EXPECT_EQ(raw.waitClosed(), Outcome::Closed);
   expectHonestClientUnharmed();
@@ -146,9 +146,9 @@ TEST_F(HostileInput, OversizedAfterAuthenticationCloses) {
   ASSERT_EQ(raw.read(m), Outcome::Message);
   raw.send(hs.onChallenge(m));
   ASSERT_EQ(raw.read(m), Outcome::Message);
-  ASSERT_EQ(m.type, MessageType::Welcome);
+  ASSERT_EQ(m.type, Welcome::kType);
   std::vector<std::uint8_t> header;
-  writeFrameHeader(header, {kProtocolVersion, MessageType::RenderRequest, 64u << 20});
+  writeFrameHeader(header, {kProtocolVersion, RenderRequest::kType, 64u << 20});
   raw.send(header);
   EXPECT_EQ(raw.waitClosed(), Outcome::Closed);
   expectHonestClientUnharmed();
@@ -156,7 +156,7 @@ TEST_F(HostileInput, OversizedAfterAuthenticationCloses) {
 
 TEST_F(HostileInput, BulkBeforeAuthenticationCloses) {
   RawClient raw(nodes[0]->address());
-  raw.send(frameFromPayload(MessageType::Snapshot, std::vector<std::uint8_t>(64, 1)));
+  raw.send(frameFromPayload(Snapshot::kType, std::vector<std::uint8_t>(64, 1)));
   EXPECT_EQ(raw.waitClosed(), Outcome::Closed);
   expectHonestClientUnharmed();
 }
@@ -170,9 +170,9 @@ TEST_F(HostileInput, CorruptChangeListClosesThatClientOnly) {
   raw.send(hs.onChallenge(m));
   ASSERT_EQ(raw.read(m), Outcome::Message);
   raw.send(
-      frameFromPayload(MessageType::Snapshot, std::vector<std::uint8_t>{'T', 'S', 'R', 'C', 1, 1, 50, 0, 0, 0, 9}));
+      frameFromPayload(Snapshot::kType, std::vector<std::uint8_t>{'T', 'S', 'R', 'C', 1, 1, 50, 0, 0, 0, 9}));
   ASSERT_EQ(raw.read(m), Outcome::Message);
-  EXPECT_EQ(m.type, MessageType::Error);
+  EXPECT_EQ(m.type, ErrorReport::kType);
   EXPECT_EQ(raw.waitClosed(), Outcome::Closed);
   expectHonestClientUnharmed();
 }

@@ -86,9 +86,9 @@ void clusterMessages(const fs::path& dir) {
               frame(makeFrame(Reject{"wrong token"}))}));
 
   const std::vector<Bytes> lists = richStream();
-  std::vector<Bytes> replica{frame(frameFromPayload(MessageType::Snapshot, lists[0]))};
+  std::vector<Bytes> replica{frame(frameFromPayload(Snapshot::kType, lists[0]))};
   for (std::size_t i = 1; i < lists.size(); ++i)
-    replica.push_back(frame(frameFromPayload(MessageType::Changes, lists[i])));
+    replica.push_back(frame(frameFromPayload(Changes::kType, lists[i])));
   replica.push_back(frame(makeFrame(Applied{2})));
   put(dir, "replica", concat(replica));
 

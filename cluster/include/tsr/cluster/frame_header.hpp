@@ -18,7 +18,7 @@ inline constexpr std::array<std::uint8_t, 4> kFrameMagic{'T', 'S', 'R', 'N'};
 
 struct FrameHeader {
   std::uint8_t version = kProtocolVersion;
-  MessageType type = MessageType::Heartbeat;
+  MessageType type{};
   std::uint32_t length = 0;
 };
 
