@@ -47,11 +47,31 @@ struct Node {
   std::optional<std::uint64_t> aheadVersion;
   bool viewportsSent = false;  // SetViewports sent since it joined
   std::string lastError;
+  std::optional<ErrorReport> lastReport;  // the node's last ErrorReport since it joined
   std::optional<HashReply> hash;  // the answer to the latest HashQuery
   // When the phases the client may wait in began (see phaseOf).
   Clock::time_point stateSince = Clock::now(), listSentAt{}, requestAt{}, lastTileAt{};
   std::pair<std::uint64_t, NodePhase> reportedLate{0, NodePhase::Idle};
 };
+
+// A node that cannot render the frame as asked (a back-end it lacks, a
+// parameter its back-end refuses, an output it cannot fill) would fail the
+// same way on every node the work moves to: the frame fails at once. A
+// rejected scene, a broken message or a failed prepare only lose that node.
+bool failsTheFrame(ErrorReport::Kind kind) {
+  using Kind = ErrorReport::Kind;
+  switch (kind) {
+    case Kind::UnknownBackend:
+    case Kind::InvalidParameter:
+    case Kind::RenderFailed:
+      return true;
+    case Kind::ProtocolViolation:
+    case Kind::SceneRejected:
+    case Kind::PrepareFailed:
+      return false;
+  }
+  return false;
+}
 
 // A steady-clock instant as wall-clock time of day, for people reading logs.
 std::string timeOfDay(Clock::time_point t) {
@@ -220,6 +240,7 @@ struct ClusterWindow::Impl {
         setState(n, NodeState::Joined);
         n.name = e.welcome.nodeName;
         n.applied = 0;
+        n.lastReport.reset();
         // Kept even without the back-end: it still mirrors the scene; its renders fail and drop it then.
         if (std::find(e.welcome.backends.begin(), e.welcome.backends.end(), n.config.backend) ==
             e.welcome.backends.end())
@@ -271,14 +292,14 @@ struct ClusterWindow::Impl {
       case HeartbeatAck::kType:
         parse<HeartbeatAck>(m);
         return;
-      case ErrorReport::kType:
-        nodes[i].lastError = parse<ErrorReport>(m).reason;
-        spdlog::warn("node {}: {}", nodes[i].config.address.text(), nodes[i].lastError);
-        // A node that cannot render the frame (a bad parameter, an output its
-        // back-end lacks) would fail the same way on every node it moves to.
-        if (round && nodes[i].lastError.rfind("render failed", 0) == 0)
-          round->fail("node " + nodes[i].config.address.text() + ": " + nodes[i].lastError);
+      case ErrorReport::kType: {
+        Node& n = nodes[i];
+        n.lastReport = parse<ErrorReport>(m);
+        n.lastError = n.lastReport->reason;
+        spdlog::warn("node {}: {} ({})", n.config.address.text(), n.lastError, name(n.lastReport->kind));
+        if (round && failsTheFrame(n.lastReport->kind)) round->fail("node " + n.config.address.text() + ": " + n.lastError);
         return;
+      }
       default:
         throw ProtocolError(ProtocolError::Kind::Unexpected, std::string(name(m.type)) + " after the handshake");
     }
@@ -552,7 +573,7 @@ std::vector<NodeStatus> ClusterWindow::status() const {
     const Node& n = impl_->nodes[i];
     auto [phase, since] = impl_->phaseOf(i, nullptr);
     out.push_back({n.config.address, n.name, n.state, n.applied, n.link->bytesSent(), n.link->bytesReceived(),
-                   n.lastError, phase, since});
+                   n.lastError, phase, since, n.lastReport});
   }
   return out;
 }

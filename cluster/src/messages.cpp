@@ -7,6 +7,25 @@
 
 namespace tsr::cluster {
 
+const char* name(ErrorReport::Kind kind) {
+  using Kind = ErrorReport::Kind;
+  switch (kind) {
+    case Kind::ProtocolViolation:
+      return "protocol violation";
+    case Kind::SceneRejected:
+      return "scene rejected";
+    case Kind::UnknownBackend:
+      return "unknown back-end";
+    case Kind::InvalidParameter:
+      return "invalid parameter";
+    case Kind::RenderFailed:
+      return "render failed";
+    case Kind::PrepareFailed:
+      return "prepare failed";
+  }
+  return "unknown";
+}
+
 Frame frameFromPayload(MessageType type, std::span<const std::uint8_t> payload) {
   if (payload.size() > spec(type).maxPayload)
     throw ProtocolError(

@@ -7,6 +7,8 @@
 #include "tsr/cluster/handshake.hpp"
 #include "tsr/cluster/pixel_codec.hpp"
 #include "tsr/cluster/protocol_error.hpp"
+#include "tsr/med/parameters.hpp"
+#include "tsr/med/viewport_registry.hpp"
 #include "tsr/sg/errors.hpp"
 #include "tsr/sg/wire_codec.hpp"
 
@@ -22,6 +24,21 @@ std::string peerName(const tcp::socket& s) {
   boost::system::error_code ec;
   auto ep = s.remote_endpoint(ec);
   return ec ? std::string("?") : ep.address().to_string() + ":" + std::to_string(ep.port());
+}
+
+// What the client is told about an exception from creating, preparing or
+// rendering a viewport (called in a catch block): a missing back-end and
+// refused parameters are named, anything else is `otherwise`.
+ErrorReport::Kind failureKind(ErrorReport::Kind otherwise) {
+  try {
+    throw;
+  } catch (const med::UnknownBackend&) {
+    return ErrorReport::Kind::UnknownBackend;
+  } catch (const med::ParameterError&) {
+    return ErrorReport::Kind::InvalidParameter;
+  } catch (...) {
+    return otherwise;
+  }
 }
 }  // namespace
 
@@ -56,7 +73,8 @@ asio::awaitable<void> NodeSession::run() {
     if (conn_->authenticated()) {
       // A client we know gets the reason (a view it cannot render, say);
       // strangers only get the hang-up.
-      conn_->send(makeFrame(ErrorReport{std::string(e.what()).substr(0, kMaxReasonBytes)}));
+      conn_->send(makeFrame(
+          ErrorReport{ErrorReport::Kind::ProtocolViolation, std::string(e.what()).substr(0, kMaxReasonBytes)}));
       conn_->closeAfterFlush();
     } else {
       conn_->close();
@@ -101,11 +119,11 @@ asio::awaitable<bool> NodeSession::handshake() {
   co_return true;
 }
 
-void NodeSession::failFromWorker(const std::string& reason) {
+void NodeSession::failFromWorker(ErrorReport::Kind kind, const std::string& reason) {
   spdlog::warn("session {}: {}; disconnecting", peer_, reason);
   state_->cancelled = true;
-  asio::post(conn_->executor(), [conn = conn_, reason] {
-    conn->send(makeFrame(ErrorReport{reason}));
+  asio::post(conn_->executor(), [conn = conn_, kind, reason = reason.substr(0, kMaxReasonBytes)] {
+    conn->send(makeFrame(ErrorReport{kind, reason}));
     conn->closeAfterFlush();
   });
 }
@@ -138,9 +156,9 @@ void NodeSession::onReplicaBytes(Message& m, bool snapshot) {
       st.replica->apply(list);
       self->conn_->post(makeFrame(Applied{st.replica->version()}));
     } catch (const sg::DecodeError& e) {
-      self->failFromWorker(std::string("change list does not decode: ") + e.what());
+      self->failFromWorker(ErrorReport::Kind::SceneRejected, std::string("change list does not decode: ") + e.what());
     } catch (const sg::ApplyError& e) {
-      self->failFromWorker(std::string("change list does not apply: ") + e.what());
+      self->failFromWorker(ErrorReport::Kind::SceneRejected, std::string("change list does not apply: ") + e.what());
     }
   });
 }
@@ -152,7 +170,8 @@ void NodeSession::on<SetViewports>(Message& m) {
   // say so now; the replica keeps following, rendering that viewport fails.
   for (const auto& v : sv.viewports)
     if (!ctx_.registry.has(v.backend))
-      conn_->send(makeFrame(ErrorReport{"this node has no back-end '" + v.backend + "'"}));
+      conn_->send(
+          makeFrame(ErrorReport{ErrorReport::Kind::UnknownBackend, "this node has no back-end '" + v.backend + "'"}));
   ctx_.worker.post([self = shared_from_this(), sv = std::move(sv)] {
     State& st = *self->state_;
     st.viewports.clear();
@@ -196,11 +215,14 @@ void NodeSession::on<Prepare>(Message& m) {
         vp->prepare(*st.ahead, prepare.frame);
       }
     } catch (const sg::DecodeError& e) {
-      self->failFromWorker(std::string("change list ahead does not decode: ") + e.what());
+      self->failFromWorker(ErrorReport::Kind::SceneRejected,
+                           std::string("change list ahead does not decode: ") + e.what());
     } catch (const sg::ApplyError& e) {
-      self->failFromWorker(std::string("change list ahead does not apply: ") + e.what());
+      self->failFromWorker(ErrorReport::Kind::SceneRejected,
+                           std::string("change list ahead does not apply: ") + e.what());
     } catch (const std::exception& e) {
-      self->failFromWorker(std::string("preparing frame ") + std::to_string(prepare.frame) + " failed: " + e.what());
+      self->failFromWorker(failureKind(ErrorReport::Kind::PrepareFailed),
+                           std::string("preparing frame ") + std::to_string(prepare.frame) + " failed: " + e.what());
     }
   });
 }
@@ -213,7 +235,7 @@ void NodeSession::on<RenderRequest>(Message& m) {
     try {
       render(*self->state_, self->ctx_, request, self->conn_);
     } catch (const std::exception& e) {
-      self->failFromWorker(std::string("render failed: ") + e.what());
+      self->failFromWorker(failureKind(ErrorReport::Kind::RenderFailed), std::string("render failed: ") + e.what());
     }
   });
 }

@@ -64,7 +64,7 @@ class NodeSession : public std::enable_shared_from_this<NodeSession> {
   // Worker side.
   static void render(State& state, const NodeContext& ctx, const RenderRequest& request,
                      const std::shared_ptr<Connection>& conn);
-  void failFromWorker(const std::string& reason);
+  void failFromWorker(ErrorReport::Kind kind, const std::string& reason);
 
   NodeContext& ctx_;
   std::shared_ptr<Connection> conn_;

@@ -105,7 +105,7 @@ HashQuery sample(std::type_identity<HashQuery>) { return {2}; }
 HashReply sample(std::type_identity<HashReply>) { return {2, 9, 0xdeadbeefcafef00dull}; }
 Heartbeat sample(std::type_identity<Heartbeat>) { return {300}; }
 HeartbeatAck sample(std::type_identity<HeartbeatAck>) { return {300}; }
-ErrorReport sample(std::type_identity<ErrorReport>) { return {"bad"}; }
+ErrorReport sample(std::type_identity<ErrorReport>) { return {ErrorReport::Kind::UnknownBackend, "bad"}; }
 Prepare sample(std::type_identity<Prepare>) { return {12, {1, 2, 3, 4}}; }
 
 template <class M>
@@ -338,6 +338,26 @@ TEST(MessageList, EveryTypesDeclaredLimitsAreEnforced) {
     EXPECT_LE(payloadOf(sampleOf<M>()).size(), s.maxPayload) << s.name;
   });
   EXPECT_EQ(types, Messages::size);
+}
+
+// Protocol 2 changed the Error message on purpose (a kind byte before the
+// reason); these are its bytes, so a change to them is never an accident.
+TEST(MessageCodec, ErrorReportBytesArePinned) {
+  const Frame f = makeFrame(ErrorReport{ErrorReport::Kind::InvalidParameter, "spp"});
+  const std::vector<std::uint8_t> want{'T', 'S', 'R', 'N', 2, 18, 5, 0, 0, 0, 3, 3, 's', 'p', 'p'};
+  EXPECT_EQ(*f, want);
+  ErrorReport back = parse<ErrorReport>(unframe(f));
+  EXPECT_EQ(back.kind, ErrorReport::Kind::InvalidParameter);
+  EXPECT_EQ(back.reason, "spp");
+  Message unknownKind = unframe(f);
+  unknownKind.payload[0] = 6;  // one past the last kind
+  try {
+    parse<ErrorReport>(unknownKind);
+    ADD_FAILURE() << "an unknown error kind decoded";
+  } catch (const ProtocolError& e) {
+    EXPECT_EQ(e.kind(), Kind::Malformed);
+    EXPECT_NE(std::string(e.what()).find("unknown error kind 6"), std::string::npos) << e.what();
+  }
 }
 
 TEST(FrameHeader, ChecksMagicVersionTypeAndSize) {

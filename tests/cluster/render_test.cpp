@@ -415,6 +415,7 @@ TEST(ClusterRender, EyeBeyondTheCoordinateLimitIsRefusedAndTheNodeServesOn) {
     ASSERT_TRUE(raw.send(makeFrame(request)));
     ASSERT_EQ(raw.read(m), RawClient::Outcome::Message) << "eye " << eye;
     ASSERT_EQ(m.type, ErrorReport::kType) << "eye " << eye;
+    EXPECT_EQ(parse<ErrorReport>(m).kind, ErrorReport::Kind::ProtocolViolation);
     EXPECT_NE(parse<ErrorReport>(m).reason.find("beyond the coordinate limit"), std::string::npos)
         << parse<ErrorReport>(m).reason;
     EXPECT_EQ(raw.waitClosed(), RawClient::Outcome::Closed);

@@ -121,7 +121,7 @@ void clusterMessages(const fs::path& dir) {
   put(dir, "service",
       concat({frame(makeFrame(HashQuery{5})), frame(makeFrame(HashReply{5, 2, 0xabcdef})),
               frame(makeFrame(Heartbeat{1})), frame(makeFrame(HeartbeatAck{1})),
-              frame(makeFrame(ErrorReport{"no such viewport"})), frame(makeFrame(Bye{}))}));
+              frame(makeFrame(ErrorReport{ErrorReport::Kind::RenderFailed, "no such viewport"})), frame(makeFrame(Bye{}))}));
 }
 
 void pixelCodec(const fs::path& dir) {

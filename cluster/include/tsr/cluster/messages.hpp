@@ -340,13 +340,30 @@ struct HeartbeatAck {
   bool operator==(const HeartbeatAck&) const = default;
 };
 
+// What went wrong on the node, typed so the client decides by `kind`; the
+// reason is for people.
 struct ErrorReport {
   static constexpr MessageType kType{18};
   static constexpr MessageSpec kSpec{kType, "Error", Sender::Node, 8 * kKiB, kAfterAuth};
+  enum class Kind : std::uint8_t {
+    ProtocolViolation = 0,  // the client broke the protocol (a malformed or unexpected message); the node hangs up
+    SceneRejected = 1,      // a change list, shown or ahead, does not decode or apply; the node hangs up
+    UnknownBackend = 2,     // a viewport names a back-end this node lacks: said when the viewports arrive (the
+                            // session goes on) and when a render or prepare needs it (the node hangs up)
+    InvalidParameter = 3,   // a viewport's parameters are refused (med::ParameterError from creating or
+                            // rendering it); the node hangs up
+    RenderFailed = 4,       // rendering a request failed otherwise; the node hangs up
+    PrepareFailed = 5,      // preparing a frame ahead failed otherwise; the node hangs up
+  };
+  Kind kind = Kind::RenderFailed;
   std::string reason;
-  static constexpr auto fields() { return std::tuple{field("reason", &ErrorReport::reason, wire::text(kMaxReasonBytes))}; }
+  static constexpr auto fields() {
+    return std::tuple{field("error kind", &ErrorReport::kind, wire::enumUpTo(Kind::PrepareFailed)),
+                      field("reason", &ErrorReport::reason, wire::text(kMaxReasonBytes))};
+  }
   bool operator==(const ErrorReport&) const = default;
 };
+const char* name(ErrorReport::Kind kind);
 
 struct Bye {
   static constexpr MessageType kType{19};
