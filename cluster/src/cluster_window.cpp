@@ -47,11 +47,31 @@ struct Node {
   std::optional<std::uint64_t> aheadVersion;
   bool viewportsSent = false;  // SetViewports sent since it joined
   std::string lastError;
+  std::optional<ErrorReport> lastReport;  // the node's last ErrorReport since it joined
   std::optional<HashReply> hash;  // the answer to the latest HashQuery
   // When the phases the client may wait in began (see phaseOf).
   Clock::time_point stateSince = Clock::now(), listSentAt{}, requestAt{}, lastTileAt{};
   std::pair<std::uint64_t, NodePhase> reportedLate{0, NodePhase::Idle};
 };
+
+// A node that cannot render the frame as asked (a back-end it lacks, a
+// parameter its back-end refuses, an output it cannot fill) would fail the
+// same way on every node the work moves to: the frame fails at once. A
+// rejected scene, a broken message or a failed prepare only lose that node.
+bool failsTheFrame(ErrorReport::Kind kind) {
+  using Kind = ErrorReport::Kind;
+  switch (kind) {
+    case Kind::UnknownBackend:
+    case Kind::InvalidParameter:
+    case Kind::RenderFailed:
+      return true;
+    case Kind::ProtocolViolation:
+    case Kind::SceneRejected:
+    case Kind::PrepareFailed:
+      return false;
+  }
+  return false;
+}
 
 // A steady-clock instant as wall-clock time of day, for people reading logs.
 std::string timeOfDay(Clock::time_point t) {
@@ -220,6 +240,7 @@ struct ClusterWindow::Impl {
         setState(n, NodeState::Joined);
         n.name = e.welcome.nodeName;
         n.applied = 0;
+        n.lastReport.reset();
         // Kept even without the back-end: it still mirrors the scene; its renders fail and drop it then.
         if (std::find(e.welcome.backends.begin(), e.welcome.backends.end(), n.config.backend) ==
             e.welcome.backends.end())
@@ -248,10 +269,10 @@ struct ClusterWindow::Impl {
   // `round` is the frame being rendered, null between frames.
   void receive(std::size_t i, const Message& m, FrameRound* round) {
     switch (m.type) {
-      case MessageType::Applied:
+      case Applied::kType:
         nodes[i].applied = parse<Applied>(m).version;
         return;
-      case MessageType::RenderTile: {
+      case RenderTile::kType: {
         RenderTile tile = parse<RenderTile>(m);
         if (!round) return;
         if (const WorkItem* done = round->onTile(i, tile)) {
@@ -260,25 +281,25 @@ struct ClusterWindow::Impl {
         }
         return;
       }
-      case MessageType::FrameDone:
+      case FrameDone::kType:
         if (round) round->onDone(i, parse<FrameDone>(m));
         return;
-      case MessageType::HashReply: {
+      case HashReply::kType: {
         HashReply r = parse<HashReply>(m);
         if (r.token == hashToken) nodes[i].hash = r;
         return;
       }
-      case MessageType::HeartbeatAck:
+      case HeartbeatAck::kType:
         parse<HeartbeatAck>(m);
         return;
-      case MessageType::Error:
-        nodes[i].lastError = parse<ErrorReport>(m).reason;
-        spdlog::warn("node {}: {}", nodes[i].config.address.text(), nodes[i].lastError);
-        // A node that cannot render the frame (a bad parameter, an output its
-        // back-end lacks) would fail the same way on every node it moves to.
-        if (round && nodes[i].lastError.rfind("render failed", 0) == 0)
-          round->fail("node " + nodes[i].config.address.text() + ": " + nodes[i].lastError);
+      case ErrorReport::kType: {
+        Node& n = nodes[i];
+        n.lastReport = parse<ErrorReport>(m);
+        n.lastError = n.lastReport->reason;
+        spdlog::warn("node {}: {} ({})", n.config.address.text(), n.lastError, name(n.lastReport->kind));
+        if (round && failsTheFrame(n.lastReport->kind)) round->fail("node " + n.config.address.text() + ": " + n.lastError);
         return;
+      }
       default:
         throw ProtocolError(ProtocolError::Kind::Unexpected, std::string(name(m.type)) + " after the handshake");
     }
@@ -397,11 +418,11 @@ void ClusterWindow::publish(const sg::Scene& scene, const sg::ChangeListPtr& del
     if (n.state == NodeState::Synced && !delta && n.sentVersion == scene.version()) continue;
     if (n.applied >= n.sentVersion) n.listSentAt = Clock::now();  // it was caught up: a new wait begins
     if (follows) {
-      if (!changes) changes = frameFromPayload(MessageType::Changes, sg::encode(*delta));
+      if (!changes) changes = frameFromPayload(Changes::kType, sg::encode(*delta));
       n.link->send(changes);
     } else if (n.state == NodeState::Synced || n.state == NodeState::Joined) {
       // A new node, or one that missed a list: it starts over from the whole scene.
-      if (!snapshot) snapshot = frameFromPayload(MessageType::Snapshot, sg::encode(*scene.snapshot()));
+      if (!snapshot) snapshot = frameFromPayload(Snapshot::kType, sg::encode(*scene.snapshot()));
       n.link->send(snapshot);
       if (!n.viewportsSent) n.link->send(s.viewportsFor(n));
       n.viewportsSent = true;
@@ -552,7 +573,7 @@ std::vector<NodeStatus> ClusterWindow::status() const {
     const Node& n = impl_->nodes[i];
     auto [phase, since] = impl_->phaseOf(i, nullptr);
     out.push_back({n.config.address, n.name, n.state, n.applied, n.link->bytesSent(), n.link->bytesReceived(),
-                   n.lastError, phase, since});
+                   n.lastError, phase, since, n.lastReport});
   }
   return out;
 }

@@ -23,7 +23,7 @@ ClientHandshake::ClientHandshake(std::string token, std::string clientName, std:
 Frame ClientHandshake::hello() const { return makeFrame(hello_); }
 
 Frame ClientHandshake::onChallenge(const Message& message) {
-  if (message.type == MessageType::Reject) throwRejected(message);
+  if (message.type == Reject::kType) throwRejected(message);
   Challenge c = parse<Challenge>(message);
   if (!sameDigest(c.nodeProof, proof(token_, "node", nonce_, c.nodeNonce)))
     throw ProtocolError(Kind::AuthFailed, "the node does not know our token");
@@ -32,7 +32,7 @@ Frame ClientHandshake::onChallenge(const Message& message) {
 }
 
 Welcome ClientHandshake::onWelcome(const Message& message) {
-  if (message.type == MessageType::Reject) throwRejected(message);
+  if (message.type == Reject::kType) throwRejected(message);
   return parse<Welcome>(message);
 }
 

@@ -7,6 +7,8 @@
 #include "tsr/cluster/handshake.hpp"
 #include "tsr/cluster/pixel_codec.hpp"
 #include "tsr/cluster/protocol_error.hpp"
+#include "tsr/med/parameters.hpp"
+#include "tsr/med/viewport_registry.hpp"
 #include "tsr/sg/errors.hpp"
 #include "tsr/sg/wire_codec.hpp"
 
@@ -22,6 +24,21 @@ std::string peerName(const tcp::socket& s) {
   boost::system::error_code ec;
   auto ep = s.remote_endpoint(ec);
   return ec ? std::string("?") : ep.address().to_string() + ":" + std::to_string(ep.port());
+}
+
+// What the client is told about an exception from creating, preparing or
+// rendering a viewport (called in a catch block): a missing back-end and
+// refused parameters are named, anything else is `otherwise`.
+ErrorReport::Kind failureKind(ErrorReport::Kind otherwise) {
+  try {
+    throw;
+  } catch (const med::UnknownBackend&) {
+    return ErrorReport::Kind::UnknownBackend;
+  } catch (const med::ParameterError&) {
+    return ErrorReport::Kind::InvalidParameter;
+  } catch (...) {
+    return otherwise;
+  }
 }
 }  // namespace
 
@@ -56,7 +73,8 @@ asio::awaitable<void> NodeSession::run() {
     if (conn_->authenticated()) {
       // A client we know gets the reason (a view it cannot render, say);
       // strangers only get the hang-up.
-      conn_->send(makeFrame(ErrorReport{std::string(e.what()).substr(0, kMaxReasonBytes)}));
+      conn_->send(makeFrame(
+          ErrorReport{ErrorReport::Kind::ProtocolViolation, std::string(e.what()).substr(0, kMaxReasonBytes)}));
       conn_->closeAfterFlush();
     } else {
       conn_->close();
@@ -101,41 +119,26 @@ asio::awaitable<bool> NodeSession::handshake() {
   co_return true;
 }
 
-void NodeSession::dispatch(Message& m) {
-  switch (m.type) {
-    case MessageType::Snapshot:
-      return onReplicaBytes(m, true);
-    case MessageType::Changes:
-      return onReplicaBytes(m, false);
-    case MessageType::SetViewports:
-      return onSetViewports(m);
-    case MessageType::RenderRequest:
-      return onRenderRequest(m);
-    case MessageType::Swap:
-      return onSwap(m);
-    case MessageType::HashQuery:
-      return onHashQuery(m);
-    case MessageType::Heartbeat:
-      return onHeartbeat(m);
-    case MessageType::Prepare:
-      return onPrepare(m);
-    case MessageType::Bye:
-      return conn_->closeAfterFlush();
-    default:
-      // Handshake messages after the handshake; node-side types are refused by receive().
-      throw ProtocolError(Kind::Unexpected, std::string(name(m.type)) + " after the handshake");
-  }
-}
-
-void NodeSession::failFromWorker(const std::string& reason) {
+void NodeSession::failFromWorker(ErrorReport::Kind kind, const std::string& reason) {
   spdlog::warn("session {}: {}; disconnecting", peer_, reason);
   state_->cancelled = true;
-  asio::post(conn_->executor(), [conn = conn_, reason] {
-    conn->send(makeFrame(ErrorReport{reason}));
+  asio::post(conn_->executor(), [conn = conn_, kind, reason = reason.substr(0, kMaxReasonBytes)] {
+    conn->send(makeFrame(ErrorReport{kind, reason}));
     conn->closeAfterFlush();
   });
 }
 
+template <>
+void NodeSession::on<Snapshot>(Message& m) {
+  onReplicaBytes(m, true);
+}
+
+template <>
+void NodeSession::on<Changes>(Message& m) {
+  onReplicaBytes(m, false);
+}
+
+// The change list is the whole payload: decoded where it is applied, not copied.
 void NodeSession::onReplicaBytes(Message& m, bool snapshot) {
   // Decoding and applying run on the worker, in order with rendering.
   ctx_.worker.post([self = shared_from_this(), bytes = std::move(m.payload), snapshot] {
@@ -153,20 +156,22 @@ void NodeSession::onReplicaBytes(Message& m, bool snapshot) {
       st.replica->apply(list);
       self->conn_->post(makeFrame(Applied{st.replica->version()}));
     } catch (const sg::DecodeError& e) {
-      self->failFromWorker(std::string("change list does not decode: ") + e.what());
+      self->failFromWorker(ErrorReport::Kind::SceneRejected, std::string("change list does not decode: ") + e.what());
     } catch (const sg::ApplyError& e) {
-      self->failFromWorker(std::string("change list does not apply: ") + e.what());
+      self->failFromWorker(ErrorReport::Kind::SceneRejected, std::string("change list does not apply: ") + e.what());
     }
   });
 }
 
-void NodeSession::onSetViewports(const Message& m) {
+template <>
+void NodeSession::on<SetViewports>(Message& m) {
   SetViewports sv = parse<SetViewports>(m);
   // An unknown back-end is the client's configuration error, not an attack:
   // say so now; the replica keeps following, rendering that viewport fails.
   for (const auto& v : sv.viewports)
     if (!ctx_.registry.has(v.backend))
-      conn_->send(makeFrame(ErrorReport{"this node has no back-end '" + v.backend + "'"}));
+      conn_->send(
+          makeFrame(ErrorReport{ErrorReport::Kind::UnknownBackend, "this node has no back-end '" + v.backend + "'"}));
   ctx_.worker.post([self = shared_from_this(), sv = std::move(sv)] {
     State& st = *self->state_;
     st.viewports.clear();
@@ -187,7 +192,8 @@ void NodeSession::onSetViewports(const Message& m) {
   });
 }
 
-void NodeSession::onPrepare(Message& m) {
+template <>
+void NodeSession::on<Prepare>(Message& m) {
   Prepare prepare = parse<Prepare>(m);
   ctx_.worker.post([self = shared_from_this(), prepare = std::move(prepare)] {
     State& st = *self->state_;
@@ -210,23 +216,27 @@ void NodeSession::onPrepare(Message& m) {
         vp->prepare(*st.ahead, prepare.frame);
       }
     } catch (const sg::DecodeError& e) {
-      self->failFromWorker(std::string("change list ahead does not decode: ") + e.what());
+      self->failFromWorker(ErrorReport::Kind::SceneRejected,
+                           std::string("change list ahead does not decode: ") + e.what());
     } catch (const sg::ApplyError& e) {
-      self->failFromWorker(std::string("change list ahead does not apply: ") + e.what());
+      self->failFromWorker(ErrorReport::Kind::SceneRejected,
+                           std::string("change list ahead does not apply: ") + e.what());
     } catch (const std::exception& e) {
-      self->failFromWorker(std::string("preparing frame ") + std::to_string(prepare.frame) + " failed: " + e.what());
+      self->failFromWorker(failureKind(ErrorReport::Kind::PrepareFailed),
+                           std::string("preparing frame ") + std::to_string(prepare.frame) + " failed: " + e.what());
     }
   });
 }
 
-void NodeSession::onRenderRequest(const Message& m) {
+template <>
+void NodeSession::on<RenderRequest>(Message& m) {
   RenderRequest request = parse<RenderRequest>(m);
   ctx_.worker.post([self = shared_from_this(), request = std::move(request)] {
     if (self->state_->cancelled) return;
     try {
       render(*self->state_, self->ctx_, request, self->conn_);
     } catch (const std::exception& e) {
-      self->failFromWorker(std::string("render failed: ") + e.what());
+      self->failFromWorker(failureKind(ErrorReport::Kind::RenderFailed), std::string("render failed: ") + e.what());
     }
   });
 }
@@ -290,7 +300,8 @@ void NodeSession::render(State& st, const NodeContext& ctx, const RenderRequest&
   conn->post(makeFrame(FrameDone{request.frame, busy}));
 }
 
-void NodeSession::onSwap(const Message& m) {
+template <>
+void NodeSession::on<Swap>(Message& m) {
   // The wall's barrier released: show the tiles rendered for this frame.
   Swap swap = parse<Swap>(m);
   ctx_.worker.post([self = shared_from_this(), swap] {
@@ -301,7 +312,8 @@ void NodeSession::onSwap(const Message& m) {
   });
 }
 
-void NodeSession::onHashQuery(const Message& m) {
+template <>
+void NodeSession::on<HashQuery>(Message& m) {
   HashQuery q = parse<HashQuery>(m);
   ctx_.worker.post([self = shared_from_this(), q] {
     const sg::Replica& r = *self->state_->replica;
@@ -309,6 +321,27 @@ void NodeSession::onHashQuery(const Message& m) {
   });
 }
 
-void NodeSession::onHeartbeat(const Message& m) { conn_->send(makeFrame(HeartbeatAck{parse<Heartbeat>(m).sequence})); }
+template <>
+void NodeSession::on<Heartbeat>(Message& m) {
+  conn_->send(makeFrame(HeartbeatAck{parse<Heartbeat>(m).sequence}));
+}
+
+template <>
+void NodeSession::on<Bye>(Message& m) {
+  parse<Bye>(m);
+  conn_->closeAfterFlush();
+}
+
+// Every message a client sends after the handshake goes to its on<M>; the
+// handshake's messages and the node's own are refused.
+void NodeSession::dispatch(Message& m) {
+  bool known = Messages::visit(m.type, [&]<class M>() {
+    if constexpr (M::kSpec.sender == Sender::Client && !M::kSpec.beforeAuth)
+      on<M>(m);
+    else
+      throw ProtocolError(Kind::Unexpected, std::string(M::kSpec.name) + " after the handshake");
+  });
+  if (!known) throw ProtocolError(Kind::UnknownType, "unknown message type " + std::to_string(int(m.type)));
+}
 
 }  // namespace tsr::cluster

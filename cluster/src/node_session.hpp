@@ -55,18 +55,16 @@ class NodeSession : public std::enable_shared_from_this<NodeSession> {
   asio::awaitable<bool> handshake();
   void dispatch(Message& m);
 
+  // The handler of message M (one a client sends after the handshake),
+  // specialised in node_session.cpp; dispatch() picks it by the message list.
+  template <class M>
+  void on(Message& m);
   void onReplicaBytes(Message& m, bool snapshot);
-  void onSetViewports(const Message& m);
-  void onPrepare(Message& m);
-  void onRenderRequest(const Message& m);
-  void onSwap(const Message& m);
-  void onHashQuery(const Message& m);
-  void onHeartbeat(const Message& m);
 
   // Worker side.
   static void render(State& state, const NodeContext& ctx, const RenderRequest& request,
                      const std::shared_ptr<Connection>& conn);
-  void failFromWorker(const std::string& reason);
+  void failFromWorker(ErrorReport::Kind kind, const std::string& reason);
 
   NodeContext& ctx_;
   std::shared_ptr<Connection> conn_;

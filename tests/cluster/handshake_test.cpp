@@ -59,7 +59,7 @@ TEST(Handshake, ForgedAuthIsRejectedByTheNode) {
   node.onHello(unframe(honest.hello()));
   auto step = node.onAuth(unframe(makeFrame(Auth{})));
   EXPECT_FALSE(step.accepted);
-  EXPECT_EQ(unframe(step.reply).type, MessageType::Reject);
+  EXPECT_EQ(unframe(step.reply).type, Reject::kType);
   EXPECT_FALSE(node.done());
 }
 
@@ -80,7 +80,7 @@ TEST(Handshake, OtherVersionIsRejectedWithAReason) {
   auto step = node.onHello(unframe(client.hello()));
   EXPECT_FALSE(step.accepted);
   Message reject = unframe(step.reply);
-  ASSERT_EQ(reject.type, MessageType::Reject);
+  ASSERT_EQ(reject.type, Reject::kType);
   EXPECT_NE(parse<Reject>(reject).reason.find("version"), std::string::npos);
 }
 

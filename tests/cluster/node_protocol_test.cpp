@@ -77,10 +77,10 @@ TEST(NodeAuth, ForgedProofGetsRejectAndHangUp) {
   ASSERT_TRUE(raw.send(hs.hello()));
   Message m;
   ASSERT_EQ(raw.read(m), Outcome::Message);
-  EXPECT_EQ(m.type, MessageType::Challenge);
+  EXPECT_EQ(m.type, Challenge::kType);
   ASSERT_TRUE(raw.send(makeFrame(Auth{})));  // a guess
   ASSERT_EQ(raw.read(m), Outcome::Message);
-  EXPECT_EQ(m.type, MessageType::Reject);
+  EXPECT_EQ(m.type, Reject::kType);
   EXPECT_EQ(raw.waitClosed(), Outcome::Closed);
 }
 
@@ -94,7 +94,7 @@ TEST(NodeAuth, OtherProtocolVersionIsRejectedWithAReason) {
   ASSERT_TRUE(raw.send(bytes));
   Message m;
   ASSERT_EQ(raw.read(m), Outcome::Message);
-  ASSERT_EQ(m.type, MessageType::Reject);
+  ASSERT_EQ(m.type, Reject::kType);
   EXPECT_NE(parse<Reject>(m).reason.find("version"), std::string::npos);
   EXPECT_EQ(raw.waitClosed(), Outcome::Closed);
 }
@@ -132,7 +132,7 @@ TEST_F(HostileInput, RandomBytesCloseThatConnectionOnly) {
 TEST_F(HostileInput, OversizedFrameClosesBeforeThePayload) {
   RawClient raw(nodes[0]->address());
   std::vector<std::uint8_t> header;
-  writeFrameHeader(header, {kProtocolVersion, MessageType::Hello, 1u << 30});
+  writeFrameHeader(header, {kProtocolVersion, Hello::kType, 1u << 30});
   raw.send(header);  // no payload follows: the node must not wait for it
   EXPECT_EQ(raw.waitClosed(), Outcome::Closed);
   expectHonestClientUnharmed();
@@ -146,9 +146,9 @@ TEST_F(HostileInput, OversizedAfterAuthenticationCloses) {
   ASSERT_EQ(raw.read(m), Outcome::Message);
   raw.send(hs.onChallenge(m));
   ASSERT_EQ(raw.read(m), Outcome::Message);
-  ASSERT_EQ(m.type, MessageType::Welcome);
+  ASSERT_EQ(m.type, Welcome::kType);
   std::vector<std::uint8_t> header;
-  writeFrameHeader(header, {kProtocolVersion, MessageType::RenderRequest, 64u << 20});
+  writeFrameHeader(header, {kProtocolVersion, RenderRequest::kType, 64u << 20});
   raw.send(header);
   EXPECT_EQ(raw.waitClosed(), Outcome::Closed);
   expectHonestClientUnharmed();
@@ -156,7 +156,7 @@ TEST_F(HostileInput, OversizedAfterAuthenticationCloses) {
 
 TEST_F(HostileInput, BulkBeforeAuthenticationCloses) {
   RawClient raw(nodes[0]->address());
-  raw.send(frameFromPayload(MessageType::Snapshot, std::vector<std::uint8_t>(64, 1)));
+  raw.send(frameFromPayload(Snapshot::kType, std::vector<std::uint8_t>(64, 1)));
   EXPECT_EQ(raw.waitClosed(), Outcome::Closed);
   expectHonestClientUnharmed();
 }
@@ -170,9 +170,10 @@ TEST_F(HostileInput, CorruptChangeListClosesThatClientOnly) {
   raw.send(hs.onChallenge(m));
   ASSERT_EQ(raw.read(m), Outcome::Message);
   raw.send(
-      frameFromPayload(MessageType::Snapshot, std::vector<std::uint8_t>{'T', 'S', 'R', 'C', 1, 1, 50, 0, 0, 0, 9}));
+      frameFromPayload(Snapshot::kType, std::vector<std::uint8_t>{'T', 'S', 'R', 'C', 1, 1, 50, 0, 0, 0, 9}));
   ASSERT_EQ(raw.read(m), Outcome::Message);
-  EXPECT_EQ(m.type, MessageType::Error);
+  ASSERT_EQ(m.type, ErrorReport::kType);
+  EXPECT_EQ(parse<ErrorReport>(m).kind, ErrorReport::Kind::SceneRejected);
   EXPECT_EQ(raw.waitClosed(), Outcome::Closed);
   expectHonestClientUnharmed();
 }
@@ -253,6 +254,69 @@ TEST(Replication, RestartedNodeRejoinsWithTheCurrentScene) {
     w.waitApplied(s.scene.version(), 100ms);
   }
   expectReplicasMatch(w, s.scene, 2);
+}
+
+// The client decides by an ErrorReport's kind, never by its text: a frame
+// that no node can render as asked fails at once with the node's reason
+// (instead of the work moving on until every node was lost), and the kind
+// stays in the node's status.
+ErrorReport::Kind frameFailureKind(const med::Parameters& parameters, const std::string& backend,
+                                   const std::string& expectedInError) {
+  auto nodes = startNodes(1);
+  ClusterConfig config = configFor(ClusterMode::Cooperative, nodes, parameters);
+  config.nodes[0].backend = backend;
+  ClusterWindow w(config);
+  EXPECT_EQ(w.connect(5s), 1u);
+  AnimatedScene s;
+  step(w, s, 0);
+  EXPECT_TRUE(w.waitApplied(s.scene.version(), 20s));
+  med::View view;
+  view.width = 16;
+  view.height = 12;
+  view.region = {0, 0, 16, 12};
+  try {
+    w.render(view);
+    ADD_FAILURE() << "the frame rendered";
+  } catch (const ClusterError& e) {
+    EXPECT_NE(std::string(e.what()).find(expectedInError), std::string::npos) << e.what();
+  }
+  const NodeStatus status = w.status()[0];
+  if (!status.lastReport) {
+    ADD_FAILURE() << "no ErrorReport seen; last error: " << status.lastError;
+    return ErrorReport::Kind::ProtocolViolation;
+  }
+  return status.lastReport->kind;
+}
+
+TEST(NodeErrors, ClientSeesAnUnknownBackendByItsKind) {
+  EXPECT_EQ(frameFailureKind({}, "nosuch", "back-end 'nosuch'"), ErrorReport::Kind::UnknownBackend);
+}
+
+TEST(NodeErrors, ClientSeesARefusedParameterByItsKind) {
+  med::Parameters bad;
+  bad.set("filter", std::string("bogus"));
+  EXPECT_EQ(frameFailureKind(bad, "embree", "bogus"), ErrorReport::Kind::InvalidParameter);
+}
+
+// An unknown back-end is said when the viewports arrive; the session goes on.
+TEST(NodeErrors, UnknownBackendIsReportedAndTheSessionGoesOn) {
+  auto nodes = startNodes(1);
+  RawClient raw(nodes[0]->address());
+  ClientHandshake hs("", "raw");
+  ASSERT_TRUE(raw.send(hs.hello()));
+  Message m;
+  ASSERT_EQ(raw.read(m), Outcome::Message);
+  ASSERT_TRUE(raw.send(hs.onChallenge(m)));
+  ASSERT_EQ(raw.read(m), Outcome::Message);
+  ASSERT_EQ(m.type, Welcome::kType);
+  ASSERT_TRUE(raw.send(makeFrame(SetViewports{{{0, "nosuch", 1, 2, {}}}})));
+  ASSERT_EQ(raw.read(m), Outcome::Message);
+  ASSERT_EQ(m.type, ErrorReport::kType);
+  EXPECT_EQ(parse<ErrorReport>(m).kind, ErrorReport::Kind::UnknownBackend);
+  ASSERT_TRUE(raw.send(makeFrame(HashQuery{7})));
+  ASSERT_EQ(raw.read(m), Outcome::Message);
+  ASSERT_EQ(m.type, HashReply::kType);
+  EXPECT_EQ(parse<HashReply>(m).token, 7u);
 }
 
 }  // namespace

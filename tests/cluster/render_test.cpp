@@ -399,10 +399,10 @@ TEST(ClusterRender, EyeBeyondTheCoordinateLimitIsRefusedAndTheNodeServesOn) {
     ASSERT_EQ(raw.read(m), RawClient::Outcome::Message);
     ASSERT_TRUE(raw.send(hs.onChallenge(m)));
     ASSERT_EQ(raw.read(m), RawClient::Outcome::Message);
-    ASSERT_EQ(m.type, MessageType::Welcome);
-    ASSERT_TRUE(raw.send(frameFromPayload(MessageType::Snapshot, sg::encode(*app.s.scene.snapshot()))));
+    ASSERT_EQ(m.type, Welcome::kType);
+    ASSERT_TRUE(raw.send(frameFromPayload(Snapshot::kType, sg::encode(*app.s.scene.snapshot()))));
     ASSERT_EQ(raw.read(m), RawClient::Outcome::Message);
-    ASSERT_EQ(m.type, MessageType::Applied);
+    ASSERT_EQ(m.type, Applied::kType);
     ASSERT_TRUE(raw.send(
         makeFrame(SetViewports{{{0, "embree", app.s.imported.root, app.s.imported.background, pathTracer(1)}}})));
 
@@ -414,7 +414,8 @@ TEST(ClusterRender, EyeBeyondTheCoordinateLimitIsRefusedAndTheNodeServesOn) {
     // The codec's writer does not validate: bytes as an attacker sends them.
     ASSERT_TRUE(raw.send(makeFrame(request)));
     ASSERT_EQ(raw.read(m), RawClient::Outcome::Message) << "eye " << eye;
-    ASSERT_EQ(m.type, MessageType::Error) << "eye " << eye;
+    ASSERT_EQ(m.type, ErrorReport::kType) << "eye " << eye;
+    EXPECT_EQ(parse<ErrorReport>(m).kind, ErrorReport::Kind::ProtocolViolation);
     EXPECT_NE(parse<ErrorReport>(m).reason.find("beyond the coordinate limit"), std::string::npos)
         << parse<ErrorReport>(m).reason;
     EXPECT_EQ(raw.waitClosed(), RawClient::Outcome::Closed);

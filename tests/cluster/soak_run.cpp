@@ -75,7 +75,7 @@ void hostilePeers(const std::vector<NodeAddress>& targets, std::atomic<bool>& st
   for (const auto& t : targets) {  // a valid header announcing a gigabyte
     RawClient raw(t, 3000);
     std::vector<std::uint8_t> header;
-    writeFrameHeader(header, {kProtocolVersion, MessageType::Hello, 1u << 30});
+    writeFrameHeader(header, {kProtocolVersion, Hello::kType, 1u << 30});
     raw.send(header);
     absurdClosed += raw.waitClosed() == RawClient::Outcome::Closed;
   }

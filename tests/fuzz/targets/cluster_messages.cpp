@@ -9,78 +9,19 @@
 namespace tsr::cluster {
 namespace {
 
-// What a node or client does with a payload of this type: parse it, and
-// for bulk data decode what it carries.
+// What a node or client does with a payload of this type: parse it (every
+// type of the message list), and for bulk data decode what it carries.
 void decodePayload(const Message& m) {
-  switch (m.type) {
-    case MessageType::Hello:
-      parse<Hello>(m);
-      return;
-    case MessageType::Challenge:
-      parse<Challenge>(m);
-      return;
-    case MessageType::Auth:
-      parse<Auth>(m);
-      return;
-    case MessageType::Welcome:
-      parse<Welcome>(m);
-      return;
-    case MessageType::Reject:
-      parse<Reject>(m);
-      return;
-    case MessageType::Snapshot:
-    case MessageType::Changes: {
+  Messages::visit(m.type, [&]<class M>() {
+    const M decoded = parse<M>(m);
+    if constexpr (std::is_same_v<M, Snapshot> || std::is_same_v<M, Changes> || std::is_same_v<M, Prepare>) {
       sg::DecodeLimits limits;
       limits.maxArrayElements = 1 << 20;
-      sg::decode(m.payload, limits);
-      return;
+      sg::decode(decoded.changes, limits);
+    } else if constexpr (std::is_same_v<M, RenderTile>) {
+      decodePixels(decoded.rect.width(), decoded.rect.height(), decoded.compression, decoded.pixels, decoded.outputs);
     }
-    case MessageType::Applied:
-      parse<Applied>(m);
-      return;
-    case MessageType::SetViewports:
-      parse<SetViewports>(m);
-      return;
-    case MessageType::RenderRequest:
-      parse<RenderRequest>(m);
-      return;
-    case MessageType::RenderTile: {
-      const RenderTile tile = parse<RenderTile>(m);
-      decodePixels(tile.rect.width(), tile.rect.height(), tile.compression, tile.pixels, tile.outputs);
-      return;
-    }
-    case MessageType::FrameDone:
-      parse<FrameDone>(m);
-      return;
-    case MessageType::Swap:
-      parse<Swap>(m);
-      return;
-    case MessageType::HashQuery:
-      parse<HashQuery>(m);
-      return;
-    case MessageType::HashReply:
-      parse<HashReply>(m);
-      return;
-    case MessageType::Heartbeat:
-      parse<Heartbeat>(m);
-      return;
-    case MessageType::HeartbeatAck:
-      parse<HeartbeatAck>(m);
-      return;
-    case MessageType::Error:
-      parse<ErrorReport>(m);
-      return;
-    case MessageType::Bye:
-      parse<Bye>(m);
-      return;
-    case MessageType::Prepare: {
-      const Prepare p = parse<Prepare>(m);
-      sg::DecodeLimits limits;
-      limits.maxArrayElements = 1 << 20;
-      sg::decode(p.changes, limits);
-      return;
-    }
-  }
+  });
 }
 
 }  // namespace

@@ -9,10 +9,12 @@
 // Per frame: scene.commit() -> publish(scene, list) -> render(view).
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
 #include "tsr/cluster/cluster_config.hpp"
+#include "tsr/cluster/messages.hpp"
 #include "tsr/med/frame_buffer.hpp"
 #include "tsr/med/view.hpp"
 #include "tsr/med/viewport_registry.hpp"
@@ -54,6 +56,9 @@ struct NodeStatus {
   std::string lastError;
   NodePhase phase = NodePhase::Idle;
   std::chrono::steady_clock::time_point phaseSince{};
+  // The last ErrorReport the node sent since it joined: decide by its kind,
+  // not by the text of lastError (which a lost connection overwrites).
+  std::optional<ErrorReport> lastReport = {};
 };
 
 struct ClusterFrame {

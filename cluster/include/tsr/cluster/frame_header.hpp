@@ -12,13 +12,15 @@
 
 namespace tsr::cluster {
 
-inline constexpr std::uint8_t kProtocolVersion = 1;
+// 2: ErrorReport carries a kind byte before its reason (clients decide by
+// the kind, never by the text).
+inline constexpr std::uint8_t kProtocolVersion = 2;
 inline constexpr std::size_t kFrameHeaderBytes = 10;
 inline constexpr std::array<std::uint8_t, 4> kFrameMagic{'T', 'S', 'R', 'N'};
 
 struct FrameHeader {
   std::uint8_t version = kProtocolVersion;
-  MessageType type = MessageType::Heartbeat;
+  MessageType type{};
   std::uint32_t length = 0;
 };
 

@@ -1,48 +1,21 @@
 #pragma once
-// The whole node protocol: one enum, one handler per message (see
-// node_session.cpp and node_link.cpp). Bulk data (change lists, pixels)
-// is the payload of Snapshot, Changes and RenderTile.
-//
-//   client -> node              node -> client
-//   Hello                       Challenge        handshake (auth.hpp)
-//   Auth                        Welcome | Reject
-//   Snapshot | Changes          Applied          replica follows the client
-//   SetViewports                Error            viewports by back-end name
-//   RenderRequest               RenderTile*, FrameDone
-//   Swap                                         wall barrier release
-//   HashQuery                   HashReply        replica check
-//   Heartbeat                   HeartbeatAck     liveness
-//   Bye                                          orderly close
-//   Prepare                                      a frame ahead, for temporal viewports
+// What the frame header needs to know about a message type: its number,
+// name, which side sends it, its largest payload and whether it may arrive
+// during the handshake. Each message declares these with its struct
+// (messages.hpp, `kType` and `kSpec`); findSpec is generated from the one
+// list of message types there (`Messages`).
 #include <cstddef>
 #include <cstdint>
 
 namespace tsr::cluster {
 
-enum class MessageType : std::uint8_t {
-  Hello = 1,
-  Challenge,
-  Auth,
-  Welcome,
-  Reject,
-  Snapshot,
-  Changes,
-  Applied,
-  SetViewports,
-  RenderRequest,
-  RenderTile,
-  FrameDone,
-  Swap,
-  HashQuery,
-  HashReply,
-  Heartbeat,
-  HeartbeatAck,
-  Error,
-  Bye,
-  Prepare,
-};
+// A message's type byte; the numbers are declared by the messages
+// themselves (`static constexpr MessageType kType{N}`). 0 names none.
+enum class MessageType : std::uint8_t {};
 
 enum class Sender : std::uint8_t { Client, Node };
+
+inline constexpr std::size_t kKiB = 1024, kMiB = 1024 * kKiB;
 
 struct MessageSpec {
   MessageType type;
