@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "tsr/med/coverage/ranking.hpp"
+
 namespace tsr::app {
 
 namespace {
@@ -64,7 +66,10 @@ void ViewerPane::render(const med::ViewportRegistry& registry, med::ContextPool&
 
   med::RenderControl control;
   control.outputs = std::vector<std::string>{};
-  if (backend == "coverage") control.outputs->push_back("id");  // the ranked list and picking read it
+  // The ranked list and picking read object ids, where the back-end offers them.
+  if (const auto offered = vp.outputNames();
+      std::find(offered.begin(), offered.end(), med::kIdOutput) != offered.end())
+    control.outputs->push_back(med::kIdOutput);
 
   const bool restarted = restart_ || switched;
   const bool reportSwitch = switched;

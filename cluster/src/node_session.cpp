@@ -168,10 +168,20 @@ void NodeSession::on<SetViewports>(Message& m) {
   SetViewports sv = parse<SetViewports>(m);
   // An unknown back-end is the client's configuration error, not an attack:
   // say so now; the replica keeps following, rendering that viewport fails.
-  for (const auto& v : sv.viewports)
-    if (!ctx_.registry.has(v.backend))
+  // So is a parameter the back-end does not take, or a bad value: refused
+  // now with the table's reason, naming the valid ones.
+  for (const auto& v : sv.viewports) {
+    if (!ctx_.registry.has(v.backend)) {
       conn_->send(
           makeFrame(ErrorReport{ErrorReport::Kind::UnknownBackend, "this node has no back-end '" + v.backend + "'"}));
+      continue;
+    }
+    try {
+      ctx_.registry.capabilities(v.backend).parameters.validate(v.parameters);
+    } catch (const med::ParameterError& e) {
+      conn_->send(makeFrame(ErrorReport{ErrorReport::Kind::InvalidParameter, e.what()}));
+    }
+  }
   ctx_.worker.post([self = shared_from_this(), sv = std::move(sv)] {
     State& st = *self->state_;
     st.viewports.clear();

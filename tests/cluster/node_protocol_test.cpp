@@ -298,6 +298,14 @@ TEST(NodeErrors, ClientSeesARefusedParameterByItsKind) {
   EXPECT_EQ(frameFailureKind(bad, "embree", "bogus"), ErrorReport::Kind::InvalidParameter);
 }
 
+// Over the wire as on the command line: a node refuses a parameter its
+// back-end does not take, naming the valid ones.
+TEST(NodeErrors, ANodeRefusesAnUnknownParameterNamingTheValidOnes) {
+  med::Parameters typo;
+  typo.set("sigmaSS", 4.0);
+  EXPECT_EQ(frameFailureKind(typo, "embree", "did you mean sigmaS?"), ErrorReport::Kind::InvalidParameter);
+}
+
 // An unknown back-end is said when the viewports arrive; the session goes on.
 TEST(NodeErrors, UnknownBackendIsReportedAndTheSessionGoesOn) {
   auto nodes = startNodes(1);
