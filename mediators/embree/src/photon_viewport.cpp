@@ -1,12 +1,12 @@
 #include "photon_viewport.hpp"
 
-#include "embree_parameters.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
 #include <string>
 
+#include "embree_parameters.hpp"
 #include "render_outputs.hpp"
 
 namespace tsr::med::embree_mediator {
