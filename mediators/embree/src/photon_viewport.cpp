@@ -1,6 +1,5 @@
 #include "photon_viewport.hpp"
 
-
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
