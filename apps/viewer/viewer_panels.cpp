@@ -137,9 +137,12 @@ void Viewer::drawPanels() {
                                       : "(done)");
       ImGui::Text("%.2f spp/s, %.2f Mrays/s (since restart)", pane.samplesPerSecond(), pane.raysPerSecond() * 1e-6);
     }
-    if (!pane.isRemote(pane.backend()) && ImGui::CollapsingHeader("Parameters")) {
-      // spp is the viewer's: the sample limit above sets where it stops.
+    if (!pane.isRemote(pane.backend()) &&
+        ImGui::CollapsingHeader("Parameters", ImGuiTreeNodeFlags_DefaultOpen)) {
+      // Every parameter the back-end declares, in a scrolling list (the path
+      // tracer has dozens); spp is the viewer's: the sample limit sets it.
       const med::ParameterTable& table = registry_.capabilities(pane.backend()).parameters;
+      ImGui::BeginChild("parameters", ImVec2(360, std::min(200.0f, 26.0f * float(table.specs().size()))), true);
       for (const auto& spec : table.specs()) {
         if (spec.name == "spp") continue;
         try {
@@ -149,6 +152,7 @@ void Viewer::drawPanels() {
           status_ = e.what();
         }
       }
+      ImGui::EndChild();
     }
     if (pane.frame().outputs.count(med::kIdOutput)) {
       const auto ranked = med::rankObjects(pane.frame(), session_->replica.scene());
