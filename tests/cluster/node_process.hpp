@@ -21,11 +21,11 @@ extern char** environ;
 
 namespace tsr::cluster::test {
 
-class NodeProcess {
+// A program that prints "listening on HOST:PORT" first (tessera-node,
+// tessera-cull), started with `args` (the binary first).
+class ListeningProcess {
  public:
-  explicit NodeProcess(std::vector<std::string> extraArgs = {}, const std::string& listen = "127.0.0.1:0") {
-    std::vector<std::string> args{TSR_NODE_BINARY, "--listen", listen, "--log-level", "warn"};
-    args.insert(args.end(), extraArgs.begin(), extraArgs.end());
+  explicit ListeningProcess(std::vector<std::string> args) {
     std::vector<char*> argv;
     argv.reserve(args.size() + 1);
     for (auto& a : args) argv.push_back(a.data());
@@ -52,16 +52,16 @@ class NodeProcess {
     const std::string prefix = "listening on ";
     if (line.rfind(prefix, 0) != 0) {
       kill();
-      throw std::runtime_error("node did not report its address, said: '" + line + "'");
+      throw std::runtime_error(args[0] + " did not report its address, said: '" + line + "'");
     }
     address_ = parseNodeAddress(line.substr(prefix.size()));
   }
-  ~NodeProcess() {
+  ~ListeningProcess() {
     kill();
     if (stdout_ >= 0) close(stdout_);
   }
-  NodeProcess(const NodeProcess&) = delete;
-  NodeProcess& operator=(const NodeProcess&) = delete;
+  ListeningProcess(const ListeningProcess&) = delete;
+  ListeningProcess& operator=(const ListeningProcess&) = delete;
 
   const NodeAddress& address() const { return address_; }
   std::string text() const { return address_.text(); }
@@ -104,11 +104,26 @@ class NodeProcess {
   NodeAddress address_;
 };
 
+#ifdef TSR_NODE_BINARY
+class NodeProcess : public ListeningProcess {
+ public:
+  explicit NodeProcess(std::vector<std::string> extraArgs = {}, const std::string& listen = "127.0.0.1:0")
+      : ListeningProcess(argsFor(std::move(extraArgs), listen)) {}
+
+ private:
+  static std::vector<std::string> argsFor(std::vector<std::string> extraArgs, const std::string& listen) {
+    std::vector<std::string> args{TSR_NODE_BINARY, "--listen", listen, "--log-level", "warn"};
+    args.insert(args.end(), extraArgs.begin(), extraArgs.end());
+    return args;
+  }
+};
+
 inline std::vector<std::unique_ptr<NodeProcess>> startNodes(std::size_t n, const std::vector<std::string>& args = {}) {
   std::vector<std::unique_ptr<NodeProcess>> out;
   for (std::size_t i = 0; i < n; ++i) out.push_back(std::make_unique<NodeProcess>(args));
   return out;
 }
+#endif  // TSR_NODE_BINARY
 
 // A token file that lives as long as the object.
 class TokenFile {

@@ -71,4 +71,10 @@ std::uint64_t backgroundPixels(const FrameBuffer& image) {
       std::count_if(ids.begin(), ids.end(), [](const glm::vec4& v) { return decodeObjectId(v) == sg::kNoContainer; }));
 }
 
+sg::ContainerId objectOf(const sg::Scene& scene, const FlatNode& instance) {
+  for (auto it = instance.path.rbegin(); it != instance.path.rend(); ++it)
+    if (scene.find<sg::Transform>(*it)) return *it;
+  return instance.id;
+}
+
 }  // namespace tsr::med

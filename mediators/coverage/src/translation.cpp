@@ -21,10 +21,5 @@ bool isTransparent(const sg::Container* material) {
   return false;
 }
 
-sg::ContainerId objectOf(const sg::Scene& scene, const FlatNode& instance) {
-  for (auto it = instance.path.rbegin(); it != instance.path.rend(); ++it)
-    if (scene.find<sg::Transform>(*it)) return *it;
-  return instance.id;
-}
 
 }  // namespace tsr::med::coverage_mediator

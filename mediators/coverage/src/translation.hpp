@@ -3,6 +3,7 @@
 // the object id an instance reports. Pure functions; the adapter decides
 // when to call them.
 #include "tsr/cov/mesh.hpp"
+#include "tsr/med/coverage/ranking.hpp"
 #include "tsr/med/scene_flattening.hpp"
 #include "tsr/sg/scene.hpp"
 
@@ -13,8 +14,5 @@ cov::MeshData translateMesh(const sg::Geometry& geometry);
 
 // The rule in register.hpp; no material is opaque.
 bool isTransparent(const sg::Container* material);
-
-// The nearest Transform on the instance's path, else the Geometry itself.
-sg::ContainerId objectOf(const sg::Scene& scene, const FlatNode& instance);
 
 }  // namespace tsr::med::coverage_mediator

@@ -13,6 +13,7 @@
 #include <glm/vec4.hpp>
 
 #include "tsr/med/frame_buffer.hpp"
+#include "tsr/med/scene_flattening.hpp"
 #include "tsr/sg/scene.hpp"
 
 namespace tsr::med {
@@ -32,6 +33,10 @@ struct RankedObject {
   double fraction = 0.0;  // of all the frame buffer's pixels, background included
   bool operator==(const RankedObject&) const = default;
 };
+
+// The object an instance of a geometry counts for, and whose id the id
+// output holds: the nearest Transform on its path, else the Geometry itself.
+sg::ContainerId objectOf(const sg::Scene& scene, const FlatNode& instance);
 
 // By pixels descending, ties by id ascending; the background is left out.
 // Throws std::invalid_argument when `image` has no id output of its size.

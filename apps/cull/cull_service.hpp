@@ -1,0 +1,68 @@
+#pragma once
+// The culling service's work, apart from HTTP: a view in, the objects that
+// cover most of its pixels out (Schwenk, 5.4.3), ranked by the coverage
+// renderer over one converted scene; and each object as a standalone glTF
+// binary, in world space, for the client to load.
+#include <cstdint>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "scene_session.hpp"
+#include "tsr/med/context_pool.hpp"
+#include "tsr/med/scene_flattening.hpp"
+#include "tsr/med/viewport_registry.hpp"
+
+namespace tsr::app {
+
+struct CullQuery {
+  glm::vec3 position{0.0f}, target{0.0f, 0.0f, -1.0f}, up{0.0f, 1.0f, 0.0f};
+  float fovDegrees = 45.0f;  // vertical
+  std::uint32_t width = 0, height = 0;
+  std::uint32_t maxObjects = 0;
+};
+
+struct CulledObject {
+  sg::ContainerId id = sg::kNoContainer;
+  std::string name;
+  std::uint64_t pixels = 0;
+  double fraction = 0;  // of the view's pixels
+  std::uint64_t triangles = 0;
+};
+
+struct CullAnswer {
+  std::vector<CulledObject> objects;  // by pixels, most first; at most maxObjects
+  double coveredFraction = 0;         // of the view's pixels, by every object seen
+  std::uint64_t totalObjects = 0, totalTriangles = 0;
+};
+
+class CullService {
+ public:
+  // Loads the scene (sg::ImportError, std::invalid_argument) and converts it
+  // once for `backend` (a back-end offering the "id" output).
+  CullService(const std::string& scene, const sg::ImportOptions& import, const std::string& backend,
+              const med::Parameters& parameters);
+
+  // Thread-safe; renders are serialised on the one converted scene.
+  CullAnswer cull(const CullQuery& query);
+  // The object's geometry under it, in world space, as a .glb; nothing for
+  // an id that names no object of the ranking's kind.
+  std::optional<std::vector<std::uint8_t>> objectGlb(sg::ContainerId id) const;
+  std::uint64_t totalObjects() const { return triangles_.size(); }
+
+ private:
+  SceneSession session_;
+  med::ViewportRegistry registry_;
+  med::ContextPool contexts_;
+  std::unique_ptr<med::Viewport> viewport_;
+  std::unordered_map<sg::ContainerId, std::vector<med::FlatNode>> parts_;  // per object: its geometry instances
+  std::unordered_map<sg::ContainerId, std::uint64_t> triangles_;           // per object
+  std::uint64_t totalTriangles_ = 0;
+  std::mutex mutex_;
+};
+
+}  // namespace tsr::app

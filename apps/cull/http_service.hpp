@@ -1,0 +1,42 @@
+#pragma once
+// tessera-cull's HTTP side (Boost.Beast): POST /v1/cull and
+// GET /v1/objects/{id}.glb, one thread per connection (at most
+// kMaxConnections), requests bounded in header and body, every refusal a
+// 4xx with a one-line message, and the service serving on regardless.
+#include <atomic>
+#include <cstdint>
+#include <string>
+
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/beast/http.hpp>
+
+#include "cull_service.hpp"
+
+namespace tsr::app {
+
+struct HttpOptions {
+  std::string token;               // empty: none asked (loopback only)
+  std::uint32_t maxObjects = 256;  // the most a request may ask for, and the default
+};
+
+class HttpService {
+ public:
+  static constexpr int kMaxConnections = 64;
+  static constexpr std::size_t kMaxBodyBytes = 64 * 1024;
+  static constexpr std::size_t kMaxHeaderBytes = 8 * 1024;
+
+  HttpService(CullService& cull, HttpOptions options) : cull_(cull), options_(std::move(options)) {}
+  // Accepts connections on `acceptor` until the process ends.
+  void serve(boost::asio::ip::tcp::acceptor& acceptor);
+
+ private:
+  void session(boost::asio::ip::tcp::socket socket);
+  boost::beast::http::response<boost::beast::http::string_body> handle(
+      const boost::beast::http::request<boost::beast::http::string_body>& request);
+
+  CullService& cull_;
+  HttpOptions options_;
+  std::atomic<int> connections_{0};
+};
+
+}  // namespace tsr::app

@@ -1,0 +1,76 @@
+// tessera-cull SCENE --listen HOST:PORT [--token-file F] [--backend coverage]
+//              [--max-objects K] [--threads N]
+// The culling service of Schwenk 5.4.3: POST /v1/cull ranks the scene's
+// objects by visible coverage for a view, GET /v1/objects/ID.glb serves one
+// object. Prints "listening on HOST:PORT" (port 0 picks a free one) once it
+// accepts connections. Without a token file it listens only on loopback.
+#include <iostream>
+
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+
+#include "command_line.hpp"
+#include "cull_service.hpp"
+#include "error_line.hpp"
+#include "http_service.hpp"
+#include "import_limit_options.hpp"
+#include "tsr/cluster/auth.hpp"
+#include "tsr/cluster/node_address.hpp"
+
+namespace {
+
+int run(int argc, char** argv) {
+  CLI::App app{"Rank a scene's objects by visible coverage for a browser's view, and serve them one by one"};
+  std::string scene, listen = "127.0.0.1:0", tokenFile, backend = "coverage";
+  std::uint32_t maxObjects = 256;
+  std::int64_t threads = 0;
+  app.add_option("scene", scene, "glTF file (.gltf/.glb) or builtin:NAME")->required();
+  app.add_option("--listen", listen, "HOST:PORT to listen on (port 0: a free port)")->capture_default_str();
+  app.add_option("--token-file", tokenFile,
+                 "file holding the token clients send as 'Authorization: Bearer TOKEN' (required beyond loopback)");
+  app.add_option("--backend", backend, "the ranking back-end: one with an object-id output")->capture_default_str();
+  app.add_option("--max-objects", maxObjects, "the most objects one request may ask for, and the default")
+      ->check(CLI::Range(1u, 100000u))
+      ->capture_default_str();
+  app.add_option("--threads", threads, "id-pass threads (0: all)")->check(CLI::Range(0, 4096));
+  tsr::app::ImportLimitOptions limits;
+  tsr::sg::ImportOptions import;
+  limits.add(app, import);
+  if (!tsr::app::parseCommandLine(app, argc, argv)) return 0;
+  limits.apply(import);
+
+  spdlog::set_default_logger(spdlog::stderr_color_mt("cull"));
+  const std::string token = tokenFile.empty() ? "" : tsr::cluster::readTokenFile(tokenFile);
+  const tsr::cluster::NodeAddress address =
+      tsr::cluster::parseNodeAddress(listen.find(':') == std::string::npos ? listen + ":0" : listen);
+  boost::asio::io_context io;
+  boost::asio::ip::tcp::resolver resolver(io);
+  const auto endpoint = resolver.resolve(address.host, std::to_string(address.port))->endpoint();
+  if (token.empty() && !endpoint.address().is_loopback())
+    throw std::invalid_argument("refusing to listen on " + address.host + " (" + endpoint.address().to_string() +
+                                ") without --token-file: anyone who reaches it could use the service");
+
+  tsr::med::Parameters parameters;
+  if (threads) parameters.set("threads", threads);
+  tsr::app::CullService cull(scene, import, backend, parameters);
+  boost::asio::ip::tcp::acceptor acceptor(io, endpoint);
+  std::cout << "listening on " << address.host << ":" << acceptor.local_endpoint().port() << std::endl;
+  std::cerr << scene << ": " << cull.totalObjects() << " objects" << std::endl;
+  tsr::app::HttpService http(cull, {token, maxObjects});
+  http.serve(acceptor);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    tsr::app::printError(e.what());
+    return 2;
+  }
+}
