@@ -1,4 +1,6 @@
 #include <cmath>
+#include <map>
+#include <set>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -114,6 +116,151 @@ TEST(BuiltinScenes, AnimatedMovesAnObjectAndALight) {
   EXPECT_GT(glm::distance(Vec3(light->matrix()[3]), lightAt1), 100.0f);
 }
 
+// The plant's objects: top-level Transforms holding one Geometry each.
+struct PlantObject {
+  const Transform* node;
+  const Geometry* geometry;
+};
+
+std::vector<PlantObject> plantObjects(const Scene& scene, ContainerId root) {
+  std::vector<PlantObject> out;
+  for (ContainerId id : scene.find<Group>(root)->children())
+    if (const Transform* t = scene.find<Transform>(id); t && t->children().size() == 1)
+      if (const Geometry* g = scene.find<Geometry>(t->children()[0])) out.push_back({t, g});
+  return out;
+}
+
+struct Box3 {
+  Vec3 lo{INFINITY}, hi{-INFINITY};
+  bool contains(const Box3& o, float tolerance) const {
+    return glm::all(glm::lessThanEqual(lo - tolerance, o.lo)) && glm::all(glm::lessThanEqual(o.hi, hi + tolerance));
+  }
+};
+
+Box3 worldBox(const PlantObject& o) {
+  Box3 b;
+  for (const Vec3& p : o.geometry->positions()) {
+    const Vec3 w = test::apply(o.node->matrix(), p);  // top-level: the node's matrix is its world matrix
+    b.lo = glm::min(b.lo, w);
+    b.hi = glm::max(b.hi, w);
+  }
+  return b;
+}
+
+TEST(BuiltinScenes, PlantMeetsItsTriangleBudgetWithManyNamedObjects) {
+  std::size_t previousObjects = 0;
+  for (std::uint64_t budget : {20'000u, 200'000u, 2'000'000u}) {
+    SCOPED_TRACE(budget);
+    Scene scene;
+    const ImportResult r = importScene(scene, "builtin:plant:" + std::to_string(budget));
+    const SceneStats s = computeSceneStats(scene, r.root);
+    EXPECT_NEAR(static_cast<double>(s.triangles), static_cast<double>(budget), 0.1 * static_cast<double>(budget));
+    EXPECT_EQ(s.triangles, s.uniqueTriangles);  // CAD-like: no instancing
+
+    const std::vector<PlantObject> objects = plantObjects(scene, r.root);
+    EXPECT_GT(objects.size(), previousObjects);
+    previousObjects = objects.size();
+    std::set<std::string> names;
+    for (const PlantObject& o : objects) {
+      EXPECT_FALSE(o.node->name().empty());
+      EXPECT_TRUE(names.insert(o.node->name()).second) << "duplicate name " << o.node->name();
+    }
+    for (const char* kind : {"tank-1", "pipe-1-1", "housing-1", "pump-1 (in housing-1)", "slab-1"})
+      EXPECT_TRUE(names.contains(kind)) << kind;
+    EXPECT_GE(scene.count(ContainerType::SurfaceMaterial), 8u);
+    EXPECT_EQ(r.cameras.size(), 1u);
+    EXPECT_EQ(s.lights, 1u);
+  }
+  EXPECT_GT(previousObjects, 2000u);  // thousands of objects at 2 M triangles
+}
+
+TEST(BuiltinScenes, PlantIsTheSameSceneEveryTime) {
+  Scene a, b;
+  importScene(a, "builtin:plant:50000");
+  importScene(b, "builtin:plant:50000");
+  a.commit();
+  b.commit();
+  EXPECT_EQ(a.contentHash(), b.contentHash());
+  Scene c;
+  importScene(c, "builtin:plant:60000");
+  c.commit();
+  EXPECT_NE(a.contentHash(), c.contentHash());
+}
+
+TEST(BuiltinScenes, PlantHidesObjectsInsideOthers) {
+  Scene scene;
+  const ImportResult r = importScene(scene, "builtin:plant:100000");
+  const std::vector<PlantObject> objects = plantObjects(scene, r.root);
+  std::map<std::string, Box3> boxes;
+  for (const PlantObject& o : objects) boxes[o.node->name()] = worldBox(o);
+  std::size_t enclosed = 0;
+  std::set<std::string> kinds;
+  for (const auto& [name, box] : boxes) {
+    const std::size_t in = name.find(" (in ");
+    if (in == std::string::npos) continue;
+    const std::string outer = name.substr(in + 5, name.size() - in - 6);
+    ASSERT_TRUE(boxes.contains(outer)) << name;
+    EXPECT_TRUE(boxes[outer].contains(box, 1e-3f)) << name << " sticks out of " << outer;
+    kinds.insert(name.substr(0, name.find('-')));
+    ++enclosed;
+  }
+  EXPECT_GT(enclosed, 20u);
+  for (const char* kind : {"pump", "motor", "baseplate", "agitator", "impeller", "terminal"})
+    EXPECT_TRUE(kinds.contains(kind)) << kind;
+
+  // Sizes differ by orders of magnitude: a slab against a terminal block.
+  auto extent = [&](const std::string& name) { return glm::length(boxes.at(name).hi - boxes.at(name).lo); };
+  EXPECT_GT(extent("slab-1") / extent("terminal-block-1 (in junction-box-1)"), 30.0f);
+}
+
+TEST(BuiltinScenes, PlantCameraStandsInsideLookingAlongTheAisle) {
+  Scene scene;
+  const ImportResult r = importScene(scene, "builtin:plant:200000");
+  const SceneStats s = computeSceneStats(scene, r.root);
+  const Mat4 pose = tsr::sg::cameraWorldPose(*scene.find<Camera>(r.cameras.at(0)));
+  const Vec3 eye(pose[3]), forward = -Vec3(pose[2]);
+  EXPECT_TRUE(glm::all(glm::greaterThan(eye, s.boundsMin)) && glm::all(glm::lessThan(eye, s.boundsMax)));
+  EXPECT_GT(forward.z, 0.95f);
+  // Many objects lie ahead of the camera, at very different distances.
+  std::size_t ahead = 0;
+  for (const PlantObject& o : plantObjects(scene, r.root))
+    if (glm::dot(Vec3(o.node->matrix()[3]) - eye, forward) > 0.0f) ++ahead;
+  EXPECT_GT(ahead, 100u);
+}
+
+TEST(BuiltinScenes, PlantMeshesAreValidAndFaceOutwards) {
+  Scene scene;
+  const ImportResult r = importScene(scene, "builtin:plant:20000");
+  for (const PlantObject& o : plantObjects(scene, r.root)) {
+    const Geometry& g = *o.geometry;
+    ASSERT_FALSE(g.invalidReason()) << o.node->name() << ": " << *g.invalidReason();
+    ASSERT_EQ(g.normals().size(), g.positions().size());
+    const auto& p = g.positions();
+    const auto& n = g.normals();
+    const auto& idx = g.indices();
+    for (std::size_t t = 0; t + 2 < idx.size(); t += 3) {
+      const Vec3 face = glm::cross(p[idx[t + 1]] - p[idx[t]], p[idx[t + 2]] - p[idx[t]]);
+      const Vec3 normal = n[idx[t]] + n[idx[t + 1]] + n[idx[t + 2]];
+      ASSERT_GT(glm::dot(face, normal), 0.0f) << o.node->name() << " triangle " << t / 3 << " faces inwards";
+    }
+  }
+}
+
+TEST(BuiltinScenes, PlantBudgetOutOfRangeIsAnImportError) {
+  Scene scene;
+  for (const char* source : {"builtin:plant:999", "builtin:plant:50000001", "builtin:plant:0",
+                             "builtin:plant:", "builtin:plant:2M", "builtin:plant:-5000"}) {
+    try {
+      importScene(scene, source);
+      ADD_FAILURE() << source << " was accepted";
+    } catch (const ImportError& e) {
+      EXPECT_THAT(e.what(), HasSubstr(source));
+      EXPECT_THAT(e.what(), HasSubstr("triangle budget must be a whole number from 1000 to 50000000"));
+    }
+  }
+  EXPECT_EQ(scene.count(ContainerType::Transform), 0u);
+}
+
 TEST(BuiltinScenes, BadNamesAndCountsAreImportErrors) {
   Scene scene;
   scene.create<Group>("kept");
@@ -137,6 +284,7 @@ TEST(BuiltinScenes, BadNamesAndCountsAreImportErrors) {
     EXPECT_THAT(e.what(), HasSubstr("builtin:nope: unknown built-in scene"));
     EXPECT_THAT(e.what(), HasSubstr("builtin:cornell"));
     EXPECT_THAT(e.what(), HasSubstr("builtin:instances:N"));
+    EXPECT_THAT(e.what(), HasSubstr("builtin:plant:TRIANGLES"));
   }
   EXPECT_EQ(scene.contentHash(), hash);
   EXPECT_FALSE(scene.hasPendingChanges());

@@ -1,11 +1,11 @@
 #include "builtin_scenes.hpp"
 
 #include <cmath>
-#include <optional>
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "builtin_assembly.hpp"
 #include "mesh_shapes.hpp"
 
 namespace tsr::sg::builtin {
@@ -39,57 +39,6 @@ const Quad kCornellQuads[] = {
 };
 const Vec3 kEye(278, 273, -800), kAt(278, 273, 0);
 constexpr float kFovDegrees = 37.0f;
-
-parsed::Material material(std::string name, const Vec3& base, float metallic, float roughness) {
-  parsed::Material m;
-  m.name = std::move(name);
-  m.baseColor = base;
-  m.metallic = metallic;
-  m.roughness = roughness;
-  return m;
-}
-
-parsed::Light light(std::string name, LightKind kind, const Vec3& color, float intensity) {
-  parsed::Light l;
-  l.name = std::move(name);
-  l.kind = kind;
-  l.color = color;
-  l.intensity = intensity;
-  return l;
-}
-
-int addMesh(parsed::Scene& s, parsed::Primitive p, int material, std::string name) {
-  p.material = material;
-  s.primitives.push_back(std::move(p));
-  s.meshes.push_back({std::move(name), {static_cast<int>(s.primitives.size()) - 1}});
-  return static_cast<int>(s.meshes.size()) - 1;
-}
-
-// A top-level node; `pose` is kept as the rest pose of animated nodes.
-int addNode(parsed::Scene& s, std::string name, const Mat4& local, int mesh, int light = parsed::kNone,
-            int camera = parsed::kNone, std::optional<Animation::Pose> pose = std::nullopt, bool root = true) {
-  parsed::Node n;
-  n.name = std::move(name);
-  n.local = local;
-  n.trs = pose;
-  n.mesh = mesh;
-  n.light = light;
-  n.camera = camera;
-  s.nodes.push_back(std::move(n));
-  const int index = static_cast<int>(s.nodes.size()) - 1;
-  if (root) s.roots.push_back(index);
-  return index;
-}
-
-// A node whose -Z axis points from `eye` towards `target`.
-Mat4 lookFrom(const Vec3& eye, const Vec3& target, const Vec3& up = Vec3(0, 1, 0)) {
-  return glm::inverse(glm::lookAt(eye, target, up));
-}
-
-void addCamera(parsed::Scene& s, const Vec3& eye, const Vec3& target, float fovDegrees, float znear, float zfar) {
-  s.cameras.push_back({"camera", glm::radians(fovDegrees), znear, zfar});
-  addNode(s, "camera", lookFrom(eye, target), parsed::kNone, parsed::kNone, static_cast<int>(s.cameras.size()) - 1);
-}
 
 parsed::Scene cornellBox() {
   parsed::Scene s;

@@ -20,20 +20,28 @@ std::string joined(const std::vector<std::string>& names) {
   return out;
 }
 
+// The whole number `digits` of a built-in name, from `min` to `max`.
+std::uint64_t count(const std::string& source, std::string_view digits, std::uint64_t min, std::uint64_t max,
+                    const std::string& what) {
+  std::uint64_t n = 0;
+  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
+  if (digits.empty() || ec != std::errc() || end != digits.data() + digits.size() || n < min || n > max)
+    throw ImportError(source, what + " must be a whole number from " + std::to_string(min) + " to " +
+                                  std::to_string(max) + ", not '" + std::string(digits) + "'");
+  return n;
+}
+
 parsed::Scene parseBuiltin(const std::string& source) {
   const std::string_view name = std::string_view(source).substr(kBuiltinPrefix.size());
   if (name == "cornell") return builtin::cornell();
   if (name == "animated") return builtin::animated();
   constexpr std::string_view instances = "instances:";
-  if (name.starts_with(instances)) {
-    const std::string_view digits = name.substr(instances.size());
-    std::uint64_t n = 0;
-    const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
-    if (digits.empty() || ec != std::errc() || end != digits.data() + digits.size() || n == 0 || n > kMaxInstances)
-      throw ImportError(source, "the instance count must be a whole number from 1 to " + std::to_string(kMaxInstances) +
-                                    ", not '" + std::string(digits) + "'");
-    return builtin::instances(n);
-  }
+  if (name.starts_with(instances))
+    return builtin::instances(count(source, name.substr(instances.size()), 1, kMaxInstances, "the instance count"));
+  constexpr std::string_view plant = "plant:";
+  if (name.starts_with(plant))
+    return builtin::plant(count(source, name.substr(plant.size()), builtin::kPlantMinTriangles,
+                                builtin::kPlantMaxTriangles, "the triangle budget"));
   throw ImportError(source, "unknown built-in scene; valid names are " + joined(builtinSceneNames()));
 }
 
@@ -59,7 +67,7 @@ ImportResult parsedAndBuilt(Scene& scene, const std::string& source, Parse parse
 
 }  // namespace
 
-std::vector<std::string> builtinSceneNames() { return {"cornell", "instances:N", "animated"}; }
+std::vector<std::string> builtinSceneNames() { return {"cornell", "instances:N", "animated", "plant:TRIANGLES"}; }
 
 ImportResult importScene(Scene& scene, const std::string& source, const ImportOptions& options) {
   return parsedAndBuilt(scene, source, [&] {

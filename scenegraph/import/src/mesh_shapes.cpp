@@ -57,11 +57,11 @@ parsed::Primitive box(const Vec3& h) {
   return m;
 }
 
-parsed::Primitive torus(float major, float minor, int majorSegments, int minorSegments) {
+parsed::Primitive torus(float major, float minor, int majorSegments, int minorSegments, float sweep) {
   parsed::Primitive m;
   const float twoPi = 2.0f * glm::pi<float>();
   for (int i = 0; i <= majorSegments; ++i) {
-    const float u = twoPi * static_cast<float>(i) / static_cast<float>(majorSegments);
+    const float u = sweep * static_cast<float>(i) / static_cast<float>(majorSegments);
     const Vec3 ring(std::cos(u), 0.0f, std::sin(u));
     for (int j = 0; j <= minorSegments; ++j) {
       const float v = twoPi * static_cast<float>(j) / static_cast<float>(minorSegments);
@@ -78,6 +78,46 @@ parsed::Primitive torus(float major, float minor, int majorSegments, int minorSe
       const std::uint32_t a = i * row + j, b = a + row, c = a + 1, d = b + 1;
       m.indices.insert(m.indices.end(), {a, c, b, c, d, b});
     }
+  return m;
+}
+
+std::size_t latheTriangles(std::span<const Vec2> profile, int segments) {
+  std::size_t perSegment = 0;
+  for (std::size_t k = 1; k < profile.size(); ++k)
+    perSegment += (profile[k - 1].x > 0.0f ? 1u : 0u) + (profile[k].x > 0.0f ? 1u : 0u);
+  return perSegment * static_cast<std::size_t>(segments);
+}
+
+parsed::Primitive lathe(std::span<const Vec2> profile, int segments) {
+  parsed::Primitive m;
+  const float twoPi = 2.0f * glm::pi<float>();
+  const auto columns = static_cast<std::uint32_t>(segments + 1);
+  m.positions.reserve(2 * columns * profile.size());
+  m.normals.reserve(2 * columns * profile.size());
+  m.uvs.reserve(2 * columns * profile.size());
+  m.indices.reserve(3 * latheTriangles(profile, segments));
+  for (std::size_t k = 1; k < profile.size(); ++k) {
+    const Vec2 a = profile[k - 1], b = profile[k];
+    // Outward in the (radius, y) plane: the profile's direction turned clockwise.
+    const Vec2 d = b - a;
+    const Vec2 n = glm::length(d) > 0.0f ? glm::normalize(Vec2(d.y, -d.x)) : Vec2(1, 0);
+    const auto base = static_cast<std::uint32_t>(m.positions.size());
+    for (int ring = 0; ring < 2; ++ring)
+      for (std::uint32_t j = 0; j < columns; ++j) {
+        const Vec2 p = ring == 0 ? a : b;
+        const float phi = twoPi * static_cast<float>(j) / static_cast<float>(segments);
+        const float c = std::cos(phi), s = std::sin(phi);
+        m.positions.emplace_back(p.x * c, p.y, p.x * s);
+        m.normals.emplace_back(n.x * c, n.y, n.x * s);
+        m.uvs.emplace_back(static_cast<float>(j) / static_cast<float>(segments), static_cast<float>(ring));
+      }
+    for (std::uint32_t j = 0; j < static_cast<std::uint32_t>(segments); ++j) {
+      const std::uint32_t a0 = base + j, a1 = a0 + 1, b0 = a0 + columns, b1 = b0 + 1;
+      // A ring of radius 0 is one point: its half of the quad vanishes.
+      if (a.x > 0.0f) m.indices.insert(m.indices.end(), {a0, b0, a1});
+      if (b.x > 0.0f) m.indices.insert(m.indices.end(), {a1, b0, b1});
+    }
+  }
   return m;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // Loads a scene description into a Scene: a glTF 2.0 file (.gltf or .glb)
 // or a built-in scene ("builtin:cornell", "builtin:instances:N",
-// "builtin:animated"). Everything is parsed and validated before the first
+// "builtin:animated", "builtin:plant:TRIANGLES"). Everything is parsed and validated before the first
 // container is created, so a failed import leaves the scene untouched.
 #include <cstdint>
 #include <span>
