@@ -24,7 +24,14 @@ CullService::CullService(const std::string& scene, const sg::ImportOptions& impo
   const auto offered = viewport_->outputNames();
   if (std::find(offered.begin(), offered.end(), med::kIdOutput) == offered.end())
     throw std::invalid_argument("--backend " + backend + " has no object ids to rank by (try coverage)");
-  viewport_->synchronize(session_.replica);  // converted once, here
+  // Converted once, here, acceleration structures included (the back-end
+  // builds them at its first render): the first request waits for nothing.
+  viewport_->synchronize(session_.replica);
+  med::FrameBuffer warmUp;
+  med::RenderControl control;
+  control.outputs = std::vector<std::string>{med::kIdOutput};
+  const auto* camera = session_.replica.scene().find<sg::Camera>(session_.camera);
+  viewport_->render(session_.replica, med::View::fromCamera(*camera, 8, 8), warmUp, control);
   const sg::Scene& s = session_.replica.scene();
   for (const med::FlatNode& instance : med::flatten(s, session_.imported.root).instances) {
     const auto* geometry = s.find<sg::Geometry>(instance.id);
