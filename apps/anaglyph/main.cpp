@@ -12,6 +12,7 @@
 #include "backends.hpp"
 #include "error_line.hpp"
 #include "preview_filter.hpp"
+#include "program_main.hpp"
 #include "progress_bar.hpp"
 #include "tsr/cluster/auth.hpp"
 #include "tsr/med/image_file.hpp"
@@ -102,11 +103,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    tsr::app::printError(e.what());
-    return 2;
-  }
-}
+int main(int argc, char** argv) { return tsr::app::runProgram(run, argc, argv); }

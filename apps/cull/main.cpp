@@ -17,6 +17,7 @@
 #include "error_line.hpp"
 #include "http_service.hpp"
 #include "import_limit_options.hpp"
+#include "program_main.hpp"
 #include "tsr/cluster/auth.hpp"
 #include "tsr/cluster/node_address.hpp"
 
@@ -66,11 +67,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    tsr::app::printError(e.what());
-    return 2;
-  }
-}
+int main(int argc, char** argv) { return tsr::app::runProgram(run, argc, argv); }

@@ -11,6 +11,7 @@
 #include "error_line.hpp"
 #include "layers.hpp"
 #include "option_values.hpp"
+#include "program_main.hpp"
 #include "progress_bar.hpp"
 #include "render_options.hpp"
 #include "scene_session.hpp"
@@ -88,13 +89,5 @@ int run(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   spdlog::set_level(spdlog::level::warn);
-  try {
-    return run(argc, argv);
-  } catch (const tsr::sg::ImportLimitError& e) {
-    tsr::app::printError(std::string(e.what()) + " (raise it with " + tsr::app::importLimitOption(e) + ")");
-    return 2;
-  } catch (const std::exception& e) {
-    tsr::app::printError(e.what());
-    return 2;
-  }
+  return tsr::app::runProgram(run, argc, argv);
 }
