@@ -7,7 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "backends.hpp"
-#include "object_glb.hpp"
+#include "scene_glb.hpp"
 #include "tsr/med/coverage/ranking.hpp"
 #include "tsr/med/scene_flattening.hpp"
 
@@ -80,7 +80,7 @@ CullAnswer CullService::cull(const CullQuery& q) {
 std::optional<std::vector<std::uint8_t>> CullService::objectGlb(sg::ContainerId id) const {
   auto parts = parts_.find(id);
   if (parts == parts_.end()) return std::nullopt;
-  return app::objectGlb(session_.replica.scene(), parts->second);
+  return glbOf(session_.replica.scene(), parts->second);
 }
 
 }  // namespace tsr::app

@@ -2,6 +2,7 @@
 // a scene (a glTF file or a built-in) and prints what it holds. Errors: one
 // line on stderr, exit status 2.
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 
 #include <spdlog/sinks/stdout_color_sinks.h>
@@ -11,6 +12,8 @@
 
 #include "error_line.hpp"
 #include "import_limit_options.hpp"
+#include "scene_glb.hpp"
+#include "tsr/med/scene_flattening.hpp"
 #include "tsr/sg/import/importer.hpp"
 #include "tsr/sg/import/scene_stats.hpp"
 #include "tsr/sg/scene.hpp"
@@ -71,10 +74,15 @@ int main(int argc, char** argv) {
   std::string source;
   bool json = false;
   bool verbose = false;
-  app.add_option("SCENE", source, "a .gltf/.glb file or builtin:cornell, builtin:instances:N, builtin:animated, builtin:plant:TRIANGLES")
+  app.add_option("SCENE", source,
+                 "a .gltf/.glb file or builtin:cornell, builtin:instances:N, builtin:animated, builtin:plant:TRIANGLES")
       ->required();
   app.add_flag("--json", json, "print a JSON object instead of text");
   app.add_flag("-v,--verbose", verbose, "log the importer's progress to stderr");
+  std::string glb;
+  app.add_option("--write-glb", glb,
+                 "also write the scene as one .glb, every instance a mesh in world space (e.g. a built-in scene for "
+                 "other tools)");
   tsr::sg::ImportOptions options;
   tsr::app::ImportLimitOptions limits;
   limits.add(app, options);
@@ -96,6 +104,12 @@ int main(int argc, char** argv) {
     tsr::sg::Scene scene;
     const tsr::sg::ImportResult result = tsr::sg::importScene(scene, source, options);
     const tsr::sg::SceneStats stats = tsr::sg::computeSceneStats(scene, result.root);
+    if (!glb.empty()) {
+      const std::vector<std::uint8_t> bytes = tsr::app::glbOf(scene, tsr::med::flatten(scene, result.root).instances);
+      std::ofstream out(glb, std::ios::binary);
+      out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+      if (!out.flush()) throw std::runtime_error("cannot write " + glb);
+    }
     if (json)
       std::cout << toJson(source, result, stats).dump(2) << "\n";
     else

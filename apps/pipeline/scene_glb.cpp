@@ -1,4 +1,4 @@
-#include "object_glb.hpp"
+#include "scene_glb.hpp"
 
 #include <cstring>
 #include <sstream>
@@ -100,7 +100,7 @@ void addInstance(tinygltf::Model& m, const sg::Scene& scene, const med::FlatNode
 
 }  // namespace
 
-std::vector<std::uint8_t> objectGlb(const sg::Scene& scene, const std::vector<med::FlatNode>& instances) {
+std::vector<std::uint8_t> glbOf(const sg::Scene& scene, const std::vector<med::FlatNode>& instances) {
   tinygltf::Model m;
   m.asset.version = "2.0";
   m.asset.generator = "tessera-cull";

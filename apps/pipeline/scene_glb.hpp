@@ -1,0 +1,17 @@
+#pragma once
+// Geometry instances of a scene as a standalone glTF binary: each a mesh in
+// world space (positions, normals, indices) with its material's base
+// colour, metallic and roughness. One object for a web client that loads
+// objects one by one (tessera-cull), or a whole scene (tessera-inspect
+// --write-glb, e.g. a built-in plant for other tools).
+#include <cstdint>
+#include <vector>
+
+#include "tsr/med/scene_flattening.hpp"
+#include "tsr/sg/scene.hpp"
+
+namespace tsr::app {
+
+std::vector<std::uint8_t> glbOf(const sg::Scene& scene, const std::vector<med::FlatNode>& instances);
+
+}  // namespace tsr::app
