@@ -5,5 +5,8 @@
 namespace tsr::app {
 
 void registerBackends(med::ViewportRegistry& registry);
+// Every back-end this build has, registered once: for questions about
+// their capabilities (a registry is const once filled).
+const med::ViewportRegistry& backendRegistry();
 
 }  // namespace tsr::app

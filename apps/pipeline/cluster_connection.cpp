@@ -13,8 +13,7 @@ cluster::ClusterConfig clusterConfig(const RenderJob& options) {
   if (!sequence.nodes.empty()) config.replaceAddresses(cluster::parseNodeList(sequence.nodes));
   // What the command line names beats the config; the config beats the
   // command line's defaults.
-  med::ViewportRegistry registry;
-  registerBackends(registry);
+  const med::ViewportRegistry& registry = backendRegistry();
   for (auto& node : config.nodes) {
     if (!registry.has(node.backend)) continue;  // the node names what it has when it refuses
     registry.requireDeclared(options.parameters, {node.backend});

@@ -5,9 +5,7 @@
 namespace tsr::app {
 
 std::int64_t samplesPerPixel(const RenderJob& job) {
-  med::ViewportRegistry registry;
-  registerBackends(registry);
-  const med::ParameterTable& table = registry.capabilities(job.backend).parameters;
+  const med::ParameterTable& table = backendRegistry().capabilities(job.backend).parameters;
   return table.declares("spp") ? table.integer(job.parameters, "spp") : 1;
 }
 

@@ -140,8 +140,7 @@ bool cameraMoves(const SceneSession& session) {
 // The back-ends with a temporal photon pass: those that declare the
 // "temporal" parameter.
 std::vector<std::string> photonBackends() {
-  med::ViewportRegistry registry;
-  registerBackends(registry);
+  const med::ViewportRegistry& registry = backendRegistry();
   std::vector<std::string> names;
   for (const auto& b : registry.backends())
     if (registry.capabilities(b).parameters.declares("temporal")) names.push_back(b);

@@ -27,9 +27,7 @@ int run(int argc, char** argv) {
   std::string listParams;
   if (!tsr::app::parseRenderOptions(argc, argv, options, listParams)) return 0;
   if (!listParams.empty()) {
-    tsr::med::ViewportRegistry registry;
-    tsr::app::registerBackends(registry);
-    const auto& capabilities = registry.capabilities(listParams);  // unknown: names those it has
+    const auto& capabilities = tsr::app::backendRegistry().capabilities(listParams);  // unknown: names those it has
     std::cout << listParams << (capabilities.progressive ? " (progressive)" : "") << ": --param NAME=VALUE\n"
               << capabilities.parameters.describe();
     return 0;

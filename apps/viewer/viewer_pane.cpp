@@ -59,7 +59,6 @@ void ViewerPane::render(const med::ViewportRegistry& registry, med::ContextPool&
     backend = kRasteriser;
   const bool switched = backend != shown_;
   shown_ = backend;
-  shownProgressive_ = registry.capabilities(backend).progressive && !isRemote(backend);
   if (sceneChanged || !(view == lastView_)) restart_ = true;
   lastView_ = view;
   med::Viewport& vp = viewport(backend, registry, contexts);
@@ -67,16 +66,15 @@ void ViewerPane::render(const med::ViewportRegistry& registry, med::ContextPool&
   med::RenderControl control;
   control.outputs = std::vector<std::string>{};
   // The ranked list and picking read object ids, where the back-end offers them.
-  if (const auto offered = vp.outputNames();
-      std::find(offered.begin(), offered.end(), med::kIdOutput) != offered.end())
+  if (const auto offered = vp.outputNames(); std::find(offered.begin(), offered.end(), med::kIdOutput) != offered.end())
     control.outputs->push_back(med::kIdOutput);
 
   const bool restarted = restart_ || switched;
   const bool reportSwitch = switched;
   restart_ = false;
   const bool sized = frame_.width == view.region.width() && frame_.height == view.region.height();
-  // isRemote is known once the viewport exists.
-  shownProgressive_ = registry.capabilities(backend).progressive && !isRemote(backend);
+  // Asked of the viewport once it exists (a node's stand-in declares none).
+  shownProgressive_ = vp.capabilities().progressive && !isRemote(backend);
   if (!shownProgressive_) {
     converging_ = false;
     if (restarted || !sized) stats_ = vp.render(replica, view, frame_, control);  // else the image stands

@@ -92,8 +92,7 @@ int run(const Options& o) {
   if (config.mode != tsr::cluster::ClusterMode::Tiled)
     throw std::invalid_argument(o.config + ": a wall needs \"mode\": \"tiled\"");
   if (!o.nodes.empty()) config.replaceAddresses(tsr::cluster::parseNodeList(o.nodes));
-  tsr::med::ViewportRegistry registry;
-  tsr::app::registerBackends(registry);
+  const tsr::med::ViewportRegistry& registry = tsr::app::backendRegistry();
   for (auto& n : config.nodes) {
     if (!registry.has(n.backend)) continue;  // config.validate names it
     const tsr::med::ParameterTable& table = registry.capabilities(n.backend).parameters;
@@ -210,7 +209,8 @@ int main(int argc, char** argv) {
   std::string logLevel = "warn";
   app.add_option("CONFIG", o.config, "cluster config with \"mode\": \"tiled\" (a grid or screens, see configs/)")
       ->required();
-  app.add_option("SCENE", o.scene, "a .gltf/.glb file or builtin:cornell, builtin:animated, builtin:instances:N, builtin:plant:TRIANGLES")
+  app.add_option("SCENE", o.scene,
+                 "a .gltf/.glb file or builtin:cornell, builtin:animated, builtin:instances:N, builtin:plant:TRIANGLES")
       ->required();
   app.add_option("--nodes", o.nodes, "node addresses A:P,B:Q,... in screen order (default: the config's)");
   app.add_option("--token-file", o.tokenFile, "file holding the token the nodes were started with")
