@@ -17,6 +17,7 @@ packages=(
   libeigen3-dev
   openmpi-bin
   assimp-testmodels   # real glTF models of the filter quality suite (tests/bench/quality/suite)
+  chromium            # the web client's browser test (Playwright drives it)
 )
 
 if [ "$(id -u)" -ne 0 ]; then
@@ -31,10 +32,21 @@ done
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install-deps: all ${#packages[@]} packages present"
-  exit 0
+else
+  echo "install-deps: installing ${#missing[@]} packages: ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-echo "install-deps: installing ${#missing[@]} packages: ${missing[*]}"
-export DEBIAN_FRONTEND=noninteractive
-apt-get update -qq
-apt-get install -y -qq --no-install-recommends "${missing[@]}"
+# The web client's packages (three.js; playwright-core for its test), as
+# web/package-lock.json pins them; reinstalled only when the lock changed.
+web="$(dirname "$0")/../web"
+if ! command -v npm >/dev/null; then
+  echo "install-deps: npm not found (Node.js 20 with npm is needed for the web client)" >&2
+  exit 2
+fi
+if ! cmp -s "$web/package-lock.json" "$web/node_modules/.package-lock.json.installed"; then
+  (cd "$web" && npm ci --no-audit --no-fund --loglevel=error)
+  cp "$web/package-lock.json" "$web/node_modules/.package-lock.json.installed"
+fi

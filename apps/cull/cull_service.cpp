@@ -5,11 +5,14 @@
 #include <stdexcept>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
 
 #include "backends.hpp"
 #include "scene_glb.hpp"
 #include "tsr/med/coverage/ranking.hpp"
 #include "tsr/med/scene_flattening.hpp"
+#include "tsr/sg/import/scene_stats.hpp"
+#include "tsr/sg/node_world.hpp"
 
 namespace tsr::app {
 
@@ -18,9 +21,7 @@ CullService::CullService(const std::string& scene, const sg::ImportOptions& impo
   session_.load(scene, import);
   session_.publish();
   registerBackends(registry_);
-  med::ViewportSettings settings{backend, session_.imported.root, session_.imported.background,
-                                 registry_.parametersFor(backend, parameters), true};
-  viewport_ = registry_.create(settings, contexts_);
+  viewport_ = registry_.create(settingsFor(backend, parameters), contexts_);
   const auto offered = viewport_->outputNames();
   if (std::find(offered.begin(), offered.end(), med::kIdOutput) == offered.end())
     throw std::invalid_argument("--backend " + backend + " has no object ids to rank by (try coverage)");
@@ -41,11 +42,13 @@ CullService::CullService(const std::string& scene, const sg::ImportOptions& impo
     triangles_[object] += triangles;
     totalTriangles_ += triangles;
   }
+  if (const auto stats = sg::computeSceneStats(s, session_.imported.root); stats.hasBounds) {
+    boundsMin_ = stats.boundsMin;
+    boundsMax_ = stats.boundsMax;
+  }
 }
 
-CullAnswer CullService::cull(const CullQuery& q) {
-  // A camera of the query's pose and field of view, with the near and far
-  // planes of the scene's own camera (they fit its scale).
+med::View CullService::viewOf(const CullQuery& q) const {
   const auto* sceneCamera = session_.replica.scene().find<sg::Camera>(session_.camera);
   sg::Camera camera;
   camera.setNearPlane(sceneCamera->nearPlane());
@@ -54,7 +57,11 @@ CullAnswer CullService::cull(const CullQuery& q) {
   camera.lookAt(q.position, q.target, q.up);
   med::View view = med::View::fromCamera(camera, q.width, q.height);
   view.validate();
+  return view;
+}
 
+CullAnswer CullService::cull(const CullQuery& q) {
+  const med::View view = viewOf(q);
   med::FrameBuffer image;
   med::RenderControl control;
   control.outputs = std::vector<std::string>{med::kIdOutput};
@@ -75,6 +82,41 @@ CullAnswer CullService::cull(const CullQuery& q) {
     answer.objects.push_back({r.id, r.name, r.pixels, r.fraction, t == triangles_.end() ? 0 : t->second});
   }
   return answer;
+}
+
+med::ViewportSettings CullService::settingsFor(const std::string& backend, const med::Parameters& parameters) const {
+  return {backend, session_.imported.root, session_.imported.background, registry_.parametersFor(backend, parameters),
+          true};
+}
+
+CullQuery CullService::sceneView() const {
+  const sg::Scene& s = session_.replica.scene();
+  const auto* camera = s.find<sg::Camera>(session_.camera);
+  const glm::mat4 pose = sg::cameraWorldPose(*camera);
+  CullQuery q;
+  q.position = glm::vec3(pose[3]);
+  q.target = q.position - glm::vec3(pose[2]);  // it looks down its -Z
+  q.up = glm::vec3(pose[1]);
+  q.fovDegrees = glm::degrees(camera->verticalFov());
+  return q;
+}
+
+std::string CullService::sceneJson(bool preview) const {
+  const CullQuery view = sceneView();
+  auto vec = [](const glm::vec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); };
+  const auto* camera = session_.replica.scene().find<sg::Camera>(session_.camera);
+  return nlohmann::json{{"camera",
+                         {{"position", vec(view.position)},
+                          {"target", vec(view.target)},
+                          {"up", vec(view.up)},
+                          {"fov", view.fovDegrees},
+                          {"near", camera->nearPlane()},
+                          {"far", camera->farPlane()}}},
+                        {"bounds", {{"min", vec(boundsMin_)}, {"max", vec(boundsMax_)}}},
+                        {"total_objects", totalObjects()},
+                        {"total_triangles", totalTriangles_},
+                        {"preview", preview}}
+      .dump();
 }
 
 std::optional<std::vector<std::uint8_t>> CullService::objectGlb(sg::ContainerId id) const {

@@ -53,6 +53,21 @@ class CullService {
   // an id that names no object of the ranking's kind.
   std::optional<std::vector<std::uint8_t>> objectGlb(sg::ContainerId id) const;
   std::uint64_t totalObjects() const { return triangles_.size(); }
+  std::uint64_t totalTriangles() const { return totalTriangles_; }
+
+  // The query's pose and field of view at its size, with the near and far
+  // planes of the scene's own camera (they fit its scale).
+  med::View viewOf(const CullQuery& query) const;
+  // The scene's own camera, as a query would give it (the page starts there).
+  CullQuery sceneView() const;
+  // What the page shows first: the scene's camera, bounds and totals (JSON).
+  std::string sceneJson(bool preview) const;
+  // Settings of a viewport of `backend` over the service's scene.
+  med::ViewportSettings settingsFor(const std::string& backend, const med::Parameters& parameters) const;
+  // The one converted scene every viewport here renders; never edited.
+  const sg::Replica& replica() const { return session_.replica; }
+  med::ContextPool& contexts() { return contexts_; }
+  const med::ViewportRegistry& registry() const { return registry_; }
 
  private:
   SceneSession session_;
@@ -62,6 +77,7 @@ class CullService {
   std::unordered_map<sg::ContainerId, std::vector<med::FlatNode>> parts_;  // per object: its geometry instances
   std::unordered_map<sg::ContainerId, std::uint64_t> triangles_;           // per object
   std::uint64_t totalTriangles_ = 0;
+  glm::vec3 boundsMin_{-1.0f}, boundsMax_{1.0f};  // of the whole scene
   std::mutex mutex_;
 };
 

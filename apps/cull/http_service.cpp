@@ -8,6 +8,7 @@
 #include <spdlog/spdlog.h>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
+#include <boost/beast/websocket.hpp>
 
 #include "cull_request.hpp"
 
@@ -29,6 +30,27 @@ Response reply(unsigned version, http::status status, std::string body, const ch
 
 // "/v1/objects/123.glb" -> 123; nothing for any other path (no dots, no
 // slashes, no leading zeros or signs: one way to name an object).
+std::string_view view(boost::beast::string_view s) { return {s.data(), s.size()}; }
+
+// The target without its query string.
+std::string_view pathOf(boost::beast::string_view target) { return view(target).substr(0, view(target).find('?')); }
+
+// The value of `name` in the target's query string, as sent (tokens are
+// plain characters: no decoding needed).
+std::string_view queryValue(boost::beast::string_view whole, std::string_view name) {
+  const std::string_view target = view(whole);
+  const auto start = target.find('?');
+  if (start == std::string_view::npos) return {};
+  std::string_view query = target.substr(start + 1);
+  while (!query.empty()) {
+    const std::string_view pair = query.substr(0, query.find('&'));
+    if (pair.size() > name.size() && pair.starts_with(name) && pair[name.size()] == '=')
+      return pair.substr(name.size() + 1);
+    query.remove_prefix(std::min(query.size(), pair.size() + 1));
+  }
+  return {};
+}
+
 std::optional<sg::ContainerId> objectPath(std::string_view target) {
   constexpr std::string_view prefix = "/v1/objects/", suffix = ".glb";
   if (!target.starts_with(prefix) || !target.ends_with(suffix)) return std::nullopt;
@@ -78,6 +100,12 @@ void HttpService::session(boost::asio::ip::tcp::socket socket) {
       response = reply(11, http::status::bad_request, "bad request: " + ec.message() + "\n");
     } else {
       const auto& request = parser.get();
+      if (boost::beast::websocket::is_upgrade(request) && pathOf(request.target()) == "/v1/preview" &&
+          previews_.enabled() && authorised(request)) {
+        socket.set_option(boost::asio::socket_base::keep_alive(true));
+        previews_.serve(std::move(socket), request);  // the connection is the stream's now
+        return;
+      }
       keepAlive = request.keep_alive();
       response = handle(request);
       response.keep_alive(keepAlive);
@@ -87,12 +115,25 @@ void HttpService::session(boost::asio::ip::tcp::socket socket) {
   }
 }
 
+bool HttpService::authorised(const http::request<http::string_body>& request) const {
+  return options_.token.empty() || request[http::field::authorization] == "Bearer " + options_.token ||
+         queryValue(request.target(), "access_token") == options_.token;
+}
+
 Response HttpService::handle(const http::request<http::string_body>& request) {
   const unsigned v = request.version();
-  if (!options_.token.empty() && request[http::field::authorization] != "Bearer " + options_.token)
-    return reply(v, http::status::unauthorized, "unauthorized: send Authorization: Bearer TOKEN\n");
-  const std::string_view target(request.target().data(), request.target().size());
+  const std::string_view target = pathOf(request.target());
+  if (target.starts_with("/v1/") && !authorised(request))
+    return reply(v, http::status::unauthorized,
+                 "unauthorized: send Authorization: Bearer TOKEN (or ?access_token=TOKEN)\n");
   try {
+    if (target == "/v1/preview")
+      return reply(v, previews_.enabled() ? http::status::upgrade_required : http::status::not_found,
+                   previews_.enabled() ? "/v1/preview is a WebSocket\n" : "this service streams no previews\n");
+    if (target == "/v1/scene") {
+      if (request.method() != http::verb::get) return reply(v, http::status::method_not_allowed, "use GET\n");
+      return reply(v, http::status::ok, cull_.sceneJson(previews_.enabled()), "application/json");
+    }
     if (target == "/v1/cull") {
       if (request.method() != http::verb::post) return reply(v, http::status::method_not_allowed, "use POST\n");
       const CullQuery query = parseCullRequest(request.body(), options_.maxObjects);
@@ -116,7 +157,17 @@ Response HttpService::handle(const http::request<http::string_body>& request) {
       r.set(http::field::cache_control, "public, max-age=86400");
       return r;
     }
-    return reply(v, http::status::not_found, "not found: /v1/cull (POST) and /v1/objects/ID.glb (GET)\n");
+    if (request.method() == http::verb::get) {
+      if (auto file = web_.get(target)) {
+        Response r = reply(v, http::status::ok, std::move(file->body), file->contentType.c_str());
+        r.set(http::field::cache_control, "no-cache");  // revalidated: the page follows the installed client
+        return r;
+      }
+    }
+    return reply(v, http::status::not_found,
+                 "not found: / (the web client), /v1/cull (POST), /v1/objects/ID.glb, /v1/scene, /v1/preview\n");
+  } catch (const WebPathError& e) {
+    return reply(v, http::status::bad_request, std::string("bad path: ") + e.what() + "\n");
   } catch (const CullRequestError& e) {
     return reply(v, http::status::bad_request, std::string("bad request: ") + e.what() + "\n");
   } catch (const std::exception& e) {

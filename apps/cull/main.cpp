@@ -1,9 +1,13 @@
 // tessera-cull SCENE --listen HOST:PORT [--token-file F] [--backend coverage]
-//              [--max-objects K] [--threads N]
+//              [--max-objects K] [--threads N] [--web DIR] [--previews N]
+//              [--preview-backend embree] [--preview-spp N]
+//              [--cluster CONFIG [--nodes ...] [--node-token-file F]]
 // The culling service of Schwenk 5.4.3: POST /v1/cull ranks the scene's
 // objects by visible coverage for a view, GET /v1/objects/ID.glb serves one
-// object. Prints "listening on HOST:PORT" (port 0 picks a free one) once it
-// accepts connections. Without a token file it listens only on loopback.
+// object, GET / the three.js client, and /v1/preview streams the path
+// tracer's image of a resting view (rendered here or on a cluster's nodes).
+// Prints "listening on HOST:PORT" (port 0 picks a free one) once it accepts
+// connections. Without a token file it listens only on loopback.
 #include <iostream>
 
 #include <spdlog/sinks/stdout_color_sinks.h>
@@ -17,9 +21,11 @@
 #include "error_line.hpp"
 #include "http_service.hpp"
 #include "import_limit_options.hpp"
+#include "preview_viewports.hpp"
 #include "program_main.hpp"
 #include "tsr/cluster/auth.hpp"
 #include "tsr/cluster/node_address.hpp"
+#include "web_files.hpp"
 
 namespace {
 
@@ -37,6 +43,24 @@ int run(int argc, char** argv) {
       ->check(CLI::Range(1u, 100000u))
       ->capture_default_str();
   app.add_option("--threads", threads, "id-pass threads (0: all)")->check(CLI::Range(0, 4096));
+  std::string web = TSR_WEB_DIR, previewBackend = "embree";
+  int previews = 4;
+  std::uint32_t previewSpp = 64;
+  app.add_option("--web", web, "the web client's folder (index.html, src/, node_modules/three)")->capture_default_str();
+  app.add_option("--previews", previews, "path-traced previews streamed at once (0: none)")
+      ->check(CLI::Range(0, 32))
+      ->capture_default_str();
+  app.add_option("--preview-backend", previewBackend, "the back-end of the streamed previews")->capture_default_str();
+  app.add_option("--preview-spp", previewSpp, "samples per pixel a preview refines to, then stands")
+      ->check(CLI::Range(1u, 65536u))
+      ->capture_default_str();
+  tsr::app::RenderJob cluster;
+  auto* clusterGroup = app.add_option_group("Cluster", "render the previews on tessera-node processes");
+  clusterGroup->add_option("--cluster", cluster.sequence.cluster, "cluster config (configs/*.json)")
+      ->check(CLI::ExistingFile);
+  clusterGroup->add_option("--nodes", cluster.sequence.nodes, "HOST:PORT,... replacing the config's node addresses");
+  clusterGroup->add_option("--node-token-file", cluster.sequence.tokenFile, "the nodes' shared token")
+      ->check(CLI::ExistingFile);
   tsr::app::ImportLimitOptions limits;
   tsr::sg::ImportOptions import;
   limits.add(app, import);
@@ -56,11 +80,22 @@ int run(int argc, char** argv) {
 
   tsr::med::Parameters parameters;
   if (threads) parameters.set("threads", threads);
+  if (cluster.sequence.cluster.empty() && (!cluster.sequence.nodes.empty() || !cluster.sequence.tokenFile.empty()))
+    throw std::invalid_argument("--nodes and --node-token-file go with --cluster CONFIG");
   tsr::app::CullService cull(scene, import, backend, parameters);
+  tsr::app::PreviewOptions preview;
+  preview.maxStreams = previews;
+  preview.sampleLimit = previewSpp;
+  if (previews > 0)
+    preview.open = tsr::app::previewViewports(cull, previewBackend, parameters, cluster, preview.maxStreams);
+  tsr::app::PreviewStreams streams(cull, std::move(preview));
+  const tsr::app::WebFiles webFiles(web);
+  if (const std::string why = webFiles.missing(); !why.empty()) spdlog::warn("GET / will not work: {}", why);
+
   boost::asio::ip::tcp::acceptor acceptor(io, endpoint);
   std::cout << "listening on " << address.host << ":" << acceptor.local_endpoint().port() << std::endl;
   std::cerr << scene << ": " << cull.totalObjects() << " objects" << std::endl;
-  tsr::app::HttpService http(cull, {token, maxObjects});
+  tsr::app::HttpService http(cull, streams, webFiles, {token, maxObjects});
   http.serve(acceptor);
   return 0;
 }

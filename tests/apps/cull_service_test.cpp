@@ -17,6 +17,7 @@
 
 #include "../cluster/node_process.hpp"
 #include "backends.hpp"
+#include "cull_http.hpp"
 #include "scene_session.hpp"
 #include "tsr/med/coverage/ranking.hpp"
 #include "tsr/med/scene_flattening.hpp"
@@ -26,39 +27,9 @@ namespace {
 namespace http = boost::beast::http;
 using nlohmann::json;
 
-struct Reply {
-  unsigned status = 0;
-  std::string body;
-  std::string etag;
-};
-
-Reply request(std::uint16_t port, http::verb verb, const std::string& target, const std::string& body = {},
-              const std::string& ifNoneMatch = {}, const std::string& authorization = {}) {
-  boost::asio::io_context io;
-  boost::asio::ip::tcp::socket socket(io);
-  socket.connect({boost::asio::ip::make_address("127.0.0.1"), port});
-  http::request<http::string_body> req{verb, target, 11};
-  req.set(http::field::host, "127.0.0.1");
-  if (!ifNoneMatch.empty()) req.set(http::field::if_none_match, ifNoneMatch);
-  if (!authorization.empty()) req.set(http::field::authorization, authorization);
-  req.body() = body;
-  req.prepare_payload();
-  http::write(socket, req);
-  boost::beast::flat_buffer buffer;
-  http::response_parser<http::string_body> parser;
-  parser.body_limit(64 << 20);
-  http::read(socket, buffer, parser);
-  const auto& res = parser.get();
-  return {res.result_int(), res.body(), std::string(res[http::field::etag])};
-}
-
-// The Cornell box seen from in front, as the browser would ask.
-json cornellView(int width, int height, int maxObjects, float x = 278.0f) {
-  return {{"camera", {{"position", {x, 273, -800}}, {"target", {278, 273, 0}}, {"fov", 39}}},
-          {"width", width},
-          {"height", height},
-          {"max_objects", maxObjects}};
-}
+using tsr::app::test::cornellView;
+using tsr::app::test::Reply;
+using tsr::app::test::request;
 
 class CullService : public ::testing::Test {
  protected:

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <memory>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include "tsr/med/file_replacement.hpp"
@@ -21,6 +22,15 @@ std::uint8_t encodeSrgb(float linear) {
   float c = std::clamp(linear, 0.0f, 1.0f);
   float s = c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
   return static_cast<std::uint8_t>(std::lround(s * 255.0f));
+}
+
+// Opaque RGB, clamped and sRGB-encoded: what an 8-bit picture holds.
+std::vector<std::uint8_t> srgbBytes(const std::vector<glm::vec4>& pixels) {
+  std::vector<std::uint8_t> data;
+  data.reserve(pixels.size() * 3);
+  for (const auto& p : pixels)
+    for (int c = 0; c < 3; ++c) data.push_back(encodeSrgb(p[c]));
+  return data;
 }
 
 float decodeSrgb(float s) { return s <= 0.04045f ? s / 12.92f : std::pow((s + 0.055f) / 1.055f, 2.4f); }
@@ -63,11 +73,7 @@ void writeImageFile(const std::string& path, const std::string& named, const Fra
       for (int c = 0; c < channels; ++c) data.push_back(p[c]);
     ok = file->write_image(OIIO::TypeDesc::FLOAT, data.data());
   } else {
-    std::vector<std::uint8_t> data;
-    data.reserve(pixels.size() * 3);
-    for (const auto& p : pixels)
-      for (int c = 0; c < 3; ++c) data.push_back(encodeSrgb(p[c]));
-    ok = file->write_image(OIIO::TypeDesc::UINT8, data.data());
+    ok = file->write_image(OIIO::TypeDesc::UINT8, srgbBytes(pixels).data());
   }
   if (!ok || !file->close()) throw ImageFileError(named + ": " + file->geterror());
 }
@@ -115,6 +121,23 @@ void writeImage(const std::string& path, const FrameBuffer& fb, const std::strin
     for (auto& p : pixels) p = display.apply(p);
   // A failed or interrupted write leaves an existing image as it was.
   replaceFile(path, [&](const std::string& temporary) { writeImageFile(temporary, path, fb, pixels); });
+}
+
+std::vector<std::uint8_t> encodePng(const FrameBuffer& fb, const DisplayTransform& display) {
+  if (fb.width == 0 || fb.height == 0) throw ImageFileError("cannot encode an empty image");
+  std::vector<glm::vec4> pixels = fb.colour;
+  if (!display.identity())
+    for (auto& p : pixels) p = display.apply(p);
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput memory(bytes);
+  auto file = OIIO::ImageOutput::create("frame.png", &memory);
+  if (!file) throw ImageFileError("png: " + OIIO::geterror());
+  OIIO::ImageSpec spec(static_cast<int>(fb.width), static_cast<int>(fb.height), 3, OIIO::TypeDesc::UINT8);
+  spec.attribute("png:compressionLevel", 3);  // streamed frames: speed over the last few percent
+  if (!file->open("frame.png", spec) || !file->write_image(OIIO::TypeDesc::UINT8, srgbBytes(pixels).data()) ||
+      !file->close())
+    throw ImageFileError("png: " + file->geterror());
+  return {bytes.begin(), bytes.end()};
 }
 
 FrameBuffer readImage(const std::string& path) {

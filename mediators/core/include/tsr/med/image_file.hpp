@@ -3,8 +3,10 @@
 // extension: float formats (EXR, PFM, HDR) keep radiance as it is; 8-bit
 // ones (PNG, JPEG, ...) are clamped and sRGB-encoded, after the display
 // transform (exposure, tone curve) for radiance outputs.
+#include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "tsr/med/display_transform.hpp"
 #include "tsr/med/frame_buffer.hpp"
@@ -25,6 +27,8 @@ void writeImage(const std::string& path, const FrameBuffer& fb, const std::strin
 // named output as a layer ("albedo.R", "albedo.G", "albedo.B", ...): what a
 // compositor opens as AOVs. Throws ImageFileError unless `path` ends in .exr.
 void writeLayeredExr(const std::string& path, const FrameBuffer& fb);
+// Colour after `display`, as an 8-bit sRGB PNG in memory (a streamed frame).
+std::vector<std::uint8_t> encodePng(const FrameBuffer& fb, const DisplayTransform& display = {});
 // Reads an image back as RGBA float (linear for float files, sRGB decoded otherwise).
 FrameBuffer readImage(const std::string& path);
 
