@@ -16,12 +16,14 @@ std::function<std::unique_ptr<med::Viewport>()> previewViewports(CullService& cu
   const med::ViewportRegistry& registry = cull.registry();
   if (!job.sequence.cluster.empty()) {
     RenderJob filtered = job;  // the nodes' own parameters win (clusterConfig)
+    filtered.quiet = true;     // stdout's first line is "listening on ..."
     const cluster::ClusterConfig named = cluster::loadClusterConfig(job.sequence.cluster);
     if (!named.nodes.empty() && registry.has(named.nodes.front().backend))
       usePreviewFilterUnlessSet(filtered.parameters, &registry.capabilities(named.nodes.front().backend).parameters);
     const cluster::ClusterConfig config = clusterConfig(filtered);
     std::shared_ptr<cluster::ClusterWindow> window = connectCluster(config, filtered, {}, registry);
-    spdlog::info("previews: {}", previewFilterLine(config.nodes.front().parameters));
+    spdlog::info("previews render on {} nodes; {}", config.nodes.size(),
+                 previewFilterLine(config.nodes.front().parameters));
     const med::ViewportSettings settings = cull.settingsFor(config.nodes.front().backend, {});
     if (maxStreams > 1) spdlog::info("previews render on the cluster: one stream at a time");
     maxStreams = 1;

@@ -206,6 +206,37 @@ TEST_F(CullPreview, ThePageAndItsSceneAreServedAndNoPathLeavesTheirFolders) {
   EXPECT_EQ(request(port(), http::verb::get, "/v1/preview").status, 426u) << "a WebSocket, not a page";
 }
 
+// --cluster: the same stream, rendered by two tessera-node processes
+// sharing the frame (the cooperative config), shows the same picture.
+TEST(CullPreviewCluster, PreviewsRenderOnTheNodesTheConfigNames) {
+  auto nodes = tsr::cluster::test::startNodes(2);
+  const std::string addresses = nodes[0]->address().host + ":" + std::to_string(nodes[0]->address().port) + "," +
+                                nodes[1]->address().host + ":" + std::to_string(nodes[1]->address().port);
+  tsr::cluster::test::ListeningProcess service({TSR_CULL_BINARY, "builtin:cornell", "--listen", "127.0.0.1:0",
+                                                "--threads", "1", "--preview-spp", std::to_string(kSampleLimit),
+                                                "--cluster", TSR_CONFIGS "/cooperative-2.json", "--nodes", addresses});
+  PreviewClient remote(service.address().port);
+  remote.send({{"seq", 1}, {"view", previewView(64, 48)}});
+  Frame far;
+  do {
+    far = remote.next();
+    ASSERT_TRUE(far.text.empty()) << far.text;
+  } while (far.samples < kSampleLimit);
+  EXPECT_EQ(far.seq, 1u);
+  EXPECT_EQ(far.image.width, 64u);
+
+  tsr::cluster::test::ListeningProcess local({TSR_CULL_BINARY, "builtin:cornell", "--listen", "127.0.0.1:0",
+                                              "--threads", "1", "--preview-spp", std::to_string(kSampleLimit)});
+  PreviewClient here(local.address().port);
+  here.send({{"seq", 1}, {"view", previewView(64, 48)}});
+  Frame near;
+  do near = here.next();
+  while (near.samples < kSampleLimit);
+  EXPECT_GT(meanLuminance(far.image), 0.05);
+  EXPECT_NEAR(meanLuminance(far.image), meanLuminance(near.image), 0.1 * meanLuminance(near.image))
+      << "the nodes' picture is the local one's";
+}
+
 TEST(CullPreviewAccess, WithATokenTheStreamAsksForItAndThePageDoesNot) {
   tsr::cluster::test::TokenFile token("preview-token");
   tsr::cluster::test::ListeningProcess guarded(
