@@ -4,6 +4,7 @@
 // mouse drag), shows a picture that is not blank, and after a rest shows
 // the path tracer's streamed image.
 //   node test/browser_test.mjs --cull BIN [--scene S] [--k K] [--screenshot F]
+//                              [--preview-spp N] [--wait-spp N]
 import { spawn } from 'node:child_process';
 import { once } from 'node:events';
 import { writeFileSync } from 'node:fs';
@@ -17,8 +18,10 @@ const { values: args } = parseArgs({
     cull: { type: 'string' },
     scene: { type: 'string', default: 'builtin:plant:40000' },
     k: { type: 'string', default: '48' },
-    screenshot: { type: 'string' },
+    screenshot: { type: 'string' },  // the page at the end (F), and its rasterised first view (F-raster.png)
     chromium: { type: 'string', default: '/usr/bin/chromium' },
+    'preview-spp': { type: 'string', default: '16' },  // the service's sample limit
+    'wait-spp': { type: 'string', default: '2' },      // samples the streamed image must reach
   },
 });
 if (!args.cull) throw new Error('--cull BIN (tessera-cull) is required');
@@ -32,7 +35,7 @@ function check(condition, what) {
 
 async function startService() {
   const service = spawn(args.cull, [args.scene, '--listen', '127.0.0.1:0', '--web', web, '--threads', '2',
-                                    '--preview-spp', '16'], { stdio: ['ignore', 'pipe', 'inherit'] });
+                                    '--preview-spp', args['preview-spp']], { stdio: ['ignore', 'pipe', 'inherit'] });
   let out = '';
   for await (const chunk of service.stdout) {
     out += chunk;
@@ -121,7 +124,9 @@ try {
   const first = await checkLoadedSet(page, port, 'first view');
   // The rasterised view alone (the streamed image may already lie over it).
   await page.evaluate(() => (document.getElementById('preview').style.visibility = 'hidden'));
-  const raster = await pictureStats(page, await page.screenshot());
+  const rasterShot = await page.screenshot();
+  if (args.screenshot) writeFileSync(args.screenshot.replace(/\.png$/, '') + '-raster.png', rasterShot);
+  const raster = await pictureStats(page, rasterShot);
   await page.evaluate(() => (document.getElementById('preview').style.visibility = ''));
   check(raster.colours > 50 && raster.deviation > 4,
         `the page is not blank (${raster.colours} colours, deviation ${raster.deviation.toFixed(1)})`);
@@ -130,7 +135,7 @@ try {
   const box = await page.locator('#raster').boundingBox();
   await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
   await page.mouse.down();
-  for (let i = 1; i <= 10; ++i) await page.mouse.move(box.x + box.width / 2 + 18 * i, box.y + box.height / 2 + 3 * i);
+  for (let i = 1; i <= 8; ++i) await page.mouse.move(box.x + box.width / 2 + 8 * i, box.y + box.height / 2 + i);
   await page.mouse.up();
   await page.waitForFunction(() => document.getElementById('preview').hidden, null, { timeout: 5000 });
   check(true, 'the streamed image went away as the camera moved');
@@ -139,8 +144,8 @@ try {
   check(JSON.stringify(second.top) !== JSON.stringify(first.top), 'the drag changed the ranked objects');
 
   // At rest the path tracer's image arrives and refines.
-  await page.waitForFunction(() => window.tessera.preview?.samples >= 2 && !document.getElementById('preview').hidden,
-                             null, { timeout: 90000 });
+  await page.waitForFunction((spp) => window.tessera.preview?.samples >= spp && !document.getElementById('preview').hidden,
+                             Number(args['wait-spp']), { timeout: 300000 });
   const previewPng = Buffer.from((await page.evaluate(() => document.getElementById('preview').toDataURL('image/png')))
                                   .split(',')[1], 'base64');
   const traced = await pictureStats(page, previewPng);
