@@ -42,7 +42,8 @@ int run(int argc, char** argv) {
   app.add_option("--max-objects", maxObjects, "the most objects one request may ask for, and the default")
       ->check(CLI::Range(1u, 100000u))
       ->capture_default_str();
-  app.add_option("--threads", threads, "id-pass threads (0: all)")->check(CLI::Range(0, 4096));
+  app.add_option("--threads", threads, "threads of the ranking id pass and of the previews (0: all)")
+      ->check(CLI::Range(0, 4096));
   std::string web = TSR_WEB_DIR, previewBackend = "embree";
   int previews = 4;
   std::uint32_t previewSpp = 64;
