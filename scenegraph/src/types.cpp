@@ -22,6 +22,8 @@ std::string_view typeName(ContainerType t) {
       return "Camera";
     case ContainerType::Background:
       return "Background";
+    case ContainerType::VolumeMaterial:
+      return "VolumeMaterial";
   }
   return "Unknown";
 }

@@ -130,6 +130,9 @@ class RandomEditor {
       case ContainerType::Background:
         static_cast<Background*>(c)->setIntensity(real(0, 2));
         break;
+      case ContainerType::VolumeMaterial:
+        static_cast<VolumeMaterial*>(c)->setAbsorption({real(0, 1), real(0, 1), real(0, 1)});
+        break;
     }
   }
 

@@ -31,9 +31,10 @@ struct CoverageTypes {
       sg::fieldBit(sg::Geometry::Positions) | sg::fieldBit(sg::Geometry::Indices) | sg::fieldBit(sg::Geometry::Motion);
   static constexpr bool kResizableMeshes = true;
   static cov::MeshData mesh(const sg::Geometry& g) { return translateMesh(g); }
+  // A medium-only object (a volume with no surface) is as transparent as glass.
   template <class Textures>
-  static Transparency material(const sg::Container* m, const Textures&) {
-    return {isTransparent(m)};
+  static Transparency material(const sg::Container* m, const sg::VolumeMaterial* volume, const Textures&) {
+    return {isTransparent(m) || (volume && !m)};
   }
   static NoTexture texture(const sg::Image&) { return {}; }
   static NoLight light(const sg::Light&, const glm::mat4&) { return {}; }

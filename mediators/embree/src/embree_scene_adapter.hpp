@@ -26,7 +26,9 @@ struct EmbreeTypes {
   static constexpr sg::FieldMask kMeshFields = kAllMeshFields;
   static constexpr bool kResizableMeshes = true;
   static embree::MeshData mesh(const sg::Geometry& g) { return translateMesh(g); }
-  static embree::Material material(const sg::Container* m, const TextureLookup& t) { return translateMaterial(m, t); }
+  static embree::Material material(const sg::Container* m, const sg::VolumeMaterial* v, const TextureLookup& t) {
+    return translateMaterial(m, v, t);
+  }
   static embree::Texture texture(const sg::Image& i) { return translateImage(i); }
   static embree::Light light(const sg::Light& l, const glm::mat4& world) { return translateLight(l, world); }
   static embree::Environment background(const sg::Scene& s, sg::ContainerId b) { return translateBackground(s, b); }

@@ -14,13 +14,13 @@
 
 namespace tsr::med::embree_mediator {
 
-inline constexpr const char* kLowVarianceOutput = "filter.lowVariance";    // rgb: Llv
-inline constexpr const char* kHighVarianceOutput = "filter.highVariance";  // rgb: Lu
-inline constexpr const char* kHighVarianceVarOutput = "filter.variance";   // rgb: Var[Lu] of the mean
-inline constexpr const char* kRangeOutput = "filter.range";                // rgb: flash colour, a: samples n
+inline constexpr const char* kLowVarianceOutput = "filter.lowVariance";      // rgb: Llv
+inline constexpr const char* kHighVarianceOutput = "filter.highVariance";    // rgb: Lu
+inline constexpr const char* kHighVarianceVarOutput = "filter.variance";     // rgb: Var[Lu] of the mean
+inline constexpr const char* kRangeOutput = "filter.range";                  // rgb: flash colour, a: samples n
 inline constexpr const char* kRangeGeometryOutput = "filter.rangeGeometry";  // r: std. dev. of the flash samples,
-                                                                           // g: their mean depth (inf: none hit)
-inline constexpr const char* kBlendOutput = "blend";                       // r: blend factor s
+                                                                             // g: their mean depth (inf: none hit)
+inline constexpr const char* kBlendOutput = "blend";                         // r: blend factor s
 
 std::vector<std::string> pixelFilterInputs();
 

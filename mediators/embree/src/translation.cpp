@@ -7,7 +7,21 @@
 
 namespace tsr::med::embree_mediator {
 
-embree::Material translateMaterial(const sg::Container* material, const TextureLookup& textures) {
+embree::Medium translateMedium(const sg::VolumeMaterial& v) {
+  return {v.absorption(), v.scattering(), v.emission(), v.phaseG()};
+}
+
+embree::Material translateMaterial(const sg::Container* material, const sg::VolumeMaterial* volume,
+                                   const TextureLookup& textures) {
+  embree::Material m = translateSurface(material, textures);
+  if (volume) {
+    if (!material) m.type = embree::MaterialType::Interface;  // a medium alone: its boundary is index-matched
+    if (const embree::Medium medium = translateMedium(*volume); !medium.empty()) m.interior = medium;
+  }
+  return m;
+}
+
+embree::Material translateSurface(const sg::Container* material, const TextureLookup& textures) {
   embree::Material m;
   if (!material) return m;  // default grey diffuse
   if (material->type() == sg::ContainerType::SimpleMaterial) {
@@ -62,6 +76,13 @@ embree::Light translateLight(const sg::Light& light, const glm::mat4& world) {
 embree::Environment translateBackground(const sg::Scene& scene, sg::ContainerId id) {
   const auto* bg = scene.find<sg::Background>(id);
   if (!bg) return embree::Environment();
+  std::optional<embree::Medium> fog;
+  if (const auto* medium = scene.find<sg::VolumeMaterial>(bg->medium())) fog = translateMedium(*medium);
+  return translateSky(scene, *bg).withMedium(fog);
+}
+
+embree::Environment translateSky(const sg::Scene& scene, const sg::Background& background) {
+  const auto* bg = &background;
   float k = bg->intensity();
   switch (bg->kind()) {
     case sg::BackgroundKind::Gradient: {

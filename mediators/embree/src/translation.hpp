@@ -20,7 +20,13 @@ using TextureLookup = std::function<std::optional<embree::TextureId>(sg::Contain
 // 0.05) or rough dielectric; else metallic over 0.5 is a mirror (smooth) or
 // rough conductor; else diffuse. SimpleMaterial is diffuse; its
 // transparency is not modelled by the path tracer. Emission carries over.
-embree::Material translateMaterial(const sg::Container* material, const TextureLookup& textures);
+embree::Material translateSurface(const sg::Container* material, const TextureLookup& textures);
+// The surface with the volume inside it: a volume without a surface
+// material has an index-matched boundary (MaterialType::Interface). The
+// volume's textures are not traced yet: its factors are.
+embree::Material translateMaterial(const sg::Container* material, const sg::VolumeMaterial* volume,
+                                   const TextureLookup& textures);
+embree::Medium translateMedium(const sg::VolumeMaterial& volume);
 
 // RGBA, linear; sRGB 8-bit images are decoded.
 embree::Texture translateImage(const sg::Image& image);
@@ -29,7 +35,9 @@ embree::Texture translateImage(const sg::Image& image);
 embree::Light translateLight(const sg::Light& light, const glm::mat4& world);
 
 // Colour, gradient (baked into a small lat-long map) or environment image.
+// With the background's medium (fog), if it names one.
 embree::Environment translateBackground(const sg::Scene& scene, sg::ContainerId background);
+embree::Environment translateSky(const sg::Scene& scene, const sg::Background& background);
 
 embree::MeshData translateMesh(const sg::Geometry& geometry);
 

@@ -25,7 +25,10 @@ struct VulkanTypes {
   static constexpr sg::FieldMask kMeshFields = kAllMeshFields;
   static constexpr bool kResizableMeshes = false;
   static vk::MeshData mesh(const sg::Geometry& g) { return translateMesh(g); }
-  static vk::Material material(const sg::Container* m, const TextureLookup& t) { return translateMaterial(m, t); }
+  // The rasterizer shows no volume yet: its surface alone.
+  static vk::Material material(const sg::Container* m, const sg::VolumeMaterial*, const TextureLookup& t) {
+    return translateMaterial(m, t);
+  }
   static vk::Texture texture(const sg::Image& i) { return translateImage(i); }
   static vk::Light light(const sg::Light& l, const glm::mat4& world) { return translateLight(l, world); }
   static vk::Environment background(const sg::Scene& s, sg::ContainerId b) { return translateBackground(s, b); }

@@ -37,6 +37,7 @@ class Converter {
     cameras();
     nodes();
     roots();
+    sceneMedium();
     placements();
     animations();
   }
@@ -167,8 +168,66 @@ class Converter {
           texture(extensionTexture(src.extensions, "KHR_materials_transmission", "transmissionTexture"),
                   what + " transmissionTexture", false);
       mat.ior = finite(extensionNumber(src.extensions, "KHR_materials_ior", "ior", 1.5), what + " ior");
+      mat.volume = materialVolume(src.extensions, what);
       out_.materials.push_back(mat);
     }
+  }
+
+  // A coefficient triple of a volume extension: finite, not negative.
+  Vec3 coefficients(const tinygltf::Value& v, const std::string& what) const {
+    if (!v.IsArray() || v.ArrayLen() != 3) fail(what + " must have 3 numbers");
+    Vec3 out;
+    for (int i = 0; i < 3; ++i) {
+      out[i] = finite(v.Get(i).GetNumberAsDouble(), what);
+      if (out[i] < 0.0f) fail(what + " must not be negative");
+    }
+    return out;
+  }
+
+  // TSR_materials_volume / TSR_scene_medium over `into`.
+  void tesseraVolume(const tinygltf::Value& ext, const std::string& what, parsed::Volume& into) const {
+    if (ext.Has("emission")) into.emission = coefficients(ext.Get("emission"), what + " emission");
+    if (ext.Has("absorption")) into.absorption = coefficients(ext.Get("absorption"), what + " absorption");
+    if (ext.Has("scattering")) into.scattering = coefficients(ext.Get("scattering"), what + " scattering");
+    if (ext.Has("phaseG")) {
+      into.phaseG = finite(ext.Get("phaseG").GetNumberAsDouble(), what + " phaseG");
+      if (!(into.phaseG > -1.0f && into.phaseG < 1.0f)) fail(what + " phaseG must lie strictly between -1 and 1");
+    }
+  }
+
+  // KHR_materials_volume's attenuation (Beer's law: colour c left after
+  // distance d, so sigma_a = -ln(c) / d), then Tessera's own extension
+  // for scattering, emission and the phase function.
+  std::optional<parsed::Volume> materialVolume(const tinygltf::ExtensionMap& ext, const std::string& what) const {
+    auto khr = ext.find("KHR_materials_volume");
+    auto tsr = ext.find("TSR_materials_volume");
+    if (khr == ext.end() && tsr == ext.end()) return std::nullopt;
+    parsed::Volume v;
+    if (khr != ext.end() && khr->second.Has("attenuationDistance")) {
+      const std::string at = what + " KHR_materials_volume";
+      const float distance = finite(khr->second.Get("attenuationDistance").GetNumberAsDouble(), at);
+      if (!(distance > 0.0f)) fail(at + " attenuationDistance must be positive");
+      Vec3 colour(1.0f);
+      if (khr->second.Has("attenuationColor")) colour = coefficients(khr->second.Get("attenuationColor"), at);
+      for (int c = 0; c < 3; ++c) {
+        if (colour[c] > 1.0f) fail(at + " attenuationColor must lie in [0, 1]");
+        // Colour 0 means nothing gets through: an opaque absorber, kept finite.
+        v.absorption[c] = -std::log(std::max(colour[c], 1e-6f)) / distance;
+      }
+    }
+    if (tsr != ext.end()) tesseraVolume(tsr->second, what + " TSR_materials_volume", v);
+    return v;
+  }
+
+  void sceneMedium() {
+    if (m_.scenes.empty()) return;
+    const auto index = static_cast<std::size_t>(m_.defaultScene < 0 ? 0 : m_.defaultScene);
+    const auto& ext = m_.scenes[index].extensions;
+    auto it = ext.find("TSR_scene_medium");
+    if (it == ext.end()) return;
+    parsed::Volume medium;
+    tesseraVolume(it->second, "scene " + str(index) + " TSR_scene_medium", medium);
+    out_.medium = medium;
   }
 
   template <int N>

@@ -15,8 +15,13 @@ using nlohmann::json;
 
 constexpr std::uint32_t kMaxNodeDepth = 4096;
 
-const char* const kSupportedExtensions[] = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
-                                            "KHR_materials_transmission", "KHR_materials_ior"};
+const char* const kSupportedExtensions[] = {"KHR_lights_punctual",
+                                            "KHR_materials_emissive_strength",
+                                            "KHR_materials_transmission",
+                                            "KHR_materials_ior",
+                                            "KHR_materials_volume",
+                                            "TSR_materials_volume",
+                                            "TSR_scene_medium"};
 
 // A small schema language: each check looks at one value at a JSON path and
 // throws with that path in the message.
@@ -91,6 +96,9 @@ class TypeChecker {
 TypeChecker::Check documentSchema(const TypeChecker& t) {
   const auto textureInfo =
       t.object({{"index", t.index()}, {"texCoord", t.index()}, {"scale", t.number()}, {"strength", t.number()}});
+  // Tessera's volume extension (README "Participating media").
+  const auto tesseraVolume = t.object(
+      {{"emission", t.numbers(3)}, {"absorption", t.numbers(3)}, {"scattering", t.numbers(3)}, {"phaseG", t.number()}});
   const auto material = t.object({
       {"name", t.string()},
       {"pbrMetallicRoughness", t.object({{"baseColorFactor", t.numbers(4)},
@@ -108,7 +116,12 @@ TypeChecker::Check documentSchema(const TypeChecker& t) {
       {"extensions", t.object({{"KHR_materials_emissive_strength", t.object({{"emissiveStrength", t.number()}})},
                                {"KHR_materials_transmission",
                                 t.object({{"transmissionFactor", t.number()}, {"transmissionTexture", textureInfo}})},
-                               {"KHR_materials_ior", t.object({{"ior", t.number()}})}})},
+                               {"KHR_materials_ior", t.object({{"ior", t.number()}})},
+                               {"KHR_materials_volume", t.object({{"thicknessFactor", t.number()},
+                                                                  {"thicknessTexture", textureInfo},
+                                                                  {"attenuationDistance", t.number()},
+                                                                  {"attenuationColor", t.numbers(3)}})},
+                               {"TSR_materials_volume", tesseraVolume}})},
   });
   const auto primitive = t.object({{"attributes", t.mapOf(t.index())},
                                    {"indices", t.index()},
@@ -149,7 +162,8 @@ TypeChecker::Check documentSchema(const TypeChecker& t) {
   return t.object({
       {"asset", t.object({{"version", t.string()}, {"minVersion", t.string()}})},
       {"scene", t.index()},
-      {"scenes", t.arrayOf(t.object({{"nodes", t.arrayOf(t.index())}}))},
+      {"scenes", t.arrayOf(t.object({{"nodes", t.arrayOf(t.index())},
+                                     {"extensions", t.object({{"TSR_scene_medium", tesseraVolume}})}}))},
       {"nodes", t.arrayOf(node)},
       {"meshes", t.arrayOf(t.object({{"primitives", t.arrayOf(primitive)}, {"weights", t.numbers()}}))},
       {"materials", t.arrayOf(material)},

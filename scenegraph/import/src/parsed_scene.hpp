@@ -24,6 +24,15 @@ struct Image {
   ColorSpace colorSpace = ColorSpace::SRGB;
 };
 
+// A VolumeMaterial's values (KHR_materials_volume's attenuation as
+// absorption, TSR_materials_volume or TSR_scene_medium for the rest).
+struct Volume {
+  Vec3 emission{0.0f};
+  Vec3 absorption{0.0f};
+  Vec3 scattering{0.0f};
+  float phaseG = 0.0f;
+};
+
 struct Material {
   std::string name;
   Vec3 baseColor{1.0f};
@@ -40,6 +49,7 @@ struct Material {
   float ior = 1.5f;
   int normalImage = kNone;
   float normalScale = 1.0f;
+  std::optional<Volume> volume;  // what fills a closed mesh of this material
 };
 
 // One triangle mesh: what a Geometry container holds.
@@ -112,6 +122,7 @@ struct Scene {
   std::vector<int> roots;
   std::vector<AnimationClip> animations;
   Vec3 background{0.0f};
+  std::optional<Volume> medium;  // fog filling the scene outside every volume
   std::vector<std::string> warnings;
   std::size_t skippedPrimitives = 0;
 };

@@ -14,6 +14,7 @@ class Builder {
   Builder(Scene& scene, const parsed::Scene& data, ImportResult& result) : scene_(scene), data_(data), result_(result) {
     images_.assign(data.images.size(), kNoContainer);
     materials_.assign(data.materials.size(), kNoContainer);
+    volumes_.assign(data.materials.size(), kNoContainer);
     geometries_.assign(data.primitives.size(), kNoContainer);
     lights_.assign(data.lights.size(), kNoContainer);
     transforms_.assign(data.nodes.size(), kNoContainer);
@@ -28,6 +29,7 @@ class Builder {
 
     Background& bg = scene_.create<Background>("background");
     bg.setColor(data_.background);
+    if (data_.medium) bg.setMedium(volume(*data_.medium, "scene medium"));
     result_.background = bg.id();
 
     for (const parsed::AnimationClip& clip : data_.animations) animation(clip);
@@ -64,6 +66,13 @@ class Builder {
     g.setColors(p.colors);
     g.setIndices(p.indices);
     g.setMaterial(material(p.material));
+    if (p.material != parsed::kNone) {
+      const auto m = static_cast<std::size_t>(p.material);
+      if (const auto& v = data_.materials[m].volume) {
+        if (volumes_[m] == kNoContainer) volumes_[m] = volume(*v, data_.materials[m].name + " volume");
+        g.setVolume(volumes_[m]);
+      }
+    }
     if (p.animated) g.setMotion(GeometryMotion::Animated);
     ++result_.counts.geometries;
     result_.counts.uniqueTriangles += g.triangleCount();
@@ -103,6 +112,15 @@ class Builder {
     if (m.normalImage != parsed::kNone) s.setNormalTexture(image(m.normalImage));
     ++result_.counts.materials;
     return s.id();
+  }
+
+  ContainerId volume(const parsed::Volume& v, const std::string& name) {
+    VolumeMaterial& m = scene_.create<VolumeMaterial>(name);
+    m.setEmission(v.emission);
+    m.setAbsorption(v.absorption);
+    m.setScattering(v.scattering);
+    m.setPhaseG(v.phaseG);
+    return m.id();
   }
 
   ContainerId image(int index) {
@@ -161,7 +179,7 @@ class Builder {
   Scene& scene_;
   const parsed::Scene& data_;
   ImportResult& result_;
-  std::vector<ContainerId> images_, materials_, geometries_, lights_, transforms_;
+  std::vector<ContainerId> images_, materials_, volumes_, geometries_, lights_, transforms_;
   ContainerId defaultMaterial_ = kNoContainer;
 };
 

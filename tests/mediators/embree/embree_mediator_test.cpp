@@ -245,3 +245,36 @@ TEST_F(EmbreeMediator, BadParametersAreTypedErrors) {
   EXPECT_THROW(viewport->render(replica, rig.view(replica.scene()), image), med::ParameterError)
       << "a combination the table cannot see is refused when rendering";
 }
+
+// Volumes travel like every other field: attached to a geometry, edited,
+// or filling the scene from the background, the incremental render equals
+// a fresh conversion, and the change shows.
+namespace {
+sg::Geometry* glassGeometry(sg::Scene& scene) {
+  for (sg::ContainerId id : scene.ids())
+    if (auto* g = scene.find<sg::Geometry>(id))
+      if (const auto* m = scene.find<sg::SurfaceMaterial>(g->material()); m && m->transmission() > 0.5f) return g;
+  return nullptr;
+}
+}  // namespace
+
+TEST_F(IncrementalSync, VolumeAttachedAndEdited) {
+  sg::Geometry* glass = glassGeometry(rig.source);
+  ASSERT_NE(glass, nullptr) << "builtin:cornell has a glass sphere";
+  auto& jelly = rig.source.create<sg::VolumeMaterial>("jelly");
+  jelly.setAbsorption({0.002f, 0.02f, 0.02f});  // per millimetre: the sphere is about 160 wide
+  jelly.setScattering(glm::vec3(0.01f));
+  glass->setVolume(jelly.id());
+  check("volume attached");
+  before = follower.image;
+  jelly.setScattering(glm::vec3(0.03f));
+  check("volume edited");
+}
+
+TEST_F(IncrementalSync, FogFillsTheSceneFromTheBackground) {
+  auto& fog = rig.source.create<sg::VolumeMaterial>("fog");
+  fog.setScattering(glm::vec3(0.001f));
+  fog.setAbsorption(glm::vec3(0.0005f));
+  rig.source.find<sg::Background>(rig.imported.background)->setMedium(fog.id());
+  check("fog");
+}

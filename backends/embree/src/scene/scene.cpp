@@ -377,11 +377,13 @@ namespace {
 bool refreshMaterials(SceneState& s) {
   const ResolvedMaterial* before = s.resolved.data();
   s.resolved.resize(s.materials.size());
+  s.materialMedia = false;
   for (std::size_t i = 0; i < s.materials.size(); ++i) {
     auto& r = s.resolved[i];
     r = {};
     if (!s.materials[i]) continue;
     r.material = *s.materials[i];
+    s.materialMedia = s.materialMedia || r.material.interior.has_value();
     if (r.material.baseColorTexture) r.baseColorTexture = s.textures[index(*r.material.baseColorTexture)].get();
     if (r.material.emissionTexture) r.emissionTexture = s.textures[index(*r.material.emissionTexture)].get();
   }

@@ -186,6 +186,7 @@ struct SceneState {
 
   // Derived at commit().
   std::vector<ResolvedMaterial> resolved;
+  bool materialMedia = false;  // some material has an interior medium
   std::vector<InstanceView> views;
   std::vector<Light> activeLights;
   Distribution1D emitters;

@@ -112,6 +112,7 @@ glm::vec3 Bsdf::evalOther(const glm::vec3& wo, const glm::vec3& wi) const {
     }
     case MaterialType::Mirror:
     case MaterialType::Glass:
+    case MaterialType::Interface:
       return glm::vec3(0.0f);
   }
   return glm::vec3(0.0f);
@@ -146,6 +147,7 @@ float Bsdf::pdfOther(const glm::vec3& wo, const glm::vec3& wi) const {
     }
     case MaterialType::Mirror:
     case MaterialType::Glass:
+    case MaterialType::Interface:
       return 0.0f;
   }
   return 0.0f;
@@ -189,6 +191,13 @@ bool Bsdf::sampleOther(const glm::vec3& wo, const glm::vec2& u, float uLobe, Bsd
     case MaterialType::Mirror: {
       out.wi = {-wo.x, -wo.y, wo.z};
       out.weight = colour;
+      out.pdf = 1.0f;
+      out.delta = true;
+      return true;
+    }
+    case MaterialType::Interface: {  // straight on: no surface is there
+      out.wi = -wo;
+      out.weight = glm::vec3(1.0f);
       out.pdf = 1.0f;
       out.delta = true;
       return true;

@@ -26,7 +26,9 @@ struct Bsdf {
   float alpha = 0.25f;
   float eta = 1.5f;
 
-  bool isDelta() const { return type == MaterialType::Mirror || type == MaterialType::Glass; }
+  bool isDelta() const {
+    return type == MaterialType::Mirror || type == MaterialType::Glass || type == MaterialType::Interface;
+  }
   // Diffuse, the common case, is inlined into the integrator; the rest
   // goes through the out-of-line *Other functions.
   glm::vec3 eval(const glm::vec3& wo, const glm::vec3& wi) const {  // f * |cos(wi)|

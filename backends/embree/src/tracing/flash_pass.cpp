@@ -73,8 +73,9 @@ glm::vec3 Tracer::traceFlash(glm::vec3 org, glm::vec3 dir, const glm::vec3& eye,
       const float ambient = type == MaterialType::Diffuse ? kAmbient : kGlossyAmbient;
       glm::vec3 c = base * (ambient + (1.0f - ambient) * head);
       if (mat.material.isEmissive()) c += kEmissionShare * glm::min(emission(mat, h.uv), glm::vec3(1.0f));
-      const float mirrored =
-          glossy && r.depth < kMaxSpecularDepth && top < kStack ? std::max(0.0f, 1.0f - alpha / kSharpGlossyAlpha) : 0.0f;
+      const float mirrored = glossy && r.depth < kMaxSpecularDepth && top < kStack
+                                 ? std::max(0.0f, 1.0f - alpha / kSharpGlossyAlpha)
+                                 : 0.0f;
       result += r.weight * (1.0f - mirrored) * c;
       if (mirrored > 0.0f)
         stack[top++] = {h.p + ng * eps, glm::reflect(r.dir, n), r.weight * mirrored * base, r.depth + 1};

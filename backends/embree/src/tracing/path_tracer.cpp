@@ -4,8 +4,10 @@
 // throughput and Russian roulette, direct light (sampleDirect), and the
 // bookkeeping that sorts contributions into the filters' buffers.
 #include "tracing/delta_lights.hpp"
+#include "tracing/media.hpp"
 #include "tracing/scattering_point.hpp"
 #include "tracing/tracer.hpp"
+#include "tsr/embree/phase_function.hpp"
 
 namespace tsr::embree {
 
@@ -35,6 +37,37 @@ struct VertexSamples {
   float bsdfLobe = 0.0f;
 };
 
+// Index-matched boundaries a ray may cross between two vertices.
+constexpr std::uint32_t kMaxCrossings = 64;
+
+// A scattering point inside a medium, as light sampling sees it: the phase
+// function in place of a BSDF, and shadow rays leaving from the point itself.
+struct MediumPoint {
+  glm::vec3 p;
+  glm::vec3 in;  // the travel direction of the arriving ray
+  float g;
+  glm::vec3 eval(const glm::vec3& wi, float* pdf) const {
+    const float v = henyeyGreenstein(glm::dot(in, wi), g);
+    if (pdf) *pdf = v;
+    return glm::vec3(v);
+  }
+  glm::vec3 spawn(const glm::vec3&) const { return p; }
+};
+
+// The point just past an index-matched boundary, on the side `dir` goes to.
+glm::vec3 pastBoundary(const SurfaceHit& h, const glm::vec3& dir) {
+  const float e = rayEpsilon(h.p);
+  return h.p + h.faceNormal * (glm::dot(dir, h.faceNormal) > 0.0f ? e : -e);
+}
+
+// A ray crossing the boundary of a closed volume enters it when it goes
+// against the face normal (normals point out of closed meshes) and leaves
+// it otherwise.
+void crossBoundary(MediumStack& stack, const SurfaceHit& h, const glm::vec3& dir) {
+  const Material& m = h.instance->material->material;
+  if (m.interior) stack.cross(&*m.interior, glm::dot(dir, h.faceNormal) < 0.0f);
+}
+
 // Where a path goes from a vertex and with what weight.
 struct Continuation {
   bool continues = false;
@@ -57,9 +90,11 @@ class PathWalk {
         scene_(tracer.scene),
         env_(tracer.scene.environment),
         envActive_(!env_.isBlack()),
+        media_(tracer.scene.materialMedia || env_.medium()),
         mode_(tracer.settings.lightSampling),
         rng_(rng),
-        record_(record) {}
+        record_(record),
+        stack_(env_.medium() ? &*env_.medium() : nullptr) {}
 
   PixelSample run(glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos, const glm::vec3& forward);
 
@@ -72,19 +107,30 @@ class PathWalk {
   void addEmitted(const SurfaceHit& h, const ResolvedMaterial& mat, const glm::vec3& dir, float t, std::uint32_t depth);
   bool scatter(const ScatteringPoint& sp, const SurfaceHit& h, const RTCHit& hit, std::uint32_t depth, glm::vec3& org,
                glm::vec3& dir);
-  VertexSamples drawSamples(const Bsdf& bsdf);
+  VertexSamples drawSamples(bool delta);
   void recordRadiance(const ScatteringPoint& sp, const Continuation& next);
   void roulette(std::uint32_t depth, bool restart, Continuation& next);
-  void sampleDirect(const ScatteringPoint& sp, const VertexSamples& u, bool fromField);
+  template <class Point>
+  void sampleDirect(const Point& sp, const VertexSamples& u, bool fromField);
   void classify(const BsdfSample& bs, MaterialType type);
+  // What of a shadow ray's light arrives: 0 or 1 without media; through
+  // media, their transmittance, across index-matched boundaries.
+  glm::vec3 shadow(glm::vec3 org, const glm::vec3& dir, float tfar);
+  // The medium segment up to tMax (a surface, or infinity): its emission,
+  // and where the flight ends. True with `at` set when it scatters there.
+  bool flyThrough(const Medium& m, float tMax, float& at);
+  bool scatterInMedium(const Medium& m, const glm::vec3& p, std::uint32_t depth, glm::vec3& org, glm::vec3& dir);
 
   Tracer& tracer_;
   const SceneState& scene_;
   const Environment& env_;
   const bool envActive_;
+  const bool media_;  // any medium in the scene: shadow rays measure transmittance
   const LightSampling mode_;
   Rng& rng_;
   RadianceSample* record_;
+  MediumStack stack_;
+  float travelled_ = 0.0f;  // from the last vertex, across index-matched boundaries
   PixelSample out_;
   std::uint32_t nonSpecular_ = 0;      // non-specular scattering vertices so far
   bool specularAfterDiffuse_ = false;  // a specular vertex followed one of them
@@ -101,13 +147,25 @@ class PathWalk {
 };
 
 PixelSample PathWalk::run(glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos, const glm::vec3& forward) {
-  for (std::uint32_t depth = 0;; ++depth) {
+  std::uint32_t depth = 0;
+  for (std::uint32_t crossings = 0; crossings <= kMaxCrossings;) {
     if (!traceable(org, dir, kInf)) {
       ++tracer_.refused;
       break;
     }
     RTCRayHit rh;
-    if (!tracer_.intersect(org, dir, rh)) {
+    const bool hit = tracer_.intersect(org, dir, rh);
+    if (const Medium* m = media_ ? stack_.current() : nullptr) {
+      float at = 0.0f;
+      if (flyThrough(*m, hit ? rh.ray.tfar : kInf, at)) {
+        if (depth >= tracer_.settings.maxDepth) break;
+        if (!scatterInMedium(*m, org + at * dir, depth, org, dir)) break;
+        ++depth;
+        continue;
+      }
+      if (maxComponent(throughput_) <= 0.0f) break;
+    }
+    if (!hit) {
       if (envActive_) addEscaped(dir, depth);
       break;
     }
@@ -115,6 +173,13 @@ PixelSample PathWalk::run(glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos,
     if (!tracer_.surface(org, dir, rh, h)) break;
     if (nonSpecular_ == 0) pathLength_ += rh.ray.tfar;
     const ResolvedMaterial& mat = *h.instance->material;
+    if (mat.material.type == MaterialType::Interface) {  // no surface: on, into or out of its medium
+      crossBoundary(stack_, h, dir);
+      travelled_ += rh.ray.tfar;
+      org = pastBoundary(h, dir);
+      ++crossings;
+      continue;
+    }
     const glm::vec3 base = Tracer::baseColour(mat, h.uv);
     if (depth == 0) {  // the first hit's AOVs
       out_.hit = true;
@@ -122,13 +187,77 @@ PixelSample PathWalk::run(glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos,
       out_.albedo = base;
       out_.normal = glm::dot(h.ns, dir) > 0.0f ? -h.ns : h.ns;
     }
-    if (mat.material.isEmissive() && glm::dot(h.faceNormal, dir) < 0.0f) addEmitted(h, mat, dir, rh.ray.tfar, depth);
+    if (mat.material.isEmissive() && glm::dot(h.faceNormal, dir) < 0.0f)
+      addEmitted(h, mat, dir, travelled_ + rh.ray.tfar, depth);
     if (depth >= tracer_.settings.maxDepth) break;
     const ScatteringPoint sp(h, dir, mat.material, base);
     if (sp.facesAway() || !scatter(sp, h, rh.hit, depth, org, dir)) break;
+    ++depth;
+    crossings = 0;
   }
   if (record_) record_->mask = mask_;
   return out_;
+}
+
+bool PathWalk::flyThrough(const Medium& m, float tMax, float& at) {
+  const glm::vec3 emitted = segmentEmission(m, tMax);
+  if (maxComponent(emitted) > 0.0f) add(throughput_ * emitted, nonSpecular_);
+  const float uChannel = rng_.uniform(), uDistance = rng_.uniform();
+  const FreeFlight f = sampleFreeFlight(m, tMax, uChannel, uDistance);
+  throughput_ *= f.weight;
+  if (!f.scattered) return false;
+  if (nonSpecular_ == 0) pathLength_ += f.t;
+  at = f.t;
+  return true;
+}
+
+// A scattering event in a medium: light sampled through the phase
+// function, then the next direction drawn from it (weight 1: the phase
+// function is its own density).
+bool PathWalk::scatterInMedium(const Medium& m, const glm::vec3& p, std::uint32_t depth, glm::vec3& org,
+                               glm::vec3& dir) {
+  const VertexSamples u = drawSamples(false);
+  const MediumPoint point{p, dir, m.g};
+  Continuation next;
+  next.continues = true;
+  next.dir = sampleHenyeyGreenstein(dir, m.g, u.bsdf);
+  next.bs.pdf = henyeyGreenstein(glm::dot(dir, next.dir), m.g);
+  next.bs.weight = glm::vec3(1.0f);
+  next.bs.delta = false;
+  roulette(depth, false, next);
+  sampleDirect(point, u, false);
+  if (!next.continues) return false;
+  classify(next.bs, MaterialType::Diffuse);
+  throughput_ = next.throughput;
+  scale_ = next.scale;
+  prevPdf_ = next.bs.pdf;
+  prevDelta_ = false;
+  travelled_ = 0.0f;
+  org = p;
+  dir = next.dir;
+  return true;
+}
+
+glm::vec3 PathWalk::shadow(glm::vec3 org, const glm::vec3& dir, float tfar) {
+  if (!media_) return tracer_.occluded(org, dir, tfar) ? glm::vec3(0.0f) : glm::vec3(1.0f);
+  MediumStack stack = stack_;
+  glm::vec3 passed(1.0f);
+  for (std::uint32_t i = 0; i <= kMaxCrossings; ++i) {
+    RTCRayHit rh;
+    if (!traceable(org, dir, tfar)) return glm::vec3(0.0f);
+    const bool hit = tracer_.intersect(org, dir, rh, tfar);
+    const float segment = hit ? rh.ray.tfar : tfar;
+    if (const Medium* m = stack.current()) passed *= transmittance(m->extinction(), segment);
+    if (!hit) return passed;
+    SurfaceHit h;
+    if (!tracer_.surface(org, dir, rh, h) || h.instance->material->material.type != MaterialType::Interface)
+      return glm::vec3(0.0f);
+    if (maxComponent(passed) <= 0.0f) return passed;
+    crossBoundary(stack, h, dir);
+    org = pastBoundary(h, dir);
+    tfar -= segment;
+  }
+  return glm::vec3(0.0f);
 }
 
 void PathWalk::add(const glm::vec3& c, std::uint32_t nonSpecularVertices) {
@@ -164,7 +293,7 @@ void PathWalk::addEmitted(const SurfaceHit& h, const ResolvedMaterial& mat, cons
 // mispredicted branches of a traversal into the code that follows the call).
 bool PathWalk::scatter(const ScatteringPoint& sp, const SurfaceHit& h, const RTCHit& hit, std::uint32_t depth,
                        glm::vec3& org, glm::vec3& dir) {
-  const VertexSamples u = drawSamples(sp.bsdf);
+  const VertexSamples u = drawSamples(sp.bsdf.isDelta());
   Continuation next;
   next.continues = sp.sample(u.bsdf, u.bsdfLobe, next.bs, next.dir);
   const bool nextEvent = !sp.bsdf.isDelta();
@@ -182,18 +311,21 @@ bool PathWalk::scatter(const ScatteringPoint& sp, const SurfaceHit& h, const RTC
   }
   if (!next.continues) return false;
   classify(next.bs, sp.bsdf.type);
+  // Through a surface with a volume behind it: into or out of that volume.
+  if (media_ && glm::dot(dir, h.faceNormal) * glm::dot(next.dir, h.faceNormal) > 0.0f) crossBoundary(stack_, h, dir);
   throughput_ = next.throughput;
   scale_ = next.scale;
   prevPdf_ = next.bs.pdf;
   prevDelta_ = next.bs.delta;
+  travelled_ = 0.0f;
   org = nextOrg;
   dir = next.dir;
   return true;
 }
 
-VertexSamples PathWalk::drawSamples(const Bsdf& bsdf) {
+VertexSamples PathWalk::drawSamples(bool delta) {
   VertexSamples u;
-  const bool sampleLights = !bsdf.isDelta() && mode_ != LightSampling::BsdfOnly;
+  const bool sampleLights = !delta && mode_ != LightSampling::BsdfOnly;
   u.emitters = sampleLights && !scene_.emitters.empty();
   u.environment = sampleLights && envActive_;
   if (u.emitters) {
@@ -249,13 +381,15 @@ void PathWalk::roulette(std::uint32_t depth, bool restart, Continuation& next) {
 // picked by power and one environment direction, each behind a shadow ray;
 // the sampled ones weighted against BSDF sampling (not with an irradiance
 // field: emitters are found by light sampling alone there).
-void PathWalk::sampleDirect(const ScatteringPoint& sp, const VertexSamples& u, bool fromField) {
+template <class Point>
+void PathWalk::sampleDirect(const Point& sp, const VertexSamples& u, bool fromField) {
   for (const Light& light : scene_.activeLights) {
     LightArrival a;
     if (!lightArriving(light, sp.p, a)) continue;
     glm::vec3 f = sp.eval(a.wi, nullptr);  // delta lights: no MIS
     if (maxComponent(f) <= 0.0f) continue;
-    if (!tracer_.occluded(sp.spawn(a.wi), a.wi, a.tfar)) add(throughput_ * f * a.li, nonSpecular_ + 1);
+    const glm::vec3 seen = shadow(sp.spawn(a.wi), a.wi, a.tfar);
+    if (maxComponent(seen) > 0.0f) add(throughput_ * f * a.li * seen, nonSpecular_ + 1);
   }
   if (u.emitters) {
     Tracer::EmitterSample es;
@@ -265,9 +399,10 @@ void PathWalk::sampleDirect(const ScatteringPoint& sp, const VertexSamples& u, b
       if (maxComponent(f) > 0.0f) {
         glm::vec3 o = sp.spawn(es.wi);
         float dist = glm::length(es.point - o);
-        if (!tracer_.occluded(o, es.wi, dist - rayEpsilon(es.point))) {
+        const glm::vec3 seen = shadow(o, es.wi, dist - rayEpsilon(es.point));
+        if (maxComponent(seen) > 0.0f) {
           const float w = fromField ? 1.0f : lightSampleWeight(mode_, es.pdf, bsdfPdf);
-          add(throughput_ * f * es.radiance * (w / es.pdf), nonSpecular_ + 1);
+          add(throughput_ * f * es.radiance * seen * (w / es.pdf), nonSpecular_ + 1);
         }
       }
     }
@@ -277,9 +412,11 @@ void PathWalk::sampleDirect(const ScatteringPoint& sp, const VertexSamples& u, b
     if (es.pdf > 0.0f) {
       float bsdfPdf;
       glm::vec3 f = sp.eval(es.direction, &bsdfPdf);
-      if (maxComponent(f) > 0.0f && !tracer_.occluded(sp.spawn(es.direction), es.direction, kInf)) {
+      const glm::vec3 seen =
+          maxComponent(f) > 0.0f ? shadow(sp.spawn(es.direction), es.direction, kInf) : glm::vec3(0.0f);
+      if (maxComponent(seen) > 0.0f) {
         const float w = fromField ? 1.0f : lightSampleWeight(mode_, es.pdf, bsdfPdf);
-        add(throughput_ * f * es.radiance * (w / es.pdf), nonSpecular_ + 1);
+        add(throughput_ * f * es.radiance * seen * (w / es.pdf), nonSpecular_ + 1);
       }
     }
   }

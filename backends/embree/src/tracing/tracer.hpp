@@ -108,13 +108,13 @@ struct Tracer {
 
   // An untraceable ray is refused and counts as a miss; the path tracer
   // checks first and ends the path instead.
-  bool intersect(const glm::vec3& org, const glm::vec3& dir, RTCRayHit& rh) {
-    if (!traceable(org, dir, kInf)) {
+  bool intersect(const glm::vec3& org, const glm::vec3& dir, RTCRayHit& rh, float tfar = kInf) {
+    if (!traceable(org, dir, tfar)) {
       ++refused;
       return false;
     }
     TopLevelContext top(scene);
-    setRay(rh.ray, org, dir, kInf);
+    setRay(rh.ray, org, dir, tfar);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene.traversable, &top.context, &rh);

@@ -14,7 +14,9 @@ namespace tsr::cluster {
 
 // 2: ErrorReport carries a kind byte before its reason (clients decide by
 // the kind, never by the text).
-inline constexpr std::uint8_t kProtocolVersion = 2;
+// 3: scenes carry volume materials (container type 10), Geometry.volume
+// and Background.medium.
+inline constexpr std::uint8_t kProtocolVersion = 3;
 inline constexpr std::size_t kFrameHeaderBytes = 10;
 inline constexpr std::array<std::uint8_t, 4> kFrameMagic{'T', 'S', 'R', 'N'};
 

@@ -1,6 +1,7 @@
 #pragma once
 // What camera rays that hit nothing see: a colour, a vertical gradient or
-// an environment map (latitude-longitude), scaled by an intensity.
+// an environment map (latitude-longitude), scaled by an intensity; and
+// the medium that fills the scene outside every volume (fog), if any.
 #include "tsr/sg/container_of.hpp"
 
 namespace tsr::sg {
@@ -9,7 +10,7 @@ enum class BackgroundKind : std::uint8_t { Color, Gradient, Environment, Count }
 
 class Background final : public ContainerOf<Background, ContainerType::Background> {
  public:
-  enum Field : FieldIndex { Kind = kFirstOwnField, Color, GradientTop, GradientBottom, Environment, Intensity };
+  enum Field : FieldIndex { Kind = kFirstOwnField, Color, GradientTop, GradientBottom, Environment, Intensity, Medium };
 
   BackgroundKind kind() const { return kind_; }
   const Vec3& color() const { return color_; }
@@ -17,6 +18,7 @@ class Background final : public ContainerOf<Background, ContainerType::Backgroun
   const Vec3& gradientBottom() const { return bottom_; }
   ContainerId environment() const { return environment_; }
   float intensity() const { return intensity_; }
+  ContainerId medium() const { return medium_; }  // a VolumeMaterial (its textures unused), or none
 
   void setKind(BackgroundKind k) { set<&Background::kind_>(k); }
   void setColor(const Vec3& v) { set<&Background::color_>(v); }
@@ -26,6 +28,7 @@ class Background final : public ContainerOf<Background, ContainerType::Backgroun
   }
   void setEnvironment(ContainerId image) { set<&Background::environment_>(image); }
   void setIntensity(float v) { set<&Background::intensity_>(v); }
+  void setMedium(ContainerId v) { set<&Background::medium_>(v); }
 
   static constexpr auto fieldSpecs() {
     using M = Background;
@@ -37,7 +40,8 @@ class Background final : public ContainerOf<Background, ContainerType::Backgroun
                       valueField(GradientTop, "gradientTop", &M::top_, kSetTop),
                       valueField(GradientBottom, "gradientBottom", &M::bottom_, kSetBottom),
                       referenceField(Environment, "environment", &M::environment_, kImageTypes, &M::setEnvironment),
-                      valueField(Intensity, "intensity", &M::intensity_, &M::setIntensity)};
+                      valueField(Intensity, "intensity", &M::intensity_, &M::setIntensity),
+                      referenceField(Medium, "medium", &M::medium_, kVolumeTypes, &M::setMedium)};
   }
 
  private:
@@ -47,6 +51,7 @@ class Background final : public ContainerOf<Background, ContainerType::Backgroun
   Vec3 bottom_{1.0f};
   ContainerId environment_ = kNoContainer;
   float intensity_ = 1.0f;
+  ContainerId medium_ = kNoContainer;
 };
 
 }  // namespace tsr::sg

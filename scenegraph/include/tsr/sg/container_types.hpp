@@ -11,11 +11,13 @@
 #include "tsr/sg/parent_node.hpp"
 #include "tsr/sg/simple_material.hpp"
 #include "tsr/sg/surface_material.hpp"
+#include "tsr/sg/volume_material.hpp"
 
 namespace tsr::sg {
 
 using ContainerTypes =
-    std::tuple<Group, Transform, Geometry, Image, SimpleMaterial, SurfaceMaterial, Light, Camera, Background>;
+    std::tuple<Group, Transform, Geometry, Image, SimpleMaterial, SurfaceMaterial, Light, Camera, Background,
+               VolumeMaterial>;
 static_assert(std::tuple_size_v<ContainerTypes> == kContainerTypeCount);
 
 }  // namespace tsr::sg

@@ -16,7 +16,7 @@ enum class GeometryMotion : std::uint8_t { Static, Animated, Count };
 
 class Geometry final : public ContainerOf<Geometry, ContainerType::Geometry> {
  public:
-  enum Field : FieldIndex { Positions = kFirstOwnField, Normals, Uvs, Colors, Indices, Material, Motion };
+  enum Field : FieldIndex { Positions = kFirstOwnField, Normals, Uvs, Colors, Indices, Material, Motion, Volume };
 
   const std::vector<Vec3>& positions() const { return positions_; }
   const std::vector<Vec3>& normals() const { return normals_; }
@@ -25,6 +25,8 @@ class Geometry final : public ContainerOf<Geometry, ContainerType::Geometry> {
   const std::vector<std::uint32_t>& indices() const { return indices_; }
   ContainerId material() const { return material_; }
   GeometryMotion motion() const { return motion_; }
+  // The medium inside the (closed) mesh, beside its surface material.
+  ContainerId volume() const { return volume_; }
   std::size_t triangleCount() const { return indices_.size() / 3; }
 
   void setPositions(std::vector<Vec3> v) { set<&Geometry::positions_>(std::move(v)); }
@@ -34,6 +36,7 @@ class Geometry final : public ContainerOf<Geometry, ContainerType::Geometry> {
   void setIndices(std::vector<std::uint32_t> v) { set<&Geometry::indices_>(std::move(v)); }
   void setMaterial(ContainerId m) { set<&Geometry::material_>(m); }
   void setMotion(GeometryMotion m) { set<&Geometry::motion_>(m); }
+  void setVolume(ContainerId v) { set<&Geometry::volume_>(v); }
 
   // Range edits: overwrite elements starting at `begin`; lengths do not change.
   void updatePositions(std::size_t begin, std::span<const Vec3> v) { setElements<&Geometry::positions_>(begin, v); }
@@ -57,7 +60,8 @@ class Geometry final : public ContainerOf<Geometry, ContainerType::Geometry> {
                       arrayField(Colors, "colors", &M::colors_, &M::setColors),
                       arrayField(Indices, "indices", &M::indices_, &M::setIndices),
                       referenceField(Material, "material", &M::material_, kMaterialTypes, &M::setMaterial),
-                      valueField(Motion, "motion", &M::motion_, &M::setMotion)};
+                      valueField(Motion, "motion", &M::motion_, &M::setMotion),
+                      referenceField(Volume, "volume", &M::volume_, kVolumeTypes, &M::setVolume)};
   }
 
  private:
@@ -68,6 +72,7 @@ class Geometry final : public ContainerOf<Geometry, ContainerType::Geometry> {
   std::vector<std::uint32_t> indices_;
   ContainerId material_ = kNoContainer;
   GeometryMotion motion_ = GeometryMotion::Static;
+  ContainerId volume_ = kNoContainer;
 };
 
 }  // namespace tsr::sg

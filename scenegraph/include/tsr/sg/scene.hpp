@@ -18,6 +18,7 @@
 #include "tsr/sg/parent_node.hpp"
 #include "tsr/sg/simple_material.hpp"
 #include "tsr/sg/surface_material.hpp"
+#include "tsr/sg/volume_material.hpp"
 
 namespace tsr::sg {
 

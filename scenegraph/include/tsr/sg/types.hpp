@@ -30,8 +30,9 @@ enum class ContainerType : std::uint8_t {
   Light = 7,
   Camera = 8,
   Background = 9,
+  VolumeMaterial = 10,
 };
-inline constexpr unsigned kContainerTypeCount = 9;
+inline constexpr unsigned kContainerTypeCount = 10;
 
 // A set of container types, used to say what a reference field may name.
 using TypeSet = std::uint32_t;
@@ -43,6 +44,7 @@ inline constexpr TypeSet kNodeTypes = typeBit(ContainerType::Group) | typeBit(Co
 inline constexpr TypeSet kMaterialTypes =
     typeBit(ContainerType::SimpleMaterial) | typeBit(ContainerType::SurfaceMaterial);
 inline constexpr TypeSet kImageTypes = typeBit(ContainerType::Image);
+inline constexpr TypeSet kVolumeTypes = typeBit(ContainerType::VolumeMaterial);
 
 // Types whose first own field is a children list.
 constexpr bool isParentType(ContainerType t) { return t == ContainerType::Group || t == ContainerType::Transform; }

@@ -1,11 +1,13 @@
 #pragma once
 
+#include "tsr/embree/medium.hpp"
 #include "tsr/embree/texture.hpp"
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <memory>
+#include <optional>
 
 namespace tsr::embree {
 
@@ -30,12 +32,21 @@ class Environment {
   Sample sample(const glm::vec2& u) const;
   float pdf(const glm::vec3& direction) const;
 
+  // The medium filling the scene outside every closed volume (fog), if any.
+  const std::optional<Medium>& medium() const { return medium_; }
+  Environment withMedium(std::optional<Medium> medium) const {
+    Environment e = *this;
+    e.medium_ = medium && !medium->empty() ? medium : std::nullopt;
+    return e;
+  }
+
   static glm::vec2 directionToUv(const glm::vec3& d);
   static glm::vec3 uvToDirection(const glm::vec2& uv);
 
  private:
   struct Impl;
   std::shared_ptr<const Impl> impl_;
+  std::optional<Medium> medium_;
 };
 
 }  // namespace tsr::embree

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "tsr/embree/ids.hpp"
+#include "tsr/embree/medium.hpp"
 
 #include <glm/vec3.hpp>
 
@@ -14,6 +15,7 @@ enum class MaterialType {
   Dielectric,  // rough GGX glass; baseColor tints transmission
   Mirror,      // perfect specular reflection; baseColor is the reflectance
   Glass,       // smooth dielectric, Fresnel-weighted reflection/refraction
+  Interface,   // no surface: an index-matched medium boundary that rays pass straight through
 };
 
 // Materials are assigned per instance, so one mesh can be shown with several
@@ -28,6 +30,8 @@ struct Material {
   // distribution uses luminance(emission) * area; the texture only modulates.
   glm::vec3 emission{0.0f};
   std::optional<TextureId> emissionTexture;
+  // What fills the closed mesh behind the front faces, if anything.
+  std::optional<Medium> interior;
 
   bool isEmissive() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
 };

@@ -17,7 +17,10 @@ inline constexpr sg::FieldMask kAllMeshFields =
     sg::fieldBit(sg::Geometry::Colors) | sg::fieldBit(sg::Geometry::Indices) | sg::fieldBit(sg::Geometry::Motion);
 
 inline bool isNode(const ChangeEntry& e) { return (sg::typeBit(e.type) & sg::kNodeTypes) != 0; }
-inline bool isMaterial(const ChangeEntry& e) { return (sg::typeBit(e.type) & sg::kMaterialTypes) != 0; }
+// Surface and volume materials alike: what a geometry's shading is made of.
+inline bool isMaterial(const ChangeEntry& e) {
+  return (sg::typeBit(e.type) & (sg::kMaterialTypes | sg::kVolumeTypes)) != 0;
+}
 inline bool isGeometry(const ChangeEntry& e) { return e.type == sg::ContainerType::Geometry; }
 inline bool edited(const ChangeEntry& e) { return !e.created && !e.destroyed; }
 
@@ -45,9 +48,9 @@ inline bool materialDirty(const ChangeEntry& e) { return isMaterial(e) && edited
 // An image's pixels, for the textures made from it.
 inline bool imageDirty(const ChangeEntry& e) { return e.type == sg::ContainerType::Image && edited(e); }
 
-// A geometry points at another material.
+// A geometry points at another surface or volume material.
 inline bool materialBindingDirty(const ChangeEntry& e) {
-  return isGeometry(e) && edited(e) && e.changed(sg::Geometry::Material);
+  return isGeometry(e) && edited(e) && (e.changed(sg::Geometry::Material) || e.changed(sg::Geometry::Volume));
 }
 
 // Any of a geometry's fields in `meshFields` (those a back-end's mesh holds).

@@ -17,12 +17,15 @@
 //     static constexpr bool kResizableMeshes;        // setMeshData may change a mesh's size
 //     static constexpr sg::FieldMask kMeshFields;    // the geometry fields its meshes hold
 //     static auto mesh(const sg::Geometry&);         // the back-end's MeshData
-//     static auto material(const sg::Container*, const std::function<std::optional<TextureId>(sg::ContainerId)>&);
+//     // A geometry's surface material and the volume inside it (either may be null):
+//     static auto material(const sg::Container* surface, const sg::VolumeMaterial* volume,
+//                          const std::function<std::optional<TextureId>(sg::ContainerId)>&);
 //     static auto texture(const sg::Image&);
 //     static Light light(const sg::Light&, const glm::mat4& world);
 //     static Environment background(const sg::Scene&, sg::ContainerId background);
 //   };
 #include <bit>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -128,20 +131,21 @@ class InstancingSceneAdapter final : public SceneAdapter {
       auto old = held->second;
       textures_.erase(held);
       textureFor(scene, id);
-      for (auto& [matId, handle] : materials_)
-        if (const sg::Container* m = scene.find(matId); m && references(*m, id))
-          scene_->setMaterial(handle, Types::material(m, textures(scene)));
+      for (auto& [key, handle] : materials_)
+        if (usesImage(scene, key, id)) scene_->setMaterial(handle, translate(scene, key));
       scene_->removeTexture(old);
     }
   }
 
+  // A surface or volume edit updates the back-end materials made of it.
   void syncMaterials(const sg::Scene& scene, const sg::MergedChanges& changes) {
     for (const auto& [id, e] : changes.entries()) {
       if (!materialDirty(e)) continue;
-      auto held = materials_.find(id);
-      if (held == materials_.end()) continue;
-      scene_->setMaterial(held->second, Types::material(scene.find(id), textures(scene)));
-      ++counters_.materialUpdates;
+      for (auto& [key, handle] : materials_) {
+        if (key.first != id && key.second != id) continue;
+        scene_->setMaterial(handle, translate(scene, key));
+        ++counters_.materialUpdates;
+      }
     }
   }
 
@@ -209,7 +213,7 @@ class InstancingSceneAdapter final : public SceneAdapter {
     if (background_ == sg::kNoContainer) return false;
     bool dirty = changes.entries().count(background_) != 0;
     if (const auto* b = scene.find<sg::Background>(background_))
-      dirty |= changes.entries().count(b->environment()) != 0;
+      dirty |= changes.entries().count(b->environment()) != 0 || changes.entries().count(b->medium()) != 0;
     return dirty;
   }
 
@@ -251,9 +255,10 @@ class InstancingSceneAdapter final : public SceneAdapter {
       return true;
     });
     std::unordered_set<sg::ContainerId> usedImages;
-    for (const auto& [matId, handle] : materials_)
-      if (const sg::Container* m = scene.find(matId))
-        forEachReference(*m, [&](sg::ContainerId r) { usedImages.insert(r); });
+    for (const auto& [key, handle] : materials_)
+      for (sg::ContainerId part : {key.first, key.second})
+        if (const sg::Container* m = scene.find(part))
+          forEachReference(*m, [&](sg::ContainerId r) { usedImages.insert(r); });
     std::erase_if(textures_, [&](const auto& kv) {
       if (usedImages.count(kv.first)) return false;
       scene_->removeTexture(kv.second);
@@ -286,16 +291,29 @@ class InstancingSceneAdapter final : public SceneAdapter {
     }
   }
 
-  typename Types::MaterialId materialFor(const sg::Scene& scene, sg::ContainerId id) {
-    if (auto it = materials_.find(id); it != materials_.end()) return it->second;
-    auto m = scene_->addMaterial(Types::material(scene.find(id), textures(scene)));
-    materials_.emplace(id, m);
+  // A back-end material is a geometry's surface material and its volume.
+  using MaterialKey = std::pair<sg::ContainerId, sg::ContainerId>;
+
+  auto translate(const sg::Scene& scene, const MaterialKey& key) {
+    return Types::material(scene.find(key.first), scene.find<sg::VolumeMaterial>(key.second), textures(scene));
+  }
+
+  bool usesImage(const sg::Scene& scene, const MaterialKey& key, sg::ContainerId image) const {
+    const sg::Container* surface = scene.find(key.first);
+    const sg::Container* volume = scene.find(key.second);
+    return (surface && references(*surface, image)) || (volume && references(*volume, image));
+  }
+
+  typename Types::MaterialId materialFor(const sg::Scene& scene, const MaterialKey& key) {
+    if (auto it = materials_.find(key); it != materials_.end()) return it->second;
+    auto m = scene_->addMaterial(translate(scene, key));
+    materials_.emplace(key, m);
     return m;
   }
 
   typename Types::MaterialId materialOfGeometry(const sg::Scene& scene, sg::ContainerId geometry) {
     const auto* g = scene.find<sg::Geometry>(geometry);
-    return materialFor(scene, g ? g->material() : sg::kNoContainer);
+    return materialFor(scene, g ? MaterialKey{g->material(), g->volume()} : MaterialKey{});
   }
 
   std::optional<typename Types::TextureId> textureFor(const sg::Scene& scene, sg::ContainerId id) {
@@ -318,8 +336,8 @@ class InstancingSceneAdapter final : public SceneAdapter {
   typename Types::Environment environment_;
   InstancePlacement<Types> placement_;
   std::unordered_map<sg::ContainerId, typename Types::MeshId> meshes_;
-  std::unordered_set<sg::ContainerId> unrenderable_;                           // invalid or empty geometry, skipped
-  std::unordered_map<sg::ContainerId, typename Types::MaterialId> materials_;  // kNoContainer: the default
+  std::unordered_set<sg::ContainerId> unrenderable_;             // invalid or empty geometry, skipped
+  std::map<MaterialKey, typename Types::MaterialId> materials_;  // kNoContainer: the default, or no volume
   std::unordered_map<sg::ContainerId, typename Types::TextureId> textures_;
   Counters counters_;
 };
