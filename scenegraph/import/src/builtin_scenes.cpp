@@ -82,6 +82,23 @@ Animation::Pose translated(const Vec3& t) {
 
 parsed::Scene cornell() { return cornellBox(); }
 
+parsed::Scene cornellFog() {
+  parsed::Scene s = cornellBox();
+  // Units are millimetres: the glass sphere (radius 70) holds milk-like
+  // scattering (optical depth about 3 across), the room a thin haze
+  // (about 0.3 across the box) that shows the light's cone.
+  parsed::Volume milk;
+  milk.scattering = Vec3(0.02f, 0.021f, 0.022f);
+  milk.absorption = Vec3(0.0004f, 0.0008f, 0.0016f);
+  milk.phaseG = 0.3f;
+  s.materials[kGlass].volume = milk;
+  parsed::Volume haze;
+  haze.scattering = Vec3(0.0005f);
+  haze.phaseG = 0.2f;
+  s.medium = haze;
+  return s;
+}
+
 parsed::Scene instances(std::uint64_t count) {
   parsed::Scene s;
   const Vec3 palette[] = {{0.8f, 0.2f, 0.2f}, {0.2f, 0.7f, 0.3f}, {0.2f, 0.3f, 0.8f}, {0.9f, 0.8f, 0.3f}};

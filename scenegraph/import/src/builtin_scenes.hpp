@@ -10,6 +10,8 @@ namespace tsr::sg::builtin {
 // The Cornell box of make_cornell.py, lit by an emissive ceiling quad, with
 // a mirror sphere on the tall block and a glass sphere on the short one.
 parsed::Scene cornell();
+// The Cornell box with a glass sphere of scattering medium and a hazy room.
+parsed::Scene cornellFog();
 // `count` instances of a few shared meshes on a grid, a camera that sees
 // them all and a directional light.
 parsed::Scene instances(std::uint64_t count);

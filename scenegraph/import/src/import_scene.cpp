@@ -34,6 +34,7 @@ std::uint64_t count(const std::string& source, std::string_view digits, std::uin
 parsed::Scene parseBuiltin(const std::string& source) {
   const std::string_view name = std::string_view(source).substr(kBuiltinPrefix.size());
   if (name == "cornell") return builtin::cornell();
+  if (name == "cornell-fog") return builtin::cornellFog();
   if (name == "animated") return builtin::animated();
   constexpr std::string_view instances = "instances:";
   if (name.starts_with(instances))
@@ -67,7 +68,9 @@ ImportResult parsedAndBuilt(Scene& scene, const std::string& source, Parse parse
 
 }  // namespace
 
-std::vector<std::string> builtinSceneNames() { return {"cornell", "instances:N", "animated", "plant:TRIANGLES"}; }
+std::vector<std::string> builtinSceneNames() {
+  return {"cornell", "cornell-fog", "instances:N", "animated", "plant:TRIANGLES"};
+}
 
 ImportResult importScene(Scene& scene, const std::string& source, const ImportOptions& options) {
   return parsedAndBuilt(scene, source, [&] {

@@ -180,9 +180,9 @@ std::string sceneName(const ::testing::TestParamInfo<const char*>& info) {
   return name;
 }
 
-INSTANTIATE_TEST_SUITE_P(QualitySuite, SuiteFilter, ::testing::Values("indirect-room", "rough-metal", "textures"),
-                         sceneName);
-INSTANTIATE_TEST_SUITE_P(QualitySuite, SuitePreview, ::testing::Values("indirect-room", "textures", "grille"),
-                         sceneName);
+INSTANTIATE_TEST_SUITE_P(QualitySuite, SuiteFilter,
+                         ::testing::Values("indirect-room", "rough-metal", "textures", "foggy-room"), sceneName);
+INSTANTIATE_TEST_SUITE_P(QualitySuite, SuitePreview,
+                         ::testing::Values("indirect-room", "textures", "grille", "foggy-room"), sceneName);
 
 }  // namespace

@@ -226,6 +226,7 @@ class Doc:
         self.meshes, self.materials, self.nodes, self.lights = [], [], [], []
         self.images, self.textures, self.cameras, self.ext = [], [], [], set()
         self.cache = {}
+        self.medium = None  # TSR_scene_medium: fog filling the scene
 
     def material(self, color, metallic=0.0, roughness=1.0, emissive=None, strength=None, texture=None,
                  transmission=None, ior=None):
@@ -308,6 +309,9 @@ class Doc:
                        samplers=[{"magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT": 10497}])
         if self.lights:
             doc["extensions"] = {"KHR_lights_punctual": {"lights": self.lights}}
+        if self.medium:
+            doc["scenes"][0]["extensions"] = {"TSR_scene_medium": self.medium}
+            self.ext.add("TSR_scene_medium")
         if self.ext:
             doc["extensionsUsed"] = sorted(self.ext)
         with open(path, "w") as f:
@@ -336,6 +340,18 @@ def indirect_room(d):
     d.add("panel", quad((0.0, 2.5, -0.6), (0.0, 0.0, 0.3), (0.3, 0.0, 0.0)), panel)
     d.add("metal sphere", sphere(0.6), d.material((0.9, 0.8, 0.6), metallic=1.0, roughness=0.3), t=(-0.9, 0.6, -0.9))
     d.add("box", box((0.9, 1.2, 0.9)), d.material((0.7, 0.7, 0.7)), t=(1.0, 0.6, -1.1), yaw=25)
+    d.camera((0.0, 1.4, 2.4), (0.0, 1.1, -1.0), 60)
+
+
+def foggy_room(d):
+    """A hazy room: light scattered by the air itself, a lamp's glow, soft shafts past a pillar."""
+    w = d.material(WHITE)
+    room(d, 5.0, 3.0, 5.0, {"floor": w, "ceiling": w, "back": w, "front": w,
+                            "left": d.material(RED), "right": d.material(BLUE)})
+    ceiling_light(d, (0.6, 0.6), (0.4, 2.99, -0.8), 60.0)
+    d.add("pillar", box((0.3, 3.0, 0.3)), d.material((0.2, 0.2, 0.2)), t=(-0.2, 1.5, -0.6))
+    d.add("sphere", sphere(0.45), d.material((0.8, 0.75, 0.6), metallic=1.0, roughness=0.3), t=(1.0, 0.45, -1.2))
+    d.medium = {"scattering": [0.12, 0.12, 0.12], "absorption": [0.02, 0.02, 0.02], "phaseG": 0.3}
     d.camera((0.0, 1.4, 2.4), (0.0, 1.1, -1.0), 60)
 
 
@@ -528,6 +544,8 @@ SCENES = [  # key, label, builder, stresses, kind
      "rough dielectric floor, rough metal cube and ball, striped diffuse ball; point + dim area light", "mixed"),
     ("corridor", "Long corridor", corridor,
      "long perspective: depth from 0.5 to 30 m, repeated lamps and door frames shrinking", "diffuse"),
+    ("foggy-room", "Foggy room", foggy_room,
+     "haze (sigma_s 0.12/m, g 0.3) lit by a ceiling lamp past a pillar: volume scattering everywhere", "volume"),
 ]
 
 MODELS = [  # real models from Debian's assimp-testmodels, rendered under the default light rig
