@@ -138,6 +138,47 @@ TEST(EmbreeMedia, AWhiteScatteringSphereInAWhiteFurnaceNeitherGainsNorLoses) {
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[k], 0.5f, 0.005f) << k;  // 1 %
 }
 
+// Light reaching points in a medium is found two ways, by light sampling
+// through the phase function and by phase sampling that hits the lamp;
+// each alone and both weighted (MIS) must agree, with scene fog and with
+// a scattering box on the floor under the lamp.
+glm::vec3 foggyLamp(LightSampling mode, int passes) {
+  Scene scene(sharedDevice());
+  floorUnderLamp(scene);
+  Material boundary;
+  boundary.type = MaterialType::Interface;
+  Medium block;
+  block.scattering = {0.8f, 0.6f, 0.4f};
+  block.absorption = glm::vec3(0.1f);
+  block.g = -0.3f;
+  boundary.interior = block;
+  scene.addInstance(scene.addMesh(box({-1, 0, -1}, {1, 2, 1})), scene.addMaterial(boundary), glm::mat4(1.0f));
+  Medium haze;
+  haze.scattering = glm::vec3(0.05f);
+  haze.g = 0.5f;
+  scene.setEnvironment(Environment().withMedium(haze));
+  RenderSettings s;
+  s.maxDepth = 6;
+  s.samplesPerPass = 16;
+  s.lightSampling = mode;
+  Renderer renderer(s);
+  Camera camera = Camera::lookAt({0, 2, 7}, {0, 1, 0}, {0, 1, 0}, glm::radians(40.0f), 1.0f);
+  FrameBuffer fb(24, 24);
+  render(renderer, scene, camera, Region::full(24, 24), fb, passes);
+  return meanColour(fb);
+}
+
+TEST(EmbreeMedia, LightSamplingPhaseSamplingAndTheirMixAgree) {
+  const glm::vec3 mis = foggyLamp(LightSampling::Mis, 16);
+  const glm::vec3 light = foggyLamp(LightSampling::LightOnly, 16);
+  const glm::vec3 phase = foggyLamp(LightSampling::BsdfOnly, 64);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_GT(mis[k], 0.01f) << k;
+    EXPECT_NEAR(light[k], mis[k], 0.03f * mis[k]) << k;
+    EXPECT_NEAR(phase[k], mis[k], 0.05f * mis[k]) << k;
+  }
+}
+
 TEST(EmbreeMedia, MediaRenderBitwiseAlikeOnOneThreadAndTwo) {
   Medium fog;
   fog.absorption = glm::vec3(0.1f);

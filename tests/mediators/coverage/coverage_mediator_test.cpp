@@ -191,6 +191,18 @@ TEST_F(IncrementalSync, MaterialTransparency) {
   check("glass made opaque");
 }
 
+// A medium with no surface (a cloud) is as transparent as glass to the
+// ranking: what lies behind it covers the pixels.
+TEST_F(IncrementalSync, AMediumOnlyObjectIsTransparent) {
+  auto& cloud = rig.source.create<sg::VolumeMaterial>("cloud");
+  cloud.setScattering(glm::vec3(0.1f));
+  auto* redWall = rig.source.find<sg::Transform>(named(sg::ContainerType::Transform, "red"));
+  auto* geometry = rig.source.find<sg::Geometry>(redWall->children().front());
+  geometry->setVolume(cloud.id());
+  geometry->setMaterial(sg::kNoContainer);
+  check("medium only");
+}
+
 TEST_F(IncrementalSync, SimpleMaterialAssigned) {
   auto& veil = rig.source.create<sg::SimpleMaterial>("veil");
   veil.setTransparency(0.3f);
