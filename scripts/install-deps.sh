@@ -17,6 +17,7 @@ packages=(
   libeigen3-dev
   openmpi-bin
   assimp-testmodels   # real glTF models of the filter quality suite (tests/bench/quality/suite)
+  python3-numpy python3-openimageio  # image metrics of the benchmark scripts
   chromium            # the web client's browser test (Playwright drives it)
 )
 

@@ -229,7 +229,7 @@ class Doc:
         self.medium = None  # TSR_scene_medium: fog filling the scene
 
     def material(self, color, metallic=0.0, roughness=1.0, emissive=None, strength=None, texture=None,
-                 transmission=None, ior=None):
+                 transmission=None, ior=None, volume=None):
         m = {"pbrMetallicRoughness": {"baseColorFactor": [*color, 1.0], "metallicFactor": metallic,
                                       "roughnessFactor": roughness}}
         ext = {}
@@ -245,6 +245,8 @@ class Doc:
             ext["KHR_materials_transmission"] = {"transmissionFactor": transmission}
         if ior is not None:
             ext["KHR_materials_ior"] = {"ior": ior}
+        if volume is not None:  # Tessera's volume extension (docs/volumes.md)
+            ext["TSR_materials_volume"] = volume
         if ext:
             m["extensions"] = ext
             self.ext.update(ext)
@@ -353,6 +355,20 @@ def foggy_room(d):
     d.add("sphere", sphere(0.45), d.material((0.8, 0.75, 0.6), metallic=1.0, roughness=0.3), t=(1.0, 0.45, -1.2))
     d.medium = {"scattering": [0.12, 0.12, 0.12], "absorption": [0.02, 0.02, 0.02], "phaseG": 0.3}
     d.camera((0.0, 1.4, 2.4), (0.0, 1.1, -1.0), 60)
+
+
+def fog_glass(d):
+    """The volume issue's scene: a glass sphere of milky medium in a hazy Cornell-like room."""
+    w = d.material(WHITE)
+    room(d, 4.0, 3.0, 4.0, {"floor": w, "ceiling": w, "back": w, "front": w,
+                            "left": d.material(RED), "right": d.material(GREEN)})
+    ceiling_light(d, (1.0, 1.0), (0.0, 2.99, -0.5), 15.0)
+    milk = {"scattering": [4.0, 4.2, 4.4], "absorption": [0.1, 0.2, 0.4], "phaseG": 0.3}
+    d.add("milk glass", sphere(0.5), d.material((1.0, 1.0, 1.0), roughness=0.0, transmission=1.0, ior=1.5,
+                                               volume=milk), t=(-0.6, 0.5, -0.8))
+    d.add("box", box((0.8, 1.4, 0.8)), d.material((0.7, 0.7, 0.7)), t=(0.8, 0.7, -1.0), yaw=20)
+    d.medium = {"scattering": [0.08, 0.08, 0.08], "absorption": [0.01, 0.01, 0.01], "phaseG": 0.2}
+    d.camera((0.0, 1.4, 1.9), (0.0, 1.0, -1.0), 60)
 
 
 def rough_metal(d):
@@ -544,6 +560,9 @@ SCENES = [  # key, label, builder, stresses, kind
      "rough dielectric floor, rough metal cube and ball, striped diffuse ball; point + dim area light", "mixed"),
     ("corridor", "Long corridor", corridor,
      "long perspective: depth from 0.5 to 30 m, repeated lamps and door frames shrinking", "diffuse"),
+    ("fog-glass", "Milky glass in haze", fog_glass,
+     "glass sphere (ior 1.5) of scattering medium (sigma_s about 4/m, g 0.3) in a hazy room: media behind glass",
+     "volume"),
     ("foggy-room", "Foggy room", foggy_room,
      "haze (sigma_s 0.12/m, g 0.3) lit by a ceiling lamp past a pillar: volume scattering everywhere", "volume"),
 ]
