@@ -7,7 +7,11 @@
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
+#include <glm/trigonometric.hpp>
 #include <nlohmann/json.hpp>
+
+#include "scene_session.hpp"
+#include "tsr/med/view.hpp"
 
 namespace tsr::app::test {
 
@@ -39,6 +43,18 @@ inline Reply request(std::uint16_t port, boost::beast::http::verb verb, const st
   const auto& res = parser.get();
   return {res.result_int(), res.body(), std::string(res[http::field::etag]),
           std::string(res[http::field::content_type])};
+}
+
+// What tessera-cull makes of cornellView's camera: the pose and field of
+// view asked for, with the near and far planes of the scene's camera.
+inline med::View cornellServiceView(const SceneSession& session, std::uint32_t width, std::uint32_t height) {
+  const auto* sceneCamera = session.replica.scene().find<sg::Camera>(session.camera);
+  sg::Camera camera;
+  camera.setNearPlane(sceneCamera->nearPlane());
+  camera.setFarPlane(sceneCamera->farPlane());
+  camera.setVerticalFov(glm::radians(39.0f));
+  camera.lookAt({278, 273, -800}, {278, 273, 0});
+  return med::View::fromCamera(camera, width, height);
 }
 
 // The Cornell box seen from in front, as the browser would ask.

@@ -132,14 +132,8 @@ TEST_F(CullPreview, FramesRefineTheRestingViewToTheLimitAndShowWhatThePathTracer
   auto viewport = registry.create({"embree", session.imported.root, session.imported.background,
                                    registry.parametersFor("embree", parameters), true},
                                   contexts);
-  const auto* sceneCamera = session.replica.scene().find<tsr::sg::Camera>(session.camera);
-  tsr::sg::Camera camera;
-  camera.setNearPlane(sceneCamera->nearPlane());
-  camera.setFarPlane(sceneCamera->farPlane());
-  camera.setVerticalFov(glm::radians(39.0f));
-  camera.lookAt({278, 273, -800}, {278, 273, 0});
   tsr::med::FrameBuffer local;
-  viewport->render(session.replica, tsr::med::View::fromCamera(camera, 64, 48), local, {});
+  viewport->render(session.replica, tsr::app::test::cornellServiceView(session, 64, 48), local, {});
   const std::string path = (std::filesystem::temp_directory_path() / "tsr-preview-local.png").string();
   tsr::med::writeImage(path, local);
   const tsr::med::FrameBuffer expected = tsr::med::readImage(path);  // through the same 8 bits

@@ -53,16 +53,10 @@ TEST_F(CullService, RankingEqualsTheCoverageRenderersForTheSameView) {
   tsr::app::registerBackends(registry);
   tsr::med::ContextPool contexts;
   auto viewport = registry.create({"coverage", session.imported.root, session.imported.background, {}, true}, contexts);
-  const auto* sceneCamera = session.replica.scene().find<tsr::sg::Camera>(session.camera);
-  tsr::sg::Camera camera;
-  camera.setNearPlane(sceneCamera->nearPlane());
-  camera.setFarPlane(sceneCamera->farPlane());
-  camera.setVerticalFov(glm::radians(39.0f));
-  camera.lookAt({278, 273, -800}, {278, 273, 0});
   tsr::med::FrameBuffer image;
   tsr::med::RenderControl control;
   control.outputs = std::vector<std::string>{tsr::med::kIdOutput};
-  viewport->render(session.replica, tsr::med::View::fromCamera(camera, 96, 64), image, control);
+  viewport->render(session.replica, tsr::app::test::cornellServiceView(session, 96, 64), image, control);
   const auto ranked = tsr::med::rankObjects(image, session.replica.scene());
   ASSERT_EQ(answer["objects"].size(), ranked.size());
   ASSERT_GE(ranked.size(), 5u);

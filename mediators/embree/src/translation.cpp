@@ -15,7 +15,10 @@ embree::Material translateMaterial(const sg::Container* material, const sg::Volu
                                    const TextureLookup& textures) {
   embree::Material m = translateSurface(material, textures);
   if (volume) {
-    if (!material) m.type = embree::MaterialType::Interface;  // a medium alone: its boundary is index-matched
+    // A medium alone, or behind smooth glass of index 1 (how a glTF file
+    // says "no surface"): an index-matched boundary rays and shadow rays cross.
+    const bool indexMatched = m.type == embree::MaterialType::Glass && std::abs(m.ior - 1.0f) < 1e-3f;
+    if (!material || indexMatched) m.type = embree::MaterialType::Interface;
     if (const embree::Medium medium = translateMedium(*volume); !medium.empty()) m.interior = medium;
   }
   return m;
