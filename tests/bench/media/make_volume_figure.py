@@ -6,7 +6,7 @@ of index 1) around a TSR_materials_volume medium, in a grey room under a
 ceiling lamp with a lamp behind the fourth sphere.
 
     python3 make_volume_figure.py OUT.gltf
-    tessera-render OUT.gltf --size 640x200 --spp 256 --filter pixel --output docs/volume-looks.png
+    tessera-render OUT.gltf --size 640x240 --spp 128 --filter pixel --output docs/volume-looks.png
 """
 import os
 import sys
@@ -33,7 +33,7 @@ medium_sphere("scattering", 0.8, {"scattering": [3.0, 3.0, 3.0], "phaseG": 0.0})
 medium_sphere("scattering, lit from behind", 2.4, {"scattering": [3.0, 3.0, 3.0], "phaseG": 0.6})
 # A small lamp behind the fourth sphere, facing the camera.
 lamp = d.material((0.0, 0.0, 0.0), emissive=(1.0, 0.9, 0.8), strength=40.0)
-d.add("back lamp", quad((2.4, 0.9, -1.4), (0.0, 0.25, 0.0), (0.25, 0.0, 0.0)), lamp)
+d.add("back lamp", quad((2.4, 0.9, -1.4), (0.25, 0.0, 0.0), (0.0, 0.25, 0.0)), lamp)  # x cross y: faces +z
 d.add("stand", box((0.2, 0.3, 0.2)), grey, t=(2.4, 0.15, -1.4))
 d.camera((0.0, 1.1, 2.4), (0.0, 0.9, -0.5), 55)
 d.write(sys.argv[1])
