@@ -101,6 +101,24 @@ CullQuery CullService::sceneView() const {
   return q;
 }
 
+// What the path tracer shows behind everything, for the page to match:
+// a colour or a vertical gradient, scaled by the intensity (an environment
+// image is left to the page's own backdrop).
+nlohmann::json CullService::backgroundJson() const {
+  const auto* bg = session_.replica.scene().find<sg::Background>(session_.imported.background);
+  if (!bg) return {{"kind", "color"}, {"color", {0, 0, 0}}};
+  const float k = bg->intensity();
+  auto vec = [k](const glm::vec3& v) { return nlohmann::json::array({v.x * k, v.y * k, v.z * k}); };
+  switch (bg->kind()) {
+    case sg::BackgroundKind::Gradient:
+      return {{"kind", "gradient"}, {"top", vec(bg->gradientTop())}, {"bottom", vec(bg->gradientBottom())}};
+    case sg::BackgroundKind::Environment:
+      return {{"kind", "environment"}};
+    default:
+      return {{"kind", "color"}, {"color", vec(bg->color())}};
+  }
+}
+
 std::string CullService::sceneJson(bool preview) const {
   const CullQuery view = sceneView();
   auto vec = [](const glm::vec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); };
@@ -113,6 +131,7 @@ std::string CullService::sceneJson(bool preview) const {
                           {"near", camera->nearPlane()},
                           {"far", camera->farPlane()}}},
                         {"bounds", {{"min", vec(boundsMin_)}, {"max", vec(boundsMax_)}}},
+                        {"background", backgroundJson()},
                         {"total_objects", totalObjects()},
                         {"total_triangles", totalTriangles_},
                         {"preview", preview}}

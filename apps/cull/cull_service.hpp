@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
 
 #include "scene_session.hpp"
 #include "tsr/med/context_pool.hpp"
@@ -62,6 +63,8 @@ class CullService {
   CullQuery sceneView() const;
   // What the page shows first: the scene's camera, bounds and totals (JSON).
   std::string sceneJson(bool preview) const;
+  // The background as the page can show it (JSON: kind, colour or gradient).
+  nlohmann::json backgroundJson() const;
   // Settings of a viewport of `backend` over the service's scene.
   med::ViewportSettings settingsFor(const std::string& backend, const med::Parameters& parameters) const;
   // The one converted scene every viewport here renders; never edited.

@@ -31,6 +31,7 @@ const group = new THREE.Group();
 scene.add(group);
 
 const summary = await service.scene();
+showBackground(summary.background);
 const c = summary.camera;
 const camera = new THREE.PerspectiveCamera(c.fov, 1, c.near, c.far);
 camera.position.fromArray(c.position);
@@ -54,6 +55,27 @@ function showCounters() {
   }
   if (latency !== null) text('latency', `${latency.toFixed(0)} ms`);
   text('samples', preview ? (preview.samples ? `${preview.samples} spp` : 'waiting for rest') : 'off');
+}
+
+// Behind everything, what the path tracer shows there (linear colours), so
+// the streamed image does not jump in look when it appears.
+function showBackground(background) {
+  const linear = (c) => new THREE.Color().setRGB(c[0], c[1], c[2], THREE.LinearSRGBColorSpace);
+  if (background?.kind === 'color') {
+    scene.background = linear(background.color);
+  } else if (background?.kind === 'gradient') {
+    const canvas = document.createElement('canvas');
+    canvas.width = 1;
+    canvas.height = 256;
+    const g = canvas.getContext('2d');
+    const fill = g.createLinearGradient(0, 0, 0, 256);
+    fill.addColorStop(0, '#' + linear(background.top).getHexString());
+    fill.addColorStop(1, '#' + linear(background.bottom).getHexString());
+    g.fillStyle = fill;
+    g.fillRect(0, 0, 1, 256);
+    scene.background = new THREE.CanvasTexture(canvas);
+    scene.background.colorSpace = THREE.SRGBColorSpace;
+  }
 }
 
 // The view as the service takes it, at most `longSide` pixels on its long side.
