@@ -39,6 +39,10 @@ struct MeshRecord {
   bool alive = false;
 };
 
+// Where a mesh's indices start in its buffer, in indices (indexOffset is a
+// multiple of 4): draws bind the buffer at 0 and start there.
+inline std::uint32_t firstIndexOf(const MeshRecord& m) { return std::uint32_t(m.indexOffset / 4); }
+
 struct InstanceRecord {
   std::uint32_t mesh = 0;
   std::uint32_t material = 0;
