@@ -69,6 +69,17 @@ struct Renderer::Impl {
   Buffer drawOrderBuffer;
   std::optional<RenderTarget> target;
   std::optional<ShadowMap> shadowMap;
+  // What the shadow maps hold. They do not depend on the camera, so they are
+  // drawn again only when the scene (any edit bumps its version) or the
+  // lights' projections change.
+  struct ShadowKey {
+    const SceneState* scene = nullptr;
+    std::uint64_t version = 0;
+    std::vector<glm::mat4> viewProj;
+    bool operator==(const ShadowKey&) const = default;
+  };
+  std::optional<ShadowKey> shadowsHeld;     // after a completed frame
+  std::optional<ShadowKey> shadowsPending;  // recorded this frame
   std::unique_ptr<IdPass> idPass;           // made on first renderIds
   std::unique_ptr<OcclusionCuller> culler;  // made on the first guided frame
   std::unique_ptr<DepthPyramid> pyramid;
@@ -252,6 +263,7 @@ void Renderer::render(Scene& scene, const Camera& camera, const Region& region, 
   recordReadback(cmd, t.resolvedColour(), t.resolvedDepth(), t.colourReadback, t.depthReadback, t.width, t.height);
   check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
   r.commands->submitAndWait("frame");
+  if (r.shadowsPending) r.shadowsHeld = std::exchange(r.shadowsPending, std::nullopt);
 
   r.readColour(fb);
   readLinearDepth(t.depthReadback, camera, fb.depth_);
@@ -403,6 +415,7 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
   const std::uint32_t layers = std::max<std::uint32_t>(1, shadowLayers);
   if (!shadowMap || shadowMap->size() != settings.shadowMapSize || shadowMap->layers() < layers) {
     shadowMap.reset();
+    shadowsHeld.reset();
     shadowMap.emplace(device, settings.shadowMapSize, layers);
   }
   const ShadowMap& sm = *shadowMap;
@@ -438,6 +451,10 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
 // Shadow passes: opaque instances only, positions only.
 void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s,
                                    const std::vector<glm::mat4>& shadowViewProj, RenderStats& stats) {
+  ShadowKey key{&s, s.version, shadowViewProj};
+  if (shadowsHeld == key) return;  // still in SHADER_READ_ONLY_OPTIMAL from that frame
+  shadowsHeld.reset();
+  shadowsPending = std::move(key);
   const ShadowMap& sm = *shadowMap;
   imageBarrier(
       cmd, sm.image().handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -543,8 +560,6 @@ void Renderer::Impl::beginMain(VkCommandBuffer cmd, const RenderSettings& settin
   VkViewport vp{0.0f, 0.0f, float(w), float(h), 0.0f, 1.0f};
   vkCmdSetViewport(cmd, 0, 1, &vp);
   vkCmdSetScissor(cmd, 0, 1, &ri.renderArea);
-  // Again after compute work: lavapipe loses graphics descriptor sets when compute sets are bound.
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &frameSet, 0, nullptr);
   boundPipeline = VK_NULL_HANDLE;
 }
 
