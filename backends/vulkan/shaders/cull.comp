@@ -13,7 +13,7 @@ struct Instance {
 };
 
 struct Record {
-  uvec4 info;  // instance slot, index count, first index, unused
+  uvec4 info;  // instance slot, index count, first index, vertex offset
   vec4 lo;     // mesh bounds, object space
   vec4 hi;
 };
@@ -88,11 +88,11 @@ void main() {
                     (i & 4) != 0 ? r.hi.z : r.lo.z, 1.0);
   bool inside = inFrustum(c);
   if (pc.params.y == 0u) {
-    early[pos] = Command(r.info.y, inside && visible[slot] != 0u ? 1u : 0u, r.info.z, 0, pos);
+    early[pos] = Command(r.info.y, inside && visible[slot] != 0u ? 1u : 0u, r.info.z, int(r.info.w), pos);
     return;
   }
   bool seen = inside && !occluded(c);
   bool drawnEarly = early[pos].instanceCount != 0u;
-  late[pos] = Command(r.info.y, seen && !drawnEarly ? 1u : 0u, r.info.z, 0, pos);
+  late[pos] = Command(r.info.y, seen && !drawnEarly ? 1u : 0u, r.info.z, int(r.info.w), pos);
   visible[slot] = seen ? 1u : 0u;
 }

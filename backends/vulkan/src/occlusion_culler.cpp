@@ -20,7 +20,7 @@ constexpr VkDescriptorPoolSize kPoolSizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFE
 
 // Matches Record in shaders/cull.comp.
 struct GpuCullRecord {
-  std::uint32_t slot, indexCount, firstIndex, pad;
+  std::uint32_t slot, indexCount, firstIndex, vertexOffset;
   glm::vec4 lo, hi;
 };
 
@@ -54,7 +54,12 @@ void OcclusionCuller::prepare(const SceneState& s, std::span<const std::uint32_t
   for (std::uint32_t i = 0; i < count_; ++i) {
     const std::uint32_t slot = opaqueOrder[i];
     const MeshRecord& m = s.meshes[s.instances[slot].mesh];
-    records[i] = {slot, m.indexCount, firstIndexOf(m), 0, glm::vec4(m.boundsMin, 1.0f), glm::vec4(m.boundsMax, 1.0f)};
+    records[i] = {slot,
+                  m.indexCount,
+                  firstIndexOf(m),
+                  std::uint32_t(vertexOffsetOf(m)),
+                  glm::vec4(m.boundsMin, 1.0f),
+                  glm::vec4(m.boundsMax, 1.0f)};
   }
 
   // Visibility by slot: a new scene starts from nothing seen; new slots start unseen.

@@ -85,6 +85,8 @@ struct Renderer::Impl {
   std::unique_ptr<DepthPyramid> pyramid;
   glm::mat4 viewProj{1.0f};                   // this frame's
   VkPipeline boundPipeline = VK_NULL_HANDLE;  // in the current main pass
+  std::uint32_t boundBlock = ~0u;
+  std::uint32_t boundMaterial = ~0u;
 
   std::vector<std::uint32_t> drawOrder;
   std::vector<GpuLight> gpuLights;
@@ -482,13 +484,11 @@ void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s,
     PushConstants pc;
     pc.lightViewProj = shadowViewProj[layer];
     vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
+    std::uint32_t bound = ~0u;
     for (const DrawGroup& g : s.opaqueGroups) {
       const MeshRecord& m = s.meshes[g.mesh];
-      VkBuffer vb = m.buffer.handle();
-      VkDeviceSize off = 0;
-      vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &off);
-      vkCmdBindIndexBuffer(cmd, vb, m.indexOffset, VK_INDEX_TYPE_UINT32);
-      vkCmdDrawIndexed(cmd, m.indexCount, g.count, 0, 0, g.first);
+      if (m.span.block != bound) s.geometry->bind(cmd, bound = m.span.block, 1);
+      vkCmdDrawIndexed(cmd, m.indexCount, g.count, firstIndexOf(m), vertexOffsetOf(m), g.first);
       stats.shadowTriangles += std::uint64_t(m.indexCount / 3) * g.count;
     }
     vkCmdEndRendering(cmd);
@@ -561,9 +561,11 @@ void Renderer::Impl::beginMain(VkCommandBuffer cmd, const RenderSettings& settin
   vkCmdSetViewport(cmd, 0, 1, &vp);
   vkCmdSetScissor(cmd, 0, 1, &ri.renderArea);
   boundPipeline = VK_NULL_HANDLE;
+  boundBlock = boundMaterial = ~0u;
 }
 
-// Pipeline (when it changes), mesh buffers, material set and push constants for one draw.
+// Pipeline, geometry block, material set and push constants for one draw,
+// each only when it differs from what the pass has bound.
 void Renderer::Impl::bindDraw(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
                               std::uint32_t meshIndex, std::uint32_t material) {
   VkPipeline p = mainPipeline(settings.msaaSamples, s.materials[material].material, shadows);
@@ -571,35 +573,44 @@ void Renderer::Impl::bindDraw(VkCommandBuffer cmd, const SceneState& s, const Re
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
     boundPipeline = p;
   }
-  const MeshRecord& m = s.meshes[meshIndex];
-  VkBuffer vb[3] = {m.buffer.handle(), m.buffer.handle(), m.buffer.handle()};
-  VkDeviceSize off[3] = {0, m.normalOffset, m.uvOffset};
-  vkCmdBindVertexBuffers(cmd, 0, 3, vb, off);
-  // Bound at 0 with the offset in firstIndex (firstIndexOf): lavapipe's
-  // indirect draws ignore the offset of the bound index buffer.
-  vkCmdBindIndexBuffer(cmd, m.buffer.handle(), 0, VK_INDEX_TYPE_UINT32);
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &s.materials[material].set, 0, nullptr);
-  PushConstants pc;
-  pc.material = material;
-  vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
+  const std::uint32_t block = s.meshes[meshIndex].span.block;
+  if (block != boundBlock) s.geometry->bind(cmd, boundBlock = block, 3);
+  if (material != boundMaterial) {
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &s.materials[material].set, 0, nullptr);
+    PushConstants pc;
+    pc.material = material;
+    vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
+    boundMaterial = material;
+  }
 }
 
 // Opaque groups in draw order: instanced, or (guided) one indirect command
-// per draw position, 20 bytes each, whose instance count the culler set.
+// per draw position, 20 bytes each, whose instance count the culler set. A
+// run of groups with the same material and geometry block needs no new
+// bindings, so it is one indirect call.
 void Renderer::Impl::drawOpaque(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
                                 VkBuffer indirect, RenderStats& stats) {
-  for (const DrawGroup& g : s.opaqueGroups) {
+  const auto& groups = s.opaqueGroups;
+  for (std::size_t i = 0; i < groups.size();) {
+    const DrawGroup& g = groups[i];
     bindDraw(cmd, s, settings, shadows, g.mesh, g.material);
     ++stats.drawCalls;
     if (indirect) {
-      vkCmdDrawIndexedIndirect(cmd, indirect, VkDeviceSize(g.first) * sizeof(VkDrawIndexedIndirectCommand), g.count,
+      std::size_t end = i + 1;
+      while (end < groups.size() && groups[end].material == g.material &&
+             s.meshes[groups[end].mesh].span.block == s.meshes[g.mesh].span.block)
+        ++end;
+      const std::uint32_t count = groups[end - 1].first + groups[end - 1].count - g.first;
+      vkCmdDrawIndexedIndirect(cmd, indirect, VkDeviceSize(g.first) * sizeof(VkDrawIndexedIndirectCommand), count,
                                sizeof(VkDrawIndexedIndirectCommand));
+      i = end;
       continue;
     }
     const MeshRecord& m = s.meshes[g.mesh];
-    vkCmdDrawIndexed(cmd, m.indexCount, g.count, firstIndexOf(m), 0, g.first);
+    vkCmdDrawIndexed(cmd, m.indexCount, g.count, firstIndexOf(m), vertexOffsetOf(m), g.first);
     stats.triangles += std::uint64_t(m.indexCount / 3) * g.count;
     stats.objects += g.count;
+    ++i;
   }
 }
 
@@ -609,7 +620,7 @@ void Renderer::Impl::drawTransparent(VkCommandBuffer cmd, const SceneState& s, c
     const InstanceRecord& inst = s.instances[transparentSorted[i]];
     bindDraw(cmd, s, settings, shadows, inst.mesh, inst.material);
     const MeshRecord& m = s.meshes[inst.mesh];
-    vkCmdDrawIndexed(cmd, m.indexCount, 1, firstIndexOf(m), 0, transparentBase + i);
+    vkCmdDrawIndexed(cmd, m.indexCount, 1, firstIndexOf(m), vertexOffsetOf(m), transparentBase + i);
     ++stats.drawCalls;
     stats.triangles += m.indexCount / 3;
     ++stats.objects;

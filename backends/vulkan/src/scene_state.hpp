@@ -2,6 +2,7 @@
 
 #include "buffer.hpp"
 #include "emitter_lights.hpp"
+#include "geometry_arena.hpp"
 #include "gpu_types.hpp"
 #include "image.hpp"
 
@@ -20,14 +21,11 @@
 
 namespace tsr::vk {
 
-// One vertex/index buffer per mesh: positions | normals | uvs | indices.
+// A mesh: its place in the geometry arena and what is known about it.
 struct MeshRecord {
-  Buffer buffer;
+  GeometrySpan span;
   std::uint32_t vertexCount = 0;
   std::uint32_t indexCount = 0;
-  VkDeviceSize normalOffset = 0;
-  VkDeviceSize uvOffset = 0;
-  VkDeviceSize indexOffset = 0;
   std::vector<glm::vec3> positions;    // CPU copy for bounds and emitter patches
   std::vector<std::uint32_t> indices;  // CPU copy for emitter patches
   std::vector<EmitterPatch> patches;   // made when an emissive instance first uses the mesh
@@ -39,9 +37,10 @@ struct MeshRecord {
   bool alive = false;
 };
 
-// Where a mesh's indices start in its buffer, in indices (indexOffset is a
-// multiple of 4): draws bind the buffer at 0 and start there.
-inline std::uint32_t firstIndexOf(const MeshRecord& m) { return std::uint32_t(m.indexOffset / 4); }
+// Where a mesh's indices start in its block's index buffer.
+inline std::uint32_t firstIndexOf(const MeshRecord& m) { return m.span.firstIndex; }
+// What draws add to the mesh's indices.
+inline std::int32_t vertexOffsetOf(const MeshRecord& m) { return std::int32_t(m.span.baseVertex); }
 
 struct InstanceRecord {
   std::uint32_t mesh = 0;
@@ -87,6 +86,7 @@ struct SceneState {
   std::shared_ptr<Device> device;
   std::uint64_t version = 0;
 
+  std::optional<GeometryArena> geometry;  // made with the scene
   std::vector<MeshRecord> meshes;
   std::vector<InstanceRecord> instances;
   std::vector<MaterialRecord> materials;

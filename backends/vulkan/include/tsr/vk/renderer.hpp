@@ -45,7 +45,7 @@ struct RenderStats {
 };
 
 // Rasterizes a Scene into a FrameBuffer: shadow passes, then opaque
-// instances grouped by (mesh, material) and drawn instanced, then
+// instances grouped by (material, mesh) and drawn instanced, then
 // transparent instances back to front; MSAA resolve; readback. Each render
 // waits for the GPU, so scenes may be edited as soon as it returns.
 class Renderer {
