@@ -14,8 +14,9 @@ namespace {
 
 constexpr std::uint32_t kFirstVertices = 1u << 16;
 constexpr std::uint32_t kMaxVertices = 1u << 23;  // 8 Mi vertices, 256 MiB of streams
-constexpr VkBufferUsageFlags kVertexUsage = VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-constexpr VkBufferUsageFlags kIndexUsage = VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+constexpr VkBufferUsageFlags kTransfer = VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+constexpr VkBufferUsageFlags kVertexUsage = VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | kTransfer;
+constexpr VkBufferUsageFlags kIndexUsage = VK_BUFFER_USAGE_INDEX_BUFFER_BIT | kTransfer;
 
 }  // namespace
 
@@ -64,6 +65,28 @@ void GeometryArena::write(const Buffer& dst, VkDeviceSize offset, const void* by
     std::memcpy(static_cast<std::uint8_t*>(dst.mapped()) + offset, bytes, size);
   else
     uploadToBuffer(device_, dst, offset, bytes, size);
+}
+
+void GeometryArena::read(const Buffer& src, VkDeviceSize offset, void* bytes, VkDeviceSize size) const {
+  if (size == 0) return;
+  if (src.mapped())
+    std::memcpy(bytes, static_cast<const std::uint8_t*>(src.mapped()) + offset, size);
+  else
+    downloadFromBuffer(device_, src, offset, bytes, size);
+}
+
+std::vector<glm::vec3> GeometryArena::positions(const GeometrySpan& span, std::uint32_t count) const {
+  std::vector<glm::vec3> out(count);
+  read(blocks_[span.block].positions, VkDeviceSize(span.baseVertex) * sizeof(glm::vec3), out.data(),
+       VkDeviceSize(count) * sizeof(glm::vec3));
+  return out;
+}
+
+std::vector<std::uint32_t> GeometryArena::indices(const GeometrySpan& span, std::uint32_t count) const {
+  std::vector<std::uint32_t> out(count);
+  read(blocks_[span.block].indices, VkDeviceSize(span.firstIndex) * sizeof(std::uint32_t), out.data(),
+       VkDeviceSize(count) * sizeof(std::uint32_t));
+  return out;
 }
 
 GeometrySpan GeometryArena::add(const MeshData& data) {

@@ -38,6 +38,11 @@ class GeometryArena {
   void updateVertices(const GeometrySpan& span, std::uint32_t first, std::span<const glm::vec3> positions,
                       std::span<const glm::vec3> normals);
   void release(const GeometrySpan& span);
+  // A mesh's positions and indices read back, for the rare uses that need
+  // them on the CPU (emitter patches, bounds after a vertex edit): the
+  // scene keeps no copy.
+  std::vector<glm::vec3> positions(const GeometrySpan& span, std::uint32_t count) const;
+  std::vector<std::uint32_t> indices(const GeometrySpan& span, std::uint32_t count) const;
 
   // Binds the block's position stream (streams = 1) or all three, and its indices.
   void bind(VkCommandBuffer cmd, std::uint32_t block, std::uint32_t streams) const;
@@ -52,6 +57,7 @@ class GeometryArena {
   };
   std::uint32_t blockFor(std::uint32_t vertices, std::uint32_t indices);
   void write(const Buffer& dst, VkDeviceSize offset, const void* bytes, VkDeviceSize size);
+  void read(const Buffer& src, VkDeviceSize offset, void* bytes, VkDeviceSize size) const;
 
   const Device& device_;
   std::vector<Block> blocks_;

@@ -255,6 +255,7 @@ Scene::~Scene() {
 const Device& Scene::device() const { return *state_->device; }
 std::uint64_t Scene::version() const { return state_->version; }
 std::uint64_t Scene::geometryBytesUploaded() const { return state_->geometryBytes; }
+std::uint64_t Scene::geometryBytesHeld() const { return state_->geometry->bytesAllocated(); }
 std::uint64_t Scene::instanceBytesWritten() const { return state_->instanceBytes; }
 
 std::size_t Scene::instanceCount() const {
@@ -291,9 +292,7 @@ MeshId Scene::addMesh(const MeshData& data) {
   m.indexCount = std::uint32_t(data.indices.size());
   m.span = s.geometry->add(data);
   s.geometryBytes += n * (2 * sizeof(glm::vec3) + sizeof(glm::vec2)) + data.indices.size() * sizeof(std::uint32_t);
-  m.positions = data.positions;
-  m.indices = data.indices;
-  m.area = meshArea(m.positions, m.indices);
+  m.area = meshArea(data.positions, data.indices);
   m.boundsMin = m.boundsMax = data.positions[0];
   for (const auto& p : data.positions) {
     m.boundsMin = glm::min(m.boundsMin, p);
@@ -322,11 +321,12 @@ void Scene::updateMeshVertices(MeshId mesh, std::uint32_t first, std::span<const
 
   s.geometry->updateVertices(m.span, first, positions, normals);
   s.geometryBytes += positions.size_bytes() + normals.size_bytes();
-  std::copy(positions.begin(), positions.end(), m.positions.begin() + first);
   m.patchesDirty = true;
-  m.area = meshArea(m.positions, m.indices);
-  m.boundsMin = m.boundsMax = m.positions[0];
-  for (const auto& p : m.positions) {
+  // Bounds and area of the whole mesh again, from the arena: the scene keeps no CPU copy.
+  const std::vector<glm::vec3> all = s.geometry->positions(m.span, m.vertexCount);
+  m.area = meshArea(all, s.geometry->indices(m.span, m.indexCount));
+  m.boundsMin = m.boundsMax = all[0];
+  for (const auto& p : all) {
     m.boundsMin = glm::min(m.boundsMin, p);
     m.boundsMax = glm::max(m.boundsMax, p);
   }

@@ -26,9 +26,7 @@ struct MeshRecord {
   GeometrySpan span;
   std::uint32_t vertexCount = 0;
   std::uint32_t indexCount = 0;
-  std::vector<glm::vec3> positions;    // CPU copy for bounds and emitter patches
-  std::vector<std::uint32_t> indices;  // CPU copy for emitter patches
-  std::vector<EmitterPatch> patches;   // made when an emissive instance first uses the mesh
+  std::vector<EmitterPatch> patches;  // made when an emissive instance first uses the mesh
   bool patchesDirty = true;
   float area = 0.0f;  // surface area, for the emitters' ambient term
   glm::vec3 boundsMin{0.0f};

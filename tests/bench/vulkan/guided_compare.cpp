@@ -107,6 +107,12 @@ int main(int argc, char** argv) {
       {"outside, from the side", looking(inside, glm::vec3(lo.x - 20, 5, centre.z), centre)},
   };
   full.render(session.replica, inside);  // conversion, not measured
+  const auto& vkScene =
+      dynamic_cast<const med::vulkan_mediator::VulkanViewport&>(*full.viewport).context().adapter.scene();
+  const std::uint64_t sceneTriangles = full.render(session.replica, inside).counts.triangles;
+  std::printf("geometry held by the rasterizer: %.1f MB for %llu triangles, %.1f bytes per triangle\n",
+              double(vkScene.geometryBytesHeld()) / 1e6, static_cast<unsigned long long>(sceneTriangles),
+              double(vkScene.geometryBytesHeld()) / double(std::max<std::uint64_t>(sceneTriangles, 1)));
   std::printf("%s, %ux%u, %d still frames per view (median)\n", sceneName.c_str(), width, height, frames);
   std::printf("%-24s | %9s %11s %7s | %9s %11s %7s | %7s | %10s %10s\n", "view", "full ms", "triangles", "objects",
               "guided ms", "triangles", "objects", "ratio", "diff first", "diff still");
