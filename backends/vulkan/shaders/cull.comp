@@ -3,8 +3,9 @@
 // opaque draw position. Phase 0 (early): a draw command for each object seen
 // last frame and inside the frustum. Phase 1 (late): every object's bounds
 // against the depth pyramid of what the early draws left; visible ones not
-// drawn early get a command, and the visibility of all is kept for the next
-// frame. Commands keep their positions, so the draw order is the full draw's.
+// drawn early get a command. Phase 2 (after the frame): every object against
+// the pyramid of the finished frame, which is what the next early phase
+// draws. Commands keep their positions, so the draw order is the full draw's.
 layout(local_size_x = 64) in;
 
 struct Instance {
@@ -92,7 +93,10 @@ void main() {
     return;
   }
   bool seen = inside && !occluded(c);
+  if (pc.params.y == 2u) {
+    visible[slot] = seen ? 1u : 0u;
+    return;
+  }
   bool drawnEarly = early[pos].instanceCount != 0u;
   late[pos] = Command(r.info.y, seen && !drawnEarly ? 1u : 0u, r.info.z, int(r.info.w), pos);
-  visible[slot] = seen ? 1u : 0u;
 }

@@ -103,6 +103,11 @@ void OcclusionCuller::recordLate(VkCommandBuffer cmd, const glm::mat4& viewProj,
   dispatch(cmd, viewProj, 1, width, height);
 }
 
+void OcclusionCuller::recordVisibility(VkCommandBuffer cmd, const glm::mat4& viewProj, std::uint32_t width,
+                                       std::uint32_t height) {
+  dispatch(cmd, viewProj, 2, width, height);
+}
+
 void OcclusionCuller::dispatch(VkCommandBuffer cmd, const glm::mat4& viewProj, std::uint32_t phase, std::uint32_t width,
                                std::uint32_t height) {
   if (count_ > 0) {

@@ -17,8 +17,10 @@ namespace tsr::vk {
 // Two-phase occlusion culling for one renderer (one viewport, tile or eye),
 // after zeux's niagara: the early phase draws what was visible last frame;
 // its depth becomes a pyramid; the late phase tests every object's bounds
-// against it and draws the visible ones not drawn yet. What the late test
-// finds visible is what the next early phase draws.
+// against it and draws the visible ones not drawn yet. Unlike niagara, the
+// finished frame's depth is tested once more for the next early phase: the
+// late test against a sparse early depth passes many hidden objects (all of
+// them on a first frame), which would otherwise be drawn early next frame.
 //
 // Draw commands are indexed by position in the renderer's draw order (one
 // per opaque instance, instanceCount 0 or 1, firstInstance = position), so
@@ -36,8 +38,10 @@ class OcclusionCuller {
   // pyramid must be sized (DepthPyramid::ensure) first.
   void recordEarly(VkCommandBuffer cmd, const SceneState& s, const glm::mat4& viewProj, const DepthPyramid& pyramid,
                    std::uint32_t width, std::uint32_t height);
-  // Late commands and next frame's visibility, from the built pyramid.
+  // Late commands, from the pyramid of the early draws.
   void recordLate(VkCommandBuffer cmd, const glm::mat4& viewProj, std::uint32_t width, std::uint32_t height);
+  // Next frame's visibility, from the pyramid of the finished frame.
+  void recordVisibility(VkCommandBuffer cmd, const glm::mat4& viewProj, std::uint32_t width, std::uint32_t height);
 
   VkBuffer earlyCommands() const { return early_.handle(); }
   VkBuffer lateCommands() const { return late_.handle(); }

@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -121,6 +122,7 @@ struct Renderer::Impl {
                   std::uint32_t transparentBase, RenderStats& stats);
   void recordGuided(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
                     std::uint32_t transparentBase, RenderStats& stats);
+  void testAgainstDepth(VkCommandBuffer cmd, const std::function<void()>& test);
   void readColour(FrameBuffer& fb) const;
 };
 
@@ -637,8 +639,9 @@ void Renderer::Impl::recordMain(VkCommandBuffer cmd, const SceneState& s, const 
   vkCmdEndRendering(cmd);
 }
 
-// Main pass, guided: early draws, depth pyramid, late test, late draws, then
-// transparent instances (never culled) on top.
+// Main pass, guided: early draws, depth pyramid, late test, late draws,
+// transparent instances (never culled) on top, then next frame's visibility
+// from the finished depth.
 void Renderer::Impl::recordGuided(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings,
                                   bool shadows, std::uint32_t transparentBase, RenderStats& stats) {
   const RenderTarget& t = *target;
@@ -653,16 +656,7 @@ void Renderer::Impl::recordGuided(VkCommandBuffer cmd, const SceneState& s, cons
   drawOpaque(cmd, s, settings, shadows, culler->earlyCommands(), stats);
   vkCmdEndRendering(cmd);
 
-  imageBarrier(cmd, t.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
-               VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-               VK_ACCESS_SHADER_READ_BIT);
-  pyramid->record(cmd);
-  culler->recordLate(cmd, viewProj, t.width, t.height);
-  imageBarrier(cmd, t.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-               VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0,
-               VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
-               VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+  testAgainstDepth(cmd, [&] { culler->recordLate(cmd, viewProj, t.width, t.height); });
   VkMemoryBarrier colour = vkStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
   colour.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
   colour.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT |
@@ -676,6 +670,23 @@ void Renderer::Impl::recordGuided(VkCommandBuffer cmd, const SceneState& s, cons
   drawOpaque(cmd, s, settings, shadows, culler->lateCommands(), stats);
   drawTransparent(cmd, s, settings, shadows, transparentBase, stats);
   vkCmdEndRendering(cmd);
+  testAgainstDepth(cmd, [&] { culler->recordVisibility(cmd, viewProj, t.width, t.height); });
+}
+
+// The depth attachment reduced into the pyramid, `test` recorded against
+// it, and the attachment made writable again (contents kept).
+void Renderer::Impl::testAgainstDepth(VkCommandBuffer cmd, const std::function<void()>& test) {
+  const RenderTarget& t = *target;
+  imageBarrier(cmd, t.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+               VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+               VK_ACCESS_SHADER_READ_BIT);
+  pyramid->record(cmd);
+  test();
+  imageBarrier(cmd, t.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+               VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0,
+               VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+               VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
 }
 
 void Renderer::Impl::readColour(FrameBuffer& fb) const {
