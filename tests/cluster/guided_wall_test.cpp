@@ -1,6 +1,7 @@
-// visibility=guided on a 2x2 wall of real tessera-node processes running
-// the Vulkan back-end: every tile equals the same tile rendered locally
-// with visibility=all, bit for bit, frame after frame and while the camera moves.
+// visibility=guided on real tessera-node processes running the Vulkan
+// back-end: every tile of a 2x2 wall, and each eye of a stereo pair on two
+// nodes, equals the same view rendered locally with visibility=all, bit for
+// bit, frame after frame and while the camera moves.
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -53,6 +54,40 @@ TEST(ClusterGuided, WallTilesGuidedEqualLocalFullDraw) {
           differ += f.image.colour[f.image.index(x, y)] != tile.colour[tile.index(x - r.x0, y - r.y0)];
       EXPECT_EQ(differ, 0u) << "frame " << frame << ", tile at " << r.x0 << "," << r.y0;
     }
+  }
+}
+
+TEST(ClusterGuided, StereoEyesOnTwoNodesGuidedEqualLocalFullDraw) {
+  auto nodes = startNodes(2);
+  med::Parameters guided;
+  guided.set("visibility", std::string("guided"));
+  ClusterConfig c = configFor(ClusterMode::Stereo, nodes, guided);
+  for (auto& n : c.nodes) n.backend = "vulkan";
+
+  AnimatedScene s("builtin:plant:20000");
+  sg::Replica replica;
+  med::ViewportRegistry registry;
+  med::registerVulkan(registry);
+  med::ContextPool contexts;
+  auto left = registry.create({"vulkan", s.imported.root, s.imported.background, {}, true}, contexts);
+  auto right = registry.create({"vulkan", s.imported.root, s.imported.background, {}, true}, contexts);
+  ClusterWindow window(std::move(c));
+  window.setContent(s.imported.root, s.imported.background);
+  window.setEyes(0.065f, 5.0f);
+  ASSERT_EQ(window.connect(5s), 2u);
+  auto delta = s.scene.commit();
+  replica.apply(delta);
+  window.publish(s.scene, delta);
+
+  const med::View view = med::View::fromCamera(*s.scene.find<sg::Camera>(s.imported.cameras.front()), kWidth, kHeight);
+  for (int frame = 0; frame < 3; ++frame) {
+    ClusterFrame f = window.render(view);
+    med::FrameBuffer l, r;
+    left->render(replica, view.eye(med::Eye::Left, 0.065f, 5.0f), l);
+    right->render(replica, view.eye(med::Eye::Right, 0.065f, 5.0f), r);
+    EXPECT_TRUE(bitwiseEqual(f.left, l)) << "frame " << frame;
+    EXPECT_TRUE(bitwiseEqual(f.right, r)) << "frame " << frame;
+    EXPECT_FALSE(bitwiseEqual(l, r)) << "the eyes must differ";
   }
 }
 
