@@ -57,6 +57,7 @@ parsed::Scene parseCached(const std::string& source, const ImportOptions& option
   const std::filesystem::path entry = cache::entryPath(options.cacheDir, key);
   std::string why;
   if (std::optional<parsed::Scene> kept = cache::load(entry, key, why)) {
+    spdlog::info("{}: converted scene read from {}", source, entry.string());
     note = "hit";
     return std::move(*kept);
   }
@@ -71,6 +72,7 @@ parsed::Scene parseCached(const std::string& source, const ImportOptions& option
     note = "not stored (" + failed + ")";
   else
     note = refused ? "rebuilt (" + why + ")" : "stored";
+  spdlog::info("{}: converted scene {} in {}", source, note, options.cacheDir);
   return scene;
 }
 
