@@ -1,6 +1,7 @@
 #pragma once
 // --max-file-mb and --max-elements: the bounds every program that reads
-// scene files puts on them, declared the same way everywhere.
+// scene files puts on them, and --import-cache, where it keeps converted
+// scenes; declared the same way everywhere.
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
@@ -20,6 +21,8 @@ class ImportLimitOptions {
     app.add_option("--max-elements", import.maxJsonValues,
                    "most values a glTF's JSON may hold; larger files are refused before parsing")
         ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40));
+    app.add_option("--import-cache", import.cacheDir,
+                   "folder for converted scenes: a file's second load reads its conversion from there");
   }
   void apply(sg::ImportOptions& import) const { import.maxFileBytes = maxFileMb_ << 20; }
 

@@ -39,6 +39,7 @@ using Clock = std::chrono::steady_clock;
 
 struct Options {
   std::string config, scene, nodes, tokenFile, size, output, camera;
+  std::vector<std::string> params;  // --param name=value, for every node whose back-end takes it
   tsr::sg::ImportOptions import;
   std::uint64_t frames = 0;  // 0: until interrupted
   std::int64_t spp = 0;      // 0: the config's
@@ -98,6 +99,17 @@ int run(const Options& o) {
     const tsr::med::ParameterTable& table = registry.capabilities(n.backend).parameters;
     if (o.spp > 0 && table.declares("spp")) n.parameters.set("spp", o.spp);
     tsr::app::usePreviewFilterUnlessSet(n.parameters, &table);
+  }
+  for (const std::string& p : o.params) {
+    auto [name, value] = tsr::med::Parameters::parse(p);
+    bool taken = false;
+    for (auto& n : config.nodes) {
+      if (!registry.has(n.backend) || !registry.capabilities(n.backend).parameters.declares(name)) continue;
+      registry.capabilities(n.backend).parameters.validate(name, value);
+      n.parameters.set(name, value);
+      taken = true;
+    }
+    if (!taken) throw std::invalid_argument("--param " + p + ": no node's back-end takes '" + name + "'");
   }
   if (!config.nodes.empty()) std::cout << tsr::app::previewFilterLine(config.nodes.front().parameters) << std::endl;
   config.validate();
@@ -237,6 +249,9 @@ int main(int argc, char** argv) {
   app.add_flag("--pixels-back", o.pixelsBack,
                "every frame's pixels come back to this client, as they would for a preview (default: they stay on "
                "the nodes, which present them)");
+  app.add_option("--param", o.params,
+                 "back-end parameter name=value for every node whose back-end takes it (repeatable), e.g. "
+                 "visibility=guided");
   app.add_option("--log-level", logLevel, "trace, debug, info, warn, error")->capture_default_str();
   tsr::app::ImportLimitOptions importLimits;
   importLimits.add(app, o.import);

@@ -156,7 +156,10 @@ TEST_F(RenderCommand, ListParamsPrintsTheBackEndsTable) {
   const Outcome vulkan = run("--list-params vulkan");
   ASSERT_EQ(vulkan.status, 0);
   EXPECT_NE(vulkan.out.find("msaa "), std::string::npos);
+  EXPECT_NE(vulkan.out.find("choice all|guided"), std::string::npos) << vulkan.out;
   EXPECT_EQ(vulkan.out.find("spp "), std::string::npos);
+  EXPECT_EQ(run("builtin:plant:2000 --size 16x8 --backend vulkan --param visibility=guided").status, 0);
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --backend vulkan --param visibility=some"), "one of all|guided");
   expectOneErrorLine(run("--list-params nosuch"), "unknown back-end 'nosuch' (known: coverage, embree, vulkan)");
 }
 

@@ -72,4 +72,15 @@ void uploadToBuffer(const Device& device, const Buffer& dst, VkDeviceSize dstOff
   });
 }
 
+void downloadFromBuffer(const Device& device, const Buffer& src, VkDeviceSize srcOffset, void* bytes,
+                        VkDeviceSize size) {
+  if (size == 0) return;
+  Buffer staging(device, size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, Buffer::kHost);
+  device.submitAndWait([&](VkCommandBuffer cmd) {
+    VkBufferCopy region{srcOffset, 0, size};
+    vkCmdCopyBuffer(cmd, src.handle(), staging.handle(), 1, &region);
+  });
+  std::memcpy(bytes, staging.mapped(), size);
+}
+
 }  // namespace tsr::vk

@@ -44,5 +44,8 @@ class Buffer {
 // data, waiting for completion.
 void uploadToBuffer(const Device& device, const Buffer& dst, VkDeviceSize dstOffset, const void* bytes,
                     VkDeviceSize size);
+// The reverse: `size` bytes of src (which needs TRANSFER_SRC usage) from srcOffset.
+void downloadFromBuffer(const Device& device, const Buffer& src, VkDeviceSize srcOffset, void* bytes,
+                        VkDeviceSize size);
 
 }  // namespace tsr::vk

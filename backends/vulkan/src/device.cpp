@@ -148,6 +148,8 @@ std::shared_ptr<Device> Device::create(const DeviceOptions& options) {
   enable13.dynamicRendering = VK_TRUE;
   VkPhysicalDeviceFeatures2 enable = vkStruct<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2);
   enable.pNext = &enable13;
+  enable.features.multiDrawIndirect = supported.features.multiDrawIndirect;
+  d->multiDrawIndirect_ = supported.features.multiDrawIndirect == VK_TRUE;
 
   float priority = 1.0f;
   VkDeviceQueueCreateInfo qci = vkStruct<VkDeviceQueueCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO);

@@ -168,7 +168,8 @@ std::vector<EmitterLight> emitterLights(SceneState& s, std::uint32_t budget) {
     if (!material.isEmissive()) continue;
     MeshRecord& mesh = s.meshes[inst.mesh];
     if (mesh.patchesDirty) {
-      mesh.patches = meshEmitterPatches(mesh.positions, mesh.indices);
+      mesh.patches = meshEmitterPatches(s.geometry->positions(mesh.span, mesh.vertexCount),
+                                        s.geometry->indices(mesh.span, mesh.indexCount));
       mesh.patchesDirty = false;
     }
     const glm::mat3 linear(inst.transform);

@@ -154,13 +154,11 @@ std::uint32_t IdPass::render(SceneState& s, const Camera& camera, const Region& 
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.handle());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
   std::uint32_t draws = 0;
-  for (const DrawGroup& g : s.opaqueGroups) {  // grouped by (mesh, material); here only the mesh matters
+  std::uint32_t bound = ~0u;
+  for (const DrawGroup& g : s.opaqueGroups) {  // grouped by (material, mesh); here only the mesh matters
     const MeshRecord& m = s.meshes[g.mesh];
-    VkBuffer vb = m.buffer.handle();
-    VkDeviceSize off = 0;
-    vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &off);
-    vkCmdBindIndexBuffer(cmd, vb, m.indexOffset, VK_INDEX_TYPE_UINT32);
-    vkCmdDrawIndexed(cmd, m.indexCount, g.count, 0, 0, g.first);
+    if (m.span.block != bound) s.geometry->bind(cmd, bound = m.span.block, 1);
+    vkCmdDrawIndexed(cmd, m.indexCount, g.count, firstIndexOf(m), vertexOffsetOf(m), g.first);
     ++draws;
   }
   vkCmdEndRendering(cmd);

@@ -47,7 +47,9 @@ RenderTarget::RenderTarget(const Device& device, std::uint32_t w, std::uint32_t 
   ImageDesc d = c;
   d.format = kDepthFormat;
   d.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
-  d.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | (ms ? 0 : VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+  // Sampled: guided rendering builds its depth pyramid from it.
+  d.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+            (ms ? 0 : VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
   depth = Image(device, d);
   if (ms) {
     c.samples = d.samples = VK_SAMPLE_COUNT_1_BIT;

@@ -2,9 +2,11 @@
 
 #include "buffer.hpp"
 #include "command_slot.hpp"
+#include "depth_pyramid.hpp"
 #include "emitter_lights.hpp"
 #include "gpu_types.hpp"
 #include "id_pass.hpp"
+#include "occlusion_culler.hpp"
 #include "pipeline.hpp"
 #include "readback.hpp"
 #include "render_target.hpp"
@@ -20,9 +22,11 @@
 
 #include <algorithm>
 #include <cstring>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 
 namespace tsr::vk {
 
@@ -66,7 +70,24 @@ struct Renderer::Impl {
   Buffer drawOrderBuffer;
   std::optional<RenderTarget> target;
   std::optional<ShadowMap> shadowMap;
-  std::unique_ptr<IdPass> idPass;  // made on first renderIds
+  // What the shadow maps hold. They do not depend on the camera, so they are
+  // drawn again only when the scene (any edit bumps its version) or the
+  // lights' projections change.
+  struct ShadowKey {
+    const SceneState* scene = nullptr;
+    std::uint64_t version = 0;
+    std::vector<glm::mat4> viewProj;
+    bool operator==(const ShadowKey&) const = default;
+  };
+  std::optional<ShadowKey> shadowsHeld;     // after a completed frame
+  std::optional<ShadowKey> shadowsPending;  // recorded this frame
+  std::unique_ptr<IdPass> idPass;           // made on first renderIds
+  std::unique_ptr<OcclusionCuller> culler;  // made on the first guided frame
+  std::unique_ptr<DepthPyramid> pyramid;
+  glm::mat4 viewProj{1.0f};                   // this frame's
+  VkPipeline boundPipeline = VK_NULL_HANDLE;  // in the current main pass
+  std::uint32_t boundBlock = ~0u;
+  std::uint32_t boundMaterial = ~0u;
 
   std::vector<std::uint32_t> drawOrder;
   std::vector<GpuLight> gpuLights;
@@ -89,8 +110,19 @@ struct Renderer::Impl {
                     std::uint32_t shadowLayers);
   void recordShadows(VkCommandBuffer cmd, const SceneState& s, const std::vector<glm::mat4>& shadowViewProj,
                      RenderStats& stats);
+  void prepareAttachments(VkCommandBuffer cmd);
+  void beginMain(VkCommandBuffer cmd, const RenderSettings& settings, bool load);
+  void bindDraw(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
+                std::uint32_t meshIndex, std::uint32_t material);
+  void drawOpaque(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
+                  VkBuffer indirect, RenderStats& stats);
+  void drawTransparent(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
+                       std::uint32_t transparentBase, RenderStats& stats);
   void recordMain(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
                   std::uint32_t transparentBase, RenderStats& stats);
+  void recordGuided(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
+                    std::uint32_t transparentBase, RenderStats& stats);
+  void testAgainstDepth(VkCommandBuffer cmd, const std::function<void()>& test);
   void readColour(FrameBuffer& fb) const;
 };
 
@@ -196,6 +228,8 @@ void Renderer::setSettings(const RenderSettings& settings) {
     throw Error("shadowMapSize must be in [16, 8192], got " + std::to_string(settings.shadowMapSize));
   for (int i = 0; i < 4; ++i)
     if (!std::isfinite(settings.background[i])) throw Error("background colour contains NaN or infinity");
+  if (settings.visibility == Visibility::Guided && !device_->multiDrawIndirect())
+    throw Error("guided visibility needs multiDrawIndirect, which " + device_->name() + " lacks");
   impl_->mainPipeline(settings.msaaSamples, Material{}, settings.shadows);  // fails here, not mid-frame
   settings_ = settings;
 }
@@ -224,14 +258,25 @@ void Renderer::render(Scene& scene, const Camera& camera, const Region& region, 
   check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.layout, 0, 1, &r.frameSet, 0, nullptr);
   r.recordShadows(cmd, s, shadowViewProj, stats);
-  r.recordMain(cmd, s, settings_, !shadowViewProj.empty(), transparentBase, stats);
+  const bool guided = settings_.visibility == Visibility::Guided;
+  if (guided)
+    r.recordGuided(cmd, s, settings_, !shadowViewProj.empty(), transparentBase, stats);
+  else
+    r.recordMain(cmd, s, settings_, !shadowViewProj.empty(), transparentBase, stats);
   const RenderTarget& t = *r.target;
   recordReadback(cmd, t.resolvedColour(), t.resolvedDepth(), t.colourReadback, t.depthReadback, t.width, t.height);
   check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
   r.commands->submitAndWait("frame");
+  if (r.shadowsPending) r.shadowsHeld = std::exchange(r.shadowsPending, std::nullopt);
 
   r.readColour(fb);
   readLinearDepth(t.depthReadback, camera, fb.depth_);
+  if (guided) {
+    const OcclusionCuller::Drawn d = r.culler->drawn();
+    stats.triangles += d.earlyTriangles + d.lateTriangles;
+    stats.objects += d.earlyObjects + d.lateObjects;
+    stats.lateObjects = d.lateObjects;
+  }
   stats_ = stats;
 }
 
@@ -362,7 +407,8 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
   const VkSampleCountFlagBits samples = sampleBits(settings.msaaSamples);
   const glm::vec3 camPos(camera.cameraToWorld[3]);
   GpuFrame frame{};
-  frame.viewProj = camera.projection(region) * camera.worldToCamera();
+  viewProj = camera.projection(region) * camera.worldToCamera();
+  frame.viewProj = viewProj;
   frame.cameraPos = glm::vec4(camPos, 1.0f);
   frame.ambient = glm::vec4(s.environment.averageRadiance() + ambientFromEmitters, 0.0f);
   frame.counts = glm::uvec4(std::uint32_t(gpuLights.size()), 0u, 0u, 0u);
@@ -373,6 +419,7 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
   const std::uint32_t layers = std::max<std::uint32_t>(1, shadowLayers);
   if (!shadowMap || shadowMap->size() != settings.shadowMapSize || shadowMap->layers() < layers) {
     shadowMap.reset();
+    shadowsHeld.reset();
     shadowMap.emplace(device, settings.shadowMapSize, layers);
   }
   const ShadowMap& sm = *shadowMap;
@@ -408,6 +455,10 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
 // Shadow passes: opaque instances only, positions only.
 void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s,
                                    const std::vector<glm::mat4>& shadowViewProj, RenderStats& stats) {
+  ShadowKey key{&s, s.version, shadowViewProj};
+  if (shadowsHeld == key) return;  // still in SHADER_READ_ONLY_OPTIMAL from that frame
+  shadowsHeld.reset();
+  shadowsPending = std::move(key);
   const ShadowMap& sm = *shadowMap;
   imageBarrier(
       cmd, sm.image().handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -435,13 +486,11 @@ void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s,
     PushConstants pc;
     pc.lightViewProj = shadowViewProj[layer];
     vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
+    std::uint32_t bound = ~0u;
     for (const DrawGroup& g : s.opaqueGroups) {
       const MeshRecord& m = s.meshes[g.mesh];
-      VkBuffer vb = m.buffer.handle();
-      VkDeviceSize off = 0;
-      vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &off);
-      vkCmdBindIndexBuffer(cmd, vb, m.indexOffset, VK_INDEX_TYPE_UINT32);
-      vkCmdDrawIndexed(cmd, m.indexCount, g.count, 0, 0, g.first);
+      if (m.span.block != bound) s.geometry->bind(cmd, bound = m.span.block, 1);
+      vkCmdDrawIndexed(cmd, m.indexCount, g.count, firstIndexOf(m), vertexOffsetOf(m), g.first);
       stats.shadowTriangles += std::uint64_t(m.indexCount / 3) * g.count;
     }
     vkCmdEndRendering(cmd);
@@ -454,11 +503,9 @@ void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s,
                  VK_ACCESS_SHADER_READ_BIT, sm.layers());
 }
 
-// Main pass. Previous contents are discarded (UNDEFINED) and cleared.
-void Renderer::Impl::recordMain(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
-                                std::uint32_t transparentBase, RenderStats& stats) {
+// Main pass attachments made writable; previous contents are discarded (UNDEFINED).
+void Renderer::Impl::prepareAttachments(VkCommandBuffer cmd) {
   const RenderTarget& t = *target;
-  const std::uint32_t w = t.width, h = t.height;
   const VkPipelineStageFlags attachStages =
       VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
   std::vector<const Image*> colourImages = {&t.colour};
@@ -477,17 +524,23 @@ void Renderer::Impl::recordMain(VkCommandBuffer cmd, const SceneState& s, const 
                  attachStages | VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
                  VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
                      VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
+}
 
+// Begins the main pass: cleared, or (the guided late phase) loading what the
+// early phase drew.
+void Renderer::Impl::beginMain(VkCommandBuffer cmd, const RenderSettings& settings, bool load) {
+  const RenderTarget& t = *target;
+  const std::uint32_t w = t.width, h = t.height;
   VkRenderingAttachmentInfo ca = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
   ca.imageView = t.colour.view();
   ca.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-  ca.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  ca.loadOp = load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
   ca.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   ca.clearValue.color = {{settings.background.r, settings.background.g, settings.background.b, settings.background.a}};
   VkRenderingAttachmentInfo da = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
   da.imageView = t.depth.view();
   da.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-  da.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  da.loadOp = load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
   da.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   da.clearValue.depthStencil = {0.0f, 0};  // reversed depth: 0 is the far plane
   if (t.multisampled()) {
@@ -509,35 +562,131 @@ void Renderer::Impl::recordMain(VkCommandBuffer cmd, const SceneState& s, const 
   VkViewport vp{0.0f, 0.0f, float(w), float(h), 0.0f, 1.0f};
   vkCmdSetViewport(cmd, 0, 1, &vp);
   vkCmdSetScissor(cmd, 0, 1, &ri.renderArea);
+  boundPipeline = VK_NULL_HANDLE;
+  boundBlock = boundMaterial = ~0u;
+}
 
-  VkPipeline bound = VK_NULL_HANDLE;
-  auto draw = [&](std::uint32_t meshIndex, std::uint32_t material, std::uint32_t first, std::uint32_t count) {
-    VkPipeline p = mainPipeline(settings.msaaSamples, s.materials[material].material, shadows);
-    if (p != bound) {
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
-      bound = p;
-    }
-    const MeshRecord& m = s.meshes[meshIndex];
-    VkBuffer vb[3] = {m.buffer.handle(), m.buffer.handle(), m.buffer.handle()};
-    VkDeviceSize off[3] = {0, m.normalOffset, m.uvOffset};
-    vkCmdBindVertexBuffers(cmd, 0, 3, vb, off);
-    vkCmdBindIndexBuffer(cmd, m.buffer.handle(), m.indexOffset, VK_INDEX_TYPE_UINT32);
+// Pipeline, geometry block, material set and push constants for one draw,
+// each only when it differs from what the pass has bound.
+void Renderer::Impl::bindDraw(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
+                              std::uint32_t meshIndex, std::uint32_t material) {
+  VkPipeline p = mainPipeline(settings.msaaSamples, s.materials[material].material, shadows);
+  if (p != boundPipeline) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
+    boundPipeline = p;
+  }
+  const std::uint32_t block = s.meshes[meshIndex].span.block;
+  if (block != boundBlock) s.geometry->bind(cmd, boundBlock = block, 3);
+  if (material != boundMaterial) {
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &s.materials[material].set, 0, nullptr);
     PushConstants pc;
     pc.material = material;
     vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
-    vkCmdDrawIndexed(cmd, m.indexCount, count, 0, 0, first);
-    ++stats.drawCalls;
-    stats.triangles += std::uint64_t(m.indexCount / 3) * count;
-  };
-  for (const DrawGroup& g : s.opaqueGroups) draw(g.mesh, g.material, g.first, g.count);
-  if (!transparentSorted.empty()) {
-    for (std::uint32_t i = 0; i < transparentSorted.size(); ++i) {
-      const InstanceRecord& inst = s.instances[transparentSorted[i]];
-      draw(inst.mesh, inst.material, transparentBase + i, 1);
-    }
+    boundMaterial = material;
   }
+}
+
+// Opaque groups in draw order: instanced, or (guided) one indirect command
+// per draw position, 20 bytes each, whose instance count the culler set. A
+// run of groups with the same material and geometry block needs no new
+// bindings, so it is one indirect call.
+void Renderer::Impl::drawOpaque(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
+                                VkBuffer indirect, RenderStats& stats) {
+  const auto& groups = s.opaqueGroups;
+  for (std::size_t i = 0; i < groups.size();) {
+    const DrawGroup& g = groups[i];
+    bindDraw(cmd, s, settings, shadows, g.mesh, g.material);
+    ++stats.drawCalls;
+    if (indirect) {
+      std::size_t end = i + 1;
+      while (end < groups.size() && groups[end].material == g.material &&
+             s.meshes[groups[end].mesh].span.block == s.meshes[g.mesh].span.block)
+        ++end;
+      const std::uint32_t count = groups[end - 1].first + groups[end - 1].count - g.first;
+      vkCmdDrawIndexedIndirect(cmd, indirect, VkDeviceSize(g.first) * sizeof(VkDrawIndexedIndirectCommand), count,
+                               sizeof(VkDrawIndexedIndirectCommand));
+      i = end;
+      continue;
+    }
+    const MeshRecord& m = s.meshes[g.mesh];
+    vkCmdDrawIndexed(cmd, m.indexCount, g.count, firstIndexOf(m), vertexOffsetOf(m), g.first);
+    stats.triangles += std::uint64_t(m.indexCount / 3) * g.count;
+    stats.objects += g.count;
+    ++i;
+  }
+}
+
+void Renderer::Impl::drawTransparent(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings,
+                                     bool shadows, std::uint32_t transparentBase, RenderStats& stats) {
+  for (std::uint32_t i = 0; i < transparentSorted.size(); ++i) {
+    const InstanceRecord& inst = s.instances[transparentSorted[i]];
+    bindDraw(cmd, s, settings, shadows, inst.mesh, inst.material);
+    const MeshRecord& m = s.meshes[inst.mesh];
+    vkCmdDrawIndexed(cmd, m.indexCount, 1, firstIndexOf(m), vertexOffsetOf(m), transparentBase + i);
+    ++stats.drawCalls;
+    stats.triangles += m.indexCount / 3;
+    ++stats.objects;
+  }
+}
+
+// Main pass drawing everything.
+void Renderer::Impl::recordMain(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
+                                std::uint32_t transparentBase, RenderStats& stats) {
+  prepareAttachments(cmd);
+  beginMain(cmd, settings, false);
+  drawOpaque(cmd, s, settings, shadows, VK_NULL_HANDLE, stats);
+  drawTransparent(cmd, s, settings, shadows, transparentBase, stats);
   vkCmdEndRendering(cmd);
+}
+
+// Main pass, guided: early draws, depth pyramid, late test, late draws,
+// transparent instances (never culled) on top, then next frame's visibility
+// from the finished depth.
+void Renderer::Impl::recordGuided(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings,
+                                  bool shadows, std::uint32_t transparentBase, RenderStats& stats) {
+  const RenderTarget& t = *target;
+  if (!culler) culler = std::make_unique<OcclusionCuller>(device);
+  if (!pyramid) pyramid = std::make_unique<DepthPyramid>(device);
+  culler->prepare(s, std::span<const std::uint32_t>(drawOrder.data(), transparentBase));
+  pyramid->ensure(t.depth.view(), t.width, t.height, t.samples);
+  culler->recordEarly(cmd, s, viewProj, *pyramid, t.width, t.height);
+
+  prepareAttachments(cmd);
+  beginMain(cmd, settings, false);
+  drawOpaque(cmd, s, settings, shadows, culler->earlyCommands(), stats);
+  vkCmdEndRendering(cmd);
+
+  testAgainstDepth(cmd, [&] { culler->recordLate(cmd, viewProj, t.width, t.height); });
+  VkMemoryBarrier colour = vkStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
+  colour.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  colour.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT |
+                         VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  const VkPipelineStageFlags attach = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
+                                      VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
+                                      VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+  vkCmdPipelineBarrier(cmd, attach, attach, 0, 1, &colour, 0, nullptr, 0, nullptr);
+
+  beginMain(cmd, settings, true);
+  drawOpaque(cmd, s, settings, shadows, culler->lateCommands(), stats);
+  drawTransparent(cmd, s, settings, shadows, transparentBase, stats);
+  vkCmdEndRendering(cmd);
+  testAgainstDepth(cmd, [&] { culler->recordVisibility(cmd, viewProj, t.width, t.height); });
+}
+
+// The depth attachment reduced into the pyramid, `test` recorded against
+// it, and the attachment made writable again (contents kept).
+void Renderer::Impl::testAgainstDepth(VkCommandBuffer cmd, const std::function<void()>& test) {
+  const RenderTarget& t = *target;
+  imageBarrier(cmd, t.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+               VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+               VK_ACCESS_SHADER_READ_BIT);
+  pyramid->record(cmd);
+  test();
+  imageBarrier(cmd, t.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+               VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0,
+               VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+               VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
 }
 
 void Renderer::Impl::readColour(FrameBuffer& fb) const {

@@ -191,8 +191,9 @@ void SceneState::prepare() {
     std::sort(opaque.begin(), opaque.end(), [this](std::uint32_t a, std::uint32_t b) {
       const InstanceRecord& x = instances[a];
       const InstanceRecord& y = instances[b];
-      if (x.mesh != y.mesh) return x.mesh < y.mesh;
+      // Material first: runs of one material over one geometry block draw without new bindings.
       if (x.material != y.material) return x.material < y.material;
+      if (x.mesh != y.mesh) return x.mesh < y.mesh;
       return a < b;
     });
     opaqueGroups.clear();
@@ -227,6 +228,7 @@ Scene::Scene(std::shared_ptr<Device> device) : state_(std::make_unique<SceneStat
   s.device = std::move(device);
   VkDevice dev = s.device->handle();
   s.materialSetLayout = createMaterialSetLayout(dev);
+  s.geometry.emplace(*s.device);
 
   VkSamplerCreateInfo sci = vkStruct<VkSamplerCreateInfo>(VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO);
   sci.magFilter = VK_FILTER_LINEAR;
@@ -253,6 +255,7 @@ Scene::~Scene() {
 const Device& Scene::device() const { return *state_->device; }
 std::uint64_t Scene::version() const { return state_->version; }
 std::uint64_t Scene::geometryBytesUploaded() const { return state_->geometryBytes; }
+std::uint64_t Scene::geometryBytesHeld() const { return state_->geometry->bytesAllocated(); }
 std::uint64_t Scene::instanceBytesWritten() const { return state_->instanceBytes; }
 
 std::size_t Scene::instanceCount() const {
@@ -287,26 +290,9 @@ MeshId Scene::addMesh(const MeshData& data) {
   MeshRecord m;
   m.vertexCount = std::uint32_t(n);
   m.indexCount = std::uint32_t(data.indices.size());
-  const VkDeviceSize vec3Bytes = n * sizeof(glm::vec3);
-  m.normalOffset = vec3Bytes;
-  m.uvOffset = 2 * vec3Bytes;
-  m.indexOffset = m.uvOffset + n * sizeof(glm::vec2);
-  const VkDeviceSize total = m.indexOffset + data.indices.size() * sizeof(std::uint32_t);
-  // Missing normals stay zero (the shader then shades flat); missing uvs are (0, 0).
-  std::vector<std::uint8_t> bytes(total, 0);
-  std::memcpy(bytes.data(), data.positions.data(), vec3Bytes);
-  if (!data.normals.empty()) std::memcpy(bytes.data() + m.normalOffset, data.normals.data(), vec3Bytes);
-  if (!data.uvs.empty()) std::memcpy(bytes.data() + m.uvOffset, data.uvs.data(), n * sizeof(glm::vec2));
-  std::memcpy(bytes.data() + m.indexOffset, data.indices.data(), data.indices.size() * sizeof(std::uint32_t));
-  m.buffer =
-      Buffer(*s.device, total,
-             VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-             Buffer::kDevice);
-  uploadToBuffer(*s.device, m.buffer, 0, bytes.data(), total);
-  s.geometryBytes += total;
-  m.positions = data.positions;
-  m.indices = data.indices;
-  m.area = meshArea(m.positions, m.indices);
+  m.span = s.geometry->add(data);
+  s.geometryBytes += n * (2 * sizeof(glm::vec3) + sizeof(glm::vec2)) + data.indices.size() * sizeof(std::uint32_t);
+  m.area = meshArea(data.positions, data.indices);
   m.boundsMin = m.boundsMax = data.positions[0];
   for (const auto& p : data.positions) {
     m.boundsMin = glm::min(m.boundsMin, p);
@@ -333,19 +319,14 @@ void Scene::updateMeshVertices(MeshId mesh, std::uint32_t first, std::span<const
   for (const auto& v : normals)
     if (!finite(v)) throw Error("updated normals contain NaN or infinity");
 
-  uploadToBuffer(*s.device, m.buffer, VkDeviceSize(first) * sizeof(glm::vec3), positions.data(),
-                 positions.size_bytes());
-  s.geometryBytes += positions.size_bytes();
-  if (!normals.empty()) {
-    uploadToBuffer(*s.device, m.buffer, m.normalOffset + VkDeviceSize(first) * sizeof(glm::vec3), normals.data(),
-                   normals.size_bytes());
-    s.geometryBytes += normals.size_bytes();
-  }
-  std::copy(positions.begin(), positions.end(), m.positions.begin() + first);
+  s.geometry->updateVertices(m.span, first, positions, normals);
+  s.geometryBytes += positions.size_bytes() + normals.size_bytes();
   m.patchesDirty = true;
-  m.area = meshArea(m.positions, m.indices);
-  m.boundsMin = m.boundsMax = m.positions[0];
-  for (const auto& p : m.positions) {
+  // Bounds and area of the whole mesh again, from the arena: the scene keeps no CPU copy.
+  const std::vector<glm::vec3> all = s.geometry->positions(m.span, m.vertexCount);
+  m.area = meshArea(all, s.geometry->indices(m.span, m.indexCount));
+  m.boundsMin = m.boundsMax = all[0];
+  for (const auto& p : all) {
     m.boundsMin = glm::min(m.boundsMin, p);
     m.boundsMax = glm::max(m.boundsMax, p);
   }
@@ -357,6 +338,7 @@ void Scene::removeMesh(MeshId mesh) {
   SceneState& s = *state_;
   MeshRecord& m = lookup(s.meshes, index(mesh), "mesh");
   if (m.users > 0) throw Error("mesh " + std::to_string(index(mesh)) + " is still used by instances");
+  s.geometry->release(m.span);
   m = MeshRecord{};
   ++s.version;
 }

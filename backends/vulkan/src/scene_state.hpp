@@ -2,6 +2,7 @@
 
 #include "buffer.hpp"
 #include "emitter_lights.hpp"
+#include "geometry_arena.hpp"
 #include "gpu_types.hpp"
 #include "image.hpp"
 
@@ -20,17 +21,12 @@
 
 namespace tsr::vk {
 
-// One vertex/index buffer per mesh: positions | normals | uvs | indices.
+// A mesh: its place in the geometry arena and what is known about it.
 struct MeshRecord {
-  Buffer buffer;
+  GeometrySpan span;
   std::uint32_t vertexCount = 0;
   std::uint32_t indexCount = 0;
-  VkDeviceSize normalOffset = 0;
-  VkDeviceSize uvOffset = 0;
-  VkDeviceSize indexOffset = 0;
-  std::vector<glm::vec3> positions;    // CPU copy for bounds and emitter patches
-  std::vector<std::uint32_t> indices;  // CPU copy for emitter patches
-  std::vector<EmitterPatch> patches;   // made when an emissive instance first uses the mesh
+  std::vector<EmitterPatch> patches;  // made when an emissive instance first uses the mesh
   bool patchesDirty = true;
   float area = 0.0f;  // surface area, for the emitters' ambient term
   glm::vec3 boundsMin{0.0f};
@@ -38,6 +34,11 @@ struct MeshRecord {
   std::uint32_t users = 0;
   bool alive = false;
 };
+
+// Where a mesh's indices start in its block's index buffer.
+inline std::uint32_t firstIndexOf(const MeshRecord& m) { return m.span.firstIndex; }
+// What draws add to the mesh's indices.
+inline std::int32_t vertexOffsetOf(const MeshRecord& m) { return std::int32_t(m.span.baseVertex); }
 
 struct InstanceRecord {
   std::uint32_t mesh = 0;
@@ -83,6 +84,7 @@ struct SceneState {
   std::shared_ptr<Device> device;
   std::uint64_t version = 0;
 
+  std::optional<GeometryArena> geometry;  // made with the scene
   std::vector<MeshRecord> meshes;
   std::vector<InstanceRecord> instances;
   std::vector<MaterialRecord> materials;

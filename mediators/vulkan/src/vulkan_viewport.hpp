@@ -30,6 +30,8 @@ class VulkanViewport final : public Viewport {
   RenderStats render(const sg::Replica& replica, const View& view, FrameBuffer& out,
                      const RenderControl& control) override;
   const VulkanContext& context() const { return *context_; }
+  // The rasterizer's counts for the last frame (triangles and objects drawn); zeros before the first.
+  vk::RenderStats lastFrame() const { return renderer_ ? renderer_->lastStats() : vk::RenderStats{}; }
 
  private:
   vk::RenderSettings renderSettings() const;

@@ -538,6 +538,7 @@ namespace {
 parsed::Scene converted(LoadedFile file, const std::string& source, const ImportOptions& options) {
   parsed::Scene scene;
   scene.warnings = std::move(file.warnings);
+  scene.readOtherFiles = file.readOtherFiles;
   Converter(file.model, source, options, scene).run();
   return scene;
 }

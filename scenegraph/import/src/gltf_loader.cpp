@@ -44,6 +44,7 @@ struct FsContext {
   std::uint64_t limit;
   fs::path base;                            // canonical folder of the glTF file
   std::optional<ImportLimitError> refused;  // rethrown with its kind after tinygltf gives up
+  bool readOther = false;                   // read a file besides the source (buffer, image)
 };
 bool insideBase(const std::string& path, const FsContext& ctx) {
   std::error_code ec;
@@ -62,6 +63,7 @@ bool readFile(std::vector<unsigned char>* out, std::string* err, const std::stri
   try {
     if (!insideBase(path, *ctx)) throw ImportError(path, "'" + path + "' is outside the glTF file's folder; refused");
     *out = readWholeFile(path, ctx->limit, path);
+    ctx->readOther = true;
     return true;
   } catch (const ImportLimitError& e) {
     if (!ctx->refused) ctx->refused = e;
@@ -156,6 +158,10 @@ void scanJson(const char* first, const char* last, std::uint64_t limit, const st
 
 }  // namespace
 
+std::vector<unsigned char> readSource(const std::string& path, const ImportOptions& options) {
+  return readWholeFile(path, std::min<std::uint64_t>(options.maxFileBytes, 0xFFFFFFFFu), path);
+}
+
 LoadedFile loadFile(const std::string& path, const ImportOptions& options) {
   const std::uint64_t limit = std::min<std::uint64_t>(options.maxFileBytes, 0xFFFFFFFFu);
   const std::vector<unsigned char> bytes = readWholeFile(path, limit, path);
@@ -219,6 +225,7 @@ LoadedFile loadBytes(std::span<const unsigned char> bytes, const std::string& so
   }
   checkRequiredExtensions(out.model, source);
   checkNodeGraph(out.model, source);
+  out.readOtherFiles = ctx.readOther;
   return out;
 }
 

@@ -16,7 +16,11 @@ namespace tsr::sg::gltf {
 struct LoadedFile {
   tinygltf::Model model;
   std::vector<std::string> warnings;
+  bool readOtherFiles = false;  // external buffers or images were read
 };
+
+// The whole source file, within options.maxFileBytes.
+std::vector<unsigned char> readSource(const std::string& path, const ImportOptions& options);
 
 LoadedFile loadFile(const std::string& path, const ImportOptions& options);
 // The same for a file's bytes; external buffers and images resolve inside

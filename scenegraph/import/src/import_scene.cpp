@@ -1,10 +1,14 @@
 #include <charconv>
+#include <filesystem>
+#include <optional>
 
 #include <spdlog/spdlog.h>
 
 #include "builtin_scenes.hpp"
 #include "gltf_importer.hpp"
+#include "gltf_loader.hpp"
 #include "parsed_scene.hpp"
+#include "scene_cache.hpp"
 #include "tsr/sg/import/importer.hpp"
 #include "tsr/sg/scene.hpp"
 
@@ -46,6 +50,33 @@ parsed::Scene parseBuiltin(const std::string& source) {
   throw ImportError(source, "unknown built-in scene; valid names are " + joined(builtinSceneNames()));
 }
 
+// A file through the converted-scene cache (ImportOptions::cacheDir): the
+// kept conversion when its entry checks out, else the file parsed and kept.
+parsed::Scene parseCached(const std::string& source, const ImportOptions& options, std::string& note) {
+  const std::vector<unsigned char> bytes = gltf::readSource(source, options);
+  const std::string key = cache::key(bytes, options);
+  const std::filesystem::path entry = cache::entryPath(options.cacheDir, key);
+  std::string why;
+  if (std::optional<parsed::Scene> kept = cache::load(entry, key, why)) {
+    spdlog::info("{}: converted scene read from {}", source, entry.string());
+    note = "hit";
+    return std::move(*kept);
+  }
+  const bool refused = why != "no entry";
+  if (refused)
+    spdlog::warn("{}: the converted scene in {} is refused ({}); converting again", source, entry.string(), why);
+  parsed::Scene scene = gltf::parseBytes(bytes, source, std::filesystem::path(source).parent_path().string(), options);
+  std::string failed;
+  if (scene.readOtherFiles)
+    note = "not stored (the file names external buffers or images)";
+  else if (!cache::store(entry, key, scene, failed))
+    note = "not stored (" + failed + ")";
+  else
+    note = refused ? "rebuilt (" + why + ")" : "stored";
+  spdlog::info("{}: converted scene {} in {}", source, note, options.cacheDir);
+  return scene;
+}
+
 // Runs a parser with every failure turned into an ImportError, then builds.
 template <class Parse>
 ImportResult parsedAndBuilt(Scene& scene, const std::string& source, Parse parse) {
@@ -73,9 +104,14 @@ std::vector<std::string> builtinSceneNames() {
 }
 
 ImportResult importScene(Scene& scene, const std::string& source, const ImportOptions& options) {
-  return parsedAndBuilt(scene, source, [&] {
+  const bool cached = !options.cacheDir.empty() && !source.starts_with(kBuiltinPrefix);
+  std::string note;
+  ImportResult result = parsedAndBuilt(scene, source, [&] {
+    if (cached) return parseCached(source, options, note);
     return source.starts_with(kBuiltinPrefix) ? parseBuiltin(source) : gltf::parseFile(source, options);
   });
+  result.cache = std::move(note);
+  return result;
 }
 
 ImportResult importGltf(Scene& scene, std::span<const std::uint8_t> bytes, const std::string& source,

@@ -125,6 +125,9 @@ struct Scene {
   std::optional<Volume> medium;  // fog filling the scene outside every volume
   std::vector<std::string> warnings;
   std::size_t skippedPrimitives = 0;
+  // The source named other files (buffers, images): its own bytes do not
+  // say everything it holds, so the converted-scene cache skips it.
+  bool readOtherFiles = false;
 };
 
 }  // namespace tsr::sg::parsed

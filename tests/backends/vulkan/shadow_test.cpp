@@ -80,5 +80,27 @@ TEST(VulkanShadow, LightThatCastsNoShadowsGetsNoShadowMap) {
   EXPECT_GT(s.at(fb, {0.1f, 0.0f, -0.1f}).r, 0.1f);
 }
 
+// Shadow maps do not depend on the camera: a renderer keeps them until the
+// scene or the light changes, and the image is the one a fresh renderer makes.
+TEST(VulkanShadow, MapsAreKeptWhileOnlyTheCameraMoves) {
+  ShadowScene s;
+  const LightId light = s.scene.addLight(DirectionalLight{{0.3f, -1, 0.2f}, glm::vec3(3.0f)});
+  const Camera other = Camera::lookAt({3, 3, 1}, {0, 0, 0}, {0, 1, 0}, 0.9f, 1.0f);
+  Renderer renderer(device());
+  FrameBuffer kept(64, 64), fresh(64, 64);
+  renderer.render(s.scene, s.cam, s.full, kept);
+  EXPECT_EQ(renderer.lastStats().shadowMaps, 1u);
+  renderer.render(s.scene, other, s.full, kept);
+  EXPECT_EQ(renderer.lastStats().shadowMaps, 0u);
+  Renderer(device()).render(s.scene, other, s.full, fresh);
+  EXPECT_EQ(kept.colourImage(), fresh.colourImage());
+
+  s.scene.setLight(light, DirectionalLight{{-0.3f, -1, 0.2f}, glm::vec3(3.0f)});
+  renderer.render(s.scene, other, s.full, kept);
+  EXPECT_EQ(renderer.lastStats().shadowMaps, 1u) << "the light moved";
+  Renderer(device()).render(s.scene, other, s.full, fresh);
+  EXPECT_EQ(kept.colourImage(), fresh.colourImage());
+}
+
 }  // namespace
 }  // namespace tsr::vk

@@ -51,6 +51,8 @@ class Device {
   const VkPhysicalDeviceProperties& properties() const { return properties_; }
   std::string name() const { return properties_.deviceName; }
   bool presentationEnabled() const { return presentation_; }
+  // Several indirect draws in one call: guided rendering needs it.
+  bool multiDrawIndirect() const { return multiDrawIndirect_; }
 
   // Memory type index with all `required` flags among `typeBits`; throws if none.
   std::uint32_t memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required) const;
@@ -79,6 +81,7 @@ class Device {
   VkPhysicalDeviceProperties properties_{};
   VkPhysicalDeviceMemoryProperties memory_{};
   bool presentation_ = false;
+  bool multiDrawIndirect_ = false;
   std::atomic<std::uint64_t> errors_{0};
   std::atomic<std::uint64_t> warnings_{0};
   mutable std::mutex messagesMutex_;

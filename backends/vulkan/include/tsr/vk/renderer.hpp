@@ -14,9 +14,15 @@
 
 namespace tsr::vk {
 
+// Which opaque objects a frame draws: all of them, or those seen last frame
+// plus those a depth-pyramid test finds may have become visible (two-phase
+// occlusion culling; the same image once the camera is still).
+enum class Visibility : std::uint8_t { All, Guided };
+
 struct RenderSettings {
   std::uint32_t msaaSamples = 1;  // 1 or 4
-  bool shadows = true;            // shadow maps for spot and directional lights (and flat emitters)
+  Visibility visibility = Visibility::All;
+  bool shadows = true;  // shadow maps for spot and directional lights (and flat emitters)
   std::uint32_t shadowMapSize = 1024;
   // Emissive geometry lights the scene through at most this many area-like
   // lights (patches of the emissive meshes, merged when there are more); 0:
@@ -30,14 +36,16 @@ struct RenderSettings {
 };
 
 struct RenderStats {
-  std::uint32_t drawCalls = 0;   // main pass
-  std::uint64_t triangles = 0;   // main pass, all instances
-  std::uint32_t shadowMaps = 0;  // shadow passes rendered
+  std::uint32_t drawCalls = 0;    // main pass
+  std::uint64_t triangles = 0;    // main pass, all instances drawn
+  std::uint32_t objects = 0;      // main pass, instances drawn
+  std::uint32_t lateObjects = 0;  // guided: drawn because they became visible this frame
+  std::uint32_t shadowMaps = 0;   // shadow passes rendered
   std::uint64_t shadowTriangles = 0;
 };
 
 // Rasterizes a Scene into a FrameBuffer: shadow passes, then opaque
-// instances grouped by (mesh, material) and drawn instanced, then
+// instances grouped by (material, mesh) and drawn instanced, then
 // transparent instances back to front; MSAA resolve; readback. Each render
 // waits for the GPU, so scenes may be edited as soon as it returns.
 class Renderer {

@@ -65,6 +65,8 @@ class Scene {
 
   // Bytes copied into mesh buffers (vertices and indices) since creation.
   std::uint64_t geometryBytesUploaded() const;
+  // Device memory the geometry holds now (the arena's blocks, filled or not).
+  std::uint64_t geometryBytesHeld() const;
   // Bytes of instance records written since creation.
   std::uint64_t instanceBytesWritten() const;
 

@@ -36,6 +36,13 @@ struct ImportOptions {
   std::uint64_t maxAccessorElements = std::uint64_t{1} << 28;
   // Decoded images with more pixels than this are refused.
   std::uint64_t maxImagePixels = std::uint64_t{1} << 28;
+  // Non-empty: a folder for converted scenes (the seed's pre-converted
+  // database). A file's conversion is kept there under a key of its bytes'
+  // hash, the importer's version and these options, and read back instead
+  // of parsing the file again; an entry that does not check out (wrong key
+  // or version, damaged, truncated, invalid) is refused and rebuilt. Files
+  // that name external buffers or images are not kept.
+  std::string cacheDir = {};
 };
 
 // What an import produced, in numbers.
@@ -56,6 +63,9 @@ struct ImportResult {
   std::vector<Animation> animations;
   std::vector<std::string> warnings;
   ImportCounts counts;
+  // With ImportOptions::cacheDir: "hit", "stored", "rebuilt (REASON)" or
+  // "not stored (REASON)"; empty without a cache.
+  std::string cache = {};
 };
 
 // Throws ImportError ("<source>: <reason>") for anything it cannot load.

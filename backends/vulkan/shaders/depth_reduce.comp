@@ -1,0 +1,2 @@
+#version 450
+#include "depth_reduce.glsl"

@@ -1,0 +1,19 @@
+#pragma once
+// parsed::Scene to bytes and back, for the converted-scene cache
+// (scene_cache.hpp). Little-endian, lengths before every array; decoding
+// treats its input as hostile: every length is checked against what is
+// left before anything is allocated, enums against their range, and the
+// result is validated (parsed_scene_validation.hpp) before it is returned.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "parsed_scene.hpp"
+
+namespace tsr::sg::parsed {
+
+std::vector<std::uint8_t> encodeScene(const Scene& scene);
+// Throws std::runtime_error naming what is wrong.
+Scene decodeScene(std::span<const std::uint8_t> bytes);
+
+}  // namespace tsr::sg::parsed

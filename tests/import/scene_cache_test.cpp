@@ -1,0 +1,146 @@
+// The converted-scene cache (ImportOptions::cacheDir): stored on the first
+// import, read back on the second with the same result, converted again
+// when the file changes, and refused and rebuilt when the entry is damaged,
+// truncated or invalid, which never fails the import.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "parsed_scene_codec.hpp"
+#include "scene_cache.hpp"
+#include "test_scenes.hpp"
+#include "tsr/sg/geometry.hpp"
+#include "tsr/sg/import/importer.hpp"
+#include "tsr/sg/scene.hpp"
+
+namespace tsr::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Cached {
+  TempDir dir;
+  sg::ImportOptions options;
+  std::string file = dir.file("scene.glb");
+  Cached() {
+    options.cacheDir = dir.file("cache");
+    tinyScene().writeGlb(file);
+  }
+  // Imports into a fresh scene; the cache note and the first geometry's positions.
+  std::pair<std::string, std::vector<sg::Vec3>> import() const {
+    sg::Scene scene;
+    const sg::ImportResult r = sg::importScene(scene, file, options);
+    for (auto id : scene.ids())
+      if (const auto* g = scene.find<sg::Geometry>(id)) return {r.cache, g->positions()};
+    return {r.cache, {}};
+  }
+  fs::path entry() const {
+    for (const auto& e : fs::directory_iterator(options.cacheDir)) return e.path();
+    return {};
+  }
+};
+
+TEST(SceneCache, StoredThenReadBackTheSame) {
+  Cached c;
+  const auto first = c.import();
+  EXPECT_EQ(first.first, "stored");
+  const auto second = c.import();
+  EXPECT_EQ(second.first, "hit");
+  EXPECT_EQ(second.second, first.second);
+  EXPECT_EQ(second.second.size(), 3u);
+}
+
+TEST(SceneCache, ChangedFileIsConvertedAgain) {
+  Cached c;
+  c.import();
+  GltfBuilder b = tinyScene();
+  b.doc["nodes"][0]["name"] = "renamed";  // other bytes, another key
+  b.writeGlb(c.file);
+  EXPECT_EQ(c.import().first, "stored");
+  EXPECT_EQ(c.import().first, "hit");
+}
+
+TEST(SceneCache, DamagedOrTruncatedEntryIsRefusedAndRebuilt) {
+  Cached c;
+  const auto first = c.import();
+  std::vector<std::uint8_t> bytes = readBytes(c.entry().string());
+  bytes[bytes.size() - 5] ^= 0x40;
+  writeBytes(c.entry().string(), bytes);
+  const auto damaged = c.import();
+  EXPECT_NE(damaged.first.find("rebuilt (the entry is damaged"), std::string::npos) << damaged.first;
+  EXPECT_EQ(damaged.second, first.second);
+  EXPECT_EQ(c.import().first, "hit");
+
+  bytes = readBytes(c.entry().string());
+  bytes.resize(bytes.size() / 2);
+  writeBytes(c.entry().string(), bytes);
+  EXPECT_NE(c.import().first.find("rebuilt (the entry is truncated"), std::string::npos);
+  writeBytes(c.entry().string(), {1, 2, 3});
+  EXPECT_NE(c.import().first.find("rebuilt (the entry is shorter than its header"), std::string::npos);
+  EXPECT_EQ(c.import().first, "hit");
+}
+
+// An entry whose header and hash are right but whose scene is not: validated like any input.
+TEST(SceneCache, EntryWithAnInvalidSceneIsRefused) {
+  Cached c;
+  c.import();
+  const fs::path entry = c.entry();
+  const std::string key = entry.stem().string();
+  sg::parsed::Scene bad;
+  sg::parsed::Primitive p;
+  p.positions = {sg::Vec3(0), sg::Vec3(1, 0, 0), sg::Vec3(0, 1, 0)};
+  p.indices = {0, 1, 7};
+  bad.primitives.push_back(p);
+  std::string why;
+  ASSERT_TRUE(sg::cache::store(entry, key, bad, why)) << why;
+  const auto r = c.import();
+  EXPECT_NE(r.first.find("rebuilt (the entry is invalid: primitive 0 has an index out of range"), std::string::npos)
+      << r.first;
+  EXPECT_EQ(r.second.size(), 3u);
+}
+
+TEST(SceneCache, DecoderRefusesEveryTruncation) {
+  Cached c;
+  c.import();
+  std::vector<std::uint8_t> payload = readBytes(c.entry().string());
+  payload.erase(payload.begin(), payload.begin() + sg::cache::kHeaderBytes);
+  EXPECT_NO_THROW(sg::parsed::decodeScene(payload));
+  for (std::size_t n = 0; n < payload.size(); ++n)
+    EXPECT_THROW(sg::parsed::decodeScene(std::span(payload).first(n)), std::runtime_error) << n;
+}
+
+TEST(SceneCache, FilesNamingExternalResourcesAreNotStored) {
+  Cached c;
+  richScene(c.dir).writeGltf(c.file = c.dir.file("rich.gltf"));
+  EXPECT_EQ(c.import().first, "not stored (the file names external buffers or images)");
+}
+
+}  // namespace
+}  // namespace tsr::test
+
+namespace tsr::test {
+namespace {
+
+// Volumes survive the cache: a material's medium and the scene's fog read
+// back from an entry equal those converted from the file.
+TEST(SceneCache, VolumesAndFogSurviveTheCache) {
+  TempDir dir;
+  GltfBuilder b = tinyScene();
+  nlohmann::json material;
+  material["extensions"]["TSR_materials_volume"] = {{"scattering", {1.0, 2.0, 3.0}}, {"phaseG", 0.25}};
+  b.doc["materials"] = nlohmann::json::array({material});
+  b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  b.doc["scenes"][0]["extensions"]["TSR_scene_medium"] = {{"absorption", {0.5, 0.5, 0.5}}};
+  b.doc["extensionsUsed"] = {"TSR_materials_volume", "TSR_scene_medium"};
+  b.writeGlb(dir.file("fog.glb"));
+  sg::ImportOptions options;
+  options.cacheDir = dir.file("cache");
+  sg::Scene converted, cached;
+  EXPECT_EQ(sg::importScene(converted, dir.file("fog.glb"), options).cache, "stored");
+  EXPECT_EQ(sg::importScene(cached, dir.file("fog.glb"), options).cache, "hit");
+  EXPECT_EQ(cached.contentHash(), converted.contentHash());
+  EXPECT_EQ(cached.count(sg::ContainerType::VolumeMaterial), 2u) << "the sphere's medium and the fog";
+}
+
+}  // namespace
+}  // namespace tsr::test
