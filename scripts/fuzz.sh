@@ -7,7 +7,7 @@
 # tests/fuzz/regressions/TARGET/ so the normal test suite replays it.
 set -uo pipefail
 cd "$(dirname "$0")/.."
-targets=(wire_codec cluster_messages pixel_codec gltf_import cluster_config launch_address_file launch_rank_line
+targets=(wire_codec cluster_messages pixel_codec gltf_import import_cache cluster_config launch_address_file launch_rank_line
          viewer_script camera_bookmarks anaglyph_script)
 [ $# -eq 2 ] || { echo "usage: scripts/fuzz.sh TARGET|all SECONDS|-runs=N" >&2; exit 2; }
 [ "$1" = all ] || targets=("$1")

@@ -19,35 +19,51 @@ namespace {
 using namespace std::chrono_literals;
 constexpr std::uint32_t kWidth = 96, kHeight = 64;
 
-TEST(ClusterGuided, WallTilesGuidedEqualLocalFullDraw) {
-  auto nodes = startNodes(4);
-  med::Parameters guided;
-  guided.set("visibility", std::string("guided"));
-  ClusterConfig c = configFor(ClusterMode::Tiled, nodes, guided);
-  for (auto& n : c.nodes) n.backend = "vulkan";
-
-  AnimatedScene s("builtin:plant:20000");
+// A small plant published to `nodeCount` real nodes rendering Vulkan with
+// visibility=guided in `mode`, and a registry for the local full draws.
+struct GuidedCluster {
+  std::vector<std::unique_ptr<NodeProcess>> nodes;
+  AnimatedScene s{"builtin:plant:20000"};
   sg::Replica replica;
   med::ViewportRegistry registry;
-  med::registerVulkan(registry);
   med::ContextPool contexts;
-  auto local = registry.create({"vulkan", s.imported.root, s.imported.background, {}, true}, contexts);
-  ClusterWindow window(std::move(c));
-  window.setContent(s.imported.root, s.imported.background);
-  ASSERT_EQ(window.connect(5s), 4u);
-  auto delta = s.scene.commit();
-  replica.apply(delta);
-  window.publish(s.scene, delta);
+  std::unique_ptr<ClusterWindow> window;
 
-  med::View view = med::View::fromCamera(*s.scene.find<sg::Camera>(s.imported.cameras.front()), kWidth, kHeight);
+  GuidedCluster(ClusterMode mode, std::size_t nodeCount, float eyeSeparation = 0.0f) : nodes(startNodes(nodeCount)) {
+    med::Parameters guided;
+    guided.set("visibility", std::string("guided"));
+    ClusterConfig c = configFor(mode, nodes, guided);
+    for (auto& n : c.nodes) n.backend = "vulkan";
+    med::registerVulkan(registry);
+    window = std::make_unique<ClusterWindow>(std::move(c));
+    window->setContent(s.imported.root, s.imported.background);
+    if (eyeSeparation > 0.0f) window->setEyes(eyeSeparation, 5.0f);
+    EXPECT_EQ(window->connect(5s), nodeCount);
+    auto delta = s.scene.commit();
+    replica.apply(delta);
+    window->publish(s.scene, delta);
+  }
+  // A local viewport drawing everything (visibility=all).
+  std::unique_ptr<med::Viewport> fullDraw() {
+    return registry.create({"vulkan", s.imported.root, s.imported.background, {}, true}, contexts);
+  }
+  med::View view() const {
+    return med::View::fromCamera(*s.scene.find<sg::Camera>(s.imported.cameras.front()), kWidth, kHeight);
+  }
+};
+
+TEST(ClusterGuided, WallTilesGuidedEqualLocalFullDraw) {
+  GuidedCluster cluster(ClusterMode::Tiled, 4);
+  auto local = cluster.fullDraw();
+  med::View view = cluster.view();
   for (int frame = 0; frame < 4; ++frame) {
     if (frame == 3)  // a step along the aisle
       view.cameraToWorld = glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, 4)) * view.cameraToWorld;
-    ClusterFrame f = window.render(view);
+    ClusterFrame f = cluster.window->render(view);
     ASSERT_EQ(f.offlineTiles, 0u);
     for (const auto& r : wallLayout(kWidth, kHeight, 2, 2, 0)) {
       med::FrameBuffer tile;
-      local->render(replica, view.cropped(r), tile);
+      local->render(cluster.replica, view.cropped(r), tile);
       std::size_t differ = 0;
       for (std::uint32_t y = r.y0; y < r.y1; ++y)
         for (std::uint32_t x = r.x0; x < r.x1; ++x)
@@ -58,33 +74,15 @@ TEST(ClusterGuided, WallTilesGuidedEqualLocalFullDraw) {
 }
 
 TEST(ClusterGuided, StereoEyesOnTwoNodesGuidedEqualLocalFullDraw) {
-  auto nodes = startNodes(2);
-  med::Parameters guided;
-  guided.set("visibility", std::string("guided"));
-  ClusterConfig c = configFor(ClusterMode::Stereo, nodes, guided);
-  for (auto& n : c.nodes) n.backend = "vulkan";
-
-  AnimatedScene s("builtin:plant:20000");
-  sg::Replica replica;
-  med::ViewportRegistry registry;
-  med::registerVulkan(registry);
-  med::ContextPool contexts;
-  auto left = registry.create({"vulkan", s.imported.root, s.imported.background, {}, true}, contexts);
-  auto right = registry.create({"vulkan", s.imported.root, s.imported.background, {}, true}, contexts);
-  ClusterWindow window(std::move(c));
-  window.setContent(s.imported.root, s.imported.background);
-  window.setEyes(0.065f, 5.0f);
-  ASSERT_EQ(window.connect(5s), 2u);
-  auto delta = s.scene.commit();
-  replica.apply(delta);
-  window.publish(s.scene, delta);
-
-  const med::View view = med::View::fromCamera(*s.scene.find<sg::Camera>(s.imported.cameras.front()), kWidth, kHeight);
+  GuidedCluster cluster(ClusterMode::Stereo, 2, 0.065f);
+  auto left = cluster.fullDraw();
+  auto right = cluster.fullDraw();
+  const med::View view = cluster.view();
   for (int frame = 0; frame < 3; ++frame) {
-    ClusterFrame f = window.render(view);
+    ClusterFrame f = cluster.window->render(view);
     med::FrameBuffer l, r;
-    left->render(replica, view.eye(med::Eye::Left, 0.065f, 5.0f), l);
-    right->render(replica, view.eye(med::Eye::Right, 0.065f, 5.0f), r);
+    left->render(cluster.replica, view.eye(med::Eye::Left, 0.065f, 5.0f), l);
+    right->render(cluster.replica, view.eye(med::Eye::Right, 0.065f, 5.0f), r);
     EXPECT_TRUE(bitwiseEqual(f.left, l)) << "frame " << frame;
     EXPECT_TRUE(bitwiseEqual(f.right, r)) << "frame " << frame;
     EXPECT_FALSE(bitwiseEqual(l, r)) << "the eyes must differ";

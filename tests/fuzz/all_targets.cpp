@@ -12,6 +12,7 @@ std::vector<Target> allTargets() {
 #endif
 #ifdef TSR_FUZZ_HAVE_IMPORT
       {"gltf_import", &gltfImport},
+      {"import_cache", &importCache},
 #endif
 #ifdef TSR_FUZZ_HAVE_LAUNCH
       {"launch_address_file", &launchAddressFile},

@@ -23,6 +23,8 @@ void clusterMessages(Bytes bytes);
 void pixelCodec(Bytes bytes);
 // A .gltf (JSON) or .glb (by its magic) imported from memory.
 void gltfImport(Bytes bytes);
+// The scene of an import cache entry (parsed_scene_codec), after its header.
+void importCache(Bytes bytes);
 // A cluster configuration file's text.
 void clusterConfig(Bytes bytes);
 // tessera-launch's rendezvous: an address file's contents, a node rank's line.
