@@ -1,0 +1,132 @@
+#include "renderer_impl.hpp"
+
+namespace tsr::vk {
+
+// Lights, with a shadow layer for each shadowed spot/directional light.
+std::vector<glm::mat4> Renderer::Impl::gatherLights(SceneState& s, const RenderSettings& settings) {
+  gpuLights.clear();
+  std::vector<glm::mat4> shadowViewProj;
+  const bool shadows = settings.shadows && !s.sceneEmpty && !s.opaqueOrder.empty();
+  for (const LightRecord& lr : s.lights) {
+    if (!lr.alive) continue;
+    GpuLight g{};
+    g.direction.w = -1.0f;
+    g.cone = glm::vec4(1.0f, 1.0f, 0.0f, 1.0f / float(settings.shadowMapSize));
+    std::optional<ShadowProjection> sp;
+    if (const auto* p = std::get_if<PointLight>(&lr.light)) {
+      g.position = glm::vec4(p->position, float(kGpuPoint));
+      g.intensity = glm::vec4(p->intensity, 0.0f);
+    } else if (const auto* sl = std::get_if<SpotLight>(&lr.light)) {
+      g.position = glm::vec4(sl->position, float(kGpuSpot));
+      g.direction = glm::vec4(glm::normalize(sl->direction), -1.0f);
+      g.intensity = glm::vec4(sl->intensity, 0.0f);
+      g.cone.x = std::cos(sl->innerAngle);
+      g.cone.y = std::cos(sl->outerAngle);
+      if (shadows && sl->castShadows) sp = spotShadow(*sl, s.sceneMin, s.sceneMax, settings.shadowMapSize);
+    } else {
+      const auto& dl = std::get<DirectionalLight>(lr.light);
+      g.position = glm::vec4(0.0f, 0.0f, 0.0f, float(kGpuDirectional));
+      g.direction = glm::vec4(glm::normalize(dl.direction), -1.0f);
+      g.intensity = glm::vec4(dl.irradiance, 0.0f);
+      if (shadows && dl.castShadows) sp = directionalShadow(dl, s.sceneMin, s.sceneMax, settings.shadowMapSize);
+    }
+    if (sp) {
+      if (shadowViewProj.size() < kMaxShadowMaps) {
+        g.direction.w = float(shadowViewProj.size());
+        g.cone.z = sp->normalOffset;
+        g.shadowMatrix = sp->viewProj;
+        shadowViewProj.push_back(sp->viewProj);
+      } else {
+        spdlog::warn("tsr::vk: more than {} shadowed lights; the rest cast no shadows", kMaxShadowMaps);
+      }
+    }
+    gpuLights.push_back(g);
+  }
+  addEmitterLights(s, settings, shadows, shadowViewProj);
+  ensureHost(device, lightBuffer, std::max<std::size_t>(gpuLights.size(), 1) * sizeof(GpuLight),
+             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  if (!gpuLights.empty()) std::memcpy(lightBuffer.mapped(), gpuLights.data(), gpuLights.size() * sizeof(GpuLight));
+
+  return shadowViewProj;
+}
+
+// Emissive geometry as area-like lights (emitter_lights.hpp). Mostly flat
+// patches get a shadow map while layers remain (brightest first), with a
+// wide cone: what lies outside it is at grazing angles and left unshadowed.
+void Renderer::Impl::addEmitterLights(SceneState& s, const RenderSettings& settings, bool shadows,
+                                      std::vector<glm::mat4>& shadowViewProj) {
+  constexpr float kShadowHalfAngle = 1.309f;  // 75 degrees
+  const std::vector<EmitterLight> emitters = emitterLights(s, settings.emitterLights);
+  ambientFromEmitters = settings.emitterAmbient ? emitterAmbient(s, emitters) : glm::vec3(0.0f);
+  for (const EmitterLight& e : emitters) {
+    GpuLight g{};
+    // Just off the surface, so the emitter does not shadow itself.
+    const glm::vec3 position = e.position + e.normal * (1e-3f * std::sqrt(e.area));
+    g.position = glm::vec4(position, float(kGpuEmitter));
+    g.direction = glm::vec4(e.normal, -1.0f);
+    g.intensity = glm::vec4(e.radiance, e.area);
+    g.cone = glm::vec4(e.directionalArea, 0.0f, 0.0f, 1.0f / float(settings.shadowMapSize));
+    if (shadows && e.directionalArea > 0.5f * e.area && shadowViewProj.size() < kMaxShadowMaps) {
+      const SpotLight proxy{position, e.normal, glm::vec3(0.0f), kShadowHalfAngle, kShadowHalfAngle, true};
+      const ShadowProjection sp = spotShadow(proxy, s.sceneMin, s.sceneMax, settings.shadowMapSize);
+      g.direction.w = float(shadowViewProj.size());
+      g.cone.z = sp.normalOffset;
+      g.shadowMatrix = sp.viewProj;
+      shadowViewProj.push_back(sp.viewProj);
+    }
+    gpuLights.push_back(g);
+  }
+}
+
+// Shadow passes: opaque instances only, positions only.
+void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s,
+                                   const std::vector<glm::mat4>& shadowViewProj, RenderStats& stats) {
+  ShadowKey key{&s, s.version, shadowViewProj};
+  if (shadowsHeld == key) return;  // still in SHADER_READ_ONLY_OPTIMAL from that frame
+  shadowsHeld.reset();
+  shadowsPending = std::move(key);
+  const ShadowMap& sm = *shadowMap;
+  imageBarrier(
+      cmd, sm.image().handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+      shadowViewProj.empty() ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+      VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
+      shadowViewProj.empty() ? VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT : VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT,
+      shadowViewProj.empty() ? VK_ACCESS_SHADER_READ_BIT : VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, sm.layers());
+  for (std::uint32_t layer = 0; layer < shadowViewProj.size(); ++layer) {
+    VkRenderingAttachmentInfo da = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
+    da.imageView = sm.image().layerView(layer);
+    da.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    da.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    da.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    da.clearValue.depthStencil = {1.0f, 0};
+    VkRenderingInfo ri = vkStruct<VkRenderingInfo>(VK_STRUCTURE_TYPE_RENDERING_INFO);
+    ri.renderArea = {{0, 0}, {sm.size(), sm.size()}};
+    ri.layerCount = 1;
+    ri.pDepthAttachment = &da;
+    vkCmdBeginRendering(cmd, &ri);
+    VkViewport vp{0.0f, 0.0f, float(sm.size()), float(sm.size()), 0.0f, 1.0f};
+    vkCmdSetViewport(cmd, 0, 1, &vp);
+    vkCmdSetScissor(cmd, 0, 1, &ri.renderArea);
+    vkCmdSetDepthBias(cmd, 1.25f, 0.0f, 1.75f);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadowPipeline.handle());
+    PushConstants pc;
+    pc.lightViewProj = shadowViewProj[layer];
+    vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
+    std::uint32_t bound = ~0u;
+    for (const DrawGroup& g : s.opaqueGroups) {
+      const MeshRecord& m = s.meshes[g.mesh];
+      if (m.span.block != bound) s.geometry->bind(cmd, bound = m.span.block, 1);
+      vkCmdDrawIndexed(cmd, m.indexCount, g.count, firstIndexOf(m), vertexOffsetOf(m), g.first);
+      stats.shadowTriangles += std::uint64_t(m.indexCount / 3) * g.count;
+    }
+    vkCmdEndRendering(cmd);
+    ++stats.shadowMaps;
+  }
+  if (!shadowViewProj.empty())
+    imageBarrier(cmd, sm.image().handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+                 VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                 VK_ACCESS_SHADER_READ_BIT, sm.layers());
+}
+
+}  // namespace tsr::vk

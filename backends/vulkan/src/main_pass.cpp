@@ -1,0 +1,191 @@
+#include "renderer_impl.hpp"
+
+namespace tsr::vk {
+
+// Main pass attachments made writable; previous contents are discarded (UNDEFINED).
+void Renderer::Impl::prepareAttachments(VkCommandBuffer cmd) {
+  const RenderTarget& t = *target;
+  const VkPipelineStageFlags attachStages =
+      VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+  std::vector<const Image*> colourImages = {&t.colour};
+  std::vector<const Image*> depthImages = {&t.depth};
+  if (t.multisampled()) {
+    colourImages.push_back(&t.colourResolve);
+    depthImages.push_back(&t.depthResolve);
+  }
+  for (const Image* img : colourImages)
+    imageBarrier(cmd, img->handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                 VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+                 VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
+  for (const Image* img : depthImages)
+    imageBarrier(cmd, img->handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                 VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+                 attachStages | VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                 VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
+                     VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
+}
+
+// Begins the main pass: cleared, or (the guided late phase) loading what the
+// early phase drew.
+void Renderer::Impl::beginMain(VkCommandBuffer cmd, const RenderSettings& settings, bool load) {
+  const RenderTarget& t = *target;
+  const std::uint32_t w = t.width, h = t.height;
+  VkRenderingAttachmentInfo ca = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
+  ca.imageView = t.colour.view();
+  ca.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  ca.loadOp = load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
+  ca.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  ca.clearValue.color = {{settings.background.r, settings.background.g, settings.background.b, settings.background.a}};
+  VkRenderingAttachmentInfo da = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
+  da.imageView = t.depth.view();
+  da.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  da.loadOp = load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
+  da.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  da.clearValue.depthStencil = {0.0f, 0};  // reversed depth: 0 is the far plane
+  if (t.multisampled()) {
+    ca.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
+    ca.resolveImageView = t.colourResolve.view();
+    ca.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    // Averaging depths across an edge would invent surfaces; keep sample 0.
+    da.resolveMode = VK_RESOLVE_MODE_SAMPLE_ZERO_BIT;
+    da.resolveImageView = t.depthResolve.view();
+    da.resolveImageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  }
+  VkRenderingInfo ri = vkStruct<VkRenderingInfo>(VK_STRUCTURE_TYPE_RENDERING_INFO);
+  ri.renderArea = {{0, 0}, {w, h}};
+  ri.layerCount = 1;
+  ri.colorAttachmentCount = 1;
+  ri.pColorAttachments = &ca;
+  ri.pDepthAttachment = &da;
+  vkCmdBeginRendering(cmd, &ri);
+  VkViewport vp{0.0f, 0.0f, float(w), float(h), 0.0f, 1.0f};
+  vkCmdSetViewport(cmd, 0, 1, &vp);
+  vkCmdSetScissor(cmd, 0, 1, &ri.renderArea);
+  boundPipeline = VK_NULL_HANDLE;
+  boundBlock = boundMaterial = ~0u;
+}
+
+// Pipeline, geometry block, material set and push constants for one draw,
+// each only when it differs from what the pass has bound.
+void Renderer::Impl::bindDraw(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
+                              std::uint32_t meshIndex, std::uint32_t material) {
+  VkPipeline p = mainPipeline(settings.msaaSamples, s.materials[material].material, shadows);
+  if (p != boundPipeline) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
+    boundPipeline = p;
+  }
+  const std::uint32_t block = s.meshes[meshIndex].span.block;
+  if (block != boundBlock) s.geometry->bind(cmd, boundBlock = block, 3);
+  if (material != boundMaterial) {
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &s.materials[material].set, 0, nullptr);
+    PushConstants pc;
+    pc.material = material;
+    vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
+    boundMaterial = material;
+  }
+}
+
+// Opaque groups in draw order: instanced, or (guided) one indirect command
+// per draw position, 20 bytes each, whose instance count the culler set. A
+// run of groups with the same material and geometry block needs no new
+// bindings, so it is one indirect call.
+void Renderer::Impl::drawOpaque(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
+                                VkBuffer indirect, RenderStats& stats) {
+  const auto& groups = s.opaqueGroups;
+  for (std::size_t i = 0; i < groups.size();) {
+    const DrawGroup& g = groups[i];
+    bindDraw(cmd, s, settings, shadows, g.mesh, g.material);
+    ++stats.drawCalls;
+    if (indirect) {
+      std::size_t end = i + 1;
+      while (end < groups.size() && groups[end].material == g.material &&
+             s.meshes[groups[end].mesh].span.block == s.meshes[g.mesh].span.block)
+        ++end;
+      const std::uint32_t count = groups[end - 1].first + groups[end - 1].count - g.first;
+      vkCmdDrawIndexedIndirect(cmd, indirect, VkDeviceSize(g.first) * sizeof(VkDrawIndexedIndirectCommand), count,
+                               sizeof(VkDrawIndexedIndirectCommand));
+      i = end;
+      continue;
+    }
+    const MeshRecord& m = s.meshes[g.mesh];
+    vkCmdDrawIndexed(cmd, m.indexCount, g.count, firstIndexOf(m), vertexOffsetOf(m), g.first);
+    stats.triangles += std::uint64_t(m.indexCount / 3) * g.count;
+    stats.objects += g.count;
+    ++i;
+  }
+}
+
+void Renderer::Impl::drawTransparent(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings,
+                                     bool shadows, std::uint32_t transparentBase, RenderStats& stats) {
+  for (std::uint32_t i = 0; i < transparentSorted.size(); ++i) {
+    const InstanceRecord& inst = s.instances[transparentSorted[i]];
+    bindDraw(cmd, s, settings, shadows, inst.mesh, inst.material);
+    const MeshRecord& m = s.meshes[inst.mesh];
+    vkCmdDrawIndexed(cmd, m.indexCount, 1, firstIndexOf(m), vertexOffsetOf(m), transparentBase + i);
+    ++stats.drawCalls;
+    stats.triangles += m.indexCount / 3;
+    ++stats.objects;
+  }
+}
+
+// Main pass drawing everything.
+void Renderer::Impl::recordMain(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
+                                std::uint32_t transparentBase, RenderStats& stats) {
+  prepareAttachments(cmd);
+  beginMain(cmd, settings, false);
+  drawOpaque(cmd, s, settings, shadows, VK_NULL_HANDLE, stats);
+  drawTransparent(cmd, s, settings, shadows, transparentBase, stats);
+  vkCmdEndRendering(cmd);
+}
+
+// Main pass, guided: early draws, depth pyramid, late test, late draws,
+// transparent instances (never culled) on top, then next frame's visibility
+// from the finished depth.
+void Renderer::Impl::recordGuided(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings,
+                                  bool shadows, std::uint32_t transparentBase, RenderStats& stats) {
+  const RenderTarget& t = *target;
+  if (!culler) culler = std::make_unique<OcclusionCuller>(device);
+  if (!pyramid) pyramid = std::make_unique<DepthPyramid>(device);
+  culler->prepare(s, std::span<const std::uint32_t>(drawOrder.data(), transparentBase));
+  pyramid->ensure(t.depth.view(), t.width, t.height, t.samples);
+  culler->recordEarly(cmd, s, viewProj, *pyramid, t.width, t.height);
+
+  prepareAttachments(cmd);
+  beginMain(cmd, settings, false);
+  drawOpaque(cmd, s, settings, shadows, culler->earlyCommands(), stats);
+  vkCmdEndRendering(cmd);
+
+  testAgainstDepth(cmd, [&] { culler->recordLate(cmd, viewProj, t.width, t.height); });
+  VkMemoryBarrier colour = vkStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
+  colour.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  colour.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT |
+                         VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  const VkPipelineStageFlags attach = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
+                                      VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
+                                      VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+  vkCmdPipelineBarrier(cmd, attach, attach, 0, 1, &colour, 0, nullptr, 0, nullptr);
+
+  beginMain(cmd, settings, true);
+  drawOpaque(cmd, s, settings, shadows, culler->lateCommands(), stats);
+  drawTransparent(cmd, s, settings, shadows, transparentBase, stats);
+  vkCmdEndRendering(cmd);
+  testAgainstDepth(cmd, [&] { culler->recordVisibility(cmd, viewProj, t.width, t.height); });
+}
+
+// The depth attachment reduced into the pyramid, `test` recorded against
+// it, and the attachment made writable again (contents kept).
+void Renderer::Impl::testAgainstDepth(VkCommandBuffer cmd, const std::function<void()>& test) {
+  const RenderTarget& t = *target;
+  imageBarrier(cmd, t.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+               VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+               VK_ACCESS_SHADER_READ_BIT);
+  pyramid->record(cmd);
+  test();
+  imageBarrier(cmd, t.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+               VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0,
+               VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+               VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+}
+
+}  // namespace tsr::vk

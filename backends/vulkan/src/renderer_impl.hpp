@@ -1,0 +1,118 @@
+#pragma once
+// Renderer::Impl, shared by the files that record a frame: renderer.cpp
+// (set-up, frame preparation, draw order, read-back), frame_lights.cpp
+// (lights and shadow maps) and main_pass.cpp (the main pass, full or
+// guided). Private to the back-end.
+#include "tsr/vk/renderer.hpp"
+
+#include "buffer.hpp"
+#include "command_slot.hpp"
+#include "depth_pyramid.hpp"
+#include "emitter_lights.hpp"
+#include "gpu_types.hpp"
+#include "id_pass.hpp"
+#include "occlusion_culler.hpp"
+#include "pipeline.hpp"
+#include "readback.hpp"
+#include "render_target.hpp"
+#include "scene_state.hpp"
+#include "shadow_map.hpp"
+#include "spirv.hpp"
+
+#include "tsr/vk/error.hpp"
+#include "vk_struct.hpp"
+
+#include <spdlog/spdlog.h>
+#include <glm/gtc/packing.hpp>
+
+#include <algorithm>
+#include <cstring>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+
+namespace tsr::vk {
+
+inline constexpr std::uint32_t kMaxShadowMaps = 8;
+
+VkSampleCountFlagBits sampleBits(std::uint32_t samples);
+// A host-visible buffer of at least `needed` bytes; grown geometrically.
+void ensureHost(const Device& device, Buffer& buffer, VkDeviceSize needed, VkBufferUsageFlags usage);
+
+struct Renderer::Impl {
+  const Device& device;
+  VkDescriptorSetLayout frameLayout = VK_NULL_HANDLE;
+  VkDescriptorSetLayout materialLayout = VK_NULL_HANDLE;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  std::optional<DescriptorSlot> frameDescriptors;  // made once the layout exists
+  VkDescriptorSet frameSet = VK_NULL_HANDLE;
+  std::optional<CommandSlot> commands;
+
+  std::map<std::uint32_t, VkFormat> colourFormats;  // by sample count
+  std::map<std::uint64_t, Pipeline> mainPipelines;  // by pipelineKey()
+  Pipeline shadowPipeline;
+
+  Buffer frameBuffer;  // GpuFrame uniform
+  Buffer lightBuffer;
+  Buffer drawOrderBuffer;
+  std::optional<RenderTarget> target;
+  std::optional<ShadowMap> shadowMap;
+  // What the shadow maps hold. They do not depend on the camera, so they are
+  // drawn again only when the scene (any edit bumps its version) or the
+  // lights' projections change.
+  struct ShadowKey {
+    const SceneState* scene = nullptr;
+    std::uint64_t version = 0;
+    std::vector<glm::mat4> viewProj;
+    bool operator==(const ShadowKey&) const = default;
+  };
+  std::optional<ShadowKey> shadowsHeld;     // after a completed frame
+  std::optional<ShadowKey> shadowsPending;  // recorded this frame
+  std::unique_ptr<IdPass> idPass;           // made on first renderIds
+  std::unique_ptr<OcclusionCuller> culler;  // made on the first guided frame
+  std::unique_ptr<DepthPyramid> pyramid;
+  glm::mat4 viewProj{1.0f};                   // this frame's
+  VkPipeline boundPipeline = VK_NULL_HANDLE;  // in the current main pass
+  std::uint32_t boundBlock = ~0u;
+  std::uint32_t boundMaterial = ~0u;
+
+  std::vector<std::uint32_t> drawOrder;
+  std::vector<GpuLight> gpuLights;
+  glm::vec3 ambientFromEmitters{0.0f};  // emitterAmbient() of this frame
+  std::vector<std::uint32_t> transparentSorted;
+
+  explicit Impl(const Device& d);
+  ~Impl();
+  VkFormat colourFormat(std::uint32_t samples);
+  VkPipeline mainPipeline(std::uint32_t samples, const Material& material, bool shadows);
+
+  // The passes of one frame, in order. Returns where transparent instances
+  // start in the draw order.
+  std::uint32_t sortDrawOrder(const SceneState& s, const Camera& camera);
+  // Fills the light buffer; returns the shadowed lights' view-projections.
+  std::vector<glm::mat4> gatherLights(SceneState& s, const RenderSettings& settings);
+  void addEmitterLights(SceneState& s, const RenderSettings& settings, bool shadows,
+                        std::vector<glm::mat4>& shadowViewProj);
+  void prepareFrame(const SceneState& s, const Camera& camera, const Region& region, const RenderSettings& settings,
+                    std::uint32_t shadowLayers);
+  void recordShadows(VkCommandBuffer cmd, const SceneState& s, const std::vector<glm::mat4>& shadowViewProj,
+                     RenderStats& stats);
+  void prepareAttachments(VkCommandBuffer cmd);
+  void beginMain(VkCommandBuffer cmd, const RenderSettings& settings, bool load);
+  void bindDraw(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
+                std::uint32_t meshIndex, std::uint32_t material);
+  void drawOpaque(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
+                  VkBuffer indirect, RenderStats& stats);
+  void drawTransparent(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
+                       std::uint32_t transparentBase, RenderStats& stats);
+  void recordMain(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
+                  std::uint32_t transparentBase, RenderStats& stats);
+  void recordGuided(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
+                    std::uint32_t transparentBase, RenderStats& stats);
+  void testAgainstDepth(VkCommandBuffer cmd, const std::function<void()>& test);
+  void readColour(FrameBuffer& fb) const;
+};
+
+}  // namespace tsr::vk
