@@ -197,6 +197,8 @@ TEST_F(CullPreview, ThePageAndItsSceneAreServedAndNoPathLeavesTheirFolders) {
   EXPECT_EQ(s["total_triangles"].get<std::uint64_t>(), 4448u);
   EXPECT_TRUE(s["preview"].get<bool>());
   EXPECT_EQ(s["camera"]["position"].size(), 3u);
+  EXPECT_EQ(s["background"]["kind"], "color") << "the page matches the path tracer's backdrop";
+  EXPECT_EQ(s["background"]["color"], json::array({0.0, 0.0, 0.0})) << "the Cornell box's is black";
   EXPECT_EQ(request(port(), http::verb::get, "/v1/preview").status, 426u) << "a WebSocket, not a page";
 }
 

@@ -29,6 +29,7 @@ def load(path):
 
 
 def rel_mse(image, reference):
+    """tests/bench/quality/rel_mse.hpp's relMSE: mean over pixels and RGB of (y^ - y)^2 / (y^2 + 0.01)."""
     return float(np.mean((image - reference) ** 2 / (reference ** 2 + 1e-2)))
 
 

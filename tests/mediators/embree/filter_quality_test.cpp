@@ -181,8 +181,8 @@ std::string sceneName(const ::testing::TestParamInfo<const char*>& info) {
 }
 
 INSTANTIATE_TEST_SUITE_P(QualitySuite, SuiteFilter,
-                         ::testing::Values("indirect-room", "rough-metal", "textures", "foggy-room"), sceneName);
+                         ::testing::Values("indirect-room", "rough-metal", "textures", "foggy-room", "fog-glass"), sceneName);
 INSTANTIATE_TEST_SUITE_P(QualitySuite, SuitePreview,
-                         ::testing::Values("indirect-room", "textures", "grille", "foggy-room"), sceneName);
+                         ::testing::Values("indirect-room", "textures", "grille", "foggy-room", "fog-glass"), sceneName);
 
 }  // namespace
