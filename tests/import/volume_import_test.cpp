@@ -71,6 +71,65 @@ TEST(VolumeImport, TheSceneMediumFillsTheBackground) {
   EXPECT_FLOAT_EQ(fog->phaseG(), -0.2f);
 }
 
+// A 2 x 4 grey PNG: two slices of 2 x 2, the first dense, the second thin.
+test::GltfBuilder texturedVolumeScene(const test::TempDir& dir, const nlohmann::json& tesseraVolume) {
+  test::writePng(dir.file("density.png"), 2, 4, 1, {255, 255, 255, 255, 64, 64, 64, 64});
+  test::GltfBuilder b = volumeScene({{"TSR_materials_volume", tesseraVolume}});
+  b.doc["images"] = {{{"uri", "density.png"}}};
+  b.doc["textures"] = {{{"source", 0}}};
+  return b;
+}
+
+TEST(VolumeImport, TesseraVolumesCarry3DTexturesAsLinearDensities) {
+  test::TempDir dir;
+  texturedVolumeScene(dir, {{"scattering", {1.0, 1.0, 1.0}},
+                            {"scatteringTexture", {{"index", 0}}},
+                            {"absorptionTexture", {{"index", 0}}},
+                            {"textureSlices", 2}})
+      .writeGltf(dir.file("cloud.gltf"));
+  Scene scene;
+  importScene(scene, dir.file("cloud.gltf"));
+  const VolumeMaterial* v = onlyVolume(scene);
+  ASSERT_NE(v, nullptr);
+  EXPECT_EQ(v->textureSlices(), 2u);
+  EXPECT_EQ(v->absorptionTexture(), v->scatteringTexture()) << "one image, shared";
+  EXPECT_EQ(v->emissionTexture(), kNoContainer);
+  const auto* image = scene.find<Image>(v->scatteringTexture());
+  ASSERT_NE(image, nullptr);
+  EXPECT_EQ(image->height(), 4u);
+  EXPECT_EQ(image->colorSpace(), ColorSpace::Linear) << "densities are data, not colours";
+}
+
+TEST(VolumeImport, BadVolumeTexturesAreRefused) {
+  test::TempDir dir;
+  const std::pair<nlohmann::json, std::string> cases[] = {
+      {{{"scatteringTexture", {{"index", 0}}}, {"textureSlices", 3}}, "not 3 slices of equal height"},
+      {{{"scatteringTexture", {{"index", 0}}}, {"textureSlices", 0}}, "textureSlices must be a whole number"},
+      {{{"scatteringTexture", {{"index", 0}}}, {"textureSlices", 1.5}}, "textureSlices must be a whole number"},
+      {{{"scatteringTexture", {{"index", 7}}}}, "texture"},
+      {{{"scatteringTexture", {{"texCoord", 0}}}}, "has no index"},
+  };
+  int n = 0;
+  for (const auto& [tessera, problem] : cases) {
+    const std::string path = dir.file("bad" + std::to_string(n++) + ".gltf");
+    texturedVolumeScene(dir, tessera).writeGltf(path);
+    Scene scene;
+    try {
+      importScene(scene, path);
+      ADD_FAILURE() << path << " was accepted; expected: " << problem;
+    } catch (const ImportError& e) {
+      EXPECT_NE(std::string(e.what()).find(problem), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(scene.size(), 0u) << "nothing half-imported";
+  }
+  // The scene's fog has no mesh to stretch a texture over.
+  test::GltfBuilder b = texturedVolumeScene(dir, {{"scattering", {1.0, 1.0, 1.0}}});
+  b.doc["scenes"][0]["extensions"] = {{"TSR_scene_medium", {{"scatteringTexture", {{"index", 0}}}}}};
+  b.writeGltf(dir.file("fog.gltf"));
+  Scene scene;
+  EXPECT_THROW(importScene(scene, dir.file("fog.gltf")), ImportError);
+}
+
 TEST(VolumeImport, BadVolumesAreRefusedWhereTheyAre) {
   test::TempDir dir;
   const std::pair<nlohmann::json, std::string> cases[] = {

@@ -136,7 +136,8 @@ TEST(FieldDeclarations, NumbersArePinned) {
             "Background: 2=kind/value 3=color/value 4=gradientTop/value 5=gradientBottom/value "
             "6=environment/reference 7=intensity/value 8=medium/reference\n"
             "VolumeMaterial: 2=emission/value 3=emissionTexture/reference 4=absorption/value "
-            "5=absorptionTexture/reference 6=scattering/value 7=scatteringTexture/reference 8=phaseG/value\n");
+            "5=absorptionTexture/reference 6=scattering/value 7=scatteringTexture/reference 8=phaseG/value "
+            "9=textureSlices/value\n");
 }
 
 TEST(FieldDeclarations, EverySetterReachesAReplicaThroughTheWire) {

@@ -2,13 +2,38 @@
 
 #include "tsr/med/scene_values.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
 namespace tsr::med::embree_mediator {
 
+namespace {
+// Coefficients as the back-end accepts them: finite and not negative.
+glm::vec3 coefficient(const glm::vec3& v) {
+  glm::vec3 out;
+  for (int c = 0; c < 3; ++c) out[c] = std::isfinite(v[c]) ? std::max(v[c], 0.0f) : 0.0f;
+  return out;
+}
+}  // namespace
+
 embree::Medium translateMedium(const sg::VolumeMaterial& v) {
-  return {v.absorption(), v.scattering(), v.emission(), v.phaseG()};
+  embree::Medium m;
+  m.absorption = coefficient(v.absorption());
+  m.scattering = coefficient(v.scattering());
+  m.emission = coefficient(v.emission());
+  m.g = std::isfinite(v.phaseG()) ? std::clamp(v.phaseG(), -0.99f, 0.99f) : 0.0f;
+  return m;
+}
+
+embree::Medium translateMedium(const sg::VolumeMaterial& v, const TextureLookup& textures) {
+  embree::Medium m = translateMedium(v);
+  auto texture = [&](sg::ContainerId id) { return id != sg::kNoContainer ? textures(id) : std::nullopt; };
+  m.absorptionTexture = texture(v.absorptionTexture());
+  m.scatteringTexture = texture(v.scatteringTexture());
+  m.emissionTexture = texture(v.emissionTexture());
+  m.textureSlices = std::max<std::uint32_t>(v.textureSlices(), 1);
+  return m;
 }
 
 embree::Material translateMaterial(const sg::Container* material, const sg::VolumeMaterial* volume,
@@ -19,7 +44,7 @@ embree::Material translateMaterial(const sg::Container* material, const sg::Volu
     // says "no surface"): an index-matched boundary rays and shadow rays cross.
     const bool indexMatched = m.type == embree::MaterialType::Glass && std::abs(m.ior - 1.0f) < 1e-3f;
     if (!material || indexMatched) m.type = embree::MaterialType::Interface;
-    if (const embree::Medium medium = translateMedium(*volume); !medium.empty()) m.interior = medium;
+    if (const embree::Medium medium = translateMedium(*volume, textures); !medium.empty()) m.interior = medium;
   }
   return m;
 }

@@ -22,11 +22,13 @@ using TextureLookup = std::function<std::optional<embree::TextureId>(sg::Contain
 // transparency is not modelled by the path tracer. Emission carries over.
 embree::Material translateSurface(const sg::Container* material, const TextureLookup& textures);
 // The surface with the volume inside it: a volume without a surface
-// material has an index-matched boundary (MaterialType::Interface). The
-// volume's textures are not traced yet: its factors are.
+// material has an index-matched boundary (MaterialType::Interface).
 embree::Material translateMaterial(const sg::Container* material, const sg::VolumeMaterial* volume,
                                    const TextureLookup& textures);
+// A volume's coefficients, sanitised (the scene's fog: no textures) ...
 embree::Medium translateMedium(const sg::VolumeMaterial& volume);
+// ... and with its textures, for a closed mesh's interior.
+embree::Medium translateMedium(const sg::VolumeMaterial& volume, const TextureLookup& textures);
 
 // RGBA, linear; sRGB 8-bit images are decoded.
 embree::Texture translateImage(const sg::Image& image);

@@ -184,8 +184,33 @@ class Converter {
     return out;
   }
 
-  // TSR_materials_volume / TSR_scene_medium over `into`.
-  void tesseraVolume(const tinygltf::Value& ext, const std::string& what, parsed::Volume& into) const {
+  // TSR_materials_volume / TSR_scene_medium over `into`; textures only in
+  // a material's (the scene's medium has no mesh to stretch them over).
+  void tesseraVolume(const tinygltf::Value& ext, const std::string& what, parsed::Volume& into, bool textures) {
+    const char* keys[] = {"absorptionTexture", "scatteringTexture", "emissionTexture"};
+    int* images[] = {&into.absorptionImage, &into.scatteringImage, &into.emissionImage};
+    for (int k = 0; k < 3; ++k) {
+      if (!ext.Has(keys[k])) continue;
+      if (!textures) fail(what + " " + keys[k] + ": a scene-wide medium cannot be textured");
+      const tinygltf::Value& info = ext.Get(keys[k]);
+      if (!info.Has("index")) fail(what + " " + keys[k] + " has no index");
+      // Densities, not colours: read as linear values.
+      *images[k] = texture(info.Get("index").GetNumberAsInt(), what + " " + keys[k], false);
+    }
+    if (ext.Has("textureSlices")) {
+      if (!textures) fail(what + " textureSlices: a scene-wide medium cannot be textured");
+      const double n = ext.Get("textureSlices").GetNumberAsDouble();
+      if (!(n >= 1.0 && n <= double(parsed::kMaxTextureSlices) && n == std::floor(n)))
+        fail(what + " textureSlices must be a whole number from 1 to " + str(parsed::kMaxTextureSlices));
+      into.textureSlices = static_cast<std::uint32_t>(n);
+    }
+    for (int k = 0; k < 3; ++k) {
+      if (*images[k] == parsed::kNone) continue;
+      const std::uint32_t rows = out_.images[static_cast<std::size_t>(*images[k])].height;
+      if (rows % into.textureSlices != 0)
+        fail(what + " " + keys[k] + ": image " + str(*images[k]) + " is " + str(rows) + " rows high, not " +
+             str(into.textureSlices) + " slices of equal height");
+    }
     if (ext.Has("emission")) into.emission = coefficients(ext.Get("emission"), what + " emission");
     if (ext.Has("absorption")) into.absorption = coefficients(ext.Get("absorption"), what + " absorption");
     if (ext.Has("scattering")) into.scattering = coefficients(ext.Get("scattering"), what + " scattering");
@@ -198,7 +223,7 @@ class Converter {
   // KHR_materials_volume's attenuation (Beer's law: colour c left after
   // distance d, so sigma_a = -ln(c) / d), then Tessera's own extension
   // for scattering, emission and the phase function.
-  std::optional<parsed::Volume> materialVolume(const tinygltf::ExtensionMap& ext, const std::string& what) const {
+  std::optional<parsed::Volume> materialVolume(const tinygltf::ExtensionMap& ext, const std::string& what) {
     auto khr = ext.find("KHR_materials_volume");
     auto tsr = ext.find("TSR_materials_volume");
     if (khr == ext.end() && tsr == ext.end()) return std::nullopt;
@@ -215,7 +240,7 @@ class Converter {
         v.absorption[c] = -std::log(std::max(colour[c], 1e-6f)) / distance;
       }
     }
-    if (tsr != ext.end()) tesseraVolume(tsr->second, what + " TSR_materials_volume", v);
+    if (tsr != ext.end()) tesseraVolume(tsr->second, what + " TSR_materials_volume", v, true);
     return v;
   }
 
@@ -226,7 +251,7 @@ class Converter {
     auto it = ext.find("TSR_scene_medium");
     if (it == ext.end()) return;
     parsed::Volume medium;
-    tesseraVolume(it->second, "scene " + str(index) + " TSR_scene_medium", medium);
+    tesseraVolume(it->second, "scene " + str(index) + " TSR_scene_medium", medium, false);
     out_.medium = medium;
   }
 

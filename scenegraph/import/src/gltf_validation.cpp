@@ -97,8 +97,14 @@ TypeChecker::Check documentSchema(const TypeChecker& t) {
   const auto textureInfo =
       t.object({{"index", t.index()}, {"texCoord", t.index()}, {"scale", t.number()}, {"strength", t.number()}});
   // Tessera's volume extension (README "Participating media").
-  const auto tesseraVolume = t.object(
-      {{"emission", t.numbers(3)}, {"absorption", t.numbers(3)}, {"scattering", t.numbers(3)}, {"phaseG", t.number()}});
+  const auto tesseraVolume = t.object({{"emission", t.numbers(3)},
+                                       {"absorption", t.numbers(3)},
+                                       {"scattering", t.numbers(3)},
+                                       {"phaseG", t.number()},
+                                       {"absorptionTexture", textureInfo},
+                                       {"scatteringTexture", textureInfo},
+                                       {"emissionTexture", textureInfo},
+                                       {"textureSlices", t.number()}});
   const auto material = t.object({
       {"name", t.string()},
       {"pbrMetallicRoughness", t.object({{"baseColorFactor", t.numbers(4)},

@@ -13,6 +13,8 @@
 namespace tsr::sg::parsed {
 
 inline constexpr int kNone = -1;
+// A 3D texture is at most this many slices (each at least one row).
+inline constexpr std::uint32_t kMaxTextureSlices = 4096;
 
 struct Image {
   std::string name;
@@ -31,6 +33,12 @@ struct Volume {
   Vec3 absorption{0.0f};
   Vec3 scattering{0.0f};
   float phaseG = 0.0f;
+  // Images of 3D textures (TSR_materials_volume): textureSlices slices
+  // stacked top to bottom, as sg::VolumeMaterial reads them.
+  int absorptionImage = kNone;
+  int scatteringImage = kNone;
+  int emissionImage = kNone;
+  std::uint32_t textureSlices = 1;
 };
 
 struct Material {

@@ -53,11 +53,23 @@ void checkPrimitive(const Scene& s, const Primitive& p, const std::string& what)
   reference(p.material, s.materials.size(), true, what + ": material");
 }
 
-// Coefficients finite and not negative, g strictly inside (-1, 1).
-void checkVolume(const Volume& v, const std::string& what) {
+// Coefficients finite and not negative, g strictly inside (-1, 1), and
+// textures (a material's only) whose images hold whole slices.
+void checkVolume(const Volume& v, const Scene& s, bool textures, const std::string& what) {
   for (const Vec3& c : {v.emission, v.absorption, v.scattering})
     if (!finite(c) || c.x < 0.0f || c.y < 0.0f || c.z < 0.0f) fail(what + " has a negative or non-finite coefficient");
   if (!(v.phaseG > -1.0f && v.phaseG < 1.0f)) fail(what + " has a phase g outside (-1, 1)");
+  if (v.textureSlices < 1 || v.textureSlices > kMaxTextureSlices)
+    fail(what + " has " + std::to_string(v.textureSlices) + " texture slices");
+  for (int image : {v.absorptionImage, v.scatteringImage, v.emissionImage}) {
+    if (image != kNone && !textures) fail(what + " is textured, which only a material's volume may be");
+    reference(image, s.images.size(), true, what + ": image");
+    if (image == kNone) continue;
+    const Image& i = s.images[static_cast<std::size_t>(image)];
+    if (i.height % v.textureSlices != 0)
+      fail(what + ": image " + std::to_string(image) + " is " + std::to_string(i.height) + " rows high, not " +
+           std::to_string(v.textureSlices) + " slices of equal height");
+  }
 }
 
 void checkMaterials(const Scene& s) {
@@ -70,9 +82,9 @@ void checkMaterials(const Scene& s) {
         !std::isfinite(m.roughness) || !std::isfinite(m.emissionStrength) || !std::isfinite(m.transmission) ||
         !std::isfinite(m.ior) || !std::isfinite(m.normalScale))
       fail(what + " holds NaN or infinity");
-    if (m.volume) checkVolume(*m.volume, what + "'s volume");
+    if (m.volume) checkVolume(*m.volume, s, true, what + "'s volume");
   }
-  if (s.medium) checkVolume(*s.medium, "the scene medium");
+  if (s.medium) checkVolume(*s.medium, s, false, "the scene medium");
 }
 
 // Every node reached once from the roots, none twice (no cycles, no sharing).

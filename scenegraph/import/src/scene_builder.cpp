@@ -120,6 +120,10 @@ class Builder {
     m.setAbsorption(v.absorption);
     m.setScattering(v.scattering);
     m.setPhaseG(v.phaseG);
+    m.setTextureSlices(v.textureSlices);
+    if (v.absorptionImage != parsed::kNone) m.setAbsorptionTexture(image(v.absorptionImage));
+    if (v.scatteringImage != parsed::kNone) m.setScatteringTexture(image(v.scatteringImage));
+    if (v.emissionImage != parsed::kNone) m.setEmissionTexture(image(v.emissionImage));
     return m.id();
   }
 

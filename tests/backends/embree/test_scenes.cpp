@@ -56,6 +56,16 @@ void floorUnderLamp(Scene& scene) {
                     glm::mat4(1.0f));
 }
 
+MeshData box(const glm::vec3& lo, const glm::vec3& hi) {
+  MeshData m;
+  for (int i = 0; i < 8; ++i)
+    m.positions.push_back({(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
+  const std::uint32_t faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                     {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& f : faces) m.indices.insert(m.indices.end(), {f[0], f[1], f[2], f[0], f[2], f[3]});
+  return m;
+}
+
 Camera cornellBox(Scene& scene, int sphereTris, float aspect) {
   struct Q {
     int colour;

@@ -18,6 +18,9 @@ std::shared_ptr<Device> sharedDevice();
 // UV sphere built like shared/scenes/make_cornell.py: about `tris`
 // triangles; smooth normals only when asked for.
 MeshData uvSphere(const glm::vec3& centre, float radius, int tris, bool normals);
+// An axis-aligned box, closed, faces wound counter-clockwise seen from
+// outside (normals out).
+MeshData box(const glm::vec3& lo, const glm::vec3& hi);
 // Two triangles p0 p1 p2, p0 p2 p3 (counter-clockwise seen from the front), uvs 0..1.
 MeshData quad(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& p3);
 

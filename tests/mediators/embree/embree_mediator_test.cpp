@@ -271,6 +271,29 @@ TEST_F(IncrementalSync, VolumeAttachedAndEdited) {
   check("volume edited");
 }
 
+TEST_F(IncrementalSync, VolumeTextureAttachedEditedAndResliced) {
+  sg::Geometry* glass = glassGeometry(rig.source);
+  ASSERT_NE(glass, nullptr);
+  // A cloud in the glass sphere: 2 x 2 texels in 2 slices, dense on one side.
+  auto& density = rig.source.create<sg::Image>("density");
+  density.setPixels(2, 4, 1, sg::PixelFormat::UInt8, {255, 0, 255, 0, 128, 0, 128, 0});
+  density.setColorSpace(sg::ColorSpace::Linear);
+  auto& cloud = rig.source.create<sg::VolumeMaterial>("cloud");
+  cloud.setScattering(glm::vec3(0.05f));
+  glass->setVolume(cloud.id());
+  check("untextured cloud");
+  before = follower.image;
+  cloud.setScatteringTexture(density.id());
+  cloud.setTextureSlices(2);
+  check("texture attached");
+  before = follower.image;
+  density.setPixels(2, 4, 1, sg::PixelFormat::UInt8, {0, 255, 0, 255, 0, 64, 0, 64});
+  check("texture edited");
+  before = follower.image;
+  cloud.setTextureSlices(1);
+  check("slices changed");
+}
+
 TEST_F(IncrementalSync, FogFillsTheSceneFromTheBackground) {
   auto& fog = rig.source.create<sg::VolumeMaterial>("fog");
   fog.setScattering(glm::vec3(0.001f));

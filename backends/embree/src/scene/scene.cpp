@@ -71,6 +71,13 @@ void validateColour(const glm::vec3& c, const char* what) {
   }
 }
 
+void validateMedium(const Medium& m, const char* what) {
+  for (const glm::vec3& c : {m.absorption, m.scattering, m.emission})
+    if (!finite(c) || c.x < 0.0f || c.y < 0.0f || c.z < 0.0f)
+      throw Error(std::string(what) + " coefficients must be finite and non-negative");
+  if (!(m.g > -1.0f && m.g < 1.0f)) throw Error(std::string(what) + " phase g must lie strictly between -1 and 1");
+}
+
 template <class Vec, class Id>
 auto& lookup(Vec& v, Id id, const char* what) {
   std::uint32_t i = index(id);
@@ -272,11 +279,15 @@ static void validateMaterial(const Material& m, const SceneState& s) {
   validateColour(m.emission, "emission");
   if (!(m.roughness >= 0.0f && m.roughness <= 1.0f)) throw Error("material roughness must be in [0, 1]");
   if (!(m.ior > 0.0f) || !std::isfinite(m.ior)) throw Error("material ior must be positive and finite");
-  for (const auto& t : {m.baseColorTexture, m.emissionTexture}) {
+  std::optional<TextureId> none;
+  const Medium& v = m.interior ? *m.interior : Medium{};
+  for (const auto& t : {m.baseColorTexture, m.emissionTexture, m.interior ? v.absorptionTexture : none,
+                        m.interior ? v.scatteringTexture : none, m.interior ? v.emissionTexture : none}) {
     if (t && (index(*t) >= s.textures.size() || !s.textures[index(*t)])) {
       throw Error("material references unknown texture id " + std::to_string(index(*t)));
     }
   }
+  if (m.interior) validateMedium(*m.interior, "material interior");
 }
 
 MaterialId Scene::addMaterial(const Material& material) {
@@ -312,7 +323,10 @@ TextureId Scene::addTexture(Texture texture) {
 void Scene::removeTexture(TextureId id) {
   auto& slot = lookup(state_->textures, id, "texture");
   for (const auto& m : state_->materials) {
-    if (m && (m->baseColorTexture == id || m->emissionTexture == id)) {
+    const bool interior = m && m->interior &&
+                          (m->interior->absorptionTexture == id || m->interior->scatteringTexture == id ||
+                           m->interior->emissionTexture == id);
+    if (m && (m->baseColorTexture == id || m->emissionTexture == id || interior)) {
       throw Error("texture " + std::to_string(index(id)) + " is still used by a material");
     }
   }
@@ -378,6 +392,7 @@ bool refreshMaterials(SceneState& s) {
   const ResolvedMaterial* before = s.resolved.data();
   s.resolved.resize(s.materials.size());
   s.materialMedia = false;
+  s.texturedMedia = false;
   for (std::size_t i = 0; i < s.materials.size(); ++i) {
     auto& r = s.resolved[i];
     r = {};
@@ -386,6 +401,13 @@ bool refreshMaterials(SceneState& s) {
     s.materialMedia = s.materialMedia || r.material.interior.has_value();
     if (r.material.baseColorTexture) r.baseColorTexture = s.textures[index(*r.material.baseColorTexture)].get();
     if (r.material.emissionTexture) r.emissionTexture = s.textures[index(*r.material.emissionTexture)].get();
+    if (r.material.interior && r.material.interior->textured()) {
+      const Medium& m = *r.material.interior;
+      auto texture = [&](const std::optional<TextureId>& t) { return t ? s.textures[index(*t)].get() : nullptr; };
+      r.interior =
+          VolumeField(m, texture(m.absorptionTexture), texture(m.scatteringTexture), texture(m.emissionTexture));
+      s.texturedMedia = true;
+    }
   }
   return s.resolved.data() != before;
 }
@@ -397,6 +419,14 @@ InstanceView viewOf(const SceneState& s, const InstanceRecord& inst) {
   v.normalTransform = glm::transpose(glm::inverse(glm::mat3(inst.transform)));
   v.faceNormalTransform = glm::determinant(glm::mat3(inst.transform)) * v.normalTransform;
   v.material = &s.resolved[index(inst.material)];
+  if (v.material->interior.active() && !v.mesh->positions.empty()) {
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+    for (const glm::vec3& p : v.mesh->positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    const glm::vec3 size = glm::max(hi - lo, glm::vec3(1e-30f));
+    glm::mat4 unit(1.0f);
+    for (int a = 0; a < 3; ++a) unit[a][a] = 1.0f / size[a], unit[3][a] = -lo[a] / size[a];
+    v.worldToVolume = unit * glm::inverse(inst.transform);
+  }
   return v;
 }
 
@@ -454,8 +484,12 @@ void rebuildEmitters(SceneState& s) {
 
 void Scene::commit() {
   SceneState& s = *state_;
+  const bool meshesChanged = !s.pending.meshes.empty();
   commitLevels(s);
-  const bool allViews = s.pending.materials && refreshMaterials(s);
+  bool allViews = s.pending.materials && refreshMaterials(s);
+  // A textured interior's views hold their mesh's bounds and depend on
+  // whether their material is textured: refreshed on either edit.
+  allViews = allViews || (s.texturedMedia && (s.pending.materials || meshesChanged));
   if (s.pending.lights) {
     s.activeLights.clear();
     for (const auto& l : s.lights)

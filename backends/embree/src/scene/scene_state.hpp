@@ -1,5 +1,6 @@
 #pragma once
 
+#include "scene/volume_field.hpp"
 #include "tsr/embree/distribution.hpp"
 #include "tsr/embree/scene.hpp"
 
@@ -86,6 +87,7 @@ struct ResolvedMaterial {
   Material material;
   const Texture* baseColorTexture = nullptr;
   const Texture* emissionTexture = nullptr;
+  VolumeField interior;  // active when the interior medium is textured
 };
 
 inline constexpr std::uint32_t kNotEmissive = std::numeric_limits<std::uint32_t>::max();
@@ -99,6 +101,9 @@ struct InstanceView {
   // normal to world space keeping the winding's orientation under mirroring.
   glm::mat3 faceNormalTransform{1.0f};
   const ResolvedMaterial* material = nullptr;
+  // World space to the unit cube over the mesh's object-space bounds, where
+  // a textured interior's textures lie (identity otherwise).
+  glm::mat4 worldToVolume{1.0f};
   std::uint32_t emissiveOffset = kNotEmissive;  // first triangle in the emitter distribution
 };
 
@@ -187,6 +192,7 @@ struct SceneState {
   // Derived at commit().
   std::vector<ResolvedMaterial> resolved;
   bool materialMedia = false;  // some material has an interior medium
+  bool texturedMedia = false;  // ... and some interior is textured: views hold worldToVolume
   std::vector<InstanceView> views;
   std::vector<Light> activeLights;
   Distribution1D emitters;

@@ -1,7 +1,8 @@
 #pragma once
-// Homogeneous media along a path: which medium a point is in (a stack of
-// the closed volumes the path has entered, over the scene's fog), where a
-// ray's free flight ends, what passes a segment, and what a segment emits.
+// Media along a path: which medium a point is in (a stack of the closed
+// volumes the path has entered, over the scene's fog), and, for
+// homogeneous media, where a ray's free flight ends, what passes a
+// segment, and what a segment emits (textured media: delta_tracking.hpp).
 // Colour channels have their own extinction; a distance is sampled in one
 // channel picked at random and weighted by the mean of the three channels'
 // densities (single-sample MIS over channels, as pbrt-v4's spectral
@@ -12,34 +13,52 @@
 
 #include <glm/vec3.hpp>
 
+#include "scene/scene_state.hpp"
 #include "tsr/embree/medium.hpp"
 
 namespace tsr::embree {
 
+// A medium along a path: its coefficients and, for a closed mesh's
+// interior, the instance whose mesh it fills (a textured interior's
+// textures lie over that mesh's bounds).
+struct MediumAt {
+  const Medium* medium = nullptr;
+  const InstanceView* instance = nullptr;
+
+  explicit operator bool() const { return medium != nullptr; }
+  const VolumeField* field() const {
+    return instance && instance->material->interior.active() ? &instance->material->interior : nullptr;
+  }
+};
+
 class MediumStack {
  public:
-  explicit MediumStack(const Medium* outside = nullptr) : outside_(outside) {}
-  const Medium* current() const { return size_ ? items_[size_ - 1] : outside_; }
+  explicit MediumStack(const Medium* outside = nullptr) : outside_{outside, nullptr} {}
+  MediumAt current() const { return size_ ? items_[size_ - 1] : outside_; }
   // Crossing a boundary of `inside`: entering when the ray goes against
-  // the face normal. A stack deeper than kDepth forgets the extra entries.
-  void cross(const Medium* inside, bool entering) {
+  // the face normal. Leaving drops the instance's own entry, or else the
+  // latest entry of the same medium (a path that started inside it). A
+  // stack deeper than kDepth forgets the extra entries.
+  void cross(const MediumAt& inside, bool entering) {
     if (entering) {
       if (size_ < kDepth) items_[size_++] = inside;
       return;
     }
-    for (int i = size_ - 1; i >= 0; --i) {
-      if (items_[i] != inside) continue;
-      for (int j = i; j + 1 < size_; ++j) items_[j] = items_[j + 1];
-      --size_;
-      return;
-    }
+    int found = -1;
+    for (int i = size_ - 1; i >= 0 && found < 0; --i)
+      if (items_[i].medium == inside.medium && items_[i].instance == inside.instance) found = i;
+    for (int i = size_ - 1; i >= 0 && found < 0; --i)
+      if (items_[i].medium == inside.medium) found = i;
+    if (found < 0) return;
+    for (int j = found; j + 1 < size_; ++j) items_[j] = items_[j + 1];
+    --size_;
   }
 
  private:
   static constexpr int kDepth = 8;
-  std::array<const Medium*, kDepth> items_{};
+  std::array<MediumAt, kDepth> items_{};
   int size_ = 0;
-  const Medium* outside_;
+  MediumAt outside_;
 };
 
 // exp(-sigma * t) per channel; a channel without extinction passes

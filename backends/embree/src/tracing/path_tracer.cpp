@@ -4,6 +4,7 @@
 // throughput and Russian roulette, direct light (sampleDirect), and the
 // bookkeeping that sorts contributions into the filters' buffers.
 #include "tracing/delta_lights.hpp"
+#include "tracing/delta_tracking.hpp"
 #include "tracing/media.hpp"
 #include "tracing/scattering_point.hpp"
 #include "tracing/tracer.hpp"
@@ -65,7 +66,7 @@ glm::vec3 pastBoundary(const SurfaceHit& h, const glm::vec3& dir) {
 // it otherwise.
 void crossBoundary(MediumStack& stack, const SurfaceHit& h, const glm::vec3& dir) {
   const Material& m = h.instance->material->material;
-  if (m.interior) stack.cross(&*m.interior, glm::dot(dir, h.faceNormal) < 0.0f);
+  if (m.interior) stack.cross({&*m.interior, h.instance}, glm::dot(dir, h.faceNormal) < 0.0f);
 }
 
 // Where a path goes from a vertex and with what weight.
@@ -116,9 +117,10 @@ class PathWalk {
   // What of a shadow ray's light arrives: 0 or 1 without media; through
   // media, their transmittance, across index-matched boundaries.
   glm::vec3 shadow(glm::vec3 org, const glm::vec3& dir, float tfar);
-  // The medium segment up to tMax (a surface, or infinity): its emission,
-  // and where the flight ends. True with `at` set when it scatters there.
-  bool flyThrough(const Medium& m, float tMax, float& at);
+  // The medium segment from org along dir up to tMax (a surface, or
+  // infinity): its emission, and where the flight ends. True with `at` set
+  // when it scatters there.
+  bool flyThrough(const MediumAt& m, const glm::vec3& org, const glm::vec3& dir, float tMax, float& at);
   bool scatterInMedium(const Medium& m, const glm::vec3& p, std::uint32_t depth, glm::vec3& org, glm::vec3& dir);
 
   Tracer& tracer_;
@@ -155,11 +157,11 @@ PixelSample PathWalk::run(glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos,
     }
     RTCRayHit rh;
     const bool hit = tracer_.intersect(org, dir, rh);
-    if (const Medium* m = media_ ? stack_.current() : nullptr) {
+    if (const MediumAt m = media_ ? stack_.current() : MediumAt{}) {
       float at = 0.0f;
-      if (flyThrough(*m, hit ? rh.ray.tfar : kInf, at)) {
+      if (flyThrough(m, org, dir, hit ? rh.ray.tfar : kInf, at)) {
         if (depth >= tracer_.settings.maxDepth) break;
-        if (!scatterInMedium(*m, org + at * dir, depth, org, dir)) break;
+        if (!scatterInMedium(*m.medium, org + at * dir, depth, org, dir)) break;
         ++depth;
         continue;
       }
@@ -199,11 +201,20 @@ PixelSample PathWalk::run(glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos,
   return out_;
 }
 
-bool PathWalk::flyThrough(const Medium& m, float tMax, float& at) {
-  const glm::vec3 emitted = segmentEmission(m, tMax);
-  if (maxComponent(emitted) > 0.0f) add(throughput_ * emitted, nonSpecular_);
-  const float uChannel = rng_.uniform(), uDistance = rng_.uniform();
-  const FreeFlight f = sampleFreeFlight(m, tMax, uChannel, uDistance);
+bool PathWalk::flyThrough(const MediumAt& m, const glm::vec3& org, const glm::vec3& dir, float tMax, float& at) {
+  FreeFlight f;
+  if (m.field()) {
+    auto emit = [&](const glm::vec3& e) {
+      if (maxComponent(e) > 0.0f) add(throughput_ * e, nonSpecular_);
+    };
+    f = deltaTrack(
+        FieldRay(m, org, dir), tMax, [&] { return rng_.uniform(); }, emit);
+  } else {
+    const glm::vec3 emitted = segmentEmission(*m.medium, tMax);
+    if (maxComponent(emitted) > 0.0f) add(throughput_ * emitted, nonSpecular_);
+    const float uChannel = rng_.uniform(), uDistance = rng_.uniform();
+    f = sampleFreeFlight(*m.medium, tMax, uChannel, uDistance);
+  }
   throughput_ *= f.weight;
   if (!f.scattered) return false;
   if (nonSpecular_ == 0) pathLength_ += f.t;
@@ -247,7 +258,9 @@ glm::vec3 PathWalk::shadow(glm::vec3 org, const glm::vec3& dir, float tfar) {
     if (!traceable(org, dir, tfar)) return glm::vec3(0.0f);
     const bool hit = tracer_.intersect(org, dir, rh, tfar);
     const float segment = hit ? rh.ray.tfar : tfar;
-    if (const Medium* m = stack.current()) passed *= transmittance(m->extinction(), segment);
+    if (const MediumAt m = stack.current())
+      passed *= m.field() ? ratioTrack(FieldRay(m, org, dir), segment, [&] { return rng_.uniform(); })
+                          : transmittance(m.medium->extinction(), segment);
     if (!hit) return passed;
     SurfaceHit h;
     if (!tracer_.surface(org, dir, rh, h) || h.instance->material->material.type != MaterialType::Interface)

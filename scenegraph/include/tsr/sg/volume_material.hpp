@@ -6,9 +6,13 @@
 // geometry names it beside its surface material: the surface reflects and
 // refracts at the boundary (a geometry without one is an index-matched
 // boundary), the volume absorbs, scatters and emits inside; a background
-// names it for fog everywhere outside. Textures are 3D images (depth > 1;
-// a 2D image is one slice, extended along z) stretched over the
-// geometry's object-space bounding box; the scene's medium ignores them.
+// names it for fog everywhere outside. Textures are 3D: an image holds
+// textureSlices slices of equal height stacked top (lowest z) to bottom,
+// each a picture of the cross-section seen from +z (left: lowest x, top:
+// highest y), so a plain 2D image is one slice, extended along z. They multiply their
+// factor, are read as linear values (an sRGB image is decoded first),
+// and are stretched over the geometry's object-space bounding box; the
+// scene's medium ignores them. Rows past the last whole slice are unused.
 //
 // Units: absorption and scattering are coefficients sigma_a, sigma_s
 // (1/unit); emission is radiance added per unit length, so a purely
@@ -26,7 +30,8 @@ class VolumeMaterial final : public ContainerOf<VolumeMaterial, ContainerType::V
     AbsorptionTexture,
     Scattering,
     ScatteringTexture,
-    PhaseG
+    PhaseG,
+    TextureSlices
   };
 
   const Vec3& emission() const { return emission_; }
@@ -35,7 +40,8 @@ class VolumeMaterial final : public ContainerOf<VolumeMaterial, ContainerType::V
   ContainerId absorptionTexture() const { return absorptionTexture_; }
   const Vec3& scattering() const { return scattering_; }
   ContainerId scatteringTexture() const { return scatteringTexture_; }
-  float phaseG() const { return phaseG_; }  // in (-1, 1); back-ends clamp to +-0.99
+  float phaseG() const { return phaseG_; }                        // in (-1, 1); back-ends clamp to +-0.99
+  std::uint32_t textureSlices() const { return textureSlices_; }  // 0 reads as 1
 
   void setEmission(const Vec3& v) { set<&VolumeMaterial::emission_>(v); }
   void setEmissionTexture(ContainerId image) { set<&VolumeMaterial::emissionTexture_>(image); }
@@ -44,6 +50,7 @@ class VolumeMaterial final : public ContainerOf<VolumeMaterial, ContainerType::V
   void setScattering(const Vec3& v) { set<&VolumeMaterial::scattering_>(v); }
   void setScatteringTexture(ContainerId image) { set<&VolumeMaterial::scatteringTexture_>(image); }
   void setPhaseG(float g) { set<&VolumeMaterial::phaseG_>(g); }
+  void setTextureSlices(std::uint32_t n) { set<&VolumeMaterial::textureSlices_>(n); }
 
   bool textured() const {
     return emissionTexture_ != kNoContainer || absorptionTexture_ != kNoContainer || scatteringTexture_ != kNoContainer;
@@ -60,7 +67,8 @@ class VolumeMaterial final : public ContainerOf<VolumeMaterial, ContainerType::V
         valueField(Scattering, "scattering", &M::scattering_, &M::setScattering),
         referenceField(ScatteringTexture, "scatteringTexture", &M::scatteringTexture_, kImageTypes,
                        &M::setScatteringTexture),
-        valueField(PhaseG, "phaseG", &M::phaseG_, &M::setPhaseG)};
+        valueField(PhaseG, "phaseG", &M::phaseG_, &M::setPhaseG),
+        valueField(TextureSlices, "textureSlices", &M::textureSlices_, &M::setTextureSlices)};
   }
 
  private:
@@ -71,6 +79,7 @@ class VolumeMaterial final : public ContainerOf<VolumeMaterial, ContainerType::V
   Vec3 scattering_{0.0f};
   ContainerId scatteringTexture_ = kNoContainer;
   float phaseG_ = 0.0f;
+  std::uint32_t textureSlices_ = 1;
 };
 
 }  // namespace tsr::sg
