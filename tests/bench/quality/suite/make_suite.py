@@ -234,9 +234,7 @@ class Doc:
                                       "roughnessFactor": roughness}}
         ext = {}
         if texture is not None:
-            self.images.append({"uri": "data:image/png;base64," + base64.b64encode(texture).decode()})
-            self.textures.append({"sampler": 0, "source": len(self.images) - 1})
-            m["pbrMetallicRoughness"]["baseColorTexture"] = {"index": len(self.textures) - 1}
+            m["pbrMetallicRoughness"]["baseColorTexture"] = {"index": self.texture(texture)}
         if emissive is not None:
             m["emissiveFactor"] = list(emissive)
         if strength is not None:
@@ -252,6 +250,12 @@ class Doc:
             self.ext.update(ext)
         self.materials.append(m)
         return len(self.materials) - 1
+
+    def texture(self, png_bytes):
+        """A PNG as a texture of the document; returns its index."""
+        self.images.append({"uri": "data:image/png;base64," + base64.b64encode(png_bytes).decode()})
+        self.textures.append({"sampler": 0, "source": len(self.images) - 1})
+        return len(self.textures) - 1
 
     def view(self, data, target):
         while len(self.blob) % 4:
