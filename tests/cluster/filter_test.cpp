@@ -79,8 +79,9 @@ TEST(ClusterFilter, PixelFilteredCooperativeTilesEqualTheLocalFilteredImage) {
   EXPECT_TRUE(f.image.outputs.empty()) << "the filter's inputs stay on the client";
 }
 
-// Media travel to the nodes (volume materials, the background's fog) and
-// trace there as here: cooperative tiles of a foggy scene, unfiltered and
+// Media travel to the nodes (volume materials, their 3D textures, the
+// background's fog) and trace there as here: cooperative tiles of a foggy
+// scene whose milk is textured (delta tracking), unfiltered and
 // pixel-filtered, equal the local image bit for bit.
 TEST(ClusterFilter, FoggyCooperativeTilesEqualTheLocalImage) {
   for (const char* mode : {"none", "pixel"}) {
@@ -88,6 +89,21 @@ TEST(ClusterFilter, FoggyCooperativeTilesEqualTheLocalImage) {
     ClusterConfig c = configFor(ClusterMode::Cooperative, nodes, filtered(mode));
     c.cooperative.tileSize = 16;
     FilteredSession app(c, filtered(mode), "builtin:cornell-fog");
+    auto& density = app.s.scene.create<sg::Image>("density");
+    density.setPixels(2, 4, 1, sg::PixelFormat::UInt8, {255, 40, 255, 40, 90, 0, 90, 0});
+    density.setColorSpace(sg::ColorSpace::Linear);
+    std::size_t textured = 0;
+    for (sg::ContainerId id : app.s.scene.ids())
+      if (auto* v = app.s.scene.find<sg::VolumeMaterial>(id);
+          v && app.s.scene.find<sg::Background>(app.s.imported.background)->medium() != id) {
+        v->setScatteringTexture(density.id());
+        v->setTextureSlices(2);
+        ++textured;
+      }
+    ASSERT_EQ(textured, 1u) << "the milk";
+    auto delta = app.s.scene.commit();
+    app.replica.apply(delta);
+    app.window->publish(app.s.scene, delta);
     ClusterFrame f = app.window->render(app.view());
     med::FrameBuffer reference = app.localImage();
     EXPECT_TRUE(bitwiseEqual(f.image, reference))
