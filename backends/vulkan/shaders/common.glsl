@@ -9,6 +9,9 @@ struct Material {
   vec4 baseColor;
   vec4 emission;
   vec4 params;
+  vec4 mediumAbsorption;
+  vec4 mediumScattering;
+  vec4 mediumEmission;
 };
 
 struct Light {
@@ -24,6 +27,11 @@ layout(set = 0, binding = 0) uniform Frame {
   vec4 cameraPos;
   vec4 ambient;
   uvec4 counts;
+  mat4 invViewProj;
+  vec4 viewport;
+  vec4 fogAbsorption;
+  vec4 fogScattering;
+  vec4 fogEmission;
 } frame;
 
 layout(std430, set = 0, binding = 1) readonly buffer Instances { Instance instances[]; };
@@ -32,6 +40,9 @@ layout(std430, set = 0, binding = 2) readonly buffer DrawOrder { uint drawOrder[
 layout(std430, set = 0, binding = 3) readonly buffer Materials { Material materials[]; };
 layout(std430, set = 0, binding = 4) readonly buffer Lights { Light lights[]; };
 layout(set = 0, binding = 5) uniform sampler2DArrayShadow shadowMaps;
+// Reversed depth of the nearer of opaque geometry and see-through volumes'
+// back faces, for the volumes' thickness (volume.frag).
+layout(set = 0, binding = 6) uniform sampler2D volumeBackDepth;
 
 layout(push_constant) uniform Push {
   mat4 lightViewProj;

@@ -1,5 +1,7 @@
 #version 450
 #include "common.glsl"
+#include "brdf.glsl"
+#include "lights.glsl"
 
 // Direct light from point, spot and directional lights and from emissive
 // geometry's patches (area-like lights) with the Embree back-end's BSDFs
@@ -12,6 +14,9 @@ layout(constant_id = 0) const uint MATERIAL_TYPE = 0u;
 layout(constant_id = 1) const bool BASE_TEXTURE = false;
 layout(constant_id = 2) const bool EMISSION_TEXTURE = false;
 layout(constant_id = 3) const bool SHADOWS = false;
+layout(constant_id = 4) const bool FOG = false;  // the environment has a medium
+
+#include "medium.glsl"
 
 layout(set = 1, binding = 0) uniform sampler2D baseColorTex;
 layout(set = 1, binding = 1) uniform sampler2D emissionTex;
@@ -22,41 +27,7 @@ layout(location = 2) in vec2 uv;
 
 layout(location = 0) out vec4 outColour;
 
-const float PI = 3.14159265358979;
 const uint DIFFUSE = 0u, CONDUCTOR = 1u, DIELECTRIC = 2u, MIRROR = 3u, GLASS = 4u;
-const uint POINT = 0u, SPOT = 1u, DIRECTIONAL = 2u, EMITTER = 3u;
-
-float ggxD(float nh, float a) {
-  if (nh <= 0.0) return 0.0;
-  float a2 = a * a;
-  float t = nh * nh * (a2 - 1.0) + 1.0;
-  return a2 / (PI * t * t);
-}
-
-float ggxLambda(float c, float a) {
-  float c2 = c * c;
-  if (c2 <= 0.0) return 0.0;
-  float t2 = max(0.0, 1.0 - c2) / c2;
-  return 0.5 * (-1.0 + sqrt(1.0 + a * a * t2));
-}
-
-float ggxG2(float co, float ci, float a) { return 1.0 / (1.0 + ggxLambda(co, a) + ggxLambda(ci, a)); }
-
-vec3 schlick(vec3 f0, float c) {
-  float m = clamp(1.0 - c, 0.0, 1.0);
-  float m5 = (m * m) * (m * m) * m;
-  return f0 + (vec3(1.0) - f0) * m5;
-}
-
-float fresnelDielectric(float cosI, float eta) {
-  cosI = clamp(cosI, 0.0, 1.0);
-  float sin2T = (1.0 - cosI * cosI) / (eta * eta);
-  if (sin2T >= 1.0) return 1.0;
-  float cosT = sqrt(1.0 - sin2T);
-  float rs = (cosI - eta * cosT) / (cosI + eta * cosT);
-  float rp = (eta * cosI - cosT) / (eta * cosI + cosT);
-  return 0.5 * (rs * rs + rp * rp);
-}
 
 // f * |cos(wi)| for unit vectors; n is the shading normal on wo's side.
 vec3 evalBsdf(uint type, vec3 colour, float alpha, float eta, vec3 n, vec3 wo, vec3 wi) {
@@ -135,41 +106,14 @@ void main() {
   vec3 radiance = vec3(0.0);
   if (co > 1e-6) {
     for (uint i = 0u; i < frame.counts.x; ++i) {
-      vec4 position = lights[i].position;
-      vec4 direction = lights[i].direction;
-      uint lt = uint(position.w);
       vec3 wi;
       vec3 li;
-      if (lt == DIRECTIONAL) {
-        wi = -direction.xyz;
-        li = lights[i].intensity.rgb;
-      } else {
-        vec3 d = position.xyz - worldPos;
-        float d2 = dot(d, d);
-        if (!(d2 > 0.0)) continue;
-        wi = d / sqrt(d2);
-        li = lights[i].intensity.rgb / d2;
-        if (lt == EMITTER) {
-          // A patch of area A: radiance x projected area, over d^2 + A / pi
-          // (a disc's on-axis irradiance), so it stays finite up close.
-          float area = lights[i].intensity.w;
-          float directional = lights[i].cone.x;
-          float projected = directional * max(dot(direction.xyz, -wi), 0.0) + 0.25 * (area - directional);
-          if (projected <= 0.0) continue;
-          li = lights[i].intensity.rgb * (projected / (d2 + area / PI));
-        } else if (lt == SPOT) {
-          vec4 cone = lights[i].cone;
-          float c = dot(direction.xyz, -wi);
-          float falloff = c >= cone.x ? 1.0 : (c <= cone.y ? 0.0 : smoothstep(cone.y, cone.x, c));
-          if (falloff <= 0.0) continue;
-          li *= falloff;
-        }
-      }
+      if (!lightAt(i, worldPos, wi, li)) continue;
       // Shading and geometric normal must agree on the side of wi.
       if ((dot(wi, ng) > 0.0) != (dot(wi, n) > 0.0)) continue;
       vec3 f = evalBsdf(type, base, alpha, eta, n, wo, wi);
       if (max(f.r, max(f.g, f.b)) <= 0.0) continue;
-      float v = SHADOWS && direction.w >= 0.0 ? visibility(i, worldPos, ng) : 1.0;
+      float v = SHADOWS && lights[i].direction.w >= 0.0 ? visibility(i, worldPos, ng) : 1.0;
       radiance += f * li * v;
     }
   }
@@ -191,5 +135,6 @@ void main() {
     if (EMISSION_TEXTURE) e *= texture(emissionTex, uv).rgb;
     radiance += e;
   }
+  if (FOG) radiance = fogged(radiance, worldPos);
   outColour = vec4(radiance, opacity);
 }

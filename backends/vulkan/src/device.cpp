@@ -150,6 +150,8 @@ std::shared_ptr<Device> Device::create(const DeviceOptions& options) {
   enable.pNext = &enable13;
   enable.features.multiDrawIndirect = supported.features.multiDrawIndirect;
   d->multiDrawIndirect_ = supported.features.multiDrawIndirect == VK_TRUE;
+  enable.features.dualSrcBlend = supported.features.dualSrcBlend;
+  d->dualSourceBlend_ = supported.features.dualSrcBlend == VK_TRUE;
 
   float priority = 1.0f;
   VkDeviceQueueCreateInfo qci = vkStruct<VkDeviceQueueCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO);

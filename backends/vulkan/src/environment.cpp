@@ -44,4 +44,13 @@ Environment Environment::latLong(std::uint32_t width, std::uint32_t height, std:
   return e;
 }
 
+Environment Environment::withFog(const Medium& fog) const {
+  if (!finiteNonNegative(fog.absorption) || !finiteNonNegative(fog.scattering) || !finiteNonNegative(fog.emission))
+    throw Error("fog coefficients must be finite and non-negative");
+  if (!(std::abs(fog.g) < 1.0f)) throw Error("fog phase g must be in (-1, 1)");
+  Environment e = *this;
+  e.fog_ = fog.empty() ? std::nullopt : std::optional<Medium>(fog);
+  return e;
+}
+
 }  // namespace tsr::vk

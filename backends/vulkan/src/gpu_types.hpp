@@ -20,6 +20,10 @@ struct GpuMaterial {
   glm::vec4 baseColor;  // rgb, opacity
   glm::vec4 emission;   // rgb, unused
   glm::vec4 params;     // GGX alpha, ior, unused, unused
+  // Material::interior (zero without one): see volume.frag.
+  glm::vec4 mediumAbsorption;  // rgb, Henyey-Greenstein g
+  glm::vec4 mediumScattering;  // rgb, unused
+  glm::vec4 mediumEmission;    // rgb, unused
 };
 
 enum : std::uint32_t { kGpuPoint = 0, kGpuSpot = 1, kGpuDirectional = 2, kGpuEmitter = 3 };
@@ -40,6 +44,11 @@ struct GpuFrame {
   glm::vec4 cameraPos;
   glm::vec4 ambient;  // average environment radiance
   glm::uvec4 counts;  // light count, unused...
+  glm::mat4 invViewProj;
+  glm::vec4 viewport;       // width, height of the region in pixels, unused, unused
+  glm::vec4 fogAbsorption;  // the environment's fog (zero without): rgb, g
+  glm::vec4 fogScattering;  // rgb, unused
+  glm::vec4 fogEmission;    // rgb, unused
 };
 
 struct PushConstants {

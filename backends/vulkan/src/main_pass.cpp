@@ -23,11 +23,18 @@ void Renderer::Impl::prepareAttachments(VkCommandBuffer cmd) {
                  attachStages | VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
                  VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
                      VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
+  // Every frame's descriptors name it, volumes or not.
+  if (volumeBackFresh) {
+    imageBarrier(cmd, volumeBack->handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+                 VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+    volumeBackFresh = false;
+  }
 }
 
 // Begins the main pass: cleared, or (the guided late phase) loading what the
 // early phase drew.
-void Renderer::Impl::beginMain(VkCommandBuffer cmd, const RenderSettings& settings, bool load) {
+void Renderer::Impl::beginMain(VkCommandBuffer cmd, bool load) {
   const RenderTarget& t = *target;
   const std::uint32_t w = t.width, h = t.height;
   VkRenderingAttachmentInfo ca = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
@@ -35,7 +42,7 @@ void Renderer::Impl::beginMain(VkCommandBuffer cmd, const RenderSettings& settin
   ca.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   ca.loadOp = load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
   ca.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  ca.clearValue.color = {{settings.background.r, settings.background.g, settings.background.b, settings.background.a}};
+  ca.clearValue.color = {{clearColour.r, clearColour.g, clearColour.b, clearColour.a}};
   VkRenderingAttachmentInfo da = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
   da.imageView = t.depth.view();
   da.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
@@ -119,6 +126,7 @@ void Renderer::Impl::drawTransparent(VkCommandBuffer cmd, const SceneState& s, c
                                      bool shadows, std::uint32_t transparentBase, RenderStats& stats) {
   for (std::uint32_t i = 0; i < transparentSorted.size(); ++i) {
     const InstanceRecord& inst = s.instances[transparentSorted[i]];
+    if (s.materials[inst.material].material.isVolume() && !drawsVolumes()) continue;
     bindDraw(cmd, s, settings, shadows, inst.mesh, inst.material);
     const MeshRecord& m = s.meshes[inst.mesh];
     vkCmdDrawIndexed(cmd, m.indexCount, 1, firstIndexOf(m), vertexOffsetOf(m), transparentBase + i);
@@ -128,12 +136,84 @@ void Renderer::Impl::drawTransparent(VkCommandBuffer cmd, const SceneState& s, c
   }
 }
 
+void Renderer::Impl::recordVolumeBacks(VkCommandBuffer cmd, const SceneState& s, std::uint32_t transparentBase) {
+  std::vector<std::uint32_t> volumes;  // positions in transparentSorted
+  for (std::uint32_t i = 0; i < transparentSorted.size(); ++i)
+    if (s.materials[s.instances[transparentSorted[i]].material].material.isVolume()) volumes.push_back(i);
+  if (volumes.empty() || !drawsVolumes()) return;
+  vkCmdEndRendering(cmd);
+
+  const RenderTarget& t = *target;
+  const Image& opaque = t.resolvedDepth();
+  const VkPipelineStageFlags depthStages = VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
+                                           VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT |
+                                           VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+  const VkAccessFlags depthAccess = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
+                                    VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+  // Depth resolves count as colour-output writes: wait for those too.
+  imageBarrier(cmd, opaque.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+               VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, depthStages, depthAccess, VK_PIPELINE_STAGE_TRANSFER_BIT,
+               VK_ACCESS_TRANSFER_READ_BIT);
+  imageBarrier(cmd, volumeBack->handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
+               VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+  VkImageCopy copy{};
+  copy.srcSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
+  copy.dstSubresource = copy.srcSubresource;
+  copy.extent = {t.width, t.height, 1};
+  vkCmdCopyImage(cmd, opaque.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, volumeBack->handle(),
+                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+  imageBarrier(cmd, opaque.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+               VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, depthStages, depthAccess);
+  imageBarrier(cmd, volumeBack->handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+               VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+               depthStages, depthAccess);
+
+  VkRenderingAttachmentInfo da = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
+  da.imageView = volumeBack->view();
+  da.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  da.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+  da.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  VkRenderingInfo ri = vkStruct<VkRenderingInfo>(VK_STRUCTURE_TYPE_RENDERING_INFO);
+  ri.renderArea = {{0, 0}, {t.width, t.height}};
+  ri.layerCount = 1;
+  ri.pDepthAttachment = &da;
+  vkCmdBeginRendering(cmd, &ri);
+  VkViewport vp{0.0f, 0.0f, float(t.width), float(t.height), 0.0f, 1.0f};
+  vkCmdSetViewport(cmd, 0, 1, &vp);
+  vkCmdSetScissor(cmd, 0, 1, &ri.renderArea);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, volumeBackPipeline.handle());
+  PushConstants pc;
+  pc.lightViewProj = viewProj;
+  vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
+  std::uint32_t bound = ~0u;
+  for (std::uint32_t i : volumes) {
+    const MeshRecord& m = s.meshes[s.instances[transparentSorted[i]].mesh];
+    if (m.span.block != bound) s.geometry->bind(cmd, bound = m.span.block, 1);
+    vkCmdDrawIndexed(cmd, m.indexCount, 1, firstIndexOf(m), vertexOffsetOf(m), transparentBase + i);
+  }
+  vkCmdEndRendering(cmd);
+  imageBarrier(cmd, volumeBack->handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+               VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+               VK_ACCESS_SHADER_READ_BIT);
+  // The main pass's attachments, written before, are loaded again.
+  VkMemoryBarrier attachments = vkStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
+  attachments.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  attachments.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT |
+                              VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
+                              VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  vkCmdPipelineBarrier(cmd, depthStages, depthStages, 0, 1, &attachments, 0, nullptr, 0, nullptr);
+  beginMain(cmd, true);
+}
+
 // Main pass drawing everything.
 void Renderer::Impl::recordMain(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
                                 std::uint32_t transparentBase, RenderStats& stats) {
   prepareAttachments(cmd);
-  beginMain(cmd, settings, false);
+  beginMain(cmd, false);
   drawOpaque(cmd, s, settings, shadows, VK_NULL_HANDLE, stats);
+  recordVolumeBacks(cmd, s, transparentBase);
   drawTransparent(cmd, s, settings, shadows, transparentBase, stats);
   vkCmdEndRendering(cmd);
 }
@@ -151,7 +231,7 @@ void Renderer::Impl::recordGuided(VkCommandBuffer cmd, const SceneState& s, cons
   culler->recordEarly(cmd, s, viewProj, *pyramid, t.width, t.height);
 
   prepareAttachments(cmd);
-  beginMain(cmd, settings, false);
+  beginMain(cmd, false);
   drawOpaque(cmd, s, settings, shadows, culler->earlyCommands(), stats);
   vkCmdEndRendering(cmd);
 
@@ -165,8 +245,9 @@ void Renderer::Impl::recordGuided(VkCommandBuffer cmd, const SceneState& s, cons
                                       VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
   vkCmdPipelineBarrier(cmd, attach, attach, 0, 1, &colour, 0, nullptr, 0, nullptr);
 
-  beginMain(cmd, settings, true);
+  beginMain(cmd, true);
   drawOpaque(cmd, s, settings, shadows, culler->lateCommands(), stats);
+  recordVolumeBacks(cmd, s, transparentBase);
   drawTransparent(cmd, s, settings, shadows, transparentBase, stats);
   vkCmdEndRendering(cmd);
   testAgainstDepth(cmd, [&] { culler->recordVisibility(cmd, viewProj, t.width, t.height); });

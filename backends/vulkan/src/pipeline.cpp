@@ -109,6 +109,15 @@ Pipeline::Pipeline(const Device& device, const PipelineDesc& d) : device_(device
     attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
     attachment.alphaBlendOp = VK_BLEND_OP_ADD;
   }
+  if (d.dualSourceBlend) {
+    attachment.blendEnable = VK_TRUE;
+    attachment.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
+    attachment.dstColorBlendFactor = VK_BLEND_FACTOR_SRC1_COLOR;
+    attachment.colorBlendOp = VK_BLEND_OP_ADD;
+    attachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+    attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_SRC1_ALPHA;
+    attachment.alphaBlendOp = VK_BLEND_OP_ADD;
+  }
   const bool hasColour = d.colourFormat != VK_FORMAT_UNDEFINED;
   VkPipelineColorBlendStateCreateInfo cb =
       vkStruct<VkPipelineColorBlendStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO);

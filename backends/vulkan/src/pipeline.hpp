@@ -20,7 +20,10 @@ struct PipelineDesc {
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
   VkCompareOp depthCompare = VK_COMPARE_OP_GREATER;
   bool depthWrite = true;
-  bool blend = false;      // "over" with straight alpha
+  bool blend = false;  // "over" with straight alpha
+  // colour = source 0 + destination * source 1 (per channel), alpha likewise
+  // with source 1's alpha: a medium's light over what it transmits.
+  bool dualSourceBlend = false;
   bool depthBias = false;  // shadow maps
   VkCullModeFlags cull = VK_CULL_MODE_NONE;
   std::vector<std::uint32_t> fragmentConstants;  // specialisation constant i = value i

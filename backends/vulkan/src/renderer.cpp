@@ -22,11 +22,13 @@ void ensureHost(const Device& device, Buffer& buffer, VkDeviceSize needed, VkBuf
 
 Renderer::Impl::Impl(const Device& d) : device(d) {
   VkDevice dev = device.handle();
-  VkDescriptorSetLayoutBinding b[6]{};
-  const VkDescriptorType types[6] = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
-  for (std::uint32_t i = 0; i < 6; ++i) {
+  VkDescriptorSetLayoutBinding b[7]{};
+  const VkDescriptorType types[7] = {
+      VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,        VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,        VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,        VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+  for (std::uint32_t i = 0; i < 7; ++i) {
     b[i].binding = i;
     b[i].descriptorType = types[i];
     b[i].descriptorCount = 1;
@@ -34,7 +36,7 @@ Renderer::Impl::Impl(const Device& d) : device(d) {
   }
   VkDescriptorSetLayoutCreateInfo lci =
       vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
-  lci.bindingCount = 6;
+  lci.bindingCount = 7;
   lci.pBindings = b;
   check(vkCreateDescriptorSetLayout(dev, &lci, nullptr, &frameLayout), "vkCreateDescriptorSetLayout (frame)");
   materialLayout = createMaterialSetLayout(dev);
@@ -50,7 +52,7 @@ Renderer::Impl::Impl(const Device& d) : device(d) {
 
   const VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
-                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}};
+                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2}};
   frameDescriptors.emplace(device, sizes, frameLayout, "frame");
   frameSet = frameDescriptors->set();
   commands.emplace(device, "frame");
@@ -62,6 +64,15 @@ Renderer::Impl::Impl(const Device& d) : device(d) {
   sd.depthCompare = VK_COMPARE_OP_LESS;
   sd.depthBias = true;
   shadowPipeline = Pipeline(device, sd);
+  sd.depthCompare = VK_COMPARE_OP_GREATER;  // reversed depth: the nearest back face
+  sd.depthBias = false;
+  sd.cull = VK_CULL_MODE_FRONT_BIT;
+  volumeBackPipeline = Pipeline(device, sd);
+
+  VkSamplerCreateInfo sci = vkStruct<VkSamplerCreateInfo>(VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO);
+  sci.magFilter = sci.minFilter = VK_FILTER_NEAREST;
+  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  check(vkCreateSampler(dev, &sci, nullptr, &depthSampler), "vkCreateSampler (volume depth)");
 
   frameBuffer = Buffer(device, sizeof(GpuFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, Buffer::kHost);
 }
@@ -71,6 +82,7 @@ Renderer::Impl::~Impl() {
   vkDeviceWaitIdle(dev);
   commands.reset();
   frameDescriptors.reset();
+  vkDestroySampler(dev, depthSampler, nullptr);
   vkDestroyPipelineLayout(dev, layout, nullptr);
   vkDestroyDescriptorSetLayout(dev, materialLayout, nullptr);
   vkDestroyDescriptorSetLayout(dev, frameLayout, nullptr);
@@ -84,29 +96,35 @@ VkFormat Renderer::Impl::colourFormat(std::uint32_t samples) {
 }
 
 // Pipelines are specialised by what changes the fragment shader's code path:
-// material type, which textures exist, shadows; plus blending and samples.
+// material type, which textures exist, shadows, fog; plus blending and
+// samples. See-through volumes have a shader of their own (volume.frag).
 VkPipeline Renderer::Impl::mainPipeline(std::uint32_t samples, const Material& material, bool shadows) {
-  const std::uint32_t type = static_cast<std::uint32_t>(material.type);
-  const bool baseTex = material.baseColorTexture.has_value();
-  const bool emissionTex = material.emissionTexture.has_value();
+  const bool volume = material.isVolume();
+  const std::uint32_t type = volume ? 0u : static_cast<std::uint32_t>(material.type);
+  const bool baseTex = !volume && material.baseColorTexture.has_value();
+  const bool emissionTex = !volume && material.emissionTexture.has_value();
   const bool blend = material.isTransparent();
   const std::uint64_t key = std::uint64_t(samples) | std::uint64_t(type) << 8 | std::uint64_t(baseTex) << 16 |
                             std::uint64_t(emissionTex) << 17 | std::uint64_t(shadows) << 18 |
-                            std::uint64_t(blend) << 19;
+                            std::uint64_t(blend) << 19 | std::uint64_t(volume) << 20 | std::uint64_t(fog) << 21;
   auto it = mainPipelines.find(key);
   if (it != mainPipelines.end()) return it->second.handle();
   PipelineDesc d;
   d.layout = layout;
   d.vertexSpirv = spirv::mesh_vert;
-  d.fragmentSpirv = spirv::mesh_frag;
+  d.fragmentSpirv = volume ? spirv::volume_frag : spirv::mesh_frag;
   d.colourFormat = colourFormat(samples);
   d.samples = sampleBits(samples);
   d.depthCompare = VK_COMPARE_OP_GREATER;  // reversed depth: nearer is greater
-  d.blend = blend;
+  d.blend = blend && !volume;
+  d.dualSourceBlend = volume;
+  d.cull = volume ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE;  // a volume's front faces only
   d.depthWrite = !blend;
-  d.fragmentConstants = {type, baseTex, emissionTex, shadows};
+  d.fragmentConstants = {type, baseTex, emissionTex, shadows, fog};
   return mainPipelines.emplace(key, Pipeline(device, d)).first->second.handle();
 }
+
+bool Renderer::Impl::drawsVolumes() const { return device.dualSourceBlend(); }
 
 Renderer::Renderer(std::shared_ptr<Device> device, RenderSettings settings) : device_(std::move(device)) {
   if (!device_) throw Error("renderer needs a device");
@@ -230,6 +248,23 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
   frame.cameraPos = glm::vec4(camPos, 1.0f);
   frame.ambient = glm::vec4(s.environment.averageRadiance() + ambientFromEmitters, 0.0f);
   frame.counts = glm::uvec4(std::uint32_t(gpuLights.size()), 0u, 0u, 0u);
+  frame.invViewProj = glm::inverse(viewProj);
+  frame.viewport = glm::vec4(float(w), float(h), 0.0f, 0.0f);
+  clearColour = settings.background;
+  fog = s.environment.fog().has_value();
+  if (fog) {
+    const Medium& m = *s.environment.fog();
+    frame.fogAbsorption = glm::vec4(m.absorption, std::clamp(m.g, -0.99f, 0.99f));
+    frame.fogScattering = glm::vec4(m.scattering, 0.0f);
+    frame.fogEmission = glm::vec4(m.emission, 0.0f);
+    // An endless ray through fog: nothing of the background is left where the
+    // fog absorbs or scatters, only the ambient term scattered in and the
+    // emission, (sigma_s L + e) / sigma_t. Where it does neither the
+    // background stays (its emission alone would be infinite).
+    const glm::vec3 sigmaT = m.extinction();
+    for (int c = 0; c < 3; ++c)
+      if (sigmaT[c] > 0.0f) clearColour[c] = (m.scattering[c] * frame.ambient[c] + m.emission[c]) / sigmaT[c];
+  }
   std::memcpy(frameBuffer.mapped(), &frame, sizeof(frame));
 
   if (!target || target->width != w || target->height != h || target->samples != samples)
@@ -241,6 +276,17 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
     shadowMap.emplace(device, settings.shadowMapSize, layers);
   }
   const ShadowMap& sm = *shadowMap;
+  if (!volumeBack || volumeBack->desc().width != w || volumeBack->desc().height != h) {
+    ImageDesc vd;
+    vd.width = w;
+    vd.height = h;
+    vd.format = kDepthFormat;
+    vd.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
+    vd.usage =
+        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    volumeBack.emplace(device, vd);
+    volumeBackFresh = true;
+  }
 
   {
     VkDescriptorBufferInfo bufs[5] = {
@@ -249,8 +295,9 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
         {lightBuffer.handle(), 0, VK_WHOLE_SIZE},
     };
     VkDescriptorImageInfo shadowInfo{sm.sampler(), sm.image().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkWriteDescriptorSet writes[6]{};
-    for (std::uint32_t i = 0; i < 6; ++i) {
+    VkDescriptorImageInfo volumeInfo{depthSampler, volumeBack->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet writes[7]{};
+    for (std::uint32_t i = 0; i < 7; ++i) {
       writes[i] = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
       writes[i].dstSet = frameSet;
       writes[i].dstBinding = i;
@@ -263,10 +310,10 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
         writes[i].pBufferInfo = &bufs[i];
       } else {
         writes[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-        writes[i].pImageInfo = &shadowInfo;
+        writes[i].pImageInfo = i == 5 ? &shadowInfo : &volumeInfo;
       }
     }
-    vkUpdateDescriptorSets(device.handle(), 6, writes, 0, nullptr);
+    vkUpdateDescriptorSets(device.handle(), 7, writes, 0, nullptr);
   }
 }
 

@@ -53,11 +53,20 @@ struct Renderer::Impl {
   std::map<std::uint32_t, VkFormat> colourFormats;  // by sample count
   std::map<std::uint64_t, Pipeline> mainPipelines;  // by pipelineKey()
   Pipeline shadowPipeline;
+  Pipeline volumeBackPipeline;  // see-through volumes' back faces, depth only
 
   Buffer frameBuffer;  // GpuFrame uniform
   Buffer lightBuffer;
   Buffer drawOrderBuffer;
   std::optional<RenderTarget> target;
+  // Reversed depth of the nearer of opaque geometry and see-through volumes'
+  // back faces (volume.frag reads it). Single-sample, region-sized; kept in
+  // SHADER_READ_ONLY_OPTIMAL between frames.
+  std::optional<Image> volumeBack;
+  bool volumeBackFresh = false;  // made this frame: still UNDEFINED
+  VkSampler depthSampler = VK_NULL_HANDLE;
+  bool fog = false;             // this frame's environment has a medium
+  glm::vec4 clearColour{0.0f};  // the background, seen through the fog
   std::optional<ShadowMap> shadowMap;
   // What the shadow maps hold. They do not depend on the camera, so they are
   // drawn again only when the scene (any edit bumps its version) or the
@@ -87,6 +96,8 @@ struct Renderer::Impl {
   ~Impl();
   VkFormat colourFormat(std::uint32_t samples);
   VkPipeline mainPipeline(std::uint32_t samples, const Material& material, bool shadows);
+  // Whether see-through volumes are drawn in this frame.
+  bool drawsVolumes() const;
 
   // The passes of one frame, in order. Returns where transparent instances
   // start in the draw order.
@@ -100,13 +111,16 @@ struct Renderer::Impl {
   void recordShadows(VkCommandBuffer cmd, const SceneState& s, const std::vector<glm::mat4>& shadowViewProj,
                      RenderStats& stats);
   void prepareAttachments(VkCommandBuffer cmd);
-  void beginMain(VkCommandBuffer cmd, const RenderSettings& settings, bool load);
+  void beginMain(VkCommandBuffer cmd, bool load);
   void bindDraw(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
                 std::uint32_t meshIndex, std::uint32_t material);
   void drawOpaque(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
                   VkBuffer indirect, RenderStats& stats);
   void drawTransparent(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
                        std::uint32_t transparentBase, RenderStats& stats);
+  // Ends the main pass, draws the volumes' back faces over a copy of the
+  // opaque depth into volumeBack, and resumes the main pass.
+  void recordVolumeBacks(VkCommandBuffer cmd, const SceneState& s, std::uint32_t transparentBase);
   void recordMain(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
                   std::uint32_t transparentBase, RenderStats& stats);
   void recordGuided(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,

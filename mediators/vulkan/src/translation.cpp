@@ -49,6 +49,33 @@ vk::Material translateMaterial(const sg::Container* material, const TextureLooku
   return m;
 }
 
+namespace {
+// Coefficients the rasterizer cannot use (negative, NaN, infinite) count as none.
+glm::vec3 usable(const glm::vec3& v) {
+  glm::vec3 r;
+  for (int c = 0; c < 3; ++c) r[c] = std::isfinite(v[c]) && v[c] > 0.0f ? v[c] : 0.0f;
+  return r;
+}
+}  // namespace
+
+vk::Medium translateMedium(const sg::VolumeMaterial& v) {
+  const float g = std::isfinite(v.phaseG()) ? std::clamp(v.phaseG(), -0.99f, 0.99f) : 0.0f;
+  return {usable(v.absorption()), usable(v.scattering()), usable(v.emission()), g};
+}
+
+vk::Material translateMaterial(const sg::Container* material, const sg::VolumeMaterial* volume,
+                               const TextureLookup& textures) {
+  vk::Material m = translateMaterial(material, textures);
+  if (!volume) return m;
+  const bool indexMatched = m.type == vk::MaterialType::Glass && std::abs(m.ior - 1.0f) < 1e-3f;
+  if (!material || indexMatched) {
+    m.type = vk::MaterialType::Glass;
+    m.ior = 1.0f;
+  }
+  if (const vk::Medium medium = translateMedium(*volume); !medium.empty()) m.interior = medium;
+  return m;
+}
+
 vk::Texture translateImage(const sg::Image& image) {
   const std::uint32_t w = image.width(), h = image.height(), n = image.channels();
   if (image.format() == sg::PixelFormat::UInt8) {
@@ -87,21 +114,27 @@ vk::Light translateLight(const sg::Light& light, const glm::mat4& world) {
 vk::Environment translateBackground(const sg::Scene& scene, sg::ContainerId id) {
   const auto* bg = scene.find<sg::Background>(id);
   if (!bg) return vk::Environment();
-  const float k = bg->intensity();
-  switch (bg->kind()) {
+  vk::Environment sky = translateSky(scene, *bg);
+  if (const auto* medium = scene.find<sg::VolumeMaterial>(bg->medium())) return sky.withFog(translateMedium(*medium));
+  return sky;
+}
+
+vk::Environment translateSky(const sg::Scene& scene, const sg::Background& bg) {
+  const float k = bg.intensity();
+  switch (bg.kind()) {
     case sg::BackgroundKind::Gradient: {
-      BakedSky sky = bakeGradient(*bg);  // the same bake as the path tracer's, so the averages agree
+      BakedSky sky = bakeGradient(bg);  // the same bake as the path tracer's, so the averages agree
       return vk::Environment::latLong(sky.width, sky.height, sky.texels, k);
     }
     case sg::BackgroundKind::Environment:
-      if (const auto* image = scene.find<sg::Image>(bg->environment());
+      if (const auto* image = scene.find<sg::Image>(bg.environment());
           image && !image->invalidReason() && image->width() > 0 && image->height() > 0) {
         auto texels = linearTexels(*image);
         return vk::Environment::latLong(image->width(), image->height(), texels, k);
       }
-      return vk::Environment::constant(bg->color() * k);
+      return vk::Environment::constant(bg.color() * k);
     default:
-      return vk::Environment::constant(bg->color() * k);
+      return vk::Environment::constant(bg.color() * k);
   }
 }
 

@@ -24,6 +24,14 @@ using TextureLookup = std::function<std::optional<vk::TextureId>(sg::ContainerId
 // rough conductor; else diffuse; opacity carries over. SimpleMaterial is
 // diffuse with opacity 1 - transparency. Emission carries over.
 vk::Material translateMaterial(const sg::Container* material, const TextureLookup& textures);
+// The surface with the volume inside it (either may be null). A volume
+// without a surface, or behind smooth glass of index 1 (glTF's "no
+// surface"), is an index-matched boundary: Glass with ior 1. The volume's
+// textures are ignored (its factors are used); behind an opaque surface the
+// back-end ignores it.
+vk::Material translateMaterial(const sg::Container* material, const sg::VolumeMaterial* volume,
+                               const TextureLookup& textures);
+vk::Medium translateMedium(const sg::VolumeMaterial& volume);
 
 // RGBA; 8-bit sRGB images stay 8-bit (the sampler decodes), the rest float.
 vk::Texture translateImage(const sg::Image& image);
@@ -31,8 +39,10 @@ vk::Texture translateImage(const sg::Image& image);
 // A light placed by its world matrix.
 vk::Light translateLight(const sg::Light& light, const glm::mat4& world);
 
-// The rasterizer keeps the environment's average as ambient light.
+// The rasterizer keeps the environment's average as ambient light, and the
+// background's medium as fog (its textures ignored).
 vk::Environment translateBackground(const sg::Scene& scene, sg::ContainerId background);
+vk::Environment translateSky(const sg::Scene& scene, const sg::Background& background);
 // What pixels show where nothing is drawn: the environment's average, alpha 0.
 glm::vec4 backgroundColour(const vk::Environment& environment);
 

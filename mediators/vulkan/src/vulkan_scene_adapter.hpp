@@ -25,9 +25,8 @@ struct VulkanTypes {
   static constexpr sg::FieldMask kMeshFields = kAllMeshFields;
   static constexpr bool kResizableMeshes = false;
   static vk::MeshData mesh(const sg::Geometry& g) { return translateMesh(g); }
-  // The rasterizer shows no volume yet: its surface alone.
-  static vk::Material material(const sg::Container* m, const sg::VolumeMaterial*, const TextureLookup& t) {
-    return translateMaterial(m, t);
+  static vk::Material material(const sg::Container* m, const sg::VolumeMaterial* v, const TextureLookup& t) {
+    return translateMaterial(m, v, t);
   }
   static vk::Texture texture(const sg::Image& i) { return translateImage(i); }
   static vk::Light light(const sg::Light& l, const glm::mat4& world) { return translateLight(l, world); }

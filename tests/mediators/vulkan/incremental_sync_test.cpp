@@ -140,6 +140,46 @@ TEST_F(IncrementalSync, LightEdit) {
   check("light");
 }
 
+// A volume attached to the glass sphere, then edited, and fog from the
+// background: the incremental render equals a fresh conversion, the change
+// shows, and a volume edit updates one material.
+namespace {
+sg::Geometry* glassGeometry(sg::Scene& scene) {
+  for (sg::ContainerId id : scene.ids())
+    if (auto* g = scene.find<sg::Geometry>(id))
+      if (const auto* m = scene.find<sg::SurfaceMaterial>(g->material()); m && m->transmission() > 0.5f) return g;
+  return nullptr;
+}
+}  // namespace
+
+TEST_F(IncrementalSync, VolumeAttachedAndEdited) {
+  sg::Geometry* glass = glassGeometry(rig.source);
+  ASSERT_NE(glass, nullptr) << "builtin:animated has a glass sphere";
+  auto& jelly = rig.source.create<sg::VolumeMaterial>("jelly");
+  jelly.setAbsorption({0.002f, 0.02f, 0.02f});  // per millimetre: the sphere is about 140 wide
+  jelly.setScattering(glm::vec3(0.01f));
+  glass->setVolume(jelly.id());
+  check("volume attached");
+  before = follower.image;
+  const auto updates = follower.context().adapter.counters().materialUpdates;
+  jelly.setScattering(glm::vec3(0.03f));
+  check("volume edited");
+  EXPECT_EQ(follower.context().adapter.counters().materialUpdates, updates + 1);
+  EXPECT_EQ(geometryUploaded(), 0u);
+}
+
+TEST_F(IncrementalSync, FogFillsTheSceneFromTheBackground) {
+  auto& fog = rig.source.create<sg::VolumeMaterial>("fog");
+  fog.setScattering(glm::vec3(0.001f));
+  fog.setAbsorption(glm::vec3(0.0005f));
+  rig.source.find<sg::Background>(rig.imported.background)->setMedium(fog.id());
+  check("fog");
+  before = follower.image;
+  fog.setAbsorption(glm::vec3(0.002f));
+  check("fog edited");
+  EXPECT_EQ(geometryUploaded(), 0u);
+}
+
 TEST(VulkanMediator, TilesAreCropsAndViewportsShareOneScene) {
   Rig rig;
   sg::Replica replica;

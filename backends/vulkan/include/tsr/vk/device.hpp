@@ -53,6 +53,8 @@ class Device {
   bool presentationEnabled() const { return presentation_; }
   // Several indirect draws in one call: guided rendering needs it.
   bool multiDrawIndirect() const { return multiDrawIndirect_; }
+  // Needed to draw see-through volumes (they are skipped without it).
+  bool dualSourceBlend() const { return dualSourceBlend_; }
 
   // Memory type index with all `required` flags among `typeBits`; throws if none.
   std::uint32_t memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required) const;
@@ -82,6 +84,7 @@ class Device {
   VkPhysicalDeviceMemoryProperties memory_{};
   bool presentation_ = false;
   bool multiDrawIndirect_ = false;
+  bool dualSourceBlend_ = false;
   std::atomic<std::uint64_t> errors_{0};
   std::atomic<std::uint64_t> warnings_{0};
   mutable std::mutex messagesMutex_;

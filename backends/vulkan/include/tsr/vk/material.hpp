@@ -1,6 +1,7 @@
 #pragma once
 
 #include "tsr/vk/ids.hpp"
+#include "tsr/vk/medium.hpp"
 
 #include <glm/vec3.hpp>
 
@@ -28,9 +29,20 @@ struct Material {
   // Below 1 the instance is alpha blended: drawn after opaque geometry,
   // sorted back to front, without depth writes, and casts no shadow.
   float opacity = 1.0f;
+  // What fills the (closed) mesh. Shown only behind a surface light passes
+  // through (Glass or Dielectric; an index-matched boundary is Glass with
+  // ior 1): the instance is then drawn see-through, after opaque geometry,
+  // attenuating what lies behind it by the thickness its back faces give.
+  // Behind an opaque surface nothing shows it, so it is ignored.
+  std::optional<Medium> interior;
 
   bool isEmissive() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
-  bool isTransparent() const { return opacity < 1.0f; }
+  bool isVolume() const {
+    return interior && !interior->empty() && (type == MaterialType::Glass || type == MaterialType::Dielectric);
+  }
+  // Drawn after opaque geometry, sorted back to front, without depth writes,
+  // casting no shadow: blended surfaces and see-through volumes.
+  bool isTransparent() const { return opacity < 1.0f || isVolume(); }
 };
 
 }  // namespace tsr::vk
