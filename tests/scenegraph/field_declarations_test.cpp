@@ -128,7 +128,9 @@ TEST(FieldDeclarations, NumbersArePinned) {
             "SurfaceMaterial: 2=baseColor/value 3=baseColorTexture/reference 4=opacity/value 5=metallic/value "
             "6=roughness/value 7=metallicRoughnessTexture/reference 8=specular/value 9=specularTexture/reference "
             "10=emission/value 11=emissionStrength/value 12=emissionTexture/reference 13=transmission/value "
-            "14=transmissionTexture/reference 15=ior/value 16=normalTexture/reference 17=normalScale/value\n"
+            "14=transmissionTexture/reference 15=ior/value 16=normalTexture/reference 17=normalScale/value "
+            "18=alphaMode/value 19=alphaCutoff/value 20=occlusionTexture/reference 21=occlusionStrength/value "
+            "22=uvTransforms/array\n"
             "Light: 2=kind/value 3=color/value 4=intensity/value 5=position/value 6=direction/value "
             "7=innerConeAngle/value 8=outerConeAngle/value 9=range/value\n"
             "Camera: 2=pose/value 3=verticalFov/value 4=near/value 5=far/value 6=eyeSeparation/value "
@@ -170,7 +172,7 @@ TEST(FieldDeclarations, EverySetterReachesAReplicaThroughTheWire) {
         },
         T::fieldSpecs());
   });
-  EXPECT_EQ(setters, 68);  // the own fields of all ten types, as pinned above
+  EXPECT_EQ(setters, 74);  // the own fields of all ten types, as pinned above
 }
 
 TEST(FieldDeclarations, NamesAndAttachmentsOfEveryTypeReachAReplica) {

@@ -149,6 +149,14 @@ class Converter {
       const Vec4 base = vec<4>(pbr.baseColorFactor, what + " baseColorFactor");
       mat.baseColor = Vec3(base);
       mat.opacity = src.alphaMode == "OPAQUE" ? 1.0f : base.a;
+      if (src.alphaMode == "MASK") {
+        mat.alphaMode = AlphaMode::Mask;
+      } else if (src.alphaMode == "BLEND") {
+        mat.alphaMode = AlphaMode::Blend;
+      } else if (src.alphaMode != "OPAQUE") {
+        fail(what + " alphaMode '" + src.alphaMode + "' is none of OPAQUE, MASK, BLEND");
+      }
+      mat.alphaCutoff = finite(src.alphaCutoff, what + " alphaCutoff");
       mat.baseColorImage = texture(pbr.baseColorTexture.index, what + " baseColorTexture", true);
       mat.metallic = finite(pbr.metallicFactor, what + " metallicFactor");
       mat.roughness = finite(pbr.roughnessFactor, what + " roughnessFactor");
@@ -168,9 +176,50 @@ class Converter {
           texture(extensionTexture(src.extensions, "KHR_materials_transmission", "transmissionTexture"),
                   what + " transmissionTexture", false);
       mat.ior = finite(extensionNumber(src.extensions, "KHR_materials_ior", "ior", 1.5), what + " ior");
+      mat.occlusionImage = texture(src.occlusionTexture.index, what + " occlusionTexture", false);
+      mat.occlusionStrength = finite(src.occlusionTexture.strength, what + " occlusionTexture strength");
+      uvTransforms(src, what, mat);
       mat.volume = materialVolume(src.extensions, what);
       out_.materials.push_back(mat);
     }
+  }
+
+  // KHR_texture_transform on each texture slot, as two rows of an affine
+  // map per slot (offset x rotation x scale); none at all keeps the list empty.
+  void uvTransforms(const tinygltf::Material& src, const std::string& what, parsed::Material& mat) {
+    const tinygltf::Value* transmission = nullptr;
+    if (auto it = src.extensions.find("KHR_materials_transmission"); it != src.extensions.end())
+      if (it->second.Has("transmissionTexture")) transmission = &it->second.Get("transmissionTexture");
+    const std::pair<TextureSlot, const tinygltf::ExtensionMap*> slots[] = {
+        {TextureSlot::BaseColor, &src.pbrMetallicRoughness.baseColorTexture.extensions},
+        {TextureSlot::MetallicRoughness, &src.pbrMetallicRoughness.metallicRoughnessTexture.extensions},
+        {TextureSlot::Emission, &src.emissiveTexture.extensions},
+        {TextureSlot::Normal, &src.normalTexture.extensions},
+        {TextureSlot::Occlusion, &src.occlusionTexture.extensions}};
+    auto place = [&](TextureSlot slot, const tinygltf::Value& t) {
+      if (mat.uvTransforms.empty()) {
+        for (std::size_t i = 0; i < SurfaceMaterial::kUvTransformRows; i += 2)
+          mat.uvTransforms.insert(mat.uvTransforms.end(), {Vec3(1, 0, 0), Vec3(0, 1, 0)});
+      }
+      const std::string at = what + " KHR_texture_transform";
+      Vec2 offset(0.0f), scale(1.0f);
+      float rotation = 0.0f;
+      for (int k = 0; k < 2; ++k) {
+        if (t.Has("offset")) offset[k] = finite(t.Get("offset").Get(k).GetNumberAsDouble(), at + " offset");
+        if (t.Has("scale")) scale[k] = finite(t.Get("scale").Get(k).GetNumberAsDouble(), at + " scale");
+      }
+      if (t.Has("rotation")) rotation = finite(t.Get("rotation").GetNumberAsDouble(), at + " rotation");
+      if (t.Has("texCoord") && t.Get("texCoord").GetNumberAsInt() != 0)
+        warn(at + " names texCoord " + str(t.Get("texCoord").GetNumberAsInt()) + ": the first uv set is used");
+      const float c = std::cos(rotation), s = std::sin(rotation);
+      const auto i = 2 * static_cast<std::size_t>(slot);
+      mat.uvTransforms[i] = Vec3(c * scale.x, s * scale.y, offset.x);
+      mat.uvTransforms[i + 1] = Vec3(-s * scale.x, c * scale.y, offset.y);
+    };
+    for (const auto& [slot, ext] : slots)
+      if (auto it = ext->find("KHR_texture_transform"); it != ext->end()) place(slot, it->second);
+    if (transmission && transmission->Has("extensions") && transmission->Get("extensions").Has("KHR_texture_transform"))
+      place(TextureSlot::Transmission, transmission->Get("extensions").Get("KHR_texture_transform"));
   }
 
   // A coefficient triple of a volume extension: finite, not negative.

@@ -15,13 +15,9 @@ using nlohmann::json;
 
 constexpr std::uint32_t kMaxNodeDepth = 4096;
 
-const char* const kSupportedExtensions[] = {"KHR_lights_punctual",
-                                            "KHR_materials_emissive_strength",
-                                            "KHR_materials_transmission",
-                                            "KHR_materials_ior",
-                                            "KHR_materials_volume",
-                                            "TSR_materials_volume",
-                                            "TSR_scene_medium"};
+const char* const kSupportedExtensions[] = {
+    "KHR_lights_punctual",  "KHR_materials_emissive_strength", "KHR_materials_transmission", "KHR_materials_ior",
+    "KHR_materials_volume", "KHR_texture_transform",           "TSR_materials_volume",       "TSR_scene_medium"};
 
 // A small schema language: each check looks at one value at a JSON path and
 // throws with that path in the message.
@@ -94,8 +90,13 @@ class TypeChecker {
 };
 
 TypeChecker::Check documentSchema(const TypeChecker& t) {
-  const auto textureInfo =
-      t.object({{"index", t.index()}, {"texCoord", t.index()}, {"scale", t.number()}, {"strength", t.number()}});
+  const auto textureTransform =
+      t.object({{"offset", t.numbers(2)}, {"rotation", t.number()}, {"scale", t.numbers(2)}, {"texCoord", t.index()}});
+  const auto textureInfo = t.object({{"index", t.index()},
+                                     {"texCoord", t.index()},
+                                     {"scale", t.number()},
+                                     {"strength", t.number()},
+                                     {"extensions", t.object({{"KHR_texture_transform", textureTransform}})}});
   // Tessera's volume extension (README "Participating media").
   const auto tesseraVolume = t.object({{"emission", t.numbers(3)},
                                        {"absorption", t.numbers(3)},

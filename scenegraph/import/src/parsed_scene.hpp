@@ -9,6 +9,7 @@
 #include "tsr/sg/image.hpp"
 #include "tsr/sg/import/animation.hpp"
 #include "tsr/sg/light.hpp"
+#include "tsr/sg/surface_material.hpp"
 
 namespace tsr::sg::parsed {
 
@@ -57,6 +58,12 @@ struct Material {
   float ior = 1.5f;
   int normalImage = kNone;
   float normalScale = 1.0f;
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alphaCutoff = 0.5f;
+  int occlusionImage = kNone;
+  float occlusionStrength = 1.0f;
+  // Empty, or SurfaceMaterial::kUvTransformRows rows (KHR_texture_transform).
+  std::vector<Vec3> uvTransforms;
   std::optional<Volume> volume;  // what fills a closed mesh of this material
 };
 

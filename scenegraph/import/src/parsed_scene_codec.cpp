@@ -110,6 +110,11 @@ void put(Writer& w, const Material& m) {
   w.pod(m.ior);
   w.pod(m.normalImage);
   w.pod(m.normalScale);
+  w.pod(std::uint8_t(m.alphaMode));
+  w.pod(m.alphaCutoff);
+  w.pod(m.occlusionImage);
+  w.pod(m.occlusionStrength);
+  w.array(m.uvTransforms);
   putVolume(w, m.volume);
 }
 
@@ -130,6 +135,11 @@ Material getMaterial(Reader& r) {
   m.ior = r.pod<float>();
   m.normalImage = r.pod<int>();
   m.normalScale = r.pod<float>();
+  m.alphaMode = r.enumeration<AlphaMode>(std::uint8_t(AlphaMode::Count) - 1, "an alpha mode");
+  m.alphaCutoff = r.pod<float>();
+  m.occlusionImage = r.pod<int>();
+  m.occlusionStrength = r.pod<float>();
+  m.uvTransforms = r.array<Vec3>();
   m.volume = getVolume(r);
   return m;
 }

@@ -76,8 +76,14 @@ void checkMaterials(const Scene& s) {
   for (std::size_t i = 0; i < s.materials.size(); ++i) {
     const Material& m = s.materials[i];
     const std::string what = "material " + std::to_string(i);
-    for (int image : {m.baseColorImage, m.metallicRoughnessImage, m.emissionImage, m.transmissionImage, m.normalImage})
+    for (int image : {m.baseColorImage, m.metallicRoughnessImage, m.emissionImage, m.transmissionImage, m.normalImage,
+                      m.occlusionImage})
       reference(image, s.images.size(), true, what + ": image");
+    if (!m.uvTransforms.empty() && m.uvTransforms.size() != SurfaceMaterial::kUvTransformRows)
+      fail(what + " has " + std::to_string(m.uvTransforms.size()) + " texture transform rows");
+    for (const Vec3& row : m.uvTransforms)
+      if (!finite(row)) fail(what + " has a texture transform with NaN or infinity");
+    if (!std::isfinite(m.alphaCutoff) || !std::isfinite(m.occlusionStrength)) fail(what + " holds NaN or infinity");
     if (!finite(m.baseColor) || !finite(m.emission) || !std::isfinite(m.opacity) || !std::isfinite(m.metallic) ||
         !std::isfinite(m.roughness) || !std::isfinite(m.emissionStrength) || !std::isfinite(m.transmission) ||
         !std::isfinite(m.ior) || !std::isfinite(m.normalScale))

@@ -110,6 +110,11 @@ class Builder {
     if (m.emissionImage != parsed::kNone) s.setEmissionTexture(image(m.emissionImage));
     if (m.transmissionImage != parsed::kNone) s.setTransmissionTexture(image(m.transmissionImage));
     if (m.normalImage != parsed::kNone) s.setNormalTexture(image(m.normalImage));
+    if (m.occlusionImage != parsed::kNone) s.setOcclusionTexture(image(m.occlusionImage));
+    s.setOcclusionStrength(m.occlusionStrength);
+    s.setAlphaMode(m.alphaMode);
+    s.setAlphaCutoff(m.alphaCutoff);
+    if (!m.uvTransforms.empty()) s.setUvTransforms(m.uvTransforms);
     ++result_.counts.materials;
     return s.id();
   }

@@ -2,9 +2,30 @@
 // A portable physically based material in the spirit of X3D's
 // CommonSurfaceShader (dissertation appendix 5.A) and glTF's metallic-
 // roughness model. Every factor has an optional texture that multiplies it.
+#include <utility>
+#include <vector>
+
 #include "tsr/sg/container_of.hpp"
 
 namespace tsr::sg {
+
+// How alpha (opacity x the base colour texture's alpha) covers a surface,
+// as glTF's alphaMode: Opaque ignores it, Mask cuts out where it is below
+// alphaCutoff, Blend covers that share of the surface. Blend is the
+// default, so a material of opacity 1 is opaque.
+enum class AlphaMode : std::uint8_t { Opaque, Mask, Blend, Count };
+
+// The texture slots of a SurfaceMaterial, in the order of its uvTransforms.
+enum class TextureSlot : std::uint8_t {
+  BaseColor,
+  MetallicRoughness,
+  Specular,
+  Emission,
+  Transmission,
+  Normal,
+  Occlusion,
+  Count
+};
 
 class SurfaceMaterial final : public ContainerOf<SurfaceMaterial, ContainerType::SurfaceMaterial> {
  public:
@@ -25,6 +46,11 @@ class SurfaceMaterial final : public ContainerOf<SurfaceMaterial, ContainerType:
     Ior,
     NormalTexture,
     NormalScale,
+    Alpha,
+    AlphaCutoff,
+    OcclusionTexture,
+    OcclusionStrength,
+    UvTransforms,
   };
 
   const Vec3& baseColor() const { return baseColor_; }
@@ -45,6 +71,23 @@ class SurfaceMaterial final : public ContainerOf<SurfaceMaterial, ContainerType:
   float ior() const { return ior_; }
   ContainerId normalTexture() const { return normalTexture_; }  // tangent space
   float normalScale() const { return normalScale_; }
+  AlphaMode alphaMode() const { return alphaMode_; }
+  float alphaCutoff() const { return alphaCutoff_; }
+  // Ambient occlusion in the red channel (glTF), for back-ends that do not
+  // find it themselves; strength 0 turns it off.
+  ContainerId occlusionTexture() const { return occlusionTexture_; }
+  float occlusionStrength() const { return occlusionStrength_; }
+  // Empty, or two rows of an affine map of texture coordinates per slot
+  // (TextureSlot order): uv' = (dot(row0, (u, v, 1)), dot(row1, (u, v, 1))),
+  // as KHR_texture_transform's offset x rotation x scale.
+  const std::vector<Vec3>& uvTransforms() const { return uvTransforms_; }
+  static constexpr std::size_t kUvTransformRows = 2 * static_cast<std::size_t>(TextureSlot::Count);
+  // The map of one slot: (row0, row1), identity when there is none.
+  std::pair<Vec3, Vec3> uvTransform(TextureSlot slot) const {
+    const auto i = 2 * static_cast<std::size_t>(slot);
+    if (uvTransforms_.size() != kUvTransformRows) return {Vec3(1, 0, 0), Vec3(0, 1, 0)};
+    return {uvTransforms_[i], uvTransforms_[i + 1]};
+  }
 
   void setBaseColor(const Vec3& v) { set<&SurfaceMaterial::baseColor_>(v); }
   void setBaseColorTexture(ContainerId i) { set<&SurfaceMaterial::baseColorTexture_>(i); }
@@ -62,6 +105,11 @@ class SurfaceMaterial final : public ContainerOf<SurfaceMaterial, ContainerType:
   void setIor(float v) { set<&SurfaceMaterial::ior_>(v); }
   void setNormalTexture(ContainerId i) { set<&SurfaceMaterial::normalTexture_>(i); }
   void setNormalScale(float v) { set<&SurfaceMaterial::normalScale_>(v); }
+  void setAlphaMode(AlphaMode m) { set<&SurfaceMaterial::alphaMode_>(m); }
+  void setAlphaCutoff(float v) { set<&SurfaceMaterial::alphaCutoff_>(v); }
+  void setOcclusionTexture(ContainerId i) { set<&SurfaceMaterial::occlusionTexture_>(i); }
+  void setOcclusionStrength(float v) { set<&SurfaceMaterial::occlusionStrength_>(v); }
+  void setUvTransforms(std::vector<Vec3> rows) { set<&SurfaceMaterial::uvTransforms_>(std::move(rows)); }
 
   static constexpr auto fieldSpecs() {
     using M = SurfaceMaterial;
@@ -84,7 +132,13 @@ class SurfaceMaterial final : public ContainerOf<SurfaceMaterial, ContainerType:
                        &M::setTransmissionTexture),
         valueField(Ior, "ior", &M::ior_, &M::setIor),
         referenceField(NormalTexture, "normalTexture", &M::normalTexture_, kImageTypes, &M::setNormalTexture),
-        valueField(NormalScale, "normalScale", &M::normalScale_, &M::setNormalScale)};
+        valueField(NormalScale, "normalScale", &M::normalScale_, &M::setNormalScale),
+        valueField(Alpha, "alphaMode", &M::alphaMode_, &M::setAlphaMode),
+        valueField(AlphaCutoff, "alphaCutoff", &M::alphaCutoff_, &M::setAlphaCutoff),
+        referenceField(OcclusionTexture, "occlusionTexture", &M::occlusionTexture_, kImageTypes,
+                       &M::setOcclusionTexture),
+        valueField(OcclusionStrength, "occlusionStrength", &M::occlusionStrength_, &M::setOcclusionStrength),
+        arrayField(UvTransforms, "uvTransforms", &M::uvTransforms_, &M::setUvTransforms)};
   }
 
  private:
@@ -104,6 +158,11 @@ class SurfaceMaterial final : public ContainerOf<SurfaceMaterial, ContainerType:
   float ior_ = 1.5f;
   ContainerId normalTexture_ = kNoContainer;
   float normalScale_ = 1.0f;
+  AlphaMode alphaMode_ = AlphaMode::Blend;
+  float alphaCutoff_ = 0.5f;
+  ContainerId occlusionTexture_ = kNoContainer;
+  float occlusionStrength_ = 1.0f;
+  std::vector<Vec3> uvTransforms_;
 };
 
 }  // namespace tsr::sg
