@@ -49,6 +49,16 @@ embree::Material translateMaterial(const sg::Container* material, const sg::Volu
   return m;
 }
 
+namespace {
+// A slot's texture transform; a malformed one (NaN, infinity) is none.
+embree::UvTransform uvTransform(const sg::SurfaceMaterial& s, sg::TextureSlot slot) {
+  const auto [row0, row1] = s.uvTransform(slot);
+  auto finite = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+  if (!finite(row0) || !finite(row1)) return {};
+  return {row0, row1};
+}
+}  // namespace
+
 embree::Material translateSurface(const sg::Container* material, const TextureLookup& textures) {
   embree::Material m;
   if (!material) return m;  // default grey diffuse
@@ -66,6 +76,20 @@ embree::Material translateSurface(const sg::Container* material, const TextureLo
   m.ior = s.ior();
   m.emission = s.emittedRadiance();
   m.emissionTexture = s.emissionTexture() ? textures(s.emissionTexture()) : std::nullopt;
+  m.baseColorUv = uvTransform(s, sg::TextureSlot::BaseColor);
+  m.emissionUv = uvTransform(s, sg::TextureSlot::Emission);
+  m.opacity = std::isfinite(s.opacity()) ? std::clamp(s.opacity(), 0.0f, 1.0f) : 1.0f;
+  m.alphaCutoff = std::isfinite(s.alphaCutoff()) ? s.alphaCutoff() : 0.5f;
+  switch (s.alphaMode()) {
+    case sg::AlphaMode::Mask:
+      m.alphaMode = embree::AlphaMode::Mask;
+      break;
+    case sg::AlphaMode::Blend:
+      m.alphaMode = embree::AlphaMode::Blend;
+      break;
+    default:
+      m.alphaMode = embree::AlphaMode::Opaque;
+  }
   switch (classify(s)) {
     case SurfaceClass::Glass:
       m.type = embree::MaterialType::Glass;

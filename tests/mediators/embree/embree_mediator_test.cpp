@@ -76,6 +76,20 @@ TEST_F(IncrementalSync, MaterialEdit) {
   check("material");
 }
 
+TEST_F(IncrementalSync, AlphaModeEdits) {
+  auto* m = rig.source.find<sg::SurfaceMaterial>(findNamed(rig.source, sg::ContainerType::SurfaceMaterial));
+  ASSERT_NE(m, nullptr);
+  m->setOpacity(0.3f);
+  m->setAlphaMode(sg::AlphaMode::Blend);  // imported as glTF's OPAQUE: now see-through in part
+  check("blended");
+  before = follower.image;
+  m->setAlphaMode(sg::AlphaMode::Mask);  // below the cut-off of 0.5: gone
+  check("masked");
+  before = follower.image;
+  m->setAlphaMode(sg::AlphaMode::Opaque);
+  check("opaque");
+}
+
 TEST_F(IncrementalSync, GeometryRangeEdit) {
   auto* g = rig.source.find<sg::Geometry>(findNamed(rig.source, sg::ContainerType::Geometry));
   ASSERT_NE(g, nullptr);

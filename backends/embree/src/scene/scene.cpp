@@ -148,7 +148,7 @@ Scene::Scene(std::shared_ptr<Device> device) : state_(std::make_unique<SceneStat
   rtcSetSceneFlags(state_->top, RTC_SCENE_FLAG_DYNAMIC | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
   rtcSetSceneBuildQuality(state_->top, RTC_BUILD_QUALITY_LOW);
   state_->moving = rtcNewScene(state_->device->handle());
-  rtcSetSceneFlags(state_->moving, RTC_SCENE_FLAG_DYNAMIC);
+  rtcSetSceneFlags(state_->moving, RTC_SCENE_FLAG_DYNAMIC | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
   rtcSetSceneBuildQuality(state_->moving, RTC_BUILD_QUALITY_LOW);
   state_->merged = rtcNewScene(state_->device->handle());
   rtcSetSceneFlags(state_->merged, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
@@ -279,6 +279,10 @@ static void validateMaterial(const Material& m, const SceneState& s) {
   validateColour(m.emission, "emission");
   if (!(m.roughness >= 0.0f && m.roughness <= 1.0f)) throw Error("material roughness must be in [0, 1]");
   if (!(m.ior > 0.0f) || !std::isfinite(m.ior)) throw Error("material ior must be positive and finite");
+  if (!(m.opacity >= 0.0f && m.opacity <= 1.0f)) throw Error("material opacity must be in [0, 1]");
+  if (!std::isfinite(m.alphaCutoff)) throw Error("material alphaCutoff must be finite");
+  for (const UvTransform& t : {m.baseColorUv, m.emissionUv})
+    if (!finite(t.row0) || !finite(t.row1)) throw Error("material uv transform contains NaN or infinity");
   std::optional<TextureId> none;
   const Medium& v = m.interior ? *m.interior : Medium{};
   for (const auto& t : {m.baseColorTexture, m.emissionTexture, m.interior ? v.absorptionTexture : none,
@@ -393,6 +397,7 @@ bool refreshMaterials(SceneState& s) {
   s.resolved.resize(s.materials.size());
   s.materialMedia = false;
   s.texturedMedia = false;
+  s.alphaTested = false;
   for (std::size_t i = 0; i < s.materials.size(); ++i) {
     auto& r = s.resolved[i];
     r = {};
@@ -401,6 +406,9 @@ bool refreshMaterials(SceneState& s) {
     s.materialMedia = s.materialMedia || r.material.interior.has_value();
     if (r.material.baseColorTexture) r.baseColorTexture = s.textures[index(*r.material.baseColorTexture)].get();
     if (r.material.emissionTexture) r.emissionTexture = s.textures[index(*r.material.emissionTexture)].get();
+    const bool partial = r.material.opacity < 1.0f || (r.baseColorTexture && !r.baseColorTexture->opaque());
+    r.alphaTested = r.material.alphaMode != AlphaMode::Opaque && partial;
+    s.alphaTested = s.alphaTested || r.alphaTested;
     if (r.material.interior && r.material.interior->textured()) {
       const Medium& m = *r.material.interior;
       auto texture = [&](const std::optional<TextureId>& t) { return t ? s.textures[index(*t)].get() : nullptr; };

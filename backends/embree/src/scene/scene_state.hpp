@@ -87,7 +87,8 @@ struct ResolvedMaterial {
   Material material;
   const Texture* baseColorTexture = nullptr;
   const Texture* emissionTexture = nullptr;
-  VolumeField interior;  // active when the interior medium is textured
+  bool alphaTested = false;  // some hit on it may be cut away or passed (AlphaMode)
+  VolumeField interior;      // active when the interior medium is textured
 };
 
 inline constexpr std::uint32_t kNotEmissive = std::numeric_limits<std::uint32_t>::max();
@@ -192,7 +193,9 @@ struct SceneState {
   // Derived at commit().
   std::vector<ResolvedMaterial> resolved;
   bool materialMedia = false;  // some material has an interior medium
-  bool texturedMedia = false;  // ... and some interior is textured: views hold worldToVolume
+  bool texturedMedia = false;
+  bool alphaTested = false;  // some material is: the tracer's context filter tests hits  // ... and some interior is
+                             // textured: views hold worldToVolume
   std::vector<InstanceView> views;
   std::vector<Light> activeLights;
   Distribution1D emitters;

@@ -27,6 +27,7 @@ Texture::Texture(std::uint32_t width, std::uint32_t height, std::vector<glm::vec
     if (!std::isfinite(t.x) || !std::isfinite(t.y) || !std::isfinite(t.z) || !std::isfinite(t.w)) {
       throw Error("texture contains a non-finite texel");
     }
+    opaque_ = opaque_ && t.w >= 1.0f;
   }
 }
 

@@ -5,6 +5,7 @@
 // and the photon pass (photons/photon_pass.cpp) build on it. Private to
 // the back-end.
 #include "scene/scene_state.hpp"
+#include "tracing/alpha_test.hpp"
 #include "tracing/bsdf.hpp"
 #include "tsr/embree/framebuffer.hpp"
 #include "tsr/embree/irradiance_field.hpp"
@@ -72,25 +73,49 @@ inline bool traceable(const glm::vec3& org, const glm::vec3& dir, float tfar) {
          std::abs(dir.y) <= kMaxRayComponent && std::abs(dir.z) <= kMaxRayComponent && std::abs(tfar) <= kInf;
 }
 
-// The top level's intersection context: while it holds ghosts (instances
-// that moved to the moving level, SceneState::ghosts), hits on them are
-// rejected, so a ray sees what lies behind. Without ghosts there is no
-// filter and no cost.
+// The intersection context of the top and the moving level. While the top
+// level holds ghosts (instances that moved to the moving level,
+// SceneState::ghosts), hits on them are rejected, so a ray sees what lies
+// behind; while some material is alpha-tested, hits its alpha cuts away or
+// lets pass are rejected (alpha_test.hpp). Otherwise there is no filter
+// and no cost.
 struct TopLevelContext {
   RTCIntersectContext context;  // first: Embree hands the filter a pointer to it
   const SceneState* scene;
+  const std::vector<std::uint32_t>* movingIds = nullptr;  // set for the moving level: its ids to instances
 
-  explicit TopLevelContext(const SceneState& s) : scene(&s) {
+  explicit TopLevelContext(const SceneState& s, bool movingLevel = false) : scene(&s) {
     rtcInitIntersectContext(&context);
-    if (s.ghostCount > 0) [[unlikely]]
-      context.filter = rejectGhosts;
+    if (movingLevel) movingIds = &s.movingIds;
+    if ((!movingLevel && s.ghostCount > 0) || s.alphaTested) [[unlikely]]
+      context.filter = filterHits;
   }
 
-  static void rejectGhosts(const RTCFilterFunctionNArguments* args) {
-    const auto& ghosts = reinterpret_cast<const TopLevelContext*>(args->context)->scene->ghosts;
-    for (unsigned i = 0; i < args->N; ++i) {
-      const unsigned top = RTCHitN_instID(args->hit, args->N, i, 0);
-      if (args->valid[i] != 0 && top < ghosts.size() && ghosts[top]) args->valid[i] = 0;
+  static void filterHits(const RTCFilterFunctionNArguments* args) {
+    const auto& self = *reinterpret_cast<const TopLevelContext*>(args->context);
+    const SceneState& s = *self.scene;
+    const unsigned n = args->N;
+    for (unsigned i = 0; i < n; ++i) {
+      if (args->valid[i] == 0) continue;
+      const unsigned top = RTCHitN_instID(args->hit, n, i, 0);
+      if (!self.movingIds && top < s.ghosts.size() && s.ghosts[top]) {
+        args->valid[i] = 0;
+        continue;
+      }
+      if (!s.alphaTested) continue;
+      std::uint32_t inst;
+      if (self.movingIds)
+        inst = top < self.movingIds->size() ? (*self.movingIds)[top] : kNoId;
+      else
+        inst = (top == RTC_INVALID_GEOMETRY_ID || top == kMergedTopId) ? RTCHitN_geomID(args->hit, n, i) : top - 1;
+      if (inst >= s.views.size() || !s.views[inst].material || !s.views[inst].material->alphaTested) continue;
+      const float ray[6] = {RTCRayN_org_x(args->ray, n, i), RTCRayN_org_y(args->ray, n, i),
+                            RTCRayN_org_z(args->ray, n, i), RTCRayN_dir_x(args->ray, n, i),
+                            RTCRayN_dir_y(args->ray, n, i), RTCRayN_dir_z(args->ray, n, i)};
+      const std::uint32_t prim = RTCHitN_primID(args->hit, n, i);
+      if (passesThrough(s.views[inst], prim, RTCHitN_u(args->hit, n, i), RTCHitN_v(args->hit, n, i),
+                        hitKey(ray, inst, prim)))
+        args->valid[i] = 0;
     }
   }
 };
@@ -127,11 +152,10 @@ struct Tracer {
   // The moving level, traced up to the nearest hit so far: a hit there is
   // nearer and is renamed to the instance's top-level id.
   [[gnu::noinline]] void intersectMoving(RTCRayHit& rh) const {
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
+    TopLevelContext moving(scene, true);
     const RTCHit nearest = rh.hit;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene.movingTraversable, &ctx, &rh);
+    rtcIntersect1(scene.movingTraversable, &moving.context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
       rh.hit = nearest;
     else
@@ -148,9 +172,8 @@ struct Tracer {
     setRay(ray, org, dir, tfar);
     rtcOccluded1(scene.traversable, &top.context, &ray);
     if (scene.movingTraversable && ray.tfar >= 0.0f) [[unlikely]] {
-      RTCIntersectContext ctx;
-      rtcInitIntersectContext(&ctx);
-      rtcOccluded1(scene.movingTraversable, &ctx, &ray);
+      TopLevelContext moving(scene, true);
+      rtcOccluded1(scene.movingTraversable, &moving.context, &ray);
     }
     ++rays;
     return ray.tfar < 0.0f;
@@ -195,13 +218,13 @@ struct Tracer {
 
   static glm::vec3 baseColour(const ResolvedMaterial& m, const glm::vec2& uv) {
     glm::vec3 c = m.material.baseColor;
-    if (m.baseColorTexture) c *= glm::vec3(m.baseColorTexture->sampleBilinear(uv));
+    if (m.baseColorTexture) c *= glm::vec3(m.baseColorTexture->sampleBilinear(m.material.baseColorUv(uv)));
     return c;
   }
 
   static glm::vec3 emission(const ResolvedMaterial& m, const glm::vec2& uv) {
     glm::vec3 e = m.material.emission;
-    if (m.emissionTexture) e *= glm::vec3(m.emissionTexture->sampleBilinear(uv));
+    if (m.emissionTexture) e *= glm::vec3(m.emissionTexture->sampleBilinear(m.material.emissionUv(uv)));
     return e;
   }
 

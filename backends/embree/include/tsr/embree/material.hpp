@@ -3,6 +3,8 @@
 #include "tsr/embree/ids.hpp"
 #include "tsr/embree/medium.hpp"
 
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <optional>
@@ -18,18 +20,41 @@ enum class MaterialType {
   Interface,   // no surface: an index-matched medium boundary that rays pass straight through
 };
 
+// How a surface's alpha (opacity x the base colour texture's alpha)
+// covers it: Opaque ignores it; Mask cuts the surface away where alpha is
+// below the cut-off; Blend lets a ray pass with probability 1 - alpha
+// (stochastic transparency). Cut and passed hits are never seen, by camera
+// rays and shadow rays alike.
+enum class AlphaMode { Opaque, Mask, Blend };
+
+// An affine map of texture coordinates (KHR_texture_transform), two rows.
+struct UvTransform {
+  glm::vec3 row0{1.0f, 0.0f, 0.0f};
+  glm::vec3 row1{0.0f, 1.0f, 0.0f};
+  glm::vec2 operator()(const glm::vec2& uv) const {
+    const glm::vec3 h(uv, 1.0f);
+    return {glm::dot(row0, h), glm::dot(row1, h)};
+  }
+  bool identity() const { return row0 == glm::vec3(1, 0, 0) && row1 == glm::vec3(0, 1, 0); }
+};
+
 // Materials are assigned per instance, so one mesh can be shown with several
 // materials. Any material can emit: emissive instances become area lights.
 struct Material {
   MaterialType type = MaterialType::Diffuse;
   glm::vec3 baseColor{0.8f};
-  std::optional<TextureId> baseColorTexture;  // multiplies baseColor (rgb)
-  float roughness = 0.5f;                     // GGX alpha = roughness^2
-  float ior = 1.5f;                           // Dielectric and Glass: inside / outside
+  std::optional<TextureId> baseColorTexture;  // multiplies baseColor (rgb); its alpha multiplies opacity
+  UvTransform baseColorUv;
+  float opacity = 1.0f;  // in [0, 1]
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alphaCutoff = 0.5f;
+  float roughness = 0.5f;  // GGX alpha = roughness^2
+  float ior = 1.5f;        // Dielectric and Glass: inside / outside
   // Radiance leaving the front face (counter-clockwise winding). The light
   // distribution uses luminance(emission) * area; the texture only modulates.
   glm::vec3 emission{0.0f};
   std::optional<TextureId> emissionTexture;
+  UvTransform emissionUv;
   // What fills the closed mesh behind the front faces, if anything.
   std::optional<Medium> interior;
 

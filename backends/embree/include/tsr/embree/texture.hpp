@@ -24,6 +24,7 @@ class Texture {
   std::uint32_t height() const { return height_; }
   const glm::vec4& texel(std::uint32_t x, std::uint32_t y) const { return texels_[std::size_t(y) * width_ + x]; }
   const std::vector<glm::vec4>& texels() const { return texels_; }
+  bool opaque() const { return opaque_; }  // every alpha is 1 or more
 
   glm::vec4 sampleBilinear(const glm::vec2& uv) const;
   glm::vec4 sampleNearest(const glm::vec2& uv) const;
@@ -32,6 +33,7 @@ class Texture {
   std::uint32_t width_;
   std::uint32_t height_;
   std::vector<glm::vec4> texels_;
+  bool opaque_ = true;
 };
 
 }  // namespace tsr::embree
