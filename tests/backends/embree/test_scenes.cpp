@@ -66,6 +66,23 @@ MeshData box(const glm::vec3& lo, const glm::vec3& hi) {
   return m;
 }
 
+glm::vec3 furnaceMean(Scene& scene, const Medium& medium) {
+  Material boundary;
+  boundary.type = MaterialType::Interface;
+  boundary.interior = medium;
+  scene.addInstance(scene.addMesh(uvSphere({0, 0, 0}, 1.0f, 2000, false)), scene.addMaterial(boundary),
+                    glm::mat4(1.0f));
+  scene.setEnvironment(Environment::constant(glm::vec3(0.5f)));
+  RenderSettings s;
+  s.maxDepth = 1000;
+  s.samplesPerPass = 16;
+  Renderer renderer(s);
+  Camera camera = Camera::lookAt({0, 0, 3.5f}, {0, 0, 0}, {0, 1, 0}, glm::radians(30.0f), 1.0f);
+  FrameBuffer fb(24, 24);
+  render(renderer, scene, camera, Region::full(24, 24), fb, 16);
+  return meanColour(fb);
+}
+
 Camera cornellBox(Scene& scene, int sphereTris, float aspect) {
   struct Q {
     int colour;

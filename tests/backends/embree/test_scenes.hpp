@@ -31,6 +31,11 @@ Camera cornellBox(Scene& scene, int sphereTris, float aspect = 1.0f);
 // A grey 10x10 floor at y = 0 under a 2x2 lamp (emission 20) at y = 5.
 void floorUnderLamp(Scene& scene);
 
+// A unit sphere filled with `medium` (index-matched boundary) in a
+// constant environment of 0.5, seen whole at 24x24, 256 spp, paths up to
+// 1000 vertices: the mean of the frame (a white medium gives 0.5 back).
+glm::vec3 furnaceMean(Scene& scene, const Medium& medium);
+
 // Renders `passes` passes and returns the last result.
 PassResult render(Renderer& renderer, Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
                   int passes);
