@@ -12,6 +12,7 @@ struct Material {
   vec4 mediumAbsorption;
   vec4 mediumScattering;
   vec4 mediumEmission;
+  vec4 pbr;
 };
 
 struct Light {
@@ -43,6 +44,8 @@ layout(set = 0, binding = 5) uniform sampler2DArrayShadow shadowMaps;
 // Reversed depth of the nearer of opaque geometry and see-through volumes'
 // back faces, for the volumes' thickness (volume.frag).
 layout(set = 0, binding = 6) uniform sampler2D volumeBackDepth;
+// The split-sum table (src/brdf_table.hpp): x = n.v, y = roughness.
+layout(set = 0, binding = 7) uniform sampler2D brdfTable;
 
 layout(push_constant) uniform Push {
   mat4 lightViewProj;

@@ -5,6 +5,7 @@
 // guided). Private to the back-end.
 #include "tsr/vk/renderer.hpp"
 
+#include "brdf_table.hpp"
 #include "buffer.hpp"
 #include "command_slot.hpp"
 #include "depth_pyramid.hpp"
@@ -65,6 +66,8 @@ struct Renderer::Impl {
   std::optional<Image> volumeBack;
   bool volumeBackFresh = false;  // made this frame: still UNDEFINED
   VkSampler depthSampler = VK_NULL_HANDLE;
+  Image brdfTable;  // the split-sum table, made once (brdf_table.hpp)
+  VkSampler tableSampler = VK_NULL_HANDLE;
   bool fog = false;             // this frame's environment has a medium
   glm::vec4 clearColour{0.0f};  // the background, seen through the fog
   std::optional<ShadowMap> shadowMap;
