@@ -33,6 +33,7 @@ layout(set = 0, binding = 0) uniform Frame {
   vec4 fogAbsorption;
   vec4 fogScattering;
   vec4 fogEmission;
+  vec4 emitterAmbient;
 } frame;
 
 layout(std430, set = 0, binding = 1) readonly buffer Instances { Instance instances[]; };
@@ -46,6 +47,8 @@ layout(set = 0, binding = 5) uniform sampler2DArrayShadow shadowMaps;
 layout(set = 0, binding = 6) uniform sampler2D volumeBackDepth;
 // The split-sum table (src/brdf_table.hpp): x = n.v, y = roughness.
 layout(set = 0, binding = 7) uniform sampler2D brdfTable;
+// The environment prefiltered by roughness (Environment::prefiltered()).
+layout(set = 0, binding = 8) uniform sampler2D environmentMap;
 
 layout(push_constant) uniform Push {
   mat4 lightViewProj;

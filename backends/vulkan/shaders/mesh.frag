@@ -2,6 +2,7 @@
 #include "common.glsl"
 #include "brdf.glsl"
 #include "lights.glsl"
+#include "environment.glsl"
 
 // Direct light from point, spot and directional lights and from emissive
 // geometry's patches (area-like lights) with the Embree back-end's BSDFs
@@ -106,14 +107,15 @@ vec3 normalMapped(vec3 n, vec3 wo, float scale) {
 // compensation (the energy single-scattering GGX loses, 1 - (A + B), given
 // back in proportion to F0), and Lambert diffuse taking what the dielectric
 // specular leaves: a white material reflects all of a uniform environment.
-vec3 metallicRoughnessAlbedo(vec3 colour, float metallic, float roughness, float c) {
+// The specular part is returned in `specular`, the diffuse part as result.
+vec3 metallicRoughnessAlbedo(vec3 colour, float metallic, float roughness, float c, out vec3 specular) {
   vec2 st = clamp(vec2(c, roughness), vec2(1.0 / 64.0), vec2(63.0 / 64.0));  // texel centres of the 32x32 table
   vec2 ab = texture(brdfTable, st).xy;
   float single = ab.x + ab.y;
   vec3 f0 = mix(vec3(0.04), colour, metallic);
-  vec3 specular = (f0 * ab.x + ab.y) * (1.0 + f0 * (1.0 - single) / single);
+  specular = (f0 * ab.x + ab.y) * (1.0 + f0 * (1.0 - single) / single);
   float dielectricSpecular = (0.04 * ab.x + ab.y) * (1.0 + 0.04 * (1.0 - single) / single);
-  return specular + colour * ((1.0 - metallic) * (1.0 - dielectricSpecular));
+  return colour * ((1.0 - metallic) * (1.0 - dielectricSpecular));
 }
 
 // Fraction of 3x3 shadow-map taps that see p lit. Lights are read field by
@@ -182,18 +184,27 @@ void main() {
     }
   }
 
-  // The environment's average radiance, reflected without occlusion:
-  // exact for Lambert, the directional albedo at normal-ish incidence otherwise.
+  // Without occlusion: diffuse reflection of the environment's average
+  // radiance (exact for Lambert under a constant environment), specular
+  // reflection of the environment prefiltered by roughness around the
+  // mirror direction, weighted by the directional albedo.
   vec3 ambient = frame.ambient.rgb;
+  vec3 mirrored = reflect(-wo, n);
   if (type == METALLIC_ROUGHNESS) {
-    radiance += metallicRoughnessAlbedo(base, metallic, roughness, max(co, 0.0)) * ambient;
-  } else if (type == DIFFUSE || type == MIRROR) {
+    vec3 specular;
+    vec3 diffuse = metallicRoughnessAlbedo(base, metallic, roughness, max(co, 0.0), specular);
+    radiance += diffuse * ambient + specular * prefilteredRadiance(mirrored, roughness);
+  } else if (type == DIFFUSE) {
     radiance += base * ambient;
+  } else if (type == MIRROR) {
+    radiance += base * prefilteredRadiance(mirrored, 0.0);
   } else if (type == CONDUCTOR) {
-    radiance += schlick(base, max(co, 0.0)) * ambient;
+    radiance += schlick(base, max(co, 0.0)) * prefilteredRadiance(mirrored, m.pbr.x);
   } else {
+    // Glass and rough dielectrics: the reflected part; the transmitted part
+    // sees the average (no refraction here).
     float f = fresnelDielectric(max(co, 0.0), eta);
-    radiance += (f + (1.0 - f) * base) * ambient;
+    radiance += f * prefilteredRadiance(mirrored, m.pbr.x) + (1.0 - f) * base * ambient;
   }
 
   if (gl_FrontFacing) {

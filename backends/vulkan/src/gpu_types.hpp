@@ -46,10 +46,11 @@ struct GpuFrame {
   glm::vec4 ambient;  // average environment radiance
   glm::uvec4 counts;  // light count, unused...
   glm::mat4 invViewProj;
-  glm::vec4 viewport;       // width, height of the region in pixels, unused, unused
-  glm::vec4 fogAbsorption;  // the environment's fog (zero without): rgb, g
-  glm::vec4 fogScattering;  // rgb, unused
-  glm::vec4 fogEmission;    // rgb, unused
+  glm::vec4 viewport;        // width, height of the region in pixels, unused, unused
+  glm::vec4 fogAbsorption;   // the environment's fog (zero without): rgb, g
+  glm::vec4 fogScattering;   // rgb, unused
+  glm::vec4 fogEmission;     // rgb, unused
+  glm::vec4 emitterAmbient;  // the emitters' part of `ambient`, added to the prefiltered environment
 };
 
 struct PushConstants {

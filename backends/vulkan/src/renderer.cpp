@@ -22,13 +22,14 @@ void ensureHost(const Device& device, Buffer& buffer, VkDeviceSize needed, VkBuf
 
 Renderer::Impl::Impl(const Device& d) : device(d) {
   VkDevice dev = device.handle();
-  VkDescriptorSetLayoutBinding b[8]{};
-  const VkDescriptorType types[8] = {
+  VkDescriptorSetLayoutBinding b[9]{};
+  const VkDescriptorType types[9] = {
       VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,         VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,         VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,         VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
-  for (std::uint32_t i = 0; i < 8; ++i) {
+      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+  for (std::uint32_t i = 0; i < 9; ++i) {
     b[i].binding = i;
     b[i].descriptorType = types[i];
     b[i].descriptorCount = 1;
@@ -36,7 +37,7 @@ Renderer::Impl::Impl(const Device& d) : device(d) {
   }
   VkDescriptorSetLayoutCreateInfo lci =
       vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
-  lci.bindingCount = 8;
+  lci.bindingCount = 9;
   lci.pBindings = b;
   check(vkCreateDescriptorSetLayout(dev, &lci, nullptr, &frameLayout), "vkCreateDescriptorSetLayout (frame)");
   materialLayout = createMaterialSetLayout(dev);
@@ -52,7 +53,7 @@ Renderer::Impl::Impl(const Device& d) : device(d) {
 
   const VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
-                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3}};
+                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4}};
   frameDescriptors.emplace(device, sizes, frameLayout, "frame");
   frameSet = frameDescriptors->set();
   commands.emplace(device, "frame");
@@ -264,6 +265,7 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
   frame.counts = glm::uvec4(std::uint32_t(gpuLights.size()), 0u, 0u, 0u);
   frame.invViewProj = glm::inverse(viewProj);
   frame.viewport = glm::vec4(float(w), float(h), 0.0f, 0.0f);
+  frame.emitterAmbient = glm::vec4(ambientFromEmitters, 0.0f);
   clearColour = settings.background;
   fog = s.environment.fog().has_value();
   if (fog) {
@@ -311,8 +313,9 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
     VkDescriptorImageInfo shadowInfo{sm.sampler(), sm.image().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkDescriptorImageInfo volumeInfo{depthSampler, volumeBack->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkDescriptorImageInfo tableInfo{tableSampler, brdfTable.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkWriteDescriptorSet writes[8]{};
-    for (std::uint32_t i = 0; i < 8; ++i) {
+    VkDescriptorImageInfo environmentInfo{s.sampler, s.environmentMap.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet writes[9]{};
+    for (std::uint32_t i = 0; i < 9; ++i) {
       writes[i] = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
       writes[i].dstSet = frameSet;
       writes[i].dstBinding = i;
@@ -325,10 +328,11 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
         writes[i].pBufferInfo = &bufs[i];
       } else {
         writes[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-        writes[i].pImageInfo = i == 5 ? &shadowInfo : i == 6 ? &volumeInfo : &tableInfo;
+        const VkDescriptorImageInfo* images[4] = {&shadowInfo, &volumeInfo, &tableInfo, &environmentInfo};
+        writes[i].pImageInfo = images[i - 5];
       }
     }
-    vkUpdateDescriptorSets(device.handle(), 8, writes, 0, nullptr);
+    vkUpdateDescriptorSets(device.handle(), 9, writes, 0, nullptr);
   }
 }
 

@@ -60,6 +60,13 @@ VkFormat textureFormat(TextureFormat f) {
   throw Error("unknown texture format");
 }
 
+// The prefiltered radiance, one upload per environment.
+void uploadEnvironment(SceneState& s) {
+  const auto& texels = s.environment.prefiltered();
+  s.environmentMap = uploadImage(*s.device, Environment::kWidth, Environment::kHeight * Environment::kLevels,
+                                 VK_FORMAT_R32G32B32A32_SFLOAT, texels.data(), texels.size() * sizeof(glm::vec4));
+}
+
 void validateMaterial(const Material& m, const SceneState& s) {
   if (!finiteNonNegative(m.baseColor)) throw Error("material baseColor must be finite and non-negative");
   if (!finiteNonNegative(m.emission)) throw Error("material emission must be finite and non-negative");
@@ -224,6 +231,7 @@ Scene::Scene(std::shared_ptr<Device> device) : state_(std::make_unique<SceneStat
 
   const std::uint8_t white[4] = {255, 255, 255, 255};
   s.whiteTexture = uploadImage(*s.device, 1, 1, VK_FORMAT_R8G8B8A8_UNORM, white, 4);
+  uploadEnvironment(s);
   ensureHostCapacity(*s.device, s.instanceBuffer, 64 * sizeof(GpuInstance), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 }
 
@@ -531,6 +539,7 @@ void Scene::removeLight(LightId id) {
 
 void Scene::setEnvironment(const Environment& environment) {
   state_->environment = environment;
+  uploadEnvironment(*state_);
   ++state_->version;
 }
 

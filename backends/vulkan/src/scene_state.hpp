@@ -104,6 +104,7 @@ struct SceneState {
   std::vector<VkDescriptorPool> materialPools;
   VkSampler sampler = VK_NULL_HANDLE;
   Image whiteTexture;
+  Image environmentMap;  // Environment::prefiltered(), uploaded by setEnvironment
 
   // Derived for drawing; rebuilt by prepare() when drawListDirty.
   bool drawListDirty = true;
