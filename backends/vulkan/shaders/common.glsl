@@ -34,6 +34,9 @@ layout(set = 0, binding = 0) uniform Frame {
   vec4 fogScattering;
   vec4 fogEmission;
   vec4 emitterAmbient;
+  vec4 probeCentre;
+  vec4 sceneMin;
+  vec4 sceneMax;
 } frame;
 
 layout(std430, set = 0, binding = 1) readonly buffer Instances { Instance instances[]; };
@@ -49,6 +52,8 @@ layout(set = 0, binding = 6) uniform sampler2D volumeBackDepth;
 layout(set = 0, binding = 7) uniform sampler2D brdfTable;
 // The environment prefiltered by roughness (Environment::prefiltered()).
 layout(set = 0, binding = 8) uniform sampler2D environmentMap;
+// The reflection probe's six faces (src/reflection_probe.cpp).
+layout(set = 0, binding = 9) uniform sampler2DArray reflectionProbe;
 
 layout(push_constant) uniform Push {
   mat4 lightViewProj;

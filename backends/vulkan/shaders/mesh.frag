@@ -3,6 +3,7 @@
 #include "brdf.glsl"
 #include "lights.glsl"
 #include "environment.glsl"
+#include "probe.glsl"
 
 // Direct light from point, spot and directional lights and from emissive
 // geometry's patches (area-like lights) with the Embree back-end's BSDFs
@@ -197,7 +198,14 @@ void main() {
   } else if (type == DIFFUSE) {
     radiance += base * ambient;
   } else if (type == MIRROR) {
-    radiance += base * prefilteredRadiance(mirrored, 0.0);
+    radiance += base * (hasProbe() ? probeRadiance(worldPos, mirrored) : prefilteredRadiance(mirrored, 0.0));
+  } else if (type == GLASS && hasProbe()) {
+    // What the probe sees along the mirrored and the refracted direction (one
+    // refraction: the way out of the object is not traced), by Fresnel.
+    float f = fresnelDielectric(max(co, 0.0), eta);
+    vec3 refracted = refract(-wo, n, 1.0 / eta);
+    vec3 through = dot(refracted, refracted) > 0.0 ? probeRadiance(worldPos, refracted) : vec3(0.0);
+    radiance += f * probeRadiance(worldPos, mirrored) + (1.0 - f) * base * through;
   } else if (type == CONDUCTOR) {
     radiance += schlick(base, max(co, 0.0)) * prefilteredRadiance(mirrored, m.pbr.x);
   } else {

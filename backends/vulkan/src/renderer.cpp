@@ -22,14 +22,14 @@ void ensureHost(const Device& device, Buffer& buffer, VkDeviceSize needed, VkBuf
 
 Renderer::Impl::Impl(const Device& d) : device(d) {
   VkDevice dev = device.handle();
-  VkDescriptorSetLayoutBinding b[9]{};
-  const VkDescriptorType types[9] = {
+  VkDescriptorSetLayoutBinding b[10]{};
+  const VkDescriptorType types[10] = {
       VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,         VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,         VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,         VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
       VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
-  for (std::uint32_t i = 0; i < 9; ++i) {
+      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+  for (std::uint32_t i = 0; i < 10; ++i) {
     b[i].binding = i;
     b[i].descriptorType = types[i];
     b[i].descriptorCount = 1;
@@ -37,7 +37,7 @@ Renderer::Impl::Impl(const Device& d) : device(d) {
   }
   VkDescriptorSetLayoutCreateInfo lci =
       vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
-  lci.bindingCount = 9;
+  lci.bindingCount = 10;
   lci.pBindings = b;
   check(vkCreateDescriptorSetLayout(dev, &lci, nullptr, &frameLayout), "vkCreateDescriptorSetLayout (frame)");
   materialLayout = createMaterialSetLayout(dev);
@@ -53,7 +53,7 @@ Renderer::Impl::Impl(const Device& d) : device(d) {
 
   const VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
-                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4}};
+                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 5}};
   frameDescriptors.emplace(device, sizes, frameLayout, "frame");
   frameSet = frameDescriptors->set();
   commands.emplace(device, "frame");
@@ -176,8 +176,9 @@ void Renderer::render(Scene& scene, const Camera& camera, const Region& region, 
   const std::uint32_t transparentBase = r.sortDrawOrder(s, camera);
   const std::vector<glm::mat4> shadowViewProj = r.gatherLights(s, settings_);
   r.prepareFrame(s, camera, region, settings_, std::uint32_t(shadowViewProj.size()));
-
   RenderStats stats;
+  r.updateProbe(s, settings_, r.frameData, stats);
+
   VkCommandBuffer cmd = r.commands->buffer();
   check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
   VkCommandBufferBeginInfo bi = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
@@ -266,6 +267,8 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
   frame.invViewProj = glm::inverse(viewProj);
   frame.viewport = glm::vec4(float(w), float(h), 0.0f, 0.0f);
   frame.emitterAmbient = glm::vec4(ambientFromEmitters, 0.0f);
+  frame.sceneMin = glm::vec4(s.sceneMin, 0.0f);
+  frame.sceneMax = glm::vec4(s.sceneMax, 0.0f);
   clearColour = settings.background;
   fog = s.environment.fog().has_value();
   if (fog) {
@@ -282,6 +285,7 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
       if (sigmaT[c] > 0.0f) clearColour[c] = (m.scattering[c] * frame.ambient[c] + m.emission[c]) / sigmaT[c];
   }
   std::memcpy(frameBuffer.mapped(), &frame, sizeof(frame));
+  frameData = frame;
 
   if (!target || target->width != w || target->height != h || target->samples != samples)
     target.emplace(device, w, h, colourFormat(settings.msaaSamples), samples);
