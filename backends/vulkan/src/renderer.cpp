@@ -126,7 +126,8 @@ VkPipeline Renderer::Impl::mainPipeline(std::uint32_t samples, const Material& m
   if (it != mainPipelines.end()) return it->second.handle();
   PipelineDesc d;
   d.layout = layout;
-  d.vertexSpirv = spirv::mesh_vert;
+  d.vertexSpirv = volume ? spirv::volume_vert : spirv::mesh_vert;
+  d.vertexStreams = volume ? 2 : 3;  // no uvs
   d.fragmentSpirv = volume ? spirv::volume_frag : spirv::mesh_frag;
   d.colourFormat = colourFormat(samples);
   d.samples = sampleBits(samples);
