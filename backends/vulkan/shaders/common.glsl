@@ -12,6 +12,7 @@ struct Material {
   vec4 mediumAbsorption;
   vec4 mediumScattering;
   vec4 mediumEmission;
+  vec4 pbr;
 };
 
 struct Light {
@@ -32,6 +33,10 @@ layout(set = 0, binding = 0) uniform Frame {
   vec4 fogAbsorption;
   vec4 fogScattering;
   vec4 fogEmission;
+  vec4 emitterAmbient;
+  vec4 probeCentre;
+  vec4 sceneMin;
+  vec4 sceneMax;
 } frame;
 
 layout(std430, set = 0, binding = 1) readonly buffer Instances { Instance instances[]; };
@@ -43,6 +48,12 @@ layout(set = 0, binding = 5) uniform sampler2DArrayShadow shadowMaps;
 // Reversed depth of the nearer of opaque geometry and see-through volumes'
 // back faces, for the volumes' thickness (volume.frag).
 layout(set = 0, binding = 6) uniform sampler2D volumeBackDepth;
+// The split-sum table (src/brdf_table.hpp): x = n.v, y = roughness.
+layout(set = 0, binding = 7) uniform sampler2D brdfTable;
+// The environment prefiltered by roughness (Environment::prefiltered()).
+layout(set = 0, binding = 8) uniform sampler2D environmentMap;
+// The reflection probe's six faces (src/reflection_probe.cpp).
+layout(set = 0, binding = 9) uniform sampler2DArray reflectionProbe;
 
 layout(push_constant) uniform Push {
   mat4 lightViewProj;

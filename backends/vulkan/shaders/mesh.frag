@@ -2,6 +2,8 @@
 #include "common.glsl"
 #include "brdf.glsl"
 #include "lights.glsl"
+#include "environment.glsl"
+#include "probe.glsl"
 
 // Direct light from point, spot and directional lights and from emissive
 // geometry's patches (area-like lights) with the Embree back-end's BSDFs
@@ -15,11 +17,15 @@ layout(constant_id = 1) const bool BASE_TEXTURE = false;
 layout(constant_id = 2) const bool EMISSION_TEXTURE = false;
 layout(constant_id = 3) const bool SHADOWS = false;
 layout(constant_id = 4) const bool FOG = false;  // the environment has a medium
+layout(constant_id = 5) const bool NORMAL_TEXTURE = false;
+layout(constant_id = 6) const bool METALLIC_ROUGHNESS_TEXTURE = false;
 
 #include "medium.glsl"
 
 layout(set = 1, binding = 0) uniform sampler2D baseColorTex;
 layout(set = 1, binding = 1) uniform sampler2D emissionTex;
+layout(set = 1, binding = 2) uniform sampler2D metallicRoughnessTex;
+layout(set = 1, binding = 3) uniform sampler2D normalTex;
 
 layout(location = 0) in vec3 worldPos;
 layout(location = 1) in vec3 worldNormal;
@@ -27,13 +33,26 @@ layout(location = 2) in vec2 uv;
 
 layout(location = 0) out vec4 outColour;
 
-const uint DIFFUSE = 0u, CONDUCTOR = 1u, DIELECTRIC = 2u, MIRROR = 3u, GLASS = 4u;
+const uint DIFFUSE = 0u, CONDUCTOR = 1u, DIELECTRIC = 2u, MIRROR = 3u, GLASS = 4u, METALLIC_ROUGHNESS = 5u;
 
 // f * |cos(wi)| for unit vectors; n is the shading normal on wo's side.
-vec3 evalBsdf(uint type, vec3 colour, float alpha, float eta, vec3 n, vec3 wo, vec3 wi) {
+// metallic is read by METALLIC_ROUGHNESS only.
+vec3 evalBsdf(uint type, vec3 colour, float alpha, float metallic, float eta, vec3 n, vec3 wo, vec3 wi) {
   float co = dot(n, wo);
   float ci = dot(n, wi);
   if (type == DIFFUSE) return ci > 0.0 ? colour * (ci / PI) : vec3(0.0);
+  if (type == METALLIC_ROUGHNESS) {
+    // glTF appendix B: mix(dielectric, metal, metallic) with
+    // dielectric = mix(diffuse, specular, F(0.04)) and metal = specular F(colour).
+    if (ci <= 0.0) return vec3(0.0);
+    vec3 h = normalize(wo + wi);
+    float m = 1.0 - clamp(dot(wo, h), 0.0, 1.0);
+    float fc = (m * m) * (m * m) * m;
+    vec3 f0 = mix(vec3(0.04), colour, metallic);
+    vec3 specular = (f0 + (1.0 - f0) * fc) * (ggxD(dot(n, h), alpha) * ggxG2(co, ci, alpha) / (4.0 * co));
+    float diffuseWeight = (1.0 - metallic) * (1.0 - (0.04 + 0.96 * fc));
+    return specular + colour * (diffuseWeight * ci / PI);
+  }
   if (type == CONDUCTOR) {
     if (ci <= 0.0) return vec3(0.0);
     vec3 h = normalize(wo + wi);
@@ -59,6 +78,45 @@ vec3 evalBsdf(uint type, vec3 colour, float alpha, float eta, vec3 n, vec3 wo, v
                      (co * denom * denom));
   }
   return vec3(0.0);  // Mirror and Glass are delta BSDFs: no direct light from point-like lights
+}
+
+// The shading normal n bent by the normal map: a tangent frame from the
+// screen-space derivatives of position and uv (Schüler's cotangent frame),
+// x along +u and y along -v (glTF: +y is up in the image, v runs down).
+// A bent normal that would face away from the viewer is pulled back to the
+// silhouette plane.
+vec3 normalMapped(vec3 n, vec3 wo, float scale) {
+  vec3 dp1 = dFdx(worldPos), dp2 = dFdy(worldPos);
+  vec2 duv1 = dFdx(uv), duv2 = dFdy(uv);
+  vec3 dp2perp = cross(dp2, n), dp1perp = cross(n, dp1);
+  vec3 t = dp2perp * duv1.x + dp1perp * duv2.x;
+  vec3 b = dp2perp * duv1.y + dp1perp * duv2.y;
+  float len2 = max(dot(t, t), dot(b, b));
+  if (!(len2 > 0.0)) return n;  // no uv gradient: nothing to bend along
+  // The derivation assumes (dp1, dp2, n) right-handed; Vulkan's y-down
+  // framebuffer makes it left-handed for faces seen from the front.
+  float inv = inversesqrt(len2) * (dot(cross(dp1, dp2), n) < 0.0 ? -1.0 : 1.0);
+  vec3 ts = texture(normalTex, uv).xyz * 2.0 - 1.0;
+  ts.xy *= scale;
+  vec3 bent = normalize(t * (inv * ts.x) - b * (inv * ts.y) + n * ts.z);
+  float c = dot(bent, wo);
+  return c > 1e-3 ? bent : normalize(bent + wo * (1e-3 - c));
+}
+
+// Directional albedo of the metallic-roughness BRDF at n.v = c, from the
+// split-sum table (F0 A + B), with Fdez-Aguera's multiple-scattering
+// compensation (the energy single-scattering GGX loses, 1 - (A + B), given
+// back in proportion to F0), and Lambert diffuse taking what the dielectric
+// specular leaves: a white material reflects all of a uniform environment.
+// The specular part is returned in `specular`, the diffuse part as result.
+vec3 metallicRoughnessAlbedo(vec3 colour, float metallic, float roughness, float c, out vec3 specular) {
+  vec2 st = clamp(vec2(c, roughness), vec2(1.0 / 64.0), vec2(63.0 / 64.0));  // texel centres of the 32x32 table
+  vec2 ab = texture(brdfTable, st).xy;
+  float single = ab.x + ab.y;
+  vec3 f0 = mix(vec3(0.04), colour, metallic);
+  specular = (f0 * ab.x + ab.y) * (1.0 + f0 * (1.0 - single) / single);
+  float dielectricSpecular = (0.04 * ab.x + ab.y) * (1.0 + 0.04 * (1.0 - single) / single);
+  return colour * ((1.0 - metallic) * (1.0 - dielectricSpecular));
 }
 
 // Fraction of 3x3 shadow-map taps that see p lit. Lights are read field by
@@ -99,8 +157,17 @@ void main() {
   // face (by winding) that the viewer sees.
   float len = length(worldNormal);
   vec3 n = len > 1e-8 ? (gl_FrontFacing ? worldNormal : -worldNormal) / len : ng;
+  if (NORMAL_TEXTURE) n = normalMapped(n, wo, m.pbr.z);
   float eta = gl_FrontFacing ? m.params.y : 1.0 / m.params.y;
   float alpha = m.params.x;
+  float roughness = m.pbr.x;
+  float metallic = m.pbr.y;
+  if (METALLIC_ROUGHNESS_TEXTURE) {
+    vec4 t = texture(metallicRoughnessTex, uv);
+    roughness *= t.g;
+    metallic *= t.b;
+    alpha = max(1e-3, roughness * roughness);
+  }
   float co = dot(n, wo);
 
   vec3 radiance = vec3(0.0);
@@ -111,23 +178,41 @@ void main() {
       if (!lightAt(i, worldPos, wi, li)) continue;
       // Shading and geometric normal must agree on the side of wi.
       if ((dot(wi, ng) > 0.0) != (dot(wi, n) > 0.0)) continue;
-      vec3 f = evalBsdf(type, base, alpha, eta, n, wo, wi);
+      vec3 f = evalBsdf(type, base, alpha, metallic, eta, n, wo, wi);
       if (max(f.r, max(f.g, f.b)) <= 0.0) continue;
       float v = SHADOWS && lights[i].direction.w >= 0.0 ? visibility(i, worldPos, ng) : 1.0;
       radiance += f * li * v;
     }
   }
 
-  // The environment's average radiance, reflected without occlusion:
-  // exact for Lambert, the directional albedo at normal-ish incidence otherwise.
+  // Without occlusion: diffuse reflection of the environment's average
+  // radiance (exact for Lambert under a constant environment), specular
+  // reflection of the environment prefiltered by roughness around the
+  // mirror direction, weighted by the directional albedo.
   vec3 ambient = frame.ambient.rgb;
-  if (type == DIFFUSE || type == MIRROR) {
+  vec3 mirrored = reflect(-wo, n);
+  if (type == METALLIC_ROUGHNESS) {
+    vec3 specular;
+    vec3 diffuse = metallicRoughnessAlbedo(base, metallic, roughness, max(co, 0.0), specular);
+    radiance += diffuse * ambient + specular * prefilteredRadiance(mirrored, roughness);
+  } else if (type == DIFFUSE) {
     radiance += base * ambient;
-  } else if (type == CONDUCTOR) {
-    radiance += schlick(base, max(co, 0.0)) * ambient;
-  } else {
+  } else if (type == MIRROR) {
+    radiance += base * (hasProbe() ? probeRadiance(worldPos, mirrored) : prefilteredRadiance(mirrored, 0.0));
+  } else if (type == GLASS && hasProbe()) {
+    // What the probe sees along the mirrored and the refracted direction (one
+    // refraction: the way out of the object is not traced), by Fresnel.
     float f = fresnelDielectric(max(co, 0.0), eta);
-    radiance += (f + (1.0 - f) * base) * ambient;
+    vec3 refracted = refract(-wo, n, 1.0 / eta);
+    vec3 through = dot(refracted, refracted) > 0.0 ? probeRadiance(worldPos, refracted) : vec3(0.0);
+    radiance += f * probeRadiance(worldPos, mirrored) + (1.0 - f) * base * through;
+  } else if (type == CONDUCTOR) {
+    radiance += schlick(base, max(co, 0.0)) * prefilteredRadiance(mirrored, m.pbr.x);
+  } else {
+    // Glass and rough dielectrics: the reflected part; the transmitted part
+    // sees the average (no refraction here).
+    float f = fresnelDielectric(max(co, 0.0), eta);
+    radiance += f * prefilteredRadiance(mirrored, m.pbr.x) + (1.0 - f) * base * ambient;
   }
 
   if (gl_FrontFacing) {

@@ -17,7 +17,6 @@ layout(constant_id = 4) const bool FOG = false;
 
 layout(location = 0) in vec3 worldPos;
 layout(location = 1) in vec3 worldNormal;
-layout(location = 2) in vec2 uv;
 
 layout(location = 0, index = 0) out vec4 outAdd;
 layout(location = 0, index = 1) out vec4 outTransmit;

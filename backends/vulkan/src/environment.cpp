@@ -2,6 +2,9 @@
 
 #include "tsr/vk/error.hpp"
 
+#include <glm/geometric.hpp>
+
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -13,12 +16,110 @@ bool finiteNonNegative(const glm::vec3& v) {
     if (!std::isfinite(v[i]) || v[i] < 0.0f) return false;
   return true;
 }
+constexpr float kPi = std::numbers::pi_v<float>;
+
+struct LatLong {
+  std::uint32_t width = 0, height = 0;
+  std::vector<glm::vec3> texels;
+
+  glm::vec3 at(int x, int y) const {
+    x = ((x % int(width)) + int(width)) % int(width);
+    y = std::clamp(y, 0, int(height) - 1);
+    return texels[std::size_t(y) * width + std::size_t(x)];
+  }
+  // Bilinear, wrapping in u.
+  glm::vec3 lookup(const glm::vec3& d) const {
+    const float u = std::atan2(d.x, -d.z) / (2.0f * kPi) + 0.5f;
+    const float v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi;
+    const float fx = u * float(width) - 0.5f, fy = v * float(height) - 0.5f;
+    const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+    const float tx = fx - float(x0), ty = fy - float(y0);
+    return (1.0f - ty) * ((1.0f - tx) * at(x0, y0) + tx * at(x0 + 1, y0)) +
+           ty * ((1.0f - tx) * at(x0, y0 + 1) + tx * at(x0 + 1, y0 + 1));
+  }
+  // Box-averaged to at most w x h (sizes halve until they fit).
+  LatLong reduced(std::uint32_t w, std::uint32_t h) const {
+    LatLong r = *this;
+    while (r.width > w || r.height > h) {
+      LatLong n;
+      n.width = std::max(1u, r.width / 2);
+      n.height = std::max(1u, r.height / 2);
+      n.texels.resize(std::size_t(n.width) * n.height);
+      const std::uint32_t sx = r.width / n.width, sy = r.height / n.height;
+      for (std::uint32_t y = 0; y < n.height; ++y)
+        for (std::uint32_t x = 0; x < n.width; ++x) {
+          glm::vec3 sum(0.0f);
+          for (std::uint32_t j = 0; j < sy; ++j)
+            for (std::uint32_t i = 0; i < sx; ++i) sum += r.at(int(x * sx + i), int(y * sy + j));
+          n.texels[std::size_t(y) * n.width + x] = sum / float(sx * sy);
+        }
+      r = std::move(n);
+    }
+    return r;
+  }
+};
+
+glm::vec3 direction(float u, float v) {
+  const float phi = (u - 0.5f) * 2.0f * kPi, theta = v * kPi;
+  return {std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi)};
+}
+
+float radicalInverse(std::uint32_t bits) {
+  bits = (bits << 16u) | (bits >> 16u);
+  bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
+  bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
+  bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
+  bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
+  return float(bits) * 2.3283064365386963e-10f;
+}
+
+// Karis' prefilter with n = v = r: GGX half vectors around r, reflected, weighted by
+// n.l; rougher levels read a coarser copy of the map so few samples do not alias.
+std::vector<glm::vec4> prefilter(const LatLong& source) {
+  constexpr std::uint32_t W = Environment::kWidth, H = Environment::kHeight, K = Environment::kLevels;
+  constexpr std::uint32_t kSamples = 128;
+  std::vector<glm::vec4> out(std::size_t(W) * H * K);
+  for (std::uint32_t k = 0; k < K; ++k) {
+    const float roughness = float(k) / float(K - 1);
+    const float a = std::max(1e-3f, roughness * roughness);
+    const LatLong src = source.reduced(std::max(4u, (2 * W) >> k), std::max(2u, (2 * H) >> k));
+    for (std::uint32_t y = 0; y < H; ++y)
+      for (std::uint32_t x = 0; x < W; ++x) {
+        const glm::vec3 r = direction((float(x) + 0.5f) / float(W), (float(y) + 0.5f) / float(H));
+        glm::vec3 value;
+        if (k == 0) {
+          value = src.lookup(r);
+        } else {
+          const glm::vec3 up = std::abs(r.y) < 0.999f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+          const glm::vec3 tx = glm::normalize(glm::cross(up, r)), ty = glm::cross(r, tx);
+          glm::vec3 sum(0.0f);
+          float weight = 0.0f;
+          for (std::uint32_t s = 0; s < kSamples; ++s) {
+            const float u1 = (float(s) + 0.5f) / float(kSamples), u2 = radicalInverse(s);
+            const float cosH = std::sqrt((1.0f - u1) / (1.0f + (a * a - 1.0f) * u1));
+            const float sinH = std::sqrt(std::max(0.0f, 1.0f - cosH * cosH));
+            const float phi = 2.0f * kPi * u2;
+            const glm::vec3 h = tx * (sinH * std::cos(phi)) + ty * (sinH * std::sin(phi)) + r * cosH;
+            const glm::vec3 l = 2.0f * glm::dot(r, h) * h - r;
+            const float nl = glm::dot(r, l);
+            if (nl <= 0.0f) continue;
+            sum += nl * src.lookup(l);
+            weight += nl;
+          }
+          value = weight > 0.0f ? sum / weight : src.lookup(r);
+        }
+        out[(std::size_t(k) * H + y) * W + x] = glm::vec4(value, 1.0f);
+      }
+  }
+  return out;
+}
 }  // namespace
 
 Environment Environment::constant(const glm::vec3& radiance) {
   if (!finiteNonNegative(radiance)) throw Error("environment radiance must be finite and non-negative");
   Environment e;
   e.average_ = radiance;
+  std::fill(e.prefiltered_.begin(), e.prefiltered_.end(), glm::vec4(radiance, 1.0f));
   return e;
 }
 
@@ -29,18 +130,21 @@ Environment Environment::latLong(std::uint32_t width, std::uint32_t height, std:
   if (!std::isfinite(scale) || scale < 0.0f) throw Error("environment scale must be finite and non-negative");
   glm::dvec3 sum(0.0);
   double weight = 0.0;
+  LatLong map{width, height, std::vector<glm::vec3>(texels.size())};
   for (std::uint32_t y = 0; y < height; ++y) {
     // Row y spans polar angles [y, y+1] * pi / height; its solid angle is proportional to sin(theta).
     const double w = std::sin((y + 0.5) * std::numbers::pi / height);
     for (std::uint32_t x = 0; x < width; ++x) {
       const glm::vec4& t = texels[std::size_t(y) * width + x];
       if (!finiteNonNegative(glm::vec3(t))) throw Error("environment map texels must be finite and non-negative");
+      map.texels[std::size_t(y) * width + x] = glm::vec3(t) * scale;
       sum += w * glm::dvec3(t);
       weight += w;
     }
   }
   Environment e;
   e.average_ = glm::vec3(sum / weight) * scale;
+  e.prefiltered_ = prefilter(map);
   return e;
 }
 

@@ -24,6 +24,7 @@ struct GpuMaterial {
   glm::vec4 mediumAbsorption;  // rgb, Henyey-Greenstein g
   glm::vec4 mediumScattering;  // rgb, unused
   glm::vec4 mediumEmission;    // rgb, unused
+  glm::vec4 pbr;               // roughness, metallic, normal scale, unused
 };
 
 enum : std::uint32_t { kGpuPoint = 0, kGpuSpot = 1, kGpuDirectional = 2, kGpuEmitter = 3 };
@@ -45,10 +46,14 @@ struct GpuFrame {
   glm::vec4 ambient;  // average environment radiance
   glm::uvec4 counts;  // light count, unused...
   glm::mat4 invViewProj;
-  glm::vec4 viewport;       // width, height of the region in pixels, unused, unused
-  glm::vec4 fogAbsorption;  // the environment's fog (zero without): rgb, g
-  glm::vec4 fogScattering;  // rgb, unused
-  glm::vec4 fogEmission;    // rgb, unused
+  glm::vec4 viewport;        // width, height of the region in pixels, unused, unused
+  glm::vec4 fogAbsorption;   // the environment's fog (zero without): rgb, g
+  glm::vec4 fogScattering;   // rgb, unused
+  glm::vec4 fogEmission;     // rgb, unused
+  glm::vec4 emitterAmbient;  // the emitters' part of `ambient`, added to the prefiltered environment
+  glm::vec4 probeCentre;     // the reflection probe's centre, w = 1 when there is one
+  glm::vec4 sceneMin;        // the scene's bounds, which probe lookups are projected onto
+  glm::vec4 sceneMax;
 };
 
 struct PushConstants {

@@ -1,8 +1,12 @@
 #include "image.hpp"
 
+#include "buffer.hpp"
+
 #include "tsr/vk/error.hpp"
 #include "vk_struct.hpp"
 
+#include <cstring>
+#include <string>
 #include <utility>
 
 namespace tsr::vk {
@@ -99,6 +103,36 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
   b.image = image;
   b.subresourceRange = {aspect, 0, 1, 0, layers};
   vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 0, nullptr, 0, nullptr, 1, &b);
+}
+
+Image uploadImage(const Device& device, std::uint32_t width, std::uint32_t height, VkFormat format, const void* bytes,
+                  VkDeviceSize size) {
+  VkFormatProperties props;
+  vkGetPhysicalDeviceFormatProperties(device.physicalDevice(), format, &props);
+  if (!(props.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT))
+    throw Error("texture format " + std::to_string(format) + " cannot be sampled with linear filtering on " +
+                device.name());
+  ImageDesc desc;
+  desc.width = width;
+  desc.height = height;
+  desc.format = format;
+  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  Image image(device, desc);
+  Buffer staging(device, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, Buffer::kHost);
+  std::memcpy(staging.mapped(), bytes, size);
+  device.submitAndWait([&](VkCommandBuffer cmd) {
+    imageBarrier(cmd, image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+                 VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.imageExtent = {width, height, 1};
+    vkCmdCopyBufferToImage(cmd, staging.handle(), image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+    imageBarrier(cmd, image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                 VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+  });
+  return image;
 }
 
 }  // namespace tsr::vk

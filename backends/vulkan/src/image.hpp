@@ -49,6 +49,12 @@ class Image {
   std::vector<VkImageView> layerViews_;
 };
 
+// A sampled image filled from host memory (its layout then
+// SHADER_READ_ONLY_OPTIMAL); waits for the copy. Throws when the format
+// cannot be sampled with linear filtering.
+Image uploadImage(const Device& device, std::uint32_t width, std::uint32_t height, VkFormat format, const void* bytes,
+                  VkDeviceSize size);
+
 // One image memory barrier over all mips and the given layers.
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,
                   VkPipelineStageFlags srcStage, VkAccessFlags srcAccess, VkPipelineStageFlags dstStage,

@@ -101,6 +101,10 @@ void Renderer::Impl::drawOpaque(VkCommandBuffer cmd, const SceneState& s, const 
   const auto& groups = s.opaqueGroups;
   for (std::size_t i = 0; i < groups.size();) {
     const DrawGroup& g = groups[i];
+    if (drawingProbe && reflective(s.materials[g.material].material)) {
+      ++i;
+      continue;
+    }
     bindDraw(cmd, s, settings, shadows, g.mesh, g.material);
     ++stats.drawCalls;
     if (indirect) {

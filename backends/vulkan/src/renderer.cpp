@@ -22,13 +22,14 @@ void ensureHost(const Device& device, Buffer& buffer, VkDeviceSize needed, VkBuf
 
 Renderer::Impl::Impl(const Device& d) : device(d) {
   VkDevice dev = device.handle();
-  VkDescriptorSetLayoutBinding b[7]{};
-  const VkDescriptorType types[7] = {
-      VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,        VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,        VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,        VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
-  for (std::uint32_t i = 0; i < 7; ++i) {
+  VkDescriptorSetLayoutBinding b[10]{};
+  const VkDescriptorType types[10] = {
+      VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,         VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,         VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,         VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+  for (std::uint32_t i = 0; i < 10; ++i) {
     b[i].binding = i;
     b[i].descriptorType = types[i];
     b[i].descriptorCount = 1;
@@ -36,7 +37,7 @@ Renderer::Impl::Impl(const Device& d) : device(d) {
   }
   VkDescriptorSetLayoutCreateInfo lci =
       vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
-  lci.bindingCount = 7;
+  lci.bindingCount = 10;
   lci.pBindings = b;
   check(vkCreateDescriptorSetLayout(dev, &lci, nullptr, &frameLayout), "vkCreateDescriptorSetLayout (frame)");
   materialLayout = createMaterialSetLayout(dev);
@@ -52,7 +53,7 @@ Renderer::Impl::Impl(const Device& d) : device(d) {
 
   const VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
-                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2}};
+                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 5}};
   frameDescriptors.emplace(device, sizes, frameLayout, "frame");
   frameSet = frameDescriptors->set();
   commands.emplace(device, "frame");
@@ -73,6 +74,15 @@ Renderer::Impl::Impl(const Device& d) : device(d) {
   sci.magFilter = sci.minFilter = VK_FILTER_NEAREST;
   sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   check(vkCreateSampler(dev, &sci, nullptr, &depthSampler), "vkCreateSampler (volume depth)");
+  sci.magFilter = sci.minFilter = VK_FILTER_LINEAR;
+  check(vkCreateSampler(dev, &sci, nullptr, &tableSampler), "vkCreateSampler (BRDF table)");
+  {
+    constexpr std::uint32_t kTableSize = 32;
+    std::vector<glm::vec4> texels;
+    for (const glm::vec2& ab : splitSumTable(kTableSize)) texels.emplace_back(ab, 0.0f, 1.0f);
+    brdfTable = uploadImage(device, kTableSize, kTableSize, VK_FORMAT_R32G32B32A32_SFLOAT, texels.data(),
+                            texels.size() * sizeof(glm::vec4));
+  }
 
   frameBuffer = Buffer(device, sizeof(GpuFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, Buffer::kHost);
 }
@@ -83,6 +93,7 @@ Renderer::Impl::~Impl() {
   commands.reset();
   frameDescriptors.reset();
   vkDestroySampler(dev, depthSampler, nullptr);
+  vkDestroySampler(dev, tableSampler, nullptr);
   vkDestroyPipelineLayout(dev, layout, nullptr);
   vkDestroyDescriptorSetLayout(dev, materialLayout, nullptr);
   vkDestroyDescriptorSetLayout(dev, frameLayout, nullptr);
@@ -103,15 +114,20 @@ VkPipeline Renderer::Impl::mainPipeline(std::uint32_t samples, const Material& m
   const std::uint32_t type = volume ? 0u : static_cast<std::uint32_t>(material.type);
   const bool baseTex = !volume && material.baseColorTexture.has_value();
   const bool emissionTex = !volume && material.emissionTexture.has_value();
+  const bool normalTex = !volume && material.normalTexture.has_value();
+  const bool mrTex =
+      !volume && material.type == MaterialType::MetallicRoughness && material.metallicRoughnessTexture.has_value();
   const bool blend = material.isTransparent();
   const std::uint64_t key = std::uint64_t(samples) | std::uint64_t(type) << 8 | std::uint64_t(baseTex) << 16 |
                             std::uint64_t(emissionTex) << 17 | std::uint64_t(shadows) << 18 |
-                            std::uint64_t(blend) << 19 | std::uint64_t(volume) << 20 | std::uint64_t(fog) << 21;
+                            std::uint64_t(blend) << 19 | std::uint64_t(volume) << 20 | std::uint64_t(fog) << 21 |
+                            std::uint64_t(normalTex) << 22 | std::uint64_t(mrTex) << 23;
   auto it = mainPipelines.find(key);
   if (it != mainPipelines.end()) return it->second.handle();
   PipelineDesc d;
   d.layout = layout;
-  d.vertexSpirv = spirv::mesh_vert;
+  d.vertexSpirv = volume ? spirv::volume_vert : spirv::mesh_vert;
+  d.vertexStreams = volume ? 2 : 3;  // no uvs
   d.fragmentSpirv = volume ? spirv::volume_frag : spirv::mesh_frag;
   d.colourFormat = colourFormat(samples);
   d.samples = sampleBits(samples);
@@ -120,7 +136,7 @@ VkPipeline Renderer::Impl::mainPipeline(std::uint32_t samples, const Material& m
   d.dualSourceBlend = volume;
   d.cull = volume ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE;  // a volume's front faces only
   d.depthWrite = !blend;
-  d.fragmentConstants = {type, baseTex, emissionTex, shadows, fog};
+  d.fragmentConstants = {type, baseTex, emissionTex, shadows, fog, normalTex, mrTex};
   return mainPipelines.emplace(key, Pipeline(device, d)).first->second.handle();
 }
 
@@ -161,8 +177,9 @@ void Renderer::render(Scene& scene, const Camera& camera, const Region& region, 
   const std::uint32_t transparentBase = r.sortDrawOrder(s, camera);
   const std::vector<glm::mat4> shadowViewProj = r.gatherLights(s, settings_);
   r.prepareFrame(s, camera, region, settings_, std::uint32_t(shadowViewProj.size()));
-
   RenderStats stats;
+  r.updateProbe(s, settings_, r.frameData, stats);
+
   VkCommandBuffer cmd = r.commands->buffer();
   check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
   VkCommandBufferBeginInfo bi = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
@@ -250,6 +267,9 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
   frame.counts = glm::uvec4(std::uint32_t(gpuLights.size()), 0u, 0u, 0u);
   frame.invViewProj = glm::inverse(viewProj);
   frame.viewport = glm::vec4(float(w), float(h), 0.0f, 0.0f);
+  frame.emitterAmbient = glm::vec4(ambientFromEmitters, 0.0f);
+  frame.sceneMin = glm::vec4(s.sceneMin, 0.0f);
+  frame.sceneMax = glm::vec4(s.sceneMax, 0.0f);
   clearColour = settings.background;
   fog = s.environment.fog().has_value();
   if (fog) {
@@ -266,6 +286,7 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
       if (sigmaT[c] > 0.0f) clearColour[c] = (m.scattering[c] * frame.ambient[c] + m.emission[c]) / sigmaT[c];
   }
   std::memcpy(frameBuffer.mapped(), &frame, sizeof(frame));
+  frameData = frame;
 
   if (!target || target->width != w || target->height != h || target->samples != samples)
     target.emplace(device, w, h, colourFormat(settings.msaaSamples), samples);
@@ -296,8 +317,10 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
     };
     VkDescriptorImageInfo shadowInfo{sm.sampler(), sm.image().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkDescriptorImageInfo volumeInfo{depthSampler, volumeBack->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkWriteDescriptorSet writes[7]{};
-    for (std::uint32_t i = 0; i < 7; ++i) {
+    VkDescriptorImageInfo tableInfo{tableSampler, brdfTable.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkDescriptorImageInfo environmentInfo{s.sampler, s.environmentMap.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet writes[9]{};
+    for (std::uint32_t i = 0; i < 9; ++i) {
       writes[i] = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
       writes[i].dstSet = frameSet;
       writes[i].dstBinding = i;
@@ -310,10 +333,11 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
         writes[i].pBufferInfo = &bufs[i];
       } else {
         writes[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-        writes[i].pImageInfo = i == 5 ? &shadowInfo : &volumeInfo;
+        const VkDescriptorImageInfo* images[4] = {&shadowInfo, &volumeInfo, &tableInfo, &environmentInfo};
+        writes[i].pImageInfo = images[i - 5];
       }
     }
-    vkUpdateDescriptorSets(device.handle(), 7, writes, 0, nullptr);
+    vkUpdateDescriptorSets(device.handle(), 9, writes, 0, nullptr);
   }
 }
 

@@ -5,6 +5,7 @@
 // guided). Private to the back-end.
 #include "tsr/vk/renderer.hpp"
 
+#include "brdf_table.hpp"
 #include "buffer.hpp"
 #include "command_slot.hpp"
 #include "depth_pyramid.hpp"
@@ -59,12 +60,33 @@ struct Renderer::Impl {
   Buffer lightBuffer;
   Buffer drawOrderBuffer;
   std::optional<RenderTarget> target;
+  // The reflection probe (reflection_probe.cpp): two six-layer images, one
+  // sampled while the other is drawn, and what the current one shows.
+  static constexpr std::uint32_t kProbeSize = 128;
+  Image probe[2];
+  Image probeDepth;
+  std::uint32_t probeCurrent = 0;
+  bool probeFresh = false;
+  struct ProbeKey {
+    const SceneState* scene = nullptr;
+    std::uint64_t version = 0;
+    bool operator==(const ProbeKey&) const = default;
+  };
+  std::optional<ProbeKey> probeHeld;
+  glm::vec3 probeCentreHeld{0.0f};
+  GpuFrame frameData{};
+  bool drawingProbe = false;  // drawOpaque leaves out what samples the probe
+  static bool reflective(const Material& m) {
+    return m.type == MaterialType::Mirror || m.type == MaterialType::Glass;
+  }  // this frame's uniform, as prepareFrame wrote it
   // Reversed depth of the nearer of opaque geometry and see-through volumes'
   // back faces (volume.frag reads it). Single-sample, region-sized; kept in
   // SHADER_READ_ONLY_OPTIMAL between frames.
   std::optional<Image> volumeBack;
   bool volumeBackFresh = false;  // made this frame: still UNDEFINED
   VkSampler depthSampler = VK_NULL_HANDLE;
+  Image brdfTable;  // the split-sum table, made once (brdf_table.hpp)
+  VkSampler tableSampler = VK_NULL_HANDLE;
   bool fog = false;             // this frame's environment has a medium
   glm::vec4 clearColour{0.0f};  // the background, seen through the fog
   std::optional<ShadowMap> shadowMap;
@@ -108,6 +130,13 @@ struct Renderer::Impl {
                         std::vector<glm::mat4>& shadowViewProj);
   void prepareFrame(const SceneState& s, const Camera& camera, const Region& region, const RenderSettings& settings,
                     std::uint32_t shadowLayers);
+  bool wantsProbe(const SceneState& s) const;
+  void ensureProbeImages();
+  void writeProbeDescriptor(const SceneState& s, const Image& image);
+  void prepareProbeLayouts(VkCommandBuffer cmd, const Image& into);
+  // Draws the probe if it is wanted and stale; leaves the uniform and the
+  // descriptors as the frame needs them.
+  void updateProbe(const SceneState& s, const RenderSettings& settings, GpuFrame& frame, RenderStats& stats);
   void recordShadows(VkCommandBuffer cmd, const SceneState& s, const std::vector<glm::mat4>& shadowViewProj,
                      RenderStats& stats);
   void prepareAttachments(VkCommandBuffer cmd);

@@ -60,34 +60,11 @@ VkFormat textureFormat(TextureFormat f) {
   throw Error("unknown texture format");
 }
 
-Image uploadImage(const Device& device, std::uint32_t width, std::uint32_t height, VkFormat format, const void* bytes,
-                  VkDeviceSize size) {
-  VkFormatProperties props;
-  vkGetPhysicalDeviceFormatProperties(device.physicalDevice(), format, &props);
-  if (!(props.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT))
-    throw Error("texture format " + std::to_string(format) + " cannot be sampled with linear filtering on " +
-                device.name());
-  ImageDesc desc;
-  desc.width = width;
-  desc.height = height;
-  desc.format = format;
-  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-  Image image(device, desc);
-  Buffer staging(device, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, Buffer::kHost);
-  std::memcpy(staging.mapped(), bytes, size);
-  device.submitAndWait([&](VkCommandBuffer cmd) {
-    imageBarrier(cmd, image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
-                 VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
-    VkBufferImageCopy copy{};
-    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    copy.imageExtent = {width, height, 1};
-    vkCmdCopyBufferToImage(cmd, staging.handle(), image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
-    imageBarrier(cmd, image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                 VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
-  });
-  return image;
+// The prefiltered radiance, one upload per environment.
+void uploadEnvironment(SceneState& s) {
+  const auto& texels = s.environment.prefiltered();
+  s.environmentMap = uploadImage(*s.device, Environment::kWidth, Environment::kHeight * Environment::kLevels,
+                                 VK_FORMAT_R32G32B32A32_SFLOAT, texels.data(), texels.size() * sizeof(glm::vec4));
 }
 
 void validateMaterial(const Material& m, const SceneState& s) {
@@ -102,7 +79,9 @@ void validateMaterial(const Material& m, const SceneState& s) {
       throw Error("material interior coefficients must be finite and non-negative");
     if (!(std::abs(v.g) < 1.0f)) throw Error("material interior phase g must be in (-1, 1)");
   }
-  for (const auto& t : {m.baseColorTexture, m.emissionTexture}) {
+  if (!(m.metallic >= 0.0f && m.metallic <= 1.0f)) throw Error("material metallic must be in [0, 1]");
+  if (!std::isfinite(m.normalScale)) throw Error("material normalScale must be finite");
+  for (const auto& t : {m.baseColorTexture, m.emissionTexture, m.metallicRoughnessTexture, m.normalTexture}) {
     if (t && (index(*t) >= s.textures.size() || !s.textures[index(*t)].alive))
       throw Error("material refers to unknown texture id " + std::to_string(index(*t)));
   }
@@ -142,8 +121,8 @@ void ensureHostCapacity(const Device& device, Buffer& buffer, VkDeviceSize neede
 }  // namespace
 
 VkDescriptorSetLayout createMaterialSetLayout(VkDevice device) {
-  VkDescriptorSetLayoutBinding bindings[2]{};
-  for (std::uint32_t i = 0; i < 2; ++i) {
+  VkDescriptorSetLayoutBinding bindings[kMaterialTextures]{};
+  for (std::uint32_t i = 0; i < kMaterialTextures; ++i) {
     bindings[i].binding = i;
     bindings[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     bindings[i].descriptorCount = 1;
@@ -151,7 +130,7 @@ VkDescriptorSetLayout createMaterialSetLayout(VkDevice device) {
   }
   VkDescriptorSetLayoutCreateInfo ci =
       vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
-  ci.bindingCount = 2;
+  ci.bindingCount = kMaterialTextures;
   ci.pBindings = bindings;
   VkDescriptorSetLayout layout = VK_NULL_HANDLE;
   check(vkCreateDescriptorSetLayout(device, &ci, nullptr, &layout), "vkCreateDescriptorSetLayout (material)");
@@ -183,6 +162,7 @@ void SceneState::prepare() {
       g.baseColor = glm::vec4(m.baseColor, m.opacity);
       g.emission = glm::vec4(m.emission, 0.0f);
       g.params = glm::vec4(std::max(1e-3f, m.roughness * m.roughness), m.ior, 0.0f, 0.0f);
+      g.pbr = glm::vec4(m.roughness, m.metallic, m.normalScale, 0.0f);
       if (m.interior) {
         g.mediumAbsorption = glm::vec4(m.interior->absorption, std::clamp(m.interior->g, -0.99f, 0.99f));
         g.mediumScattering = glm::vec4(m.interior->scattering, 0.0f);
@@ -251,6 +231,7 @@ Scene::Scene(std::shared_ptr<Device> device) : state_(std::make_unique<SceneStat
 
   const std::uint8_t white[4] = {255, 255, 255, 255};
   s.whiteTexture = uploadImage(*s.device, 1, 1, VK_FORMAT_R8G8B8A8_UNORM, white, 4);
+  uploadEnvironment(s);
   ensureHostCapacity(*s.device, s.instanceBuffer, 64 * sizeof(GpuInstance), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 }
 
@@ -419,9 +400,11 @@ void Scene::removeInstance(InstanceId instance) {
 
 namespace {
 void writeMaterialSet(SceneState& s, MaterialRecord& r) {
-  VkDescriptorImageInfo images[2];
-  const std::optional<TextureId> ids[2] = {r.material.baseColorTexture, r.material.emissionTexture};
-  for (int i = 0; i < 2; ++i) {
+  VkDescriptorImageInfo images[kMaterialTextures];
+  const std::optional<TextureId> ids[kMaterialTextures] = {r.material.baseColorTexture, r.material.emissionTexture,
+                                                           r.material.metallicRoughnessTexture,
+                                                           r.material.normalTexture};
+  for (std::uint32_t i = 0; i < kMaterialTextures; ++i) {
     images[i].sampler = s.sampler;
     images[i].imageView = ids[i] ? s.textures[index(*ids[i])].image.view() : s.whiteTexture.view();
     images[i].imageLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
@@ -429,14 +412,14 @@ void writeMaterialSet(SceneState& s, MaterialRecord& r) {
   VkWriteDescriptorSet w = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
   w.dstSet = r.set;
   w.dstBinding = 0;
-  w.descriptorCount = 2;
+  w.descriptorCount = kMaterialTextures;
   w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   w.pImageInfo = images;
   vkUpdateDescriptorSets(s.device->handle(), 1, &w, 0, nullptr);
 }
 
 void retainTextures(SceneState& s, const Material& m, int delta) {
-  for (const auto& t : {m.baseColorTexture, m.emissionTexture})
+  for (const auto& t : {m.baseColorTexture, m.emissionTexture, m.metallicRoughnessTexture, m.normalTexture})
     if (t) s.textures[index(*t)].users += delta;
 }
 
@@ -457,7 +440,7 @@ void allocateMaterialSet(SceneState& s, MaterialRecord& r) {
     }
     if (res != VK_ERROR_OUT_OF_POOL_MEMORY && res != VK_ERROR_FRAGMENTED_POOL) check(res, "vkAllocateDescriptorSets");
   }
-  VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * 256};
+  VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaterialTextures * 256};
   VkDescriptorPoolCreateInfo pci = vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
   pci.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
   pci.maxSets = 256;
@@ -556,6 +539,7 @@ void Scene::removeLight(LightId id) {
 
 void Scene::setEnvironment(const Environment& environment) {
   state_->environment = environment;
+  uploadEnvironment(*state_);
   ++state_->version;
 }
 

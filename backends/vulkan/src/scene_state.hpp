@@ -76,6 +76,9 @@ struct DrawGroup {
   std::uint32_t count = 0;
 };
 
+// Material textures in set 1: base colour, emission, metallic-roughness, normal.
+inline constexpr std::uint32_t kMaterialTextures = 4;
+
 // The set-1 layout for material textures. Scene and Renderer each create one
 // with this function; identically defined layouts are compatible.
 VkDescriptorSetLayout createMaterialSetLayout(VkDevice device);
@@ -101,6 +104,7 @@ struct SceneState {
   std::vector<VkDescriptorPool> materialPools;
   VkSampler sampler = VK_NULL_HANDLE;
   Image whiteTexture;
+  Image environmentMap;  // Environment::prefiltered(), uploaded by setEnvironment
 
   // Derived for drawing; rebuilt by prepare() when drawListDirty.
   bool drawListDirty = true;

@@ -7,6 +7,7 @@
 namespace tsr::vk::spirv {
 extern const std::span<const std::uint32_t> mesh_vert;
 extern const std::span<const std::uint32_t> mesh_frag;
+extern const std::span<const std::uint32_t> volume_vert;
 extern const std::span<const std::uint32_t> volume_frag;
 extern const std::span<const std::uint32_t> shadow_vert;
 extern const std::span<const std::uint32_t> ids_vert;

@@ -46,6 +46,19 @@ vk::Material translateMaterial(const sg::Container* material, const TextureLooku
   m.emissionTexture = s.emissionTexture() ? textures(s.emissionTexture()) : std::nullopt;
   m.opacity = std::clamp(s.opacity(), 0.0f, 1.0f);
   m.type = typeOf(classify(s));
+  m.normalTexture = s.normalTexture() ? textures(s.normalTexture()) : std::nullopt;
+  m.normalScale = std::isfinite(s.normalScale()) ? s.normalScale() : 1.0f;
+  // Metals, partly metallic surfaces and metallic-roughness textures (which
+  // vary both across a surface) take glTF's BRDF. Plain dielectrics stay
+  // Lambertian, as the path tracer still renders them, so both back-ends
+  // light them alike until its glTF BRDF lands.
+  const bool textured = s.metallicRoughnessTexture() != sg::kNoContainer;
+  if (m.type == vk::MaterialType::Conductor ||
+      (m.type == vk::MaterialType::Diffuse && (s.metallic() > 0.0f || textured))) {
+    m.type = vk::MaterialType::MetallicRoughness;
+    m.metallic = std::clamp(s.metallic(), 0.0f, 1.0f);
+    m.metallicRoughnessTexture = textured ? textures(s.metallicRoughnessTexture()) : std::nullopt;
+  }
   return m;
 }
 

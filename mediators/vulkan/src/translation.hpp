@@ -20,8 +20,10 @@ namespace tsr::med::vulkan_mediator {
 using TextureLookup = std::function<std::optional<vk::TextureId>(sg::ContainerId image)>;
 
 // SurfaceMaterial: transmission over 0.5 is glass (smooth below roughness
-// 0.05) or rough dielectric; else metallic over 0.5 is a mirror (smooth) or
-// rough conductor; else diffuse; opacity carries over. SimpleMaterial is
+// 0.05) or rough dielectric; else metallic over 0.5 is a mirror (smooth);
+// else rough metals, partly metallic surfaces and metallic-roughness
+// textures take glTF's metallic-roughness BRDF; else diffuse. Normal maps
+// apply to every class; opacity carries over. SimpleMaterial is
 // diffuse with opacity 1 - transparency. Emission carries over.
 vk::Material translateMaterial(const sg::Container* material, const TextureLookup& textures);
 // The surface with the volume inside it (either may be null). A volume

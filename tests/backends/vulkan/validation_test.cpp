@@ -78,5 +78,66 @@ TEST(VulkanValidation, EveryFeatureRendersWithoutValidationMessages) {
   EXPECT_EQ(device->validationWarnings(), 0u);
 }
 
+// The look of issue 27 and 28 under the validation layer: a see-through
+// volume, fog, the metallic-roughness BRDF with its textures and a normal
+// map, a prefiltered environment map and the reflection probe (a mirror and
+// glass), with and without MSAA and guided visibility, and an edit that
+// redraws the probe.
+TEST(VulkanValidation, MediaMaterialsAndProbeRenderWithoutValidationMessages) {
+  if (!Device::validationLayerAvailable()) GTEST_SKIP() << "VK_LAYER_KHRONOS_validation not installed";
+  std::shared_ptr<Device> device = Device::create({.validation = true});
+  {
+    Scene scene(device);
+    std::vector<std::uint8_t> texels(8 * 8 * 4);
+    for (std::size_t i = 0; i < texels.size(); ++i) texels[i] = std::uint8_t((i * 53) & 0xff);
+    const TextureId tex = scene.addTexture(Texture::fromRgba8(8, 8, texels, false));
+    Material gltf;
+    gltf.type = MaterialType::MetallicRoughness;
+    gltf.metallic = 0.7f;
+    gltf.metallicRoughnessTexture = tex;
+    gltf.normalTexture = tex;
+    Material mirror;
+    mirror.type = MaterialType::Mirror;
+    Material glass;
+    glass.type = MaterialType::Glass;
+    Material medium;
+    medium.type = MaterialType::Glass;
+    medium.ior = 1.0f;
+    medium.interior = Medium{glm::vec3(0.5f), glm::vec3(0.8f), glm::vec3(0.1f), 0.3f};
+    const MeshId sphere = scene.addMesh(test::uvSphere(10, 14, 0.4f));
+    const MeshId ground = scene.addMesh(test::groundQuad(0, 0, 3, -0.5f));
+    scene.addInstance(ground, scene.addMaterial(gltf), glm::mat4(1.0f));
+    const MaterialId mirrorId = scene.addMaterial(mirror);
+    scene.addInstance(sphere, mirrorId, glm::translate(glm::mat4(1.0f), {-1.2f, 0, 0}));
+    scene.addInstance(sphere, scene.addMaterial(glass), glm::translate(glm::mat4(1.0f), {1.2f, 0, 0}));
+    scene.addInstance(sphere, scene.addMaterial(medium), glm::translate(glm::mat4(1.0f), {0, 0, 0.8f}));
+    SpotLight spot;
+    spot.position = {1, 3, 1};
+    spot.direction = {-0.3f, -1, -0.3f};
+    spot.intensity = glm::vec3(15.0f);
+    scene.addLight(spot);
+    std::vector<glm::vec4> sky(16 * 8);
+    for (std::size_t i = 0; i < sky.size(); ++i) sky[i] = glm::vec4(float(i % 5) * 0.1f, 0.2f, 0.3f, 1.0f);
+    scene.setEnvironment(Environment::latLong(16, 8, sky).withFog(Medium{glm::vec3(0.02f), glm::vec3(0.05f), {}, 0}));
+
+    const Camera cam = Camera::lookAt({0, 1.5f, 4}, {0, 0, 0}, {0, 1, 0}, 0.9f, 1.5f);
+    FrameBuffer full(96, 64);
+    for (std::uint32_t samples : {4u, 1u})
+      for (Visibility visibility : {Visibility::All}) {
+        Renderer renderer(device, {.msaaSamples = samples, .visibility = visibility, .shadowMapSize = 256});
+        renderer.render(scene, cam, Region::full(96, 64), full);
+        EXPECT_EQ(renderer.lastStats().probes, 1u);
+        mirror.baseColor = glm::vec3(0.5f + 0.1f * float(samples));
+        scene.setMaterial(mirrorId, mirror);
+        renderer.render(scene, cam, Region::full(96, 64), full);
+        EXPECT_EQ(renderer.lastStats().probes, 1u);
+      }
+    test::writePng("/tmp/tsr_vk_look_features.png", full);
+  }
+  for (const std::string& m : device->validationMessages()) ADD_FAILURE() << m;
+  EXPECT_EQ(device->validationErrors(), 0u);
+  EXPECT_EQ(device->validationWarnings(), 0u);
+}
+
 }  // namespace
 }  // namespace tsr::vk

@@ -8,12 +8,16 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <vector>
 
 namespace tsr::vk {
 
 // What the rasterizer keeps of the environment: its average radiance, which
 // lights every surface as an unshadowed ambient term (a constant environment
-// is exact for Lambertian surfaces without occlusion), and the fog, if any.
+// is exact for Lambertian surfaces without occlusion); the radiance
+// prefiltered by GGX roughness, which specular surfaces reflect (split-sum
+// image-based lighting); and the fog, if any. Prefiltering happens here,
+// once per environment, never per frame.
 class Environment {
  public:
   Environment() = default;  // black
@@ -26,6 +30,12 @@ class Environment {
   // The medium filling the scene outside every volume (fog); none if empty.
   Environment withFog(const Medium& fog) const;
 
+  // kLevels lat-long images of kWidth x kHeight stacked vertically, level k
+  // for GGX roughness k / (kLevels - 1) (level 0: the map itself), in the
+  // path tracer's convention: u = atan2(x, -z) / 2pi + 1/2, v = acos(y) / pi.
+  static constexpr std::uint32_t kWidth = 64, kHeight = 32, kLevels = 5;
+  const std::vector<glm::vec4>& prefiltered() const { return prefiltered_; }
+
   const glm::vec3& averageRadiance() const { return average_; }
   bool isBlack() const { return average_ == glm::vec3(0.0f); }
   const std::optional<Medium>& fog() const { return fog_; }
@@ -33,6 +43,7 @@ class Environment {
  private:
   glm::vec3 average_{0.0f};
   std::optional<Medium> fog_;
+  std::vector<glm::vec4> prefiltered_ = std::vector<glm::vec4>(kWidth * kHeight * kLevels, glm::vec4(0.0f));
 };
 
 }  // namespace tsr::vk

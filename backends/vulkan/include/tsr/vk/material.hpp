@@ -16,6 +16,13 @@ enum class MaterialType {
   Dielectric,  // rough GGX glass: reflection, and transmission of lights behind it
   Mirror,      // perfect specular: no direct light from point-like lights, reflects the ambient term
   Glass,       // smooth dielectric: likewise
+  // glTF 2.0's metallic-roughness BRDF (specification, appendix B): Lambert
+  // diffuse of baseColor (1 - metallic) under a GGX/Smith specular with
+  // Schlick Fresnel, F0 = mix(0.04, baseColor, metallic). The ambient term
+  // is the environment's average times the split-sum directional albedo,
+  // with multiple-scattering compensation, so white materials reflect all
+  // of a uniform environment.
+  MetallicRoughness,
 };
 
 struct Material {
@@ -26,6 +33,14 @@ struct Material {
   float ior = 1.5f;                           // Dielectric and Glass: inside / outside
   glm::vec3 emission{0.0f};                   // radiance leaving the front (counter-clockwise) face
   std::optional<TextureId> emissionTexture;   // multiplies emission (rgb)
+  float metallic = 0.0f;                      // MetallicRoughness only
+  // MetallicRoughness only, linear: green multiplies roughness, blue metallic.
+  std::optional<TextureId> metallicRoughnessTexture;
+  // Tangent-space normals (linear, +x along u, +y up the image, i.e. along
+  // -v), any material type; the tangent frame comes from screen-space
+  // derivatives of position and uv, so meshes need no tangents.
+  std::optional<TextureId> normalTexture;
+  float normalScale = 1.0f;  // scales the map's x and y
   // Below 1 the instance is alpha blended: drawn after opaque geometry,
   // sorted back to front, without depth writes, and casts no shadow.
   float opacity = 1.0f;

@@ -42,6 +42,9 @@ struct RenderStats {
   std::uint32_t lateObjects = 0;  // guided: drawn because they became visible this frame
   std::uint32_t shadowMaps = 0;   // shadow passes rendered
   std::uint64_t shadowTriangles = 0;
+  // Reflection probes drawn (six faces each): when mirrors or glass are in
+  // the scene and it changed since the last one.
+  std::uint32_t probes = 0;
 };
 
 // Rasterizes a Scene into a FrameBuffer: shadow passes, then opaque
