@@ -87,6 +87,9 @@ struct ResolvedMaterial {
   Material material;
   const Texture* baseColorTexture = nullptr;
   const Texture* emissionTexture = nullptr;
+  const Texture* metallicRoughnessTexture = nullptr;
+  const Texture* transmissionTexture = nullptr;
+  const Texture* normalTexture = nullptr;
   VolumeField interior;  // active when the interior medium is textured
 };
 
