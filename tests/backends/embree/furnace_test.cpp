@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 namespace tsr::embree::test {
 namespace {
 
@@ -83,6 +85,7 @@ Material gltf(float metallic, float roughness) {
 TEST(EmbreeFurnace, GltfWhiteDielectricOverDiffuseReturnsEnvironment) {
   for (float roughness : {0.0f, 0.5f, 1.0f}) {
     glm::vec3 c = furnace(gltf(0.0f, roughness), 64, 8);
+    RecordProperty("dielectric_r" + std::to_string(roughness), std::to_string(c.x / 0.5f));  // --gtest_output=xml
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[k], 0.5f, 0.01f) << "roughness " << roughness;
   }
 }
@@ -90,6 +93,7 @@ TEST(EmbreeFurnace, GltfWhiteDielectricOverDiffuseReturnsEnvironment) {
 TEST(EmbreeFurnace, GltfWhiteRoughMetalReturnsEnvironment) {
   for (float roughness : {0.5f, 1.0f}) {
     glm::vec3 c = furnace(gltf(1.0f, roughness), 64, 8);
+    RecordProperty("metal_r" + std::to_string(roughness), std::to_string(c.x / 0.5f));
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[k], 0.5f, 0.01f) << "roughness " << roughness;
   }
 }
@@ -100,9 +104,11 @@ TEST(EmbreeFurnace, GltfTransmissionNeitherGainsNorLosesMuch) {
   Material glass = gltf(0.0f, 0.0f);
   glass.transmission = 1.0f;
   glm::vec3 c = furnace(glass, 64, 8);
+  RecordProperty("smooth", std::to_string(c.x / 0.5f));
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[k], 0.5f, 0.005f);
   glass.roughness = 0.3f;
   c = furnace(glass, 64, 8);
+  RecordProperty("rough_0.3", std::to_string(c.x / 0.5f));
   EXPECT_LT(c.x, 0.505f);
   EXPECT_GT(c.x, 0.45f);
 }
