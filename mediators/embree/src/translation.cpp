@@ -42,7 +42,7 @@ embree::Material translateMaterial(const sg::Container* material, const sg::Volu
   if (volume) {
     // A medium alone, or behind smooth glass of index 1 (how a glTF file
     // says "no surface"): an index-matched boundary rays and shadow rays cross.
-    const bool indexMatched = m.type == embree::MaterialType::Glass && std::abs(m.ior - 1.0f) < 1e-3f;
+    const bool indexMatched = embree::closestClass(m) == embree::MaterialType::Glass && std::abs(m.ior - 1.0f) < 1e-3f;
     if (!material || indexMatched) m.type = embree::MaterialType::Interface;
     if (const embree::Medium medium = translateMedium(*volume, textures); !medium.empty()) m.interior = medium;
   }
@@ -69,13 +69,25 @@ embree::Material translateSurface(const sg::Container* material, const TextureLo
     m.emission = s.emission();
     return m;
   }
+  // glTF's metallic-roughness BSDF from the continuous parameters: no
+  // thresholds, textures vary them per hit.
   const auto& s = static_cast<const sg::SurfaceMaterial&>(*material);
+  auto texture = [&](sg::ContainerId id) { return id != sg::kNoContainer ? textures(id) : std::nullopt; };
+  auto unit = [](float v, float fallback) { return std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : fallback; };
+  m.type = embree::MaterialType::MetallicRoughness;
   m.baseColor = s.baseColor();
-  m.baseColorTexture = s.baseColorTexture() ? textures(s.baseColorTexture()) : std::nullopt;
+  m.baseColorTexture = texture(s.baseColorTexture());
   m.roughness = s.roughness();
+  m.metallic = unit(s.metallic(), 0.0f);
+  m.specular = unit(s.specular(), 1.0f);
+  m.transmission = unit(s.transmission(), 0.0f);
+  m.metallicRoughnessTexture = texture(s.metallicRoughnessTexture());
+  m.transmissionTexture = texture(s.transmissionTexture());
+  m.normalTexture = texture(s.normalTexture());
+  m.normalScale = std::isfinite(s.normalScale()) ? s.normalScale() : 1.0f;
   m.ior = s.ior();
   m.emission = s.emittedRadiance();
-  m.emissionTexture = s.emissionTexture() ? textures(s.emissionTexture()) : std::nullopt;
+  m.emissionTexture = texture(s.emissionTexture());
   m.baseColorUv = uvTransform(s, sg::TextureSlot::BaseColor);
   m.emissionUv = uvTransform(s, sg::TextureSlot::Emission);
   m.opacity = std::isfinite(s.opacity()) ? std::clamp(s.opacity(), 0.0f, 1.0f) : 1.0f;
@@ -89,22 +101,6 @@ embree::Material translateSurface(const sg::Container* material, const TextureLo
       break;
     default:
       m.alphaMode = embree::AlphaMode::Opaque;
-  }
-  switch (classify(s)) {
-    case SurfaceClass::Glass:
-      m.type = embree::MaterialType::Glass;
-      break;
-    case SurfaceClass::Dielectric:
-      m.type = embree::MaterialType::Dielectric;
-      break;
-    case SurfaceClass::Mirror:
-      m.type = embree::MaterialType::Mirror;
-      break;
-    case SurfaceClass::Conductor:
-      m.type = embree::MaterialType::Conductor;
-      break;
-    case SurfaceClass::Diffuse:
-      break;
   }
   return m;
 }

@@ -84,19 +84,25 @@ TEST(EmbreeAreaLight, AllStrategiesMatchAnalyticFormFactor) {
 // No closed form for GGX: the three estimators must agree within noise,
 // which checks that sampling, evaluation and pdf are mutually consistent.
 TEST(EmbreeAreaLight, GgxStrategiesAgree) {
-  for (MaterialType type : {MaterialType::Conductor, MaterialType::Dielectric}) {
+  // The fixed classes, then glTF metallic-roughness as metal, as a
+  // dielectric layer over diffuse, and half and half.
+  for (int k = 0; k < 5; ++k) {
+    const MaterialType type = k == 0   ? MaterialType::Conductor
+                              : k == 1 ? MaterialType::Dielectric
+                                       : MaterialType::MetallicRoughness;
     Material floor;
     floor.type = type;
     floor.baseColor = glm::vec3(0.9f);
     floor.roughness = 0.5f;
+    floor.metallic = k == 2 ? 1.0f : k == 3 ? 0.0f : 0.5f;
     FrameBuffer mis = renderUnderLight(floor, LightSampling::Mis, 4);
     FrameBuffer light = renderUnderLight(floor, LightSampling::LightOnly, 4);
     FrameBuffer bsdf = renderUnderLight(floor, LightSampling::BsdfOnly, 8);
     float m = meanColour(mis).x, l = meanColour(light).x, b = meanColour(bsdf).x;
     float sm = meanStandardError(mis), sl = meanStandardError(light), sb = meanStandardError(bsdf);
     ASSERT_GT(m, 0.01f);
-    EXPECT_NEAR(m, l, 4.0f * std::hypot(sm, sl) + 0.005f * m) << "type " << int(type);
-    EXPECT_NEAR(m, b, 4.0f * std::hypot(sm, sb) + 0.005f * m) << "type " << int(type);
+    EXPECT_NEAR(m, l, 4.0f * std::hypot(sm, sl) + 0.005f * m) << "case " << k;
+    EXPECT_NEAR(m, b, 4.0f * std::hypot(sm, sb) + 0.005f * m) << "case " << k;
     // MIS should not be noisier than the worse single strategy.
     EXPECT_LE(sm, std::max(sl, sb * std::sqrt(2.0f)));
   }

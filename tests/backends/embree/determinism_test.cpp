@@ -5,7 +5,7 @@
 namespace tsr::embree::test {
 namespace {
 
-// Every feature at once: textures, glass, mirror, GGX, area, point, spot and
+// Every feature at once: textures, glass, mirror, GGX, glTF metallic-roughness, area, point, spot and
 // directional lights, environment.
 Camera richScene(Scene& scene) {
   Camera camera = cornellBox(scene, 0, 4.0f / 3.0f);
@@ -31,6 +31,23 @@ Camera richScene(Scene& scene) {
   rough.baseColorTexture = scene.addTexture(Texture(4, 4, texels));
   scene.addInstance(scene.addMesh(quad({100, 1, 400}, {300, 1, 400}, {300, 1, 500}, {100, 1, 500})),
                     scene.addMaterial(rough), glm::mat4(1.0f));
+  // glTF metallic-roughness with every per-hit texture: its lobe choice,
+  // multiple-scattering table and normal map must not depend on threads.
+  std::vector<glm::vec4> params, normals;
+  for (int i = 0; i < 16; ++i) {
+    params.push_back(glm::vec4(0, i % 2 ? 0.2f : 0.9f, (i / 4) % 2 ? 1.0f : 0.0f, 1));
+    normals.push_back(i % 3 ? glm::vec4(0.5f, 0.5f, 1, 1) : glm::vec4(0.8f, 0.4f, 0.85f, 1));
+  }
+  Material gltf;
+  gltf.type = MaterialType::MetallicRoughness;
+  gltf.baseColor = glm::vec3(0.8f, 0.6f, 0.5f);
+  gltf.metallic = 1.0f;
+  gltf.roughness = 1.0f;
+  gltf.transmission = 0.3f;
+  gltf.metallicRoughnessTexture = scene.addTexture(Texture(4, 4, params));
+  gltf.normalTexture = scene.addTexture(Texture(4, 4, normals));
+  scene.addInstance(scene.addMesh(quad({400, 1, 100}, {500, 1, 100}, {500, 1, 250}, {400, 1, 250})),
+                    scene.addMaterial(gltf), glm::mat4(1.0f));
   scene.addLight(SpotLight{{400, 500, 100}, {0, -1, 0.3f}, glm::vec3(50000.0f), 0.3f, 0.5f});
   scene.addLight(DirectionalLight{{0.2f, -1.0f, 0.3f}, glm::vec3(0.5f)});
   scene.setEnvironment(Environment::constant(glm::vec3(0.1f, 0.15f, 0.2f)));

@@ -115,7 +115,7 @@ struct Neighbour {
 // surfaces fall to the ends; the exponent is at least 1 so that samples on
 // surfaces facing away (the other side of a corner) never count.
 float blinnExponent(const RadianceSample& s) {
-  if (s.type == MaterialType::Diffuse) return 1.0f;
+  if (closestClass(s.type, std::sqrt(s.alpha), s.metallic, s.transmission) == MaterialType::Diffuse) return 1.0f;
   return std::clamp(2.0f / (s.alpha * s.alpha) - 2.0f, 1.0f, 1e6f);
 }
 
@@ -188,9 +188,8 @@ void RadianceFilterStep::run(const FrameBuffer& fb, RadianceAccumulator& acc, co
           // zero and a radius from it would leave the pixel unfiltered and
           // black. The floor still shrinks to nothing as k grows.
           const float schedule = cfg.warmupRadius / std::sqrt(float(k));
-          float r = k <= cfg.warmupFrames
-                        ? schedule
-                        : std::max(schedule, std::sqrt(px.variance / target / kEpanechnikovArea));
+          float r = k <= cfg.warmupFrames ? schedule
+                                          : std::max(schedule, std::sqrt(px.variance / target / kEpanechnikovArea));
           // Occlusion narrows the kernel in corners (4.3.1), but only by
           // half: where light arrives only by rare indirect paths, a
           // kernel shrunk below a pixel leaves the corner its own
@@ -220,8 +219,11 @@ void RadianceFilterStep::run(const FrameBuffer& fb, RadianceAccumulator& acc, co
           bsdf.colour = own.colour;
           bsdf.alpha = own.alpha;
           bsdf.eta = own.eta;
+          bsdf.metallic = own.metallic;
+          bsdf.specular = own.specular;
+          bsdf.transmission = own.transmission;
           const glm::vec3 woL = frame.toLocal(own.wo);
-          const bool diffuse = own.type == MaterialType::Diffuse;
+          const bool diffuse = own.type == MaterialType::Diffuse;  // f cos / pdf is the albedo
           const float e = blinnExponent(own);
           const bool bilateral = cfg.bilateral && filter && k > kBilateralStart;
           const float rangeX = nb[i].range;

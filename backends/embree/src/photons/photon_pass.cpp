@@ -120,13 +120,16 @@ void follow(Tracer& tracer, const ElementSet& elements, std::uint32_t maxBounces
     SurfaceHit h;
     if (!tracer.surface(org, dir, rh, h)) break;
     const ResolvedMaterial& mat = *h.instance->material;
-    if (scattered && mat.material.type == MaterialType::Diffuse) {
+    const SurfaceParameters at = Tracer::parameters(mat, h.uv);
+    // Stored where the diffuse lobe dominates, as on Diffuse surfaces.
+    if (scattered &&
+        closestClass(mat.material.type, at.roughness, at.metallic, at.transmission) == MaterialType::Diffuse) {
       const auto inst = std::uint32_t(h.instance - tracer.scene.views.data());
       const std::uint32_t el = elements.locate(inst, h.prim, rh.hit.u, rh.hit.v, nullptr);
       if (el != kNoElement && finite(power)) hits.push_back({el, photon.parity, power});
     }
     if (bounce == maxBounces) break;
-    const ScatteringPoint sp(h, dir, mat.material, Tracer::baseColour(mat, h.uv));
+    const ScatteringPoint sp(h, dir, mat.material, at);
     if (sp.facesAway()) break;
     const glm::vec2 u = rng.uniform2();
     const float uLobe = rng.uniform();

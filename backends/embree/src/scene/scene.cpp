@@ -285,7 +285,12 @@ static void validateMaterial(const Material& m, const SceneState& s) {
     if (!finite(t.row0) || !finite(t.row1)) throw Error("material uv transform contains NaN or infinity");
   std::optional<TextureId> none;
   const Medium& v = m.interior ? *m.interior : Medium{};
-  for (const auto& t : {m.baseColorTexture, m.emissionTexture, m.interior ? v.absorptionTexture : none,
+  if (!(m.metallic >= 0.0f && m.metallic <= 1.0f)) throw Error("material metallic must be in [0, 1]");
+  if (!(m.specular >= 0.0f && m.specular <= 1.0f)) throw Error("material specular must be in [0, 1]");
+  if (!(m.transmission >= 0.0f && m.transmission <= 1.0f)) throw Error("material transmission must be in [0, 1]");
+  if (!std::isfinite(m.normalScale)) throw Error("material normalScale must be finite");
+  for (const auto& t : {m.baseColorTexture, m.emissionTexture, m.metallicRoughnessTexture, m.transmissionTexture,
+                        m.normalTexture, m.interior ? v.absorptionTexture : none,
                         m.interior ? v.scatteringTexture : none, m.interior ? v.emissionTexture : none}) {
     if (t && (index(*t) >= s.textures.size() || !s.textures[index(*t)])) {
       throw Error("material references unknown texture id " + std::to_string(index(*t)));
@@ -330,7 +335,10 @@ void Scene::removeTexture(TextureId id) {
     const bool interior = m && m->interior &&
                           (m->interior->absorptionTexture == id || m->interior->scatteringTexture == id ||
                            m->interior->emissionTexture == id);
-    if (m && (m->baseColorTexture == id || m->emissionTexture == id || interior)) {
+    const bool surface =
+        m && (m->baseColorTexture == id || m->emissionTexture == id || m->metallicRoughnessTexture == id ||
+              m->transmissionTexture == id || m->normalTexture == id);
+    if (surface || interior) {
       throw Error("texture " + std::to_string(index(id)) + " is still used by a material");
     }
   }
@@ -406,9 +414,16 @@ bool refreshMaterials(SceneState& s) {
     s.materialMedia = s.materialMedia || r.material.interior.has_value();
     if (r.material.baseColorTexture) r.baseColorTexture = s.textures[index(*r.material.baseColorTexture)].get();
     if (r.material.emissionTexture) r.emissionTexture = s.textures[index(*r.material.emissionTexture)].get();
+<<<<<<< HEAD
     const bool partial = r.material.opacity < 1.0f || (r.baseColorTexture && !r.baseColorTexture->opaque());
     r.alphaTested = r.material.alphaMode != AlphaMode::Opaque && partial;
     s.alphaTested = s.alphaTested || r.alphaTested;
+=======
+    auto surfaceTexture = [&](const std::optional<TextureId>& t) { return t ? s.textures[index(*t)].get() : nullptr; };
+    r.metallicRoughnessTexture = surfaceTexture(r.material.metallicRoughnessTexture);
+    r.transmissionTexture = surfaceTexture(r.material.transmissionTexture);
+    r.normalTexture = surfaceTexture(r.material.normalTexture);
+>>>>>>> pt-bsdf
     if (r.material.interior && r.material.interior->textured()) {
       const Medium& m = *r.material.interior;
       auto texture = [&](const std::optional<TextureId>& t) { return t ? s.textures[index(*t)].get() : nullptr; };

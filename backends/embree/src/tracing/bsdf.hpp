@@ -6,6 +6,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include <cmath>
+
 namespace tsr::embree {
 
 struct BsdfSample {
@@ -25,10 +27,21 @@ struct Bsdf {
   glm::vec3 colour{0.0f};
   float alpha = 0.25f;
   float eta = 1.5f;
+  // MetallicRoughness only (see metallic_roughness.cpp).
+  float metallic = 0.0f;
+  float specular = 1.0f;
+  float transmission = 0.0f;
 
+  // Every lobe is a delta lobe: no light sampling, no MIS.
   bool isDelta() const {
+    if (type == MaterialType::MetallicRoughness) return smooth() && (1.0f - metallic) * (1.0f - transmission) <= 0.0f;
     return type == MaterialType::Mirror || type == MaterialType::Glass || type == MaterialType::Interface;
   }
+  // MetallicRoughness: alpha is 0 below kSmoothRoughness, where the
+  // specular lobes are delta lobes.
+  bool smooth() const { return alpha <= 0.0f; }
+  // The class the filters and photons treat it as.
+  MaterialType closest() const { return closestClass(type, std::sqrt(alpha), metallic, transmission); }
   // Diffuse, the common case, is inlined into the integrator; the rest
   // goes through the out-of-line *Other functions.
   glm::vec3 eval(const glm::vec3& wo, const glm::vec3& wi) const {  // f * |cos(wi)|
@@ -52,6 +65,11 @@ struct Bsdf {
   glm::vec3 evalOther(const glm::vec3& wo, const glm::vec3& wi) const;
   float pdfOther(const glm::vec3& wo, const glm::vec3& wi) const;
   bool sampleOther(const glm::vec3& wo, const glm::vec2& u, float uLobe, BsdfSample& out) const;
+  struct Lobes;
+  Lobes lobes(float cosO) const;
+  glm::vec3 evalMetallicRoughness(const glm::vec3& wo, const glm::vec3& wi) const;
+  float pdfMetallicRoughness(const glm::vec3& wo, const glm::vec3& wi) const;
+  bool sampleMetallicRoughness(const glm::vec3& wo, const glm::vec2& u, float uLobe, BsdfSample& out) const;
 };
 
 float fresnelDielectric(float cosI, float eta);

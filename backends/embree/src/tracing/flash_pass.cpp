@@ -56,14 +56,15 @@ glm::vec3 Tracer::traceFlash(glm::vec3 org, glm::vec3 dir, const glm::vec3& eye,
     if (!surface(r.org, r.dir, rh, h)) continue;
     if (r.depth == 0) distance = rh.ray.tfar;
     const ResolvedMaterial& mat = *h.instance->material;
-    const glm::vec3 base = baseColour(mat, h.uv);
+    const SurfaceParameters at = parameters(mat, h.uv);
+    const glm::vec3& base = at.colour;
     const bool front = glm::dot(r.dir, h.ng) < 0.0f;
     const glm::vec3 n = front ? h.ns : -h.ns;
-    const MaterialType type = mat.material.type;
+    const MaterialType type = closestClass(mat.material.type, at.roughness, at.metallic, at.transmission);
     // Perfect specular surfaces are followed (3.3.3), near-perfect glossy
     // ones in part (kSharpGlossyAlpha).
     const bool specular = type == MaterialType::Mirror || type == MaterialType::Glass;
-    const float alpha = mat.material.roughness * mat.material.roughness;
+    const float alpha = at.roughness * at.roughness;
     const bool glossy = type == MaterialType::Conductor || type == MaterialType::Dielectric;
     const float eps = rayEpsilon(h.p);
     const glm::vec3 ng = front ? h.ng : -h.ng;

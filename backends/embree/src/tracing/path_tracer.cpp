@@ -182,17 +182,17 @@ PixelSample PathWalk::run(glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos,
       ++crossings;
       continue;
     }
-    const glm::vec3 base = Tracer::baseColour(mat, h.uv);
+    const SurfaceParameters at = Tracer::parameters(mat, h.uv);
     if (depth == 0) {  // the first hit's AOVs
       out_.hit = true;
       out_.depth = glm::dot(h.p - camPos, forward);
-      out_.albedo = base;
+      out_.albedo = at.colour;
       out_.normal = glm::dot(h.ns, dir) > 0.0f ? -h.ns : h.ns;
     }
     if (mat.material.isEmissive() && glm::dot(h.faceNormal, dir) < 0.0f)
       addEmitted(h, mat, dir, travelled_ + rh.ray.tfar, depth);
     if (depth >= tracer_.settings.maxDepth) break;
-    const ScatteringPoint sp(h, dir, mat.material, base);
+    const ScatteringPoint sp(h, dir, mat.material, at);
     if (sp.facesAway() || !scatter(sp, h, rh.hit, depth, org, dir)) break;
     ++depth;
     crossings = 0;
@@ -310,8 +310,11 @@ bool PathWalk::scatter(const ScatteringPoint& sp, const SurfaceHit& h, const RTC
   Continuation next;
   next.continues = sp.sample(u.bsdf, u.bsdfLobe, next.bs, next.dir);
   const bool nextEvent = !sp.bsdf.isDelta();
-  const bool recordHere = record_ && nextEvent && nonSpecular_ == 0;
-  const bool fromField = tracer_.irradiance && nonSpecular_ == 0 && sp.bsdf.type == MaterialType::Diffuse;
+  // A delta lobe sampled at a vertex that also has smooth lobes (a clear
+  // coat over diffuse) continues the specular chain: the record waits for
+  // the next non-specular vertex, as behind a mirror.
+  const bool recordHere = record_ && nextEvent && nonSpecular_ == 0 && !(next.continues && next.bs.delta);
+  const bool fromField = tracer_.irradiance && nonSpecular_ == 0 && sp.bsdf.closest() == MaterialType::Diffuse;
   if (recordHere) recordRadiance(sp, next);
   roulette(depth, recordHere, next);
   const glm::vec3 nextOrg = sp.spawn(next.dir);
@@ -323,7 +326,7 @@ bool PathWalk::scatter(const ScatteringPoint& sp, const SurfaceHit& h, const RTC
     return false;
   }
   if (!next.continues) return false;
-  classify(next.bs, sp.bsdf.type);
+  classify(next.bs, sp.bsdf.closest());
   // Through a surface with a volume behind it: into or out of that volume.
   if (media_ && glm::dot(dir, h.faceNormal) * glm::dot(next.dir, h.faceNormal) > 0.0f) crossBoundary(stack_, h, dir);
   throughput_ = next.throughput;
@@ -366,6 +369,9 @@ void PathWalk::recordRadiance(const ScatteringPoint& sp, const Continuation& nex
   r.colour = sp.bsdf.colour;
   r.alpha = sp.bsdf.alpha;
   r.eta = sp.bsdf.eta;
+  r.metallic = sp.bsdf.metallic;
+  r.specular = sp.bsdf.specular;
+  r.transmission = sp.bsdf.transmission;
 }
 
 // The next segment's throughput and scale (restart: a radiance record was

@@ -22,8 +22,8 @@ struct ScatteringPoint {
   float eps;
   Bsdf bsdf;
 
-  // `colour` is the material's base colour at the hit (textured or not).
-  ScatteringPoint(const SurfaceHit& h, const glm::vec3& dir, const Material& m, const glm::vec3& colour)
+  // `at` is the material's parameters at the hit (textured or not).
+  ScatteringPoint(const SurfaceHit& h, const glm::vec3& dir, const Material& m, const SurfaceParameters& at)
       : p(h.p),
         wo(-dir),
         front(glm::dot(wo, h.ng) > 0.0f),
@@ -32,9 +32,13 @@ struct ScatteringPoint {
         woL(frame.toLocal(wo)),
         eps(rayEpsilon(h.p)) {
     bsdf.type = m.type;
-    bsdf.colour = colour;
-    bsdf.alpha = std::max(1e-3f, m.roughness * m.roughness);
+    bsdf.colour = at.colour;
+    bsdf.alpha = std::max(1e-3f, at.roughness * at.roughness);
+    if (m.type == MaterialType::MetallicRoughness && at.roughness < kSmoothRoughness) bsdf.alpha = 0.0f;
     bsdf.eta = front ? m.ior : 1.0f / m.ior;
+    bsdf.metallic = at.metallic;
+    bsdf.specular = m.specular;
+    bsdf.transmission = at.transmission;
   }
 
   // The shading normal faces away from the viewer: no consistent answer.

@@ -38,6 +38,14 @@ inline float rayEpsilon(const glm::vec3& p) {
   return 1e-4f * std::max(1.0f, std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))));
 }
 
+// A material's parameters at one hit, its textures applied.
+struct SurfaceParameters {
+  glm::vec3 colour{0.0f};
+  float roughness = 0.5f;
+  float metallic = 0.0f;
+  float transmission = 0.0f;
+};
+
 struct SurfaceHit {
   glm::vec3 p{0.0f};
   glm::vec3 faceNormal{0.0f};  // from the winding, world space
@@ -202,7 +210,10 @@ struct Tracer {
     h.ns = h.faceNormal;
     const float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1.0f - b1 - b2;
     h.uv = glm::vec2(b1, b2);
-    const bool textured = (v.material->baseColorTexture || v.material->emissionTexture) && !m.uvs.empty();
+    const ResolvedMaterial& r = *v.material;
+    const bool textured = (r.baseColorTexture || r.emissionTexture || r.metallicRoughnessTexture ||
+                           r.transmissionTexture || r.normalTexture) &&
+                          !m.uvs.empty();
     if (!m.normals.empty() || textured) {
       const std::uint32_t* idx = &m.indices[3 * std::size_t(h.prim)];
       if (!m.normals.empty()) {
@@ -211,9 +222,51 @@ struct Tracer {
         if (l > 0.0f && std::isfinite(l)) h.ns = ns / l;
       }
       if (textured) h.uv = b0 * m.uvs[idx[0]] + b1 * m.uvs[idx[1]] + b2 * m.uvs[idx[2]];
+      if (textured && r.normalTexture) applyNormalMap(v, idx, h);
     }
     h.ng = glm::dot(h.faceNormal, h.ns) < 0.0f ? -h.faceNormal : h.faceNormal;
     return true;
+  }
+
+  // The tangent-space normal map at h.uv turns h.ns. Tangents come from the
+  // triangle's uv derivatives (meshes carry none), bitangents from the
+  // normal and the uv orientation, as glTF's MikkTSpace-less fallback.
+  static void applyNormalMap(const InstanceView& v, const std::uint32_t* idx, SurfaceHit& h) {
+    const MeshData& m = *v.mesh;
+    const glm::mat3 linear(v.transform);
+    const glm::vec3 e1 = linear * (m.positions[idx[1]] - m.positions[idx[0]]);
+    const glm::vec3 e2 = linear * (m.positions[idx[2]] - m.positions[idx[0]]);
+    const glm::vec2 d1 = m.uvs[idx[1]] - m.uvs[idx[0]], d2 = m.uvs[idx[2]] - m.uvs[idx[0]];
+    const float det = d1.x * d2.y - d2.x * d1.y;
+    if (!(std::abs(det) > 1e-12f)) return;
+    glm::vec3 t = (e1 * d2.y - e2 * d1.y) / det;
+    const glm::vec3 b = (e2 * d1.x - e1 * d2.x) / det;
+    t -= h.ns * glm::dot(h.ns, t);
+    const float tl = glm::length(t);
+    if (!(tl > 0.0f) || !std::isfinite(tl)) return;
+    t /= tl;
+    const glm::vec3 bitangent = glm::cross(h.ns, t) * (glm::dot(glm::cross(h.ns, t), b) < 0.0f ? -1.0f : 1.0f);
+    const glm::vec3 c = 2.0f * glm::vec3(v.material->normalTexture->sampleBilinear(h.uv)) - 1.0f;
+    const float k = v.material->material.normalScale;
+    const glm::vec3 n = (k * c.x) * t + (k * c.y) * bitangent + c.z * h.ns;
+    const float l = glm::length(n);
+    if (l > 0.0f && std::isfinite(l)) h.ns = n / l;
+  }
+
+  static SurfaceParameters parameters(const ResolvedMaterial& m, const glm::vec2& uv) {
+    SurfaceParameters p;
+    p.colour = baseColour(m, uv);
+    p.roughness = m.material.roughness;
+    p.metallic = m.material.metallic;
+    p.transmission = m.material.transmission;
+    if (m.metallicRoughnessTexture) {
+      const glm::vec4 t = m.metallicRoughnessTexture->sampleBilinear(uv);
+      p.roughness = std::clamp(p.roughness * t.y, 0.0f, 1.0f);
+      p.metallic = std::clamp(p.metallic * t.z, 0.0f, 1.0f);
+    }
+    if (m.transmissionTexture)
+      p.transmission = std::clamp(p.transmission * m.transmissionTexture->sampleBilinear(uv).x, 0.0f, 1.0f);
+    return p;
   }
 
   static glm::vec3 baseColour(const ResolvedMaterial& m, const glm::vec2& uv) {

@@ -56,8 +56,11 @@ struct RadianceSample {
   glm::vec3 colour{0.0f};                     // base colour (textured) at x_j
   float alpha = 1.0f;                         // GGX alpha at x_j
   float eta = 1.0f;                           // index ratio across the surface seen from wo
-  glm::vec3 unfiltered{0.0f};                 // this path's indirect pixel estimate: throughput * f cos / pdf * Ľ_i
-  std::uint8_t mask = 0;                      // RadianceMask bits met before x_j
+  float metallic = 0.0f;                      // MetallicRoughness parameters at x_j
+  float specular = 1.0f;
+  float transmission = 0.0f;
+  glm::vec3 unfiltered{0.0f};  // this path's indirect pixel estimate: throughput * f cos / pdf * Ľ_i
+  std::uint8_t mask = 0;       // RadianceMask bits met before x_j
 };
 
 // Region-sized state of radiance filtering: per pixel the running mean of

@@ -1,0 +1,172 @@
+// The glTF 2.0 metallic-roughness BSDF (specification appendix B), with
+// KHR_materials_specular's weight and KHR_materials_transmission:
+//
+//   metal      = GGX reflection, Schlick Fresnel with F0 = base colour,
+//                plus Kulla-Conty multiple scattering so rough metal keeps
+//                its energy
+//   dielectric = GGX reflection with the Fresnel of the ior (times the
+//                specular weight) over
+//                  (1 - transmission) Lambert(base colour), scaled by what
+//                  the reflection leaves (1 - its directional albedo), and
+//                  transmission x rough GGX refraction tinted by base colour
+//   f          = mix(dielectric, metal, metallic)
+//
+// Four lobes are sampled: reflection (visible normals), refraction (visible
+// normals), and one cosine lobe for the diffuse base and the metal's
+// multiple scattering. A lobe is picked with a probability proportional to
+// its estimated albedo seen from wo; eval and pdf are the sums over lobes,
+// so every non-delta sample is weighted f cos / pdf with the same
+// functions MIS uses. Below kSmoothRoughness reflection and refraction are
+// delta lobes: sampled with delta = true and absent from eval and pdf.
+#include "tracing/bsdf.hpp"
+#include "tracing/ggx.hpp"
+#include "tracing/ggx_albedo.hpp"
+
+namespace tsr::embree {
+
+using namespace ggx;
+
+// What the lobes share at one outgoing direction.
+struct Bsdf::Lobes {
+  float etaOpaque;                    // the opaque dielectric's index ratio, always seen from outside
+  float f0;                           // its Schlick F0, specular-weighted
+  float diffuse;                      // weight of Lambert(colour): (1 - m)(1 - t)(1 - E_F(wo))
+  glm::vec3 multiple;                 // metal's multiple-scattering colour, m * F_ms / (pi (1 - E_avg)), 0 when smooth
+  float eo;                           // E(wo) of GGX with F = 1
+  float eavg;                         // its hemispherical average
+  float pReflect, pRefract, pCosine;  // normalised selection probabilities
+};
+
+namespace {
+
+float schlickScalar(float f0, float f90, float c) {
+  float m = std::clamp(1.0f - c, 0.0f, 1.0f);
+  float m5 = (m * m) * (m * m) * m;
+  return f0 + (f90 - f0) * m5;
+}
+
+}  // namespace
+
+Bsdf::Lobes Bsdf::lobes(float cosO) const {
+  Lobes l;
+  const float m = metallic, t = transmission;
+  l.etaOpaque = eta < 1.0f ? 1.0f / eta : eta;
+  const float r = (l.etaOpaque - 1.0f) / (l.etaOpaque + 1.0f);
+  l.f0 = specular * r * r;
+  const GgxAlbedo e = ggxAlbedo(cosO, alpha);
+  l.eo = smooth() ? 1.0f : e.white();
+  const float layer = smooth() ? schlickScalar(l.f0, specular, cosO) : l.f0 * e.scale + specular * e.bias;
+  l.diffuse = (1.0f - m) * (1.0f - t) * std::max(0.0f, 1.0f - layer);
+  l.multiple = glm::vec3(0.0f);
+  l.eavg = 1.0f;
+  if (m > 0.0f && !smooth()) {
+    const float eavg = l.eavg = ggxAverageAlbedo(alpha);
+    const glm::vec3 favg = colour + (glm::vec3(1.0f) - colour) / 21.0f;
+    const glm::vec3 fms = favg * favg * eavg / (glm::vec3(1.0f) - favg * (1.0f - eavg));
+    l.multiple = m * fms / (kPi * std::max(1e-4f, 1.0f - eavg));
+  }
+  const glm::vec3 fr =
+      (1.0f - m) * ((1.0f - t) * schlickScalar(l.f0, specular, cosO) + t * specular * fresnelDielectric(cosO, eta)) +
+      m * schlick(colour, cosO);
+  const float wReflect = luminance(fr);
+  const float wRefract = (1.0f - m) * t * (1.0f - specular * fresnelDielectric(cosO, eta)) * luminance(colour);
+  const float wCosine = l.diffuse * luminance(colour) + luminance(l.multiple) * kPi * (1.0f - l.eo) * (1.0f - l.eavg);
+  const float sum = wReflect + wRefract + wCosine;
+  const float inv = sum > 0.0f ? 1.0f / sum : 0.0f;
+  l.pReflect = wReflect * inv;
+  l.pRefract = wRefract * inv;
+  l.pCosine = wCosine * inv;
+  return l;
+}
+
+namespace {
+
+// Fresnel of the reflection lobe at a microfacet: the opaque and the
+// transmissive dielectric and the metal, mixed by their weights.
+glm::vec3 reflectance(const Bsdf& b, float f0, float c) {
+  const float m = b.metallic, t = b.transmission;
+  return (1.0f - m) * ((1.0f - t) * schlickScalar(f0, b.specular, c) + t * b.specular * fresnelDielectric(c, b.eta)) +
+         m * schlick(b.colour, c);
+}
+
+// Rough refraction's f |cos wi| through the microfacet h (without the
+// transmission weight and tint), and its density given the lobe.
+float refractionValue(const glm::vec3& wo, const glm::vec3& wi, const glm::vec3& h, float alpha, float eta,
+                      float specular) {
+  const float oh = glm::dot(wo, h), ih = glm::dot(wi, h);
+  const float denom = oh + eta * ih;
+  const float f = specular * fresnelDielectric(oh, eta);
+  return (1.0f - f) * D(h, alpha) * G2(wo, wi, alpha) * eta * eta * std::abs(ih) * oh / (wo.z * denom * denom);
+}
+
+float refractionPdf(const glm::vec3& wo, const glm::vec3& wi, const glm::vec3& h, float alpha, float eta) {
+  const float oh = glm::dot(wo, h), ih = glm::dot(wi, h);
+  const float denom = oh + eta * ih;
+  return visiblePdf(wo, h, alpha) * eta * eta * std::abs(ih) / (denom * denom);
+}
+
+}  // namespace
+
+glm::vec3 Bsdf::evalMetallicRoughness(const glm::vec3& wo, const glm::vec3& wi) const {
+  const Lobes l = lobes(wo.z);
+  if (wi.z > 0.0f) {
+    glm::vec3 f = l.diffuse * colour * (kInvPi * wi.z);
+    if (smooth()) return f;
+    if (metallic > 0.0f) f += l.multiple * ((1.0f - l.eo) * (1.0f - ggxAlbedo(wi.z, alpha).white()) * wi.z);
+    const glm::vec3 h = glm::normalize(wo + wi);
+    return f + reflectance(*this, l.f0, glm::dot(wo, h)) * (D(h, alpha) * G2(wo, wi, alpha) / (4.0f * wo.z));
+  }
+  glm::vec3 h;
+  if (wi.z == 0.0f || smooth() || transmission <= 0.0f || metallic >= 1.0f || !refractionHalf(wo, wi, eta, h))
+    return glm::vec3(0.0f);
+  return (1.0f - metallic) * transmission * colour * refractionValue(wo, wi, h, alpha, eta, specular);
+}
+
+float Bsdf::pdfMetallicRoughness(const glm::vec3& wo, const glm::vec3& wi) const {
+  const Lobes l = lobes(wo.z);
+  if (wi.z > 0.0f) {
+    float p = l.pCosine * wi.z * kInvPi;
+    if (smooth() || l.pReflect <= 0.0f) return p;
+    const glm::vec3 h = glm::normalize(wo + wi);
+    const float oh = glm::dot(wo, h);
+    return oh > 0.0f ? p + l.pReflect * visiblePdf(wo, h, alpha) / (4.0f * oh) : p;
+  }
+  glm::vec3 h;
+  if (wi.z == 0.0f || smooth() || l.pRefract <= 0.0f || !refractionHalf(wo, wi, eta, h)) return 0.0f;
+  return l.pRefract * refractionPdf(wo, wi, h, alpha, eta);
+}
+
+bool Bsdf::sampleMetallicRoughness(const glm::vec3& wo, const glm::vec2& u, float uLobe, BsdfSample& out) const {
+  const Lobes l = lobes(wo.z);
+  out.delta = false;
+  if (uLobe < l.pReflect) {
+    if (smooth()) {
+      out.wi = {-wo.x, -wo.y, wo.z};
+      out.weight = reflectance(*this, l.f0, wo.z) / l.pReflect;
+      out.pdf = l.pReflect;
+      out.delta = true;
+      return true;
+    }
+    out.wi = reflect(wo, sampleVisible(wo, alpha, u));
+    if (out.wi.z <= 0.0f) return false;
+  } else if (uLobe < l.pReflect + l.pRefract) {
+    if (smooth()) {
+      if (!refract(wo, glm::vec3(0.0f, 0.0f, 1.0f), eta, out.wi)) return false;
+      const float f = specular * fresnelDielectric(wo.z, eta);
+      out.weight = (1.0f - metallic) * transmission * (1.0f - f) * colour / l.pRefract;
+      out.pdf = l.pRefract;
+      out.delta = true;
+      return true;
+    }
+    if (!refract(wo, sampleVisible(wo, alpha, u), eta, out.wi) || out.wi.z >= 0.0f) return false;
+  } else {
+    if (l.pCosine <= 0.0f) return false;
+    out.wi = sampleCosineHemisphere(u);
+  }
+  out.pdf = pdfMetallicRoughness(wo, out.wi);
+  if (!(out.pdf > 0.0f)) return false;
+  out.weight = evalMetallicRoughness(wo, out.wi) / out.pdf;
+  return std::isfinite(out.weight.x + out.weight.y + out.weight.z);
+}
+
+}  // namespace tsr::embree

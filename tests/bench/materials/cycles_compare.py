@@ -1,0 +1,120 @@
+#!/usr/bin/python3
+"""Tessera's glTF metallic-roughness BSDF against Blender Cycles 3.4's
+Principled BSDF on the sphere grid (make_sphere_grid.py): each renderer's
+own high-spp image, the mean of every sphere (an inner disc of its
+projection) and the seen error of the whole image (tests/bench/quality/
+seen_error.hpp: clamp, sRGB, box blur of radius 2 twice, RMSE).
+
+    cycles_compare.py --render build/default/bin/tessera-render [--size 160x80]
+                      [--spp 1024] [--bounces 16] [--out DIR]
+
+Needs Debian's blender, python3-numpy and python3-openimageio.
+"""
+import argparse, math, os, subprocess, sys, tempfile
+
+import numpy as np
+import OpenImageIO as oiio
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import make_sphere_grid as grid  # noqa: E402
+
+
+def load(path):
+    image = oiio.ImageInput.open(path)
+    if not image:
+        raise SystemExit("cannot read %s: %s" % (path, oiio.geterror()))
+    pixels = np.asarray(image.read_image(format="float"))[..., :3].astype(np.float64)
+    image.close()
+    return pixels
+
+
+def save_png(path, pixels):
+    out = oiio.ImageOutput.create(path)
+    out.open(path, oiio.ImageSpec(pixels.shape[1], pixels.shape[0], 3, "uint8"))
+    out.write_image((displayed(pixels) * 255 + 0.5).astype(np.uint8))
+    out.close()
+
+
+def displayed(linear):
+    c = np.clip(np.nan_to_num(linear), 0.0, 1.0)
+    return np.where(c <= 0.0031308, 12.92 * c, 1.055 * c ** (1 / 2.4) - 0.055)
+
+
+def box(plane, r, axis):
+    """Box mean of radius r along one axis, windows cut at the border."""
+    n = plane.shape[axis]
+    c = np.cumsum(np.insert(plane, 0, 0.0, axis=axis), axis=axis)
+    lo = np.clip(np.arange(n) - r, 0, n)
+    hi = np.clip(np.arange(n) + r + 1, 0, n)
+    take = lambda i: np.take(c, i, axis=axis)
+    shape = [1, 1]
+    shape[axis] = n
+    return (take(hi) - take(lo)) / (hi - lo).reshape(shape)
+
+
+def seen_error(image, reference):
+    total = 0.0
+    for ch in range(3):
+        a, b = displayed(image[..., ch]), displayed(reference[..., ch])
+        for _ in range(2):
+            a, b = box(box(a, 2, 1), 2, 0), box(box(b, 2, 1), 2, 0)
+        total += float(np.sum((a - b) ** 2))
+    return math.sqrt(total / (3.0 * image.shape[0] * image.shape[1]))
+
+
+def sphere_masks(width, height):
+    """Inner discs (70 % of the projected radius) of every sphere."""
+    f = (height / 2) / math.tan(grid.YFOV / 2)
+    yy, xx = np.mgrid[0:height, 0:width] + 0.5
+    masks = []
+    for s in grid.spheres():
+        x, y, z = s["centre"]
+        d = grid.CAMERA_Z - z
+        cx, cy = width / 2 + f * x / d, height / 2 - f * y / d
+        r = 0.7 * f * grid.RADIUS / math.sqrt(d * d - grid.RADIUS ** 2)
+        masks.append((s["name"], (xx - cx) ** 2 + (yy - cy) ** 2 <= r * r))
+    return masks
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--render", required=True)
+    ap.add_argument("--size", default="160x80")
+    ap.add_argument("--spp", type=int, default=1024)
+    ap.add_argument("--bounces", type=int, default=16)
+    ap.add_argument("--out", default=None)
+    a = ap.parse_args()
+    out = a.out or tempfile.mkdtemp(prefix="tsr-materials-")
+    os.makedirs(out, exist_ok=True)
+    scene = os.path.join(out, "sphere_grid.gltf")
+    subprocess.run([sys.executable, os.path.join(HERE, "make_sphere_grid.py"), scene], check=True)
+    ours_path, cycles_path = os.path.join(out, "tessera.exr"), os.path.join(out, "cycles.exr")
+    if not os.path.exists(ours_path):
+        subprocess.run([a.render, scene, "--backend", "embree", "--size", a.size, "--spp", str(a.spp),
+                        "--max-depth", str(a.bounces), "--no-default-light", "--output", ours_path, "--quiet"],
+                       check=True)
+    if not os.path.exists(cycles_path):
+        subprocess.run(["blender", "-b", "--python", os.path.join(HERE, "cycles_render.py"), "--", scene,
+                        cycles_path, str(a.spp), a.size, str(a.bounces)], check=True,
+                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    ours, theirs = load(ours_path), load(cycles_path)
+    save_png(os.path.join(out, "tessera.png"), ours)
+    save_png(os.path.join(out, "cycles.png"), theirs)
+    save_png(os.path.join(out, "side_by_side.png"), np.concatenate([ours, theirs], axis=1))
+    h, w = ours.shape[:2]
+    print("%s, %d spp each, %d bounces; sphere means (luminance of the inner disc)" % (a.size, a.spp, a.bounces))
+    print("| sphere | Tessera | Cycles | Tessera / Cycles - 1 |")
+    print("|---|---|---|---|")
+    lum = np.array([0.2126, 0.7152, 0.0722])
+    worst = 0.0
+    for name, mask in sphere_masks(w, h):
+        m, c = float(ours[mask].mean(axis=0) @ lum), float(theirs[mask].mean(axis=0) @ lum)
+        worst = max(worst, abs(m / c - 1))
+        print("| %s | %.4f | %.4f | %+.1f %% |" % (name, m, c, 100 * (m / c - 1)))
+    print("worst sphere: %.1f %%; seen error, whole image: %.4f" % (100 * worst, seen_error(ours, theirs)))
+    print("images in", out)
+
+
+if __name__ == "__main__":
+    main()
