@@ -90,6 +90,9 @@ embree::Material translateSurface(const sg::Container* material, const TextureLo
   m.emissionTexture = texture(s.emissionTexture());
   m.baseColorUv = uvTransform(s, sg::TextureSlot::BaseColor);
   m.emissionUv = uvTransform(s, sg::TextureSlot::Emission);
+  m.metallicRoughnessUv = uvTransform(s, sg::TextureSlot::MetallicRoughness);
+  m.transmissionUv = uvTransform(s, sg::TextureSlot::Transmission);
+  m.normalUv = uvTransform(s, sg::TextureSlot::Normal);
   m.opacity = std::isfinite(s.opacity()) ? std::clamp(s.opacity(), 0.0f, 1.0f) : 1.0f;
   m.alphaCutoff = std::isfinite(s.alphaCutoff()) ? s.alphaCutoff() : 0.5f;
   switch (s.alphaMode()) {

@@ -281,7 +281,7 @@ static void validateMaterial(const Material& m, const SceneState& s) {
   if (!(m.ior > 0.0f) || !std::isfinite(m.ior)) throw Error("material ior must be positive and finite");
   if (!(m.opacity >= 0.0f && m.opacity <= 1.0f)) throw Error("material opacity must be in [0, 1]");
   if (!std::isfinite(m.alphaCutoff)) throw Error("material alphaCutoff must be finite");
-  for (const UvTransform& t : {m.baseColorUv, m.emissionUv})
+  for (const UvTransform& t : {m.baseColorUv, m.emissionUv, m.metallicRoughnessUv, m.transmissionUv, m.normalUv})
     if (!finite(t.row0) || !finite(t.row1)) throw Error("material uv transform contains NaN or infinity");
   std::optional<TextureId> none;
   const Medium& v = m.interior ? *m.interior : Medium{};
@@ -414,16 +414,13 @@ bool refreshMaterials(SceneState& s) {
     s.materialMedia = s.materialMedia || r.material.interior.has_value();
     if (r.material.baseColorTexture) r.baseColorTexture = s.textures[index(*r.material.baseColorTexture)].get();
     if (r.material.emissionTexture) r.emissionTexture = s.textures[index(*r.material.emissionTexture)].get();
-<<<<<<< HEAD
     const bool partial = r.material.opacity < 1.0f || (r.baseColorTexture && !r.baseColorTexture->opaque());
     r.alphaTested = r.material.alphaMode != AlphaMode::Opaque && partial;
     s.alphaTested = s.alphaTested || r.alphaTested;
-=======
     auto surfaceTexture = [&](const std::optional<TextureId>& t) { return t ? s.textures[index(*t)].get() : nullptr; };
     r.metallicRoughnessTexture = surfaceTexture(r.material.metallicRoughnessTexture);
     r.transmissionTexture = surfaceTexture(r.material.transmissionTexture);
     r.normalTexture = surfaceTexture(r.material.normalTexture);
->>>>>>> pt-bsdf
     if (r.material.interior && r.material.interior->textured()) {
       const Medium& m = *r.material.interior;
       auto texture = [&](const std::optional<TextureId>& t) { return t ? s.textures[index(*t)].get() : nullptr; };

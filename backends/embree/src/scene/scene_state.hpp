@@ -87,15 +87,11 @@ struct ResolvedMaterial {
   Material material;
   const Texture* baseColorTexture = nullptr;
   const Texture* emissionTexture = nullptr;
-<<<<<<< HEAD
   bool alphaTested = false;  // some hit on it may be cut away or passed (AlphaMode)
-  VolumeField interior;      // active when the interior medium is textured
-=======
   const Texture* metallicRoughnessTexture = nullptr;
   const Texture* transmissionTexture = nullptr;
   const Texture* normalTexture = nullptr;
   VolumeField interior;  // active when the interior medium is textured
->>>>>>> pt-bsdf
 };
 
 inline constexpr std::uint32_t kNotEmissive = std::numeric_limits<std::uint32_t>::max();

@@ -236,7 +236,9 @@ struct Tracer {
     const glm::mat3 linear(v.transform);
     const glm::vec3 e1 = linear * (m.positions[idx[1]] - m.positions[idx[0]]);
     const glm::vec3 e2 = linear * (m.positions[idx[2]] - m.positions[idx[0]]);
-    const glm::vec2 d1 = m.uvs[idx[1]] - m.uvs[idx[0]], d2 = m.uvs[idx[2]] - m.uvs[idx[0]];
+    // Derivatives in the normal map's (transformed) texture space.
+    const UvTransform& uv = v.material->material.normalUv;
+    const glm::vec2 d1 = uv(m.uvs[idx[1]]) - uv(m.uvs[idx[0]]), d2 = uv(m.uvs[idx[2]]) - uv(m.uvs[idx[0]]);
     const float det = d1.x * d2.y - d2.x * d1.y;
     if (!(std::abs(det) > 1e-12f)) return;
     glm::vec3 t = (e1 * d2.y - e2 * d1.y) / det;
@@ -246,7 +248,7 @@ struct Tracer {
     if (!(tl > 0.0f) || !std::isfinite(tl)) return;
     t /= tl;
     const glm::vec3 bitangent = glm::cross(h.ns, t) * (glm::dot(glm::cross(h.ns, t), b) < 0.0f ? -1.0f : 1.0f);
-    const glm::vec3 c = 2.0f * glm::vec3(v.material->normalTexture->sampleBilinear(h.uv)) - 1.0f;
+    const glm::vec3 c = 2.0f * glm::vec3(v.material->normalTexture->sampleBilinear(uv(h.uv))) - 1.0f;
     const float k = v.material->material.normalScale;
     const glm::vec3 n = (k * c.x) * t + (k * c.y) * bitangent + c.z * h.ns;
     const float l = glm::length(n);
@@ -260,12 +262,13 @@ struct Tracer {
     p.metallic = m.material.metallic;
     p.transmission = m.material.transmission;
     if (m.metallicRoughnessTexture) {
-      const glm::vec4 t = m.metallicRoughnessTexture->sampleBilinear(uv);
+      const glm::vec4 t = m.metallicRoughnessTexture->sampleBilinear(m.material.metallicRoughnessUv(uv));
       p.roughness = std::clamp(p.roughness * t.y, 0.0f, 1.0f);
       p.metallic = std::clamp(p.metallic * t.z, 0.0f, 1.0f);
     }
     if (m.transmissionTexture)
-      p.transmission = std::clamp(p.transmission * m.transmissionTexture->sampleBilinear(uv).x, 0.0f, 1.0f);
+      p.transmission = std::clamp(
+          p.transmission * m.transmissionTexture->sampleBilinear(m.material.transmissionUv(uv)).x, 0.0f, 1.0f);
     return p;
   }
 

@@ -25,7 +25,6 @@ enum class MaterialType {
   MetallicRoughness,
 };
 
-<<<<<<< HEAD
 // How a surface's alpha (opacity x the base colour texture's alpha)
 // covers it: Opaque ignores it; Mask cuts the surface away where alpha is
 // below the cut-off; Blend lets a ray pass with probability 1 - alpha
@@ -43,18 +42,15 @@ struct UvTransform {
   }
   bool identity() const { return row0 == glm::vec3(1, 0, 0) && row1 == glm::vec3(0, 1, 0); }
 };
-=======
 // Below this roughness the specular lobes of MetallicRoughness are perfect
 // (delta) reflection and refraction, so smooth mirrors and glass stay sharp.
 inline constexpr float kSmoothRoughness = 0.03f;
->>>>>>> pt-bsdf
 
 // Materials are assigned per instance, so one mesh can be shown with several
 // materials. Any material can emit: emissive instances become area lights.
 struct Material {
   MaterialType type = MaterialType::Diffuse;
   glm::vec3 baseColor{0.8f};
-<<<<<<< HEAD
   std::optional<TextureId> baseColorTexture;  // multiplies baseColor (rgb); its alpha multiplies opacity
   UvTransform baseColorUv;
   float opacity = 1.0f;  // in [0, 1]
@@ -62,10 +58,6 @@ struct Material {
   float alphaCutoff = 0.5f;
   float roughness = 0.5f;  // GGX alpha = roughness^2
   float ior = 1.5f;        // Dielectric and Glass: inside / outside
-=======
-  std::optional<TextureId> baseColorTexture;  // multiplies baseColor (rgb)
-  float roughness = 0.5f;                     // GGX alpha = roughness^2
-  float ior = 1.5f;                           // Dielectric and Glass: inside / outside
   // MetallicRoughness only. Textures are linear and multiply the factors.
   float metallic = 0.0f;
   float specular = 1.0f;                              // weight of the dielectric's Fresnel reflection
@@ -74,7 +66,7 @@ struct Material {
   std::optional<TextureId> transmissionTexture;       // red scales transmission
   std::optional<TextureId> normalTexture;             // tangent space, (2 * rgb - 1)
   float normalScale = 1.0f;                           // scales the normal's tangent components
->>>>>>> pt-bsdf
+  UvTransform metallicRoughnessUv, transmissionUv, normalUv;
   // Radiance leaving the front face (counter-clockwise winding). The light
   // distribution uses luminance(emission) * area; the texture only modulates.
   glm::vec3 emission{0.0f};
