@@ -48,13 +48,11 @@ vk::Material translateMaterial(const sg::Container* material, const TextureLooku
   m.type = typeOf(classify(s));
   m.normalTexture = s.normalTexture() ? textures(s.normalTexture()) : std::nullopt;
   m.normalScale = std::isfinite(s.normalScale()) ? s.normalScale() : 1.0f;
-  // Metals, partly metallic surfaces and metallic-roughness textures (which
-  // vary both across a surface) take glTF's BRDF. Plain dielectrics stay
-  // Lambertian, as the path tracer still renders them, so both back-ends
-  // light them alike until its glTF BRDF lands.
+  // Every opaque surface takes glTF's BRDF (a dielectric's specular layer
+  // over its diffuse base, or metal), as the path tracer renders it; smooth
+  // mirrors and glass keep their reflection probe.
   const bool textured = s.metallicRoughnessTexture() != sg::kNoContainer;
-  if (m.type == vk::MaterialType::Conductor ||
-      (m.type == vk::MaterialType::Diffuse && (s.metallic() > 0.0f || textured))) {
+  if (m.type == vk::MaterialType::Conductor || m.type == vk::MaterialType::Diffuse) {
     m.type = vk::MaterialType::MetallicRoughness;
     m.metallic = std::clamp(s.metallic(), 0.0f, 1.0f);
     m.metallicRoughnessTexture = textured ? textures(s.metallicRoughnessTexture()) : std::nullopt;
