@@ -16,17 +16,12 @@ import numpy as np
 import OpenImageIO as oiio
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, ".."))
+from cycles_common import load  # noqa: E402
 sys.path.insert(0, HERE)
 import make_sphere_grid as grid  # noqa: E402
 
 
-def load(path):
-    image = oiio.ImageInput.open(path)
-    if not image:
-        raise SystemExit("cannot read %s: %s" % (path, oiio.geterror()))
-    pixels = np.asarray(image.read_image(format="float"))[..., :3].astype(np.float64)
-    image.close()
-    return pixels
 
 
 def save_png(path, pixels):

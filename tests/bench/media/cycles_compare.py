@@ -11,21 +11,15 @@ each at equal spp against Tessera's reference, with render times.
 DIR holds the suite (python3 tests/bench/quality/suite/make_suite.py DIR).
 Needs Debian's blender, python3-numpy and python3-openimageio.
 """
-import argparse, os, subprocess, tempfile, time
+import argparse, os, sys, subprocess, tempfile, time
 
 import numpy as np
-import OpenImageIO as oiio
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, ".."))
+from cycles_common import load  # noqa: E402
 
 
-def load(path):
-    image = oiio.ImageInput.open(path)
-    if not image:
-        raise SystemExit("cannot read %s: %s" % (path, oiio.geterror()))
-    pixels = np.asarray(image.read_image(format="float"))[..., :3].astype(np.float64)
-    image.close()
-    return pixels
 
 
 def rel_mse(image, reference):

@@ -11,8 +11,13 @@ filter, volume bounces as many as the others, float EXR output.
 import json
 import sys
 
+import os
+
 import bpy
 import numpy
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+import cycles_common  # noqa: E402
 
 if not hasattr(numpy, "bool"):  # Debian: blender 3.4's glTF importer against numpy 1.24
     numpy.bool = bool
@@ -96,25 +101,4 @@ if medium:
     out = next(n for n in world.node_tree.nodes if n.type == "OUTPUT_WORLD")
     world.node_tree.links.new(volume_shader(world.node_tree, medium), out.inputs["Volume"])
 
-scene.camera = next(o for o in bpy.data.objects if o.type == "CAMERA")
-scene.render.engine = "CYCLES"
-scene.cycles.device = "CPU"
-scene.cycles.samples = spp
-scene.cycles.use_adaptive_sampling = False
-scene.cycles.use_denoising = False
-scene.cycles.sample_clamp_direct = 0.0
-scene.cycles.sample_clamp_indirect = 0.0
-scene.cycles.blur_glossy = 0.0
-scene.cycles.filter_width = 1.0
-scene.cycles.max_bounces = bounces
-for kind in ("diffuse", "glossy", "transmission", "volume", "transparent_max"):
-    setattr(scene.cycles, kind if kind.endswith("_max") else kind + "_bounces", bounces)
-scene.cycles.caustics_reflective = True
-scene.cycles.caustics_refractive = True
-scene.render.resolution_x, scene.render.resolution_y = width, height
-scene.render.resolution_percentage = 100
-scene.render.image_settings.file_format = "OPEN_EXR"
-scene.render.image_settings.color_depth = "32"
-scene.render.filepath = out_path
-scene.view_settings.view_transform = "Standard"
-bpy.ops.render.render(write_still=True)
+cycles_common.render_still(scene, spp, bounces, width, height, out_path)
