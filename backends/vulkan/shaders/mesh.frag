@@ -148,6 +148,10 @@ void main() {
     base *= t.rgb;
     opacity *= t.a;
   }
+  if (m.pbr.w > 0.0) {  // glTF MASK: cut away below the cut-off, opaque above
+    if (opacity < m.pbr.w) discard;
+    opacity = 1.0;
+  }
 
   vec3 wo = normalize(frame.cameraPos.xyz - worldPos);
   // Flat face normal, turned towards the viewer.

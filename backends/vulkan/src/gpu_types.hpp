@@ -24,7 +24,7 @@ struct GpuMaterial {
   glm::vec4 mediumAbsorption;  // rgb, Henyey-Greenstein g
   glm::vec4 mediumScattering;  // rgb, unused
   glm::vec4 mediumEmission;    // rgb, unused
-  glm::vec4 pbr;               // roughness, metallic, normal scale, unused
+  glm::vec4 pbr;               // roughness, metallic, normal scale, alpha cut-off (0: none)
 };
 
 enum : std::uint32_t { kGpuPoint = 0, kGpuSpot = 1, kGpuDirectional = 2, kGpuEmitter = 3 };

@@ -73,6 +73,7 @@ void validateMaterial(const Material& m, const SceneState& s) {
   if (!(m.roughness >= 0.0f && m.roughness <= 1.0f)) throw Error("material roughness must be in [0, 1]");
   if (!(m.ior > 0.0f) || !std::isfinite(m.ior)) throw Error("material ior must be positive and finite");
   if (!(m.opacity >= 0.0f && m.opacity <= 1.0f)) throw Error("material opacity must be in [0, 1]");
+  if (!(m.alphaCutoff >= 0.0f && m.alphaCutoff <= 1.0f)) throw Error("material alphaCutoff must be in [0, 1]");
   if (m.interior) {
     const Medium& v = *m.interior;
     if (!finiteNonNegative(v.absorption) || !finiteNonNegative(v.scattering) || !finiteNonNegative(v.emission))
@@ -162,7 +163,7 @@ void SceneState::prepare() {
       g.baseColor = glm::vec4(m.baseColor, m.opacity);
       g.emission = glm::vec4(m.emission, 0.0f);
       g.params = glm::vec4(std::max(1e-3f, m.roughness * m.roughness), m.ior, 0.0f, 0.0f);
-      g.pbr = glm::vec4(m.roughness, m.metallic, m.normalScale, 0.0f);
+      g.pbr = glm::vec4(m.roughness, m.metallic, m.normalScale, m.alphaCutoff);
       if (m.interior) {
         g.mediumAbsorption = glm::vec4(m.interior->absorption, std::clamp(m.interior->g, -0.99f, 0.99f));
         g.mediumScattering = glm::vec4(m.interior->scattering, 0.0f);

@@ -44,7 +44,14 @@ vk::Material translateMaterial(const sg::Container* material, const TextureLooku
   m.ior = s.ior();
   m.emission = s.emittedRadiance();
   m.emissionTexture = s.emissionTexture() ? textures(s.emissionTexture()) : std::nullopt;
-  m.opacity = std::clamp(s.opacity(), 0.0f, 1.0f);
+  m.opacity = std::isfinite(s.opacity()) ? std::clamp(s.opacity(), 0.0f, 1.0f) : 1.0f;
+  if (s.alphaMode() == sg::AlphaMode::Opaque) m.opacity = 1.0f;
+  // A cut-off of 0 cuts nothing away: the surface is opaque.
+  if (s.alphaMode() == sg::AlphaMode::Mask) {
+    const float cutoff = std::isfinite(s.alphaCutoff()) ? std::clamp(s.alphaCutoff(), 0.0f, 1.0f) : 0.5f;
+    m.alphaCutoff = cutoff;
+    if (cutoff <= 0.0f) m.opacity = 1.0f;
+  }
   m.type = typeOf(classify(s));
   m.normalTexture = s.normalTexture() ? textures(s.normalTexture()) : std::nullopt;
   m.normalScale = std::isfinite(s.normalScale()) ? s.normalScale() : 1.0f;

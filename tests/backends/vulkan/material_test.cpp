@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 namespace tsr::vk {
 namespace {
 
@@ -106,6 +108,38 @@ TEST(VulkanMaterial, BaseColourTextureLookupAtKnownUv) {
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[k], expected[i][k], 0.01f) << "quadrant " << i << " channel " << k;
   }
   EXPECT_THROW(scene.removeTexture(tex), Error);  // still used by the material
+}
+
+// glTF's MASK: a red quad whose texture is opaque on its left half and
+// clear on its right, in front of a blue one, cut at 0.5: blue shows
+// through the clear half only, and the red half is opaque (depth written).
+TEST(VulkanMaterial, MaskedAlphaCutsTheClearHalfAway) {
+  for (float cutoff : {0.5f, 0.0f}) {
+    std::vector<std::uint8_t> texels;
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 4; ++x) texels.insert(texels.end(), {255, 255, 255, std::uint8_t(x < 2 ? 255 : 0)});
+    Scene scene(device());
+    MeshId quad = scene.addMesh(test::quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}));
+    Material red = emissive({1, 0, 0});
+    red.baseColorTexture = scene.addTexture(Texture::fromRgba8(4, 4, texels));
+    red.alphaCutoff = cutoff;
+    scene.addInstance(quad, scene.addMaterial(red), glm::translate(glm::mat4(1.0f), {0, 0, 0.5f}));
+    scene.addInstance(quad, scene.addMaterial(emissive({0, 0, 1})), glm::scale(glm::mat4(1.0f), glm::vec3(2.0f)));
+    Renderer renderer(device(), {.background = {0, 0, 0, 0}});
+    FrameBuffer fb(64, 64);
+    renderer.render(scene, kCam, kFull, fb);
+    const glm::vec2 left = test::project(kCam, kFull, {-0.5f, 0.0f, 0.5f});
+    const glm::vec2 right = test::project(kCam, kFull, {0.5f, 0.0f, 0.5f});
+    EXPECT_NEAR(fb.colour(int(left.x), int(left.y)).r, 1.0f, 1e-5f) << "cut-off " << cutoff;
+    EXPECT_NEAR(fb.depth(int(left.x), int(left.y)), 2.5f, 1e-3f) << "opaque where kept";
+    const glm::vec4 seen = fb.colour(int(right.x), int(right.y));
+    if (cutoff > 0.0f) {
+      EXPECT_NEAR(seen.b, 1.0f, 1e-5f) << "the blue quad through the cut half";
+      EXPECT_NEAR(fb.depth(int(right.x), int(right.y)), 3.0f, 1e-3f);
+    } else {
+      EXPECT_NEAR(seen.r, 1.0f, 1e-5f) << "no cut-off: opaque everywhere";
+    }
+  }
 }
 
 TEST(VulkanMaterial, MsaaResolvesInteriorExactlyAndBlendsEdges) {

@@ -97,6 +97,21 @@ TEST_F(IncrementalSync, MaterialEdit) {
   EXPECT_EQ(instanceWritten(), 0u);
 }
 
+TEST_F(IncrementalSync, AlphaModeEdits) {
+  auto* m =
+      rig.source.find<sg::SurfaceMaterial>(test::findNamed(rig.source, sg::ContainerType::SurfaceMaterial, "white"));
+  ASSERT_NE(m, nullptr);
+  m->setOpacity(0.3f);
+  m->setAlphaMode(sg::AlphaMode::Blend);
+  check("alpha-blend");
+  before = follower.image;
+  m->setAlphaMode(sg::AlphaMode::Mask);  // below the cut-off of 0.5: cut away
+  check("alpha-mask");
+  before = follower.image;
+  m->setAlphaMode(sg::AlphaMode::Opaque);
+  check("alpha-opaque");
+}
+
 TEST_F(IncrementalSync, GeometryRangeEditUploadsOnlyTheRange) {
   auto* g = rig.source.find<sg::Geometry>(cubeGeometry(rig));
   ASSERT_NE(g, nullptr);

@@ -44,6 +44,11 @@ struct Material {
   // Below 1 the instance is alpha blended: drawn after opaque geometry,
   // sorted back to front, without depth writes, and casts no shadow.
   float opacity = 1.0f;
+  // Above 0, alpha (opacity x the base colour texture's alpha) below it
+  // cuts the surface away (glTF's MASK) and the rest is opaque: drawn with
+  // the opaque geometry. Its shadow map sees the whole surface (the shadow
+  // pass reads no texture), a documented approximation.
+  float alphaCutoff = 0.0f;
   // What fills the (closed) mesh. Shown only behind a surface light passes
   // through (Glass or Dielectric; an index-matched boundary is Glass with
   // ior 1): the instance is then drawn see-through, after opaque geometry,
@@ -57,7 +62,7 @@ struct Material {
   }
   // Drawn after opaque geometry, sorted back to front, without depth writes,
   // casting no shadow: blended surfaces and see-through volumes.
-  bool isTransparent() const { return opacity < 1.0f || isVolume(); }
+  bool isTransparent() const { return (alphaCutoff <= 0.0f && opacity < 1.0f) || isVolume(); }
 };
 
 }  // namespace tsr::vk
