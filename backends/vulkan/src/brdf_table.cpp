@@ -1,4 +1,5 @@
 #include "brdf_table.hpp"
+#include "radical_inverse.hpp"
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
@@ -10,15 +11,6 @@
 namespace tsr::vk {
 
 namespace {
-float radicalInverse(std::uint32_t bits) {
-  bits = (bits << 16u) | (bits >> 16u);
-  bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
-  bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
-  bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
-  bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
-  return float(bits) * 2.3283064365386963e-10f;
-}
-
 // As ggxLambda in shaders/brdf.glsl.
 float lambda(float c, float a) {
   const float c2 = c * c;

@@ -1,4 +1,5 @@
 #include "tsr/vk/environment.hpp"
+#include "radical_inverse.hpp"
 
 #include "tsr/vk/error.hpp"
 
@@ -62,15 +63,6 @@ struct LatLong {
 glm::vec3 direction(float u, float v) {
   const float phi = (u - 0.5f) * 2.0f * kPi, theta = v * kPi;
   return {std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi)};
-}
-
-float radicalInverse(std::uint32_t bits) {
-  bits = (bits << 16u) | (bits >> 16u);
-  bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
-  bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
-  bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
-  bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
-  return float(bits) * 2.3283064365386963e-10f;
 }
 
 // Karis' prefilter with n = v = r: GGX half vectors around r, reflected, weighted by
