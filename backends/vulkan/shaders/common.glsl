@@ -54,6 +54,8 @@ layout(set = 0, binding = 7) uniform sampler2D brdfTable;
 layout(set = 0, binding = 8) uniform sampler2D environmentMap;
 // The reflection probe's six faces (src/reflection_probe.cpp).
 layout(set = 0, binding = 9) uniform sampler2DArray reflectionProbe;
+// The probe prefiltered by roughness (src/probe_prefilter.hpp).
+layout(set = 0, binding = 10) uniform sampler2D probeLevels;
 
 layout(push_constant) uniform Push {
   mat4 lightViewProj;

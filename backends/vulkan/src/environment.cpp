@@ -19,6 +19,19 @@ bool finiteNonNegative(const glm::vec3& v) {
 }
 constexpr float kPi = std::numbers::pi_v<float>;
 
+// Bilinear lookup of a lat-long map in the path tracer's convention,
+// wrapping in u; at(x, y) wraps or clamps its arguments.
+template <class At>
+glm::vec3 bilinear(std::uint32_t width, std::uint32_t height, const glm::vec3& d, const At& at) {
+  const float u = std::atan2(d.x, -d.z) / (2.0f * kPi) + 0.5f;
+  const float v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi;
+  const float fx = u * float(width) - 0.5f, fy = v * float(height) - 0.5f;
+  const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+  const float tx = fx - float(x0), ty = fy - float(y0);
+  return (1.0f - ty) * ((1.0f - tx) * at(x0, y0) + tx * at(x0 + 1, y0)) +
+         ty * ((1.0f - tx) * at(x0, y0 + 1) + tx * at(x0 + 1, y0 + 1));
+}
+
 struct LatLong {
   std::uint32_t width = 0, height = 0;
   std::vector<glm::vec3> texels;
@@ -28,15 +41,8 @@ struct LatLong {
     y = std::clamp(y, 0, int(height) - 1);
     return texels[std::size_t(y) * width + std::size_t(x)];
   }
-  // Bilinear, wrapping in u.
   glm::vec3 lookup(const glm::vec3& d) const {
-    const float u = std::atan2(d.x, -d.z) / (2.0f * kPi) + 0.5f;
-    const float v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi;
-    const float fx = u * float(width) - 0.5f, fy = v * float(height) - 0.5f;
-    const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
-    const float tx = fx - float(x0), ty = fy - float(y0);
-    return (1.0f - ty) * ((1.0f - tx) * at(x0, y0) + tx * at(x0 + 1, y0)) +
-           ty * ((1.0f - tx) * at(x0, y0 + 1) + tx * at(x0 + 1, y0 + 1));
+    return bilinear(width, height, d, [this](int x, int y) { return at(x, y); });
   }
   // Box-averaged to at most w x h (sizes halve until they fit).
   LatLong reduced(std::uint32_t w, std::uint32_t h) const {
@@ -138,6 +144,14 @@ Environment Environment::latLong(std::uint32_t width, std::uint32_t height, std:
   e.average_ = glm::vec3(sum / weight) * scale;
   e.prefiltered_ = prefilter(map);
   return e;
+}
+
+glm::vec3 Environment::radiance(const glm::vec3& d) const {
+  return bilinear(kWidth, kHeight, d, [this](int x, int y) {
+    x = ((x % int(kWidth)) + int(kWidth)) % int(kWidth);
+    y = std::clamp(y, 0, int(kHeight) - 1);
+    return glm::vec3(prefiltered_[std::size_t(y) * kWidth + std::size_t(x)]);
+  });
 }
 
 Environment Environment::withFog(const Medium& fog) const {

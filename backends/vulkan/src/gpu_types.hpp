@@ -51,7 +51,7 @@ struct GpuFrame {
   glm::vec4 fogScattering;   // rgb, unused
   glm::vec4 fogEmission;     // rgb, unused
   glm::vec4 emitterAmbient;  // the emitters' part of `ambient`, added to the prefiltered environment
-  glm::vec4 probeCentre;     // the reflection probe's centre, w = 1 when there is one
+  glm::vec4 probeCentre;     // the reflection probe's centre, w: 0 none, 1 for mirrors, 2 also rough reflections
   glm::vec4 sceneMin;        // the scene's bounds, which probe lookups are projected onto
   glm::vec4 sceneMax;
 };

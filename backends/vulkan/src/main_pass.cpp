@@ -101,7 +101,19 @@ void Renderer::Impl::drawOpaque(VkCommandBuffer cmd, const SceneState& s, const 
   const auto& groups = s.opaqueGroups;
   for (std::size_t i = 0; i < groups.size();) {
     const DrawGroup& g = groups[i];
-    if (drawingProbe && reflective(s.materials[g.material].material)) {
+    const Material& material = s.materials[g.material].material;
+    if (drawingProbe && reflective(material)) {
+      ++i;
+      continue;
+    }
+    if (drawingProbe && glossy(material)) {  // instance by instance, leaving out what would reflect itself
+      const MeshRecord& m = s.meshes[g.mesh];
+      for (std::uint32_t k = g.first; k < g.first + g.count; ++k) {
+        if (hiddenFromProbe(s, s.opaqueOrder[k])) continue;
+        bindDraw(cmd, s, settings, shadows, g.mesh, g.material);
+        vkCmdDrawIndexed(cmd, m.indexCount, 1, firstIndexOf(m), vertexOffsetOf(m), k);
+        ++stats.drawCalls;
+      }
       ++i;
       continue;
     }

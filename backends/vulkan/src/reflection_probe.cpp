@@ -6,34 +6,48 @@
 // one camera. The faces are drawn without shadows (the shadow maps of this
 // frame come later), without transparent instances and without the mirrors
 // and glass themselves (they would hide what they reflect).
+#include "probe_prefilter.hpp"
 #include "renderer_impl.hpp"
 
 #include <glm/gtc/constants.hpp>
 
 namespace tsr::vk {
 
-namespace {
-// Per face: forward and up, as probe.glsl picks them from a direction.
-const glm::vec3 kFaceForward[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-const glm::vec3 kFaceUp[6] = {{0, 1, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, -1}, {0, 1, 0}, {0, 1, 0}};
-}  // namespace
-
-// Wanted when mirrors or glass are drawn, and usable only when the centre
-// is outside all of them (a probe inside a mirror sphere sees its inside):
-// otherwise they reflect the environment.
-bool Renderer::Impl::wantsProbe(const SceneState& s) const {
+// Usable only when its centre is outside every mirror and glass instance
+// (a probe inside a mirror sphere sees its inside); rough surfaces reflect
+// it only when the centre is outside every instance but a room around the
+// whole scene, so that what it sees is the scene around that centre, and
+// when some surface is glossy enough to show it.
+Renderer::Impl::ProbeUse Renderer::Impl::wantsProbe(const SceneState& s) const {
+  if (s.sceneEmpty) return ProbeUse::None;
   const glm::vec3 centre = 0.5f * (s.sceneMin + s.sceneMax);
-  bool anyReflective = false;
+  const auto alive = std::count_if(s.instances.begin(), s.instances.end(), [](const auto& i) { return i.alive; });
+  bool anyReflective = false, anyGlossy = false, centreFree = true;
   for (const DrawGroup& g : s.opaqueGroups) {
-    if (!reflective(s.materials[g.material].material)) continue;
-    anyReflective = true;
+    const Material& m = s.materials[g.material].material;
+    const bool mirror = reflective(m);
+    anyReflective = anyReflective || mirror;
+    anyGlossy = anyGlossy || glossy(m);
     for (std::uint32_t i = g.first; i < g.first + g.count; ++i) {
       glm::vec3 lo, hi;
       s.instanceBounds(s.opaqueOrder[i], lo, hi);
-      if (glm::all(glm::greaterThanEqual(centre, lo)) && glm::all(glm::lessThanEqual(centre, hi))) return false;
+      if (glm::all(glm::greaterThanEqual(centre, lo)) && glm::all(glm::lessThanEqual(centre, hi))) {
+        if (mirror) return ProbeUse::None;
+        // A room around the rest of the scene does not hide it from its centre.
+        const bool container = alive > 1 && glm::all(glm::greaterThanEqual(hi - lo, 0.99f * (s.sceneMax - s.sceneMin)));
+        centreFree = centreFree && container;
+      }
     }
   }
-  return anyReflective;
+  if (centreFree && anyGlossy) return ProbeUse::RoughReflections;
+  return anyReflective ? ProbeUse::Mirrors : ProbeUse::None;
+}
+
+bool Renderer::Impl::hiddenFromProbe(const SceneState& s, std::uint32_t slot) {
+  glm::vec3 lo, hi;
+  s.instanceBounds(slot, lo, hi);
+  const glm::vec3 margin = 1e-3f * (s.sceneMax - s.sceneMin);
+  return glm::all(glm::greaterThan(lo, s.sceneMin + margin)) && glm::all(glm::lessThan(hi, s.sceneMax - margin));
 }
 
 void Renderer::Impl::ensureProbeImages() {
@@ -44,7 +58,7 @@ void Renderer::Impl::ensureProbeImages() {
     d.layers = 6;
     d.arrayView = true;
     d.format = colourFormat(1);
-    d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     img = Image(device, d);
   }
   ImageDesc d;
@@ -53,18 +67,72 @@ void Renderer::Impl::ensureProbeImages() {
   d.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
   d.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
   probeDepth = Image(device, d);
+  const std::vector<glm::vec4> black(std::size_t(ProbeLevels::kSize) * ProbeLevels::kHeight, glm::vec4(0.0f));
+  probeLevels = uploadImage(device, ProbeLevels::kSize, ProbeLevels::kHeight, VK_FORMAT_R32G32B32A32_SFLOAT,
+                            black.data(), black.size() * sizeof(glm::vec4));
   probeFresh = true;
 }
 
 void Renderer::Impl::writeProbeDescriptor(const SceneState& s, const Image& image) {
-  VkDescriptorImageInfo info{s.sampler, image.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  VkWriteDescriptorSet w = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
-  w.dstSet = frameSet;
-  w.dstBinding = 9;
-  w.descriptorCount = 1;
-  w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  w.pImageInfo = &info;
-  vkUpdateDescriptorSets(device.handle(), 1, &w, 0, nullptr);
+  const VkDescriptorImageInfo info[2] = {{s.sampler, image.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+                                         {s.sampler, probeLevels.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
+  VkWriteDescriptorSet w[2];
+  for (std::uint32_t i = 0; i < 2; ++i) {
+    w[i] = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+    w[i].dstSet = frameSet;
+    w[i].dstBinding = 9 + i;
+    w[i].descriptorCount = 1;
+    w[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    w[i].pImageInfo = &info[i];
+  }
+  vkUpdateDescriptorSets(device.handle(), 2, w, 0, nullptr);
+}
+
+// After the faces were drawn into probe[probeCurrent] (SHADER_READ_ONLY):
+// copies them to the host and prefilters them into the rough levels.
+void Renderer::Impl::prefilterProbeLevels(const SceneState& s) {
+  const Image& faces = probe[probeCurrent];
+  const bool full = faces.desc().format == VK_FORMAT_R32G32B32A32_SFLOAT;
+  const std::size_t texels = std::size_t(6) * kProbeSize * kProbeSize;
+  const VkDeviceSize bytes = texels * (full ? 16 : 8);
+  ensureHost(device, probeReadback, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+  VkCommandBuffer cmd = commands->buffer();
+  check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
+  VkCommandBufferBeginInfo bi = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
+  imageBarrier(cmd, faces.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+               VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+               VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, 6);
+  VkBufferImageCopy region{};
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 6};
+  region.imageExtent = {kProbeSize, kProbeSize, 1};
+  vkCmdCopyImageToBuffer(cmd, faces.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, probeReadback.handle(), 1, &region);
+  imageBarrier(cmd, faces.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
+               VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT, 6);
+  VkBufferMemoryBarrier host = vkStruct<VkBufferMemoryBarrier>(VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER);
+  host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+  host.srcQueueFamilyIndex = host.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  host.buffer = probeReadback.handle();
+  host.size = VK_WHOLE_SIZE;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1, &host, 0,
+                       nullptr);
+  check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+  commands->submitAndWait("reflection probe readback");
+
+  std::vector<glm::vec4> radiance(texels);
+  if (full) {
+    std::memcpy(radiance.data(), probeReadback.mapped(), texels * sizeof(glm::vec4));
+  } else {
+    const auto* half = static_cast<const std::uint16_t*>(probeReadback.mapped());
+    for (std::size_t i = 0; i < texels; ++i)
+      for (int c = 0; c < 4; ++c) radiance[i][c] = glm::unpackHalf1x16(half[4 * i + c]);
+  }
+  const std::vector<glm::vec4> levels = prefilterProbe(radiance, kProbeSize, s.environment, fog);
+  probeLevels = uploadImage(device, ProbeLevels::kSize, ProbeLevels::kHeight, VK_FORMAT_R32G32B32A32_SFLOAT,
+                            levels.data(), levels.size() * sizeof(glm::vec4));
 }
 
 // Called after prepareFrame (which wrote this frame's uniform and
@@ -72,9 +140,10 @@ void Renderer::Impl::writeProbeDescriptor(const SceneState& s, const Image& imag
 void Renderer::Impl::updateProbe(const SceneState& s, const RenderSettings& settings, GpuFrame& frame,
                                  RenderStats& stats) {
   ensureProbeImages();
-  const bool use = wantsProbe(s) && !s.sceneEmpty;
+  const ProbeUse wanted = wantsProbe(s);
+  const bool use = wanted != ProbeUse::None;
   const ProbeKey key{&s, s.version};
-  if (use && probeHeld != key) {
+  if (use && (probeHeld != key || probeUseHeld != wanted)) {
     // Draw into the image the shader does not read; the probe flag is off
     // while drawing, so the faces never sample a probe.
     Image& into = probe[1 - probeCurrent];
@@ -84,8 +153,8 @@ void Renderer::Impl::updateProbe(const SceneState& s, const RenderSettings& sett
     RenderSettings faceSettings = settings;
     faceSettings.msaaSamples = 1;
     for (std::uint32_t f = 0; f < 6; ++f) {
-      const Camera camera = Camera::lookAt(centre, centre + kFaceForward[f], kFaceUp[f], glm::half_pi<float>(), 1.0f,
-                                           1e-3f * size, 4.0f * size);
+      const Camera camera = Camera::lookAt(centre, centre + kProbeFaceForward[f], kProbeFaceUp[f],
+                                           glm::half_pi<float>(), 1.0f, 1e-3f * size, 4.0f * size);
       const Region region = Region::full(kProbeSize, kProbeSize);
       GpuFrame face = frame;
       face.viewProj = camera.projection(region) * camera.worldToCamera();
@@ -111,7 +180,8 @@ void Renderer::Impl::updateProbe(const SceneState& s, const RenderSettings& sett
       ca.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
       ca.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
       ca.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-      ca.clearValue.color = {{clearColour.r, clearColour.g, clearColour.b, clearColour.a}};
+      // Alpha 0 marks the background for prefilterProbe().
+      ca.clearValue.color = {{clearColour.r, clearColour.g, clearColour.b, 0.0f}};
       VkRenderingAttachmentInfo da = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
       da.imageView = probeDepth.view();
       da.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
@@ -145,7 +215,9 @@ void Renderer::Impl::updateProbe(const SceneState& s, const RenderSettings& sett
     }
     probeCurrent = 1 - probeCurrent;
     probeHeld = key;
+    probeUseHeld = wanted;
     probeCentreHeld = centre;
+    if (wanted == ProbeUse::RoughReflections) prefilterProbeLevels(s);
     ++stats.probes;
   } else if (probeFresh) {
     VkCommandBuffer cmd = commands->buffer();
@@ -160,7 +232,9 @@ void Renderer::Impl::updateProbe(const SceneState& s, const RenderSettings& sett
     check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
     commands->submitAndWait("reflection probe layouts");
   }
-  frame.probeCentre = use && probeHeld ? glm::vec4(probeCentreHeld, 1.0f) : glm::vec4(0.0f);
+  frame.probeCentre = use && probeHeld
+                          ? glm::vec4(probeCentreHeld, probeUseHeld == ProbeUse::RoughReflections ? 2.0f : 1.0f)
+                          : glm::vec4(0.0f);
   std::memcpy(frameBuffer.mapped(), &frame, sizeof(frame));
   writeProbeDescriptor(s, probe[probeCurrent]);
 }

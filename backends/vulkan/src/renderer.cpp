@@ -22,14 +22,15 @@ void ensureHost(const Device& device, Buffer& buffer, VkDeviceSize needed, VkBuf
 
 Renderer::Impl::Impl(const Device& d) : device(d) {
   VkDevice dev = device.handle();
-  VkDescriptorSetLayoutBinding b[10]{};
-  const VkDescriptorType types[10] = {
+  VkDescriptorSetLayoutBinding b[11]{};
+  const VkDescriptorType types[11] = {
       VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,         VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,         VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,         VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
       VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
-  for (std::uint32_t i = 0; i < 10; ++i) {
+      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+  for (std::uint32_t i = 0; i < 11; ++i) {
     b[i].binding = i;
     b[i].descriptorType = types[i];
     b[i].descriptorCount = 1;
@@ -37,7 +38,7 @@ Renderer::Impl::Impl(const Device& d) : device(d) {
   }
   VkDescriptorSetLayoutCreateInfo lci =
       vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
-  lci.bindingCount = 10;
+  lci.bindingCount = 11;
   lci.pBindings = b;
   check(vkCreateDescriptorSetLayout(dev, &lci, nullptr, &frameLayout), "vkCreateDescriptorSetLayout (frame)");
   materialLayout = createMaterialSetLayout(dev);
@@ -53,7 +54,7 @@ Renderer::Impl::Impl(const Device& d) : device(d) {
 
   const VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
-                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 5}};
+                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 6}};
   frameDescriptors.emplace(device, sizes, frameLayout, "frame");
   frameSet = frameDescriptors->set();
   commands.emplace(device, "frame");

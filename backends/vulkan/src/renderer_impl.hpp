@@ -27,6 +27,7 @@
 #include <glm/gtc/packing.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <functional>
 #include <map>
@@ -74,11 +75,24 @@ struct Renderer::Impl {
   };
   std::optional<ProbeKey> probeHeld;
   glm::vec3 probeCentreHeld{0.0f};
+  // What the held probe is seen in (wantsProbe()).
+  enum class ProbeUse { None, Mirrors, RoughReflections };
+  ProbeUse probeUseHeld = ProbeUse::None;
+  Image probeLevels;     // prefilterProbe() of the held probe (probe_prefilter.hpp)
+  Buffer probeReadback;  // its faces, for prefilterProbe()
   GpuFrame frameData{};
   bool drawingProbe = false;  // drawOpaque leaves out what samples the probe
-  static bool reflective(const Material& m) {
-    return m.type == MaterialType::Mirror || m.type == MaterialType::Glass;
-  }  // this frame's uniform, as prepareFrame wrote it
+  static bool reflective(const Material& m) { return m.type == MaterialType::Mirror || m.type == MaterialType::Glass; }
+  // Glossy enough for the probe to show in its reflections.
+  static bool glossy(const Material& m) {
+    return m.type == MaterialType::Conductor || m.type == MaterialType::Dielectric ||
+           (m.type == MaterialType::MetallicRoughness &&
+            (m.metallic > 0.0f || m.roughness < 0.9f || m.metallicRoughnessTexture));
+  }
+  // A glossy instance inside the scene (not a wall of it) is left out of
+  // the probe, as mirrors are: it would reflect itself.
+  static bool hiddenFromProbe(const SceneState& s,
+                              std::uint32_t slot);  // this frame's uniform, as prepareFrame wrote it
   // Reversed depth of the nearer of opaque geometry and see-through volumes'
   // back faces (volume.frag reads it). Single-sample, region-sized; kept in
   // SHADER_READ_ONLY_OPTIMAL between frames.
@@ -130,7 +144,8 @@ struct Renderer::Impl {
                         std::vector<glm::mat4>& shadowViewProj);
   void prepareFrame(const SceneState& s, const Camera& camera, const Region& region, const RenderSettings& settings,
                     std::uint32_t shadowLayers);
-  bool wantsProbe(const SceneState& s) const;
+  ProbeUse wantsProbe(const SceneState& s) const;
+  void prefilterProbeLevels(const SceneState& s);
   void ensureProbeImages();
   void writeProbeDescriptor(const SceneState& s, const Image& image);
   void prepareProbeLayouts(VkCommandBuffer cmd, const Image& into);

@@ -1,5 +1,6 @@
-// The reflection probe: mirrors show the room around them, and the probe is
-// drawn again only when the scene changed.
+// The reflection probe: mirrors show the room around them, rough metals
+// show it blurred by their roughness, and the probe is drawn (and
+// prefiltered) again only when the scene changed.
 #include "test_util.hpp"
 
 #include "tsr/vk/renderer.hpp"
@@ -20,11 +21,19 @@ Material glowing(glm::vec3 e) {
 }
 
 // A room [-2, 2]^3 open towards +z: red wall at x = -2, green at x = +2,
-// blue at the back, grey floor and ceiling; a mirror sphere off the centre.
+// blue at the back, grey floor and ceiling; a mirror sphere (or the given
+// material's) off the centre.
+Material mirrorMaterial() {
+  Material mirror;
+  mirror.type = MaterialType::Mirror;
+  mirror.baseColor = glm::vec3(1.0f);
+  return mirror;
+}
+
 struct Room {
   Scene scene{device()};
   MaterialId red, green;
-  Room() {
+  explicit Room(const Material& sphere = mirrorMaterial()) {
     red = scene.addMaterial(glowing({1, 0, 0}));
     green = scene.addMaterial(glowing({0, 1, 0}));
     const MaterialId blue = scene.addMaterial(glowing({0, 0, 1})), grey = scene.addMaterial(glowing(glm::vec3(0.3f)));
@@ -36,10 +45,7 @@ struct Room {
     wall({-2, -2, -2}, {2, -2, -2}, {2, 2, -2}, {-2, 2, -2}, blue);  // faces +z
     wall({-2, -2, 2}, {2, -2, 2}, {2, -2, -2}, {-2, -2, -2}, grey);  // floor, faces +y
     wall({-2, 2, -2}, {2, 2, -2}, {2, 2, 2}, {-2, 2, 2}, grey);      // ceiling, faces -y
-    Material mirror;
-    mirror.type = MaterialType::Mirror;
-    mirror.baseColor = glm::vec3(1.0f);
-    scene.addInstance(scene.addMesh(test::uvSphere(32, 64, 0.5f)), scene.addMaterial(mirror),
+    scene.addInstance(scene.addMesh(test::uvSphere(32, 64, 0.5f)), scene.addMaterial(sphere),
                       glm::translate(glm::mat4(1.0f), {0.8f, 0.0f, 0.0f}));
   }
 };
@@ -72,6 +78,46 @@ TEST(VulkanReflectionProbe, MirrorShowsTheWallItFaces) {
   renderer.render(room.scene, cam, full, fb);
   EXPECT_EQ(renderer.lastStats().probes, 1u);
   EXPECT_GT(fb.colour(int(left.x), int(left.y)).g, 0.8f) << "the wall turned yellow";
+}
+
+// A white metal of roughness 0.3 and one of 0.6 in the same room: both
+// reflect the red wall to the left and the green one to the right (the
+// probe, prefiltered), the rougher one mixing more of the other walls in.
+TEST(VulkanReflectionProbe, RoughMetalShowsTheWallItFacesBlurred) {
+  const Camera cam = Camera::lookAt({0.8f, 0, 1.8f}, {0.8f, 0, 0}, {0, 1, 0}, 0.9f, 1.0f);
+  const Region full = Region::full(96, 96);
+  const glm::vec2 left = test::project(cam, full, {0.8f - 0.354f, 0, 0.354f});
+  const glm::vec2 right = test::project(cam, full, {0.8f + 0.354f, 0, 0.354f});
+  auto purity = [](const glm::vec4& c, int channel) { return c[channel] / (c.r + c.g + c.b); };
+  float previous[2] = {1.01f, 1.01f};  // a smooth metal reflects the wall alone
+  for (float roughness : {0.0f, 0.3f, 0.6f}) {
+    SCOPED_TRACE(roughness);
+    Material metal;
+    metal.type = MaterialType::MetallicRoughness;
+    metal.baseColor = glm::vec3(1.0f);
+    metal.metallic = 1.0f;
+    metal.roughness = roughness;
+    Room room(metal);
+    Renderer renderer(device(), {.emitterLights = 0, .emitterAmbient = false});
+    FrameBuffer fb(96, 96);
+    renderer.render(room.scene, cam, full, fb);
+    test::writePng("/tmp/tsr_vk_probe_rough_" + std::to_string(int(roughness * 10)) + ".png", fb);
+    EXPECT_EQ(renderer.lastStats().probes, 1u);
+    const glm::vec4 l = fb.colour(int(left.x), int(left.y)), r = fb.colour(int(right.x), int(right.y));
+    EXPECT_GT(l.r, 2.0f * std::max(l.g, l.b)) << "mostly the red wall";
+    EXPECT_GT(r.g, 2.0f * std::max(r.r, r.b)) << "mostly the green wall";
+    EXPECT_LT(purity(l, 0), previous[0]) << "rougher: more of the other walls";
+    EXPECT_LT(purity(r, 1), previous[1]);
+    previous[0] = purity(l, 0);
+    previous[1] = purity(r, 1);
+    if (roughness == 0.3f) {  // an edit refilters, and the reflection follows it
+      room.scene.setMaterial(room.red, glowing({1, 1, 0}));
+      renderer.render(room.scene, cam, full, fb);
+      EXPECT_EQ(renderer.lastStats().probes, 1u);
+      const glm::vec4 edited = fb.colour(int(left.x), int(left.y));
+      EXPECT_GT(edited.g, 0.5f * edited.r) << "the wall turned yellow";
+    }
+  }
 }
 
 }  // namespace

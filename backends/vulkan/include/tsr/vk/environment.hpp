@@ -36,6 +36,8 @@ class Environment {
   static constexpr std::uint32_t kWidth = 64, kHeight = 32, kLevels = 5;
   const std::vector<glm::vec4>& prefiltered() const { return prefiltered_; }
 
+  // Radiance from direction d (towards the environment), from level 0.
+  glm::vec3 radiance(const glm::vec3& d) const;
   const glm::vec3& averageRadiance() const { return average_; }
   bool isBlack() const { return average_ == glm::vec3(0.0f); }
   const std::optional<Medium>& fog() const { return fog_; }
