@@ -36,11 +36,13 @@ layout(location = 0) out vec4 outColour;
 const uint DIFFUSE = 0u, CONDUCTOR = 1u, DIELECTRIC = 2u, MIRROR = 3u, GLASS = 4u, METALLIC_ROUGHNESS = 5u;
 
 // f * |cos(wi)| for unit vectors; n is the shading normal on wo's side.
-// metallic is read by METALLIC_ROUGHNESS only.
-vec3 evalBsdf(uint type, vec3 colour, float alpha, float metallic, float eta, vec3 n, vec3 wo, vec3 wi) {
+// metallic is read by METALLIC_ROUGHNESS only. Without `specular`, the
+// glossy reflection is left out (the diffuse part and transmission stay).
+vec3 evalBsdf(uint type, vec3 colour, float alpha, float metallic, float eta, vec3 n, vec3 wo, vec3 wi, bool specular) {
   float co = dot(n, wo);
   float ci = dot(n, wi);
   if (type == DIFFUSE) return ci > 0.0 ? colour * (ci / PI) : vec3(0.0);
+  if (!specular && ci > 0.0 && type != METALLIC_ROUGHNESS) return vec3(0.0);
   if (type == METALLIC_ROUGHNESS) {
     // glTF appendix B: mix(dielectric, metal, metallic) with
     // dielectric = mix(diffuse, specular, F(0.04)) and metal = specular F(colour).
@@ -49,9 +51,9 @@ vec3 evalBsdf(uint type, vec3 colour, float alpha, float metallic, float eta, ve
     float m = 1.0 - clamp(dot(wo, h), 0.0, 1.0);
     float fc = (m * m) * (m * m) * m;
     vec3 f0 = mix(vec3(0.04), colour, metallic);
-    vec3 specular = (f0 + (1.0 - f0) * fc) * (ggxD(dot(n, h), alpha) * ggxG2(co, ci, alpha) / (4.0 * co));
+    vec3 glossy = (f0 + (1.0 - f0) * fc) * (ggxD(dot(n, h), alpha) * ggxG2(co, ci, alpha) / (4.0 * co));
     float diffuseWeight = (1.0 - metallic) * (1.0 - (0.04 + 0.96 * fc));
-    return specular + colour * (diffuseWeight * ci / PI);
+    return (specular ? glossy : vec3(0.0)) + colour * (diffuseWeight * ci / PI);
   }
   if (type == CONDUCTOR) {
     if (ci <= 0.0) return vec3(0.0);
@@ -174,6 +176,10 @@ void main() {
   }
   float co = dot(n, wo);
 
+  // Emissive surfaces are in the probe: where rough reflections read it,
+  // their patch lights add no glossy reflection of their own (that would
+  // count them twice).
+  const bool probeLit = hasRoughProbe();
   vec3 radiance = vec3(0.0);
   if (co > 1e-6) {
     for (uint i = 0u; i < frame.counts.x; ++i) {
@@ -182,7 +188,8 @@ void main() {
       if (!lightAt(i, worldPos, wi, li)) continue;
       // Shading and geometric normal must agree on the side of wi.
       if ((dot(wi, ng) > 0.0) != (dot(wi, n) > 0.0)) continue;
-      vec3 f = evalBsdf(type, base, alpha, metallic, eta, n, wo, wi);
+      bool specular = !(probeLit && uint(lights[i].position.w) == EMITTER);
+      vec3 f = evalBsdf(type, base, alpha, metallic, eta, n, wo, wi, specular);
       if (max(f.r, max(f.g, f.b)) <= 0.0) continue;
       float v = SHADOWS && lights[i].direction.w >= 0.0 ? visibility(i, worldPos, ng) : 1.0;
       radiance += f * li * v;
@@ -198,7 +205,6 @@ void main() {
   // lit ceilings from too near and without shadows, and on the quality
   // suite its irradiance, even rescaled to the ambient's level, made 10 of
   // 14 scenes worse.)
-  const bool probeLit = hasRoughProbe();
   vec3 ambient = frame.ambient.rgb;
   vec3 mirrored = reflect(-wo, n);
   if (type == METALLIC_ROUGHNESS) {

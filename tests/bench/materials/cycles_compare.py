@@ -3,7 +3,9 @@
 Principled BSDF on the sphere grid (make_sphere_grid.py): each renderer's
 own high-spp image, the mean of every sphere (an inner disc of its
 projection) and the seen error of the whole image (tests/bench/quality/
-seen_error.hpp: clamp, sRGB, box blur of radius 2 twice, RMSE).
+seen_error.py: clamp, sRGB, box blur of radius 2 twice, RMSE). The
+rasterizer's frame of the same scene is set beside both, measured against
+the path tracer.
 
     cycles_compare.py --render build/default/bin/tessera-render [--size 160x80]
                       [--spp 1024] [--bounces 16] [--out DIR]
@@ -18,6 +20,8 @@ import OpenImageIO as oiio
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, ".."))
 from cycles_common import load  # noqa: E402
+sys.path.insert(0, os.path.join(HERE, "..", "quality"))
+from seen_error import displayed, seen_error  # noqa: E402
 sys.path.insert(0, HERE)
 import make_sphere_grid as grid  # noqa: E402
 
@@ -29,33 +33,6 @@ def save_png(path, pixels):
     out.open(path, oiio.ImageSpec(pixels.shape[1], pixels.shape[0], 3, "uint8"))
     out.write_image((displayed(pixels) * 255 + 0.5).astype(np.uint8))
     out.close()
-
-
-def displayed(linear):
-    c = np.clip(np.nan_to_num(linear), 0.0, 1.0)
-    return np.where(c <= 0.0031308, 12.92 * c, 1.055 * c ** (1 / 2.4) - 0.055)
-
-
-def box(plane, r, axis):
-    """Box mean of radius r along one axis, windows cut at the border."""
-    n = plane.shape[axis]
-    c = np.cumsum(np.insert(plane, 0, 0.0, axis=axis), axis=axis)
-    lo = np.clip(np.arange(n) - r, 0, n)
-    hi = np.clip(np.arange(n) + r + 1, 0, n)
-    take = lambda i: np.take(c, i, axis=axis)
-    shape = [1, 1]
-    shape[axis] = n
-    return (take(hi) - take(lo)) / (hi - lo).reshape(shape)
-
-
-def seen_error(image, reference):
-    total = 0.0
-    for ch in range(3):
-        a, b = displayed(image[..., ch]), displayed(reference[..., ch])
-        for _ in range(2):
-            a, b = box(box(a, 2, 1), 2, 0), box(box(b, 2, 1), 2, 0)
-        total += float(np.sum((a - b) ** 2))
-    return math.sqrt(total / (3.0 * image.shape[0] * image.shape[1]))
 
 
 def sphere_masks(width, height):
@@ -85,6 +62,7 @@ def main():
     scene = os.path.join(out, "sphere_grid.gltf")
     subprocess.run([sys.executable, os.path.join(HERE, "make_sphere_grid.py"), scene], check=True)
     ours_path, cycles_path = os.path.join(out, "tessera.exr"), os.path.join(out, "cycles.exr")
+    raster_path = os.path.join(out, "rasterizer.exr")
     if not os.path.exists(ours_path):
         subprocess.run([a.render, scene, "--backend", "embree", "--size", a.size, "--spp", str(a.spp),
                         "--max-depth", str(a.bounces), "--no-default-light", "--output", ours_path, "--quiet"],
@@ -93,21 +71,26 @@ def main():
         subprocess.run(["blender", "-b", "--python", os.path.join(HERE, "cycles_render.py"), "--", scene,
                         cycles_path, str(a.spp), a.size, str(a.bounces)], check=True,
                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    ours, theirs = load(ours_path), load(cycles_path)
+    subprocess.run([a.render, scene, "--backend", "vulkan", "--size", a.size, "--no-default-light", "--output",
+                    raster_path, "--quiet"], check=True)
+    ours, theirs, raster = load(ours_path), load(cycles_path), load(raster_path)
     save_png(os.path.join(out, "tessera.png"), ours)
     save_png(os.path.join(out, "cycles.png"), theirs)
-    save_png(os.path.join(out, "side_by_side.png"), np.concatenate([ours, theirs], axis=1))
+    save_png(os.path.join(out, "side_by_side.png"), np.concatenate([raster, ours, theirs], axis=1))
     h, w = ours.shape[:2]
     print("%s, %d spp each, %d bounces; sphere means (luminance of the inner disc)" % (a.size, a.spp, a.bounces))
-    print("| sphere | Tessera | Cycles | Tessera / Cycles - 1 |")
-    print("|---|---|---|---|")
+    print("| sphere | Tessera | Cycles | Tessera / Cycles - 1 | rasterizer | rasterizer / Tessera - 1 |")
+    print("|---|---|---|---|---|---|")
     lum = np.array([0.2126, 0.7152, 0.0722])
     worst = 0.0
     for name, mask in sphere_masks(w, h):
-        m, c = float(ours[mask].mean(axis=0) @ lum), float(theirs[mask].mean(axis=0) @ lum)
+        m, c, r = (float(image[mask].mean(axis=0) @ lum) for image in (ours, theirs, raster))
         worst = max(worst, abs(m / c - 1))
-        print("| %s | %.4f | %.4f | %+.1f %% |" % (name, m, c, 100 * (m / c - 1)))
-    print("worst sphere: %.1f %%; seen error, whole image: %.4f" % (100 * worst, seen_error(ours, theirs)))
+        print("| %s | %.4f | %.4f | %+.1f %% | %.4f | %+.1f %% |" % (name, m, c, 100 * (m / c - 1), r,
+                                                                    100 * (r / m - 1)))
+    print("worst sphere: %.1f %%; seen error, whole image: %.4f" % (100 * worst, seen_error(ours, theirs)[0]))
+    whole, tile, _ = seen_error(raster, ours)
+    print("rasterizer against the path tracer: seen error whole %.4f, worst tile %.4f" % (whole, tile))
     print("images in", out)
 
 
