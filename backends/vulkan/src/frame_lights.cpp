@@ -108,16 +108,32 @@ void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s,
     vkCmdSetViewport(cmd, 0, 1, &vp);
     vkCmdSetScissor(cmd, 0, 1, &ri.renderArea);
     vkCmdSetDepthBias(cmd, 1.25f, 0.0f, 1.75f);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadowPipeline.handle());
     PushConstants pc;
     pc.lightViewProj = shadowViewProj[layer];
-    vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
-    std::uint32_t bound = ~0u;
-    for (const DrawGroup& g : s.opaqueGroups) {
-      const MeshRecord& m = s.meshes[g.mesh];
-      if (m.span.block != bound) s.geometry->bind(cmd, bound = m.span.block, 1);
-      vkCmdDrawIndexed(cmd, m.indexCount, g.count, firstIndexOf(m), vertexOffsetOf(m), g.first);
-      stats.shadowTriangles += std::uint64_t(m.indexCount / 3) * g.count;
+    // Plain groups first (positions only), then masked ones with their
+    // material, whose fragments cut the shadow as they cut the surface.
+    for (const bool maskedPass : {false, true}) {
+      std::uint32_t bound = ~0u;
+      bool pipelineBound = false;
+      for (const DrawGroup& g : s.opaqueGroups) {
+        const Material& material = s.materials[g.material].material;
+        if ((material.alphaCutoff > 0.0f) != maskedPass) continue;
+        if (!pipelineBound) {
+          vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                            (maskedPass ? maskedShadowPipeline : shadowPipeline).handle());
+          pipelineBound = true;
+        }
+        if (maskedPass) {
+          vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &s.materials[g.material].set, 0,
+                                  nullptr);
+          pc.material = g.material;
+        }
+        vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
+        const MeshRecord& m = s.meshes[g.mesh];
+        if (m.span.block != bound) s.geometry->bind(cmd, bound = m.span.block, maskedPass ? 3 : 1);
+        vkCmdDrawIndexed(cmd, m.indexCount, g.count, firstIndexOf(m), vertexOffsetOf(m), g.first);
+        stats.shadowTriangles += std::uint64_t(m.indexCount / 3) * g.count;
+      }
     }
     vkCmdEndRendering(cmd);
     ++stats.shadowMaps;

@@ -66,6 +66,11 @@ Renderer::Impl::Impl(const Device& d) : device(d) {
   sd.depthCompare = VK_COMPARE_OP_LESS;
   sd.depthBias = true;
   shadowPipeline = Pipeline(device, sd);
+  PipelineDesc masked = sd;
+  masked.vertexSpirv = spirv::shadow_masked_vert;
+  masked.fragmentSpirv = spirv::shadow_masked_frag;
+  masked.vertexStreams = 3;
+  maskedShadowPipeline = Pipeline(device, masked);
   sd.depthCompare = VK_COMPARE_OP_GREATER;  // reversed depth: the nearest back face
   sd.depthBias = false;
   sd.cull = VK_CULL_MODE_FRONT_BIT;

@@ -55,7 +55,8 @@ struct Renderer::Impl {
   std::map<std::uint32_t, VkFormat> colourFormats;  // by sample count
   std::map<std::uint64_t, Pipeline> mainPipelines;  // by pipelineKey()
   Pipeline shadowPipeline;
-  Pipeline volumeBackPipeline;  // see-through volumes' back faces, depth only
+  Pipeline maskedShadowPipeline;  // glTF MASK materials: cut by their base colour's alpha
+  Pipeline volumeBackPipeline;    // see-through volumes' back faces, depth only
 
   Buffer frameBuffer;  // GpuFrame uniform
   Buffer lightBuffer;

@@ -10,6 +10,8 @@ extern const std::span<const std::uint32_t> mesh_frag;
 extern const std::span<const std::uint32_t> volume_vert;
 extern const std::span<const std::uint32_t> volume_frag;
 extern const std::span<const std::uint32_t> shadow_vert;
+extern const std::span<const std::uint32_t> shadow_masked_vert;
+extern const std::span<const std::uint32_t> shadow_masked_frag;
 extern const std::span<const std::uint32_t> ids_vert;
 extern const std::span<const std::uint32_t> ids_frag;
 extern const std::span<const std::uint32_t> cull_comp;

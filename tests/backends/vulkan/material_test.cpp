@@ -142,6 +142,49 @@ TEST(VulkanMaterial, MaskedAlphaCutsTheClearHalfAway) {
   }
 }
 
+// A masked quad between a directional light and a white floor: the floor
+// is in shadow under the kept half and lit under the cut half (the shadow
+// pass cuts the quad as the main pass does); without a cut-off the whole
+// quad casts a shadow.
+TEST(VulkanMaterial, MaskedQuadCastsAMaskedShadow) {
+  for (float cutoff : {0.5f, 0.0f}) {
+    std::vector<std::uint8_t> texels;
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 4; ++x) texels.insert(texels.end(), {255, 255, 255, std::uint8_t(x < 2 ? 255 : 0)});
+    Scene scene(device());
+    Material white;
+    white.baseColor = glm::vec3(0.8f);
+    scene.addInstance(scene.addMesh(test::quad({-2, 0, 2}, {2, 0, 2}, {2, 0, -2}, {-2, 0, -2})),
+                      scene.addMaterial(white), glm::mat4(1.0f));
+    Material cut = white;
+    cut.baseColorTexture = scene.addTexture(Texture::fromRgba8(4, 4, texels));
+    cut.alphaCutoff = cutoff;
+    // Two units above the floor; the camera sees the floor under it past
+    // its near edge.
+    scene.addInstance(scene.addMesh(test::quad({-1, 1, 0.5f}, {1, 1, 0.5f}, {1, 1, -0.5f}, {-1, 1, -0.5f})),
+                      scene.addMaterial(cut), glm::translate(glm::mat4(1.0f), {0, 1, 0}));
+    scene.addLight(
+        DirectionalLight{.direction = glm::normalize(glm::vec3(0.3f, -1, 0.0f)), .irradiance = glm::vec3(2.0f)});
+    Renderer renderer(device());
+    FrameBuffer fb(64, 64);
+    // The floor under each half's centre along the light: x = -0.5 and
+    // +0.5 at height 2, shifted by 0.6 along +x on the way down.
+    const Camera cam = Camera::lookAt({0, 4, 3}, {0, 0, 0}, {0, 1, 0}, 1.2f, 1.0f);
+    renderer.render(scene, cam, kFull, fb);
+    test::writePng("/tmp/tsr_vk_masked_shadow_" + std::to_string(int(cutoff * 10)) + ".png", fb);
+    const glm::vec2 kept = test::project(cam, kFull, {-0.5f + 0.6f, 0, 0});
+    const glm::vec2 gone = test::project(cam, kFull, {0.5f + 0.6f, 0, 0});
+    const glm::vec2 open = test::project(cam, kFull, {0.0f, 0, 1.6f});
+    const float lit = fb.colour(int(open.x), int(open.y)).r;
+    EXPECT_GT(lit, 0.1f) << "the floor is lit away from the quad";
+    EXPECT_LT(fb.colour(int(kept.x), int(kept.y)).r, 0.2f * lit) << "cut-off " << cutoff << ": shadow of the kept half";
+    if (cutoff > 0.0f)
+      EXPECT_NEAR(fb.colour(int(gone.x), int(gone.y)).r, lit, 0.05f * lit) << "the light passes the cut half";
+    else
+      EXPECT_LT(fb.colour(int(gone.x), int(gone.y)).r, 0.2f * lit) << "no cut-off: the whole quad casts a shadow";
+  }
+}
+
 TEST(VulkanMaterial, MsaaResolvesInteriorExactlyAndBlendsEdges) {
   Scene scene(device());
   // A quad whose left edge runs diagonally through pixels.

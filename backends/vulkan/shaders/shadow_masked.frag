@@ -1,0 +1,12 @@
+#version 450
+#include "common.glsl"
+
+// Where mesh.frag discards a MASK material's fragment, the light passes too.
+layout(set = 1, binding = 0) uniform sampler2D baseColorTex;
+
+layout(location = 0) in vec2 uv;
+
+void main() {
+  Material m = materials[pc.material];
+  if (m.baseColor.a * texture(baseColorTex, uv).a < m.pbr.w) discard;
+}
