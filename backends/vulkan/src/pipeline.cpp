@@ -65,8 +65,11 @@ Pipeline::Pipeline(const Device& device, const PipelineDesc& d) : device_(device
       vkStruct<VkPipelineVertexInputStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO);
   vi.vertexBindingDescriptionCount = d.vertexStreams;
   vi.pVertexBindingDescriptions = allBindings;
-  vi.vertexAttributeDescriptionCount = d.vertexStreams;
-  vi.pVertexAttributeDescriptions = allAttributes;
+  // Without normals the uv attribute moves up: its binding stays 2.
+  const VkVertexInputAttributeDescription positionAndUv[2] = {allAttributes[0], allAttributes[2]};
+  const bool skipNormals = !d.normals && d.vertexStreams == 3;
+  vi.vertexAttributeDescriptionCount = skipNormals ? 2 : d.vertexStreams;
+  vi.pVertexAttributeDescriptions = skipNormals ? positionAndUv : allAttributes;
 
   VkPipelineInputAssemblyStateCreateInfo ia =
       vkStruct<VkPipelineInputAssemblyStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO);

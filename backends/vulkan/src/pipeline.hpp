@@ -15,6 +15,7 @@ struct PipelineDesc {
   std::span<const std::uint32_t> vertexSpirv;
   std::span<const std::uint32_t> fragmentSpirv;  // empty: depth-only
   std::uint32_t vertexStreams = 3;               // position, normal, uv (separate bindings)
+  bool normals = true;                           // false: the normal stream is bound but not read
   VkFormat colourFormat = VK_FORMAT_UNDEFINED;   // UNDEFINED: no colour attachment
   VkFormat depthFormat = VK_FORMAT_D32_SFLOAT;
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;

@@ -70,6 +70,7 @@ Renderer::Impl::Impl(const Device& d) : device(d) {
   masked.vertexSpirv = spirv::shadow_masked_vert;
   masked.fragmentSpirv = spirv::shadow_masked_frag;
   masked.vertexStreams = 3;
+  masked.normals = false;
   maskedShadowPipeline = Pipeline(device, masked);
   sd.depthCompare = VK_COMPARE_OP_GREATER;  // reversed depth: the nearest back face
   sd.depthBias = false;
