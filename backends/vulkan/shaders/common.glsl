@@ -13,7 +13,9 @@ struct Material {
   vec4 mediumScattering;
   vec4 mediumEmission;
   vec4 pbr;
+  vec4 uv[10];  // two rows per texture slot: base colour, emission, metallic-roughness, normal, occlusion
 };
+
 
 struct Light {
   vec4 position;
@@ -43,6 +45,13 @@ layout(std430, set = 0, binding = 1) readonly buffer Instances { Instance instan
 // Instance slots in draw order: a draw's gl_InstanceIndex indexes this.
 layout(std430, set = 0, binding = 2) readonly buffer DrawOrder { uint drawOrder[]; };
 layout(std430, set = 0, binding = 3) readonly buffer Materials { Material materials[]; };
+const int BASE_COLOR_SLOT = 0, EMISSION_SLOT = 1, METALLIC_ROUGHNESS_SLOT = 2, NORMAL_SLOT = 3, OCCLUSION_SLOT = 4;
+
+// The uv a slot's texture is read at (KHR_texture_transform).
+vec2 slotUv(uint material, int slot, vec2 uv) {
+  vec3 h = vec3(uv, 1.0);
+  return vec2(dot(materials[material].uv[2 * slot].xyz, h), dot(materials[material].uv[2 * slot + 1].xyz, h));
+}
 layout(std430, set = 0, binding = 4) readonly buffer Lights { Light lights[]; };
 layout(set = 0, binding = 5) uniform sampler2DArrayShadow shadowMaps;
 // Reversed depth of the nearer of opaque geometry and see-through volumes'

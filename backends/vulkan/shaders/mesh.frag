@@ -19,6 +19,7 @@ layout(constant_id = 3) const bool SHADOWS = false;
 layout(constant_id = 4) const bool FOG = false;  // the environment has a medium
 layout(constant_id = 5) const bool NORMAL_TEXTURE = false;
 layout(constant_id = 6) const bool METALLIC_ROUGHNESS_TEXTURE = false;
+layout(constant_id = 7) const bool OCCLUSION_TEXTURE = false;
 
 #include "medium.glsl"
 
@@ -26,6 +27,7 @@ layout(set = 1, binding = 0) uniform sampler2D baseColorTex;
 layout(set = 1, binding = 1) uniform sampler2D emissionTex;
 layout(set = 1, binding = 2) uniform sampler2D metallicRoughnessTex;
 layout(set = 1, binding = 3) uniform sampler2D normalTex;
+layout(set = 1, binding = 4) uniform sampler2D occlusionTex;
 
 layout(location = 0) in vec3 worldPos;
 layout(location = 1) in vec3 worldNormal;
@@ -87,9 +89,14 @@ vec3 evalBsdf(uint type, vec3 colour, float alpha, float metallic, float eta, ve
 // x along +u and y along -v (glTF: +y is up in the image, v runs down).
 // A bent normal that would face away from the viewer is pulled back to the
 // silhouette plane.
-vec3 normalMapped(vec3 n, vec3 wo, float scale) {
+// The uv derivatives are taken before the texture transform (rows) and
+// mapped through it: lavapipe gives values loaded from a buffer no
+// derivatives.
+vec3 normalMapped(vec3 n, vec3 wo, float scale, vec3 row0, vec3 row1) {
   vec3 dp1 = dFdx(worldPos), dp2 = dFdy(worldPos);
-  vec2 duv1 = dFdx(uv), duv2 = dFdy(uv);
+  mat2 linear = mat2(row0.x, row1.x, row0.y, row1.y);
+  vec2 duv1 = linear * dFdx(uv), duv2 = linear * dFdy(uv);
+  vec2 st = vec2(dot(row0, vec3(uv, 1.0)), dot(row1, vec3(uv, 1.0)));
   vec3 dp2perp = cross(dp2, n), dp1perp = cross(n, dp1);
   vec3 t = dp2perp * duv1.x + dp1perp * duv2.x;
   vec3 b = dp2perp * duv1.y + dp1perp * duv2.y;
@@ -98,7 +105,7 @@ vec3 normalMapped(vec3 n, vec3 wo, float scale) {
   // The derivation assumes (dp1, dp2, n) right-handed; Vulkan's y-down
   // framebuffer makes it left-handed for faces seen from the front.
   float inv = inversesqrt(len2) * (dot(cross(dp1, dp2), n) < 0.0 ? -1.0 : 1.0);
-  vec3 ts = texture(normalTex, uv).xyz * 2.0 - 1.0;
+  vec3 ts = texture(normalTex, st).xyz * 2.0 - 1.0;
   ts.xy *= scale;
   vec3 bent = normalize(t * (inv * ts.x) - b * (inv * ts.y) + n * ts.z);
   float c = dot(bent, wo);
@@ -146,7 +153,7 @@ void main() {
   vec3 base = m.baseColor.rgb;
   float opacity = m.baseColor.a;
   if (BASE_TEXTURE) {
-    vec4 t = texture(baseColorTex, uv);
+    vec4 t = texture(baseColorTex, slotUv(pc.material, BASE_COLOR_SLOT, uv));
     base *= t.rgb;
     opacity *= t.a;
   }
@@ -163,13 +170,13 @@ void main() {
   // face (by winding) that the viewer sees.
   float len = length(worldNormal);
   vec3 n = len > 1e-8 ? (gl_FrontFacing ? worldNormal : -worldNormal) / len : ng;
-  if (NORMAL_TEXTURE) n = normalMapped(n, wo, m.pbr.z);
+  if (NORMAL_TEXTURE) n = normalMapped(n, wo, m.pbr.z, m.uv[2 * NORMAL_SLOT].xyz, m.uv[2 * NORMAL_SLOT + 1].xyz);
   float eta = gl_FrontFacing ? m.params.y : 1.0 / m.params.y;
   float alpha = m.params.x;
   float roughness = m.pbr.x;
   float metallic = m.pbr.y;
   if (METALLIC_ROUGHNESS_TEXTURE) {
-    vec4 t = texture(metallicRoughnessTex, uv);
+    vec4 t = texture(metallicRoughnessTex, slotUv(pc.material, METALLIC_ROUGHNESS_SLOT, uv));
     roughness *= t.g;
     metallic *= t.b;
     alpha = max(1e-3, roughness * roughness);
@@ -207,6 +214,7 @@ void main() {
   // 14 scenes worse.)
   vec3 ambient = frame.ambient.rgb;
   vec3 mirrored = reflect(-wo, n);
+  const vec3 direct = radiance;
   if (type == METALLIC_ROUGHNESS) {
     vec3 specular;
     vec3 diffuse = metallicRoughnessAlbedo(base, metallic, roughness, max(co, 0.0), specular);
@@ -233,10 +241,15 @@ void main() {
     vec3 reflected = probeLit ? probePrefiltered(worldPos, mirrored, m.pbr.x) : prefilteredRadiance(mirrored, m.pbr.x);
     radiance += f * reflected + (1.0 - f) * base * ambient;
   }
+  // glTF's occlusion darkens this ambient and image-based part only.
+  if (OCCLUSION_TEXTURE) {
+    float occluded = texture(occlusionTex, slotUv(pc.material, OCCLUSION_SLOT, uv)).r;
+    radiance = direct + (1.0 + m.params.z * (occluded - 1.0)) * (radiance - direct);
+  }
 
   if (gl_FrontFacing) {
     vec3 e = m.emission.rgb;
-    if (EMISSION_TEXTURE) e *= texture(emissionTex, uv).rgb;
+    if (EMISSION_TEXTURE) e *= texture(emissionTex, slotUv(pc.material, EMISSION_SLOT, uv)).rgb;
     radiance += e;
   }
   if (FOG) radiance = fogged(radiance, worldPos);

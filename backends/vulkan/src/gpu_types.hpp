@@ -1,5 +1,7 @@
 #pragma once
 
+#include "tsr/vk/material.hpp"
+
 #include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
 
@@ -19,12 +21,13 @@ struct GpuInstance {
 struct GpuMaterial {
   glm::vec4 baseColor;  // rgb, opacity
   glm::vec4 emission;   // rgb, unused
-  glm::vec4 params;     // GGX alpha, ior, unused, unused
+  glm::vec4 params;     // GGX alpha, ior, occlusion strength, unused
   // Material::interior (zero without one): see volume.frag.
-  glm::vec4 mediumAbsorption;  // rgb, Henyey-Greenstein g
-  glm::vec4 mediumScattering;  // rgb, unused
-  glm::vec4 mediumEmission;    // rgb, unused
-  glm::vec4 pbr;               // roughness, metallic, normal scale, alpha cut-off (0: none)
+  glm::vec4 mediumAbsorption;       // rgb, Henyey-Greenstein g
+  glm::vec4 mediumScattering;       // rgb, unused
+  glm::vec4 mediumEmission;         // rgb, unused
+  glm::vec4 pbr;                    // roughness, metallic, normal scale, alpha cut-off (0: none)
+  glm::vec4 uv[2 * kTextureSlots];  // Material::uv: two rows (xyz) per TextureSlot
 };
 
 enum : std::uint32_t { kGpuPoint = 0, kGpuSpot = 1, kGpuDirectional = 2, kGpuEmitter = 3 };

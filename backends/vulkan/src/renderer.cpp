@@ -124,11 +124,13 @@ VkPipeline Renderer::Impl::mainPipeline(std::uint32_t samples, const Material& m
   const bool normalTex = !volume && material.normalTexture.has_value();
   const bool mrTex =
       !volume && material.type == MaterialType::MetallicRoughness && material.metallicRoughnessTexture.has_value();
+  const bool occlusionTex = !volume && material.occlusionTexture.has_value();
   const bool blend = material.isTransparent();
   const std::uint64_t key = std::uint64_t(samples) | std::uint64_t(type) << 8 | std::uint64_t(baseTex) << 16 |
                             std::uint64_t(emissionTex) << 17 | std::uint64_t(shadows) << 18 |
                             std::uint64_t(blend) << 19 | std::uint64_t(volume) << 20 | std::uint64_t(fog) << 21 |
-                            std::uint64_t(normalTex) << 22 | std::uint64_t(mrTex) << 23;
+                            std::uint64_t(normalTex) << 22 | std::uint64_t(mrTex) << 23 |
+                            std::uint64_t(occlusionTex) << 24;
   auto it = mainPipelines.find(key);
   if (it != mainPipelines.end()) return it->second.handle();
   PipelineDesc d;
@@ -143,7 +145,7 @@ VkPipeline Renderer::Impl::mainPipeline(std::uint32_t samples, const Material& m
   d.dualSourceBlend = volume;
   d.cull = volume ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE;  // a volume's front faces only
   d.depthWrite = !blend;
-  d.fragmentConstants = {type, baseTex, emissionTex, shadows, fog, normalTex, mrTex};
+  d.fragmentConstants = {type, baseTex, emissionTex, shadows, fog, normalTex, mrTex, occlusionTex};
   return mainPipelines.emplace(key, Pipeline(device, d)).first->second.handle();
 }
 

@@ -82,7 +82,12 @@ void validateMaterial(const Material& m, const SceneState& s) {
   }
   if (!(m.metallic >= 0.0f && m.metallic <= 1.0f)) throw Error("material metallic must be in [0, 1]");
   if (!std::isfinite(m.normalScale)) throw Error("material normalScale must be finite");
-  for (const auto& t : {m.baseColorTexture, m.emissionTexture, m.metallicRoughnessTexture, m.normalTexture}) {
+  if (!(std::isfinite(m.occlusionStrength) && m.occlusionStrength >= 0.0f && m.occlusionStrength <= 1.0f))
+    throw Error("material occlusionStrength must be in [0, 1]");
+  for (const UvTransform& t : m.uv)
+    for (int i = 0; i < 3; ++i)
+      if (!std::isfinite(t.row0[i]) || !std::isfinite(t.row1[i])) throw Error("material uv transforms must be finite");
+  for (const auto& t : m.textures()) {
     if (t && (index(*t) >= s.textures.size() || !s.textures[index(*t)].alive))
       throw Error("material refers to unknown texture id " + std::to_string(index(*t)));
   }
@@ -162,7 +167,11 @@ void SceneState::prepare() {
       GpuMaterial g{};
       g.baseColor = glm::vec4(m.baseColor, m.opacity);
       g.emission = glm::vec4(m.emission, 0.0f);
-      g.params = glm::vec4(std::max(1e-3f, m.roughness * m.roughness), m.ior, 0.0f, 0.0f);
+      g.params = glm::vec4(std::max(1e-3f, m.roughness * m.roughness), m.ior, m.occlusionStrength, 0.0f);
+      for (std::size_t t = 0; t < kTextureSlots; ++t) {
+        g.uv[2 * t] = glm::vec4(m.uv[t].row0, 0.0f);
+        g.uv[2 * t + 1] = glm::vec4(m.uv[t].row1, 0.0f);
+      }
       g.pbr = glm::vec4(m.roughness, m.metallic, m.normalScale, m.alphaCutoff);
       if (m.interior) {
         g.mediumAbsorption = glm::vec4(m.interior->absorption, std::clamp(m.interior->g, -0.99f, 0.99f));
@@ -402,9 +411,7 @@ void Scene::removeInstance(InstanceId instance) {
 namespace {
 void writeMaterialSet(SceneState& s, MaterialRecord& r) {
   VkDescriptorImageInfo images[kMaterialTextures];
-  const std::optional<TextureId> ids[kMaterialTextures] = {r.material.baseColorTexture, r.material.emissionTexture,
-                                                           r.material.metallicRoughnessTexture,
-                                                           r.material.normalTexture};
+  const auto ids = r.material.textures();
   for (std::uint32_t i = 0; i < kMaterialTextures; ++i) {
     images[i].sampler = s.sampler;
     images[i].imageView = ids[i] ? s.textures[index(*ids[i])].image.view() : s.whiteTexture.view();
@@ -420,7 +427,7 @@ void writeMaterialSet(SceneState& s, MaterialRecord& r) {
 }
 
 void retainTextures(SceneState& s, const Material& m, int delta) {
-  for (const auto& t : {m.baseColorTexture, m.emissionTexture, m.metallicRoughnessTexture, m.normalTexture})
+  for (const auto& t : m.textures())
     if (t) s.textures[index(*t)].users += delta;
 }
 

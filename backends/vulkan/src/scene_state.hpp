@@ -77,7 +77,7 @@ struct DrawGroup {
 };
 
 // Material textures in set 1: base colour, emission, metallic-roughness, normal.
-inline constexpr std::uint32_t kMaterialTextures = 4;
+inline constexpr std::uint32_t kMaterialTextures = std::uint32_t(kTextureSlots);
 
 // The set-1 layout for material textures. Scene and Renderer each create one
 // with this function; identically defined layouts are compatible.

@@ -53,6 +53,13 @@ PlacedLight placeLight(const sg::Light& light, const glm::mat4& world) {
   return p;
 }
 
+std::pair<glm::vec3, glm::vec3> usableUvTransform(const sg::SurfaceMaterial& s, sg::TextureSlot slot) {
+  const auto [row0, row1] = s.uvTransform(slot);
+  auto finite = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+  if (!finite(row0) || !finite(row1)) return {glm::vec3(1, 0, 0), glm::vec3(0, 1, 0)};
+  return {row0, row1};
+}
+
 SurfaceClass classify(const sg::SurfaceMaterial& s) {
   if (s.transmission() > 0.5f) return s.roughness() < 0.05f ? SurfaceClass::Glass : SurfaceClass::Dielectric;
   if (s.metallic() > 0.5f) return s.roughness() < 0.02f ? SurfaceClass::Mirror : SurfaceClass::Conductor;

@@ -50,11 +50,8 @@ embree::Material translateMaterial(const sg::Container* material, const sg::Volu
 }
 
 namespace {
-// A slot's texture transform; a malformed one (NaN, infinity) is none.
 embree::UvTransform uvTransform(const sg::SurfaceMaterial& s, sg::TextureSlot slot) {
-  const auto [row0, row1] = s.uvTransform(slot);
-  auto finite = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
-  if (!finite(row0) || !finite(row1)) return {};
+  const auto [row0, row1] = usableUvTransform(s, slot);
   return {row0, row1};
 }
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include "tsr/med/scene_values.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -54,6 +55,18 @@ vk::Material translateMaterial(const sg::Container* material, const TextureLooku
   }
   m.type = typeOf(classify(s));
   m.normalTexture = s.normalTexture() ? textures(s.normalTexture()) : std::nullopt;
+  m.occlusionTexture = s.occlusionTexture() ? textures(s.occlusionTexture()) : std::nullopt;
+  m.occlusionStrength = std::isfinite(s.occlusionStrength()) ? std::clamp(s.occlusionStrength(), 0.0f, 1.0f) : 1.0f;
+  const std::pair<sg::TextureSlot, vk::TextureSlot> slots[] = {
+      {sg::TextureSlot::BaseColor, vk::TextureSlot::BaseColor},
+      {sg::TextureSlot::Emission, vk::TextureSlot::Emission},
+      {sg::TextureSlot::MetallicRoughness, vk::TextureSlot::MetallicRoughness},
+      {sg::TextureSlot::Normal, vk::TextureSlot::Normal},
+      {sg::TextureSlot::Occlusion, vk::TextureSlot::Occlusion}};
+  for (const auto& [from, to] : slots) {
+    const auto [row0, row1] = usableUvTransform(s, from);
+    m.uv[static_cast<std::size_t>(to)] = {row0, row1};
+  }
   m.normalScale = std::isfinite(s.normalScale()) ? s.normalScale() : 1.0f;
   // Every opaque surface takes glTF's BRDF (a dielectric's specular layer
   // over its diffuse base, or metal), as the path tracer renders it; smooth

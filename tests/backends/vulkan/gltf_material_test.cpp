@@ -226,5 +226,65 @@ TEST(VulkanGltfMaterial, EnvironmentReflectionsArePrefilteredByRoughness) {
   EXPECT_LT(rt.r / (rt.r + rt.b), st.r / (st.r + st.b) - 0.05f) << "blurred towards the other half";
 }
 
+// KHR_texture_transform: a base colour texture red on its left half and
+// blue on its right, shifted by half a repeat along u, shows blue on the
+// quad's left and red on its right (and the identity shows it as it is).
+TEST(VulkanGltfMaterial, TextureTransformMovesTheTexture) {
+  const Camera cam = Camera::lookAt({0, 0, 3}, {0, 0, 0}, {0, 1, 0}, 0.8f, 1.0f);
+  const Region full = Region::full(64, 64);
+  for (const bool shifted : {false, true}) {
+    Scene scene(device());
+    std::vector<std::uint8_t> texels;
+    for (int x = 0; x < 8; ++x)
+      texels.insert(texels.end(), {std::uint8_t(x < 4 ? 255 : 0), 0, std::uint8_t(x < 4 ? 0 : 255), 255});
+    Material m = gltf(glm::vec3(1.0f), 0.0f, 1.0f);
+    m.baseColorTexture = scene.addTexture(Texture::fromRgba8(8, 1, texels, false));
+    if (shifted) m.uv[std::size_t(TextureSlot::BaseColor)].row0 = glm::vec3(1.0f, 0.0f, 0.5f);
+    scene.addInstance(scene.addMesh(test::quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0})), scene.addMaterial(m),
+                      glm::mat4(1.0f));
+    scene.setEnvironment(Environment::constant(glm::vec3(1.0f)));
+    Renderer renderer(device());
+    FrameBuffer fb(64, 64);
+    renderer.render(scene, cam, full, fb);
+    const glm::vec2 left = test::project(cam, full, {-0.5f, 0, 0}), right = test::project(cam, full, {0.5f, 0, 0});
+    const glm::vec4 l = fb.colour(int(left.x), int(left.y)), r = fb.colour(int(right.x), int(right.y));
+    EXPECT_EQ(l.r > l.b, !shifted) << "left, shifted " << shifted;
+    EXPECT_EQ(r.b > r.r, !shifted) << "right, shifted " << shifted;
+  }
+}
+
+// glTF's occlusion texture darkens the ambient and image-based light by
+// 1 + strength (occlusion - 1), and leaves direct light alone.
+TEST(VulkanGltfMaterial, OcclusionDarkensAmbientLightOnly) {
+  const Camera cam = Camera::lookAt({0, 0, 3}, {0, 0, 0}, {0, 1, 0}, 0.8f, 1.0f);
+  const Region full = Region::full(64, 64);
+  auto render = [&](bool ambient, float strength) {
+    Scene scene(device());
+    Material m = gltf(glm::vec3(0.8f), 0.0f, 0.6f);
+    if (strength >= 0.0f) {
+      const std::uint8_t quarter[4] = {64, 64, 64, 255};  // 0.25, linear
+      m.occlusionTexture = scene.addTexture(Texture::fromRgba8(1, 1, quarter, false));
+      m.occlusionStrength = strength;
+    }
+    scene.addInstance(scene.addMesh(test::quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0})), scene.addMaterial(m),
+                      glm::mat4(1.0f));
+    if (ambient)
+      scene.setEnvironment(Environment::constant(glm::vec3(1.0f)));
+    else
+      scene.addLight(DirectionalLight{glm::normalize(glm::vec3(0.3f, 0.2f, -1.0f)), glm::vec3(2.0f), false});
+    Renderer renderer(device());
+    FrameBuffer fb(64, 64);
+    renderer.render(scene, cam, full, fb);
+    return fb.colour(32, 32);
+  };
+  const float occlusion = 64.0f / 255.0f;
+  const glm::vec4 open = render(true, -1.0f), occluded = render(true, 1.0f), half = render(true, 0.5f);
+  EXPECT_NEAR(occluded.g, occlusion * open.g, 0.01f * open.g);
+  EXPECT_NEAR(half.g, (1.0f + 0.5f * (occlusion - 1.0f)) * open.g, 0.01f * open.g);
+  const glm::vec4 lit = render(false, -1.0f), litOccluded = render(false, 1.0f);
+  EXPECT_GT(lit.g, 0.05f);
+  EXPECT_NEAR(litOccluded.g, lit.g, 1e-4f) << "direct light is not occluded";
+}
+
 }  // namespace
 }  // namespace tsr::vk

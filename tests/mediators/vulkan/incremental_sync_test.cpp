@@ -112,6 +112,37 @@ TEST_F(IncrementalSync, AlphaModeEdits) {
   check("alpha-opaque");
 }
 
+// glTF's texture transform and occlusion reach the rasterizer through
+// change lists: a two-colour texture shifted by half a repeat, an
+// occlusion texture and its strength.
+TEST_F(IncrementalSync, TextureTransformAndOcclusionEdits) {
+  auto* m =
+      rig.source.find<sg::SurfaceMaterial>(test::findNamed(rig.source, sg::ContainerType::SurfaceMaterial, "white"));
+  ASSERT_NE(m, nullptr);
+  auto& halves = rig.source.create<sg::Image>("halves");
+  halves.setPixels(2, 1, 3, sg::PixelFormat::UInt8, {255, 40, 40, 40, 40, 255});
+  m->setBaseColorTexture(halves.id());
+  check("texture");
+  before = follower.image;
+  std::vector<sg::Vec3> rows;
+  for (std::size_t slot = 0; slot < std::size_t(sg::TextureSlot::Count); ++slot) {
+    const bool base = slot == std::size_t(sg::TextureSlot::BaseColor);
+    rows.push_back(sg::Vec3(1, 0, base ? 0.5f : 0.0f));
+    rows.push_back(sg::Vec3(0, 1, 0));
+  }
+  m->setUvTransforms(rows);
+  check("uv-transform");
+  before = follower.image;
+  auto& dark = rig.source.create<sg::Image>("occlusion");
+  dark.setPixels(1, 1, 1, sg::PixelFormat::UInt8, {32});
+  dark.setColorSpace(sg::ColorSpace::Linear);
+  m->setOcclusionTexture(dark.id());
+  check("occlusion");
+  before = follower.image;
+  m->setOcclusionStrength(0.25f);
+  check("occlusion-strength");
+}
+
 TEST_F(IncrementalSync, GeometryRangeEditUploadsOnlyTheRange) {
   auto* g = rig.source.find<sg::Geometry>(cubeGeometry(rig));
   ASSERT_NE(g, nullptr);

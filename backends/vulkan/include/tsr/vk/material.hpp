@@ -3,8 +3,11 @@
 #include "tsr/vk/ids.hpp"
 #include "tsr/vk/medium.hpp"
 
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include <array>
 #include <optional>
 
 namespace tsr::vk {
@@ -25,6 +28,20 @@ enum class MaterialType {
   MetallicRoughness,
 };
 
+// An affine map of a texture's coordinates (KHR_texture_transform): two rows.
+struct UvTransform {
+  glm::vec3 row0{1.0f, 0.0f, 0.0f};
+  glm::vec3 row1{0.0f, 1.0f, 0.0f};
+  glm::vec2 operator()(const glm::vec2& uv) const {
+    const glm::vec3 h(uv, 1.0f);
+    return {glm::dot(row0, h), glm::dot(row1, h)};
+  }
+};
+
+// A material's textures, in the order of their descriptor bindings and uv transforms.
+enum class TextureSlot { BaseColor, Emission, MetallicRoughness, Normal, Occlusion, Count };
+inline constexpr std::size_t kTextureSlots = static_cast<std::size_t>(TextureSlot::Count);
+
 struct Material {
   MaterialType type = MaterialType::Diffuse;
   glm::vec3 baseColor{0.8f};
@@ -41,13 +58,17 @@ struct Material {
   // derivatives of position and uv, so meshes need no tangents.
   std::optional<TextureId> normalTexture;
   float normalScale = 1.0f;  // scales the map's x and y
+  // Ambient occlusion (linear, red channel) darkens the ambient and the
+  // image-based light, not the lights: 1 + strength * (occlusion - 1).
+  std::optional<TextureId> occlusionTexture;
+  float occlusionStrength = 1.0f;
+  std::array<UvTransform, kTextureSlots> uv{};  // by TextureSlot
   // Below 1 the instance is alpha blended: drawn after opaque geometry,
   // sorted back to front, without depth writes, and casts no shadow.
   float opacity = 1.0f;
   // Above 0, alpha (opacity x the base colour texture's alpha) below it
   // cuts the surface away (glTF's MASK) and the rest is opaque: drawn with
-  // the opaque geometry. Its shadow map sees the whole surface (the shadow
-  // pass reads no texture), a documented approximation.
+  // the opaque geometry; its shadow is cut alike.
   float alphaCutoff = 0.0f;
   // What fills the (closed) mesh. Shown only behind a surface light passes
   // through (Glass or Dielectric; an index-matched boundary is Glass with
@@ -56,6 +77,9 @@ struct Material {
   // Behind an opaque surface nothing shows it, so it is ignored.
   std::optional<Medium> interior;
 
+  std::array<std::optional<TextureId>, kTextureSlots> textures() const {
+    return {baseColorTexture, emissionTexture, metallicRoughnessTexture, normalTexture, occlusionTexture};
+  }
   bool isEmissive() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
   bool isVolume() const {
     return interior && !interior->empty() && (type == MaterialType::Glass || type == MaterialType::Dielectric);

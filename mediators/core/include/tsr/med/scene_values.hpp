@@ -4,6 +4,7 @@
 // and the class of surface a material describes. One place, so that the
 // back-ends agree (the cross-back-end tests compare their images).
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -40,5 +41,9 @@ PlacedLight placeLight(const sg::Light& light, const glm::mat4& world);
 // rough conductor; else diffuse.
 enum class SurfaceClass { Diffuse, Conductor, Dielectric, Mirror, Glass };
 SurfaceClass classify(const sg::SurfaceMaterial& material);
+
+// A texture slot's transform (KHR_texture_transform) as two rows; a
+// malformed one (NaN, infinity) is the identity.
+std::pair<glm::vec3, glm::vec3> usableUvTransform(const sg::SurfaceMaterial& material, sg::TextureSlot slot);
 
 }  // namespace tsr::med
