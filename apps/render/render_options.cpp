@@ -87,6 +87,11 @@ bool parseRenderOptions(int argc, char** argv, RenderJob& o, std::string& listPa
   auto* atOption = viewGroup->add_option("--look-at", lookAt,
                                          "point looked at X,Y,Z (default with --look-from: the bounds' centre)");
   auto* fovOption = viewGroup->add_option("--fov", fov, "vertical field of view in degrees, 0 < fov < 180");
+  double aperture = 0, focusDistance = 0;
+  auto* apertureOption = viewGroup->add_option(
+      "--aperture", aperture, "thin lens radius in scene units: depth of field (embree; 0: a pinhole, the default)");
+  auto* focusOption =
+      viewGroup->add_option("--focus-distance", focusDistance, "distance in focus along the view, scene units");
   bool noDefaultLight = false;
   viewGroup->add_flag("--no-default-light", noDefaultLight,
                       "a scene without lights stays unlit (default: a grey dome and a camera light)");
@@ -106,6 +111,8 @@ bool parseRenderOptions(int argc, char** argv, RenderJob& o, std::string& listPa
   if (*fromOption) o.view.look.from = parsePoint("--look-from", lookFrom);
   if (*atOption) o.view.look.at = parsePoint("--look-at", lookAt);
   if (*fovOption) o.view.look.fovDegrees = static_cast<float>(fov);
+  if (*apertureOption) o.view.look.apertureRadius = static_cast<float>(aperture);
+  if (*focusOption) o.view.look.focusDistance = static_cast<float>(focusDistance);
   sg::validate(o.view.look);
   o.view.defaultLight = !noDefaultLight;
   if (*exposureOption && !(std::isfinite(exposure) && std::abs(exposure) <= 64))

@@ -37,7 +37,8 @@ med::PixelRect readRect(sg::ByteReader& r, std::uint32_t width, std::uint32_t he
 void writeView(sg::ByteWriter& w, const med::View& v) {
   for (int c = 0; c < 4; ++c)
     for (int row = 0; row < 4; ++row) w.f32(v.cameraToWorld[c][row]);
-  for (float f : {v.left, v.right, v.bottom, v.top, v.nearPlane, v.farPlane}) w.f32(f);
+  for (float f : {v.left, v.right, v.bottom, v.top, v.nearPlane, v.farPlane, v.apertureRadius, v.focusDistance})
+    w.f32(f);
   w.varint(v.width);
   w.varint(v.height);
   writeRect(w, v.region);
@@ -48,7 +49,9 @@ med::View readView(sg::ByteReader& r, RectLimits limits) {
   med::View v;
   for (int c = 0; c < 4; ++c)
     for (int row = 0; row < 4; ++row) v.cameraToWorld[c][row] = r.f32();
-  for (float* f : {&v.left, &v.right, &v.bottom, &v.top, &v.nearPlane, &v.farPlane}) *f = r.f32();
+  for (float* f :
+       {&v.left, &v.right, &v.bottom, &v.top, &v.nearPlane, &v.farPlane, &v.apertureRadius, &v.focusDistance})
+    *f = r.f32();
   v.width = readCoordinate(r, limits.maxSide, "image width");
   v.height = readCoordinate(r, limits.maxSide, "image height");
   v.region = readRect(r, v.width, v.height, limits);

@@ -120,6 +120,21 @@ TEST_F(FirstHour, CamerasAreChosenByNameOrIndexAndPlacedByLookOptions) {
   EXPECT_GT(meanAbsDifference(image("front.exr"), image("wide.exr")), 0.02);
 }
 
+// Depth of field from the command line: focused on the boxes (6 units away)
+// they stay as the pinhole shows them; focused near the camera they blur.
+// An aperture of 0 is the pinhole, bit for bit.
+TEST_F(FirstHour, ApertureAndFocusDistanceGiveDepthOfField) {
+  const std::string scene = boxes() + " --backend embree --spp 16 --seed 5";
+  render(scene + " --output pinhole.exr");
+  render(scene + " --aperture 0 --focus-distance 2 --output zero.exr");
+  render(scene + " --aperture 0.3 --focus-distance 6 --output focused.exr");
+  render(scene + " --aperture 0.3 --focus-distance 1 --output blurred.exr");
+  EXPECT_EQ(meanAbsDifference(image("pinhole.exr"), image("zero.exr")), 0.0);
+  const double sharp = meanAbsDifference(image("pinhole.exr"), image("focused.exr"));
+  const double blurred = meanAbsDifference(image("pinhole.exr"), image("blurred.exr"));
+  EXPECT_GT(blurred, 2.0 * sharp) << "out of focus differs from the pinhole far more than in focus";
+}
+
 TEST_F(FirstHour, AnAnimatedParentMovesItsCamera) {
   const std::string scene = boxes() + " --backend vulkan --camera tracking";
   render(scene + " --frames 2 --fps 1 --output f.####.exr");
@@ -164,6 +179,8 @@ TEST_F(FirstHour, BadViewValuesAreOneErrorLine) {
   expectOneErrorLine(run("builtin:instances:4 --camera 1 --output x.png"), "--camera 1");
   expectOneErrorLine(run(scene + "--tonemap sepia"), "--tonemap");
   expectOneErrorLine(run(scene + "--exposure inf"), "--exposure");
+  expectOneErrorLine(run(scene + "--aperture -0.1"), "--aperture");
+  expectOneErrorLine(run(scene + "--focus-distance 0"), "--focus-distance");
   EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
 }
 

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "tsr/cluster/frame_header.hpp"
 #include "tsr/cluster/messages.hpp"
 #include "tsr/cluster/protocol_error.hpp"
@@ -29,6 +31,8 @@ med::View sampleView() {
   v.right = 0.7f;
   v.bottom = -0.4f;
   v.top = 0.4f;
+  v.apertureRadius = 0.05f;  // a lens travels with the view
+  v.focusDistance = 2.5f;
   v.width = 64;
   v.height = 48;
   v.region = {0, 0, 64, 48};
@@ -243,6 +247,12 @@ TEST(MessageCodec, ValidationRejectsNonsenseValues) {
   r = sampleRequest();
   r.jobs[0].view.nearPlane = -1;  // degenerate view
   EXPECT_THROW(parse<RenderRequest>(unframe(makeFrame(r))), ProtocolError);
+  for (const auto& [aperture, focus] : {std::pair{-0.1f, 1.0f}, std::pair{0.1f, 0.0f}, std::pair{NAN, 1.0f}}) {
+    r = sampleRequest();
+    r.jobs[0].view.apertureRadius = aperture;  // a lens no camera has
+    r.jobs[0].view.focusDistance = focus;
+    EXPECT_THROW(parse<RenderRequest>(unframe(makeFrame(r))), ProtocolError) << aperture << " " << focus;
+  }
   // Found by mutating recorded traffic: a finite eye at -2.7e38 aborted the
   // node in Embree. Views must stay within sg::kMaxCoordinate.
   for (float eye : {-2.7e38f, 1e20f, 1.1e12f}) {
@@ -383,8 +393,7 @@ TEST(FrameHeader, ChecksMagicVersionTypeAndSize) {
   EXPECT_EQ(kindOf(header(kProtocolVersion, 0, 0)), Kind::UnknownType);
   EXPECT_EQ(kindOf(header(kProtocolVersion, 200, 0)), Kind::UnknownType);
   EXPECT_EQ(kindOf(header(kProtocolVersion, static_cast<std::uint8_t>(Hello::kType), 1u << 20)), Kind::Oversized);
-  EXPECT_EQ(kindOf(header(kProtocolVersion, static_cast<std::uint8_t>(Snapshot::kType), 0xffffffffu)),
-            Kind::Oversized);
+  EXPECT_EQ(kindOf(header(kProtocolVersion, static_cast<std::uint8_t>(Snapshot::kType), 0xffffffffu)), Kind::Oversized);
 }
 
 TEST(FrameHeader, EveryTypeHasABoundedSpec) {

@@ -17,6 +17,14 @@ View View::fromCamera(const sg::Camera& camera, std::uint32_t width, std::uint32
   v.cameraToWorld = sg::cameraWorldPose(camera);
   v.nearPlane = camera.nearPlane();
   v.farPlane = camera.farPlane();
+  // A lens the camera cannot have (negative, NaN, no focus) is the pinhole.
+  const bool lens = std::isfinite(camera.apertureRadius()) && camera.apertureRadius() > 0.0f &&
+                    sg::withinCoordinateLimit(camera.apertureRadius()) && std::isfinite(camera.focusDistance()) &&
+                    camera.focusDistance() > 0.0f && sg::withinCoordinateLimit(camera.focusDistance());
+  if (lens) {
+    v.apertureRadius = camera.apertureRadius();
+    v.focusDistance = camera.focusDistance();
+  }
   float halfHeight = v.nearPlane * std::tan(camera.verticalFov() * 0.5f);
   float aspect = height ? static_cast<float>(width) / static_cast<float>(height) : 1.0f;
   v.top = halfHeight;
@@ -65,6 +73,10 @@ void View::validate() const {
       if (!sg::withinCoordinateLimit(cameraToWorld[c][r]))
         fail("camera pose entry " + number(cameraToWorld[c][r]) + " is not finite or beyond the coordinate limit of " +
              number(sg::kMaxCoordinate) + (c == 3 ? " (the eye position)" : ""));
+  if (!(apertureRadius >= 0.0f) || !sg::withinCoordinateLimit(apertureRadius))
+    fail("aperture radius " + number(apertureRadius) + " must be finite and not negative");
+  if (!(focusDistance > 0.0f) || !sg::withinCoordinateLimit(focusDistance))
+    fail("focus distance " + number(focusDistance) + " must be finite and positive");
   for (float v : {left, right, bottom, top, nearPlane})
     if (!sg::withinCoordinateLimit(v))
       fail("frustum value " + number(v) + " is beyond the coordinate limit of " + number(sg::kMaxCoordinate));

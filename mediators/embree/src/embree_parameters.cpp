@@ -71,7 +71,7 @@ std::vector<ParameterSpec> specs() {
 }  // namespace
 
 const BackendCapabilities& embreeCapabilities() {
-  static const BackendCapabilities capabilities{ParameterTable("embree", specs()), true};
+  static const BackendCapabilities capabilities{ParameterTable("embree", specs()), true, true};
   return capabilities;
 }
 

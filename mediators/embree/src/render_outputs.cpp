@@ -26,7 +26,8 @@ embree::RenderSettings renderSettingsFrom(const Parameters& p) {
 }
 
 embree::Camera cameraOf(const View& view) {
-  return embree::Camera{view.cameraToWorld, view.left, view.right, view.bottom, view.top, view.nearPlane};
+  return embree::Camera{view.cameraToWorld, view.left,      view.right,          view.bottom,
+                        view.top,           view.nearPlane, view.apertureRadius, view.focusDistance};
 }
 
 embree::Region regionOf(const View& view) {

@@ -93,6 +93,12 @@ void validate(const LookOverride& look) {
   if (look.fovDegrees && !(*look.fovDegrees > 0.0f && *look.fovDegrees < 180.0f))
     throw std::invalid_argument("--fov " + std::to_string(*look.fovDegrees) +
                                 ": expected a vertical field of view in degrees, 0 < fov < 180");
+  if (look.apertureRadius && !(*look.apertureRadius >= 0.0f && withinCoordinateLimit(*look.apertureRadius)))
+    throw std::invalid_argument("--aperture " + std::to_string(*look.apertureRadius) +
+                                ": expected the lens' radius in scene units, 0 (a pinhole) or more");
+  if (look.focusDistance && !(*look.focusDistance > 0.0f && withinCoordinateLimit(*look.focusDistance)))
+    throw std::invalid_argument("--focus-distance " + std::to_string(*look.focusDistance) +
+                                ": expected a distance in scene units above 0");
 }
 
 ContainerId applyLookOverride(Scene& scene, ContainerId root, ContainerId base, const LookOverride& look) {
@@ -100,8 +106,12 @@ ContainerId applyLookOverride(Scene& scene, ContainerId root, ContainerId base, 
   auto* original = scene.find<Camera>(base);
   if (!original) throw std::invalid_argument("container " + std::to_string(base) + " is not a camera of the scene");
   const float fov = look.fovDegrees ? glm::radians(*look.fovDegrees) : original->verticalFov();
+  const float aperture = look.apertureRadius.value_or(original->apertureRadius());
+  const float focus = look.focusDistance.value_or(original->focusDistance());
   if (!look.from && !look.at) {
     original->setVerticalFov(fov);  // it stays where it is, under its parents
+    original->setApertureRadius(aperture);
+    original->setFocusDistance(focus);
     return base;
   }
   const Mat4 basePose = cameraWorldPose(scene, base);
@@ -117,6 +127,8 @@ ContainerId applyLookOverride(Scene& scene, ContainerId root, ContainerId base, 
   camera.setVerticalFov(fov);
   camera.setEyeSeparation(original->eyeSeparation());
   camera.setZeroParallaxDistance(original->zeroParallaxDistance());
+  camera.setApertureRadius(aperture);
+  camera.setFocusDistance(focus);
   aim(camera, from, at);
   fitPlanes(camera, glm::length(from - bounds.centre), bounds.radius);
   return camera.id();

@@ -36,6 +36,10 @@ void Camera::validate() const {
   }
   if (!(left < right) || !(bottom < top)) throw Error("camera window is empty (need left < right, bottom < top)");
   if (!(near > 0.0f)) throw Error("camera near must be positive");
+  if (!(apertureRadius >= 0.0f) || !withinCoordinateLimit(apertureRadius))
+    throw Error("camera aperture radius must be finite and not negative");
+  if (!(focusDistance > 0.0f) || !withinCoordinateLimit(focusDistance))
+    throw Error("camera focus distance must be finite and positive");
   if (std::abs(glm::determinant(glm::mat3(cameraToWorld))) < 1e-12f) throw Error("camera transform is singular");
 }
 

@@ -121,14 +121,6 @@ PassResult Renderer::runTiles(Scene& scene, const Camera& camera, const Region& 
 
 namespace {
 
-// A camera ray through a jittered point of full-image pixel (px, py).
-glm::vec3 cameraRay(const Camera& camera, const glm::mat3& camRot, const Region& region, std::uint32_t px,
-                    std::uint32_t py, const glm::vec2& jitter) {
-  float cx = camera.left + (camera.right - camera.left) * ((float(px) + jitter.x) / float(region.width));
-  float cy = camera.top - (camera.top - camera.bottom) * ((float(py) + jitter.y) / float(region.height));
-  return glm::normalize(camRot * glm::vec3(cx, cy, -camera.near));
-}
-
 // Where camera rays start and how they are turned into world space.
 struct Eye {
   glm::vec3 position;
@@ -139,6 +131,28 @@ struct Eye {
         forward(glm::normalize(-glm::vec3(c.cameraToWorld[2]))),
         rotation(c.cameraToWorld) {}
 };
+
+struct CameraRay {
+  glm::vec3 origin, direction;
+};
+
+// A camera ray through a jittered point of full-image pixel (px, py); with
+// a lens, from a uniform point of the aperture (two more numbers of the
+// sample's stream, drawn only then: a pinhole's images stay as they were)
+// towards where the pinhole ray meets the plane in focus.
+CameraRay cameraRay(const Camera& camera, const Eye& eye, const Region& region, std::uint32_t px, std::uint32_t py,
+                    Rng& rng) {
+  const glm::vec2 jitter = rng.uniform2();
+  const float cx = camera.left + (camera.right - camera.left) * ((float(px) + jitter.x) / float(region.width));
+  const float cy = camera.top - (camera.top - camera.bottom) * ((float(py) + jitter.y) / float(region.height));
+  const glm::vec3 pinhole(cx, cy, -camera.near);
+  if (camera.apertureRadius <= 0.0f) return {eye.position, glm::normalize(eye.rotation * pinhole)};
+  const glm::vec2 u = rng.uniform2();
+  const float r = camera.apertureRadius * std::sqrt(u.x), phi = 2.0f * kPi * u.y;
+  const glm::vec3 lens(r * std::cos(phi), r * std::sin(phi), 0.0f);
+  const glm::vec3 focus = pinhole * (camera.focusDistance / camera.near);
+  return {eye.position + eye.rotation * lens, glm::normalize(eye.rotation * (focus - lens))};
+}
 
 // The flash samples' random stream, apart from the path samples'.
 constexpr std::uint64_t kFlashStream = 0x6A09E667F3BCC909ull;
@@ -162,8 +176,8 @@ PassResult Renderer::renderPaths(Scene& scene, const Camera& camera, const Regio
         const std::uint32_t firstSample = fb.sampleCount(x, y);
         for (std::uint32_t s = 0; s < samples; ++s) {
           Rng rng(pixelKey, firstSample + s);
-          glm::vec3 dir = cameraRay(camera, eye.rotation, region, px, py, rng.uniform2());
-          fb.accumulate(x, y, tracer.tracePath(rng, eye.position, dir, eye.position, eye.forward));
+          const CameraRay ray = cameraRay(camera, eye, region, px, py, rng);
+          fb.accumulate(x, y, tracer.tracePath(rng, ray.origin, ray.direction, eye.position, eye.forward));
         }
       },
       field ? splitmix64(field->uid()) : 0);
@@ -195,11 +209,11 @@ PassResult Renderer::renderRadiancePass(Scene& scene, const Camera& camera, cons
       scene, camera, region, fb,
       [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
         Rng rng(Rng::pixelKey(seed, px, py), fb.sampleCount(x, y));
-        glm::vec3 dir = cameraRay(camera, eye.rotation, region, px, py, rng.uniform2());
+        const CameraRay ray = cameraRay(camera, eye, region, px, py, rng);
         RadianceSample& record = acc.samples_[acc.at(x, y)];
         record = RadianceSample{};
-        PixelSample sample = tracer.tracePath(rng, eye.position, dir, eye.position, eye.forward, &record);
-        const float c = glm::dot(dir, eye.forward);
+        PixelSample sample = tracer.tracePath(rng, ray.origin, ray.direction, eye.position, eye.forward, &record);
+        const float c = glm::dot(ray.direction, eye.forward);
         record.pixelAngle = pixelAngle * c * std::sqrt(c);
         record.unfiltered = sample.indirect - sample.caustic;
         fb.accumulate(x, y, sample);
@@ -220,10 +234,10 @@ PassResult Renderer::renderFlashPass(Scene& scene, const Camera& camera, const R
         const std::uint32_t first = fb.rangeSamples(x, y);
         for (std::uint32_t s = 0; s < samples; ++s) {
           Rng rng(pixelKey, first + s);
-          glm::vec3 dir = cameraRay(camera, eye.rotation, region, px, py, rng.uniform2());
+          const CameraRay ray = cameraRay(camera, eye, region, px, py, rng);
           float distance = kInf;
-          const glm::vec3 flash = tracer.traceFlash(eye.position, dir, eye.position, distance);
-          fb.accumulateRange(x, y, flash, distance * glm::dot(dir, eye.forward));
+          const glm::vec3 flash = tracer.traceFlash(ray.origin, ray.direction, eye.position, distance);
+          fb.accumulateRange(x, y, flash, distance * glm::dot(ray.direction, eye.forward));
         }
       },
       std::nullopt);

@@ -5,7 +5,7 @@
 
 namespace tsr::embree {
 
-// Pinhole camera with an arbitrary off-axis frustum. In camera space the eye
+// Pinhole or thin-lens camera with an arbitrary off-axis frustum. In camera space the eye
 // is at the origin looking down -Z with +Y up; the image is the window
 // [left, right] x [bottom, top] on the plane z = -near. A wall tile or one
 // eye of a stereo pair is just another window.
@@ -16,6 +16,11 @@ struct Camera {
   float bottom = -1.0f;
   float top = 1.0f;
   float near = 1.0f;
+  // A thin lens of this radius in the eye's xy plane, focused on the plane
+  // z = -focusDistance: rays through a window point start on the lens and
+  // meet the pinhole ray on that plane. 0: the pinhole.
+  float apertureRadius = 0.0f;
+  float focusDistance = 1.0f;
 
   // Symmetric frustum; fovY is the full vertical angle in radians.
   static Camera lookAt(const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up, float fovY, float aspect);

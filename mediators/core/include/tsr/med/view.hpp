@@ -26,6 +26,10 @@ struct View {
   glm::mat4 cameraToWorld{1.0f};                     // camera looks down -Z, +Y up
   float left = -1, right = 1, bottom = -1, top = 1;  // window on the plane z = -near
   float nearPlane = 0.1f, farPlane = 1000.0f;
+  // A thin lens in the eye's xy plane (0: a pinhole), focused on the plane
+  // z = -focusDistance. Back-ends without depth of field
+  // (BackendCapabilities::depthOfField false) render the pinhole.
+  float apertureRadius = 0.0f, focusDistance = 5.0f;
   std::uint32_t width = 0, height = 0;  // the full image
   PixelRect region;                     // the part to render
 

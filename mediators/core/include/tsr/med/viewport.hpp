@@ -58,6 +58,8 @@ struct BackendCapabilities {
   // Renders of an unchanged view add samples to the image (RenderStats::
   // samples counts them); false: every render is final.
   bool progressive = false;
+  // Renders the View's thin lens (depth of field); false: its pinhole.
+  bool depthOfField = false;
 };
 
 class Viewport {
