@@ -19,6 +19,14 @@ struct BsdfSample {
   bool delta = false;
 };
 
+// A delta lobe taken whole, as a Whitted-style tracer follows it: its
+// direction and the share of the light along it that leaves towards wo (f / pdf
+// times the probability of picking the lobe).
+struct SpecularLobe {
+  glm::vec3 wi{0.0f};
+  glm::vec3 weight{0.0f};
+};
+
 // A material evaluated at one point, in the local shading frame (z = shading
 // normal, flipped to the side of wo, so wo.z > 0). eta is the index ratio
 // across the surface as seen from wo (inside/outside when entering).
@@ -61,6 +69,11 @@ struct Bsdf {
     if (type != MaterialType::Diffuse) return pdfOther(wo, wi);
     return wi.z > 0.0f ? wi.z * kInvPi : 0.0f;
   }
+  // The delta lobes at wo, at most two (reflection, refraction), each with
+  // its whole weight: perfect mirrors and glass, smooth MetallicRoughness,
+  // an Interface's straight passage. Rough lobes are not among them.
+  int specularLobes(const glm::vec3& wo, SpecularLobe out[2]) const;
+
   // eval, and pdf into *pdf when asked: one call where MIS needs both.
   glm::vec3 evalPdf(const glm::vec3& wo, const glm::vec3& wi, float* pdf) const {
     if (type == MaterialType::Diffuse) {
@@ -110,6 +123,7 @@ struct Bsdf {
   Lobes preparedLobes_{};
   glm::vec3 evalMetallicRoughness(const glm::vec3& wo, const glm::vec3& wi) const;
   float pdfMetallicRoughness(const glm::vec3& wo, const glm::vec3& wi) const;
+  int specularLobesMetallicRoughness(const glm::vec3& wo, SpecularLobe out[2]) const;
   glm::vec3 evalPdfMetallicRoughness(const glm::vec3& wo, const glm::vec3& wi, float& pdf) const;
   bool sampleMetallicRoughness(const glm::vec3& wo, const glm::vec2& u, float uLobe, BsdfSample& out) const;
 };

@@ -196,4 +196,19 @@ bool Bsdf::sampleMetallicRoughness(const glm::vec3& wo, const glm::vec2& u, floa
   return std::isfinite(out.weight.x + out.weight.y + out.weight.z);
 }
 
+// The delta lobes of a smooth surface with the weights sampling gives them
+// times the probabilities of picking them.
+int Bsdf::specularLobesMetallicRoughness(const glm::vec3& wo, SpecularLobe out[2]) const {
+  if (!smooth()) return 0;
+  const Lobes l = lobesAt(wo.z);
+  int n = 0;
+  if (l.pReflect > 0.0f) out[n++] = {{-wo.x, -wo.y, wo.z}, reflectance(*this, l.f0, wo.z)};
+  glm::vec3 wi;
+  if (l.pRefract > 0.0f && refract(wo, glm::vec3(0.0f, 0.0f, 1.0f), eta, wi)) {
+    const float f = specular * fresnelDielectric(wo.z, eta);
+    out[n++] = {wi, (1.0f - metallic) * transmission * (1.0f - f) * colour};
+  }
+  return n;
+}
+
 }  // namespace tsr::embree
