@@ -65,9 +65,10 @@ class ViewerPane {
   // Figure 5.6's middle step: with rasterWhileMoving, the first frame the
   // camera rests after moving renders one Whitted-style image (sharp
   // reflections and hard shadows, mode=whitted), shown while the path
-  // tracer's own image gathers its first kWhittedUntil samples.
+  // tracer's own image gathers its first kWhittedUntil samples: 2, where
+  // the pixel filter, the viewer's default, gives its first preview.
   bool showingWhitted() const { return showWhitted_; }
-  static constexpr std::uint32_t kWhittedUntil = 4;
+  static constexpr std::uint32_t kWhittedUntil = 2;
   const med::RenderStats& stats() const { return stats_; }
   // The back-end of the last frame (the rasteriser while moving, with that option).
   const std::string& shownBackend() const { return shown_; }
