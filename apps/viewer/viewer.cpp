@@ -246,7 +246,11 @@ void Viewer::setAnimationTime(double seconds) {
 void Viewer::renderPanes() {
   auto* camera = session_->source.find<sg::Camera>(session_->camera);
   const auto now = std::chrono::steady_clock::now();
-  if (orbit_.apply(*camera)) lastMove_ = now;
+  if (orbit_.apply(*camera)) {
+    lastMove_ = now;
+    framesSinceMove_ = 0;
+  }
+  ++framesSinceMove_;
   const double dt =
       lastFrame_.time_since_epoch().count() ? std::chrono::duration<double>(now - lastFrame_).count() : 0.0;
   lastFrame_ = now;

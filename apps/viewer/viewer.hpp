@@ -62,6 +62,7 @@ class Viewer {
   void screenshotPane(std::size_t pane, const std::string& path);
   void screenshotWindow(const std::string& path);
   void pick(std::size_t pane, std::uint32_t x, std::uint32_t y);
+  void report() const;
   void cycleBackend(std::size_t pane);
   void saveBookmark(const std::string& name);
   void loadBookmark(const std::string& name);
@@ -96,6 +97,7 @@ class Viewer {
   bool sceneChanged_ = true;
   bool showPanels_ = true;
   std::chrono::steady_clock::time_point lastMove_{};
+  std::uint64_t framesSinceMove_ = 0;  // rendered since lastMove_, that one included
   std::chrono::steady_clock::time_point lastFrame_{};
   std::uint64_t frame_ = 0;
   std::uint32_t screenshots_ = 0;

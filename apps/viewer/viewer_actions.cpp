@@ -100,6 +100,23 @@ void Viewer::runAction(const ScriptAction& a) {
     screenshotWindow(a.words[0]);
   } else if (a.verb == "open") {
     loadScene(a.words[0]);
+  } else if (a.verb == "report") {
+    report();
+  }
+}
+
+// One line a viewport: how long ago and how many frames ago the camera
+// moved, and what is shown now. After "orbit" and "wait samples 2" the
+// seconds are the time to the first filtered preview; between two reports
+// the frames over the seconds are the progressive frame rate.
+void Viewer::report() const {
+  const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - lastMove_).count();
+  for (std::size_t i = 0; i < panes_.size(); ++i) {
+    const ViewerPane& p = panes_[i];
+    std::cout << "report: viewport " << i << ": " << since << " s and " << framesSinceMove_
+              << " frames since the camera moved, showing " << p.shownBackend()
+              << (p.showingWhitted() ? " (whitted)" : "") << ", " << p.samples() << " samples, " << p.samplesPerSecond()
+              << " spp/s" << std::endl;
   }
 }
 

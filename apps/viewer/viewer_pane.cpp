@@ -9,6 +9,9 @@ namespace tsr::app {
 namespace {
 // What a progressive back-end shows while the camera moves, when asked to.
 constexpr const char* kRasteriser = "vulkan";
+// ... and what it shows the moment the camera rests (figure 5.6's middle step).
+constexpr const char* kMode = "mode";
+constexpr const char* kWhitted = "whitted";
 }  // namespace
 
 void ViewerPane::setParameter(const med::ViewportRegistry& registry, const std::string& name,
@@ -19,6 +22,8 @@ void ViewerPane::setParameter(const med::ViewportRegistry& registry, const std::
   defaults_.parameters.set(name, value);
   for (auto& [backend, viewport] : viewports_)
     if (viewport->capabilities().parameters.declares(name) || isRemote(backend)) viewport->setParameter(name, value);
+  if (whitted_ && name != kMode && whitted_->capabilities().parameters.declares(name))
+    whitted_->setParameter(name, value);
   restart_ = true;
 }
 
@@ -27,6 +32,8 @@ void ViewerPane::resetScene(const med::ViewportSettings& defaults) {
   defaults_ = defaults;
   defaults_.parameters = kept;
   viewports_.clear();
+  whitted_.reset();
+  showWhitted_ = false;
   remoteBackends_.clear();
   frame_ = {};
   stats_ = {};
@@ -51,15 +58,33 @@ med::Viewport& ViewerPane::viewport(const std::string& backend, const med::Viewp
   return *it->second;
 }
 
+med::Viewport* ViewerPane::whittedViewport(const std::string& backend, const med::ViewportRegistry& registry,
+                                           med::ContextPool& contexts) {
+  if (isRemote(backend) || !registry.capabilities(backend).parameters.declares(kMode)) return nullptr;
+  if (!whitted_ || whitted_->backend() != backend) {
+    med::ViewportSettings settings = defaults_;
+    settings.backend = backend;
+    settings.parameters = registry.parametersFor(backend, defaults_.parameters);
+    settings.parameters.set(kMode, std::string(kWhitted));
+    whitted_ = registry.create(settings, contexts);  // shares the path tracer's converted scene
+  }
+  return whitted_.get();
+}
+
 void ViewerPane::render(const med::ViewportRegistry& registry, med::ContextPool& contexts, const sg::Replica& replica,
                         const med::View& view, bool sceneChanged, const ConvergenceSettings& convergence) {
   std::string backend = backend_;
-  if (registry.capabilities(backend).progressive && convergence.rasterWhileMoving && convergence.cameraMoving &&
-      registry.has(kRasteriser))
-    backend = kRasteriser;
+  const bool standIn = registry.capabilities(backend).progressive && convergence.rasterWhileMoving &&
+                       registry.has(kRasteriser) && backend != kRasteriser;
+  if (standIn && convergence.cameraMoving) backend = kRasteriser;
   const bool switched = backend != shown_;
+  // The camera came to rest: the rasteriser stood in for this back-end until now.
+  const bool rested = standIn && switched && shown_ == kRasteriser && backend == backend_;
   shown_ = backend;
-  if (sceneChanged || !(view == lastView_)) restart_ = true;
+  if (sceneChanged || !(view == lastView_)) {
+    restart_ = true;
+    showWhitted_ = false;
+  }
   lastView_ = view;
   med::Viewport& vp = viewport(backend, registry, contexts);
 
@@ -81,6 +106,17 @@ void ViewerPane::render(const med::ViewportRegistry& registry, med::ContextPool&
     if (reportSwitch) switchReport_.emplace(backend, stats_);
     return;
   }
+  if (rested) {
+    if (med::Viewport* whitted = whittedViewport(backend, registry, contexts)) {
+      stats_ = whitted->render(replica, view, whittedFrame_, control);
+      showWhitted_ = true;
+      samples_ = 0;
+      if (reportSwitch) switchReport_.emplace(backend, stats_);
+      restart_ = true;  // the path tracer starts on the next frame
+      converging_ = true;
+      return;
+    }
+  }
   // The path tracer converges one pass a frame: it is asked for the samples
   // it has plus one (it restarts by itself when the view, the scene or its
   // settings changed, and then renders that one sample, paused or not).
@@ -94,6 +130,7 @@ void ViewerPane::render(const med::ViewportRegistry& registry, med::ContextPool&
   stats_ = vp.render(replica, view, frame_, control);
   if (reportSwitch) switchReport_.emplace(backend, stats_);
   samples_ = stats_.samples;
+  if (showWhitted_ && samples_ >= std::min(kWhittedUntil, limit)) showWhitted_ = false;
   // Rates over the whole convergence so far (filter steps included), not
   // one frame's: a filter frame would read as a stall.
   if (samples_ < previous || samples_ <= 1) rates_ = {};  // the accumulation started again

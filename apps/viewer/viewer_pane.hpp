@@ -60,7 +60,15 @@ class ViewerPane {
   // What catching up took on the first frame after the last switch, once.
   std::optional<std::pair<std::string, med::RenderStats>> takeSwitchReport();
 
-  const med::FrameBuffer& frame() const { return frame_; }
+  // The picture shown: the Whitted image while it bridges (below), else the last frame.
+  const med::FrameBuffer& frame() const { return showWhitted_ ? whittedFrame_ : frame_; }
+  // Figure 5.6's middle step: with rasterWhileMoving, the first frame the
+  // camera rests after moving renders one Whitted-style image (sharp
+  // reflections and hard shadows, mode=whitted), shown while the path
+  // tracer's own image gathers its first kWhittedUntil samples: 2, where
+  // the pixel filter, the viewer's default, gives its first preview.
+  bool showingWhitted() const { return showWhitted_; }
+  static constexpr std::uint32_t kWhittedUntil = 2;
   const med::RenderStats& stats() const { return stats_; }
   // The back-end of the last frame (the rasteriser while moving, with that option).
   const std::string& shownBackend() const { return shown_; }
@@ -78,6 +86,9 @@ class ViewerPane {
  private:
   med::Viewport& viewport(const std::string& backend, const med::ViewportRegistry& registry,
                           med::ContextPool& contexts);
+  // The Whitted viewport of a back-end that offers mode=whitted, else null.
+  med::Viewport* whittedViewport(const std::string& backend, const med::ViewportRegistry& registry,
+                                 med::ContextPool& contexts);
 
   med::ViewportSettings defaults_;
   std::string backend_;
@@ -87,6 +98,9 @@ class ViewerPane {
   RemoteLayers remote_;
   std::set<std::string> remoteBackends_;
   med::FrameBuffer frame_;
+  std::unique_ptr<med::Viewport> whitted_;
+  med::FrameBuffer whittedFrame_;
+  bool showWhitted_ = false;
   med::RenderStats stats_;
   med::View lastView_;
   std::uint32_t samples_ = 0;

@@ -127,7 +127,8 @@ void Viewer::drawPanels() {
       ImGui::EndCombo();
     }
     const med::RenderStats& stats = pane.stats();
-    ImGui::Text("showing %s, last render %.1f ms", pane.shownBackend().c_str(), stats.seconds * 1e3);
+    ImGui::Text("showing %s%s, last render %.1f ms", pane.shownBackend().c_str(),
+                pane.showingWhitted() ? " (Whitted until the path tracer catches up)" : "", stats.seconds * 1e3);
     if (pane.isRemote(pane.shownBackend())) {
       ImGui::Text("rendered on the cluster's nodes (%s)", options_.cluster.c_str());
     } else if (pane.progressive()) {
@@ -137,8 +138,7 @@ void Viewer::drawPanels() {
                                       : "(done)");
       ImGui::Text("%.2f spp/s, %.2f Mrays/s (since restart)", pane.samplesPerSecond(), pane.raysPerSecond() * 1e-6);
     }
-    if (!pane.isRemote(pane.backend()) &&
-        ImGui::CollapsingHeader("Parameters", ImGuiTreeNodeFlags_DefaultOpen)) {
+    if (!pane.isRemote(pane.backend()) && ImGui::CollapsingHeader("Parameters", ImGuiTreeNodeFlags_DefaultOpen)) {
       // Every parameter the back-end declares, in a scrolling list (the path
       // tracer has dozens); spp is the viewer's: the sample limit sets it.
       const med::ParameterTable& table = registry_.capabilities(pane.backend()).parameters;

@@ -130,10 +130,12 @@ ScriptAction parseLine(const std::vector<std::string>& w, const std::string& whe
     p.arity(w, 2, 2, "window-screenshot FILE");
   } else if (verb == "open") {
     p.arity(w, 2, 2, "open SCENE");
+  } else if (verb == "report") {
+    p.arity(w, 1, 1, "report");
   } else {
     p.fail("unknown action '" + verb +
            "' (backend, orbit, tilt, pan, zoom, wait, param, limit, pause, resume, raster-while-moving, time, pick, "
-           "bookmark, screenshot, window-screenshot, open)");
+           "bookmark, screenshot, window-screenshot, open, report)");
   }
   return a;
 }

@@ -21,6 +21,8 @@
 //   screenshot FILE [VIEWPORT]    the viewport's image (default 0): PNG, or EXR with its AOVs as layers
 //   window-screenshot FILE        the whole window, panels included (PNG)
 //   open SCENE                    open another scene
+//   report                        print the seconds and frames since the camera last moved and
+//                                 what each viewport shows with how many samples (for benchmarks)
 #include <cstdint>
 #include <stdexcept>
 #include <string>

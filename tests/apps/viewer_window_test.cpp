@@ -217,6 +217,26 @@ TEST_F(ViewerWindow, RasterisesWhileMovingThenPathTraces) {
   EXPECT_GT(compare(image("resting.png"), image("raster.png")).meanAbs, 0.02) << "path traced at rest";
 }
 
+// Figure 5.6's whole chain: the rasteriser while the camera moves, one
+// Whitted image (mode=whitted) the moment it rests, shown until the path
+// tracer has 2 samples of its own (its first filtered preview), then the
+// path tracer.
+TEST_F(ViewerWindow, RasterWhileMovingThenWhittedThenPathTracer) {
+  writeScript("chain.txt", "raster-while-moving on\nwait frames 2\norbit 10\nreport\nwait samples 1\nreport\n"
+                           "screenshot whitted.png\nwait samples 2\nreport\nscreenshot traced.png\n");
+  const Outcome v = viewer("builtin:cornell --viewports embree --size 96x72 --spp 8 --script chain.txt --exit-after");
+  ASSERT_EQ(v.status, 0) << v.err;
+  const auto moving = v.out.find("showing vulkan");
+  const auto whitted = v.out.find("showing embree (whitted), 1 samples");
+  const auto traced = v.out.find("showing embree, ");  // no "(whitted)": the path tracer's preview is shown
+  ASSERT_NE(moving, std::string::npos) << v.out;
+  ASSERT_NE(whitted, std::string::npos) << v.out;
+  ASSERT_NE(traced, std::string::npos) << v.out;
+  EXPECT_LT(moving, whitted);
+  EXPECT_LT(whitted, traced);
+  EXPECT_GT(compare(image("whitted.png"), image("traced.png")).meanAbs, 0.01) << "two renderers, two pictures";
+}
+
 // The time action (the panel's slider) poses the animation; open replaces the scene.
 TEST_F(ViewerWindow, AnimationTimeAndOpeningAnotherScene) {
   writeScript("time.txt", "time 0\nwait frames 2\nscreenshot t0.png\ntime 1.5\nwait frames 2\nscreenshot t15.png\n"

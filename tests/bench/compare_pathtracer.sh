@@ -11,11 +11,13 @@
 # ROUNDS rounds, in ABBA order, and each column is the median over rounds;
 # the ratios are medians of the per-round ratios (each round's pair ran back
 # to back).
-#   tests/bench/compare_pathtracer.sh [build/default/bin] [spp] [rounds]
+#   tests/bench/compare_pathtracer.sh [build/default/bin] [spp] [rounds] [size]
+# (issue 29's table: tests/bench/compare_pathtracer.sh build/default/bin 32 5 256)
 set -euo pipefail
 bin=${1:-build/default/bin}
 spp=${2:-16}
 rounds=${3:-5}
+size=${4:-512}
 here=$(cd "$(dirname "$0")/../.." && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -28,11 +30,11 @@ for variant in plain heavy; do
   : >"$work/rounds"
   for round in $(seq "$rounds"); do
     run_ref() {
-      ref=$(cd "$work" && pathtracer -c "$work/$variant/cornell.ecs" --size 512 512 --spp "$spp" --max-path-length 8 \
+      ref=$(cd "$work" && pathtracer -c "$work/$variant/cornell.ecs" --size "$size" "$size" --spp "$spp" --max-path-length 8 \
               --benchmark 1 4 -o "$work/ref.pfm" 2>&1)
     }
     run_ours() {
-      "$bin/tessera-render" "$work/$variant/cornell.gltf" --size 512x512 --spp "$spp" --max-depth 8 --quiet \
+      "$bin/tessera-render" "$work/$variant/cornell.gltf" --size "${size}x${size}" --spp "$spp" --max-depth 8 --quiet \
           --output "$work/ours.exr" --stats-json "$work/ours.json"
     }
     # Which renderer goes first alternates (ABBA): on this machine the first

@@ -16,6 +16,10 @@ std::vector<ParameterSpec> specs() {
   const embree::PhotonSettings photons;
   const temporal::TruncationRule pca;
   return {
+      // Figure 5.6's chain: the path tracer converges, and a Whitted-style
+      // image (one sample: sharp reflections, refractions and hard shadows,
+      // no indirect light, no filter) bridges the moment the camera rests.
+      choiceParameter("mode", "path", {"path", "whitted"}, "renderer: progressive path tracer, or one Whitted sample"),
       integerParameter("spp", 16, 1, kMaxSpp, "samples per pixel the progressive image converges to"),
       integerParameter("maxDepth", 8, 0, 1024, "maximum path depth"),
       integerParameter("seed", 0, 0, INT64_MAX, "random seed"),

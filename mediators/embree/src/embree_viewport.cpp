@@ -97,6 +97,26 @@ FrameBuffer crop(FrameBuffer full, std::uint32_t x0, std::uint32_t y0, std::uint
 
 }  // namespace
 
+// mode=whitted: one Whitted sample per pixel, rendered once for a scene,
+// camera and region and shown as it is (spp and the filters do not apply).
+void EmbreeViewport::renderWhitted(const embree::Camera& camera, const embree::Region& region, FrameBuffer& out,
+                                   const RenderControl& control, std::chrono::steady_clock::time_point start,
+                                   RenderStats& stats) {
+  if (!accumulation_ || accumulation_->width() != region.regionWidth() ||
+      accumulation_->height() != region.regionHeight())
+    accumulation_ = std::make_unique<embree::FrameBuffer>(region.regionWidth(), region.regionHeight());
+  embree::Scene& scene = context_->adapter.scene();
+  scene.commit();
+  stats.syncSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (renderer_.restartIfStale(scene, camera, region, *accumulation_, embree::Estimator::Whitted))
+    pixelFilter_.forget();
+  if (accumulation_->sampleCount(0, 0) == 0 && !(control.cancel && control.cancel->load()))
+    stats.rays += renderer_.renderWhittedPass(scene, camera, region, *accumulation_).rays;
+  if (control.progress) control.progress(1.0);
+  stats.samples = accumulation_->sampleCount(0, 0);
+  out = accumulatedFrame(*accumulation_, control);
+}
+
 RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view, FrameBuffer& out,
                                    const RenderControl& control) {
   view.validate();
@@ -112,6 +132,11 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
 
   const embree::Camera camera = cameraOf(view);
   const embree::Region region = regionOf(view);
+  if (embreeParameters().choice(settings_.parameters, "mode") == "whitted") {
+    renderWhitted(camera, region, out, control, start, stats);
+    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return stats;
+  }
   // Radiance filtering gathers samples up to maxRadius pixels away in every
   // frame: a region (a cluster tile) is traced with a halo that wide, so
   // its pixels match the whole frame's (within the README's tolerance).

@@ -3,6 +3,7 @@
 // with the same root and background share a context: one device, one
 // converted scene. Each viewport keeps its own accumulation buffer, so two
 // eyes or two tiles converge independently.
+#include <chrono>
 #include <memory>
 #include <mutex>
 
@@ -38,6 +39,8 @@ class EmbreeViewport final : public Viewport {
  private:
   void writeFilterInputs(embree::Scene& scene, const embree::Camera& camera, const embree::Region& traced,
                          const FilterSettings& filter, FrameBuffer& full);
+  void renderWhitted(const embree::Camera& camera, const embree::Region& region, FrameBuffer& out,
+                     const RenderControl& control, std::chrono::steady_clock::time_point start, RenderStats& stats);
   void resolveLocally(const FilterSettings& filter, std::uint32_t spp, FrameBuffer& out, const RenderControl& control);
 
   std::shared_ptr<EmbreeContext> context_;

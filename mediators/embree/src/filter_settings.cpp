@@ -36,6 +36,8 @@ FilterSettings FilterSettings::from(const Parameters& p) {
   s.pixel.kernel = choose<embree::FilterKernel>(
       p, "filterKernel",
       {{"bilateral", embree::FilterKernel::Bilateral}, {"separable", embree::FilterKernel::Separable}});
+  // A Whitted image is one noiseless sample: nothing to filter.
+  if (t.choice(p, "mode") == "whitted") s.mode = FilterMode::None;
   if (s.mode == FilterMode::Atrous) s.pixel.kernel = embree::FilterKernel::Atrous;
   s.pixel.threshold = real(p, "threshold");
   s.pixel.sigmaS = real(p, "sigmaS");

@@ -223,6 +223,7 @@ void RadianceFilterStep::run(const FrameBuffer& fb, RadianceAccumulator& acc, co
           bsdf.specular = own.specular;
           bsdf.transmission = own.transmission;
           const glm::vec3 woL = frame.toLocal(own.wo);
+          bsdf.prepare(woL);                                       // every neighbour is evaluated at this wo
           const bool diffuse = own.type == MaterialType::Diffuse;  // f cos / pdf is the albedo
           const float e = blinnExponent(own);
           const bool bilateral = cfg.bilateral && filter && k > kBilateralStart;
@@ -280,8 +281,9 @@ void RadianceFilterStep::run(const FrameBuffer& fb, RadianceAccumulator& acc, co
               if (diffuse) {
                 if (wiL.z > 0.0f) sum += wgt * q.radiance;  // f cos / pdf = albedo
               } else {
-                const float pdf = bsdf.pdf(woL, wiL);
-                if (pdf > 0.0f) sum += (wgt / pdf) * bsdf.eval(woL, wiL) * q.radiance;
+                float pdf;
+                const glm::vec3 f = bsdf.evalPdf(woL, wiL, &pdf);
+                if (pdf > 0.0f) sum += (wgt / pdf) * f * q.radiance;
               }
             }
           }

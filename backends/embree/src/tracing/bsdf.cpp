@@ -165,4 +165,30 @@ bool Bsdf::sampleOther(const glm::vec3& wo, const glm::vec2& u, float uLobe, Bsd
   return false;
 }
 
+int Bsdf::specularLobes(const glm::vec3& wo, SpecularLobe out[2]) const {
+  switch (type) {
+    case MaterialType::Mirror:
+      out[0] = {{-wo.x, -wo.y, wo.z}, colour};
+      return 1;
+    case MaterialType::Interface:
+      out[0] = {-wo, glm::vec3(1.0f)};
+      return 1;
+    case MaterialType::Glass: {
+      const float f = fresnelDielectric(wo.z, eta);
+      out[0] = {{-wo.x, -wo.y, wo.z}, glm::vec3(f)};
+      glm::vec3 wi;
+      if (f >= 1.0f || !refract(wo, glm::vec3(0.0f, 0.0f, 1.0f), eta, wi)) return 1;  // total internal reflection
+      out[1] = {wi, (1.0f - f) * colour};
+      return 2;
+    }
+    case MaterialType::MetallicRoughness:
+      return specularLobesMetallicRoughness(wo, out);
+    case MaterialType::Diffuse:
+    case MaterialType::Conductor:
+    case MaterialType::Dielectric:
+      return 0;
+  }
+  return 0;
+}
+
 }  // namespace tsr::embree

@@ -26,17 +26,6 @@ namespace tsr::embree {
 
 using namespace ggx;
 
-// What the lobes share at one outgoing direction.
-struct Bsdf::Lobes {
-  float etaOpaque;                    // the opaque dielectric's index ratio, always seen from outside
-  float f0;                           // its Schlick F0, specular-weighted
-  float diffuse;                      // weight of Lambert(colour): (1 - m)(1 - t)(1 - E_F(wo))
-  glm::vec3 multiple;                 // metal's multiple-scattering colour, m * F_ms / (pi (1 - E_avg)), 0 when smooth
-  float eo;                           // E(wo) of GGX with F = 1
-  float eavg;                         // its hemispherical average
-  float pReflect, pRefract, pCosine;  // normalised selection probabilities
-};
-
 namespace {
 
 float schlickScalar(float f0, float f90, float c) {
@@ -47,16 +36,26 @@ float schlickScalar(float f0, float f90, float c) {
 
 }  // namespace
 
+void Bsdf::prepare(const glm::vec3& wo) {
+  prepared_ = false;
+  if (type != MaterialType::MetallicRoughness) return;
+  preparedLobes_ = lobes(wo.z);
+  preparedCos_ = std::bit_cast<std::uint32_t>(wo.z);
+  prepared_ = true;
+}
+
 Bsdf::Lobes Bsdf::lobes(float cosO) const {
   Lobes l;
   const float m = metallic, t = transmission;
   l.etaOpaque = eta < 1.0f ? 1.0f / eta : eta;
   const float r = (l.etaOpaque - 1.0f) / (l.etaOpaque + 1.0f);
   l.f0 = specular * r * r;
-  const GgxAlbedo e = ggxAlbedo(cosO, alpha);
+  const GgxAlbedo e = smooth() ? GgxAlbedo{} : ggxAlbedo(cosO, alpha);
   l.eo = smooth() ? 1.0f : e.white();
   const float layer = smooth() ? schlickScalar(l.f0, specular, cosO) : l.f0 * e.scale + specular * e.bias;
   l.diffuse = (1.0f - m) * (1.0f - t) * std::max(0.0f, 1.0f - layer);
+  l.lambdaO = smooth() ? 0.0f : lambda(glm::vec3(0.0f, 0.0f, cosO), alpha);
+  l.g1o = 1.0f / (1.0f + l.lambdaO);
   l.multiple = glm::vec3(0.0f);
   l.eavg = 1.0f;
   if (m > 0.0f && !smooth()) {
@@ -65,11 +64,13 @@ Bsdf::Lobes Bsdf::lobes(float cosO) const {
     const glm::vec3 fms = favg * favg * eavg / (glm::vec3(1.0f) - favg * (1.0f - eavg));
     l.multiple = m * fms / (kPi * std::max(1e-4f, 1.0f - eavg));
   }
-  const glm::vec3 fr =
-      (1.0f - m) * ((1.0f - t) * schlickScalar(l.f0, specular, cosO) + t * specular * fresnelDielectric(cosO, eta)) +
-      m * schlick(colour, cosO);
+  // Without transmission the dielectric's Fresnel is multiplied by t = 0:
+  // not computed, the same sums.
+  const float fresnel = t != 0.0f ? fresnelDielectric(cosO, eta) : 0.0f;
+  const glm::vec3 fr = (1.0f - m) * ((1.0f - t) * schlickScalar(l.f0, specular, cosO) + t * specular * fresnel) +
+                       m * schlick(colour, cosO);
   const float wReflect = luminance(fr);
-  const float wRefract = (1.0f - m) * t * (1.0f - specular * fresnelDielectric(cosO, eta)) * luminance(colour);
+  const float wRefract = (1.0f - m) * t * (1.0f - specular * fresnel) * luminance(colour);
   const float wCosine = l.diffuse * luminance(colour) + luminance(l.multiple) * kPi * (1.0f - l.eo) * (1.0f - l.eavg);
   const float sum = wReflect + wRefract + wCosine;
   const float inv = sum > 0.0f ? 1.0f / sum : 0.0f;
@@ -85,7 +86,8 @@ namespace {
 // transmissive dielectric and the metal, mixed by their weights.
 glm::vec3 reflectance(const Bsdf& b, float f0, float c) {
   const float m = b.metallic, t = b.transmission;
-  return (1.0f - m) * ((1.0f - t) * schlickScalar(f0, b.specular, c) + t * b.specular * fresnelDielectric(c, b.eta)) +
+  const float fresnel = t != 0.0f ? fresnelDielectric(c, b.eta) : 0.0f;  // as in Bsdf::lobes
+  return (1.0f - m) * ((1.0f - t) * schlickScalar(f0, b.specular, c) + t * b.specular * fresnel) +
          m * schlick(b.colour, c);
 }
 
@@ -108,7 +110,7 @@ float refractionPdf(const glm::vec3& wo, const glm::vec3& wi, const glm::vec3& h
 }  // namespace
 
 glm::vec3 Bsdf::evalMetallicRoughness(const glm::vec3& wo, const glm::vec3& wi) const {
-  const Lobes l = lobes(wo.z);
+  const Lobes l = lobesAt(wo.z);
   if (wi.z > 0.0f) {
     glm::vec3 f = l.diffuse * colour * (kInvPi * wi.z);
     if (smooth()) return f;
@@ -123,7 +125,7 @@ glm::vec3 Bsdf::evalMetallicRoughness(const glm::vec3& wo, const glm::vec3& wi) 
 }
 
 float Bsdf::pdfMetallicRoughness(const glm::vec3& wo, const glm::vec3& wi) const {
-  const Lobes l = lobes(wo.z);
+  const Lobes l = lobesAt(wo.z);
   if (wi.z > 0.0f) {
     float p = l.pCosine * wi.z * kInvPi;
     if (smooth() || l.pReflect <= 0.0f) return p;
@@ -136,8 +138,33 @@ float Bsdf::pdfMetallicRoughness(const glm::vec3& wo, const glm::vec3& wi) const
   return l.pRefract * refractionPdf(wo, wi, h, alpha, eta);
 }
 
+// evalMetallicRoughness and pdfMetallicRoughness in one: the lobes and the
+// half vector once, each result by the same expressions as alone.
+glm::vec3 Bsdf::evalPdfMetallicRoughness(const glm::vec3& wo, const glm::vec3& wi, float& pdf) const {
+  const Lobes l = lobesAt(wo.z);
+  if (wi.z > 0.0f) {
+    glm::vec3 f = l.diffuse * colour * (kInvPi * wi.z);
+    pdf = l.pCosine * wi.z * kInvPi;
+    if (smooth()) return f;
+    if (metallic > 0.0f) f += l.multiple * ((1.0f - l.eo) * (1.0f - ggxAlbedo(wi.z, alpha).white()) * wi.z);
+    const glm::vec3 h = glm::normalize(wo + wi);
+    const float oh = glm::dot(wo, h);
+    // visiblePdf and G2 with wo's lambda from the lobes: the same operations.
+    const float d = D(h, alpha);
+    if (!(l.pReflect <= 0.0f) && oh > 0.0f) pdf = pdf + l.pReflect * (l.g1o * oh * d / wo.z) / (4.0f * oh);
+    const float g2 = 1.0f / (1.0f + l.lambdaO + lambda(wi, alpha));
+    return f + reflectance(*this, l.f0, oh) * (d * g2 / (4.0f * wo.z));
+  }
+  pdf = 0.0f;
+  glm::vec3 h;
+  if (wi.z == 0.0f || smooth() || !refractionHalf(wo, wi, eta, h)) return glm::vec3(0.0f);
+  if (!(l.pRefract <= 0.0f)) pdf = l.pRefract * refractionPdf(wo, wi, h, alpha, eta);
+  if (transmission <= 0.0f || metallic >= 1.0f) return glm::vec3(0.0f);
+  return (1.0f - metallic) * transmission * colour * refractionValue(wo, wi, h, alpha, eta, specular);
+}
+
 bool Bsdf::sampleMetallicRoughness(const glm::vec3& wo, const glm::vec2& u, float uLobe, BsdfSample& out) const {
-  const Lobes l = lobes(wo.z);
+  const Lobes l = lobesAt(wo.z);
   out.delta = false;
   if (uLobe < l.pReflect) {
     if (smooth()) {
@@ -163,10 +190,25 @@ bool Bsdf::sampleMetallicRoughness(const glm::vec3& wo, const glm::vec2& u, floa
     if (l.pCosine <= 0.0f) return false;
     out.wi = sampleCosineHemisphere(u);
   }
-  out.pdf = pdfMetallicRoughness(wo, out.wi);
+  const glm::vec3 f = evalPdfMetallicRoughness(wo, out.wi, out.pdf);
   if (!(out.pdf > 0.0f)) return false;
-  out.weight = evalMetallicRoughness(wo, out.wi) / out.pdf;
+  out.weight = f / out.pdf;
   return std::isfinite(out.weight.x + out.weight.y + out.weight.z);
+}
+
+// The delta lobes of a smooth surface with the weights sampling gives them
+// times the probabilities of picking them.
+int Bsdf::specularLobesMetallicRoughness(const glm::vec3& wo, SpecularLobe out[2]) const {
+  if (!smooth()) return 0;
+  const Lobes l = lobesAt(wo.z);
+  int n = 0;
+  if (l.pReflect > 0.0f) out[n++] = {{-wo.x, -wo.y, wo.z}, reflectance(*this, l.f0, wo.z)};
+  glm::vec3 wi;
+  if (l.pRefract > 0.0f && refract(wo, glm::vec3(0.0f, 0.0f, 1.0f), eta, wi)) {
+    const float f = specular * fresnelDielectric(wo.z, eta);
+    out[n++] = {wi, (1.0f - metallic) * transmission * (1.0f - f) * colour};
+  }
+  return n;
 }
 
 }  // namespace tsr::embree

@@ -31,6 +31,20 @@ std::uint64_t settingsHash(const RenderSettings& s) {
 // FrameBuffer::Key::estimator of radiance passes (plain paths: 0, an
 // irradiance field: a hash of its uid).
 constexpr std::uint64_t kRadianceEstimator = 0x3C6EF372FE94F82Bull;
+// ... and of Whitted passes.
+constexpr std::uint64_t kWhittedEstimator = 0xA54FF53A5F1D36F1ull;
+
+std::uint64_t estimatorKey(Estimator e) {
+  switch (e) {
+    case Estimator::Paths:
+      return 0;
+    case Estimator::Radiance:
+      return kRadianceEstimator;
+    case Estimator::Whitted:
+      return kWhittedEstimator;
+  }
+  return 0;
+}
 
 }  // namespace
 
@@ -47,7 +61,7 @@ void Renderer::setSettings(const RenderSettings& settings) {
 
 bool Renderer::restartIfStale(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
                               Estimator estimator) {
-  return restartIfStale(scene, camera, region, fb, estimator == Estimator::Radiance ? kRadianceEstimator : 0);
+  return restartIfStale(scene, camera, region, fb, estimatorKey(estimator));
 }
 
 bool Renderer::restartIfStale(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
@@ -221,6 +235,18 @@ PassResult Renderer::renderRadiancePass(Scene& scene, const Camera& camera, cons
       kRadianceEstimator);
   if (result.completed) arena_->arena.execute([&] { RadianceFilterStep::run(fb, acc, filter); });
   return result;
+}
+
+PassResult Renderer::renderWhittedPass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb) {
+  const Eye eye(camera);
+  return runTiles(
+      scene, camera, region, fb,
+      [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
+        if (fb.sampleCount(x, y) > 0) return;
+        const glm::vec3 dir = cameraRay(camera, eye.rotation, region, px, py, glm::vec2(0.5f));
+        fb.accumulate(x, y, tracer.traceWhitted(eye.position, dir, eye.position, eye.forward));
+      },
+      kWhittedEstimator);
 }
 
 PassResult Renderer::renderFlashPass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,

@@ -39,6 +39,7 @@ struct ScatteringPoint {
     bsdf.metallic = at.metallic;
     bsdf.specular = m.specular;
     bsdf.transmission = at.transmission;
+    if (!facesAway()) bsdf.prepare(woL);
   }
 
   // The shading normal faces away from the viewer: no consistent answer.
@@ -55,8 +56,7 @@ struct ScatteringPoint {
       if (pdf) *pdf = 0.0f;
       return glm::vec3(0.0f);
     }
-    if (pdf) *pdf = bsdf.pdf(woL, wiL);
-    return bsdf.eval(woL, wiL);
+    return bsdf.evalPdf(woL, wiL, pdf);
   }
 
   // A direction sampled from the BSDF, in world space as `wi`; false when

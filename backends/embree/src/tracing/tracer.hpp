@@ -305,13 +305,18 @@ struct Tracer {
   bool sampleEmitter(const glm::vec3& p, float uSelect, const glm::vec2& u, EmitterSample& out) const {
     float prob = 0.0f;
     std::uint32_t i = scene.emitters.sampleDiscrete(uSelect, &prob);
+    return emitterPoint(p, i, prob, sampleTriangle(u), out);
+  }
+
+  // The point with barycentrics b on emitter triangle i, picked with
+  // probability prob, as light arriving at p.
+  bool emitterPoint(const glm::vec3& p, std::uint32_t i, float prob, const glm::vec2& b, EmitterSample& out) const {
     auto it = std::upper_bound(scene.emissiveRanges.begin(), scene.emissiveRanges.end(), i,
                                [](std::uint32_t v, const EmissiveRange& r) { return v < r.offset; });
     const EmissiveRange& range = *(it - 1);
     const InstanceView& v = scene.views[range.instance];
     const EmitterTriangle& tri = scene.emitterTriangles[i];
     if (!(tri.area > 0.0f)) return false;
-    glm::vec2 b = sampleTriangle(u);
     out.point = tri.p0 + b.x * tri.e1 + b.y * tri.e2;
     glm::vec3 d = out.point - p;
     float dist2 = glm::dot(d, d);
@@ -342,6 +347,11 @@ struct Tracer {
   // unoccluded head light at the eye.
   // `distance` receives the camera ray's hit distance (+inf on a miss).
   glm::vec3 traceFlash(glm::vec3 org, glm::vec3 dir, const glm::vec3& eye, float& distance);
+  // One Whitted-style sample of a camera ray (whitted.cpp): perfect
+  // specular lobes followed as a ray tree, every other surface lit directly
+  // with hard shadows; no random numbers.
+  PixelSample traceWhitted(const glm::vec3& org, const glm::vec3& dir, const glm::vec3& camPos,
+                           const glm::vec3& forward);
 };
 
 }  // namespace tsr::embree

@@ -20,7 +20,9 @@ enum class LightSampling { Mis, LightOnly, BsdfOnly };
 
 // How a pass estimates a pixel. Samples of different estimators do not mix
 // in one frame buffer: a pass of another one restarts it.
-enum class Estimator { Paths, Radiance };
+// Whitted is no estimator of the path tracer's image but its own one-sample
+// image (renderWhittedPass).
+enum class Estimator { Paths, Radiance, Whitted };
 
 struct RenderSettings {
   std::uint64_t seed = 0;
@@ -71,6 +73,18 @@ class Renderer {
   // head light. Restarts fb as renderPass does when what it holds is stale.
   PassResult renderFlashPass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
                              std::uint32_t samples = 4);
+
+  // The middle renderer of Schwenk's figure 5.6, for the moment the camera
+  // rests and before the path tracer's image shows much: one Whitted-style
+  // sample per pixel through its centre. Perfect specular surfaces (mirrors,
+  // glass, smooth metallic-roughness) are followed as a ray tree up to
+  // maxDepth, sharp; other surfaces are lit straight from the point, spot and
+  // directional lights and from the centroids of emitter triangles, each
+  // behind one shadow ray, so shadows are hard; the environment lights them
+  // from their normal's direction. No indirect light. fb holds it as colour
+  // and Direct with one sample (its own estimator: path passes restart fb);
+  // pixels that have it already are left alone, so a second call is free.
+  PassResult renderWhittedPass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb);
 
   // Radiance filtering (radiance_filter.hpp): traces one path per pixel
   // (samplesPerPass is ignored), accumulating it into fb as renderPass does
