@@ -150,16 +150,21 @@ struct CameraRay {
   glm::vec3 origin, direction;
 };
 
+// The point at `jitter` in full-image pixel (px, py) on the window, in camera space.
+glm::vec3 windowPoint(const Camera& camera, const Region& region, std::uint32_t px, std::uint32_t py,
+                      const glm::vec2& jitter) {
+  const float cx = camera.left + (camera.right - camera.left) * ((float(px) + jitter.x) / float(region.width));
+  const float cy = camera.top - (camera.top - camera.bottom) * ((float(py) + jitter.y) / float(region.height));
+  return {cx, cy, -camera.near};
+}
+
 // A camera ray through a jittered point of full-image pixel (px, py); with
 // a lens, from a uniform point of the aperture (two more numbers of the
 // sample's stream, drawn only then: a pinhole's images stay as they were)
 // towards where the pinhole ray meets the plane in focus.
 CameraRay cameraRay(const Camera& camera, const Eye& eye, const Region& region, std::uint32_t px, std::uint32_t py,
                     Rng& rng) {
-  const glm::vec2 jitter = rng.uniform2();
-  const float cx = camera.left + (camera.right - camera.left) * ((float(px) + jitter.x) / float(region.width));
-  const float cy = camera.top - (camera.top - camera.bottom) * ((float(py) + jitter.y) / float(region.height));
-  const glm::vec3 pinhole(cx, cy, -camera.near);
+  const glm::vec3 pinhole = windowPoint(camera, region, px, py, rng.uniform2());
   if (camera.apertureRadius <= 0.0f) return {eye.position, glm::normalize(eye.rotation * pinhole)};
   const glm::vec2 u = rng.uniform2();
   const float r = camera.apertureRadius * std::sqrt(u.x), phi = 2.0f * kPi * u.y;
@@ -243,7 +248,8 @@ PassResult Renderer::renderWhittedPass(Scene& scene, const Camera& camera, const
       scene, camera, region, fb,
       [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
         if (fb.sampleCount(x, y) > 0) return;
-        const glm::vec3 dir = cameraRay(camera, eye.rotation, region, px, py, glm::vec2(0.5f));
+        // Through the pixel's centre and the lens' (a Whitted frame is sharp everywhere).
+        const glm::vec3 dir = glm::normalize(eye.rotation * windowPoint(camera, region, px, py, glm::vec2(0.5f)));
         fb.accumulate(x, y, tracer.traceWhitted(eye.position, dir, eye.position, eye.forward));
       },
       kWhittedEstimator);
