@@ -140,7 +140,7 @@ void Renderer::Impl::prefilterProbeLevels(const SceneState& s) {
 void Renderer::Impl::updateProbe(const SceneState& s, const RenderSettings& settings, GpuFrame& frame,
                                  RenderStats& stats) {
   ensureProbeImages();
-  const ProbeUse wanted = wantsProbe(s);
+  const ProbeUse wanted = settings.reflectionProbe ? wantsProbe(s) : ProbeUse::None;
   const bool use = wanted != ProbeUse::None;
   const ProbeKey key{&s, s.version};
   if (use && (probeHeld != key || probeUseHeld != wanted)) {

@@ -13,6 +13,9 @@ const BackendCapabilities& vulkanCapabilities() {
                                 integerParameter("shadowMapSize", 1024, 16, 8192, "shadow map side, texels"),
                                 integerParameter("emitterLights", 32, 0, 256, "emissive triangles lit as point lights"),
                                 flagParameter("emitterAmbient", true, "emitters' remaining light as ambient"),
+                                flagParameter("reflectionProbe", true,
+                                              "mirrors, glass and glossy surfaces reflect the scene, not only "
+                                              "the environment"),
                                 choiceParameter("visibility", "all", {"all", "guided"},
                                                 "all: draw every object; guided: draw what was visible last frame, "
                                                 "then what a depth-pyramid test finds newly visible")}),
@@ -34,6 +37,7 @@ vk::RenderSettings VulkanViewport::renderSettings() const {
   s.shadowMapSize = static_cast<std::uint32_t>(t.integer(p, "shadowMapSize"));
   s.emitterLights = static_cast<std::uint32_t>(t.integer(p, "emitterLights"));
   s.emitterAmbient = t.flag(p, "emitterAmbient");
+  s.reflectionProbe = t.flag(p, "reflectionProbe");
   s.visibility = t.choice(p, "visibility") == "guided" ? vk::Visibility::Guided : vk::Visibility::All;
   s.background = backgroundColour(context_->adapter.environment());
   return s;

@@ -74,6 +74,7 @@ struct Rig {
     } else {
       s.parameters.set("msaa", std::int64_t{4});
       s.parameters.set("shadows", false);
+      s.parameters.set("reflectionProbe", false);  // direct light only, as the path tracer's
     }
     med::FrameBuffer image;
     registry.create(s, contexts)

@@ -32,6 +32,10 @@ struct RenderSettings {
   // term, see src/emitter_lights.hpp), so a room lit by a panel is not
   // black wherever the panel does not shine directly.
   bool emitterAmbient = true;
+  // The reflection probe: mirrors, glass and glossy surfaces reflect the
+  // scene (light that has bounced once); false: they reflect the
+  // environment only, as with direct light alone.
+  bool reflectionProbe = true;
   glm::vec4 background{0.0f};  // colour and alpha where nothing is drawn
 };
 
