@@ -16,7 +16,9 @@ namespace tsr::cluster {
 // the kind, never by the text).
 // 3: scenes carry volume materials (container type 10), Geometry.volume
 // and Background.medium.
-inline constexpr std::uint8_t kProtocolVersion = 3;
+// 4: RenderTile carries the samples per pixel its tile holds and the rays
+// it cast (the client's workload figures).
+inline constexpr std::uint8_t kProtocolVersion = 4;
 inline constexpr std::size_t kFrameHeaderBytes = 10;
 inline constexpr std::array<std::uint8_t, 4> kFrameMagic{'T', 'S', 'R', 'N'};
 
