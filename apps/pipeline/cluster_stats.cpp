@@ -28,6 +28,7 @@ nlohmann::json nodeJson(std::size_t i, const cluster::NodeWork& n) {
           {"samples", n.samples},
           {"rays", n.rays},
           {"milliseconds", n.seconds * 1e3},
+          {"sync_milliseconds", n.syncSeconds * 1e3},
           {"busy_milliseconds", n.busySeconds * 1e3}};
 }
 }  // namespace
@@ -61,6 +62,7 @@ void ClusterStatsLog::write(const RenderJob& options) const {
       t.samples += n.samples;
       t.rays += n.rays;
       t.seconds += n.seconds;
+      t.syncSeconds += n.syncSeconds;
       t.busySeconds += n.busySeconds;
       rays += n.rays;
     }
@@ -70,6 +72,7 @@ void ClusterStatsLog::write(const RenderJob& options) const {
           {{"rect", {t.rect.x0, t.rect.y0, t.rect.x1, t.rect.y1}},
            {"node", t.node == cluster::TileWork::kNoNode ? nlohmann::json(nullptr) : nlohmann::json(t.node)},
            {"milliseconds", t.seconds * 1e3},
+           {"sync_milliseconds", t.syncSeconds * 1e3},
            {"samples", t.samples},
            {"rays", t.rays}});
     }

@@ -555,7 +555,8 @@ ClusterFrame ClusterWindow::render(const med::View& view, std::int64_t sequenceF
   for (const auto& it : round.items()) result.offlineTiles += it.offline ? 1 : 0;
   for (const auto& it : round.items())
     if (it.done || it.offline)
-      result.tiles.push_back({it.rect, it.offline ? TileWork::kNoNode : it.node, it.seconds, it.samples, it.rays});
+      result.tiles.push_back(
+          {it.rect, it.offline ? TileWork::kNoNode : it.node, it.seconds, it.samples, it.rays, it.syncSeconds});
   result.participants = live;
   s.lastWorkload = summarizeWorkload(result.tiles, result.busySeconds, live, s.nodes.size());
   result.reassignedItems = s.reassigned;

@@ -27,6 +27,7 @@ struct WorkItem {
   bool resolve = true;                    // false: the client resolves the assembled frame
   // What the node that delivered it reports (RenderTile), once done.
   double seconds = 0;
+  double syncSeconds = 0;
   std::uint32_t samples = 0;
   std::uint64_t rays = 0;
 };

@@ -294,6 +294,7 @@ void NodeSession::render(State& st, const NodeContext& ctx, const RenderRequest&
       tile.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
       tile.samples = std::min(stats.samples, kMaxTileSamples);
       tile.rays = std::min(stats.rays, kMaxTileRays);
+      tile.syncSeconds = std::clamp(stats.syncSeconds, 0.0, tile.seconds);
       tile.outputs = job.outputs;
       if (request.compression == Compression::Kept) {
         tile.compression = Compression::Kept;

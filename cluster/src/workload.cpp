@@ -19,6 +19,7 @@ FrameWorkload summarizeWorkload(const std::vector<TileWork>& tiles, const std::v
     n.samples += pixels * t.samples;
     n.rays += t.rays;
     n.seconds += t.seconds;
+    n.syncSeconds += t.syncSeconds;
   }
   for (std::size_t i = 0; i < std::min(nodeCount, busySeconds.size()); ++i) out.nodes[i].busySeconds = busySeconds[i];
   double sum = 0, slowest = 0;
@@ -71,10 +72,10 @@ std::vector<glm::vec4> drawWorkload(const std::vector<TileWork>& tiles, std::uin
   std::vector<glm::vec4> image(std::size_t{width} * height, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
   double slowest = 0;
   for (const TileWork& t : tiles)
-    if (t.node != TileWork::kNoNode) slowest = std::max(slowest, t.seconds);
+    if (t.node != TileWork::kNoNode) slowest = std::max(slowest, t.renderSeconds());
   for (const TileWork& t : tiles) {
     if (t.node == TileWork::kNoNode) continue;
-    const glm::vec4 colour(nodeColour(t.node) * workloadShade(t.seconds, slowest), 1.0f);
+    const glm::vec4 colour(nodeColour(t.node) * workloadShade(t.renderSeconds(), slowest), 1.0f);
     const std::uint32_t x1 = std::min(t.rect.x1, width), y1 = std::min(t.rect.y1, height);
     for (std::uint32_t y = t.rect.y0; y < y1; ++y)
       std::fill(image.begin() + std::ptrdiff_t(std::size_t{y} * width + t.rect.x0),

@@ -54,7 +54,7 @@ inline void expectWorkloadImageMatches(const std::vector<glm::vec4>& image, std:
                                        const std::vector<TileWork>& tiles, std::size_t nodes, const std::string& what) {
   ASSERT_EQ(image.size(), std::size_t{width} * height) << what;
   double slowest = 0;
-  for (const TileWork& t : tiles) slowest = std::max(slowest, t.seconds);
+  for (const TileWork& t : tiles) slowest = std::max(slowest, t.renderSeconds());
   std::size_t wrongNode = 0, unevenTile = 0;
   for (const TileWork& t : tiles) {
     ASSERT_NE(t.node, TileWork::kNoNode) << what;
@@ -65,7 +65,7 @@ inline void expectWorkloadImageMatches(const std::vector<glm::vec4>& image, std:
         wrongNode += nodeShown(p, nodes) != t.node ? 1 : 0;
         unevenTile += p != first ? 1 : 0;
       }
-    if (t.seconds == slowest) {  // drawn at full brightness: exactly the node's colour
+    if (t.renderSeconds() == slowest) {  // drawn at full brightness: exactly the node's colour
       const glm::vec3 full = nodeColour(t.node);
       EXPECT_NEAR(first.r, full.r, 1e-6) << what;
       EXPECT_NEAR(first.g, full.g, 1e-6) << what;

@@ -57,7 +57,8 @@ std::vector<TileWork> loggedTiles(const nlohmann::json& frame) {
          t.at("node").get<std::size_t>(),
          t.at("milliseconds").get<double>() / 1e3,
          t.at("samples").get<std::uint32_t>(),
-         t.at("rays").get<std::uint64_t>()});
+         t.at("rays").get<std::uint64_t>(),
+         t.at("sync_milliseconds").get<double>() / 1e3});
   }
   return tiles;
 }
@@ -97,6 +98,7 @@ TEST(WorkloadCli, TheWorkloadImageShowsTheLoggedNodesAndTheTilesCoverEachFrameOn
       EXPECT_EQ(node.at("samples"), sums.nodes[n].pixels * 2) << what;
       EXPECT_EQ(node.at("rays"), sums.nodes[n].rays) << what;
       EXPECT_NEAR(node.at("milliseconds").get<double>(), sums.nodes[n].seconds * 1e3, 1e-6) << what;
+      EXPECT_NEAR(node.at("sync_milliseconds").get<double>(), sums.nodes[n].syncSeconds * 1e3, 1e-6) << what;
       slowest = std::max(slowest, node.at("milliseconds").get<double>());
       sum += node.at("milliseconds").get<double>();
       total[n].pixels += sums.nodes[n].pixels;

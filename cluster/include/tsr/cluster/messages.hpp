@@ -262,10 +262,13 @@ struct RenderRequest {
 // One rendered rectangle. The pixels (RGBA float, then depth float, then
 // RGBA float per named output in `outputs` order, each row by row) follow
 // the fields, compressed as `compression` says; decodePixels checks them.
-// `seconds`, `samples` and `rays` say what rendering it cost (the client's
-// workload figures): `samples` is the samples per pixel the tile holds after
-// this render (med::RenderStats::samples; 0 for a back-end without), `rays`
-// those cast by this render.
+// `seconds`, `syncSeconds`, `samples` and `rays` say what rendering it cost
+// (the client's workload figures): `syncSeconds` is the part of `seconds`
+// spent catching the back-end up with the replica (med::RenderStats::
+// syncSeconds: the frame's scene changes land on the first tile a node
+// renders), `samples` the samples per pixel the tile holds after this render
+// (med::RenderStats::samples; 0 for a back-end without), `rays` those cast
+// by this render.
 struct RenderTile {
   static constexpr MessageType kType{11};
   static constexpr MessageSpec kSpec{kType, "RenderTile", Sender::Node, 1024 * kMiB, kAfterAuth};
@@ -278,6 +281,7 @@ struct RenderTile {
   std::vector<std::string> outputs = {};
   std::uint32_t samples = 0;
   std::uint64_t rays = 0;
+  double syncSeconds = 0;
   static constexpr bool keptOnNode(const RenderTile& t) { return t.compression == Compression::Kept; }
   static constexpr auto fields() {
     return std::tuple{
@@ -285,6 +289,7 @@ struct RenderTile {
         field("viewport id", &RenderTile::viewport, wire::varint(kMaxViewportId)),
         field("rectangle", &RenderTile::rect, wire::rect(kMaxImageSide, kMaxRectPixels)),
         field("seconds", &RenderTile::seconds, wire::seconds()),
+        field("sync seconds", &RenderTile::syncSeconds, wire::seconds()),
         field("samples per pixel", &RenderTile::samples, wire::varint(kMaxTileSamples)),
         field("ray count", &RenderTile::rays, wire::varint(kMaxTileRays)),
         field("output name", &RenderTile::outputs,

@@ -4,6 +4,7 @@
 // records every tile it placed (ClusterFrame::tiles); here they are added up
 // per node, with the balance of the frame, and drawn as the `workload`
 // image: each pixel in its node's colour, darker the quicker its tile was.
+#include <algorithm>
 #include <cstdint>
 #include <string_view>
 #include <vector>
@@ -27,6 +28,11 @@ struct TileWork {
   double seconds = 0;          // the node's time rendering it (RenderTile::seconds)
   std::uint32_t samples = 0;   // samples per pixel it holds after the frame
   std::uint64_t rays = 0;      // rays cast rendering it
+  double syncSeconds = 0;      // of `seconds`, catching the node's back-end up with the scene's changes
+
+  // What the tile itself cost: its seconds without the catching up that
+  // the frame's first tile on a node pays for all of them.
+  double renderSeconds() const { return std::max(0.0, seconds - syncSeconds); }
 };
 
 // One node's share of a frame.
@@ -35,7 +41,8 @@ struct NodeWork {
   std::uint64_t pixels = 0;
   std::uint64_t samples = 0;  // pixel samples its tiles hold: the sum of pixels x samples per pixel
   std::uint64_t rays = 0;
-  double seconds = 0;      // the sum of its tiles' render times
+  double seconds = 0;      // the sum of its tiles' times, catching up included
+  double syncSeconds = 0;  // of which catching up with the scene's changes
   double busySeconds = 0;  // its whole requests, encoding and sending included (FrameDone)
 };
 
@@ -64,8 +71,10 @@ glm::vec3 nodeColour(std::size_t node);
 float workloadShade(double seconds, double slowest);
 
 // The workload image of a width x height frame (row by row, alpha 1):
-// every tile's pixels in nodeColour(node) x workloadShade(seconds, the
-// frame's slowest tile); pixels of no tile, or of a given-up one, black.
+// every tile's pixels in nodeColour(node) x workloadShade(its
+// renderSeconds(), the frame's slowest such), so the scene's uneven cost
+// shows rather than which tile happened to catch its node up; pixels of no
+// tile, or of a given-up one, black.
 std::vector<glm::vec4> drawWorkload(const std::vector<TileWork>& tiles, std::uint32_t width, std::uint32_t height);
 
 }  // namespace tsr::cluster
