@@ -36,6 +36,13 @@ struct RenderJob {
   med::DisplayTransform display;  // --exposure, --tonemap (8-bit outputs only)
 };
 
+// How an --aov is written to an 8-bit file: as the picture (--exposure,
+// --tonemap), except the workload image, whose colours say which node
+// rendered a tile and stay as drawn.
+med::DisplayTransform aovDisplay(const RenderJob& job, const std::string& aov);
+// Whether --aov asks for the workload image (cluster::kWorkloadOutput).
+bool asksWorkload(const RenderJob& job);
+
 // --spp as the job's back-end reads it (its default when unset); 1 for a
 // back-end without samples.
 std::int64_t samplesPerPixel(const RenderJob& job);

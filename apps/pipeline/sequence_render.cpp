@@ -12,6 +12,7 @@
 #include "backends.hpp"
 #include "cluster_connection.hpp"
 #include "cluster_layer.hpp"
+#include "cluster_stats.hpp"
 #include "high_sample_frames.hpp"
 #include "option_values.hpp"
 #include "progress_bar.hpp"
@@ -147,18 +148,23 @@ std::vector<std::string> photonBackends() {
   return names;
 }
 
-FrameRenderer clusterRenderer(const RenderJob& options, const SceneSession& session) {
+// `log` records every frame's tiles and their cost (--stats-json).
+FrameRenderer clusterRenderer(const RenderJob& options, const SceneSession& session, ClusterStatsLog& log) {
   auto registry = std::make_shared<med::ViewportRegistry>();
   registerBackends(*registry);
   std::shared_ptr<cluster::ClusterWindow> window{
       connectCluster(clusterConfig(options), options, frameOutputs(options), *registry).release(),
       [registry](cluster::ClusterWindow* w) { delete w; }};
   window->setContent(session.imported.root, session.imported.background);
-  return [window](SceneSession& s, const sg::ChangeListPtr& delta, const med::View& view, int) {
+  return [window, &log](SceneSession& s, const sg::ChangeListPtr& delta, const med::View& view, int frame) {
+    const auto started = std::chrono::steady_clock::now();
     const auto* camera = s.source.find<sg::Camera>(s.camera);
     window->setEyes(camera->eyeSeparation(), camera->zeroParallaxDistance());
     window->publish(s.source, delta);
-    return window->render(view).image;
+    cluster::ClusterFrame rendered = window->render(view);
+    log.record(frame, std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), rendered,
+               *window);
+    return std::move(rendered.image);
   };
 }
 
@@ -195,13 +201,17 @@ int renderSequence(const RenderJob& given, const SequenceOptions& sequence, cons
   if (!sequence.cluster.empty() && layers.empty() && options.temporal.inBackend())
     windowLayers.push_back(LayerSpec{options.backend, "", {}});
   const bool local = sequence.cluster.empty() || !windowLayers.empty();
+  if (!sequence.cluster.empty() && local && !options.statsJson.empty())
+    throw std::invalid_argument("--stats-json with --cluster and --temporal " + method +
+                                ": the nodes render one layer of a window here, which keeps no per-node figures");
   med::RenderStats stats;
+  ClusterStatsLog clusterStats;
   SequenceRenderer renderer = local ? localRenderer(options, windowLayers, session, stats)
-                                    : SequenceRenderer{clusterRenderer(options, session), 0, {}};
+                                    : SequenceRenderer{clusterRenderer(options, session, clusterStats), 0, {}};
   auto write = [&](int frame, const med::FrameBuffer& image) {
     std::string path = framePath(options.output, frame);
     med::writeImage(path, image, "colour", options.display);
-    for (const auto& aov : options.aovs) med::writeImage(aovPath(path, aov), image, aov, options.display);
+    for (const auto& aov : options.aovs) med::writeImage(aovPath(path, aov), image, aov, aovDisplay(options, aov));
     return path;
   };
   ProgressBar bar(options.temporal.active() ? "rendering + " + method : "rendering", !options.quiet);
@@ -272,7 +282,12 @@ int renderSequence(const RenderJob& given, const SequenceOptions& sequence, cons
                          : std::string())
                 << ")\n";
   }
-  if (!options.statsJson.empty()) writeStatsJson(options, stats, sequence.frames);
+  if (!options.statsJson.empty()) {
+    if (local)
+      writeStatsJson(options, stats, sequence.frames);
+    else
+      clusterStats.write(options);
+  }
   return 0;
 }
 

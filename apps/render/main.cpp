@@ -75,7 +75,7 @@ int run(int argc, char** argv) {
   else
     tsr::med::writeImage(options.output, image, "colour", options.display);
   for (const auto& aov : options.aovs)
-    tsr::med::writeImage(tsr::app::aovPath(options.output, aov), image, aov, options.display);
+    tsr::med::writeImage(tsr::app::aovPath(options.output, aov), image, aov, tsr::app::aovDisplay(options, aov));
   if (!options.statsJson.empty()) tsr::app::writeStatsJson(options, stats, 1);
   if (!options.quiet)
     std::cout << "wrote " << options.output << " (" << options.width << "x" << options.height << ", " << stats.samples

@@ -39,8 +39,13 @@ bool parseRenderOptions(int argc, char** argv, RenderJob& o, std::string& listPa
   auto* seedOption = app.add_option("--seed", seed, "random seed")->check(CLI::NonNegativeNumber);
   auto* threadsOption = app.add_option("--threads", threads, "render threads (0: all)")->check(CLI::Range(0, 4096));
   app.add_option("--output", o.output, "image file; the format follows the extension")->check(FileName());
-  app.add_option("--aov", o.aovs, "extra outputs to write next to --output (albedo, normal, depth, direct, ...)");
-  app.add_option("--stats-json", o.statsJson, "write render statistics as JSON")->check(FileName());
+  app.add_option("--aov", o.aovs,
+                 "extra outputs to write next to --output (albedo, normal, depth, direct, ...; with --cluster, "
+                 "workload: each tile in its node's colour, darker the quicker it rendered)");
+  app.add_option("--stats-json", o.statsJson,
+                 "write render statistics as JSON (with --cluster: per frame and node, tiles, pixels, samples, "
+                 "milliseconds and the balance)")
+      ->check(FileName());
   app.add_option("--param", params, "back-end parameter name=value (repeatable)");
   app.add_flag("--quiet", o.quiet, "no progress bar");
   ImportLimitOptions limits;
@@ -149,9 +154,15 @@ bool parseRenderOptions(int argc, char** argv, RenderJob& o, std::string& listPa
 void checkRenderJob(const RenderJob& o, const std::vector<LayerSpec>& layers) {
   const SequenceOptions& sequence = o.sequence;
   checkTemporalOptions(o.temporal, static_cast<int>(samplesPerPixel(o)));
-  if (!o.statsJson.empty() && !sequence.cluster.empty())
-    throw std::invalid_argument("--stats-json with --cluster: the nodes report no ray counts or conversion times to "
-                                "add up (measure a node with a local render)");
+  if (asksWorkload(o) && sequence.cluster.empty())
+    throw std::invalid_argument("--aov workload shows which cluster node rendered which tile: it needs --cluster");
+  // Through a layered window the nodes render one layer of it (a
+  // ClusterViewport): that window's statistics are a local render's.
+  if (!o.statsJson.empty() && !sequence.cluster.empty() && (!layers.empty() || o.temporal.inBackend()))
+    throw std::invalid_argument(std::string("--stats-json with --cluster and ") +
+                                (layers.empty() ? "--temporal " + o.temporal.method : std::string("--layers")) +
+                                ": the nodes render one layer of a window here, which keeps no per-node figures "
+                                "(leave --layers out, or measure a node with a local render)");
   if (o.temporal.active() && !sequence.framesGiven)
     throw std::invalid_argument("--temporal " + o.temporal.method + " needs --frames N");
   if (sequence.frames > 1 && o.output.find("####") == std::string::npos)

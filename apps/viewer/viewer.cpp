@@ -63,14 +63,22 @@ void Viewer::connectToCluster() {
   render.sequence.tokenFile = options_.tokenFile;
   render.parameters = options_.parameters;  // the config's own parameters win over these defaults
   const cluster::ClusterConfig config = clusterConfig(render);
-  std::shared_ptr<cluster::ClusterWindow> window = connectCluster(config, render, {}, registry_);
+  // The workload image (who rendered which tile) comes with every frame of
+  // a cooperative or mono wall cluster; the O key shows it over the image.
+  std::vector<std::string> outputs;
+  if (config.mode == cluster::ClusterMode::Cooperative ||
+      (config.mode == cluster::ClusterMode::Tiled && !config.wall.stereo()))
+    outputs.emplace_back(cluster::kWorkloadOutput);
+  std::shared_ptr<cluster::ClusterWindow> window = connectCluster(config, render, outputs, registry_);
   const auto* camera = session_->source.find<sg::Camera>(session_->camera);
   window->setEyes(camera->eyeSeparation(), camera->zeroParallaxDistance());
+  cluster_ = window;
   const std::string backend = config.nodes.front().backend;
-  panes_.front().setRemote([window, backend](const med::ViewportSettings& settings) -> std::unique_ptr<med::Viewport> {
-    if (settings.backend != backend) return nullptr;
-    return std::make_unique<cluster::ClusterViewport>(settings, window, std::vector<std::string>{});
-  });
+  panes_.front().setRemote(
+      [window, backend, outputs](const med::ViewportSettings& settings) -> std::unique_ptr<med::Viewport> {
+        if (settings.backend != backend) return nullptr;
+        return std::make_unique<cluster::ClusterViewport>(settings, window, outputs);
+      });
 }
 
 Viewer::~Viewer() {
@@ -223,6 +231,7 @@ void Viewer::handleInput() {
     }
     if (key == GLFW_KEY_SPACE) convergence_.paused = !convergence_.paused;
     if (key == GLFW_KEY_H) showPanels_ = !showPanels_;
+    if (key == GLFW_KEY_O) showWorkload_ = !showWorkload_;
     if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(window_, GLFW_TRUE);
     if (key == GLFW_KEY_F12 || key == GLFW_KEY_P) {
       ++screenshots_;
@@ -290,6 +299,11 @@ void Viewer::present() {
   for (std::size_t i = 0; i < panes_.size(); ++i) {
     const med::FrameBuffer& fb = panes_[i].frame();
     const auto* ids = fb.outputs.count(med::kIdOutput) ? &fb.outputs.at(med::kIdOutput) : nullptr;
+    const std::string workloadName(cluster::kWorkloadOutput);
+    const auto* workload =
+        showWorkload_ && panes_[i].isRemote(panes_[i].shownBackend()) && fb.outputs.count(workloadName)
+            ? &fb.outputs.at(workloadName)
+            : nullptr;
     const std::uint32_t x0 = std::uint32_t(i) * pw;
     for (std::uint32_t y = 0; y < std::min(fb.height, height_); ++y)
       for (std::uint32_t x = 0; x < std::min(fb.width, width_ - std::min(x0, width_)); ++x) {
@@ -300,6 +314,8 @@ void Viewer::present() {
           const bool hit = id.a > 0 && med::decodeObjectId(id) == selected_;
           c = hit ? glm::mix(c, glm::vec4(1.0f), 0.5f) : c * 0.35f;
         }
+        // Which node rendered the pixel's tile, half over the image (figure 5.8).
+        if (workload) c = glm::mix(c, (*workload)[fb.index(x, y)], 0.5f);
         image[std::size_t(y) * width_ + x0 + x] = glm::vec4(glm::vec3(c), 1.0f);
       }
     if (i > 0)  // a dark seam between viewports

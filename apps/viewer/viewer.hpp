@@ -20,6 +20,10 @@
 
 struct GLFWwindow;
 
+namespace tsr::cluster {
+class ClusterWindow;
+}  // namespace tsr::cluster
+
 namespace tsr::vk {
 class Device;
 class SwapchainTarget;
@@ -96,6 +100,10 @@ class Viewer {
   bool playing_ = false;
   bool sceneChanged_ = true;
   bool showPanels_ = true;
+  // --cluster: the nodes' window, and whether viewport 0 shows which node
+  // rendered which tile over its image (O, or the script's "workload on").
+  std::shared_ptr<cluster::ClusterWindow> cluster_;
+  bool showWorkload_ = false;
   std::chrono::steady_clock::time_point lastMove_{};
   std::uint64_t framesSinceMove_ = 0;  // rendered since lastMove_, that one included
   std::chrono::steady_clock::time_point lastFrame_{};

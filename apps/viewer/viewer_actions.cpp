@@ -84,6 +84,8 @@ void Viewer::runAction(const ScriptAction& a) {
     convergence_.paused = a.verb == "pause";
   } else if (a.verb == "raster-while-moving") {
     convergence_.rasterWhileMoving = a.count != 0;
+  } else if (a.verb == "workload") {
+    showWorkload_ = a.count != 0;
   } else if (a.verb == "time") {
     playing_ = false;
     setAnimationTime(a.number);

@@ -26,6 +26,7 @@ std::string viewerKeyHelp() {
          "  Space          pause / resume the path tracer\n"
          "  F12 (or P)     screenshot of every viewport (viewer-N-VIEWPORT.png in the current folder)\n"
          "  H              hide / show the panels\n"
+         "  O              with --cluster: which node rendered which tile, over viewport 0 (on / off)\n"
          "  Esc            quit\n"
          "Drop a .gltf or .glb on the window to open it.\n";
 }

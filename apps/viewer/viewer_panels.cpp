@@ -2,11 +2,13 @@
 // back-end, and for the path tracer its convergence and filter controls;
 // for coverage the ranked list), animation.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 
 #include <imgui.h>
 
+#include "tsr/cluster/cluster_window.hpp"
 #include "tsr/med/coverage/ranking.hpp"
 #include "viewer.hpp"
 
@@ -131,6 +133,16 @@ void Viewer::drawPanels() {
                 pane.showingWhitted() ? " (Whitted until the path tracer catches up)" : "", stats.seconds * 1e3);
     if (pane.isRemote(pane.shownBackend())) {
       ImGui::Text("rendered on the cluster's nodes (%s)", options_.cluster.c_str());
+      if (cluster_ && pane.frame().outputs.count(std::string(cluster::kWorkloadOutput))) {
+        ImGui::Checkbox("workload over the image (O)", &showWorkload_);
+        const cluster::FrameWorkload& w = cluster_->lastWorkload();
+        ImGui::Text("balance %.2f (slowest node's render time over the mean)", w.balance);
+        for (std::size_t n = 0; n < w.nodes.size(); ++n) {
+          const glm::vec3 c = cluster::nodeColour(n);
+          ImGui::TextColored(ImVec4(std::pow(c.r, 1 / 2.2f), std::pow(c.g, 1 / 2.2f), std::pow(c.b, 1 / 2.2f), 1),
+                             "node %zu: %zu tiles, %.1f ms", n, w.nodes[n].tiles, w.nodes[n].seconds * 1e3);
+        }
+      }
     } else if (pane.progressive()) {
       ImGui::Text("%u spp of %u %s", pane.samples(), convergence_.sampleLimit,
                   convergence_.paused ? "(paused)"

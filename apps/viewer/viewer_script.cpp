@@ -112,6 +112,10 @@ ScriptAction parseLine(const std::vector<std::string>& w, const std::string& whe
     p.arity(w, 2, 2, "raster-while-moving on|off");
     if (w[1] != "on" && w[1] != "off") p.fail("expected on or off, got '" + w[1] + "'");
     a.count = w[1] == "on";
+  } else if (verb == "workload") {
+    p.arity(w, 2, 2, "workload on|off");
+    if (w[1] != "on" && w[1] != "off") p.fail("expected on or off, got '" + w[1] + "'");
+    a.count = w[1] == "on";
   } else if (verb == "time") {
     p.arity(w, 2, 2, "time SECONDS");
     a.number = p.real(w[1], "time", 0, 1e6);
@@ -134,8 +138,8 @@ ScriptAction parseLine(const std::vector<std::string>& w, const std::string& whe
     p.arity(w, 1, 1, "report");
   } else {
     p.fail("unknown action '" + verb +
-           "' (backend, orbit, tilt, pan, zoom, wait, param, limit, pause, resume, raster-while-moving, time, pick, "
-           "bookmark, screenshot, window-screenshot, open, report)");
+           "' (backend, orbit, tilt, pan, zoom, wait, param, limit, pause, resume, raster-while-moving, workload, "
+           "time, pick, bookmark, screenshot, window-screenshot, open, report)");
   }
   return a;
 }

@@ -15,6 +15,7 @@
 //   limit N                       the path tracer's sample limit
 //   pause | resume                stop or continue path tracing
 //   raster-while-moving on|off    figure 5.6's option
+//   workload on|off               with --cluster: which node rendered which tile, over viewport 0 (key O)
 //   time SECONDS                  the animations' time
 //   pick VIEWPORT X Y             click pixel (X, Y) of a viewport: selects the object there
 //   bookmark save NAME | bookmark load NAME

@@ -26,6 +26,7 @@
 #include "scene_session.hpp"
 #include "tsr/cluster/auth.hpp"
 #include "tsr/cluster/cluster_window.hpp"
+#include "tsr/cluster/workload.hpp"
 #include "tsr/med/file_replacement.hpp"
 #include "tsr/med/image_file.hpp"
 #include "tsr/sg/import/importer.hpp"
@@ -47,6 +48,7 @@ struct Options {
   double maxFps = 0.0;  // 0: as fast as the nodes go
   double statusEvery = 1.0;
   bool pixelsBack = false;
+  std::string workload = "off";  // off, beside, over
 };
 
 const char* stateName(NodeState s) {
@@ -88,6 +90,29 @@ std::string statusLine(const tsr::cluster::ClusterWindow& wall, std::uint64_t fr
   return out.str();
 }
 
+// --workload: each screen's share of the last frame, and its balance.
+std::string workloadLine(const tsr::cluster::ClusterWindow& wall) {
+  const tsr::cluster::FrameWorkload& w = wall.lastWorkload();
+  std::ostringstream out;
+  out << std::fixed;
+  out.precision(2);
+  out << "  workload: balance " << w.balance << " (slowest screen's render time over the mean)";
+  for (std::size_t i = 0; i < w.nodes.size(); ++i) {
+    out.precision(1);
+    out << "\n    screen " << i << "  " << w.nodes[i].pixels << " px  " << w.nodes[i].seconds * 1e3 << " ms";
+  }
+  return out.str();
+}
+
+// The stitched frame with the workload image over it, half and half.
+tsr::med::FrameBuffer withWorkloadOver(tsr::med::FrameBuffer frame) {
+  const auto it = frame.outputs.find(std::string(tsr::cluster::kWorkloadOutput));
+  if (it == frame.outputs.end()) return frame;
+  for (std::size_t i = 0; i < frame.colour.size(); ++i)
+    frame.colour[i] = glm::vec4(glm::mix(glm::vec3(frame.colour[i]), glm::vec3(it->second[i]), 0.5f), 1.0f);
+  return frame;
+}
+
 int run(const Options& o) {
   tsr::cluster::ClusterConfig config = tsr::cluster::loadClusterConfig(o.config);
   if (config.mode != tsr::cluster::ClusterMode::Tiled)
@@ -124,6 +149,7 @@ int run(const Options& o) {
   tsr::cluster::ClientOptions client;
   if (!o.tokenFile.empty()) client.token = tsr::cluster::readTokenFile(o.tokenFile);
   client.name = "tessera-wall";
+  if (o.workload != "off") client.outputs.emplace_back(tsr::cluster::kWorkloadOutput);
   tsr::cluster::ClusterWindow wall(config, client);
   wall.setContent(session.imported.root, session.imported.background);
   std::size_t online = wall.connect(config.timeouts.connect);
@@ -192,7 +218,7 @@ int run(const Options& o) {
     bool lastFrame = o.frames != 0 && frame + 1 == o.frames;
     if (since >= o.statusEvery || lastFrame) {
       std::cout << statusLine(wall, last.frame, static_cast<double>(framesSinceStatus) / std::max(since, 1e-9), last)
-                << std::endl;
+                << (o.workload != "off" ? "\n" + workloadLine(wall) : std::string()) << std::endl;
       lastStatus = now;
       framesSinceStatus = 0;
     }
@@ -207,8 +233,16 @@ int run(const Options& o) {
               << static_cast<double>(totals.received) / n << " bytes received" << std::endl;
   }
   if (!o.output.empty() && last.image.width > 0) {
-    tsr::med::replaceFile(o.output, [&](const std::string& temporary) { tsr::med::writeImage(temporary, last.image); });
+    const tsr::med::FrameBuffer& shown = o.workload == "over" ? withWorkloadOver(last.image) : last.image;
+    tsr::med::replaceFile(o.output, [&](const std::string& temporary) { tsr::med::writeImage(temporary, shown); });
     std::cout << "wrote " << o.output << std::endl;
+    if (o.workload == "beside") {
+      const std::string beside = tsr::app::aovPath(o.output, std::string(tsr::cluster::kWorkloadOutput));
+      tsr::med::replaceFile(beside, [&](const std::string& temporary) {
+        tsr::med::writeImage(temporary, last.image, std::string(tsr::cluster::kWorkloadOutput));
+      });
+      std::cout << "wrote " << beside << std::endl;
+    }
   }
   return 0;
 }
@@ -252,6 +286,12 @@ int main(int argc, char** argv) {
   app.add_option("--param", o.params,
                  "back-end parameter name=value for every node whose back-end takes it (repeatable), e.g. "
                  "visibility=guided");
+  app.add_option("--workload", o.workload,
+                 "which screen rendered what: off; beside (status lines give each screen's pixels and render time "
+                 "and the balance, --output gets FILE.workload.EXT beside it: each screen in its node's colour, "
+                 "darker the quicker); over (the same, drawn half over the --output frame)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"off", "beside", "over"}));
   app.add_option("--log-level", logLevel, "trace, debug, info, warn, error")->capture_default_str();
   tsr::app::ImportLimitOptions importLimits;
   importLimits.add(app, o.import);

@@ -108,6 +108,7 @@ struct ClusterWindow::Impl {
   std::unique_ptr<med::Viewport> resolver;
   std::vector<std::string> resolveInputs;
   std::vector<std::string> resolveOutputs;
+  FrameWorkload lastWorkload;
 
   Impl(ClusterConfig c, ClientOptions o) : config(std::move(c)), options(std::move(o)) {
     strategy = makeFrameStrategy(config);
@@ -344,7 +345,7 @@ struct ClusterWindow::Impl {
     };
     std::vector<std::string> outputs;
     for (const auto& name : options.outputs)
-      if (!resolver || !has(resolveOutputs, name)) outputs.push_back(name);
+      if ((!resolver || !has(resolveOutputs, name)) && name != kWorkloadOutput) outputs.push_back(name);
     for (const auto& name : resolver ? resolveInputs : std::vector<std::string>{})
       if (!has(outputs, name)) outputs.push_back(name);
     for (auto& it : items) {
@@ -355,9 +356,13 @@ struct ClusterWindow::Impl {
     // resolver fills the latter's remainder), each allocated once.
     std::vector<std::string> held = outputs;
     for (const auto& name : options.outputs)
-      if (!has(held, name)) held.push_back(name);
+      if (!has(held, name) && name != kWorkloadOutput) held.push_back(name);
     for (auto& t : targets)
       for (const auto& name : held) t.outputs[name].assign(t.colour.size(), glm::vec4(0.0f));
+  }
+
+  bool wantsWorkload() const {
+    return std::find(options.outputs.begin(), options.outputs.end(), kWorkloadOutput) != options.outputs.end();
   }
 
   Frame viewportsFor(const Node& n) const {
@@ -378,6 +383,10 @@ struct ClusterWindow::Impl {
 ClusterWindow::ClusterWindow(ClusterConfig config, ClientOptions options)
     : impl_(std::make_unique<Impl>(std::move(config), std::move(options))) {
   impl_->config.validate();
+  const ClusterConfig& c = impl_->config;
+  if (impl_->wantsWorkload() && (c.mode == ClusterMode::Stereo || (c.mode == ClusterMode::Tiled && c.wall.stereo())))
+    throw ClusterError(std::string("the ") + std::string(kWorkloadOutput) +
+                       " image needs a cooperative or mono tiled cluster: a stereo one renders two eyes, no one frame");
   for (const auto& n : impl_->config.nodes) impl_->add(n);
 }
 
@@ -544,6 +553,12 @@ ClusterFrame ClusterWindow::render(const med::View& view, std::int64_t sequenceF
   result.tileSeconds.assign(s.nodes.size(), 0.0);
   for (const auto& [node, t] : round.tileSeconds()) result.tileSeconds[node] = t;
   for (const auto& it : round.items()) result.offlineTiles += it.offline ? 1 : 0;
+  for (const auto& it : round.items())
+    if (it.done || it.offline)
+      result.tiles.push_back(
+          {it.rect, it.offline ? TileWork::kNoNode : it.node, it.seconds, it.samples, it.rays, it.syncSeconds});
+  result.participants = live;
+  s.lastWorkload = summarizeWorkload(result.tiles, result.busySeconds, live, s.nodes.size());
   result.reassignedItems = s.reassigned;
   result.assembleSeconds = round.assembleSeconds();
   result.barrierSeconds = round.barrierSeconds();
@@ -556,6 +571,9 @@ ClusterFrame ClusterWindow::render(const med::View& view, std::int64_t sequenceF
     }
   }
   s.strategy->compose(targets, result);
+  if (s.wantsWorkload() && !result.image.colour.empty())
+    result.image.outputs[std::string(kWorkloadOutput)] =
+        drawWorkload(result.tiles, result.image.width, result.image.height);
   return result;
 }
 
@@ -587,5 +605,7 @@ std::size_t ClusterWindow::onlineNodes() const {
 const ClusterConfig& ClusterWindow::config() const { return impl_->config; }
 
 double ClusterWindow::estimatedImbalance() const { return impl_->strategy->imbalance(); }
+
+const FrameWorkload& ClusterWindow::lastWorkload() const { return impl_->lastWorkload; }
 
 }  // namespace tsr::cluster

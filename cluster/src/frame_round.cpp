@@ -58,6 +58,10 @@ const WorkItem* FrameRound::onTile(std::size_t node, const RenderTile& tile) {
       throw ProtocolError(ProtocolError::Kind::Malformed, compression_ == Compression::Kept
                                                               ? "RenderTile carries pixels the client left on the node"
                                                               : "RenderTile without the pixels asked for");
+    it.seconds = tile.seconds;
+    it.syncSeconds = tile.syncSeconds;
+    it.samples = tile.samples;
+    it.rays = tile.rays;
     if (tile.compression == Compression::Kept) {  // the decoder made sure it carries no bytes
       it.done = true;
       tileSeconds_[node] += tile.seconds;

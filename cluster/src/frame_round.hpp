@@ -25,6 +25,11 @@ struct WorkItem {
   bool offline = false;
   std::vector<std::string> outputs = {};  // named outputs asked for with the pixels
   bool resolve = true;                    // false: the client resolves the assembled frame
+  // What the node that delivered it reports (RenderTile), once done.
+  double seconds = 0;
+  double syncSeconds = 0;
+  std::uint32_t samples = 0;
+  std::uint64_t rays = 0;
 };
 
 class FrameRound {

@@ -1,5 +1,6 @@
 #include "node_session.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 #include <spdlog/spdlog.h>
@@ -285,12 +286,15 @@ void NodeSession::render(State& st, const NodeContext& ctx, const RenderRequest&
       control.resolve = job.resolve;
       control.frame = request.sequenceFrame;
       auto t0 = Clock::now();
-      vp->render(*st.replica, job.view.cropped(rect), fb, control);
+      const med::RenderStats stats = vp->render(*st.replica, job.view.cropped(rect), fb, control);
       RenderTile tile;
       tile.frame = request.frame;
       tile.viewport = job.viewport;
       tile.rect = rect;
       tile.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+      tile.samples = std::min(stats.samples, kMaxTileSamples);
+      tile.rays = std::min(stats.rays, kMaxTileRays);
+      tile.syncSeconds = std::clamp(stats.syncSeconds, 0.0, tile.seconds);
       tile.outputs = job.outputs;
       if (request.compression == Compression::Kept) {
         tile.compression = Compression::Kept;

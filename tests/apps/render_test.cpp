@@ -119,8 +119,9 @@ TEST_F(RenderCommand, BadInputIsOneErrorLine) {
   expectOneErrorLine(run("builtin:cornell --size 8x8 --nodes 127.0.0.1:1"), "--cluster");
   expectOneErrorLine(run("builtin:cornell --size 8x8 --frames 0 --output f.####.png"), "--frames");
   expectOneErrorLine(run("builtin:cornell --size 8x8 --fps 0 --frames 2 --output f.####.png"), "--fps");
-  expectOneErrorLine(run("builtin:cornell --size 8x8 --cluster c.json --stats-json s.json"),
-                     "--stats-json with --cluster");
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --cluster c.json --layers embree,vulkan --stats-json s.json"),
+                     "--stats-json with --cluster and --layers");
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --aov workload"), "it needs --cluster");
   expectOneErrorLine(run("builtin:cornell --size 8x8 --fps 12"), "--frames");
   expectOneErrorLine(run("builtin:cornell --size 8x8 --param spp=lots"), "parameter spp");
   expectOneErrorLine(run(""), "scene");

@@ -49,9 +49,10 @@ TEST(ViewerScript, ParsesEveryAction) {
   const auto actions = tsr::app::parseScriptText(
       "# comment\nbackend 1 vulkan\norbit -30\ntilt 5\npan 0.1 -0.2\nzoom 0.5\nwait frames 3\nwait samples 64\n"
       "param 0 filter=pixel\nlimit 256\npause\nresume\nraster-while-moving on\ntime 1.5\npick 1 10 20\n"
-      "bookmark save a\nbookmark load a\nscreenshot a.png 1\nwindow-screenshot w.png\nopen builtin:cornell\n",
+      "bookmark save a\nbookmark load a\nscreenshot a.png 1\nwindow-screenshot w.png\nopen builtin:cornell\n"
+      "workload on\n",
       "s.txt", limits());
-  ASSERT_EQ(actions.size(), 19u);
+  ASSERT_EQ(actions.size(), 20u);
   EXPECT_EQ(actions[0].verb, "backend");
   EXPECT_EQ(actions[0].viewport, 1u);
   EXPECT_EQ(actions[1].number, -30);
@@ -62,6 +63,8 @@ TEST(ViewerScript, ParsesEveryAction) {
   EXPECT_EQ(actions[13].number2, 20);
   EXPECT_EQ(actions[16].viewport, 1u);
   EXPECT_EQ(actions[0].where, "s.txt:2");
+  EXPECT_EQ(actions[19].verb, "workload");
+  EXPECT_EQ(actions[19].count, 1);
 }
 
 TEST(ViewerScript, RefusesBadLinesWithTheirLocation) {
@@ -75,6 +78,7 @@ TEST(ViewerScript, RefusesBadLinesWithTheirLocation) {
       {"wait frames -1", "frames -1 is outside"},
       {"param 0 novalue", "expected NAME=VALUE"},
       {"raster-while-moving maybe", "expected on or off"},
+      {"workload maybe", "expected on or off"},
       {"dance", "unknown action 'dance'"},
       {"screenshot", "usage: screenshot FILE [VIEWPORT]"},
   };

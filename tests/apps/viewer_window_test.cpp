@@ -339,4 +339,34 @@ TEST_F(ViewerWindow, ClusterClientRendersOnNodes) {
   EXPECT_GT(compare(shot, image("turned.png")).meanAbs, 0.03);
 }
 
+// The workload overlay (O, or the script's "workload on"): viewport 0 shows
+// over its picture which node rendered which tile. cooperative-2.json cuts
+// 96x72 into 32-pixel tiles, the first five (the top row and more) to node
+// 0, drawn orange, the last four (the bottom row) to node 1, sky blue.
+TEST_F(ViewerWindow, ClusterWorkloadOverlayShowsEachTilesNode) {
+  tsr::cluster::test::TokenFile token("viewer token");
+  auto nodes = tsr::cluster::test::startNodes(2, {"--token-file", token.path()});
+  const std::string cluster = std::string(" --cluster ") + TSR_CONFIG_DIR + "/cooperative-2.json --nodes " +
+                              nodes[0]->text() + "," + nodes[1]->text() + " --token-file " + token.path();
+  writeScript("workload.txt", "time 0\nwait frames 2\nwindow-screenshot plain.png\nworkload on\nwait frames 1\n"
+                              "window-screenshot over.png\n");
+  const Outcome v =
+      viewer("builtin:animated --size 96x72 --hide-panels" + cluster + " --script workload.txt --exit-after");
+  ASSERT_EQ(v.status, 0) << v.err;
+  const auto plain = image("plain.png"), over = image("over.png");
+  ASSERT_EQ(over.width, 96u);
+  // Red over blue in a band of rows, the overlay's minus the picture's.
+  auto redOverBlue = [&](std::uint32_t y0, std::uint32_t y1) {
+    double sum = 0;
+    for (std::uint32_t y = y0; y < y1; ++y)
+      for (std::uint32_t x = 0; x < 96; ++x) {
+        const glm::vec4 a = over.colour[over.index(x, y)], b = plain.colour[plain.index(x, y)];
+        sum += (a.r - a.b) - (b.r - b.b);
+      }
+    return sum / double((y1 - y0) * 96);
+  };
+  EXPECT_GT(redOverBlue(0, 32), 0.05) << "node 0's tiles are not drawn orange";
+  EXPECT_LT(redOverBlue(64, 72), -0.05) << "node 1's tiles are not drawn sky blue";
+}
+
 }  // namespace

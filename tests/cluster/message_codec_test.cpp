@@ -1,6 +1,8 @@
 // The message codec: every message round-trips, every truncation and
 // random corruption ends in a typed ProtocolError (never another exception,
 // never a crash), and frame headers are checked before any payload.
+#include <cmath>
+#include <limits>
 #include <random>
 #include <type_traits>
 
@@ -101,7 +103,7 @@ RenderRequest sample(std::type_identity<RenderRequest>) {
   return r;
 }
 RenderTile sample(std::type_identity<RenderTile>) {
-  return {5, 1, {0, 0, 2, 2}, 0.5, Compression::Zstd, std::vector<std::uint8_t>(80, 7), {"albedo"}};
+  return {5, 1, {0, 0, 2, 2}, 0.5, Compression::Zstd, std::vector<std::uint8_t>(80, 7), {"albedo"}, 16, 123456, 0.25};
 }
 FrameDone sample(std::type_identity<FrameDone>) { return {5, 0.125}; }
 Swap sample(std::type_identity<Swap>) { return {5}; }
@@ -179,6 +181,11 @@ TEST(MessageCodec, RoundTripsCarryEveryField) {
   EXPECT_EQ(t.seconds, 0.5);
   EXPECT_EQ(t.compression, Compression::Lz4);
   EXPECT_EQ(t.pixels, (std::vector<std::uint8_t>{1, 2, 3}));
+  RenderTile counted{5, 1, {1, 2, 3, 4}, 0.5, Compression::Lz4, {1, 2, 3}, {}, 64, std::uint64_t{1} << 40, 0.125};
+  t = parse<RenderTile>(unframe(makeFrame(counted)));
+  EXPECT_EQ(t.samples, 64u);
+  EXPECT_EQ(t.rays, std::uint64_t{1} << 40);
+  EXPECT_EQ(t.syncSeconds, 0.125);
 }
 
 TEST(MessageCodec, EveryMessageRoundTrips) {
@@ -285,6 +292,21 @@ TEST(MessageCodec, ValidationRejectsNonsenseValues) {
                ProtocolError);
   EXPECT_THROW(parse<RenderTile>(unframe(makeFrame(RenderTile{5, 1, {1, 2, 3, 4}, 0.5, Compression(4), {}}))),
                ProtocolError);
+  // A tile's work figures stay within what a render can hold and JSON carries exactly.
+  RenderTile tooMany{5, 1, {1, 2, 3, 4}, 0.5, Compression::Lz4, {1}, {}, kMaxTileSamples + 1, 0};
+  EXPECT_THROW(parse<RenderTile>(unframe(makeFrame(tooMany))), ProtocolError);
+  tooMany.samples = kMaxTileSamples;
+  EXPECT_NO_THROW(parse<RenderTile>(unframe(makeFrame(tooMany))));
+  tooMany.rays = kMaxTileRays + 1;
+  EXPECT_THROW(parse<RenderTile>(unframe(makeFrame(tooMany))), ProtocolError);
+  // Times are finite (a NaN would pass a "not negative" test and poison the sums).
+  for (double bad : {std::nan(""), std::numeric_limits<double>::infinity(), -1.0}) {
+    RenderTile t{5, 1, {1, 2, 3, 4}, bad, Compression::Lz4, {1}};
+    EXPECT_THROW(parse<RenderTile>(unframe(makeFrame(t))), ProtocolError) << bad;
+    t.seconds = 1;
+    t.syncSeconds = bad;
+    EXPECT_THROW(parse<RenderTile>(unframe(makeFrame(t))), ProtocolError) << bad;
+  }
   SetViewports sv = sampleViewports();
   sv.viewports.push_back(sv.viewports[0]);  // the same id twice
   EXPECT_THROW(parse<SetViewports>(unframe(makeFrame(sv))), ProtocolError);
@@ -355,7 +377,7 @@ TEST(MessageList, EveryTypesDeclaredLimitsAreEnforced) {
 // (Protocol 3 added volumes to scenes: only the version byte moved.)
 TEST(MessageCodec, ErrorReportBytesArePinned) {
   const Frame f = makeFrame(ErrorReport{ErrorReport::Kind::InvalidParameter, "spp"});
-  const std::vector<std::uint8_t> want{'T', 'S', 'R', 'N', 3, 18, 5, 0, 0, 0, 3, 3, 's', 'p', 'p'};
+  const std::vector<std::uint8_t> want{'T', 'S', 'R', 'N', 4, 18, 5, 0, 0, 0, 3, 3, 's', 'p', 'p'};
   EXPECT_EQ(*f, want);
   ErrorReport back = parse<ErrorReport>(unframe(f));
   EXPECT_EQ(back.kind, ErrorReport::Kind::InvalidParameter);

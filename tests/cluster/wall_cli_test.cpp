@@ -14,6 +14,7 @@
 #include "tsr/cluster/wall_layout.hpp"
 #include "tsr/med/image_file.hpp"
 #include "wall_test_util.hpp"
+#include "workload_check.hpp"
 
 namespace tsr::cluster::test {
 namespace {
@@ -43,6 +44,40 @@ TEST(WallCli, FourNodesPresentTilesThatStitchToTheLocalRender) {
   std::string out = slurp(log);
   EXPECT_NE(out.find("4 of 4 nodes online"), std::string::npos) << out;
   EXPECT_NE(out.find("fps"), std::string::npos) << out;
+}
+
+// --workload beside: the status lines name each screen's share and the
+// balance, and FILE.workload.EXT beside --output shows each screen in its
+// node's colour; over: the frame itself carries the colours, half and half.
+TEST(WallCli, TheWorkloadImageGoesBesideTheFrameOrOverIt) {
+  TempDir dir;
+  Wall wall(dir.path, 4);
+  fs::path log = dir.path / "wall.log";
+  const std::string args =
+      gridConfig(dir.path) + " builtin:animated --nodes " + wall.addresses() + " --frames 2 --size 48x40 --output ";
+  ASSERT_EQ(runWall(args + (dir.path / "wall.exr").string() + " --workload beside", log), 0) << slurp(log);
+  const std::string out = slurp(log);
+  EXPECT_NE(out.find("workload: balance"), std::string::npos) << out;
+  EXPECT_NE(out.find("screen 3  480 px"), std::string::npos) << out;
+  const med::FrameBuffer workload = med::readImage((dir.path / "wall.workload.exr").string());
+  const auto rects = wallLayout(48, 40, 2, 2, 0);
+  for (std::size_t i = 0; i < 4; ++i)
+    for (std::uint32_t y = rects[i].y0; y < rects[i].y1; ++y)
+      for (std::uint32_t x = rects[i].x0; x < rects[i].x1; ++x)
+        ASSERT_EQ(nodeShown(workload.colour[workload.index(x, y)], 4), i) << "screen " << i << " at " << x << "," << y;
+  const med::FrameBuffer frame = med::readImage((dir.path / "wall.exr").string());
+  ASSERT_EQ(runWall(args + (dir.path / "over.exr").string() + " --workload over", log), 0) << slurp(log);
+  // The same frame again (a fixed seed), the workload drawn half over it:
+  // what is left after taking half the frame away is each screen's colour
+  // (shaded by this run's times).
+  const med::FrameBuffer over = med::readImage((dir.path / "over.exr").string());
+  for (std::size_t i = 0; i < 4; ++i)
+    for (std::uint32_t y = rects[i].y0; y < rects[i].y1; y += 3)
+      for (std::uint32_t x = rects[i].x0; x < rects[i].x1; x += 3) {
+        const std::size_t at = frame.index(x, y);
+        const glm::vec4 drawn(2.0f * glm::vec3(over.colour[at]) - glm::vec3(frame.colour[at]), 1.0f);
+        ASSERT_EQ(nodeShown(drawn, 4), i) << "screen " << i << " at " << x << "," << y;
+      }
 }
 
 // Liveness, not a stopwatch: with one node killed the others keep

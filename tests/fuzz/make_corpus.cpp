@@ -106,6 +106,8 @@ void clusterMessages(const fs::path& dir) {
   tile.viewport = 1;
   tile.rect = {0, 0, 8, 8};
   tile.seconds = 0.01;
+  tile.samples = 4;
+  tile.rays = 1536;
   tile.outputs = {"albedo"};
   EncodedPixels px = encodePixels(gradient(8, 8, tile.outputs), Compression::Lz4, tile.outputs);
   tile.compression = px.compression;

@@ -15,6 +15,7 @@
 
 #include "tsr/cluster/cluster_config.hpp"
 #include "tsr/cluster/messages.hpp"
+#include "tsr/cluster/workload.hpp"
 #include "tsr/med/frame_buffer.hpp"
 #include "tsr/med/view.hpp"
 #include "tsr/med/viewport_registry.hpp"
@@ -30,7 +31,9 @@ class ClusterError : public std::runtime_error {
 struct ClientOptions {
   std::string token;  // empty only for nodes started without a token
   std::string name = "tessera-client";
-  // Named outputs (AOVs) to assemble besides colour and depth.
+  // Named outputs (AOVs) to assemble besides colour and depth. The
+  // workload image (kWorkloadOutput) is drawn here from the frame's tiles,
+  // in cooperative and mono tiled modes; the nodes fill the others.
   std::vector<std::string> outputs = {};
   // Where the nodes' back-end has whole-frame image steps (pixel filtering),
   // a viewport of it made from this registry resolves the assembled frame
@@ -67,6 +70,12 @@ struct ClusterFrame {
   med::FrameBuffer left, right;     // stereo only
   std::vector<double> busySeconds;  // per node (config order): its whole requests; 0 where it did nothing
   std::vector<double> tileSeconds;  // per node: the part spent rendering its tiles
+  // Every rectangle of the frame as placed: by which node (or given up), at
+  // what cost. The cooperative tiles cover the frame once; a wall's screens
+  // as its layout says (bezels leave pixels to none); a stereo pair's, each
+  // eye's whole view. summarizeWorkload() adds them up per node.
+  std::vector<TileWork> tiles;
+  std::vector<std::size_t> participants;  // the nodes online when the frame was planned
   std::size_t offlineTiles = 0;     // wall tiles shown as offline fill
   std::size_t reassignedItems = 0;  // work taken over from nodes lost during the frame
   // Nodes that were late (past timeouts.late in one phase) during the frame:
@@ -89,6 +98,8 @@ struct ReplicaHash {
 
 class ClusterWindow {
  public:
+  // Throws ClusterError when the options ask for the workload image of a
+  // stereo setup (its two eyes share no frame to colour).
   ClusterWindow(ClusterConfig config, ClientOptions options = {});
   ~ClusterWindow();
   ClusterWindow(const ClusterWindow&) = delete;
@@ -142,6 +153,9 @@ class ClusterWindow {
   const ClusterConfig& config() const;
   // Imbalance (max / mean) of the cooperative balancer's load estimate.
   double estimatedImbalance() const;
+  // The last frame's tiles added up per node, with its measured balance
+  // (summarizeWorkload); empty before the first frame.
+  const FrameWorkload& lastWorkload() const;
 
  private:
   struct Impl;

@@ -6,6 +6,7 @@
 // count was checked against its bound and against the bytes that remain.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -131,6 +132,7 @@ struct Seconds {
   void read(sg::ByteReader& r, double& v, const char*, const Owner&) const {
     std::size_t at = r.offset();
     v = r.f64();
+    if (!std::isfinite(v)) throw sg::DecodeError(at, "time not a finite number");
     if (v < 0) throw sg::DecodeError(at, "negative time");
   }
 };

@@ -16,6 +16,9 @@ namespace tsr::cluster {
 // the kind, never by the text).
 // 3: scenes carry volume materials (container type 10), Geometry.volume
 // and Background.medium.
+// 4: RenderTile carries the samples per pixel its tile holds, the rays it
+// cast and the seconds spent catching up (the client's workload figures);
+// views carry a thin lens (aperture radius, focus distance).
 inline constexpr std::uint8_t kProtocolVersion = 4;
 inline constexpr std::size_t kFrameHeaderBytes = 10;
 inline constexpr std::array<std::uint8_t, 4> kFrameMagic{'T', 'S', 'R', 'N'};

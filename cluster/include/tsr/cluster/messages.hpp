@@ -67,6 +67,11 @@ inline constexpr std::size_t kMaxOutputs = 32;  // named outputs per job
 inline constexpr std::uint32_t kMaxImageSide = 1 << 15;
 inline constexpr std::uint64_t kMaxRectPixels = std::uint64_t{1} << 24;  // one tile's result must fit a RenderTile
 inline constexpr std::uint32_t kMaxThreads = 1 << 16;
+// What a tile reports of its work (RenderTile): samples per pixel it holds,
+// as far as any back-end's spp parameter goes, and rays cast, kept within
+// what a JSON number carries exactly.
+inline constexpr std::uint32_t kMaxTileSamples = 1 << 24;
+inline constexpr std::uint64_t kMaxTileRays = std::uint64_t{1} << 53;
 // An animation frame number: far beyond any sequence a person renders, yet
 // well inside std::int64_t.
 inline constexpr std::uint64_t kMaxSequenceFrame = std::uint64_t{1} << 40;
@@ -257,6 +262,13 @@ struct RenderRequest {
 // One rendered rectangle. The pixels (RGBA float, then depth float, then
 // RGBA float per named output in `outputs` order, each row by row) follow
 // the fields, compressed as `compression` says; decodePixels checks them.
+// `seconds`, `syncSeconds`, `samples` and `rays` say what rendering it cost
+// (the client's workload figures): `syncSeconds` is the part of `seconds`
+// spent catching the back-end up with the replica (med::RenderStats::
+// syncSeconds: the frame's scene changes land on the first tile a node
+// renders), `samples` the samples per pixel the tile holds after this render
+// (med::RenderStats::samples; 0 for a back-end without), `rays` those cast
+// by this render.
 struct RenderTile {
   static constexpr MessageType kType{11};
   static constexpr MessageSpec kSpec{kType, "RenderTile", Sender::Node, 1024 * kMiB, kAfterAuth};
@@ -267,6 +279,9 @@ struct RenderTile {
   Compression compression = Compression::None;
   std::vector<std::uint8_t> pixels;
   std::vector<std::string> outputs = {};
+  std::uint32_t samples = 0;
+  std::uint64_t rays = 0;
+  double syncSeconds = 0;
   static constexpr bool keptOnNode(const RenderTile& t) { return t.compression == Compression::Kept; }
   static constexpr auto fields() {
     return std::tuple{
@@ -274,7 +289,11 @@ struct RenderTile {
         field("viewport id", &RenderTile::viewport, wire::varint(kMaxViewportId)),
         field("rectangle", &RenderTile::rect, wire::rect(kMaxImageSide, kMaxRectPixels)),
         field("seconds", &RenderTile::seconds, wire::seconds()),
-        field("output name", &RenderTile::outputs, wire::distinctListOf(kMaxOutputs, 2, wire::nonEmptyText(kMaxNameBytes))),
+        field("sync seconds", &RenderTile::syncSeconds, wire::seconds()),
+        field("samples per pixel", &RenderTile::samples, wire::varint(kMaxTileSamples)),
+        field("ray count", &RenderTile::rays, wire::varint(kMaxTileRays)),
+        field("output name", &RenderTile::outputs,
+              wire::distinctListOf(kMaxOutputs, 2, wire::nonEmptyText(kMaxNameBytes))),
         field("compression", &RenderTile::compression, wire::enumUpTo(Compression::Kept)),
         field("pixels", &RenderTile::pixels,
               wire::restEmptyWhen(&RenderTile::keptOnNode, "pixels kept on the node, yet the tile carries bytes"))};
