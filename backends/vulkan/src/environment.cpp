@@ -1,5 +1,5 @@
 #include "tsr/vk/environment.hpp"
-#include "radical_inverse.hpp"
+#include "ggx_prefilter.hpp"
 
 #include "tsr/vk/error.hpp"
 
@@ -79,7 +79,6 @@ std::vector<glm::vec4> prefilter(const LatLong& source) {
   std::vector<glm::vec4> out(std::size_t(W) * H * K);
   for (std::uint32_t k = 0; k < K; ++k) {
     const float roughness = float(k) / float(K - 1);
-    const float a = std::max(1e-3f, roughness * roughness);
     const LatLong src = source.reduced(std::max(4u, (2 * W) >> k), std::max(2u, (2 * H) >> k));
     for (std::uint32_t y = 0; y < H; ++y)
       for (std::uint32_t x = 0; x < W; ++x) {
@@ -88,23 +87,7 @@ std::vector<glm::vec4> prefilter(const LatLong& source) {
         if (k == 0) {
           value = src.lookup(r);
         } else {
-          const glm::vec3 up = std::abs(r.y) < 0.999f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-          const glm::vec3 tx = glm::normalize(glm::cross(up, r)), ty = glm::cross(r, tx);
-          glm::vec3 sum(0.0f);
-          float weight = 0.0f;
-          for (std::uint32_t s = 0; s < kSamples; ++s) {
-            const float u1 = (float(s) + 0.5f) / float(kSamples), u2 = radicalInverse(s);
-            const float cosH = std::sqrt((1.0f - u1) / (1.0f + (a * a - 1.0f) * u1));
-            const float sinH = std::sqrt(std::max(0.0f, 1.0f - cosH * cosH));
-            const float phi = 2.0f * kPi * u2;
-            const glm::vec3 h = tx * (sinH * std::cos(phi)) + ty * (sinH * std::sin(phi)) + r * cosH;
-            const glm::vec3 l = 2.0f * glm::dot(r, h) * h - r;
-            const float nl = glm::dot(r, l);
-            if (nl <= 0.0f) continue;
-            sum += nl * src.lookup(l);
-            weight += nl;
-          }
-          value = weight > 0.0f ? sum / weight : src.lookup(r);
+          value = ggxPrefiltered(r, roughness, kSamples, [&src](const glm::vec3& l) { return src.lookup(l); });
         }
         out[(std::size_t(k) * H + y) * W + x] = glm::vec4(value, 1.0f);
       }

@@ -1,5 +1,5 @@
 #include "probe_prefilter.hpp"
-#include "radical_inverse.hpp"
+#include "ggx_prefilter.hpp"
 
 #include <glm/geometric.hpp>
 
@@ -10,7 +10,6 @@
 namespace tsr::vk {
 
 namespace {
-constexpr float kPi = std::numbers::pi_v<float>;
 
 // One square face per layer, radiance only.
 struct Cube {
@@ -47,29 +46,6 @@ struct Cube {
   }
 };
 
-// Karis' prefilter with n = v = r, as Environment's: GGX half vectors
-// around r, reflected, weighted by n.l.
-glm::vec3 prefiltered(const Cube& source, const glm::vec3& r, float roughness) {
-  constexpr std::uint32_t kSamples = 64;
-  const float a = std::max(1e-3f, roughness * roughness);
-  const glm::vec3 up = std::abs(r.y) < 0.999f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-  const glm::vec3 tx = glm::normalize(glm::cross(up, r)), ty = glm::cross(r, tx);
-  glm::vec3 sum(0.0f);
-  float weight = 0.0f;
-  for (std::uint32_t s = 0; s < kSamples; ++s) {
-    const float u1 = (float(s) + 0.5f) / float(kSamples), u2 = radicalInverse(s);
-    const float cosH = std::sqrt((1.0f - u1) / (1.0f + (a * a - 1.0f) * u1));
-    const float sinH = std::sqrt(std::max(0.0f, 1.0f - cosH * cosH));
-    const float phi = 2.0f * kPi * u2;
-    const glm::vec3 h = tx * (sinH * std::cos(phi)) + ty * (sinH * std::sin(phi)) + r * cosH;
-    const glm::vec3 l = 2.0f * glm::dot(r, h) * h - r;
-    const float nl = glm::dot(r, l);
-    if (nl <= 0.0f) continue;
-    sum += nl * source.lookup(l);
-    weight += nl;
-  }
-  return weight > 0.0f ? sum / weight : source.lookup(r);
-}
 }  // namespace
 
 glm::vec3 probeTexelDirection(std::uint32_t face, float x, float y, std::uint32_t size) {
@@ -105,7 +81,8 @@ std::vector<glm::vec4> prefilterProbe(std::span<const glm::vec4> faces, std::uin
       for (std::uint32_t y = 0; y < n; ++y)
         for (std::uint32_t x = 0; x < n; ++x) {
           const glm::vec3 r = glm::normalize(probeTexelDirection(f, x + 0.5f, y + 0.5f, n));
-          out[((std::size_t(k - 1) * 6 + f) * n + y) * n + x] = glm::vec4(prefiltered(source, r, roughness), 1.0f);
+          out[((std::size_t(k - 1) * 6 + f) * n + y) * n + x] = glm::vec4(
+              ggxPrefiltered(r, roughness, 64, [&source](const glm::vec3& l) { return source.lookup(l); }), 1.0f);
         }
   }
   return out;
