@@ -3,6 +3,8 @@
 // or a built-in, the camera to look through, the default light rig when the
 // scene brings no light, and a replica fed by commits (the render thread's
 // copy, in the DESIGN's words).
+#include <cstdint>
+#include <optional>
 #include <string>
 
 #include "tsr/sg/import/default_light_rig.hpp"
@@ -13,11 +15,18 @@
 
 namespace tsr::app {
 
+// --focus-on X,Y: the lens focuses on what pixel (x, y) of a width x height
+// image sees.
+struct FocusOn {
+  std::uint32_t x = 0, y = 0, width = 1, height = 1;
+};
+
 // How the user asked to look at the scene (--camera, --look-*, --fov,
-// --no-default-light).
+// --aperture, --focus-distance, --focus-on, --no-default-light).
 struct ViewChoice {
   std::string camera;  // name or index; empty: the scene's first camera
   sg::LookOverride look;
+  std::optional<FocusOn> focusOn;
   bool defaultLight = true;
 };
 
@@ -30,8 +39,9 @@ struct SceneSession {
 
   // Imports `scene`; picks the camera (adds one framing the bounds when the
   // scene has none), applies the look override, and adds the default light
-  // rig to a scene without lights. Throws sg::ImportError or
-  // std::invalid_argument.
+  // rig to a scene without lights; with focusOn, sets the camera's focus
+  // distance to the depth that pixel sees (a one-pixel path-traced render).
+  // Throws sg::ImportError or std::invalid_argument.
   void load(const std::string& scene, const sg::ImportOptions& options = {}, const ViewChoice& view = {});
   // Moves the rig's camera light to the camera and commits the frame's edits.
   sg::ChangeListPtr commit();

@@ -97,6 +97,10 @@ bool parseRenderOptions(int argc, char** argv, RenderJob& o, std::string& listPa
       "--aperture", aperture, "thin lens radius in scene units: depth of field (embree; 0: a pinhole, the default)");
   auto* focusOption =
       viewGroup->add_option("--focus-distance", focusDistance, "distance in focus along the view, scene units");
+  std::string focusOn;
+  auto* focusOnOption = viewGroup->add_option("--focus-on", focusOn,
+                                              "pixel X,Y: focus at the depth it sees (instead of --focus-distance)");
+  focusOnOption->excludes(focusOption);
   bool noDefaultLight = false;
   viewGroup->add_flag("--no-default-light", noDefaultLight,
                       "a scene without lights stays unlit (default: a grey dome and a camera light)");
@@ -118,6 +122,17 @@ bool parseRenderOptions(int argc, char** argv, RenderJob& o, std::string& listPa
   if (*fovOption) o.view.look.fovDegrees = static_cast<float>(fov);
   if (*apertureOption) o.view.look.apertureRadius = static_cast<float>(aperture);
   if (*focusOption) o.view.look.focusDistance = static_cast<float>(focusDistance);
+  if (*focusOnOption) {
+    std::uint32_t x = 0, y = 0;
+    const char* end = focusOn.data() + focusOn.size();
+    const auto [afterX, errX] = std::from_chars(focusOn.data(), end, x);
+    const bool comma = errX == std::errc() && afterX != end && *afterX == ',';
+    const auto [afterY, errY] = comma ? std::from_chars(afterX + 1, end, y) : std::from_chars_result{end, errX};
+    if (!comma || errY != std::errc() || afterY != end || x >= o.width || y >= o.height)
+      throw std::invalid_argument("--focus-on " + focusOn + ": expected a pixel X,Y inside the " +
+                                  std::to_string(o.width) + "x" + std::to_string(o.height) + " image");
+    o.view.focusOn = app::FocusOn{x, y, o.width, o.height};
+  }
   sg::validate(o.view.look);
   o.view.defaultLight = !noDefaultLight;
   if (*exposureOption && !(std::isfinite(exposure) && std::abs(exposure) <= 64))

@@ -6,6 +6,7 @@
 // change PNGs only; bad values are one error line.
 #include <cmath>
 #include <fstream>
+#include <sstream>
 
 #include <glm/glm.hpp>
 
@@ -133,6 +134,17 @@ TEST_F(FirstHour, ApertureAndFocusDistanceGiveDepthOfField) {
   const double sharp = meanAbsDifference(image("pinhole.exr"), image("focused.exr"));
   const double blurred = meanAbsDifference(image("pinhole.exr"), image("blurred.exr"));
   EXPECT_GT(blurred, 2.0 * sharp) << "out of focus differs from the pinhole far more than in focus";
+  // --focus-on X,Y focuses at the depth that pixel sees: the same image as
+  // --focus-distance with the depth a pinhole render's depth output shows there.
+  render(scene + " --aov depth --output probe.exr");
+  const auto depth = image("probe.depth.exr");
+  std::ostringstream d;
+  d.precision(9);
+  d << depth.colour[depth.index(20, 30)].r;
+  render(scene + " --aperture 0.3 --focus-on 20,30 --output on.exr");
+  render(scene + " --aperture 0.3 --focus-distance " + d.str() + " --output at.exr");
+  // (The depth output of 16 samples may differ from one sample's in the last bit.)
+  EXPECT_LT(meanAbsDifference(image("on.exr"), image("at.exr")), 1e-6) << "focus at " << d.str();
 }
 
 TEST_F(FirstHour, AnAnimatedParentMovesItsCamera) {
@@ -181,6 +193,9 @@ TEST_F(FirstHour, BadViewValuesAreOneErrorLine) {
   expectOneErrorLine(run(scene + "--exposure inf"), "--exposure");
   expectOneErrorLine(run(scene + "--aperture -0.1"), "--aperture");
   expectOneErrorLine(run(scene + "--focus-distance 0"), "--focus-distance");
+  expectOneErrorLine(run(scene + "--focus-on 64,0"), "--focus-on 64,0: expected a pixel X,Y inside the 64x48 image");
+  expectOneErrorLine(run(scene + "--focus-on 3"), "--focus-on");
+  expectOneErrorLine(run(scene + "--focus-on 1,1 --focus-distance 2"), "excludes");
   EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
 }
 
