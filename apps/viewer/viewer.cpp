@@ -212,8 +212,15 @@ void Viewer::handleInput() {
     if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) && std::abs(x - mouse_.pressX) < 3 &&
         std::abs(y - mouse_.pressY) < 3) {
       const int pane = paneAt(x);
-      if (pane >= 0 && y >= 0)
-        pick(std::size_t(pane), std::uint32_t(x) - std::uint32_t(pane) * paneWidth(width_), std::uint32_t(y));
+      const bool ctrl = glfwGetKey(window_, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS ||
+                        glfwGetKey(window_, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
+      const std::uint32_t px = std::uint32_t(x) - std::uint32_t(pane) * paneWidth(width_);
+      if (pane >= 0 && y >= 0) {
+        if (ctrl)  // Ctrl+click focuses the lens there
+          focusOn(std::size_t(pane), px, std::uint32_t(y));
+        else
+          pick(std::size_t(pane), px, std::uint32_t(y));
+      }
     }
   }
   std::vector<int> pressed;

@@ -66,6 +66,7 @@ class Viewer {
   void screenshotPane(std::size_t pane, const std::string& path);
   void screenshotWindow(const std::string& path);
   void pick(std::size_t pane, std::uint32_t x, std::uint32_t y);
+  void focusOn(std::size_t pane, std::uint32_t x, std::uint32_t y);
   void report() const;
   void cycleBackend(std::size_t pane);
   void saveBookmark(const std::string& name);

@@ -1,6 +1,7 @@
 // The viewer's actions that scripts, keys and panels share: script steps,
 // screenshots, picking, bookmarks.
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 
 #define GLFW_INCLUDE_VULKAN
@@ -89,6 +90,11 @@ void Viewer::runAction(const ScriptAction& a) {
   } else if (a.verb == "time") {
     playing_ = false;
     setAnimationTime(a.number);
+  } else if (a.verb == "lens") {
+    camera->setApertureRadius(float(a.number));
+    camera->setFocusDistance(float(a.number2));
+  } else if (a.verb == "focus-on") {
+    focusOn(a.viewport, std::uint32_t(a.count), std::uint32_t(a.number2));
   } else if (a.verb == "pick") {
     pick(a.viewport, std::uint32_t(a.count), std::uint32_t(a.number2));
   } else if (a.verb == "bookmark") {
@@ -174,6 +180,20 @@ void Viewer::pick(std::size_t pane, std::uint32_t x, std::uint32_t y) {
   std::cout << "viewport " << pane << ": picked "
             << (selected_ == sg::kNoContainer ? std::string("nothing") : "object " + std::to_string(selected_))
             << std::endl;
+}
+
+// The depth the pane's last frame shows at (x, y) becomes the focus distance.
+void Viewer::focusOn(std::size_t pane, std::uint32_t x, std::uint32_t y) {
+  const med::FrameBuffer& fb = panes_.at(pane).frame();
+  const float depth = x < fb.width && y < fb.height && !fb.depth.empty() ? fb.depth[fb.index(x, y)] : INFINITY;
+  if (!(std::isfinite(depth) && depth > 0.0f)) {
+    status_ = "nothing to focus on there (the background)";
+    std::cout << "viewport " << pane << ": " << status_ << std::endl;
+    return;
+  }
+  session_->source.find<sg::Camera>(session_->camera)->setFocusDistance(depth);
+  status_ = "focused at " + std::to_string(depth);
+  std::cout << "viewport " << pane << ": focus distance " << depth << std::endl;
 }
 
 void Viewer::saveBookmark(const std::string& name) {

@@ -94,6 +94,18 @@ void Viewer::drawPanels() {
     if (!bookmarkMessage_.empty()) ImGui::TextWrapped("%s", bookmarkMessage_.c_str());
   }
 
+  if (ImGui::CollapsingHeader("Lens")) {
+    // Depth of field (path tracer): the aperture up to a tenth of the
+    // scene's radius, the focus out to four radii; Ctrl+click focuses.
+    auto* camera = session_->source.find<sg::Camera>(session_->camera);
+    float aperture = camera->apertureRadius(), focus = camera->focusDistance();
+    if (ImGui::SliderFloat("aperture", &aperture, 0.0f, std::max(0.1f * radius_, 1e-3f), "%.4g"))
+      camera->setApertureRadius(std::max(aperture, 0.0f));
+    if (ImGui::SliderFloat("focus", &focus, 1e-3f * radius_, 4.0f * radius_, "%.4g", ImGuiSliderFlags_Logarithmic))
+      camera->setFocusDistance(std::max(focus, 1e-6f));
+    ImGui::TextDisabled("Ctrl+click: focus there");
+  }
+
   if (animationDuration_ > 0 && ImGui::CollapsingHeader("Animation", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::Checkbox("Play", &playing_);
     float t = float(animationTime_);

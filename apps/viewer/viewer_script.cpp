@@ -119,6 +119,15 @@ ScriptAction parseLine(const std::vector<std::string>& w, const std::string& whe
   } else if (verb == "time") {
     p.arity(w, 2, 2, "time SECONDS");
     a.number = p.real(w[1], "time", 0, 1e6);
+  } else if (verb == "lens") {
+    p.arity(w, 3, 3, "lens APERTURE FOCUS-DISTANCE");
+    a.number = p.real(w[1], "aperture", 0, 1e12);
+    a.number2 = p.real(w[2], "focus distance", 1e-6, 1e12);
+  } else if (verb == "focus-on") {
+    p.arity(w, 4, 4, "focus-on VIEWPORT X Y");
+    a.viewport = p.viewport(w[1]);
+    a.count = p.integer(w[2], "X", 0, 32767);
+    a.number2 = double(p.integer(w[3], "Y", 0, 32767));
   } else if (verb == "pick") {
     p.arity(w, 4, 4, "pick VIEWPORT X Y");
     a.viewport = p.viewport(w[1]);
@@ -139,7 +148,7 @@ ScriptAction parseLine(const std::vector<std::string>& w, const std::string& whe
   } else {
     p.fail("unknown action '" + verb +
            "' (backend, orbit, tilt, pan, zoom, wait, param, limit, pause, resume, raster-while-moving, workload, "
-           "time, pick, bookmark, screenshot, window-screenshot, open, report)");
+           "time, lens, focus-on, pick, bookmark, screenshot, window-screenshot, open, report)");
   }
   return a;
 }

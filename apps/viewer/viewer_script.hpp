@@ -39,10 +39,10 @@ class ScriptError : public std::invalid_argument {
 struct ScriptAction {
   std::string verb;                // the first word ("wait frames" and "wait samples" become "wait-frames", ...)
   std::vector<std::string> words;  // the rest, as written
-  std::uint32_t viewport = 0;      // for backend, param, pick, screenshot
-  double number = 0;               // orbit, tilt, zoom, time; pan's DX
-  double number2 = 0;              // pan's DY; pick's Y
-  std::int64_t count = 0;          // wait's N, limit's N, pick's X
+  std::uint32_t viewport = 0;      // for backend, param, pick, focus-on, screenshot
+  double number = 0;               // orbit, tilt, zoom, time; pan's DX; lens' aperture
+  double number2 = 0;              // pan's DY; pick's and focus-on's Y; lens' focus distance
+  std::int64_t count = 0;          // wait's N, limit's N, pick's and focus-on's X
   std::string where;               // "FILE:LINE" for messages
 };
 

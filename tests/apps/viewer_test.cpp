@@ -50,9 +50,9 @@ TEST(ViewerScript, ParsesEveryAction) {
       "# comment\nbackend 1 vulkan\norbit -30\ntilt 5\npan 0.1 -0.2\nzoom 0.5\nwait frames 3\nwait samples 64\n"
       "param 0 filter=pixel\nlimit 256\npause\nresume\nraster-while-moving on\ntime 1.5\npick 1 10 20\n"
       "bookmark save a\nbookmark load a\nscreenshot a.png 1\nwindow-screenshot w.png\nopen builtin:cornell\n"
-      "workload on\n",
+      "workload on\nlens 0.1 3\nfocus-on 1 10 20\n",
       "s.txt", limits());
-  ASSERT_EQ(actions.size(), 20u);
+  ASSERT_EQ(actions.size(), 22u);
   EXPECT_EQ(actions[0].verb, "backend");
   EXPECT_EQ(actions[0].viewport, 1u);
   EXPECT_EQ(actions[1].number, -30);
@@ -65,6 +65,11 @@ TEST(ViewerScript, ParsesEveryAction) {
   EXPECT_EQ(actions[0].where, "s.txt:2");
   EXPECT_EQ(actions[19].verb, "workload");
   EXPECT_EQ(actions[19].count, 1);
+  EXPECT_EQ(actions[20].number, 0.1);
+  EXPECT_EQ(actions[20].number2, 3);
+  EXPECT_EQ(actions[21].viewport, 1u);
+  EXPECT_EQ(actions[21].count, 10);
+  EXPECT_EQ(actions[21].number2, 20);
 }
 
 TEST(ViewerScript, RefusesBadLinesWithTheirLocation) {

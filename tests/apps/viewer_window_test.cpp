@@ -204,6 +204,18 @@ TEST_F(ViewerWindow, CoveragePickSelectsTheObjectUnderThePixel) {
   EXPECT_LE(compare(image("before.png"), image("after.png")).maxAbs, 1.0 / 255 + 1e-6);
 }
 
+// The lens from a script (as the panel's sliders set it): focus on what a
+// pixel of the path-traced viewport shows, open the aperture, and the
+// picture blurs away from that depth.
+TEST_F(ViewerWindow, LensFocusesOnAPixelAndBlurs) {
+  writeScript("lens.txt", "wait samples 4\nscreenshot pinhole.png 0\nlens 40 500\nfocus-on 0 48 60\n"
+                          "wait samples 4\nscreenshot lens.png 0\nfocus-on 0 0 0\n");
+  const Outcome v = viewer("builtin:cornell --viewports embree --size 96x96 --spp 4 --script lens.txt --exit-after");
+  ASSERT_EQ(v.status, 0) << v.err;
+  EXPECT_THAT(v.out, HasSubstr("viewport 0: focus distance "));
+  EXPECT_GT(compare(image("pinhole.png"), image("lens.png")).meanAbs, 0.01) << "the back of the box blurs";
+}
+
 // Figure 5.6's option: while the camera moves the path-traced viewport
 // shows the rasteriser's picture, and path traces once it rests.
 TEST_F(ViewerWindow, RasterisesWhileMovingThenPathTraces) {
