@@ -9,6 +9,7 @@
 #include <atomic>
 #include <csignal>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -40,7 +41,8 @@ using Clock = std::chrono::steady_clock;
 
 struct Options {
   std::string config, scene, nodes, tokenFile, size, output, camera;
-  std::vector<std::string> params;  // --param name=value, for every node whose back-end takes it
+  std::optional<double> aperture, focusDistance;  // the camera's lens, when given
+  std::vector<std::string> params;                // --param name=value, for every node whose back-end takes it
   tsr::sg::ImportOptions import;
   std::uint64_t frames = 0;  // 0: until interrupted
   std::int64_t spp = 0;      // 0: the config's
@@ -145,6 +147,8 @@ int run(const Options& o) {
   tsr::app::SceneSession session;
   tsr::app::ViewChoice view;
   view.camera = o.camera;
+  if (o.aperture) view.look.apertureRadius = float(*o.aperture);
+  if (o.focusDistance) view.look.focusDistance = float(*o.focusDistance);
   session.load(o.scene, o.import, view);
   tsr::cluster::ClientOptions client;
   if (!o.tokenFile.empty()) client.token = tsr::cluster::readTokenFile(o.tokenFile);
@@ -276,6 +280,9 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(tsr::app::FiniteRange(0.0, 3600.0));
   app.add_option("--camera", o.camera, "the scene camera to play through: its name or index (default: the first)");
+  app.add_option("--aperture", o.aperture,
+                 "thin lens radius in scene units: depth of field on path-tracing nodes (0: a pinhole)");
+  app.add_option("--focus-distance", o.focusDistance, "distance in focus along the view, scene units");
   app.add_option(
          "--output", o.output,
          "write the last stitched frame here (PNG, EXR, ...); only that frame's pixels come back from the nodes")

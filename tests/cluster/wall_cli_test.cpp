@@ -46,6 +46,25 @@ TEST(WallCli, FourNodesPresentTilesThatStitchToTheLocalRender) {
   EXPECT_NE(out.find("fps"), std::string::npos) << out;
 }
 
+// --aperture and --focus-distance reach the nodes with the view: the
+// stitched frame equals a local render through the same lens.
+TEST(WallCli, TheLensReachesTheNodes) {
+  TempDir dir;
+  Wall wall(dir.path, 4);
+  fs::path log = dir.path / "wall.log";
+  ASSERT_EQ(runWall(gridConfig(dir.path) + " builtin:animated --nodes " + wall.addresses() +
+                        " --frames 1 --size 48x40 --aperture 0.3 --focus-distance 2 --output " +
+                        (dir.path / "wall.exr").string(),
+                    log),
+            0)
+      << slurp(log);
+  const med::FrameBuffer stitched = med::readImage((dir.path / "wall.exr").string());
+  expectTileEquals(stitched, localFrame(0, 48, 40, 0.3f, 2.0f), {0, 0, 48, 40}, "the stitched frame");
+  EXPECT_NE(stitched.colour, localFrame(0, 48, 40).colour) << "the lens shows";
+  ASSERT_NE(runWall(gridConfig(dir.path) + " builtin:animated --nodes " + wall.addresses() + " --aperture -1", log), 0);
+  EXPECT_NE(slurp(log).find("--aperture"), std::string::npos) << slurp(log);
+}
+
 // --workload beside: the status lines name each screen's share and the
 // balance, and FILE.workload.EXT beside --output shows each screen in its
 // node's colour; over: the frame itself carries the colours, half and half.

@@ -127,9 +127,13 @@ inline int runWall(const std::string& args, const fs::path& log) {
 }
 
 // The local render of builtin:animated at frame `frame` of 24 fps.
-inline med::FrameBuffer localFrame(int frame, std::uint32_t width, std::uint32_t height) {
+inline med::FrameBuffer localFrame(int frame, std::uint32_t width, std::uint32_t height, float aperture = 0.0f,
+                                   float focusDistance = 5.0f) {
   AnimatedScene s("builtin:animated");
   s.pose(frame);
+  auto* lens = s.scene.find<sg::Camera>(s.imported.cameras.front());
+  lens->setApertureRadius(aperture);
+  lens->setFocusDistance(focusDistance);
   sg::Replica replica;
   replica.apply(s.scene.commit());
   med::ViewportRegistry registry;
