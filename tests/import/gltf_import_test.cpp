@@ -188,6 +188,41 @@ TEST_F(RichScene, LightsAndCamerasHangUnderTheirNodes) {
   EXPECT_FLOAT_EQ(cam->farPlane(), 200.0f);
 }
 
+// glTF describes a pinhole; Tessera's TSR_camera_lens adds a thin lens
+// (docs/camera.md). A camera without it stays a pinhole.
+TEST(GltfImport, TesseraCameraLensExtension) {
+  test::TempDir dir;
+  test::GltfBuilder b = test::tinyScene();
+  b.doc["extensionsUsed"] = {"TSR_camera_lens"};
+  b.doc["cameras"] = {{{"type", "perspective"},
+                       {"perspective", {{"yfov", 0.8}, {"znear", 0.1}}},
+                       {"extensions", {{"TSR_camera_lens", {{"apertureRadius", 0.05}, {"focusDistance", 3.5}}}}}},
+                      {{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.1}}}}};
+  b.doc["nodes"].push_back({{"camera", 0}});
+  b.doc["nodes"].push_back({{"camera", 1}});
+  b.doc["scenes"][0]["nodes"].push_back(1);
+  b.doc["scenes"][0]["nodes"].push_back(2);
+  b.writeGltf(dir.file("lens.gltf"));
+  Scene scene;
+  const ImportResult result = importScene(scene, dir.file("lens.gltf"));
+  ASSERT_EQ(result.cameras.size(), 2u);
+  const Camera* lens = scene.find<Camera>(result.cameras[0]);
+  const Camera* pinhole = scene.find<Camera>(result.cameras[1]);
+  EXPECT_FLOAT_EQ(lens->apertureRadius(), 0.05f);
+  EXPECT_FLOAT_EQ(lens->focusDistance(), 3.5f);
+  EXPECT_EQ(pinhole->apertureRadius(), 0.0f);
+
+  b.doc["cameras"][0]["extensions"]["TSR_camera_lens"]["apertureRadius"] = -1.0;
+  b.writeGltf(dir.file("bad-lens.gltf"));
+  Scene refused;
+  try {
+    importScene(refused, dir.file("bad-lens.gltf"));
+    ADD_FAILURE() << "a negative aperture was accepted";
+  } catch (const ImportError& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("camera 0 TSR_camera_lens needs apertureRadius >= 0"));
+  }
+}
+
 TEST(GltfImport, GlbAndDataUriLoadLikeTheGltf) {
   test::TempDir dir;
   test::GltfBuilder b = test::richScene(dir);

@@ -459,6 +459,15 @@ class Converter {
       c.zfar = src.perspective.zfar > 0 ? finite(src.perspective.zfar, what + " zfar") : 1.0e30f;
       if (c.yfov <= 0.0f || c.yfov >= 3.1415926f || c.znear <= 0.0f || c.zfar <= c.znear)
         fail(what + " needs 0 < yfov < pi and 0 < znear < zfar");
+      if (auto lens = src.extensions.find("TSR_camera_lens"); lens != src.extensions.end()) {
+        const tinygltf::Value& v = lens->second;
+        if (v.Has("apertureRadius"))
+          c.apertureRadius = finite(v.Get("apertureRadius").GetNumberAsDouble(), what + " apertureRadius");
+        if (v.Has("focusDistance"))
+          c.focusDistance = finite(v.Get("focusDistance").GetNumberAsDouble(), what + " focusDistance");
+        if (!(c.apertureRadius >= 0.0f) || !(c.focusDistance > 0.0f))
+          fail(what + " TSR_camera_lens needs apertureRadius >= 0 and focusDistance > 0");
+      }
       out_.cameras.push_back(c);
       cameraIndex_.push_back(static_cast<int>(out_.cameras.size()) - 1);
     }

@@ -17,7 +17,8 @@ constexpr std::uint32_t kMaxNodeDepth = 4096;
 
 const char* const kSupportedExtensions[] = {
     "KHR_lights_punctual",  "KHR_materials_emissive_strength", "KHR_materials_transmission", "KHR_materials_ior",
-    "KHR_materials_volume", "KHR_texture_transform",           "TSR_materials_volume",       "TSR_scene_medium"};
+    "KHR_materials_volume", "KHR_texture_transform",           "TSR_materials_volume",       "TSR_scene_medium",
+    "TSR_camera_lens"};
 
 // A small schema language: each check looks at one value at a JSON path and
 // throws with that path in the message.
@@ -193,7 +194,9 @@ TypeChecker::Check documentSchema(const TypeChecker& t) {
              t.object(
                  {{"yfov", t.number()}, {"znear", t.number()}, {"zfar", t.number()}, {"aspectRatio", t.number()}})},
             {"orthographic",
-             t.object({{"xmag", t.number()}, {"ymag", t.number()}, {"znear", t.number()}, {"zfar", t.number()}})}}))},
+             t.object({{"xmag", t.number()}, {"ymag", t.number()}, {"znear", t.number()}, {"zfar", t.number()}})},
+            {"extensions", t.object({{"TSR_camera_lens",
+                                      t.object({{"apertureRadius", t.number()}, {"focusDistance", t.number()}})}})}}))},
       {"animations",
        t.arrayOf(t.object(
            {{"channels", t.arrayOf(t.object({{"sampler", t.index()},

@@ -98,6 +98,9 @@ struct Camera {
   float yfov = 0.7853982f;
   float znear = 0.1f;
   float zfar = 1000.0f;
+  // TSR_camera_lens: a thin lens (0: a pinhole, what glTF itself describes).
+  float apertureRadius = 0.0f;
+  float focusDistance = 5.0f;
 };
 
 struct Node {

@@ -224,6 +224,8 @@ std::vector<std::uint8_t> encodeScene(const Scene& s) {
     w.pod(c.yfov);
     w.pod(c.znear);
     w.pod(c.zfar);
+    w.pod(c.apertureRadius);
+    w.pod(c.focusDistance);
   }
   w.pod(std::uint64_t(s.nodes.size()));
   for (const Node& n : s.nodes) put(w, n);
@@ -289,12 +291,14 @@ Scene decodeScene(std::span<const std::uint8_t> bytes) {
     l.innerCone = r.pod<float>();
     l.outerCone = r.pod<float>();
   }
-  s.cameras.resize(r.count(20));
+  s.cameras.resize(r.count(28));
   for (Camera& c : s.cameras) {
     c.name = r.text();
     c.yfov = r.pod<float>();
     c.znear = r.pod<float>();
     c.zfar = r.pod<float>();
+    c.apertureRadius = r.pod<float>();
+    c.focusDistance = r.pod<float>();
   }
   s.nodes.resize(r.count(93));
   for (Node& n : s.nodes) n = getNode(r);

@@ -160,6 +160,10 @@ void validateScene(const Scene& s) {
     if (!(c.yfov > 0.0f && c.yfov < 3.1415926f) || !(c.znear > 0.0f && std::isfinite(c.znear)) ||
         !(c.zfar > c.znear && std::isfinite(c.zfar)))
       fail("camera '" + c.name + "' has an impossible frustum");
+  for (const Camera& c : s.cameras)
+    if (!(c.apertureRadius >= 0.0f && std::isfinite(c.apertureRadius)) ||
+        !(c.focusDistance > 0.0f && std::isfinite(c.focusDistance)))
+      fail("camera '" + c.name + "' has an impossible lens");
   checkNodes(s);
   checkAnimations(s);
   if (!finite(s.background)) fail("the background holds NaN or infinity");

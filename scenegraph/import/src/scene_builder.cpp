@@ -166,6 +166,8 @@ class Builder {
     c.setVerticalFov(src.yfov);
     c.setNearPlane(src.znear);
     c.setFarPlane(src.zfar);
+    c.setApertureRadius(src.apertureRadius);
+    c.setFocusDistance(src.focusDistance);
     result_.cameras.push_back(c.id());
     return c.id();
   }

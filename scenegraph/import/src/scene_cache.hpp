@@ -18,7 +18,8 @@ namespace tsr::sg::cache {
 
 // Bump whenever the conversion of a file would give a different parsed::Scene.
 // 2: materials and the scene carry volumes (KHR_materials_volume, TSR_*).
-inline constexpr std::uint32_t kImporterVersion = 3;
+// 4: cameras carry a thin lens (TSR_camera_lens).
+inline constexpr std::uint32_t kImporterVersion = 4;
 // An entry's header; the encoded scene follows.
 inline constexpr std::size_t kHeaderBytes = 120;
 
