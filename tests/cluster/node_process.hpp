@@ -123,6 +123,13 @@ inline std::vector<std::unique_ptr<NodeProcess>> startNodes(std::size_t n, const
   for (std::size_t i = 0; i < n; ++i) out.push_back(std::make_unique<NodeProcess>(args));
   return out;
 }
+
+// "A:P,B:Q,...": the nodes' addresses as --nodes takes them.
+inline std::string addresses(const std::vector<std::unique_ptr<NodeProcess>>& nodes) {
+  std::string out;
+  for (const auto& n : nodes) out += (out.empty() ? "" : ",") + n->text();
+  return out;
+}
 #endif  // TSR_NODE_BINARY
 
 // A token file that lives as long as the object.

@@ -33,12 +33,6 @@ std::string writeConfig(const fs::path& dir, const std::string& mode, std::size_
   return p.string();
 }
 
-std::string addresses(const std::vector<std::unique_ptr<NodeProcess>>& nodes) {
-  std::string out;
-  for (const auto& n : nodes) out += (out.empty() ? "" : ",") + n->text();
-  return out;
-}
-
 const std::string kLocal = " --spp 2 --max-depth 3 --seed 5 --threads 1 --size 48x40";
 
 TEST(RenderCli, ClusterImageEqualsLocalImage) {

@@ -42,12 +42,6 @@ std::string config(const fs::path& dir, const std::string& mode, std::size_t nod
   return p.string();
 }
 
-std::string addresses(const std::vector<std::unique_ptr<NodeProcess>>& nodes) {
-  std::string out;
-  for (const auto& n : nodes) out += (out.empty() ? "" : ",") + n->text();
-  return out;
-}
-
 std::vector<TileWork> loggedTiles(const nlohmann::json& frame) {
   std::vector<TileWork> tiles;
   for (const auto& t : frame.at("tiles")) {
