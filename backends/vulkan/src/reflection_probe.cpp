@@ -140,9 +140,14 @@ void Renderer::Impl::prefilterProbeLevels(const SceneState& s) {
 void Renderer::Impl::updateProbe(const SceneState& s, const RenderSettings& settings, GpuFrame& frame,
                                  RenderStats& stats) {
   ensureProbeImages();
-  const ProbeUse wanted = settings.reflectionProbe ? wantsProbe(s) : ProbeUse::None;
-  const bool use = wanted != ProbeUse::None;
   const ProbeKey key{&s, s.version};
+  // Bounds of every instance: once per scene version, not every frame.
+  if (probeWantedFor != key) {
+    probeWanted = wantsProbe(s);
+    probeWantedFor = key;
+  }
+  const ProbeUse wanted = settings.reflectionProbe ? probeWanted : ProbeUse::None;
+  const bool use = wanted != ProbeUse::None;
   if (use && (probeHeld != key || probeUseHeld != wanted)) {
     // Draw into the image the shader does not read; the probe flag is off
     // while drawing, so the faces never sample a probe.

@@ -79,6 +79,8 @@ struct Renderer::Impl {
   // What the held probe is seen in (wantsProbe()).
   enum class ProbeUse { None, Mirrors, RoughReflections };
   ProbeUse probeUseHeld = ProbeUse::None;
+  ProbeUse probeWanted = ProbeUse::None;  // wantsProbe() of the scene version probeWantedFor
+  std::optional<ProbeKey> probeWantedFor;
   Image probeLevels;     // prefilterProbe() of the held probe (probe_prefilter.hpp)
   Buffer probeReadback;  // its faces, for prefilterProbe()
   GpuFrame frameData{};

@@ -113,11 +113,17 @@ TEST(VulkanMaterial, BaseColourTextureLookupAtKnownUv) {
 // glTF's MASK: a red quad whose texture is opaque on its left half and
 // clear on its right, in front of a blue one, cut at 0.5: blue shows
 // through the clear half only, and the red half is opaque (depth written).
+// 4x4 white texels, opaque on the left half (u < 0.5), clear on the right.
+std::vector<std::uint8_t> halfCut() {
+  std::vector<std::uint8_t> texels;
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) texels.insert(texels.end(), {255, 255, 255, std::uint8_t(x < 2 ? 255 : 0)});
+  return texels;
+}
+
 TEST(VulkanMaterial, MaskedAlphaCutsTheClearHalfAway) {
   for (float cutoff : {0.5f, 0.0f}) {
-    std::vector<std::uint8_t> texels;
-    for (int y = 0; y < 4; ++y)
-      for (int x = 0; x < 4; ++x) texels.insert(texels.end(), {255, 255, 255, std::uint8_t(x < 2 ? 255 : 0)});
+    const std::vector<std::uint8_t> texels = halfCut();
     Scene scene(device());
     MeshId quad = scene.addMesh(test::quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}));
     Material red = emissive({1, 0, 0});
@@ -148,9 +154,7 @@ TEST(VulkanMaterial, MaskedAlphaCutsTheClearHalfAway) {
 // quad casts a shadow.
 TEST(VulkanMaterial, MaskedQuadCastsAMaskedShadow) {
   for (float cutoff : {0.5f, 0.0f}) {
-    std::vector<std::uint8_t> texels;
-    for (int y = 0; y < 4; ++y)
-      for (int x = 0; x < 4; ++x) texels.insert(texels.end(), {255, 255, 255, std::uint8_t(x < 2 ? 255 : 0)});
+    const std::vector<std::uint8_t> texels = halfCut();
     Scene scene(device());
     Material white;
     white.baseColor = glm::vec3(0.8f);
