@@ -32,22 +32,35 @@ void parseSize(const std::string& text, std::uint32_t& width, std::uint32_t& hei
                                 " pixels (8192x8192)");
 }
 
-sg::Vec3 parsePoint(const std::string& option, const std::string& text) {
-  sg::Vec3 p(0.0f);
+namespace {
+// "a,b,c" -> `count` numbers into out; throws naming `option` and `shape`.
+void parseNumbers(const std::string& option, const std::string& text, float* out, int count, const std::string& shape) {
   std::size_t start = 0;
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < count; ++i) {
     const std::size_t comma = text.find(',', start);
-    if ((i < 2) != (comma != std::string::npos))
-      throw std::invalid_argument(option + " " + text + ": expected X,Y,Z (three numbers separated by commas)");
-    const std::string part = text.substr(start, i < 2 ? comma - start : std::string::npos);
+    if ((i < count - 1) != (comma != std::string::npos))
+      throw std::invalid_argument(option + " " + text + ": expected " + shape);
+    const std::string part = text.substr(start, i < count - 1 ? comma - start : std::string::npos);
     const char* begin = part.c_str();
     char* end = nullptr;
-    p[i] = std::strtof(begin, &end);
+    out[i] = std::strtof(begin, &end);
     if (part.empty() || end != begin + part.size() || std::isspace(static_cast<unsigned char>(part.front())))
       throw std::invalid_argument(option + " " + text + ": '" + part + "' is not a number");
     start = comma + 1;
   }
+}
+}  // namespace
+
+sg::Vec3 parsePoint(const std::string& option, const std::string& text) {
+  sg::Vec3 p(0.0f);
+  parseNumbers(option, text, &p[0], 3, "X,Y,Z (three numbers separated by commas)");
   return p;
+}
+
+sg::Vec2 parseShutter(const std::string& text) {
+  sg::Vec2 s(0.0f);
+  parseNumbers("--shutter", text, &s[0], 2, "OPEN,CLOSE (two fractions of the frame interval separated by a comma)");
+  return s;
 }
 
 std::string aovPath(const std::string& output, const std::string& aov) {

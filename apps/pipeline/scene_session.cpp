@@ -64,6 +64,13 @@ void SceneSession::load(const std::string& scene, const sg::ImportOptions& optio
   }
 }
 
+void SceneSession::poseAnimations(double seconds, double frameInterval) {
+  const auto* lens = source.find<sg::Camera>(camera);
+  const bool open = lens && lens->shutterClose() > lens->shutterOpen();
+  for (const auto& animation : imported.animations)
+    animation.apply(source, static_cast<float>(seconds), open ? static_cast<float>(frameInterval) : 0.0f);
+}
+
 sg::ChangeListPtr SceneSession::commit() {
   if (rig.active()) sg::followCamera(source, rig, sg::cameraWorldPose(source, camera));
   return source.commit();

@@ -43,6 +43,11 @@ struct SceneSession {
   // distance to the depth that pixel sees (a one-pixel path-traced render).
   // Throws sg::ImportError or std::invalid_argument.
   void load(const std::string& scene, const sg::ImportOptions& options = {}, const ViewChoice& view = {});
+  // Poses every animation at `seconds`, with its motion over the next
+  // `frameInterval` seconds when the camera's shutter stays open over part
+  // of the frame (Transform::frameMotion, which the shutter blurs; a
+  // shutter that is an instant leaves the motion unedited).
+  void poseAnimations(double seconds, double frameInterval);
   // Moves the rig's camera light to the camera and commits the frame's edits.
   sg::ChangeListPtr commit();
   // commit(), and the list applied to the replica.

@@ -234,10 +234,9 @@ int renderSequence(const RenderJob& given, const SequenceOptions& sequence, cons
   for (int posed = 0; posed < sequence.frames + lookahead; ++posed) {
     sg::ChangeListPtr delta;
     if (posed < sequence.frames) {
-      // Frame 0 is the scene as loaded; later ones pose the animation at frame / fps.
-      if (sequence.framesGiven)
-        for (const auto& animation : session.imported.animations)
-          animation.apply(session.source, static_cast<float>(posed / sequence.fps));
+      // Frame 0 is the scene as loaded; later ones pose the animation at
+      // frame / fps (with its motion over the frame, for an open shutter).
+      if (sequence.framesGiven) session.poseAnimations(posed / sequence.fps, 1.0 / sequence.fps);
       if (lookahead == 0) {
         delta = session.publish();
         if (high) high->follow(posed, delta);

@@ -101,6 +101,11 @@ bool parseRenderOptions(int argc, char** argv, RenderJob& o, std::string& listPa
   auto* focusOnOption = viewGroup->add_option("--focus-on", focusOn,
                                               "pixel X,Y: focus at the depth it sees (instead of --focus-distance)");
   focusOnOption->excludes(focusOption);
+  std::string shutter;
+  auto* shutterOption = viewGroup->add_option(
+      "--shutter", shutter,
+      "OPEN,CLOSE as fractions of the frame interval: what moves is blurred between (embree; e.g. 0,0.5; default "
+      "0,0: an instant)");
   bool noDefaultLight = false;
   viewGroup->add_flag("--no-default-light", noDefaultLight,
                       "a scene without lights stays unlit (default: a grey dome and a camera light)");
@@ -122,6 +127,7 @@ bool parseRenderOptions(int argc, char** argv, RenderJob& o, std::string& listPa
   if (*fovOption) o.view.look.fovDegrees = static_cast<float>(fov);
   if (*apertureOption) o.view.look.apertureRadius = static_cast<float>(aperture);
   if (*focusOption) o.view.look.focusDistance = static_cast<float>(focusDistance);
+  if (*shutterOption) o.view.look.shutter = parseShutter(shutter);
   if (*focusOnOption) {
     std::uint32_t x = 0, y = 0;
     const char* end = focusOn.data() + focusOn.size();

@@ -254,9 +254,16 @@ void Viewer::handleInput() {
   }
 }
 
+void Viewer::setShutter(float open, float close) {
+  auto* camera = session_->source.find<sg::Camera>(session_->camera);
+  camera->setShutterOpen(std::min(open, close));
+  camera->setShutterClose(std::max(open, close));
+  setAnimationTime(animationTime_);  // the motion over the frame follows the shutter
+}
+
 void Viewer::setAnimationTime(double seconds) {
   animationTime_ = seconds;
-  for (const auto& a : session_->imported.animations) a.apply(session_->source, float(seconds));
+  session_->poseAnimations(seconds, kShutterFrameInterval);
 }
 
 void Viewer::renderPanes() {

@@ -71,6 +71,9 @@ class Viewer {
   void cycleBackend(std::size_t pane);
   void saveBookmark(const std::string& name);
   void loadBookmark(const std::string& name);
+  // The camera's shutter (fractions of the frame interval), the animation
+  // posed again so its motion follows.
+  void setShutter(float open, float close);
   void setAnimationTime(double seconds);
 
   ViewerOptions options_;
@@ -98,6 +101,9 @@ class Viewer {
   std::vector<int> pressedKeys_;
   sg::ContainerId selected_ = sg::kNoContainer;
   double animationTime_ = 0, animationDuration_ = 0;
+  // The frame interval an open shutter's fractions refer to: the viewer's
+  // frames come as fast as they render, so motion blur uses a nominal 30 fps.
+  static constexpr double kShutterFrameInterval = 1.0 / 30.0;
   bool playing_ = false;
   bool sceneChanged_ = true;
   bool showPanels_ = true;

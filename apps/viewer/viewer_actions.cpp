@@ -93,6 +93,8 @@ void Viewer::runAction(const ScriptAction& a) {
   } else if (a.verb == "lens") {
     camera->setApertureRadius(float(a.number));
     camera->setFocusDistance(float(a.number2));
+  } else if (a.verb == "shutter") {
+    setShutter(float(a.number), float(a.number2));
   } else if (a.verb == "focus-on") {
     focusOn(a.viewport, std::uint32_t(a.count), std::uint32_t(a.number2));
   } else if (a.verb == "pick") {

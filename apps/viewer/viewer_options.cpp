@@ -20,7 +20,7 @@ std::string viewerKeyHelp() {
          "  right drag     pan (also middle drag, or shift + left drag)\n"
          "  wheel          zoom towards the target\n"
          "  click          pick the object under the mouse (coverage viewports)\n"
-         "  Ctrl + click   focus the lens at what the mouse points at (panel 'Lens': aperture, focus)\n"
+         "  Ctrl + click   focus the lens at what the mouse points at (panel 'Lens and shutter')\n"
          "  W A S D Q E    fly forward, left, back, right, down, up\n"
          "  F              frame the scene again\n"
          "  B              cycle the back-end of the viewport under the mouse\n"

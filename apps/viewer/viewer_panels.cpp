@@ -94,7 +94,7 @@ void Viewer::drawPanels() {
     if (!bookmarkMessage_.empty()) ImGui::TextWrapped("%s", bookmarkMessage_.c_str());
   }
 
-  if (ImGui::CollapsingHeader("Lens")) {
+  if (ImGui::CollapsingHeader("Lens and shutter")) {
     // Depth of field (path tracer): the aperture up to a tenth of the
     // scene's radius, the focus out to four radii; Ctrl+click focuses.
     auto* camera = session_->source.find<sg::Camera>(session_->camera);
@@ -104,6 +104,11 @@ void Viewer::drawPanels() {
     if (ImGui::SliderFloat("focus", &focus, 1e-3f * radius_, 4.0f * radius_, "%.4g", ImGuiSliderFlags_Logarithmic))
       camera->setFocusDistance(std::max(focus, 1e-6f));
     ImGui::TextDisabled("Ctrl+click: focus there");
+    // The shutter (path tracer): what the animation moves is blurred over
+    // this part of the frame interval.
+    float shutter[2] = {camera->shutterOpen(), camera->shutterClose()};
+    if (ImGui::SliderFloat2("shutter", shutter, 0.0f, 1.0f, "%.2f"))
+      setShutter(std::clamp(shutter[0], 0.0f, 1.0f), std::clamp(shutter[1], 0.0f, 1.0f));
   }
 
   if (animationDuration_ > 0 && ImGui::CollapsingHeader("Animation", ImGuiTreeNodeFlags_DefaultOpen)) {

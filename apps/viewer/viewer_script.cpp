@@ -123,6 +123,10 @@ ScriptAction parseLine(const std::vector<std::string>& w, const std::string& whe
     p.arity(w, 3, 3, "lens APERTURE FOCUS-DISTANCE");
     a.number = p.real(w[1], "aperture", 0, 1e12);
     a.number2 = p.real(w[2], "focus distance", 1e-6, 1e12);
+  } else if (verb == "shutter") {
+    p.arity(w, 3, 3, "shutter OPEN CLOSE");
+    a.number = p.real(w[1], "shutter open", 0, 1);
+    a.number2 = p.real(w[2], "shutter close", a.number, 1);
   } else if (verb == "focus-on") {
     p.arity(w, 4, 4, "focus-on VIEWPORT X Y");
     a.viewport = p.viewport(w[1]);
@@ -148,7 +152,7 @@ ScriptAction parseLine(const std::vector<std::string>& w, const std::string& whe
   } else {
     p.fail("unknown action '" + verb +
            "' (backend, orbit, tilt, pan, zoom, wait, param, limit, pause, resume, raster-while-moving, workload, "
-           "time, lens, focus-on, pick, bookmark, screenshot, window-screenshot, open, report)");
+           "time, lens, shutter, focus-on, pick, bookmark, screenshot, window-screenshot, open, report)");
   }
   return a;
 }

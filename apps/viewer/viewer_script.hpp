@@ -40,8 +40,8 @@ struct ScriptAction {
   std::string verb;                // the first word ("wait frames" and "wait samples" become "wait-frames", ...)
   std::vector<std::string> words;  // the rest, as written
   std::uint32_t viewport = 0;      // for backend, param, pick, focus-on, screenshot
-  double number = 0;               // orbit, tilt, zoom, time; pan's DX; lens' aperture
-  double number2 = 0;              // pan's DY; pick's and focus-on's Y; lens' focus distance
+  double number = 0;               // orbit, tilt, zoom, time; pan's DX; lens' aperture; shutter's open
+  double number2 = 0;              // pan's DY; pick's and focus-on's Y; lens' focus distance; shutter's close
   std::int64_t count = 0;          // wait's N, limit's N, pick's and focus-on's X
   std::string where;               // "FILE:LINE" for messages
 };

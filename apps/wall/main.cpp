@@ -42,6 +42,7 @@ using Clock = std::chrono::steady_clock;
 struct Options {
   std::string config, scene, nodes, tokenFile, size, output, camera;
   std::optional<double> aperture, focusDistance;  // the camera's lens, when given
+  std::string shutter;                            // OPEN,CLOSE, when given
   std::vector<std::string> params;                // --param name=value, for every node whose back-end takes it
   tsr::sg::ImportOptions import;
   std::uint64_t frames = 0;  // 0: until interrupted
@@ -149,6 +150,7 @@ int run(const Options& o) {
   view.camera = o.camera;
   if (o.aperture) view.look.apertureRadius = float(*o.aperture);
   if (o.focusDistance) view.look.focusDistance = float(*o.focusDistance);
+  if (!o.shutter.empty()) view.look.shutter = tsr::app::parseShutter(o.shutter);
   session.load(o.scene, o.import, view);
   tsr::cluster::ClientOptions client;
   if (!o.tokenFile.empty()) client.token = tsr::cluster::readTokenFile(o.tokenFile);
@@ -185,8 +187,7 @@ int run(const Options& o) {
           nextFrameAt + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / o.maxFps)),
           Clock::now() - std::chrono::seconds(1));
     }
-    for (const auto& animation : session.imported.animations)
-      animation.apply(session.source, static_cast<float>(static_cast<double>(frame) / o.fps));
+    session.poseAnimations(static_cast<double>(frame) / o.fps, 1.0 / o.fps);
     auto frameStarted = Clock::now();
     auto bytesBefore = bytes();
     auto delta = session.publish();
@@ -283,6 +284,9 @@ int main(int argc, char** argv) {
   app.add_option("--aperture", o.aperture,
                  "thin lens radius in scene units: depth of field on path-tracing nodes (0: a pinhole)");
   app.add_option("--focus-distance", o.focusDistance, "distance in focus along the view, scene units");
+  app.add_option("--shutter", o.shutter,
+                 "OPEN,CLOSE as fractions of the frame interval: what the animation moves is blurred between, on "
+                 "path-tracing nodes (default 0,0: an instant)");
   app.add_option(
          "--output", o.output,
          "write the last stitched frame here (PNG, EXR, ...); only that frame's pixels come back from the nodes")

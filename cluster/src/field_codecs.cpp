@@ -37,8 +37,13 @@ med::PixelRect readRect(sg::ByteReader& r, std::uint32_t width, std::uint32_t he
 void writeView(sg::ByteWriter& w, const med::View& v) {
   for (int c = 0; c < 4; ++c)
     for (int row = 0; row < 4; ++row) w.f32(v.cameraToWorld[c][row]);
-  for (float f : {v.left, v.right, v.bottom, v.top, v.nearPlane, v.farPlane, v.apertureRadius, v.focusDistance})
+  for (float f : {v.left, v.right, v.bottom, v.top, v.nearPlane, v.farPlane, v.apertureRadius, v.focusDistance,
+                  v.shutterOpen, v.shutterClose})
     w.f32(f);
+  w.u8(v.cameraToWorldAtEnd ? 1 : 0);
+  if (v.cameraToWorldAtEnd)
+    for (int c = 0; c < 4; ++c)
+      for (int row = 0; row < 4; ++row) w.f32((*v.cameraToWorldAtEnd)[c][row]);
   w.varint(v.width);
   w.varint(v.height);
   writeRect(w, v.region);
@@ -49,9 +54,22 @@ med::View readView(sg::ByteReader& r, RectLimits limits) {
   med::View v;
   for (int c = 0; c < 4; ++c)
     for (int row = 0; row < 4; ++row) v.cameraToWorld[c][row] = r.f32();
-  for (float* f :
-       {&v.left, &v.right, &v.bottom, &v.top, &v.nearPlane, &v.farPlane, &v.apertureRadius, &v.focusDistance})
+  for (float* f : {&v.left, &v.right, &v.bottom, &v.top, &v.nearPlane, &v.farPlane, &v.apertureRadius, &v.focusDistance,
+                   &v.shutterOpen, &v.shutterClose})
     *f = r.f32();
+  switch (r.u8()) {
+    case 0:
+      break;
+    case 1: {
+      glm::mat4 end;
+      for (int c = 0; c < 4; ++c)
+        for (int row = 0; row < 4; ++row) end[c][row] = r.f32();
+      v.cameraToWorldAtEnd = end;
+      break;
+    }
+    default:
+      r.fail("camera motion flag not 0 or 1");
+  }
   v.width = readCoordinate(r, limits.maxSide, "image width");
   v.height = readCoordinate(r, limits.maxSide, "image height");
   v.region = readRect(r, v.width, v.height, limits);

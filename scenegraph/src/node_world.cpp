@@ -7,7 +7,7 @@
 
 namespace tsr::sg {
 
-Mat4 parentWorldMatrix(const Scene& scene, ContainerId node) {
+Mat4 parentWorldMatrix(const Scene& scene, ContainerId node, FrameTime when) {
   Mat4 world(1.0f);
   // The graph is acyclic (the scene refuses cycles), so this walk ends.
   for (ContainerId child = node;;) {
@@ -17,19 +17,20 @@ Mat4 parentWorldMatrix(const Scene& scene, ContainerId node) {
       if (c && isParentType(c->type()) && (parent == kNoContainer || id < parent)) parent = id;
     }
     if (parent == kNoContainer) return world;
-    if (const auto* t = scene.find<Transform>(parent)) world = t->matrix() * world;
+    if (const auto* t = scene.find<Transform>(parent))
+      world = (when == FrameTime::End ? t->matrixAtEnd() : t->matrix()) * world;
     child = parent;
   }
 }
 
-Mat4 cameraWorldPose(const Scene& scene, ContainerId camera) {
+Mat4 cameraWorldPose(const Scene& scene, ContainerId camera, FrameTime when) {
   const auto* c = scene.find<Camera>(camera);
   if (!c) throw std::invalid_argument("container " + std::to_string(camera) + " is not a camera of the scene");
-  return parentWorldMatrix(scene, camera) * c->pose();
+  return parentWorldMatrix(scene, camera, when) * c->pose();
 }
 
-Mat4 cameraWorldPose(const Camera& camera) {
-  return camera.scene() ? parentWorldMatrix(*camera.scene(), camera.id()) * camera.pose() : camera.pose();
+Mat4 cameraWorldPose(const Camera& camera, FrameTime when) {
+  return camera.scene() ? parentWorldMatrix(*camera.scene(), camera.id(), when) * camera.pose() : camera.pose();
 }
 
 }  // namespace tsr::sg

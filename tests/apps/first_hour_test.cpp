@@ -147,6 +147,32 @@ TEST_F(FirstHour, ApertureAndFocusDistanceGiveDepthOfField) {
   EXPECT_LT(meanAbsDifference(image("on.exr"), image("at.exr")), 1e-6) << "focus at " << d.str();
 }
 
+// --shutter OPEN,CLOSE blurs what the animation moves over that part of
+// each frame; 0,0 (an instant) is the render without it, bit for bit.
+TEST_F(FirstHour, ShutterBlursWhatTheAnimationMoves) {
+  const std::string scene = "builtin:animated --size 48x48 --backend embree --spp 16 --seed 5 --frames 2 --fps 2";
+  render(scene + " --output plain.####.exr");
+  render(scene + " --shutter 0,0 --output instant.####.exr");
+  render(scene + " --shutter 0,1 --output open.####.exr");
+  render(scene + " --shutter 0.25,0.5 --output part.####.exr");
+  EXPECT_EQ(meanAbsDifference(image("plain.0001.exr"), image("instant.0001.exr")), 0.0);
+  const double open = meanAbsDifference(image("plain.0001.exr"), image("open.0001.exr"));
+  const double part = meanAbsDifference(image("plain.0001.exr"), image("part.0001.exr"));
+  EXPECT_GT(open, 0.0) << "the whole frame interval blurs the motion";
+  EXPECT_GT(part, 0.0);
+  // The rasterizer has no motion blur (BackendCapabilities::motionBlur):
+  // it draws each frame at its time, shutter or not.
+  const std::string raster = "builtin:animated --size 48x48 --backend vulkan --frames 2 --fps 2";
+  render(raster + " --output raster.####.exr");
+  render(raster + " --shutter 0,1 --output raster-open.####.exr");
+  EXPECT_EQ(meanAbsDifference(image("raster.0001.exr"), image("raster-open.0001.exr")), 0.0);
+  for (const char* bad : {"0.5,0.2", "-1,0", "0,2", "0.5", "a,b"}) {
+    const Outcome r = run(scene + " --shutter " + bad + " --output bad.####.exr");
+    EXPECT_NE(r.status, 0) << bad;
+    EXPECT_NE(r.err.find("--shutter"), std::string::npos) << bad << ": " << r.err;
+  }
+}
+
 TEST_F(FirstHour, AnAnimatedParentMovesItsCamera) {
   const std::string scene = boxes() + " --backend vulkan --camera tracking";
   render(scene + " --frames 2 --fps 1 --output f.####.exr");

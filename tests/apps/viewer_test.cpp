@@ -50,9 +50,9 @@ TEST(ViewerScript, ParsesEveryAction) {
       "# comment\nbackend 1 vulkan\norbit -30\ntilt 5\npan 0.1 -0.2\nzoom 0.5\nwait frames 3\nwait samples 64\n"
       "param 0 filter=pixel\nlimit 256\npause\nresume\nraster-while-moving on\ntime 1.5\npick 1 10 20\n"
       "bookmark save a\nbookmark load a\nscreenshot a.png 1\nwindow-screenshot w.png\nopen builtin:cornell\n"
-      "workload on\nlens 0.1 3\nfocus-on 1 10 20\n",
+      "workload on\nlens 0.1 3\nfocus-on 1 10 20\nshutter 0.25 0.5\n",
       "s.txt", limits());
-  ASSERT_EQ(actions.size(), 22u);
+  ASSERT_EQ(actions.size(), 23u);
   EXPECT_EQ(actions[0].verb, "backend");
   EXPECT_EQ(actions[0].viewport, 1u);
   EXPECT_EQ(actions[1].number, -30);
@@ -70,6 +70,9 @@ TEST(ViewerScript, ParsesEveryAction) {
   EXPECT_EQ(actions[21].viewport, 1u);
   EXPECT_EQ(actions[21].count, 10);
   EXPECT_EQ(actions[21].number2, 20);
+  EXPECT_EQ(actions[22].verb, "shutter");
+  EXPECT_EQ(actions[22].number, 0.25);
+  EXPECT_EQ(actions[22].number2, 0.5);
 }
 
 TEST(ViewerScript, RefusesBadLinesWithTheirLocation) {
@@ -84,6 +87,8 @@ TEST(ViewerScript, RefusesBadLinesWithTheirLocation) {
       {"param 0 novalue", "expected NAME=VALUE"},
       {"raster-while-moving maybe", "expected on or off"},
       {"workload maybe", "expected on or off"},
+      {"shutter 0.5 0.25", "shutter close 0.25 is outside"},
+      {"shutter 0 2", "shutter close 2 is outside"},
       {"dance", "unknown action 'dance'"},
       {"screenshot", "usage: screenshot FILE [VIEWPORT]"},
   };

@@ -40,9 +40,11 @@ struct AnimatedScene {
   sg::Scene scene;
   sg::ImportResult imported;
   AnimatedScene(const std::string& source = "builtin:animated") { imported = sg::importScene(scene, source); }
-  // Poses the animation at frame `i` of a 24 fps clip.
-  void pose(int i) {
-    for (const auto& a : imported.animations) a.apply(scene, static_cast<float>(i) / 24.0f);
+  // Poses the animation at frame `i` of a 24 fps clip, with its motion over
+  // the frame when a shutter is open (as the programs do).
+  void pose(int i, bool shutterOpen = false) {
+    for (const auto& a : imported.animations)
+      a.apply(scene, static_cast<float>(i) / 24.0f, shutterOpen ? 1.0f / 24.0f : 0.0f);
   }
 };
 

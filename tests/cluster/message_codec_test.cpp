@@ -35,6 +35,10 @@ med::View sampleView() {
   v.top = 0.4f;
   v.apertureRadius = 0.05f;  // a lens travels with the view
   v.focusDistance = 2.5f;
+  v.shutterOpen = 0.25f;  // so do the shutter and the camera's motion
+  v.shutterClose = 0.75f;
+  v.cameraToWorldAtEnd = v.cameraToWorld;
+  (*v.cameraToWorldAtEnd)[3].x = 1.5f;
   v.width = 64;
   v.height = 48;
   v.region = {0, 0, 64, 48};
@@ -260,6 +264,15 @@ TEST(MessageCodec, ValidationRejectsNonsenseValues) {
     r.jobs[0].view.focusDistance = focus;
     EXPECT_THROW(parse<RenderRequest>(unframe(makeFrame(r))), ProtocolError) << aperture << " " << focus;
   }
+  for (const auto& [open, close] : {std::pair{-0.1f, 0.5f}, std::pair{0.6f, 0.5f}, std::pair{0.0f, NAN}}) {
+    r = sampleRequest();
+    r.jobs[0].view.shutterOpen = open;  // a shutter outside the frame interval
+    r.jobs[0].view.shutterClose = close;
+    EXPECT_THROW(parse<RenderRequest>(unframe(makeFrame(r))), ProtocolError) << open << " " << close;
+  }
+  r = sampleRequest();
+  (*r.jobs[0].view.cameraToWorldAtEnd)[3].y = NAN;  // a camera moving to nowhere
+  EXPECT_THROW(parse<RenderRequest>(unframe(makeFrame(r))), ProtocolError);
   // Found by mutating recorded traffic: a finite eye at -2.7e38 aborted the
   // node in Embree. Views must stay within sg::kMaxCoordinate.
   for (float eye : {-2.7e38f, 1e20f, 1.1e12f}) {
@@ -374,10 +387,10 @@ TEST(MessageList, EveryTypesDeclaredLimitsAreEnforced) {
 
 // Protocol 2 changed the Error message on purpose (a kind byte before the
 // reason); these are its bytes, so a change to them is never an accident.
-// (Protocol 3 added volumes to scenes: only the version byte moved.)
+// (Protocols 3, 4 and 5 added volumes, a lens and a shutter: only the version byte moved.)
 TEST(MessageCodec, ErrorReportBytesArePinned) {
   const Frame f = makeFrame(ErrorReport{ErrorReport::Kind::InvalidParameter, "spp"});
-  const std::vector<std::uint8_t> want{'T', 'S', 'R', 'N', 4, 18, 5, 0, 0, 0, 3, 3, 's', 'p', 'p'};
+  const std::vector<std::uint8_t> want{'T', 'S', 'R', 'N', 5, 18, 5, 0, 0, 0, 3, 3, 's', 'p', 'p'};
   EXPECT_EQ(*f, want);
   ErrorReport back = parse<ErrorReport>(unframe(f));
   EXPECT_EQ(back.kind, ErrorReport::Kind::InvalidParameter);

@@ -65,6 +65,25 @@ TEST(WallCli, TheLensReachesTheNodes) {
   EXPECT_NE(slurp(log).find("--aperture"), std::string::npos) << slurp(log);
 }
 
+// --shutter reaches the nodes with the view and the animation's motion with
+// the scene: the stitched frame equals a local render with the same shutter.
+TEST(WallCli, TheShutterReachesTheNodes) {
+  TempDir dir;
+  Wall wall(dir.path, 4);
+  fs::path log = dir.path / "wall.log";
+  ASSERT_EQ(runWall(gridConfig(dir.path) + " builtin:animated --nodes " + wall.addresses() +
+                        " --frames 1 --size 48x40 --shutter 0,1 --output " + (dir.path / "wall.exr").string(),
+                    log),
+            0)
+      << slurp(log);
+  const med::FrameBuffer stitched = med::readImage((dir.path / "wall.exr").string());
+  expectTileEquals(stitched, localFrame(0, 48, 40, 0.0f, 5.0f, {0.0f, 1.0f}), {0, 0, 48, 40}, "the stitched frame");
+  EXPECT_NE(stitched.colour, localFrame(0, 48, 40).colour) << "the motion shows";
+  ASSERT_NE(runWall(gridConfig(dir.path) + " builtin:animated --nodes " + wall.addresses() + " --shutter 0.5,0.2", log),
+            0);
+  EXPECT_NE(slurp(log).find("--shutter"), std::string::npos) << slurp(log);
+}
+
 // --workload beside: the status lines name each screen's share and the
 // balance, and FILE.workload.EXT beside --output shows each screen in its
 // node's colour; over: the frame itself carries the colours, half and half.

@@ -128,12 +128,14 @@ inline int runWall(const std::string& args, const fs::path& log) {
 
 // The local render of builtin:animated at frame `frame` of 24 fps.
 inline med::FrameBuffer localFrame(int frame, std::uint32_t width, std::uint32_t height, float aperture = 0.0f,
-                                   float focusDistance = 5.0f) {
+                                   float focusDistance = 5.0f, sg::Vec2 shutter = sg::Vec2(0.0f)) {
   AnimatedScene s("builtin:animated");
-  s.pose(frame);
+  s.pose(frame, shutter.y > shutter.x);
   auto* lens = s.scene.find<sg::Camera>(s.imported.cameras.front());
   lens->setApertureRadius(aperture);
   lens->setFocusDistance(focusDistance);
+  lens->setShutterOpen(shutter.x);
+  lens->setShutterClose(shutter.y);
   sg::Replica replica;
   replica.apply(s.scene.commit());
   med::ViewportRegistry registry;

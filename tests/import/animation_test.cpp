@@ -108,6 +108,27 @@ TEST_F(GltfAnimation, ApplyChangesExactlyTheAnimatedMatrices) {
   EXPECT_NEAR(glm::distance(Vec3(spinner->matrix()[3]), Vec3(0, 0, 5)), 0.0f, kEps);
 }
 
+// With a frame interval, apply also writes each target's motion over it
+// (for a shutter to blur): at the interval's end the matrix is the pose
+// then. Without one, a still motion is left unedited.
+TEST_F(GltfAnimation, ApplyWithAFrameIntervalWritesTheMotionOverIt) {
+  scene.commit();
+  anim().apply(scene, 0.5f, 0.25f);
+  const ChangeListPtr changes = scene.commit();
+  for (const ChangeEntry& e : changes->changes())
+    EXPECT_EQ(e.mask, fieldBit(Transform::Matrix) | fieldBit(Transform::FrameMotion));
+  for (const Transform* t : {mover, spinner}) {
+    const Mat4 expected = anim().poseAt(t->id(), 0.75f).matrix();
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) EXPECT_NEAR(t->matrixAtEnd()[c][r], expected[c][r], 1e-5f) << t->name();
+  }
+  anim().apply(scene, 0.5f);  // no interval: still again
+  EXPECT_EQ(mover->frameMotion(), Mat4(1.0f));
+  scene.commit();
+  anim().apply(scene, 0.5f);
+  for (const ChangeEntry& e : scene.commit()->changes()) EXPECT_EQ(e.mask, fieldBit(Transform::Matrix));
+}
+
 TEST(Animation, RejectsBadKeys) {
   Animation a;
   EXPECT_THROW(

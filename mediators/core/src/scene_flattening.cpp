@@ -4,11 +4,25 @@
 
 namespace tsr::med {
 
-glm::mat4 worldMatrix(const sg::Scene& scene, const std::vector<sg::ContainerId>& path) {
+glm::mat4 worldMatrix(const sg::Scene& scene, const std::vector<sg::ContainerId>& path, sg::FrameTime when) {
   glm::mat4 m(1.0f);
   for (sg::ContainerId id : path)
-    if (const auto* t = scene.find<sg::Transform>(id)) m = m * t->matrix();
+    if (const auto* t = scene.find<sg::Transform>(id))
+      m = m * (when == sg::FrameTime::End ? t->matrixAtEnd() : t->matrix());
   return m;
+}
+
+namespace {
+bool moves(const sg::Container& c) {
+  return c.type() == sg::ContainerType::Transform &&
+         static_cast<const sg::Transform&>(c).frameMotion() != glm::mat4(1.0f);
+}
+}  // namespace
+
+bool pathMoves(const sg::Scene& scene, const std::vector<sg::ContainerId>& path) {
+  for (sg::ContainerId id : path)
+    if (const auto* c = scene.find(id); c && moves(*c)) return true;
+  return false;
 }
 
 namespace {
@@ -40,13 +54,14 @@ FlatScene flatten(const sg::Scene& scene, sg::ContainerId root, std::size_t maxI
   struct Frame {
     sg::ContainerId id;
     glm::mat4 world;
+    bool moves = false;
     std::size_t next = 0;
   };
   std::vector<Frame> stack;
   std::vector<sg::ContainerId> path;
   std::unordered_set<FlatKey> taken;
-  auto record = [&](const sg::Container& c, const glm::mat4& world) {
-    FlatNode node{c.id(), path, pathHash(path, c.id()), world};
+  auto record = [&](const sg::Container& c, const glm::mat4& world, bool moving) {
+    FlatNode node{c.id(), path, pathHash(path, c.id()), world, moving};
     while (!taken.insert(node.key).second) ++node.key;  // the occurrence
     auto& list = c.type() == sg::ContainerType::Geometry ? flat.instances : flat.lights;
     auto& under = c.type() == sg::ContainerType::Geometry ? flat.instancesUnder : flat.lightsUnder;
@@ -60,12 +75,12 @@ FlatScene flatten(const sg::Scene& scene, sg::ContainerId root, std::size_t maxI
     if (!c) continue;
     if (!childrenOf(*c)) {
       if (c->type() == sg::ContainerType::Geometry || c->type() == sg::ContainerType::Light)
-        record(*c, glm::mat4(1.0f));
+        record(*c, glm::mat4(1.0f), false);
       continue;
     }
     glm::mat4 world =
         c->type() == sg::ContainerType::Transform ? static_cast<const sg::Transform*>(c)->matrix() : glm::mat4(1.0f);
-    stack.push_back({r, world});
+    stack.push_back({r, world, moves(*c)});
     path.push_back(r);
     while (!stack.empty()) {
       Frame& top = stack.back();
@@ -82,10 +97,10 @@ FlatScene flatten(const sg::Scene& scene, sg::ContainerId root, std::size_t maxI
         glm::mat4 world = child->type() == sg::ContainerType::Transform
                               ? top.world * static_cast<const sg::Transform*>(child)->matrix()
                               : top.world;
-        stack.push_back({child->id(), world});
+        stack.push_back({child->id(), world, top.moves || moves(*child)});
         path.push_back(child->id());
       } else if (child->type() == sg::ContainerType::Geometry || child->type() == sg::ContainerType::Light) {
-        record(*child, top.world);
+        record(*child, top.world, top.moves);
       }
     }
   }

@@ -25,6 +25,13 @@ View View::fromCamera(const sg::Camera& camera, std::uint32_t width, std::uint32
     v.apertureRadius = camera.apertureRadius();
     v.focusDistance = camera.focusDistance();
   }
+  // A shutter the camera cannot have is an instant at the frame's time.
+  if (camera.shutterOpen() >= 0.0f && camera.shutterOpen() <= camera.shutterClose() && camera.shutterClose() <= 1.0f) {
+    v.shutterOpen = camera.shutterOpen();
+    v.shutterClose = camera.shutterClose();
+  }
+  if (const glm::mat4 end = sg::cameraWorldPose(camera, sg::FrameTime::End); end != v.cameraToWorld)
+    v.cameraToWorldAtEnd = end;
   float halfHeight = v.nearPlane * std::tan(camera.verticalFov() * 0.5f);
   float aspect = height ? static_cast<float>(width) / static_cast<float>(height) : 1.0f;
   v.top = halfHeight;
@@ -47,11 +54,13 @@ View View::eye(Eye which, float separation, float zeroParallaxDistance) const {
   if (!(zeroParallaxDistance > 0)) throw std::invalid_argument("zero-parallax distance must be positive");
   float offset = (which == Eye::Left ? -0.5f : 0.5f) * separation;
   View v = *this;
-  v.cameraToWorld = cameraToWorld * glm::translate(glm::mat4(1.0f), glm::vec3(offset, 0.0f, 0.0f));
+  const glm::mat4 shift = glm::translate(glm::mat4(1.0f), glm::vec3(offset, 0.0f, 0.0f));
+  v.cameraToWorld = cameraToWorld * shift;
+  if (cameraToWorldAtEnd) v.cameraToWorldAtEnd = *cameraToWorldAtEnd * shift;
   // Points on the zero-parallax plane project to the same pixel for both eyes.
-  float shift = offset * nearPlane / zeroParallaxDistance;
-  v.left -= shift;
-  v.right -= shift;
+  const float window = offset * nearPlane / zeroParallaxDistance;
+  v.left -= window;
+  v.right -= window;
   return v;
 }
 
@@ -68,11 +77,18 @@ void View::validate() const {
     s << v;
     return s.str();
   };
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r)
-      if (!sg::withinCoordinateLimit(cameraToWorld[c][r]))
-        fail("camera pose entry " + number(cameraToWorld[c][r]) + " is not finite or beyond the coordinate limit of " +
-             number(sg::kMaxCoordinate) + (c == 3 ? " (the eye position)" : ""));
+  auto pose = [&](const glm::mat4& m, const std::string& what) {
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r)
+        if (!sg::withinCoordinateLimit(m[c][r]))
+          fail(what + " entry " + number(m[c][r]) + " is not finite or beyond the coordinate limit of " +
+               number(sg::kMaxCoordinate) + (c == 3 ? " (the eye position)" : ""));
+  };
+  pose(cameraToWorld, "camera pose");
+  if (cameraToWorldAtEnd) pose(*cameraToWorldAtEnd, "camera pose at the frame's end");
+  if (!(shutterOpen >= 0.0f && shutterOpen <= shutterClose && shutterClose <= 1.0f))
+    fail("shutter " + number(shutterOpen) + "," + number(shutterClose) +
+         " must open and close within the frame interval (0 <= open <= close <= 1)");
   if (!(apertureRadius >= 0.0f) || !sg::withinCoordinateLimit(apertureRadius))
     fail("aperture radius " + number(apertureRadius) + " must be finite and not negative");
   if (!(focusDistance > 0.0f) || !sg::withinCoordinateLimit(focusDistance))

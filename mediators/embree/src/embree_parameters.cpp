@@ -75,7 +75,7 @@ std::vector<ParameterSpec> specs() {
 }  // namespace
 
 const BackendCapabilities& embreeCapabilities() {
-  static const BackendCapabilities capabilities{ParameterTable("embree", specs()), true, true};
+  static const BackendCapabilities capabilities{ParameterTable("embree", specs()), true, true, true};
   return capabilities;
 }
 

@@ -26,8 +26,10 @@ embree::RenderSettings renderSettingsFrom(const Parameters& p) {
 }
 
 embree::Camera cameraOf(const View& view) {
-  return embree::Camera{view.cameraToWorld, view.left,      view.right,          view.bottom,
-                        view.top,           view.nearPlane, view.apertureRadius, view.focusDistance};
+  return embree::Camera{
+      view.cameraToWorld,     view.left,           view.right,         view.bottom,      view.top,
+      view.nearPlane,         view.apertureRadius, view.focusDistance, view.shutterOpen, view.shutterClose,
+      view.cameraToWorldAtEnd};
 }
 
 embree::Region regionOf(const View& view) {

@@ -134,12 +134,21 @@ Animation::Pose Animation::poseAt(ContainerId target, float t) const {
   return pose;
 }
 
-std::size_t Animation::apply(Scene& scene, float t) const {
+std::size_t Animation::apply(Scene& scene, float t, float dt) const {
   std::size_t written = 0;
   for (const Rest& r : rest_) {
     Transform* transform = scene.find<Transform>(r.target);
     if (!transform) continue;
-    transform->setMatrix(poseAt(r.target, t).matrix());
+    const Mat4 now = poseAt(r.target, t).matrix();
+    transform->setMatrix(now);
+    Mat4 motion(1.0f);
+    if (dt > 0.0f && std::abs(glm::determinant(now)) > 1e-20f) {
+      motion = poseAt(r.target, t + dt).matrix() * glm::inverse(now);
+      for (int c = 0; c < 4; ++c)
+        for (int k = 0; k < 4; ++k)
+          if (!std::isfinite(motion[c][k])) motion = Mat4(1.0f);
+    }
+    if (transform->frameMotion() != motion) transform->setFrameMotion(motion);  // a still node stays unedited
     ++written;
   }
   return written;

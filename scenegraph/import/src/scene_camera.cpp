@@ -96,6 +96,9 @@ void validate(const LookOverride& look) {
   if (look.apertureRadius && !(*look.apertureRadius >= 0.0f && withinCoordinateLimit(*look.apertureRadius)))
     throw std::invalid_argument("--aperture " + std::to_string(*look.apertureRadius) +
                                 ": expected the lens' radius in scene units, 0 (a pinhole) or more");
+  if (look.shutter && !(look.shutter->x >= 0.0f && look.shutter->x <= look.shutter->y && look.shutter->y <= 1.0f))
+    throw std::invalid_argument("--shutter " + std::to_string(look.shutter->x) + "," + std::to_string(look.shutter->y) +
+                                ": expected OPEN,CLOSE as fractions of the frame interval, 0 <= OPEN <= CLOSE <= 1");
   if (look.focusDistance && !(*look.focusDistance > 0.0f && withinCoordinateLimit(*look.focusDistance)))
     throw std::invalid_argument("--focus-distance " + std::to_string(*look.focusDistance) +
                                 ": expected a distance in scene units above 0");
@@ -108,10 +111,13 @@ ContainerId applyLookOverride(Scene& scene, ContainerId root, ContainerId base, 
   const float fov = look.fovDegrees ? glm::radians(*look.fovDegrees) : original->verticalFov();
   const float aperture = look.apertureRadius.value_or(original->apertureRadius());
   const float focus = look.focusDistance.value_or(original->focusDistance());
+  const Vec2 shutter = look.shutter.value_or(Vec2(original->shutterOpen(), original->shutterClose()));
   if (!look.from && !look.at) {
     original->setVerticalFov(fov);  // it stays where it is, under its parents
     original->setApertureRadius(aperture);
     original->setFocusDistance(focus);
+    original->setShutterOpen(shutter.x);
+    original->setShutterClose(shutter.y);
     return base;
   }
   const Mat4 basePose = cameraWorldPose(scene, base);
@@ -129,6 +135,8 @@ ContainerId applyLookOverride(Scene& scene, ContainerId root, ContainerId base, 
   camera.setZeroParallaxDistance(original->zeroParallaxDistance());
   camera.setApertureRadius(aperture);
   camera.setFocusDistance(focus);
+  camera.setShutterOpen(shutter.x);
+  camera.setShutterClose(shutter.y);
   aim(camera, from, at);
   fitPlanes(camera, glm::length(from - bounds.centre), bounds.radius);
   return camera.id();

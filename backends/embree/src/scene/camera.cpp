@@ -24,12 +24,20 @@ Camera Camera::lookAt(const glm::vec3& eye, const glm::vec3& target, const glm::
   return c;
 }
 
-void Camera::validate() const {
+namespace {
+void validatePose(const glm::mat4& pose, const char* what) {
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j)
-      if (!withinCoordinateLimit(cameraToWorld[i][j]))
-        throw Error("camera transform entry " + std::to_string(cameraToWorld[i][j]) +
+      if (!withinCoordinateLimit(pose[i][j]))
+        throw Error(std::string(what) + " entry " + std::to_string(pose[i][j]) +
                     " is NaN, infinite or beyond 1e12 (kMaxCoordinate)" + (i == 3 ? ": the eye cannot be traced" : ""));
+  if (std::abs(glm::determinant(glm::mat3(pose))) < 1e-12f) throw Error(std::string(what) + " is singular");
+}
+}  // namespace
+
+void Camera::validate() const {
+  validatePose(cameraToWorld, "camera transform");
+  if (cameraToWorldAtEnd) validatePose(*cameraToWorldAtEnd, "camera transform at the frame's end");
   if (!withinCoordinateLimit(left) || !withinCoordinateLimit(right) || !withinCoordinateLimit(bottom) ||
       !withinCoordinateLimit(top) || !withinCoordinateLimit(near)) {
     throw Error("camera frustum contains NaN, infinity or a value beyond 1e12 (kMaxCoordinate)");
@@ -40,7 +48,9 @@ void Camera::validate() const {
     throw Error("camera aperture radius must be finite and not negative");
   if (!(focusDistance > 0.0f) || !withinCoordinateLimit(focusDistance))
     throw Error("camera focus distance must be finite and positive");
-  if (std::abs(glm::determinant(glm::mat3(cameraToWorld))) < 1e-12f) throw Error("camera transform is singular");
+  if (!(shutterOpen >= 0.0f && shutterOpen <= shutterClose && shutterClose <= 1.0f))
+    throw Error("camera shutter [" + std::to_string(shutterOpen) + ", " + std::to_string(shutterClose) +
+                "] must lie in [0, 1] and open before it closes");
 }
 
 }  // namespace tsr::embree

@@ -250,9 +250,16 @@ InstanceId Scene::addInstance(MeshId mesh, MaterialId material, const glm::mat4&
 }
 
 void Scene::setInstanceTransform(InstanceId id, const glm::mat4& transform) {
+  setInstanceTransform(id, transform, transform);
+}
+
+void Scene::setInstanceTransform(InstanceId id, const glm::mat4& transform, const glm::mat4& atEnd) {
   auto& inst = *lookup(state_->instances, id, "instance");
   validateTransform(transform);
+  validateTransform(atEnd);
   inst.transform = transform;
+  inst.transformAtEnd = atEnd;
+  inst.moves = atEnd != transform;
   inst.moved = true;  // commit() gives the transform to the copy in the level it goes to
   state_->edit({.instance = index(id), .placed = true});
 }
@@ -438,6 +445,8 @@ InstanceView viewOf(const SceneState& s, const InstanceRecord& inst) {
   v.transform = inst.transform;
   v.normalTransform = glm::transpose(glm::inverse(glm::mat3(inst.transform)));
   v.faceNormalTransform = glm::determinant(glm::mat3(inst.transform)) * v.normalTransform;
+  v.moves = inst.moves;
+  v.transformAtEnd = inst.transformAtEnd;
   v.material = &s.resolved[index(inst.material)];
   if (v.material->interior.active() && !v.mesh->positions.empty()) {
     glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
@@ -479,7 +488,7 @@ void rebuildEmitters(SceneState& s) {
   for (std::size_t i = 0; i < s.views.size(); ++i) {
     auto& v = s.views[i];
     v.emissiveOffset = kNotEmissive;
-    if (!v.mesh || !v.material->material.isEmissive()) continue;
+    if (!v.mesh || !v.material->material.isEmissive() || v.moves) continue;
     v.emissiveOffset = std::uint32_t(power.size());
     s.emissiveRanges.push_back({v.emissiveOffset, std::uint32_t(i)});
     float lum = luminance(v.material->material.emission);

@@ -152,6 +152,15 @@ void setTransform(RTCGeometry g, const glm::mat4& transform) {
   rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &transform[0][0]);
 }
 
+// The moving level's copy: two time steps (frame start and end) while the
+// instance moves over the frame interval, Embree interpolating between.
+void setMovingTransform(const InstanceRecord& inst) {
+  rtcSetGeometryTimeStepCount(inst.movingGeometry, inst.moves ? 2 : 1);
+  setTransform(inst.movingGeometry, inst.transform);
+  if (inst.moves)
+    rtcSetGeometryTransform(inst.movingGeometry, 1, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &inst.transformAtEnd[0][0]);
+}
+
 // Commit step 2: each changed instance goes where it belongs: static meshes
 // nobody else uses into the merged scene, instances that moved into the
 // moving level, the rest into the top level. An instance that moves out of
@@ -166,10 +175,13 @@ std::vector<std::uint32_t> placeInstances(SceneState& s) {
     const MeshRecord& m = *s.meshes[index(inst.mesh)];
     inst.placeDirty = false;
     const bool inTop = inst.level == Level::Top || inst.level == Level::Ghosted;
-    const Level want = m.data.usage == MeshUsage::Static && m.users.size() == 1 ? Level::Merged
-                       : !inst.moved                                            ? Level::Top
-                       : inTop && !inst.meshChanged                             ? Level::Ghosted
-                                                                                : Level::Moving;
+    // An instance moving over the frame interval needs two time steps,
+    // which only the moving level's copy has.
+    const Level want = inst.moves                                                 ? Level::Moving
+                       : m.data.usage == MeshUsage::Static && m.users.size() == 1 ? Level::Merged
+                       : !inst.moved                                              ? Level::Top
+                       : inTop && !inst.meshChanged                               ? Level::Ghosted
+                                                                                  : Level::Moving;
     inst.meshChanged = false;
     switch (want) {
       case Level::Merged:
@@ -196,7 +208,7 @@ std::vector<std::uint32_t> placeInstances(SceneState& s) {
           ++s.ghostCount;
           enterMoving(s, inst, id);
         }
-        setTransform(inst.movingGeometry, inst.transform);
+        setMovingTransform(inst);
         s.movingDirty = true;
         instanced.push_back(id);
         break;
@@ -207,7 +219,7 @@ std::vector<std::uint32_t> placeInstances(SceneState& s) {
           unplace(s, inst, id);
           enterMoving(s, inst, id);
         }
-        setTransform(inst.movingGeometry, inst.transform);
+        setMovingTransform(inst);
         s.movingDirty = true;
         instanced.push_back(id);
         break;

@@ -140,15 +140,27 @@ struct Eye {
   glm::vec3 position;
   glm::vec3 forward;
   glm::mat3 rotation;
-  explicit Eye(const Camera& c)
-      : position(c.cameraToWorld[3]),
-        forward(glm::normalize(-glm::vec3(c.cameraToWorld[2]))),
-        rotation(c.cameraToWorld) {}
+  explicit Eye(const glm::mat4& cameraToWorld)
+      : position(cameraToWorld[3]), forward(glm::normalize(-glm::vec3(cameraToWorld[2]))), rotation(cameraToWorld) {}
+  explicit Eye(const Camera& c) : Eye(c.cameraToWorld) {}
+  // The camera's eye at ray time t (of a camera that moves over the frame
+  // interval, interpolated as Embree interpolates moving instances).
+  static Eye at(const Camera& c, const Eye& still, float t) {
+    if (!c.cameraToWorldAtEnd || t == 0.0f) return still;
+    return Eye((1.0f - t) * c.cameraToWorld + t * *c.cameraToWorldAtEnd);
+  }
 };
 
+// A camera ray, the time it is traced at, and the eye it leaves (where
+// depth is measured from).
 struct CameraRay {
   glm::vec3 origin, direction;
+  float time;
+  glm::vec3 eyePosition, forward;
 };
+
+// The middle of the shutter: the one instant of a pass that has one ray a pixel.
+float shutterMiddle(const Camera& camera) { return 0.5f * (camera.shutterOpen + camera.shutterClose); }
 
 // The point at `jitter` in full-image pixel (px, py) on the window, in camera space.
 glm::vec3 windowPoint(const Camera& camera, const Region& region, std::uint32_t px, std::uint32_t py,
@@ -162,15 +174,23 @@ glm::vec3 windowPoint(const Camera& camera, const Region& region, std::uint32_t 
 // a lens, from a uniform point of the aperture (two more numbers of the
 // sample's stream, drawn only then: a pinhole's images stay as they were)
 // towards where the pinhole ray meets the plane in focus.
-CameraRay cameraRay(const Camera& camera, const Eye& eye, const Region& region, std::uint32_t px, std::uint32_t py,
+// With the shutter open over an interval, the ray's time is uniform in it
+// (one more number, drawn only then: an instant's images stay as they were).
+CameraRay cameraRay(const Camera& camera, const Eye& still, const Region& region, std::uint32_t px, std::uint32_t py,
                     Rng& rng) {
   const glm::vec3 pinhole = windowPoint(camera, region, px, py, rng.uniform2());
-  if (camera.apertureRadius <= 0.0f) return {eye.position, glm::normalize(eye.rotation * pinhole)};
-  const glm::vec2 u = rng.uniform2();
+  glm::vec2 u(0.0f);
+  if (camera.apertureRadius > 0.0f) u = rng.uniform2();
+  float time = camera.shutterOpen;
+  if (camera.shutterClose > camera.shutterOpen) time += (camera.shutterClose - camera.shutterOpen) * rng.uniform();
+  const Eye eye = Eye::at(camera, still, time);
+  if (camera.apertureRadius <= 0.0f)
+    return {eye.position, glm::normalize(eye.rotation * pinhole), time, eye.position, eye.forward};
   const float r = camera.apertureRadius * std::sqrt(u.x), phi = 2.0f * kPi * u.y;
   const glm::vec3 lens(r * std::cos(phi), r * std::sin(phi), 0.0f);
   const glm::vec3 focus = pinhole * (camera.focusDistance / camera.near);
-  return {eye.position + eye.rotation * lens, glm::normalize(eye.rotation * (focus - lens))};
+  return {eye.position + eye.rotation * lens, glm::normalize(eye.rotation * (focus - lens)), time, eye.position,
+          eye.forward};
 }
 
 // The flash samples' random stream, apart from the path samples'.
@@ -196,7 +216,8 @@ PassResult Renderer::renderPaths(Scene& scene, const Camera& camera, const Regio
         for (std::uint32_t s = 0; s < samples; ++s) {
           Rng rng(pixelKey, firstSample + s);
           const CameraRay ray = cameraRay(camera, eye, region, px, py, rng);
-          fb.accumulate(x, y, tracer.tracePath(rng, ray.origin, ray.direction, eye.position, eye.forward));
+          tracer.time = ray.time;
+          fb.accumulate(x, y, tracer.tracePath(rng, ray.origin, ray.direction, ray.eyePosition, ray.forward));
         }
       },
       field ? splitmix64(field->uid()) : 0);
@@ -231,8 +252,9 @@ PassResult Renderer::renderRadiancePass(Scene& scene, const Camera& camera, cons
         const CameraRay ray = cameraRay(camera, eye, region, px, py, rng);
         RadianceSample& record = acc.samples_[acc.at(x, y)];
         record = RadianceSample{};
-        PixelSample sample = tracer.tracePath(rng, ray.origin, ray.direction, eye.position, eye.forward, &record);
-        const float c = glm::dot(ray.direction, eye.forward);
+        tracer.time = ray.time;
+        PixelSample sample = tracer.tracePath(rng, ray.origin, ray.direction, ray.eyePosition, ray.forward, &record);
+        const float c = glm::dot(ray.direction, ray.forward);
         record.pixelAngle = pixelAngle * c * std::sqrt(c);
         record.unfiltered = sample.indirect - sample.caustic;
         fb.accumulate(x, y, sample);
@@ -243,13 +265,16 @@ PassResult Renderer::renderRadiancePass(Scene& scene, const Camera& camera, cons
 }
 
 PassResult Renderer::renderWhittedPass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb) {
-  const Eye eye(camera);
+  // One instant, the shutter's middle: a Whitted frame is sharp everywhere.
+  const float time = shutterMiddle(camera);
+  const Eye eye = Eye::at(camera, Eye(camera), time);
   return runTiles(
       scene, camera, region, fb,
       [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
         if (fb.sampleCount(x, y) > 0) return;
-        // Through the pixel's centre and the lens' (a Whitted frame is sharp everywhere).
+        // Through the pixel's centre and the lens'.
         const glm::vec3 dir = glm::normalize(eye.rotation * windowPoint(camera, region, px, py, glm::vec2(0.5f)));
+        tracer.time = time;
         fb.accumulate(x, y, tracer.traceWhitted(eye.position, dir, eye.position, eye.forward));
       },
       kWhittedEstimator);
@@ -267,9 +292,10 @@ PassResult Renderer::renderFlashPass(Scene& scene, const Camera& camera, const R
         for (std::uint32_t s = 0; s < samples; ++s) {
           Rng rng(pixelKey, first + s);
           const CameraRay ray = cameraRay(camera, eye, region, px, py, rng);
+          tracer.time = ray.time;
           float distance = kInf;
-          const glm::vec3 flash = tracer.traceFlash(ray.origin, ray.direction, eye.position, distance);
-          fb.accumulateRange(x, y, flash, distance * glm::dot(ray.direction, eye.forward));
+          const glm::vec3 flash = tracer.traceFlash(ray.origin, ray.direction, ray.eyePosition, distance);
+          fb.accumulateRange(x, y, flash, distance * glm::dot(ray.direction, ray.forward));
         }
       },
       std::nullopt);

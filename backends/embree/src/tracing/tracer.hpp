@@ -60,14 +60,14 @@ struct SurfaceHit {
 // direction+time and tfar+mask+id+flags as 16-byte vectors; filled field by
 // field, each of those loads waits for four small stores to retire (no store
 // forwarding), on every ray.
-inline void setRay(RTCRay& ray, const glm::vec3& org, const glm::vec3& dir, float tfar) {
+inline void setRay(RTCRay& ray, const glm::vec3& org, const glm::vec3& dir, float tfar, float time) {
 #if defined(__SSE2__)
   _mm_store_ps(&ray.org_x, _mm_setr_ps(org.x, org.y, org.z, 0.0f));
-  _mm_store_ps(&ray.dir_x, _mm_setr_ps(dir.x, dir.y, dir.z, 0.0f));
+  _mm_store_ps(&ray.dir_x, _mm_setr_ps(dir.x, dir.y, dir.z, time));
   _mm_store_ps(&ray.tfar, _mm_castsi128_ps(_mm_setr_epi32(std::bit_cast<int>(tfar), -1, 0, 0)));
 #else
   ray.org_x = org.x, ray.org_y = org.y, ray.org_z = org.z, ray.tnear = 0.0f;
-  ray.dir_x = dir.x, ray.dir_y = dir.y, ray.dir_z = dir.z, ray.time = 0.0f;
+  ray.dir_x = dir.x, ray.dir_y = dir.y, ray.dir_z = dir.z, ray.time = time;
   ray.tfar = tfar, ray.mask = ~0u, ray.id = 0, ray.flags = 0;
 #endif
 }
@@ -138,6 +138,9 @@ struct Tracer {
   // lighting there (emitters by light sampling alone), and the indirect
   // light there is albedo / pi x the field's irradiance.
   const IrradianceField* irradiance = nullptr;
+  // The time in the frame interval every ray of the current path is traced
+  // at (0: its start, 1: its end), where moving instances stand.
+  float time = 0.0f;
 
   // An untraceable ray is refused and counts as a miss; the path tracer
   // checks first and ends the path instead.
@@ -147,7 +150,7 @@ struct Tracer {
       return false;
     }
     TopLevelContext top(scene);
-    setRay(rh.ray, org, dir, tfar);
+    setRay(rh.ray, org, dir, tfar, time);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene.traversable, &top.context, &rh);
@@ -177,7 +180,7 @@ struct Tracer {
     }
     TopLevelContext top(scene);
     RTCRay ray;
-    setRay(ray, org, dir, tfar);
+    setRay(ray, org, dir, tfar, time);
     rtcOccluded1(scene.traversable, &top.context, &ray);
     if (scene.movingTraversable && ray.tfar >= 0.0f) [[unlikely]] {
       TopLevelContext moving(scene, true);
@@ -203,7 +206,16 @@ struct Tracer {
     h.prim = rh.hit.primID;
     h.p = org + rh.ray.tfar * dir;
     glm::vec3 n(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
-    if (!merged) n = v.faceNormalTransform * n;  // instances report object-space normals
+    // A moving instance stands where the ray's time puts it.
+    glm::mat3 moved(1.0f), movedNormal(1.0f);
+    const glm::mat3* normalTransform = &v.normalTransform;
+    if (v.moves) [[unlikely]] {
+      moved = glm::mat3((1.0f - time) * v.transform + time * v.transformAtEnd);
+      movedNormal = glm::transpose(glm::inverse(moved));
+      normalTransform = &movedNormal;
+    }
+    if (!merged)  // instances report object-space normals
+      n = v.moves ? glm::determinant(moved) * movedNormal * n : v.faceNormalTransform * n;
     const float len = glm::length(n);
     if (!(len > 0.0f) || !std::isfinite(len)) return false;
     h.faceNormal = n / len;
@@ -217,12 +229,12 @@ struct Tracer {
     if (!m.normals.empty() || textured) {
       const std::uint32_t* idx = &m.indices[3 * std::size_t(h.prim)];
       if (!m.normals.empty()) {
-        glm::vec3 ns = v.normalTransform * (b0 * m.normals[idx[0]] + b1 * m.normals[idx[1]] + b2 * m.normals[idx[2]]);
+        glm::vec3 ns = *normalTransform * (b0 * m.normals[idx[0]] + b1 * m.normals[idx[1]] + b2 * m.normals[idx[2]]);
         float l = glm::length(ns);
         if (l > 0.0f && std::isfinite(l)) h.ns = ns / l;
       }
       if (textured) h.uv = b0 * m.uvs[idx[0]] + b1 * m.uvs[idx[1]] + b2 * m.uvs[idx[2]];
-      if (textured && r.normalTexture) applyNormalMap(v, idx, h);
+      if (textured && r.normalTexture) applyNormalMap(v, v.moves ? moved : glm::mat3(v.transform), idx, h);
     }
     h.ng = glm::dot(h.faceNormal, h.ns) < 0.0f ? -h.faceNormal : h.faceNormal;
     return true;
@@ -231,9 +243,8 @@ struct Tracer {
   // The tangent-space normal map at h.uv turns h.ns. Tangents come from the
   // triangle's uv derivatives (meshes carry none), bitangents from the
   // normal and the uv orientation, as glTF's MikkTSpace-less fallback.
-  static void applyNormalMap(const InstanceView& v, const std::uint32_t* idx, SurfaceHit& h) {
+  static void applyNormalMap(const InstanceView& v, const glm::mat3& linear, const std::uint32_t* idx, SurfaceHit& h) {
     const MeshData& m = *v.mesh;
-    const glm::mat3 linear(v.transform);
     const glm::vec3 e1 = linear * (m.positions[idx[1]] - m.positions[idx[0]]);
     const glm::vec3 e2 = linear * (m.positions[idx[2]] - m.positions[idx[0]]);
     // Derivatives in the normal map's (transformed) texture space.

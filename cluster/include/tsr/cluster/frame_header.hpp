@@ -19,7 +19,9 @@ namespace tsr::cluster {
 // 4: RenderTile carries the samples per pixel its tile holds, the rays it
 // cast and the seconds spent catching up (the client's workload figures);
 // views carry a thin lens (aperture radius, focus distance).
-inline constexpr std::uint8_t kProtocolVersion = 4;
+// 5: views carry a shutter (open, close) and the camera's pose at the end
+// of the frame interval; Transforms carry frameMotion.
+inline constexpr std::uint8_t kProtocolVersion = 5;
 inline constexpr std::size_t kFrameHeaderBytes = 10;
 inline constexpr std::array<std::uint8_t, 4> kFrameMagic{'T', 'S', 'R', 'N'};
 

@@ -19,7 +19,9 @@ class Camera final : public ContainerOf<Camera, ContainerType::Camera> {
     EyeSeparation,
     ZeroParallax,
     ApertureRadius,
-    FocusDistance
+    FocusDistance,
+    ShutterOpen,
+    ShutterClose
   };
 
   const Mat4& pose() const { return pose_; }
@@ -32,6 +34,11 @@ class Camera final : public ContainerOf<Camera, ContainerType::Camera> {
   // the distance along the view of the plane in focus.
   float apertureRadius() const { return apertureRadius_; }
   float focusDistance() const { return focusDistance_; }
+  // The shutter, as fractions of the frame interval: the image integrates
+  // the scene from shutterOpen to shutterClose, so what moves during that
+  // time (Transform::motion()) is blurred. Equal: an instant (no blur).
+  float shutterOpen() const { return shutterOpen_; }
+  float shutterClose() const { return shutterClose_; }
 
   void setPose(const Mat4& m) { set<&Camera::pose_>(m); }
   void setVerticalFov(float v) { set<&Camera::verticalFov_>(v); }
@@ -41,6 +48,8 @@ class Camera final : public ContainerOf<Camera, ContainerType::Camera> {
   void setZeroParallaxDistance(float v) { set<&Camera::zeroParallax_>(v); }
   void setApertureRadius(float v) { set<&Camera::apertureRadius_>(v); }
   void setFocusDistance(float v) { set<&Camera::focusDistance_>(v); }
+  void setShutterOpen(float v) { set<&Camera::shutterOpen_>(v); }
+  void setShutterClose(float v) { set<&Camera::shutterClose_>(v); }
 
   // Points the camera from `eye` at `target`.
   void lookAt(const Vec3& eye, const Vec3& target, const Vec3& up = Vec3(0, 1, 0));
@@ -54,7 +63,9 @@ class Camera final : public ContainerOf<Camera, ContainerType::Camera> {
                       valueField(EyeSeparation, "eyeSeparation", &M::eyeSeparation_, &M::setEyeSeparation),
                       valueField(ZeroParallax, "zeroParallaxDistance", &M::zeroParallax_, &M::setZeroParallaxDistance),
                       valueField(ApertureRadius, "apertureRadius", &M::apertureRadius_, &M::setApertureRadius),
-                      valueField(FocusDistance, "focusDistance", &M::focusDistance_, &M::setFocusDistance)};
+                      valueField(FocusDistance, "focusDistance", &M::focusDistance_, &M::setFocusDistance),
+                      valueField(ShutterOpen, "shutterOpen", &M::shutterOpen_, &M::setShutterOpen),
+                      valueField(ShutterClose, "shutterClose", &M::shutterClose_, &M::setShutterClose)};
   }
 
  private:
@@ -66,6 +77,8 @@ class Camera final : public ContainerOf<Camera, ContainerType::Camera> {
   float zeroParallax_ = 5.0f;
   float apertureRadius_ = 0.0f;
   float focusDistance_ = 5.0f;
+  float shutterOpen_ = 0.0f;
+  float shutterClose_ = 0.0f;
 };
 
 }  // namespace tsr::sg

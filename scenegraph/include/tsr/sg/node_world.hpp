@@ -8,16 +8,20 @@ namespace tsr::sg {
 class Scene;
 class Camera;
 
+// Which instant of the frame interval a world matrix is for: the frame's
+// time, or the interval's end (Transform::frameMotion() applied).
+enum class FrameTime : bool { Now, End };
+
 // The product of the Transform matrices from a root down to `node`
 // (excluded). A node held by several parents (instanced) follows, at each
 // level, the parent with the smallest id; a node without parents, or not in
 // the scene, has the identity.
-Mat4 parentWorldMatrix(const Scene& scene, ContainerId node);
+Mat4 parentWorldMatrix(const Scene& scene, ContainerId node, FrameTime when = FrameTime::Now);
 
 // A camera's pose in the world: parentWorldMatrix * Camera::pose().
 // Throws std::invalid_argument when `camera` is not a Camera of the scene.
-Mat4 cameraWorldPose(const Scene& scene, ContainerId camera);
+Mat4 cameraWorldPose(const Scene& scene, ContainerId camera, FrameTime when = FrameTime::Now);
 // The same for a camera held by a scene (its pose, for one held by none).
-Mat4 cameraWorldPose(const Camera& camera);
+Mat4 cameraWorldPose(const Camera& camera, FrameTime when = FrameTime::Now);
 
 }  // namespace tsr::sg

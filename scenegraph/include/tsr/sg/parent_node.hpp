@@ -43,16 +43,27 @@ class Group final : public ParentNode<Group, ContainerType::Group> {
 
 class Transform final : public ParentNode<Transform, ContainerType::Transform> {
  public:
-  enum Field : FieldIndex { Matrix = Children + 1 };
+  enum Field : FieldIndex { Matrix = Children + 1, FrameMotion };
+  // The matrix at the frame's time.
   const Mat4& matrix() const { return matrix_; }
   void setMatrix(const Mat4& m) { set<&Transform::matrix_>(m); }
+  // How the matrix changes over one frame interval, in the parent's space:
+  // at the interval's end it is frameMotion() * matrix(). The identity (the
+  // default) keeps the node still; a camera shutter that stays open over
+  // part of the interval blurs what moves (Camera::shutterOpen()).
+  const Mat4& frameMotion() const { return motion_; }
+  void setFrameMotion(const Mat4& m) { set<&Transform::motion_>(m); }
+  // The matrix at the end of the frame interval.
+  Mat4 matrixAtEnd() const { return motion_ * matrix_; }
 
   static constexpr auto fieldSpecs() {
-    return std::tuple{childrenSpec(), valueField(Matrix, "matrix", &Transform::matrix_, &Transform::setMatrix)};
+    return std::tuple{childrenSpec(), valueField(Matrix, "matrix", &Transform::matrix_, &Transform::setMatrix),
+                      valueField(FrameMotion, "frameMotion", &Transform::motion_, &Transform::setFrameMotion)};
   }
 
  private:
   Mat4 matrix_{1.0f};
+  Mat4 motion_{1.0f};
 };
 
 }  // namespace tsr::sg

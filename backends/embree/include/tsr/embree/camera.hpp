@@ -3,6 +3,8 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include <optional>
+
 namespace tsr::embree {
 
 // Pinhole or thin-lens camera with an arbitrary off-axis frustum. In camera space the eye
@@ -21,12 +23,20 @@ struct Camera {
   // meet the pinhole ray on that plane. 0: the pinhole.
   float apertureRadius = 0.0f;
   float focusDistance = 1.0f;
+  // The shutter, as fractions of the frame interval (ray times, 0 its
+  // start, 1 its end): samples spread uniformly over [shutterOpen,
+  // shutterClose]; equal, every ray has that one time. A camera that moves
+  // is at cameraToWorldAtEnd at time 1 (interpolated linearly between).
+  float shutterOpen = 0.0f;
+  float shutterClose = 0.0f;
+  std::optional<glm::mat4> cameraToWorldAtEnd;
 
   // Symmetric frustum; fovY is the full vertical angle in radians.
   static Camera lookAt(const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up, float fovY, float aspect);
 
   // Throws Error on non-finite values or ones beyond kMaxCoordinate
-  // (limits.hpp), an empty window or near <= 0.
+  // (limits.hpp), an empty window, near <= 0, or a shutter outside
+  // 0 <= open <= close <= 1.
   void validate() const;
 
   bool operator==(const Camera&) const = default;

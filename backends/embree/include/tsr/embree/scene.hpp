@@ -42,6 +42,12 @@ class Scene {
 
   InstanceId addInstance(MeshId mesh, MaterialId material, const glm::mat4& transform);
   void setInstanceTransform(InstanceId instance, const glm::mat4& transform);
+  // Motion over the frame interval: the transform at its start (ray time 0)
+  // and at its end (ray time 1), interpolated linearly between, as Embree
+  // interpolates the instance. Equal matrices keep the instance still. A
+  // moving emitter lights the scene only where paths hit it (no light
+  // sampling: its triangles are not at one place).
+  void setInstanceTransform(InstanceId instance, const glm::mat4& transform, const glm::mat4& atEnd);
   void setInstanceMaterial(InstanceId instance, MaterialId material);
   void removeInstance(InstanceId instance);
 

@@ -38,6 +38,11 @@ inline bool structureDirty(const ChangeEntry& e) {
 inline bool transformDirty(const ChangeEntry& e) {
   return e.type == sg::ContainerType::Transform && e.changed(sg::Transform::Matrix);
 }
+// Its motion over the frame interval: back-ends that blur motion move
+// what is below it.
+inline bool frameMotionDirty(const ChangeEntry& e) {
+  return e.type == sg::ContainerType::Transform && e.changed(sg::Transform::FrameMotion);
+}
 
 // A light's own fields: it is placed again where it stands.
 inline bool lightDirty(const ChangeEntry& e) { return e.type == sg::ContainerType::Light && !e.destroyed; }

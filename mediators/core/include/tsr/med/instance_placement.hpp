@@ -26,6 +26,13 @@ concept TagsObjects = requires(const sg::Scene& scene, const FlatNode& node) {
   Types::object(scene, node);
 };
 
+// A back-end scene that blurs motion takes an instance's transform at the
+// frame's time and at the end of its interval (equal: it keeps still).
+template <class Scene, class InstanceId>
+concept BlursMotion = requires(Scene& scene, InstanceId id, const glm::mat4& m) {
+  scene.setInstanceTransform(id, m, m);
+};
+
 template <class Types>
 class InstancePlacement {
  public:
@@ -37,7 +44,9 @@ class InstancePlacement {
     sg::ContainerId geometry;
     glm::mat4 world;
     MaterialId material;
+    glm::mat4 worldAtEnd;  // the world matrix at the frame interval's end (world when still)
   };
+  static constexpr bool kBlursMotion = BlursMotion<BackendScene, typename Types::InstanceId>;
 
   // What the adapter decides; the placement only applies it.
   struct Hooks {
@@ -76,7 +85,9 @@ class InstancePlacement {
         continue;
       }
       live.insert(node.key);
-      if (held->second.world != node.world) move(held->second, node.world, backend);
+      const glm::mat4 end = worldAtEnd(scene, node);
+      if (held->second.world != node.world || held->second.worldAtEnd != end)
+        move(held->second, node.world, end, backend);
       setMaterial(held->second, material, backend);
     }
     for (auto it = instances_.begin(); it != instances_.end();)
@@ -96,7 +107,7 @@ class InstancePlacement {
   void moveEdited(const sg::Scene& scene, const sg::MergedChanges& changes, BackendScene& backend, const Hooks& hooks) {
     std::unordered_set<std::uint32_t> instances, lights;
     for (const auto& [id, e] : changes.entries()) {
-      if (transformDirty(e)) {
+      if (transformDirty(e) || frameMotionDirty(e)) {
         if (auto it = flat_.instancesUnder.find(id); it != flat_.instancesUnder.end())
           instances.insert(it->second.begin(), it->second.end());
         if (auto it = flat_.lightsUnder.find(id); it != flat_.lightsUnder.end())
@@ -109,9 +120,12 @@ class InstancePlacement {
     for (std::uint32_t i : instances) {
       FlatNode& node = flat_.instances[i];
       node.world = worldMatrix(scene, node.path);
+      node.moves = pathMoves(scene, node.path);
       auto placed = instances_.find(node.key);
-      if (placed == instances_.end() || placed->second.world == node.world) continue;  // not rendered here
-      move(placed->second, node.world, backend);
+      if (placed == instances_.end()) continue;  // not rendered here
+      const glm::mat4 end = worldAtEnd(scene, node);
+      if (placed->second.world == node.world && placed->second.worldAtEnd == end) continue;
+      move(placed->second, node.world, end, backend);
     }
     for (std::uint32_t i : lights) {
       FlatNode& node = flat_.lights[i];
@@ -152,10 +166,12 @@ class InstancePlacement {
       if (!object) return false;
       id = backend.addInstance(mesh, material, node.world, *object);
     } else {
-      (void)scene;
       id = backend.addInstance(mesh, material, node.world);
     }
-    instances_.emplace(node.key, Placed{id, node.id, node.world, material});
+    const glm::mat4 end = worldAtEnd(scene, node);
+    if constexpr (kBlursMotion)
+      if (end != node.world) backend.setInstanceTransform(id, node.world, end);
+    instances_.emplace(node.key, Placed{id, node.id, node.world, material, end});
     byGeometry_[node.id].insert(node.key);
     ++materialUsers_[material];
     return true;
@@ -171,9 +187,22 @@ class InstancePlacement {
     return instances_.erase(it);
   }
 
-  void move(Placed& p, const glm::mat4& world, BackendScene& backend) {
-    backend.setInstanceTransform(p.id, world);
+  // Where the instance is at the end of the frame interval: only for
+  // back-ends that blur motion (the others draw it at the frame's time).
+  static glm::mat4 worldAtEnd(const sg::Scene& scene, const FlatNode& node) {
+    if constexpr (kBlursMotion)
+      if (node.moves) return worldMatrix(scene, node.path, sg::FrameTime::End);
+    (void)scene;
+    return node.world;
+  }
+
+  void move(Placed& p, const glm::mat4& world, const glm::mat4& end, BackendScene& backend) {
+    if constexpr (kBlursMotion)
+      backend.setInstanceTransform(p.id, world, end);
+    else
+      backend.setInstanceTransform(p.id, world);
     p.world = world;
+    p.worldAtEnd = end;
     ++transformUpdates;
   }
 

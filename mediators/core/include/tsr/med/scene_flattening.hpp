@@ -11,6 +11,7 @@
 
 #include <glm/mat4x4.hpp>
 
+#include "tsr/sg/node_world.hpp"
 #include "tsr/sg/scene.hpp"
 
 namespace tsr::med {
@@ -30,6 +31,9 @@ struct FlatNode {
   std::vector<sg::ContainerId> path;      // from the root down to, not including, id
   FlatKey key = 0;
   glm::mat4 world{1.0f};
+  // Some Transform on the path moves over the frame interval: the world
+  // matrix at its end is worldMatrix(scene, path, sg::FrameTime::End).
+  bool moves = false;
 };
 
 struct FlatScene {
@@ -43,7 +47,11 @@ struct FlatScene {
 // Walks from `root` (none: every root). Throws FlatteningError when the
 // number of instances would exceed `maxInstances` (instancing can multiply).
 FlatScene flatten(const sg::Scene& scene, sg::ContainerId root, std::size_t maxInstances = 50'000'000);
-// The world matrix of a path, from the scene's current transforms.
-glm::mat4 worldMatrix(const sg::Scene& scene, const std::vector<sg::ContainerId>& path);
+// The world matrix of a path, from the scene's current transforms, at the
+// frame's time or at the end of its interval.
+glm::mat4 worldMatrix(const sg::Scene& scene, const std::vector<sg::ContainerId>& path,
+                      sg::FrameTime when = sg::FrameTime::Now);
+// Whether some Transform on the path moves over the frame interval.
+bool pathMoves(const sg::Scene& scene, const std::vector<sg::ContainerId>& path);
 
 }  // namespace tsr::med

@@ -5,6 +5,7 @@
 // is just another View; back-ends key their random numbers on full-image
 // pixel coordinates, so a region renders exactly the crop of the full image.
 #include <cstdint>
+#include <optional>
 
 #include <glm/mat4x4.hpp>
 
@@ -30,11 +31,18 @@ struct View {
   // z = -focusDistance. Back-ends without depth of field
   // (BackendCapabilities::depthOfField false) render the pinhole.
   float apertureRadius = 0.0f, focusDistance = 5.0f;
+  // The shutter, as fractions of the frame interval (equal: an instant),
+  // and where the camera is at the interval's end when it moves over it.
+  // Back-ends without motion blur (BackendCapabilities::motionBlur false)
+  // render the scene at the frame's time.
+  float shutterOpen = 0.0f, shutterClose = 0.0f;
+  std::optional<glm::mat4> cameraToWorldAtEnd;
   std::uint32_t width = 0, height = 0;  // the full image
   PixelRect region;                     // the part to render
 
   // A symmetric frustum from a scene camera for a width x height image, at
-  // the camera's world pose (the Transforms above it included).
+  // the camera's world pose (the Transforms above it included), with its
+  // lens and shutter.
   static View fromCamera(const sg::Camera& camera, std::uint32_t width, std::uint32_t height);
   // The same image, only the pixels of `rect` (a tile).
   View cropped(const PixelRect& rect) const;
@@ -44,7 +52,8 @@ struct View {
 
   // Throws std::invalid_argument on an empty image or region, a region
   // outside the image, a degenerate frustum, or a pose or window with a
-  // value beyond sg::kMaxCoordinate (the far plane may be larger).
+  // value beyond sg::kMaxCoordinate (the far plane may be larger), or a
+  // shutter outside 0 <= open <= close <= 1.
   void validate() const;
   bool operator==(const View&) const = default;
 };

@@ -60,6 +60,9 @@ struct BackendCapabilities {
   bool progressive = false;
   // Renders the View's thin lens (depth of field); false: its pinhole.
   bool depthOfField = false;
+  // Blurs what moves while the View's shutter is open; false: renders the
+  // scene at the frame's time.
+  bool motionBlur = false;
 };
 
 class Viewport {

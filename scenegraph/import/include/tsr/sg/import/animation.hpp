@@ -57,9 +57,12 @@ class Animation {
   static Vec4 sample(const Channel& channel, float t);
   // The pose of a target at time t.
   Pose poseAt(ContainerId target, float t) const;
-  // Writes every target's matrix at time t; targets no longer in the scene
-  // are skipped. Returns the number of Transforms written.
-  std::size_t apply(Scene& scene, float t) const;
+  // Writes every target's matrix at time t and, with a frame interval dt,
+  // its motion over [t, t + dt] (Transform::frameMotion(), for a shutter
+  // to blur; the identity when dt is 0 or the pose at t has no inverse).
+  // Targets no longer in the scene are skipped. Returns the number of
+  // Transforms written.
+  std::size_t apply(Scene& scene, float t, float dt = 0.0f) const;
 
  private:
   struct Rest {

@@ -26,25 +26,27 @@ ContainerId chooseCamera(const Scene& scene, const std::vector<ContainerId>& cam
 // A user's placement of the view. Unset parts keep the base camera's:
 // look-from alone looks at the centre of the bounds, look-at alone looks
 // from where the base camera is; fovDegrees alone changes the field of
-// view, and the lens settings alone the lens.
+// view, and the lens or shutter settings alone those.
 struct LookOverride {
   std::optional<Vec3> from, at;
   std::optional<float> fovDegrees;      // vertical, 0 < fov < 180
   std::optional<float> apertureRadius;  // scene units, >= 0 (0: a pinhole)
   std::optional<float> focusDistance;   // scene units along the view, > 0
-  bool any() const { return from || at || fovDegrees || apertureRadius || focusDistance; }
+  std::optional<Vec2> shutter;          // open, close: fractions of the frame interval, 0 <= open <= close <= 1
+  bool any() const { return from || at || fovDegrees || apertureRadius || focusDistance || shutter; }
 };
 
 // Throws std::invalid_argument (a message naming the option: --look-from,
-// --look-at, --fov, --aperture, --focus-distance) for non-finite or
+// --look-at, --fov, --aperture, --focus-distance, --shutter) for non-finite or
 // out-of-range values, or from == at.
 void validate(const LookOverride& look);
 
 // The camera to look through once `look` is applied to `base`: with a
 // look-from or look-at, a new camera at the root of the scene (fixed in the
 // world; field of view and stereo settings from `base`, near and far planes
-// holding the bounds of `root`); with only a field of view or lens, `base`
-// itself with those (still moved by its parents). Validates first.
+// holding the bounds of `root`); with only a field of view, lens or
+// shutter, `base` itself with those (still moved by its parents).
+// Validates first.
 ContainerId applyLookOverride(Scene& scene, ContainerId root, ContainerId base, const LookOverride& look);
 
 }  // namespace tsr::sg
