@@ -13,7 +13,10 @@ differ by without a lens (materials, light transport). From both pairs:
 each region's change by the lens in each renderer, how far each lens
 image is from its pinhole image, and the lens alone compared: Tessera's
 lens image carried over to Cycles' shading (times the smoothed ratio of
-the pinhole images) against Cycles' lens image.
+the pinhole images) against Cycles' lens image. Last, the lens's own
+geometry: a small lamp 10 m away, focus 2.5 m, 20° field of view, spreads
+into a disc in each renderer, whose radius (from its second moment) is
+set beside the lens equation's circle of confusion.
 
     cycles_lens_compare.py --render build/default/bin/tessera-render [--size 128x128]
                            [--spp 1024] [--bounces 16] [--out DIR] [--no-pinhole]
@@ -128,6 +131,41 @@ def report(title, ours, theirs, masks):
           "(at %d,%d)" % (100 * worst, whole, tile, tx, ty))
 
 
+def disc_check(a, out):
+    """A 2 cm lamp 10 m away through the same lens focused at 2.5 m, 256x256, yfov 20 degrees."""
+    sys.path.insert(0, os.path.dirname(SUITE))
+    import make_suite as ms  # noqa: E402
+    aperture, focus, distance, fov, size = 0.08, 2.5, 10.0, 20.0, 256
+    scene = os.path.join(out, "lens_disc.gltf")
+    d = ms.Doc("lens disc")
+    d.add("lamp", ms.sphere(0.02, rings=16), d.material((0, 0, 0), emissive=(1, 1, 1), strength=100.0),
+          t=(0.0, 0.0, -distance))
+    d.camera((0.0, 0.0, 0.0), (0.0, 0.0, -1.0), fov, lens=(aperture, focus))
+    d.write(scene)
+    f = (size / 2) / math.tan(math.radians(fov) / 2)
+    predicted = aperture * abs(1 / focus - 1 / distance) * f
+    print("\nA lamp (radius 2 cm) %g m away, focus %g m, aperture radius %g m, %dx%d, yfov %g deg: its disc" %
+          (distance, focus, aperture, size, size, fov))
+    print("\n| renderer | radius (px, 2nd moment) | against the lens equation's %.2f px | total light |" % predicted)
+    print("|---|---|---|---|")
+    for name, path in (("Tessera", "tessera_disc.exr"), ("Cycles", "cycles_disc.exr")):
+        path = os.path.join(out, path)
+        if not os.path.exists(path):
+            if name == "Tessera":
+                subprocess.run([a.render, scene, "--backend", "embree", "--size", "%dx%d" % (size, size), "--spp",
+                                "256", "--no-default-light", "--output", path, "--quiet"], check=True)
+            else:
+                subprocess.run(["blender", "-b", "--python", os.path.join(HERE, "cycles_lens_render.py"), "--",
+                                scene, path, "256", "%dx%d" % (size, size), "4"], check=True,
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        light = load(path).sum(axis=2)
+        yy, xx = np.mgrid[0:size, 0:size] + 0.5
+        w = light / light.sum()
+        cx, cy = (w * xx).sum(), (w * yy).sum()
+        radius = math.sqrt(2 * (w * ((xx - cx) ** 2 + (yy - cy) ** 2)).sum())  # uniform disc: <r^2> = R^2 / 2
+        print("| %s | %.2f | %+.1f %% | %.1f |" % (name, radius, 100 * (radius / predicted - 1), light.sum()))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--render", required=True, help="tessera-render")
@@ -171,6 +209,7 @@ def main():
         print("seen error, Tessera's lens image in Cycles' shading (x Cycles pinhole / Tessera pinhole) against "
               "Cycles' lens image: whole %.4f, worst tile %.4f (at %d,%d)" % (*seen_error(ours * ratio, theirs)[:2],
                                                                                *seen_error(ours * ratio, theirs)[2]))
+    disc_check(a, out)
     print("\nimages in", out)
 
 
