@@ -297,9 +297,14 @@ class Doc:
         self.nodes.append({"name": name, "translation": list(pos),
                            "extensions": {"KHR_lights_punctual": {"light": len(self.lights) - 1}}})
 
-    def camera(self, eye, at, fov_deg):
+    def camera(self, eye, at, fov_deg, lens=None):
+        """lens: (aperture radius, focus distance) in metres, as Tessera's
+        TSR_camera_lens (docs/camera.md); None is glTF's pinhole."""
         self.cameras.append({"name": "camera", "type": "perspective", "perspective": {
             "yfov": math.radians(fov_deg), "aspectRatio": 1.0, "znear": 0.01, "zfar": 1000.0}})
+        if lens is not None:
+            self.cameras[-1]["extensions"] = {"TSR_camera_lens": {"apertureRadius": lens[0], "focusDistance": lens[1]}}
+            self.ext.add("TSR_camera_lens")
         self.nodes.append({"name": "camera", "camera": 0, "translation": list(eye), "rotation": look_quat(eye, at)})
 
     def write(self, path):
@@ -539,6 +544,35 @@ def corridor(d):
     d.camera((0.3, 1.6, 1.5), (-0.1, 1.3, -20.0), 55)
 
 
+def defocus(d):
+    """Depth of field: a thin lens focused on a poster 2.5 m away; a striped
+    ball and a checker cube about 1 m from the lens and the far wall
+    (9-11.5 m) with its text and three small lamps are clearly out of focus."""
+    w = d.material(WHITE)
+    floor = d.material((1.0, 1.0, 1.0), texture=checker_png(4, 64))
+    room(d, 5.0, 3.0, 12.0, {"floor": floor, "floor_uv": (6.0, 3.0), "ceiling": w, "back": w, "front": w,
+                             "left": d.material((0.6, 0.5, 0.4)), "right": d.material((0.4, 0.5, 0.6))}, cz=-4.0)
+    for z in (0.0, -5.0):
+        ceiling_light(d, (0.8, 0.8), (0.0, 2.99, z), 14.0)
+    # In focus, 2.5 m along the view: a poster on a post, a checker cube.
+    d.add("poster", quad((-0.55, 1.3, -1.0), (0.5, 0.0, 0.0), (0.0, 0.25, 0.0)),
+          d.material((1.0, 1.0, 1.0), texture=poster_png()))
+    d.add("post", box((0.06, 1.05, 0.06), (0.0, 0.525, 0.0)), d.material((0.1, 0.1, 0.12)), t=(-0.55, 0.0, -1.04))
+    d.add("mid cube", box((0.5, 0.5, 0.5)), d.material((1.0, 1.0, 1.0), texture=checker_png(2, 32)),
+          t=(0.15, 0.25, -1.0), yaw=30)
+    # Out of focus in front, about 1 m away: a striped ball and a checker cube.
+    d.add("near ball", sphere(0.15), d.material((1.0, 1.0, 1.0), texture=stripes_png()), t=(-0.35, 1.0, 0.45))
+    d.add("near cube", box((0.2, 0.2, 0.2)), d.material((1.0, 1.0, 1.0), texture=checker_png(4, 32)),
+          t=(0.36, 1.05, 0.5), yaw=20)
+    # Out of focus behind, 9-11.5 m away: the far wall's poster and three small bright lamps.
+    d.add("far poster", quad((0.9, 1.6, -9.99), (1.2, 0.0, 0.0), (0.0, 0.6, 0.0)),
+          d.material((1.0, 1.0, 1.0), texture=poster_png()))
+    for k, (pos, col) in enumerate((((-1.6, 2.2, -8.5), (1.0, 0.7, 0.4)), ((1.7, 2.4, -9.0), (0.5, 0.7, 1.0)),
+                                    ((1.2, 0.5, -7.5), (1.0, 0.95, 0.85)))):
+        d.add("far lamp %d" % k, sphere(0.05, rings=8), d.material(col, emissive=col, strength=60.0), t=pos)
+    d.camera((0.0, 1.35, 1.5), (0.1, 1.1, -1.0), 50, lens=(0.08, 2.5))
+
+
 SCENES = [  # key, label, builder, stresses, kind
     ("indirect-room", "Indirectly lit room", indirect_room,
      "light only after a ceiling bounce; rough metal sphere (roughness 0.3) reflecting an indirectly lit room",
@@ -564,6 +598,9 @@ SCENES = [  # key, label, builder, stresses, kind
      "rough dielectric floor, rough metal cube and ball, striped diffuse ball; point + dim area light", "mixed"),
     ("corridor", "Long corridor", corridor,
      "long perspective: depth from 0.5 to 30 m, repeated lamps and door frames shrinking", "diffuse"),
+    ("defocus", "Depth of field", defocus,
+     "thin lens (radius 8 cm) focused at 2.5 m on a poster: a near ball and cube (circle of confusion about 6 px at "
+     "128x128) and the far wall's text and small lamps (about 3 px) out of focus", "lens"),
     ("fog-glass", "Milky glass in haze", fog_glass,
      "glass sphere (ior 1.5) of scattering medium (sigma_s about 4/m, g 0.3) in a hazy room: media behind glass",
      "volume"),
