@@ -2,9 +2,31 @@
 share: the render settings, inside Blender, and reading an EXR, outside.
 
 Inside Blender (its own Python), after sys.path.insert of this folder:
-    cycles_common.render_still(scene, spp, bounces, width, height, out_path)
+    job = cycles_common.import_job()   # arguments after '--', glTF imported
+    cycles_common.render_still(scene, job.spp, job.bounces, job.width, job.height, job.out_path)
 Outside: cycles_common.load(path) -> float64 RGB array (numpy, OpenImageIO).
 """
+
+
+def import_job():
+    """Inside Blender: the arguments after '--' (SCENE OUT SPP WxH BOUNCES,
+    then the script's own in job.extra), with SCENE's glTF imported into an
+    empty scene."""
+    import sys
+    from types import SimpleNamespace
+
+    import bpy
+    import numpy
+
+    if not hasattr(numpy, "bool"):  # Debian: blender 3.4's glTF importer against numpy 1.24
+        numpy.bool = bool
+    argv = sys.argv[sys.argv.index("--") + 1:]
+    width, height = (int(v) for v in argv[3].split("x"))
+    job = SimpleNamespace(scene_path=argv[0], out_path=argv[1], spp=int(argv[2]), width=width, height=height,
+                          bounces=int(argv[4]), extra=argv[5:])
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    bpy.ops.import_scene.gltf(filepath=job.scene_path)
+    return job
 
 
 def render_still(scene, spp, bounces, width, height, out_path):

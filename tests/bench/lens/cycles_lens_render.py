@@ -29,24 +29,16 @@ import os
 import sys
 
 import bpy
-import numpy
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 import cycles_common  # noqa: E402
 
-if not hasattr(numpy, "bool"):  # Debian: blender 3.4's glTF importer against numpy 1.24
-    numpy.bool = bool
-
-argv = sys.argv[sys.argv.index("--") + 1:]
-scene_path, out_path, spp, size, bounces = argv[0], argv[1], int(argv[2]), argv[3], int(argv[4])
-width, height = (int(v) for v in size.split("x"))
-doc = json.load(open(scene_path))
+job = cycles_common.import_job()
+doc = json.load(open(job.scene_path))
 lens = doc["cameras"][0].get("extensions", {}).get("TSR_camera_lens", {})
-aperture = float(argv[5]) if len(argv) > 5 else float(lens.get("apertureRadius", 0.0))
-focus = float(argv[6]) if len(argv) > 6 else float(lens.get("focusDistance", 5.0))
+aperture = float(job.extra[0]) if len(job.extra) > 0 else float(lens.get("apertureRadius", 0.0))
+focus = float(job.extra[1]) if len(job.extra) > 1 else float(lens.get("focusDistance", 5.0))
 
-bpy.ops.wm.read_factory_settings(use_empty=True)
-bpy.ops.import_scene.gltf(filepath=scene_path)
 
 for mat in bpy.data.materials:
     tree = mat.node_tree
@@ -94,4 +86,4 @@ if aperture > 0:
     camera.dof.aperture_ratio = 1.0
 print("cycles_lens_render: yfov %.6f rad, lens %.4f mm, aperture radius %.4f, f-number %.5f, focus %.4f"
       % (camera.angle_y, camera.lens, aperture, camera.dof.aperture_fstop if aperture > 0 else 0.0, focus))
-cycles_common.render_still(scene, spp, bounces, width, height, out_path)
+cycles_common.render_still(scene, job.spp, job.bounces, job.width, job.height, job.out_path)

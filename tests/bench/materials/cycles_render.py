@@ -13,20 +13,12 @@ import sys
 import os
 
 import bpy
-import numpy
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 import cycles_common  # noqa: E402
 
-if not hasattr(numpy, "bool"):  # Debian: blender 3.4's glTF importer against numpy 1.24
-    numpy.bool = bool
+job = cycles_common.import_job()
 
-argv = sys.argv[sys.argv.index("--") + 1:]
-scene_path, out_path, spp, size, bounces = argv[0], argv[1], int(argv[2]), argv[3], int(argv[4])
-width, height = (int(v) for v in size.split("x"))
-
-bpy.ops.wm.read_factory_settings(use_empty=True)
-bpy.ops.import_scene.gltf(filepath=scene_path)
 
 # The glTF importer leaves Cycles' default distribution; say which is used.
 for mat in bpy.data.materials:
@@ -40,4 +32,4 @@ world = bpy.data.worlds.new("world")
 scene.world = world
 world.use_nodes = True
 world.node_tree.nodes["Background"].inputs["Color"].default_value = (0, 0, 0, 1)
-cycles_common.render_still(scene, spp, bounces, width, height, out_path)
+cycles_common.render_still(scene, job.spp, job.bounces, job.width, job.height, job.out_path)

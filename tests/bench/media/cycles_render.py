@@ -14,21 +14,13 @@ import sys
 import os
 
 import bpy
-import numpy
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 import cycles_common  # noqa: E402
 
-if not hasattr(numpy, "bool"):  # Debian: blender 3.4's glTF importer against numpy 1.24
-    numpy.bool = bool
+job = cycles_common.import_job()
 
-argv = sys.argv[sys.argv.index("--") + 1:]
-scene_path, out_path, spp, size, bounces = argv[0], argv[1], int(argv[2]), argv[3], int(argv[4])
-width, height = (int(v) for v in size.split("x"))
-
-bpy.ops.wm.read_factory_settings(use_empty=True)
-bpy.ops.import_scene.gltf(filepath=scene_path)
-doc = json.load(open(scene_path))
+doc = json.load(open(job.scene_path))
 
 
 def volume_shader(tree, volume):
@@ -101,4 +93,4 @@ if medium:
     out = next(n for n in world.node_tree.nodes if n.type == "OUTPUT_WORLD")
     world.node_tree.links.new(volume_shader(world.node_tree, medium), out.inputs["Volume"])
 
-cycles_common.render_still(scene, spp, bounces, width, height, out_path)
+cycles_common.render_still(scene, job.spp, job.bounces, job.width, job.height, job.out_path)
