@@ -46,42 +46,31 @@ TEST(WallCli, FourNodesPresentTilesThatStitchToTheLocalRender) {
   EXPECT_NE(out.find("fps"), std::string::npos) << out;
 }
 
-// --aperture and --focus-distance reach the nodes with the view: the
-// stitched frame equals a local render through the same lens.
-TEST(WallCli, TheLensReachesTheNodes) {
+// The lens and the shutter reach the nodes with the view (the animation's
+// motion with the scene): each stitched frame equals a local render with
+// the same camera; bad values are one error line naming the option.
+TEST(WallCli, TheLensAndTheShutterReachTheNodes) {
   TempDir dir;
   Wall wall(dir.path, 4);
   fs::path log = dir.path / "wall.log";
-  ASSERT_EQ(runWall(gridConfig(dir.path) + " builtin:animated --nodes " + wall.addresses() +
-                        " --frames 1 --size 48x40 --aperture 0.3 --focus-distance 2 --output " +
-                        (dir.path / "wall.exr").string(),
-                    log),
-            0)
-      << slurp(log);
-  const med::FrameBuffer stitched = med::readImage((dir.path / "wall.exr").string());
-  expectTileEquals(stitched, localFrame(0, 48, 40, 0.3f, 2.0f), {0, 0, 48, 40}, "the stitched frame");
-  EXPECT_NE(stitched.colour, localFrame(0, 48, 40).colour) << "the lens shows";
-  ASSERT_NE(runWall(gridConfig(dir.path) + " builtin:animated --nodes " + wall.addresses() + " --aperture -1", log), 0);
-  EXPECT_NE(slurp(log).find("--aperture"), std::string::npos) << slurp(log);
-}
-
-// --shutter reaches the nodes with the view and the animation's motion with
-// the scene: the stitched frame equals a local render with the same shutter.
-TEST(WallCli, TheShutterReachesTheNodes) {
-  TempDir dir;
-  Wall wall(dir.path, 4);
-  fs::path log = dir.path / "wall.log";
-  ASSERT_EQ(runWall(gridConfig(dir.path) + " builtin:animated --nodes " + wall.addresses() +
-                        " --frames 1 --size 48x40 --shutter 0,1 --output " + (dir.path / "wall.exr").string(),
-                    log),
-            0)
-      << slurp(log);
-  const med::FrameBuffer stitched = med::readImage((dir.path / "wall.exr").string());
-  expectTileEquals(stitched, localFrame(0, 48, 40, 0.0f, 5.0f, {0.0f, 1.0f}), {0, 0, 48, 40}, "the stitched frame");
-  EXPECT_NE(stitched.colour, localFrame(0, 48, 40).colour) << "the motion shows";
-  ASSERT_NE(runWall(gridConfig(dir.path) + " builtin:animated --nodes " + wall.addresses() + " --shutter 0.5,0.2", log),
-            0);
-  EXPECT_NE(slurp(log).find("--shutter"), std::string::npos) << slurp(log);
+  const std::string args = gridConfig(dir.path) + " builtin:animated --nodes " + wall.addresses();
+  struct Case {
+    std::string options, bad;
+    float aperture, focus;
+    sg::Vec2 shutter;
+  };
+  for (const Case& c : {Case{"--aperture 0.3 --focus-distance 2", "--aperture -1", 0.3f, 2.0f, {0, 0}},
+                        Case{"--shutter 0,1", "--shutter 0.5,0.2", 0.0f, 5.0f, {0, 1}}}) {
+    ASSERT_EQ(
+        runWall(args + " --frames 1 --size 48x40 " + c.options + " --output " + (dir.path / "wall.exr").string(), log),
+        0)
+        << slurp(log);
+    const med::FrameBuffer stitched = med::readImage((dir.path / "wall.exr").string());
+    expectTileEquals(stitched, localFrame(0, 48, 40, c.aperture, c.focus, c.shutter), {0, 0, 48, 40}, c.options);
+    EXPECT_NE(stitched.colour, localFrame(0, 48, 40).colour) << c.options << " shows";
+    ASSERT_NE(runWall(args + " " + c.bad, log), 0);
+    EXPECT_NE(slurp(log).find(c.bad.substr(0, c.bad.find(' '))), std::string::npos) << slurp(log);
+  }
 }
 
 // --workload beside: the status lines name each screen's share and the
