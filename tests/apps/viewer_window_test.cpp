@@ -216,6 +216,19 @@ TEST_F(ViewerWindow, LensFocusesOnAPixelAndBlurs) {
   EXPECT_GT(compare(image("pinhole.png"), image("lens.png")).meanAbs, 0.01) << "the back of the box blurs";
 }
 
+// The shutter from a script (as the panel's sliders set it): with the
+// animation paused, opening the shutter over the frame blurs what moves;
+// closing it again brings the same picture back.
+TEST_F(ViewerWindow, ShutterBlursTheAnimation) {
+  writeScript("shutter.txt", "time 1\nwait samples 4\nscreenshot still.png 0\nshutter 0 1\nwait samples 4\n"
+                             "screenshot blurred.png 0\nshutter 0 0\nwait samples 4\nscreenshot again.png 0\n");
+  const Outcome v =
+      viewer("builtin:animated --viewports embree --size 96x96 --spp 4 --script shutter.txt --exit-after");
+  ASSERT_EQ(v.status, 0) << v.err;
+  EXPECT_GT(compare(image("still.png"), image("blurred.png")).meanAbs, 0.002) << "what moves blurs";
+  EXPECT_LE(compare(image("still.png"), image("again.png")).maxAbs, 1e-6) << "an instant again";
+}
+
 // Figure 5.6's option: while the camera moves the path-traced viewport
 // shows the rasteriser's picture, and path traces once it rests.
 TEST_F(ViewerWindow, RasterisesWhileMovingThenPathTraces) {
