@@ -95,6 +95,12 @@ bool parseRenderOptions(int argc, char** argv, RenderJob& o, std::string& listPa
   double aperture = 0, focusDistance = 0;
   auto* apertureOption = viewGroup->add_option(
       "--aperture", aperture, "thin lens radius in scene units: depth of field (embree; 0: a pinhole, the default)");
+  double fNumber = 0;
+  auto* fNumberOption = viewGroup->add_option(
+      "--f-number", fNumber,
+      "the lens as an f-number instead of --aperture: radius = focal length / (2 N), the focal length a full-frame "
+      "camera has at this field of view, in metres");
+  fNumberOption->excludes(apertureOption);
   auto* focusOption =
       viewGroup->add_option("--focus-distance", focusDistance, "distance in focus along the view, scene units");
   std::string focusOn;
@@ -126,6 +132,7 @@ bool parseRenderOptions(int argc, char** argv, RenderJob& o, std::string& listPa
   if (*atOption) o.view.look.at = parsePoint("--look-at", lookAt);
   if (*fovOption) o.view.look.fovDegrees = static_cast<float>(fov);
   if (*apertureOption) o.view.look.apertureRadius = static_cast<float>(aperture);
+  if (*fNumberOption) o.view.look.fNumber = static_cast<float>(fNumber);
   if (*focusOption) o.view.look.focusDistance = static_cast<float>(focusDistance);
   if (*shutterOption) o.view.look.shutter = parseShutter(shutter);
   if (*focusOnOption) {

@@ -41,9 +41,9 @@ using Clock = std::chrono::steady_clock;
 
 struct Options {
   std::string config, scene, nodes, tokenFile, size, output, camera;
-  std::optional<double> aperture, focusDistance;  // the camera's lens, when given
-  std::string shutter;                            // OPEN,CLOSE, when given
-  std::vector<std::string> params;                // --param name=value, for every node whose back-end takes it
+  std::optional<double> aperture, fNumber, focusDistance;  // the camera's lens, when given
+  std::string shutter;                                     // OPEN,CLOSE, when given
+  std::vector<std::string> params;                         // --param name=value, for every node whose back-end takes it
   tsr::sg::ImportOptions import;
   std::uint64_t frames = 0;  // 0: until interrupted
   std::int64_t spp = 0;      // 0: the config's
@@ -149,6 +149,7 @@ int run(const Options& o) {
   tsr::app::ViewChoice view;
   view.camera = o.camera;
   if (o.aperture) view.look.apertureRadius = float(*o.aperture);
+  if (o.fNumber) view.look.fNumber = float(*o.fNumber);
   if (o.focusDistance) view.look.focusDistance = float(*o.focusDistance);
   if (!o.shutter.empty()) view.look.shutter = tsr::app::parseShutter(o.shutter);
   session.load(o.scene, o.import, view);
@@ -283,6 +284,9 @@ int main(int argc, char** argv) {
   app.add_option("--camera", o.camera, "the scene camera to play through: its name or index (default: the first)");
   app.add_option("--aperture", o.aperture,
                  "thin lens radius in scene units: depth of field on path-tracing nodes (0: a pinhole)");
+  app.add_option("--f-number", o.fNumber,
+                 "the lens as an f-number instead of --aperture (radius = focal length / (2 N), the focal length a "
+                 "full-frame camera has at this field of view, in metres)");
   app.add_option("--focus-distance", o.focusDistance, "distance in focus along the view, scene units");
   app.add_option("--shutter", o.shutter,
                  "OPEN,CLOSE as fractions of the frame interval: what the animation moves is blurred between, on "

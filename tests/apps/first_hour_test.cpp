@@ -145,6 +145,21 @@ TEST_F(FirstHour, ApertureAndFocusDistanceGiveDepthOfField) {
   render(scene + " --aperture 0.3 --focus-distance " + d.str() + " --output at.exr");
   // (The depth output of 16 samples may differ from one sample's in the last bit.)
   EXPECT_LT(meanAbsDifference(image("on.exr"), image("at.exr")), 1e-6) << "focus at " << d.str();
+  // --f-number N is the radius a full-frame camera's focal length at this
+  // field of view gives: 12 mm / tan(fov / 2) / (2 N).
+  std::ostringstream radius;
+  radius.precision(9);
+  radius << 0.012f / std::tan(0.5f * glm::radians(40.0f)) / (2.0f * 0.25f);
+  render(scene + " --fov 40 --f-number 0.25 --focus-distance 1 --output f.exr");
+  render(scene + " --fov 40 --aperture " + radius.str() + " --focus-distance 1 --output radius.exr");
+  EXPECT_EQ(meanAbsDifference(image("f.exr"), image("radius.exr")), 0.0) << "radius " << radius.str();
+  render(scene + " --fov 40 --focus-distance 1 --output f-pinhole.exr");
+  EXPECT_GT(meanAbsDifference(image("f.exr"), image("f-pinhole.exr")), 0.0);
+  for (const char* bad : {"--f-number 0", "--f-number -2", "--f-number 2 --aperture 0.1"}) {
+    const Outcome r = run(scene + " " + bad + " --output bad.exr");
+    EXPECT_NE(r.status, 0) << bad;
+    EXPECT_NE(r.err.find("--f-number"), std::string::npos) << bad << ": " << r.err;
+  }
 }
 
 // --shutter OPEN,CLOSE blurs what the animation moves over that part of

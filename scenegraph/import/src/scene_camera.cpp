@@ -96,6 +96,11 @@ void validate(const LookOverride& look) {
   if (look.apertureRadius && !(*look.apertureRadius >= 0.0f && withinCoordinateLimit(*look.apertureRadius)))
     throw std::invalid_argument("--aperture " + std::to_string(*look.apertureRadius) +
                                 ": expected the lens' radius in scene units, 0 (a pinhole) or more");
+  if (look.fNumber && !(*look.fNumber > 0.0f && withinCoordinateLimit(*look.fNumber)))
+    throw std::invalid_argument("--f-number " + std::to_string(*look.fNumber) +
+                                ": expected the lens' f-number above 0 (e.g. 2.8)");
+  if (look.fNumber && look.apertureRadius)
+    throw std::invalid_argument("--f-number and --aperture both set the lens: give one");
   if (look.shutter && !(look.shutter->x >= 0.0f && look.shutter->x <= look.shutter->y && look.shutter->y <= 1.0f))
     throw std::invalid_argument("--shutter " + std::to_string(look.shutter->x) + "," + std::to_string(look.shutter->y) +
                                 ": expected OPEN,CLOSE as fractions of the frame interval, 0 <= OPEN <= CLOSE <= 1");
@@ -109,7 +114,8 @@ ContainerId applyLookOverride(Scene& scene, ContainerId root, ContainerId base, 
   auto* original = scene.find<Camera>(base);
   if (!original) throw std::invalid_argument("container " + std::to_string(base) + " is not a camera of the scene");
   const float fov = look.fovDegrees ? glm::radians(*look.fovDegrees) : original->verticalFov();
-  const float aperture = look.apertureRadius.value_or(original->apertureRadius());
+  const float aperture =
+      look.fNumber ? apertureOfFNumber(*look.fNumber, fov) : look.apertureRadius.value_or(original->apertureRadius());
   const float focus = look.focusDistance.value_or(original->focusDistance());
   const Vec2 shutter = look.shutter.value_or(Vec2(original->shutterOpen(), original->shutterClose()));
   if (!look.from && !look.at) {
@@ -140,6 +146,11 @@ ContainerId applyLookOverride(Scene& scene, ContainerId root, ContainerId base, 
   aim(camera, from, at);
   fitPlanes(camera, glm::length(from - bounds.centre), bounds.radius);
   return camera.id();
+}
+
+float apertureOfFNumber(float n, float verticalFov) {
+  constexpr float kHalfSensorHeight = 0.012f;  // metres: a 36 x 24 mm sensor
+  return kHalfSensorHeight / std::tan(0.5f * verticalFov) / (2.0f * n);
 }
 
 }  // namespace tsr::sg

@@ -31,13 +31,17 @@ struct LookOverride {
   std::optional<Vec3> from, at;
   std::optional<float> fovDegrees;      // vertical, 0 < fov < 180
   std::optional<float> apertureRadius;  // scene units, >= 0 (0: a pinhole)
-  std::optional<float> focusDistance;   // scene units along the view, > 0
-  std::optional<Vec2> shutter;          // open, close: fractions of the frame interval, 0 <= open <= close <= 1
-  bool any() const { return from || at || fovDegrees || apertureRadius || focusDistance || shutter; }
+  // Or the lens as a photographer states it: radius = focal length / (2 N),
+  // the focal length that of a full-frame camera (a 24 mm tall sensor) with
+  // this field of view, in metres (glTF's unit). > 0; not with apertureRadius.
+  std::optional<float> fNumber;
+  std::optional<float> focusDistance;  // scene units along the view, > 0
+  std::optional<Vec2> shutter;         // open, close: fractions of the frame interval, 0 <= open <= close <= 1
+  bool any() const { return from || at || fovDegrees || apertureRadius || fNumber || focusDistance || shutter; }
 };
 
 // Throws std::invalid_argument (a message naming the option: --look-from,
-// --look-at, --fov, --aperture, --focus-distance, --shutter) for non-finite or
+// --look-at, --fov, --aperture, --f-number, --focus-distance, --shutter) for non-finite or
 // out-of-range values, or from == at.
 void validate(const LookOverride& look);
 
@@ -48,5 +52,9 @@ void validate(const LookOverride& look);
 // shutter, `base` itself with those (still moved by its parents).
 // Validates first.
 ContainerId applyLookOverride(Scene& scene, ContainerId root, ContainerId base, const LookOverride& look);
+
+// The aperture radius of f-number `n` for a vertical field of view (radians):
+// a full-frame camera's focal length, 0.012 m / tan(fov / 2), over 2n.
+float apertureOfFNumber(float n, float verticalFov);
 
 }  // namespace tsr::sg
