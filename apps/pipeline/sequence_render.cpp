@@ -161,7 +161,7 @@ FrameRenderer clusterRenderer(const RenderJob& options, const SceneSession& sess
     const auto* camera = s.source.find<sg::Camera>(s.camera);
     window->setEyes(camera->eyeSeparation(), camera->zeroParallaxDistance());
     window->publish(s.source, delta);
-    cluster::ClusterFrame rendered = window->render(view);
+    cluster::ClusterFrame rendered = window->render(view, frame);  // the frame, for seedPerFrame
     log.record(frame, std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), rendered,
                *window);
     return std::move(rendered.image);

@@ -37,6 +37,11 @@ bool parseRenderOptions(int argc, char** argv, RenderJob& o, std::string& listPa
   auto* sppOption = app.add_option("--spp", spp, "samples per pixel")->check(CLI::Range(1, 1 << 20));
   auto* depthOption = app.add_option("--max-depth", maxDepth, "maximum path depth")->check(CLI::Range(0, 1024));
   auto* seedOption = app.add_option("--seed", seed, "random seed")->check(CLI::NonNegativeNumber);
+  bool seedPerFrame = false;
+  auto* seedPerFrameOption = app.add_flag(
+      "--seed-per-frame", seedPerFrame,
+      "with --frames, each frame draws its own random numbers (seed + frame): the noise moves instead of sticking to "
+      "the screen as objects move through it (path tracer; default: one seed, as Cycles does)");
   auto* threadsOption = app.add_option("--threads", threads, "render threads (0: all)")->check(CLI::Range(0, 4096));
   app.add_option("--output", o.output, "image file; the format follows the extension")->check(FileName());
   app.add_option("--aov", o.aovs,
@@ -168,6 +173,10 @@ bool parseRenderOptions(int argc, char** argv, RenderJob& o, std::string& listPa
   flag(sppOption, "spp", spp);
   flag(depthOption, "maxDepth", maxDepth);
   flag(seedOption, "seed", seed);
+  if (*seedPerFrameOption && seedPerFrame) {
+    o.explicitParameters.insert("seedPerFrame");
+    o.parameters.set("seedPerFrame", true);
+  }
   flag(threadsOption, "threads", threads);
   for (const auto& [option, name] : filterOptions) {
     if (!*option) continue;

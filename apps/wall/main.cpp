@@ -43,6 +43,7 @@ struct Options {
   std::string config, scene, nodes, tokenFile, size, output, camera;
   std::optional<double> aperture, fNumber, focusDistance;  // the camera's lens, when given
   std::string shutter;                                     // OPEN,CLOSE, when given
+  bool seedPerFrame = false;                               // --seed-per-frame
   std::vector<std::string> params;                         // --param name=value, for every node whose back-end takes it
   tsr::sg::ImportOptions import;
   std::uint64_t frames = 0;  // 0: until interrupted
@@ -126,6 +127,7 @@ int run(const Options& o) {
     if (!registry.has(n.backend)) continue;  // config.validate names it
     const tsr::med::ParameterTable& table = registry.capabilities(n.backend).parameters;
     if (o.spp > 0 && table.declares("spp")) n.parameters.set("spp", o.spp);
+    if (o.seedPerFrame && table.declares("seedPerFrame")) n.parameters.set("seedPerFrame", true);
     tsr::app::usePreviewFilterUnlessSet(n.parameters, &table);
   }
   for (const std::string& p : o.params) {
@@ -197,7 +199,7 @@ int run(const Options& o) {
     // The nodes present their screens themselves: pixels travel to this
     // client only for the frame --output writes (with --frames 0, every one).
     wall.keepPixelsOnNodes(!o.pixelsBack && (o.output.empty() || (o.frames != 0 && frame + 1 != o.frames)));
-    last = wall.render(tsr::med::View::fromCamera(*camera, width, height));
+    last = wall.render(tsr::med::View::fromCamera(*camera, width, height), static_cast<std::int64_t>(frame));
     ++framesSinceStatus;
     if (frame > 0) {
       auto bytesAfter = bytes();
@@ -288,6 +290,9 @@ int main(int argc, char** argv) {
                  "the lens as an f-number instead of --aperture (radius = focal length / (2 N), the focal length a "
                  "full-frame camera has at this field of view, in metres)");
   app.add_option("--focus-distance", o.focusDistance, "distance in focus along the view, scene units");
+  app.add_flag("--seed-per-frame", o.seedPerFrame,
+               "each frame draws its own random numbers (seed + frame) on path-tracing nodes: the noise moves "
+               "instead of sticking to the screen (default: one seed)");
   app.add_option("--shutter", o.shutter,
                  "OPEN,CLOSE as fractions of the frame interval: what the animation moves is blurred between, on "
                  "path-tracing nodes (default 0,0: an instant)");

@@ -188,6 +188,19 @@ TEST_F(FirstHour, ShutterBlursWhatTheAnimationMoves) {
   }
 }
 
+// With --frames every frame draws the same random numbers (noise sticks to
+// the screen, as in Cycles); --seed-per-frame gives frame f seed + f.
+TEST_F(FirstHour, SeedPerFrameMovesTheNoise) {
+  const std::string scene = "builtin:cornell --size 32x32 --backend embree --spp 2 --seed 7 --frames 2";
+  render(scene + " --output same.####.exr");
+  render(scene + " --seed-per-frame --output own.####.exr");
+  EXPECT_EQ(meanAbsDifference(image("same.0000.exr"), image("same.0001.exr")), 0.0) << "a still scene, one seed";
+  EXPECT_EQ(meanAbsDifference(image("same.0000.exr"), image("own.0000.exr")), 0.0) << "frame 0 keeps the seed";
+  EXPECT_GT(meanAbsDifference(image("own.0000.exr"), image("own.0001.exr")), 0.01) << "frame 1 draws anew";
+  render("builtin:cornell --size 32x32 --backend embree --spp 2 --seed 8 --output eight.exr");
+  EXPECT_EQ(meanAbsDifference(image("own.0001.exr"), image("eight.exr")), 0.0) << "frame 1 has seed 7 + 1";
+}
+
 TEST_F(FirstHour, AnAnimatedParentMovesItsCamera) {
   const std::string scene = boxes() + " --backend vulkan --camera tracking";
   render(scene + " --frames 2 --fps 1 --output f.####.exr");

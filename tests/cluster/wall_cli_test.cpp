@@ -73,6 +73,22 @@ TEST(WallCli, TheLensAndTheShutterReachTheNodes) {
   }
 }
 
+// --seed-per-frame: frame f of the wall draws seed + f on every node, the
+// same picture a local render with that seed makes.
+TEST(WallCli, SeedPerFrameReachesTheNodes) {
+  TempDir dir;
+  Wall wall(dir.path, 4);
+  fs::path log = dir.path / "wall.log";
+  ASSERT_EQ(runWall(gridConfig(dir.path) + " builtin:animated --nodes " + wall.addresses() +
+                        " --frames 2 --size 48x40 --seed-per-frame --output " + (dir.path / "wall.exr").string(),
+                    log),
+            0)
+      << slurp(log);
+  const med::FrameBuffer stitched = med::readImage((dir.path / "wall.exr").string());
+  expectTileEquals(stitched, localFrame(1, 48, 40, 0.0f, 5.0f, {0, 0}, 6), {0, 0, 48, 40}, "frame 1, seed 5 + 1");
+  EXPECT_NE(stitched.colour, localFrame(1, 48, 40).colour) << "not the config's seed";
+}
+
 // --workload beside: the status lines name each screen's share and the
 // balance, and FILE.workload.EXT beside --output shows each screen in its
 // node's colour; over: the frame itself carries the colours, half and half.

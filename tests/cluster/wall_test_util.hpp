@@ -128,7 +128,8 @@ inline int runWall(const std::string& args, const fs::path& log) {
 
 // The local render of builtin:animated at frame `frame` of 24 fps.
 inline med::FrameBuffer localFrame(int frame, std::uint32_t width, std::uint32_t height, float aperture = 0.0f,
-                                   float focusDistance = 5.0f, sg::Vec2 shutter = sg::Vec2(0.0f)) {
+                                   float focusDistance = 5.0f, sg::Vec2 shutter = sg::Vec2(0.0f),
+                                   std::int64_t seed = 5) {
   AnimatedScene s("builtin:animated");
   s.pose(frame, shutter.y > shutter.x);
   auto* lens = s.scene.find<sg::Camera>(s.imported.cameras.front());
@@ -141,7 +142,9 @@ inline med::FrameBuffer localFrame(int frame, std::uint32_t width, std::uint32_t
   med::ViewportRegistry registry;
   med::registerEmbree(registry);
   med::ContextPool contexts;
-  auto local = registry.create({"embree", s.imported.root, s.imported.background, pathTracer(), true}, contexts);
+  med::Parameters parameters = pathTracer();
+  parameters.set("seed", seed);
+  auto local = registry.create({"embree", s.imported.root, s.imported.background, parameters, true}, contexts);
   med::FrameBuffer fb;
   local->render(replica, med::View::fromCamera(*s.scene.find<sg::Camera>(s.imported.cameras.front()), width, height),
                 fb);

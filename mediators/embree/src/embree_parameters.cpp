@@ -23,6 +23,9 @@ std::vector<ParameterSpec> specs() {
       integerParameter("spp", 16, 1, kMaxSpp, "samples per pixel the progressive image converges to"),
       integerParameter("maxDepth", 8, 0, 1024, "maximum path depth"),
       integerParameter("seed", 0, 0, INT64_MAX, "random seed"),
+      flagParameter("seedPerFrame", false,
+                    "each animation frame draws its own random numbers (seed + frame): noise moves with the "
+                    "picture instead of sticking to the screen"),
       integerParameter("threads", 0, 0, 4096, "render threads (0: all)"),
       flagParameter("directOnly", false, "direct light only (maxDepth 1)"),
       integerParameter("samplesPerPass", 1, 1, 4096, "samples per pass (unset: passes grow 1, 2, 4, 8)"),

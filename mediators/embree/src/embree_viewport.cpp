@@ -122,7 +122,7 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
   view.validate();
   const auto start = std::chrono::steady_clock::now();
   const auto spp = static_cast<std::uint32_t>(embreeParameters().integer(settings_.parameters, "spp"));
-  renderer_.setSettings(renderSettingsFrom(settings_.parameters));
+  renderer_.setSettings(renderSettingsFrom(settings_.parameters, control.frame));
   const FilterSettings filter = FilterSettings::from(settings_.parameters);
   const bool radiance = filter.usesRadianceFilter();
 

@@ -141,7 +141,7 @@ RenderStats PhotonViewport::render(const sg::Replica& replica, const View& view,
   const embree::Camera camera = cameraOf(view);
   const embree::Region region = regionOf(view);
   embree::FrameBuffer fb(region.regionWidth(), region.regionHeight());
-  embree::RenderSettings settings = renderSettingsFrom(settings_.parameters);
+  embree::RenderSettings settings = renderSettingsFrom(settings_.parameters, control.frame);
   // Passes of up to 8 samples, so progress shows and a cancel is heard.
   for (std::uint32_t done = 0; done < spp;) {
     if (control.cancel && control.cancel->load()) break;

@@ -14,10 +14,11 @@ constexpr const char* kVariance = "variance";
 
 std::vector<std::string> accumulatedOutputNames() { return {kAlbedo, kNormal, kDirect, kIndirect, kVariance}; }
 
-embree::RenderSettings renderSettingsFrom(const Parameters& p) {
+embree::RenderSettings renderSettingsFrom(const Parameters& p, std::int64_t frame) {
   embree::RenderSettings s;
   const ParameterTable& t = embreeParameters();
   s.seed = static_cast<std::uint64_t>(t.integer(p, "seed"));
+  if (t.flag(p, "seedPerFrame") && frame >= 0) s.seed += static_cast<std::uint64_t>(frame);
   s.maxDepth = static_cast<std::uint32_t>(t.integer(p, "maxDepth"));
   if (t.flag(p, "directOnly")) s.maxDepth = 1;
   s.samplesPerPass = static_cast<std::uint32_t>(t.integer(p, "samplesPerPass"));

@@ -13,8 +13,9 @@ namespace tsr::med::embree_mediator {
 // The named outputs fill() offers besides colour and depth.
 std::vector<std::string> accumulatedOutputNames();
 
-// seed, maxDepth, directOnly, samplesPerPass, threads.
-embree::RenderSettings renderSettingsFrom(const Parameters& parameters);
+// seed, maxDepth, directOnly, samplesPerPass, threads; with seedPerFrame,
+// the seed of animation frame `frame` (RenderControl::frame, -1: none).
+embree::RenderSettings renderSettingsFrom(const Parameters& parameters, std::int64_t frame = -1);
 embree::Camera cameraOf(const View& view);
 embree::Region regionOf(const View& view);
 
