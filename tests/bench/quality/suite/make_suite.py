@@ -294,18 +294,21 @@ class Doc:
             node["rotation"] = yaw_quat(yaw)
         self.nodes.append(node)
 
-    def animate(self, name, node, path, times, values):
-        """A LINEAR glTF animation channel of node index `node`: path is
-        translation (xyz rows) or rotation (xyzw quaternion rows)."""
+    def animate(self, node, path, times, values):
+        """A LINEAR channel of the document's one animation (importers such
+        as Blender's play one glTF animation at a time): node index `node`,
+        path translation (xyz rows) or rotation (xyzw quaternion rows)."""
         def scalars(xs):
             acc = {"bufferView": self.view(struct.pack("<%df" % len(xs), *xs), None), "componentType": 5126,
                    "count": len(xs), "type": "SCALAR", "min": [min(xs)], "max": [max(xs)]}
             self.accessors.append(acc)
             return len(self.accessors) - 1
         out = self.accessor(values, "%df" % len(values[0]), "VEC3" if len(values[0]) == 3 else "VEC4", None)
-        self.animations.append({"name": name, "samplers": [{"input": scalars(times), "output": out,
-                                                            "interpolation": "LINEAR"}],
-                                "channels": [{"sampler": 0, "target": {"node": node, "path": path}}]})
+        if not self.animations:
+            self.animations.append({"name": self.name, "samplers": [], "channels": []})
+        a = self.animations[0]
+        a["samplers"].append({"input": scalars(times), "output": out, "interpolation": "LINEAR"})
+        a["channels"].append({"sampler": len(a["samplers"]) - 1, "target": {"node": node, "path": path}})
 
     def point_light(self, name, pos, intensity, color=(1.0, 1.0, 1.0)):
         """KHR_lights_punctual point light; Tessera reads intensity as W/sr."""
@@ -608,11 +611,11 @@ def motion(d):
           d.material((1.0, 1.0, 1.0), texture=poster_png()))
     # Moving: x goes -0.5 -> 0.7 -> -1.7 -> -0.5 over a second, linear (4.8 m/s).
     d.add("moving ball", sphere(0.25), d.material((1.0, 1.0, 1.0), texture=stripes_png()), t=(-0.5, 0.9, -0.3))
-    d.animate("ball", len(d.nodes) - 1, "translation", [0.0, 0.25, 0.75, 1.0],
+    d.animate(len(d.nodes) - 1, "translation", [0.0, 0.25, 0.75, 1.0],
               [(-0.5, 0.9, -0.3), (0.7, 0.9, -0.3), (-1.7, 0.9, -0.3), (-0.5, 0.9, -0.3)])
     d.add("spinning cube", box((0.6, 0.6, 0.6)), d.material((1.0, 1.0, 1.0), texture=checker_png(2, 32)),
           t=(0.8, 0.3, -1.0))
-    d.animate("cube", len(d.nodes) - 1, "rotation", [0.25 * k for k in range(7)], [yaw_quat(60.0 * k) for k in range(7)])
+    d.animate(len(d.nodes) - 1, "rotation", [0.25 * k for k in range(7)], [yaw_quat(60.0 * k) for k in range(7)])
     d.camera((0.0, 1.3, 2.4), (0.0, 1.0, -1.5), 55)
     d.motion = {"time": 0.0, "frameInterval": 0.1, "shutter": [0.0, 1.0]}
 
