@@ -157,7 +157,7 @@ def streak_check(a, out, shutter):
     for name in ("Tessera", "Cycles"):
         moments = {}
         for tag, s in (("streak", shutter), ("still", (0.0, 0.0))):
-            path = os.path.join(out, "%s_%s.exr" % (name.lower(), tag))
+            path = os.path.join(out, "lamp_%s_%s.exr" % (name.lower(), tag))
             if name == "Tessera":
                 tessera(a, scene, path, fps, s, "%dx%d" % (size, size), 256, 4)
             else:
