@@ -14,10 +14,11 @@ same pair with the shutter closed (an instant at t = 0) is the baseline:
 what the two renderers differ by without motion; from both, each region's
 change by the motion in each renderer. Last, the streak's geometry: a 2 cm
 lamp moving at constant speed on black (256x256, 20° field of view, the
-same shutter) leaves a streak in each renderer whose length (from its
-second moment along the motion: a box of length L convolved with the lamp's
-still image has variance L^2/12 plus the lamp's) and centre are set beside
-the lamp's screen displacement over the shutter.
+same shutter), then the lamp still and the camera moving the other way,
+leaves a streak in each renderer whose length (from its second moment
+along the motion: a box of length L convolved with the lamp's still image
+has variance L^2/12 plus the lamp's) and centre are set beside the lamp's
+screen displacement over the shutter.
 
     cycles_motion_compare.py --render build/default/bin/tessera-render [--size 128x128]
                              [--spp 1024] [--bounces 16] [--shutter 0.25,0.75] [--out DIR]
@@ -134,42 +135,51 @@ def region_table(title, ours, theirs, regions):
 
 
 def streak_check(a, out, shutter):
-    """A 2 cm lamp 5 m away moving 8 m/s across the view (0.8 m over a frame of 0.1 s), 256x256, yfov 20 degrees."""
+    """A 2 cm lamp 5 m away moving 8 m/s across the view (0.8 m over a frame
+    of 0.1 s), 256x256, yfov 20 degrees; then the lamp still and the camera
+    moving the other way, which moves the lamp alike on screen."""
     sys.path.insert(0, os.path.dirname(SUITE))
     import make_suite as ms  # noqa: E402
     size, fov, z, fps, x0, x1 = 256, 20.0, -5.0, 10, -0.4, 0.4
-    scene = os.path.join(out, "streak.gltf")
-    d = ms.Doc("streak")
-    d.add("lamp", ms.sphere(0.02, rings=16), d.material((0, 0, 0), emissive=(1, 1, 1), strength=100.0), t=(x0, 0, z))
-    d.animate(0, "translation", [0.0, 1.0 / fps], [(x0, 0.0, z), (x1, 0.0, z)])
-    d.camera((0.0, 0.0, 0.0), (0.0, 0.0, -1.0), fov)
-    d.write(scene)
     f = (size / 2) / math.tan(math.radians(fov) / 2)
     px = lambda x: size / 2 + f * x / -z  # noqa: E731
     xa, xb = (px(x0 + (x1 - x0) * s) for s in shutter)
-    print("\nA lamp (radius 2 cm) %g m away moving %g m/s across the view, %dx%d, yfov %g deg, %d fps, shutter %g,%g:"
-          " its screen displacement over the shutter is %.2f px (x %.2f to %.2f)"
-          % (-z, (x1 - x0) * fps, size, size, fov, fps, *shutter, xb - xa, xa, xb))
-    print("\n| renderer | streak length (px, 2nd moment) | against %.2f px | streak centre x (px) | against %.2f |"
-          " total light, streak / still |" % (xb - xa, (xa + xb) / 2))
-    print("|---|---|---|---|---|---|")
+    print("\nA lamp (radius 2 cm) %g m away moving %g m/s across the view (or the camera moving the other way), "
+          "%dx%d, yfov %g deg, %d fps, shutter %g,%g: its screen displacement over the shutter is %.2f px "
+          "(x %.2f to %.2f)" % (-z, (x1 - x0) * fps, size, size, fov, fps, *shutter, xb - xa, xa, xb))
+    print("\n| renderer | what moves | streak length (px, 2nd moment) | against %.2f px | streak centre x (px) |"
+          " against %.2f | total light, streak / still |" % (xb - xa, (xa + xb) / 2))
+    print("|---|---|---|---|---|---|---|")
     yy, xx = np.mgrid[0:size, 0:size] + 0.5
-    for name in ("Tessera", "Cycles"):
-        moments = {}
-        for tag, s in (("streak", shutter), ("still", (0.0, 0.0))):
-            path = os.path.join(out, "lamp_%s_%s.exr" % (name.lower(), tag))
-            if name == "Tessera":
-                tessera(a, scene, path, fps, s, "%dx%d" % (size, size), 256, 4)
-            else:
-                cycles(scene, path, fps, s, "%dx%d" % (size, size), 256, 4)
-            light = load(path).sum(axis=2)
-            w = light / light.sum()
-            cx = (w * xx).sum()
-            moments[tag] = (cx, (w * (xx - cx) ** 2).sum(), light.sum())
-        length = math.sqrt(max(0.0, 12 * (moments["streak"][1] - moments["still"][1])))
-        print("| %s | %.2f | %+.1f %% | %.2f | %+.2f px | %.3f |" % (
-            name, length, 100 * (length / (xb - xa) - 1), moments["streak"][0], moments["streak"][0] - (xa + xb) / 2,
-            moments["streak"][2] / moments["still"][2]))
+    for mover in ("lamp", "camera"):
+        scene = os.path.join(out, "streak_%s.gltf" % mover)
+        d = ms.Doc("streak")
+        lamp = d.material((0, 0, 0), emissive=(1, 1, 1), strength=100.0)
+        if mover == "lamp":
+            d.add("lamp", ms.sphere(0.02, rings=16), lamp, t=(x0, 0, z))
+            d.animate(0, "translation", [0.0, 1.0 / fps], [(x0, 0.0, z), (x1, 0.0, z)])
+            d.camera((0.0, 0.0, 0.0), (0.0, 0.0, -1.0), fov)
+        else:
+            d.add("lamp", ms.sphere(0.02, rings=16), lamp, t=(0.0, 0, z))
+            d.camera((-x0, 0.0, 0.0), (-x0, 0.0, -1.0), fov)
+            d.animate(1, "translation", [0.0, 1.0 / fps], [(-x0, 0.0, 0.0), (-x1, 0.0, 0.0)])
+        d.write(scene)
+        for name in ("Tessera", "Cycles"):
+            moments = {}
+            for tag, s in (("streak", shutter), ("still", (0.0, 0.0))):
+                path = os.path.join(out, "%s_%s_%s.exr" % (mover, name.lower(), tag))
+                if name == "Tessera":
+                    tessera(a, scene, path, fps, s, "%dx%d" % (size, size), 256, 4)
+                else:
+                    cycles(scene, path, fps, s, "%dx%d" % (size, size), 256, 4)
+                light = load(path).sum(axis=2)
+                w = light / light.sum()
+                cx = (w * xx).sum()
+                moments[tag] = (cx, (w * (xx - cx) ** 2).sum(), light.sum())
+            length = math.sqrt(max(0.0, 12 * (moments["streak"][1] - moments["still"][1])))
+            print("| %s | %s | %.2f | %+.1f %% | %.2f | %+.2f px | %.3f |" % (
+                name, mover, length, 100 * (length / (xb - xa) - 1), moments["streak"][0],
+                moments["streak"][0] - (xa + xb) / 2, moments["streak"][2] / moments["still"][2]))
 
 
 def main():
