@@ -8,10 +8,11 @@ Outside: cycles_common.load(path) -> float64 RGB array (numpy, OpenImageIO).
 """
 
 
-def import_job():
+def import_job(prepare=None):
     """Inside Blender: the arguments after '--' (SCENE OUT SPP WxH BOUNCES,
     then the script's own in job.extra), with SCENE's glTF imported into an
-    empty scene."""
+    empty scene. prepare(scene, job), when given, runs on the empty scene
+    before the import (settings the importer reads, such as the fps)."""
     import sys
     from types import SimpleNamespace
 
@@ -25,8 +26,55 @@ def import_job():
     job = SimpleNamespace(scene_path=argv[0], out_path=argv[1], spp=int(argv[2]), width=width, height=height,
                           bounces=int(argv[4]), extra=argv[5:])
     bpy.ops.wm.read_factory_settings(use_empty=True)
+    if prepare:
+        prepare(bpy.context.scene, job)
     bpy.ops.import_scene.gltf(filepath=job.scene_path)
     return job
+
+
+def shade_gltf_as_tessera():
+    """Inside Blender, after the glTF importer: every Principled BSDF uses
+    multiple-scattering GGX, and emission leaves the front face only (as in
+    glTF and Tessera): the surface without emission plus an emission shader
+    that a back face sees as black."""
+    import bpy
+
+    for mat in bpy.data.materials:
+        tree = mat.node_tree
+        bsdf = tree.nodes.get("Principled BSDF") if tree else None
+        if not bsdf:
+            continue
+        bsdf.distribution = "MULTI_GGX"
+        out = next(n for n in tree.nodes if n.type == "OUTPUT_MATERIAL")
+        surface = bsdf.outputs[0]
+        strength = bsdf.inputs["Emission Strength"].default_value
+        if bsdf.inputs["Emission"].is_linked or strength * max(bsdf.inputs["Emission"].default_value[:3]) <= 0:
+            continue
+        emission = tree.nodes.new("ShaderNodeEmission")
+        emission.inputs["Color"].default_value = bsdf.inputs["Emission"].default_value
+        emission.inputs["Strength"].default_value = strength
+        bsdf.inputs["Emission Strength"].default_value = 0.0
+        geometry = tree.nodes.new("ShaderNodeNewGeometry")
+        front = tree.nodes.new("ShaderNodeMixShader")
+        black = tree.nodes.new("ShaderNodeBsdfTransparent")
+        black.inputs["Color"].default_value = (0, 0, 0, 1)
+        tree.links.new(geometry.outputs["Backfacing"], front.inputs["Fac"])
+        tree.links.new(emission.outputs[0], front.inputs[1])
+        tree.links.new(black.outputs[0], front.inputs[2])
+        add = tree.nodes.new("ShaderNodeAddShader")
+        tree.links.new(surface, add.inputs[0])
+        tree.links.new(front.outputs[0], add.inputs[1])
+        tree.links.new(add.outputs[0], out.inputs["Surface"])
+
+
+def black_world(scene):
+    """Inside Blender: a black world, so only the scene's emitters light it."""
+    import bpy
+
+    world = bpy.data.worlds.new("world")
+    scene.world = world
+    world.use_nodes = True
+    world.node_tree.nodes["Background"].inputs["Color"].default_value = (0, 0, 0, 1)
 
 
 def render_still(scene, spp, bounces, width, height, out_path):

@@ -39,41 +39,9 @@ lens = doc["cameras"][0].get("extensions", {}).get("TSR_camera_lens", {})
 aperture = float(job.extra[0]) if len(job.extra) > 0 else float(lens.get("apertureRadius", 0.0))
 focus = float(job.extra[1]) if len(job.extra) > 1 else float(lens.get("focusDistance", 5.0))
 
-
-for mat in bpy.data.materials:
-    tree = mat.node_tree
-    bsdf = tree.nodes.get("Principled BSDF") if tree else None
-    if not bsdf:
-        continue
-    bsdf.distribution = "MULTI_GGX"
-    out = next(n for n in tree.nodes if n.type == "OUTPUT_MATERIAL")
-    surface = bsdf.outputs[0]
-    strength = bsdf.inputs["Emission Strength"].default_value
-    if bsdf.inputs["Emission"].is_linked or strength * max(bsdf.inputs["Emission"].default_value[:3]) <= 0:
-        continue
-    # Front face only: the surface without emission, plus an
-    # emission shader that a back face sees as black.
-    emission = tree.nodes.new("ShaderNodeEmission")
-    emission.inputs["Color"].default_value = bsdf.inputs["Emission"].default_value
-    emission.inputs["Strength"].default_value = strength
-    bsdf.inputs["Emission Strength"].default_value = 0.0
-    geometry = tree.nodes.new("ShaderNodeNewGeometry")
-    front = tree.nodes.new("ShaderNodeMixShader")
-    black = tree.nodes.new("ShaderNodeBsdfTransparent")
-    black.inputs["Color"].default_value = (0, 0, 0, 1)
-    tree.links.new(geometry.outputs["Backfacing"], front.inputs["Fac"])
-    tree.links.new(emission.outputs[0], front.inputs[1])
-    tree.links.new(black.outputs[0], front.inputs[2])
-    add = tree.nodes.new("ShaderNodeAddShader")
-    tree.links.new(surface, add.inputs[0])
-    tree.links.new(front.outputs[0], add.inputs[1])
-    tree.links.new(add.outputs[0], out.inputs["Surface"])
-
+cycles_common.shade_gltf_as_tessera()
 scene = bpy.context.scene
-world = bpy.data.worlds.new("world")
-scene.world = world
-world.use_nodes = True
-world.node_tree.nodes["Background"].inputs["Color"].default_value = (0, 0, 0, 1)
+cycles_common.black_world(scene)
 
 camera = next(o for o in bpy.data.objects if o.type == "CAMERA").data
 camera.sensor_fit = "VERTICAL"  # the glTF yfov spans the image height, as in Tessera

@@ -53,7 +53,7 @@ struct Options {
   std::string suite;                // folder holding suite.json (make_suite.py's output)
   std::vector<std::string> scenes;  // subset of keys; empty: all
   std::vector<std::string> filters{"pixel", "atrous", "radiance", "hybrid"};
-  std::vector<std::string> extra;   // name=value for every filtered render
+  std::vector<std::string> extra;  // name=value for every filtered render
   bool quick = false;
   bool consistencyAll = false;  // radiance and hybrid too (1024 radiance passes each)
 };
@@ -68,6 +68,7 @@ using Curve = std::vector<Score>;
 
 struct SceneSpec {
   std::string key, label, source, environment, kind;
+  quality::Motion motion;  // suite.json's time, frameInterval and shutter; none: an instant
 };
 
 // filter: a filter name, optionally followed by +name=value settings of
@@ -105,11 +106,15 @@ Score score(const Shot& shot, const med::FrameBuffer& ref, std::uint32_t spp, do
   return s;
 }
 
-// The reference, from the cache when it holds one: never recomputed.
+// The reference, from the cache when it holds one: never recomputed. A
+// moving scene's name says its time, frame interval and shutter.
 med::FrameBuffer reference(QualityScene& scene, const Options& o) {
   namespace fs = std::filesystem;
-  const std::string name = fmt::format("{}_{}x{}_spp{}_seed{}_depth{}.exr", scene.key(), o.size, o.size, o.refSpp,
-                                       o.refSeed, o.maxDepth);
+  const quality::Motion& m = scene.motion();
+  const std::string moving =
+      m.moves() ? fmt::format("_t{}_dt{}_shutter{}-{}", m.time, m.frameInterval, m.shutterOpen, m.shutterClose) : "";
+  const std::string name = fmt::format("{}{}_{}x{}_spp{}_seed{}_depth{}.exr", scene.key(), moving, o.size, o.size,
+                                       o.refSpp, o.refSeed, o.maxDepth);
   const fs::path path = fs::path(o.cache) / name;
   if (fs::exists(path)) {
     med::FrameBuffer fb = med::readImage(path.string());
@@ -180,16 +185,17 @@ void writePng(const Options& o, const QualityScene& scene, const std::string& wh
   if (o.pngDir.empty()) return;
   std::filesystem::create_directories(o.pngDir);
   std::string name = what;
-  std::replace_if(name.begin(), name.end(), [](char c) { return c == '+' || c == '='; }, '-');
+  std::replace_if(
+      name.begin(), name.end(), [](char c) { return c == '+' || c == '='; }, '-');
   med::writeImage(fmt::format("{}/{}_{}.png", o.pngDir, scene.key(), name), fb);
 }
 
 struct SceneResult {
   std::string key, label, kind;
-  Curve unfiltered;                              // progressive, 4 .. consistencySpp
-  std::map<std::string, Curve> filtered;         // fresh viewports, timed spp points
-  std::map<std::string, Score> consistency;      // filter -> score at consistencySpp
-  std::map<std::string, std::string> failures;   // filter -> why it is n/a
+  Curve unfiltered;                             // progressive, 4 .. consistencySpp
+  std::map<std::string, Curve> filtered;        // fresh viewports, timed spp points
+  std::map<std::string, Score> consistency;     // filter -> score at consistencySpp
+  std::map<std::string, std::string> failures;  // filter -> why it is n/a
   std::map<std::string, double> overheadShare;  // filter -> share of a progressive frame
 };
 
@@ -236,8 +242,8 @@ void measure(QualityScene& scene, const Options& o, SceneResult& r) {
   }
 
   // Filtered: a fresh viewport per spp, so each time is a render to that spp.
-  const std::vector<std::uint32_t> timed = o.quick ? std::vector<std::uint32_t>{8, 16}
-                                                   : std::vector<std::uint32_t>{4, 8, 16, 32};
+  const std::vector<std::uint32_t> timed =
+      o.quick ? std::vector<std::uint32_t>{8, 16} : std::vector<std::uint32_t>{4, 8, 16, 32};
   for (const auto& f : o.filters) {
     if (r.failures.count(f)) continue;
     try {
@@ -301,8 +307,7 @@ std::string tables(const std::vector<SceneResult>& results, const Options& o) {
     if (d && u) {
       const bool okWhole = d->seen.whole <= u->seen.whole, okTile = d->seen.worstTile <= u->seen.worstTile;
       met += okWhole && okTile;
-      verdict = okWhole && okTile ? "yes"
-                                  : fmt::format("**no** ({}{})", okWhole ? "" : "whole", okTile ? "" : " tile");
+      verdict = okWhole && okTile ? "yes" : fmt::format("**no** ({}{})", okWhole ? "" : "whole", okTile ? "" : " tile");
     }
     md << " " << verdict << " |\n";
   }
@@ -381,8 +386,9 @@ std::string tables(const std::vector<SceneResult>& results, const Options& o) {
         continue;
       }
       const double a = it->second.seen.worstTile / u->seen.worstTile, b = it->second.relMse / u->relMse;
-      md << " " << fmt::format("{:.3f}; {:.3f}{} (worst tile at {},{})", a, b, a <= 1.05 && b <= 1.05 ? "" : " **miss**",
-                               it->second.seen.worstX, it->second.seen.worstY)
+      md << " "
+         << fmt::format("{:.3f}; {:.3f}{} (worst tile at {},{})", a, b, a <= 1.05 && b <= 1.05 ? "" : " **miss**",
+                        it->second.seen.worstX, it->second.seen.worstY)
          << " |";
     }
     md << "\n";
@@ -408,8 +414,9 @@ std::string tables(const std::vector<SceneResult>& results, const Options& o) {
     }
   }
 
-  md << "\n" << o.size << "x" << o.size << " pixels; reference " << o.refSpp << " spp (seed " << o.refSeed
-     << ", maxDepth " << o.maxDepth << ") by the same path tracer; measured renders seed " << o.seed
+  md << "\n"
+     << o.size << "x" << o.size << " pixels; reference " << o.refSpp << " spp (seed " << o.refSeed << ", maxDepth "
+     << o.maxDepth << ") by the same path tracer; measured renders seed " << o.seed
      << ". relMSE = mean over pixels and RGB of (y^-y)^2/(y^2+0.01), linear HDR. Seen error = RMSE of the displayed "
         "images (clamped, sRGB), each blurred by a radius-2 box twice, over the image / its worst 16x16 tile. "
         "Equivalent spp: the unfiltered spp with the same error, read off the unfiltered curve (4 to "
@@ -440,6 +447,18 @@ std::vector<SceneSpec> suiteScenes(const std::string& folder) {
     spec.source = (file.is_absolute() ? file : fs::path(folder) / file).string();
     if (s.contains("environment")) spec.environment = (fs::path(folder) / s["environment"].get<std::string>()).string();
     spec.kind = s.value("kind", "");
+    if (s.contains("shutter") || s.contains("frameInterval")) {
+      const auto shutter = s.value("shutter", std::vector<float>{0.0f, 0.0f});
+      spec.motion.time = s.value("time", 0.0f);
+      spec.motion.frameInterval = s.value("frameInterval", 0.0f);
+      if (shutter.size() != 2 || !(shutter[0] >= 0.0f && shutter[0] <= shutter[1] && shutter[1] <= 1.0f) ||
+          !(spec.motion.frameInterval > 0.0f) || !std::isfinite(spec.motion.time))
+        throw std::runtime_error(manifest.string() + ": scene " + spec.key +
+                                 ": shutter must be [open, close] with 0 <= open <= close <= 1, frameInterval > 0 "
+                                 "seconds and time finite");
+      spec.motion.shutterOpen = shutter[0];
+      spec.motion.shutterClose = shutter[1];
+    }
     out.push_back(spec);
   }
   return out;
@@ -451,8 +470,9 @@ int main(int argc, char** argv) {
   Options o;
   CLI::App app{"filter_quality: relMSE and seen error of the Embree viewport's noise filters over a scene suite"};
   app.add_option("--size", o.size, "image width and height")->capture_default_str()->check(CLI::Range(16, 4096));
-  app.add_option("--ref-spp", o.refSpp, "reference samples per pixel")->capture_default_str()->check(
-      CLI::Range(64, 1 << 20));
+  app.add_option("--ref-spp", o.refSpp, "reference samples per pixel")
+      ->capture_default_str()
+      ->check(CLI::Range(64, 1 << 20));
   app.add_option("--cache", o.cache, "reference cache directory")->capture_default_str();
   app.add_option("--out", o.out, "also write the markdown tables to this file");
   app.add_option("--png", o.pngDir, "write each scene's images (reference, unfiltered, each filter) as PNG here");
@@ -480,14 +500,14 @@ int main(int argc, char** argv) {
   try {
     med::ViewportRegistry registry;
     med::registerEmbree(registry);
-    std::vector<SceneSpec> specs{{"builtin-cornell", "builtin:cornell", "builtin:cornell", "", "diffuse"}};
+    std::vector<SceneSpec> specs{{"builtin-cornell", "builtin:cornell", "builtin:cornell", "", "diffuse", {}}};
     if (!o.suite.empty())
       for (auto& s : suiteScenes(o.suite)) specs.push_back(std::move(s));
     std::vector<SceneResult> results;
     for (const auto& s : specs) {
       if (!o.scenes.empty() && std::find(o.scenes.begin(), o.scenes.end(), s.key) == o.scenes.end()) continue;
       const auto start = std::chrono::steady_clock::now();
-      QualityScene scene(s.key, s.label, s.source, false, registry, s.environment);
+      QualityScene scene(s.key, s.label, s.source, false, registry, s.environment, s.motion);
       SceneResult r{s.key, s.label, s.kind, {}, {}, {}, {}, {}};
       measure(scene, o, r);
       if (o.overheadSize > 0 &&

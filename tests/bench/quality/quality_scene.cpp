@@ -1,8 +1,8 @@
 #include "quality_scene.hpp"
 
 #include <chrono>
-#include <cstring>
 #include <cmath>
+#include <cstring>
 #include <deque>
 #include <stdexcept>
 
@@ -61,8 +61,8 @@ void lightByEnvironment(sg::Scene& scene, sg::ContainerId& background, const std
 }  // namespace
 
 QualityScene::QualityScene(std::string key, std::string label, const std::string& source, bool glossy,
-                           const med::ViewportRegistry& registry, const std::string& environment)
-    : key_(std::move(key)), label_(std::move(label)), registry_(registry) {
+                           const med::ViewportRegistry& registry, const std::string& environment, const Motion& motion)
+    : key_(std::move(key)), label_(std::move(label)), registry_(registry), motion_(motion) {
   imported_ = sg::importScene(source_, source);
   camera_ = imported_.cameras.empty() ? sg::addFramingCamera(source_, imported_.root) : imported_.cameras.front();
   if (glossy) makeRedWallGlossy(source_);
@@ -70,6 +70,12 @@ QualityScene::QualityScene(std::string key, std::string label, const std::string
   if (!sg::hasOwnLighting(source_, imported_.root, imported_.background)) {
     const sg::DefaultLightRig rig = sg::addDefaultLightRig(source_, imported_.root, imported_.background);
     sg::followCamera(source_, rig, sg::cameraWorldPose(source_, camera_));
+  }
+  if (motion_.moves()) {
+    auto* camera = source_.find<sg::Camera>(camera_);
+    camera->setShutterOpen(motion_.shutterOpen);
+    camera->setShutterClose(motion_.shutterClose);
+    poseAnimations(motion_.time);
   }
   replica_.apply(source_.commit());
   med::Parameters p;
@@ -87,11 +93,16 @@ std::unique_ptr<med::Viewport> QualityScene::viewport(const med::Parameters& par
   return registry_.create(s, contexts_);
 }
 
+void QualityScene::poseAnimations(float seconds) {
+  const float dt = motion_.moves() ? motion_.frameInterval : 0.0f;
+  for (const auto& animation : imported_.animations) animation.apply(source_, seconds, dt);
+}
+
 void QualityScene::pose(float seconds, float lightScale, float pan) {
   if (lightIntensities_.empty())
     for (auto id : source_.ids())
       if (const auto* light = source_.find<sg::Light>(id)) lightIntensities_.emplace_back(id, light->intensity());
-  for (const auto& animation : imported_.animations) animation.apply(source_, seconds);
+  poseAnimations(seconds);
   for (const auto& [id, intensity] : lightIntensities_)
     source_.find<sg::Light>(id)->setIntensity(intensity * lightScale);
   auto* camera = source_.find<sg::Camera>(camera_);

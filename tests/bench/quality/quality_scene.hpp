@@ -24,6 +24,18 @@ struct Shot {
   std::uint32_t samples = 0;
 };
 
+// When a scene is rendered and how long its shutter stays open: the
+// animations are posed at `time` (seconds) with their motion over the next
+// `frameInterval` seconds, and the camera's shutter opens and closes at
+// these fractions of that interval. The default is an instant at time 0
+// with the scene as imported.
+struct Motion {
+  float time = 0.0f;
+  float frameInterval = 0.0f;
+  float shutterOpen = 0.0f, shutterClose = 0.0f;
+  bool moves() const { return frameInterval > 0.0f && shutterClose > shutterOpen; }
+};
+
 class QualityScene {
  public:
   // key: file-name-safe name for caches; source: a path or builtin:NAME.
@@ -31,12 +43,15 @@ class QualityScene {
   // environment: a latitude-longitude float image (EXR, PFM, HDR) that
   // lights the scene instead of its background; empty: none. A scene with
   // no light of its own gets the default light rig, as the programs give
-  // it, and one with no camera a framing camera.
+  // it, and one with no camera a framing camera. motion: a shutter that
+  // stays open poses the animations at motion.time with their motion and
+  // opens the camera's shutter; otherwise the scene stays as imported.
   QualityScene(std::string key, std::string label, const std::string& source, bool glossy,
-               const med::ViewportRegistry& registry, const std::string& environment = {});
+               const med::ViewportRegistry& registry, const std::string& environment = {}, const Motion& motion = {});
 
   const std::string& key() const { return key_; }
   const std::string& label() const { return label_; }
+  const Motion& motion() const { return motion_; }
 
   // A fresh viewport over the scene with `parameters` (backend embree).
   std::unique_ptr<med::Viewport> viewport(const med::Parameters& parameters);
@@ -45,7 +60,8 @@ class QualityScene {
   Shot render(med::Viewport& viewport, std::uint32_t size, bool wantBlend = false,
               const std::vector<std::string>& outputs = {});
 
-  // Poses the scene's animations at `seconds`, scales every light's
+  // Poses the scene's animations at `seconds` (with their motion over the
+  // frame interval when the shutter stays open), scales every light's
   // intensity by `lightScale` (a light switch) and moves the camera `pan`
   // scene units to its right of where it was imported (a moving camera),
   // then commits.
@@ -60,6 +76,10 @@ class QualityScene {
                                 const std::function<void(int frame)>& pose, const std::vector<std::string>& outputs);
 
  private:
+  // The animations at `seconds`, with their motion over the frame interval
+  // when the shutter stays open (Transform::frameMotion).
+  void poseAnimations(float seconds);
+
   std::string key_, label_;
   const med::ViewportRegistry& registry_;
   sg::Scene source_;
@@ -71,6 +91,7 @@ class QualityScene {
   std::vector<std::pair<sg::ContainerId, float>> lightIntensities_;  // as imported
   std::optional<glm::mat4> cameraPose_;                              // as imported
   sg::ContainerId camera_ = sg::kNoContainer;
+  Motion motion_;
 };
 
 }  // namespace tsr::quality

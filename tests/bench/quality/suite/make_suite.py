@@ -227,6 +227,8 @@ class Doc:
         self.images, self.textures, self.cameras, self.ext = [], [], [], set()
         self.cache = {}
         self.medium = None  # TSR_scene_medium: fog filling the scene
+        self.animations = []
+        self.motion = None  # the harness's shutter and frame interval (suite.json), for scenes that move
 
     def material(self, color, metallic=0.0, roughness=1.0, emissive=None, strength=None, texture=None,
                  transmission=None, ior=None, volume=None):
@@ -260,12 +262,14 @@ class Doc:
     def view(self, data, target):
         while len(self.blob) % 4:
             self.blob.append(0)
-        self.views.append({"buffer": 0, "byteOffset": len(self.blob), "byteLength": len(data), "target": target})
+        self.views.append({"buffer": 0, "byteOffset": len(self.blob), "byteLength": len(data)})
+        if target is not None:  # animation data has no buffer target
+            self.views[-1]["target"] = target
         self.blob.extend(data)
         return len(self.views) - 1
 
-    def accessor(self, rows, fmt, typ):
-        acc = {"bufferView": self.view(b"".join(struct.pack("<" + fmt, *r) for r in rows), 34962),
+    def accessor(self, rows, fmt, typ, target=34962):
+        acc = {"bufferView": self.view(b"".join(struct.pack("<" + fmt, *r) for r in rows), target),
                "componentType": 5126, "count": len(rows), "type": typ}
         if typ == "VEC3":
             acc["min"] = [min(r[k] for r in rows) for k in range(3)]
@@ -289,6 +293,22 @@ class Doc:
         if yaw is not None:
             node["rotation"] = yaw_quat(yaw)
         self.nodes.append(node)
+
+    def animate(self, node, path, times, values):
+        """A LINEAR channel of the document's one animation (importers such
+        as Blender's play one glTF animation at a time): node index `node`,
+        path translation (xyz rows) or rotation (xyzw quaternion rows)."""
+        def scalars(xs):
+            acc = {"bufferView": self.view(struct.pack("<%df" % len(xs), *xs), None), "componentType": 5126,
+                   "count": len(xs), "type": "SCALAR", "min": [min(xs)], "max": [max(xs)]}
+            self.accessors.append(acc)
+            return len(self.accessors) - 1
+        out = self.accessor(values, "%df" % len(values[0]), "VEC3" if len(values[0]) == 3 else "VEC4", None)
+        if not self.animations:
+            self.animations.append({"name": self.name, "samplers": [], "channels": []})
+        a = self.animations[0]
+        a["samplers"].append({"input": scalars(times), "output": out, "interpolation": "LINEAR"})
+        a["channels"].append({"sampler": len(a["samplers"]) - 1, "target": {"node": node, "path": path}})
 
     def point_light(self, name, pos, intensity, color=(1.0, 1.0, 1.0)):
         """KHR_lights_punctual point light; Tessera reads intensity as W/sr."""
@@ -320,6 +340,8 @@ class Doc:
                        samplers=[{"magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT": 10497}])
         if self.lights:
             doc["extensions"] = {"KHR_lights_punctual": {"lights": self.lights}}
+        if self.animations:
+            doc["animations"] = self.animations
         if self.medium:
             doc["scenes"][0]["extensions"] = {"TSR_scene_medium": self.medium}
             self.ext.add("TSR_scene_medium")
@@ -573,6 +595,31 @@ def defocus(d):
     d.camera((0.0, 1.35, 1.5), (0.1, 1.1, -1.0), 50, lens=(0.08, 2.5))
 
 
+def motion(d):
+    """Motion blur: a striped ball crossing the view at 4.8 m/s (about 22 px
+    over one frame of 0.1 s at 128x128) and a checker cube spinning at 240°/s
+    (24° a frame), in front of a still poster with 5x7-pixel text and a
+    checker floor; a ceiling light in a closed room with red and green walls,
+    so much of the light arrives after a bounce. The harness renders frame 0
+    (t = 0) with the shutter open over the whole frame interval."""
+    w = d.material(WHITE)
+    floor = d.material((1.0, 1.0, 1.0), texture=checker_png())
+    room(d, 5.0, 3.0, 5.0, {"floor": floor, "floor_uv": (4.0, 4.0), "ceiling": w, "back": w, "front": w,
+                            "left": d.material(RED), "right": d.material(GREEN)})
+    ceiling_light(d, (0.8, 0.8), (0.0, 2.99, 0.3), 16.0)
+    d.add("poster", quad((0.0, 1.45, -2.49), (1.2, 0.0, 0.0), (0.0, 0.6, 0.0)),
+          d.material((1.0, 1.0, 1.0), texture=poster_png()))
+    # Moving: x goes -0.5 -> 0.7 -> -1.7 -> -0.5 over a second, linear (4.8 m/s).
+    d.add("moving ball", sphere(0.25), d.material((1.0, 1.0, 1.0), texture=stripes_png()), t=(-0.5, 0.9, -0.3))
+    d.animate(len(d.nodes) - 1, "translation", [0.0, 0.25, 0.75, 1.0],
+              [(-0.5, 0.9, -0.3), (0.7, 0.9, -0.3), (-1.7, 0.9, -0.3), (-0.5, 0.9, -0.3)])
+    d.add("spinning cube", box((0.6, 0.6, 0.6)), d.material((1.0, 1.0, 1.0), texture=checker_png(2, 32)),
+          t=(0.8, 0.3, -1.0))
+    d.animate(len(d.nodes) - 1, "rotation", [0.25 * k for k in range(7)], [yaw_quat(60.0 * k) for k in range(7)])
+    d.camera((0.0, 1.3, 2.4), (0.0, 1.0, -1.5), 55)
+    d.motion = {"time": 0.0, "frameInterval": 0.1, "shutter": [0.0, 1.0]}
+
+
 SCENES = [  # key, label, builder, stresses, kind
     ("indirect-room", "Indirectly lit room", indirect_room,
      "light only after a ceiling bounce; rough metal sphere (roughness 0.3) reflecting an indirectly lit room",
@@ -601,6 +648,9 @@ SCENES = [  # key, label, builder, stresses, kind
     ("defocus", "Depth of field", defocus,
      "thin lens (radius 8 cm) focused at 2.5 m on a poster: a near ball and cube (circle of confusion about 6 px at "
      "128x128) and the far wall's text and small lamps (about 3 px) out of focus", "lens"),
+    ("motion", "Motion blur", motion,
+     "shutter open over a frame of 0.1 s: a striped ball crossing the view (about 22 px streak at 128x128) and a "
+     "checker cube spinning 24 degrees, before a still poster with 5x7-pixel text; closed room under a ceiling light", "motion"),
     ("fog-glass", "Milky glass in haze", fog_glass,
      "glass sphere (ior 1.5) of scattering medium (sigma_s about 4/m, g 0.3) in a hazy room: media behind glass",
      "volume"),
@@ -635,6 +685,8 @@ def main():
         e = {"key": key, "label": label, "file": key + ".gltf", "stresses": stresses, "kind": kind}
         if build is outdoor:
             e["environment"] = "sky.pfm"
+        if d.motion:
+            e.update(d.motion)
         entries.append(e)
     for key, label, path, stresses, kind in MODELS:
         if not os.path.exists(path):
