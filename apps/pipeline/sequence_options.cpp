@@ -8,13 +8,13 @@ namespace tsr::app {
 
 void addSequenceOptions(CLI::App& app, SequenceOptions& o) {
   auto* g = app.add_option_group("Sequences and clusters", "animations, and rendering through tessera-node processes");
-  auto* frames = g->add_option("--frames", o.frames,
-                               "render N frames of the scene's animation (--output needs #### for the number)")
-                     ->check(CLI::Range(1, 1000000))
-                     ->each([&o](const std::string&) { o.framesGiven = true; });
-  g->add_option("--fps", o.fps, "frames per second of animation time (default 24)")
+  g->add_option("--frames", o.frames, "render N frames of the scene's animation (--output needs #### for the number)")
+      ->check(CLI::Range(1, 1000000))
+      ->each([&o](const std::string&) { o.framesGiven = true; });
+  g->add_option("--fps", o.fps,
+                "frames per second of animation time (default 24); with --shutter alone, one image's blur spans 1/fps")
       ->check(FinitePositive())
-      ->needs(frames);
+      ->each([&o](const std::string&) { o.fpsGiven = true; });
   auto* cluster = g->add_option("--cluster", o.cluster, "render on the nodes a cluster config names (configs/*.json)")
                       ->check(FileName());
   g->add_option("--nodes", o.nodes, "HOST:PORT,... replacing the config's node addresses in order")->needs(cluster);

@@ -14,6 +14,7 @@ struct SequenceOptions {
   int frames = 1;
   double fps = 24.0;
   bool framesGiven = false;
+  bool fpsGiven = false;
   std::string cluster;
   std::string nodes;
   std::string tokenFile;

@@ -44,6 +44,12 @@ int run(int argc, char** argv) {
 
   tsr::app::SceneSession session;
   session.load(options.scene, options.import, options.view);
+  // One image of an animated scene through an open shutter shows the
+  // motion of the animation's first frame interval (1 / --fps); an
+  // instant's image is the scene as loaded.
+  if (const auto* lens = session.source.find<tsr::sg::Camera>(session.camera);
+      lens && lens->shutterClose() > lens->shutterOpen() && !session.imported.animations.empty())
+    session.poseAnimations(0.0, 1.0 / sequence.fps);
   session.publish();
 
   tsr::med::ViewportRegistry registry;

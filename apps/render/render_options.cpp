@@ -115,8 +115,8 @@ bool parseRenderOptions(int argc, char** argv, RenderJob& o, std::string& listPa
   std::string shutter;
   auto* shutterOption = viewGroup->add_option(
       "--shutter", shutter,
-      "OPEN,CLOSE as fractions of the frame interval: what moves is blurred between (embree; e.g. 0,0.5; default "
-      "0,0: an instant)");
+      "OPEN,CLOSE as fractions of the frame interval (1 / --fps): what the animation moves is blurred between "
+      "(embree; e.g. 0,0.5; default 0,0: an instant). Without --frames, the first frame's motion");
   bool noDefaultLight = false;
   viewGroup->add_flag("--no-default-light", noDefaultLight,
                       "a scene without lights stays unlit (default: a grey dome and a camera light)");
@@ -200,6 +200,9 @@ void checkRenderJob(const RenderJob& o, const std::vector<LayerSpec>& layers) {
                                 (layers.empty() ? "--temporal " + o.temporal.method : std::string("--layers")) +
                                 ": the nodes render one layer of a window here, which keeps no per-node figures "
                                 "(leave --layers out, or measure a node with a local render)");
+  if (sequence.fpsGiven && !sequence.framesGiven && !o.view.look.shutter)
+    throw std::invalid_argument("--fps is the frame rate of an animation: it needs --frames N (or --shutter, "
+                                "whose blur then spans 1/fps)");
   if (o.temporal.active() && !sequence.framesGiven)
     throw std::invalid_argument("--temporal " + o.temporal.method + " needs --frames N");
   if (sequence.frames > 1 && o.output.find("####") == std::string::npos)

@@ -175,6 +175,16 @@ TEST_F(FirstHour, ShutterBlursWhatTheAnimationMoves) {
   const double part = meanAbsDifference(image("plain.0001.exr"), image("part.0001.exr"));
   EXPECT_GT(open, 0.0) << "the whole frame interval blurs the motion";
   EXPECT_GT(part, 0.0);
+  // One image through an open shutter blurs the first frame interval's motion (1 / --fps).
+  const std::string one = "builtin:animated --size 48x48 --backend embree --spp 16 --seed 5";
+  render(one + " --output one.exr");
+  render(one + " --shutter 0,1 --fps 2 --output one-open.exr");
+  render(one + " --shutter 0,1 --fps 200 --output one-short.exr");
+  const double wide = meanAbsDifference(image("one.exr"), image("one-open.exr"));
+  EXPECT_GT(wide, meanAbsDifference(image("one.exr"), image("one-short.exr"))) << "a longer interval blurs more";
+  const Outcome fpsAlone = run(one + " --fps 2 --output bad.exr");
+  EXPECT_NE(fpsAlone.status, 0);
+  EXPECT_NE(fpsAlone.err.find("--fps"), std::string::npos) << fpsAlone.err;
   // The rasterizer has no motion blur (BackendCapabilities::motionBlur):
   // it draws each frame at its time, shutter or not.
   const std::string raster = "builtin:animated --size 48x48 --backend vulkan --frames 2 --fps 2";
