@@ -258,8 +258,7 @@ void Scene::setInstanceTransform(InstanceId id, const glm::mat4& transform, cons
   validateTransform(transform);
   validateTransform(atEnd);
   inst.transform = transform;
-  inst.transformAtEnd = atEnd;
-  inst.moves = atEnd != transform;
+  inst.motion = atEnd != transform ? std::make_unique<InstanceMotion>(transform, atEnd) : nullptr;
   inst.moved = true;  // commit() gives the transform to the copy in the level it goes to
   state_->edit({.instance = index(id), .placed = true});
 }
@@ -445,8 +444,7 @@ InstanceView viewOf(const SceneState& s, const InstanceRecord& inst) {
   v.transform = inst.transform;
   v.normalTransform = glm::transpose(glm::inverse(glm::mat3(inst.transform)));
   v.faceNormalTransform = glm::determinant(glm::mat3(inst.transform)) * v.normalTransform;
-  v.moves = inst.moves;
-  v.transformAtEnd = inst.transformAtEnd;
+  v.motion = inst.motion.get();
   v.material = &s.resolved[index(inst.material)];
   if (v.material->interior.active() && !v.mesh->positions.empty()) {
     glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
@@ -488,7 +486,7 @@ void rebuildEmitters(SceneState& s) {
   for (std::size_t i = 0; i < s.views.size(); ++i) {
     auto& v = s.views[i];
     v.emissiveOffset = kNotEmissive;
-    if (!v.mesh || !v.material->material.isEmissive() || v.moves) continue;
+    if (!v.mesh || !v.material->material.isEmissive() || v.motion) continue;
     v.emissiveOffset = std::uint32_t(power.size());
     s.emissiveRanges.push_back({v.emissiveOffset, std::uint32_t(i)});
     float lum = luminance(v.material->material.emission);

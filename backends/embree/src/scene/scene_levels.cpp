@@ -153,12 +153,15 @@ void setTransform(RTCGeometry g, const glm::mat4& transform) {
 }
 
 // The moving level's copy: two time steps (frame start and end) while the
-// instance moves over the frame interval, Embree interpolating between.
+// instance moves over the frame interval, Embree interpolating between as
+// InstanceMotion says.
 void setMovingTransform(const InstanceRecord& inst) {
-  rtcSetGeometryTimeStepCount(inst.movingGeometry, inst.moves ? 2 : 1);
-  setTransform(inst.movingGeometry, inst.transform);
-  if (inst.moves)
-    rtcSetGeometryTransform(inst.movingGeometry, 1, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &inst.transformAtEnd[0][0]);
+  rtcSetGeometryTimeStepCount(inst.movingGeometry, inst.motion ? 2 : 1);
+  if (!inst.motion) return setTransform(inst.movingGeometry, inst.transform);
+  for (int step = 0; step < 2; ++step) {
+    const RTCQuaternionDecomposition d = inst.motion->step(step);
+    rtcSetGeometryTransformQuaternion(inst.movingGeometry, unsigned(step), &d);
+  }
 }
 
 // Commit step 2: each changed instance goes where it belongs: static meshes
@@ -177,7 +180,7 @@ std::vector<std::uint32_t> placeInstances(SceneState& s) {
     const bool inTop = inst.level == Level::Top || inst.level == Level::Ghosted;
     // An instance moving over the frame interval needs two time steps,
     // which only the moving level's copy has.
-    const Level want = inst.moves                                                 ? Level::Moving
+    const Level want = inst.motion                                                 ? Level::Moving
                        : m.data.usage == MeshUsage::Static && m.users.size() == 1 ? Level::Merged
                        : !inst.moved                                              ? Level::Top
                        : inTop && !inst.meshChanged                               ? Level::Ghosted

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "scene/instance_motion.hpp"
 #include "scene/volume_field.hpp"
 #include "tsr/embree/distribution.hpp"
 #include "tsr/embree/scene.hpp"
@@ -57,8 +58,9 @@ struct InstanceRecord {
   MeshId mesh{};
   MaterialId material{};
   glm::mat4 transform{1.0f};
-  glm::mat4 transformAtEnd{1.0f};        // at the end of the frame interval (ray time 1)
-  bool moves = false;                    // the two differ: it is traced in the moving level with two time steps
+  // Moving over the frame interval (null: still): traced in the moving
+  // level with two time steps.
+  std::unique_ptr<InstanceMotion> motion;
   RTCGeometry geometry = nullptr;        // the instance in the top level (Top, or a ghost while Ghosted)
   RTCGeometry movingGeometry = nullptr;  // the instance in the moving level (Moving, Ghosted)
   RTCGeometry flatGeometry = nullptr;    // or its triangles in world space, in the merged scene
@@ -111,10 +113,9 @@ struct InstanceView {
   // a textured interior's textures lie (identity otherwise).
   glm::mat4 worldToVolume{1.0f};
   std::uint32_t emissiveOffset = kNotEmissive;  // first triangle in the emitter distribution
-  // Moving over the frame interval: at ray time t the transform is
-  // mix(transform, transformAtEnd, t), the normal transforms follow it.
-  bool moves = false;
-  glm::mat4 transformAtEnd{1.0f};
+  // Moving over the frame interval (null: still): at ray time t the
+  // transform is motion->at(t), and the normal transforms follow it.
+  const InstanceMotion* motion = nullptr;
 };
 
 // An emissive triangle in world space, prepared at commit for light sampling.

@@ -1,6 +1,7 @@
 #include "tsr/embree/renderer.hpp"
 
 #include "filters/radiance_filter_step.hpp"
+#include "scene/instance_motion.hpp"
 #include "tracing/tracer.hpp"
 #include "tsr/embree/error.hpp"
 
@@ -10,6 +11,7 @@
 #include <oneapi/tbb/task_arena.h>
 #include <spdlog/spdlog.h>
 
+#include <optional>
 #include <string>
 
 namespace tsr::embree {
@@ -142,13 +144,21 @@ struct Eye {
   glm::mat3 rotation;
   explicit Eye(const glm::mat4& cameraToWorld)
       : position(cameraToWorld[3]), forward(glm::normalize(-glm::vec3(cameraToWorld[2]))), rotation(cameraToWorld) {}
-  explicit Eye(const Camera& c) : Eye(c.cameraToWorld) {}
-  // The camera's eye at ray time t (of a camera that moves over the frame
-  // interval, interpolated as Embree interpolates moving instances).
-  static Eye at(const Camera& c, const Eye& still, float t) {
-    if (!c.cameraToWorldAtEnd || t == 0.0f) return still;
-    return Eye((1.0f - t) * c.cameraToWorld + t * *c.cameraToWorldAtEnd);
+};
+
+// Where the camera is over the frame interval: still, or moving as moving
+// instances do (InstanceMotion: turning, not shrinking, mid-frame).
+class CameraPath {
+ public:
+  explicit CameraPath(const Camera& c) : still_(c.cameraToWorld) {
+    if (c.cameraToWorldAtEnd) motion_.emplace(c.cameraToWorld, *c.cameraToWorldAtEnd);
   }
+  const Eye& still() const { return still_; }
+  Eye at(float t) const { return motion_ && t != 0.0f ? Eye(motion_->at(t)) : still_; }
+
+ private:
+  Eye still_;
+  std::optional<InstanceMotion> motion_;
 };
 
 // A camera ray, the time it is traced at, and the eye it leaves (where
@@ -176,14 +186,14 @@ glm::vec3 windowPoint(const Camera& camera, const Region& region, std::uint32_t 
 // towards where the pinhole ray meets the plane in focus.
 // With the shutter open over an interval, the ray's time is uniform in it
 // (one more number, drawn only then: an instant's images stay as they were).
-CameraRay cameraRay(const Camera& camera, const Eye& still, const Region& region, std::uint32_t px, std::uint32_t py,
-                    Rng& rng) {
+CameraRay cameraRay(const Camera& camera, const CameraPath& path, const Region& region, std::uint32_t px,
+                    std::uint32_t py, Rng& rng) {
   const glm::vec3 pinhole = windowPoint(camera, region, px, py, rng.uniform2());
   glm::vec2 u(0.0f);
   if (camera.apertureRadius > 0.0f) u = rng.uniform2();
   float time = camera.shutterOpen;
   if (camera.shutterClose > camera.shutterOpen) time += (camera.shutterClose - camera.shutterOpen) * rng.uniform();
-  const Eye eye = Eye::at(camera, still, time);
+  const Eye eye = path.at(time);
   if (camera.apertureRadius <= 0.0f)
     return {eye.position, glm::normalize(eye.rotation * pinhole), time, eye.position, eye.forward};
   const float r = camera.apertureRadius * std::sqrt(u.x), phi = 2.0f * kPi * u.y;
@@ -204,7 +214,7 @@ PassResult Renderer::renderPass(Scene& scene, const Camera& camera, const Region
 
 PassResult Renderer::renderPaths(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
                                  const IrradianceField* field) {
-  const Eye eye(camera);
+  const CameraPath eye(camera);
   const std::uint64_t seed = settings_.seed;
   const std::uint32_t samples = settings_.samplesPerPass;
   return runTiles(
@@ -239,7 +249,7 @@ PassResult Renderer::renderRadiancePass(Scene& scene, const Camera& camera, cons
                 " but the region is " + std::to_string(region.regionWidth()) + "x" +
                 std::to_string(region.regionHeight()));
   }
-  const Eye eye(camera);
+  const CameraPath eye(camera);
   const std::uint64_t seed = settings_.seed;
   // Angle of one pixel on the axis; off the axis it shrinks with cos^1.5.
   const float pixelAngle = std::sqrt((camera.right - camera.left) / float(region.width) * (camera.top - camera.bottom) /
@@ -267,7 +277,7 @@ PassResult Renderer::renderRadiancePass(Scene& scene, const Camera& camera, cons
 PassResult Renderer::renderWhittedPass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb) {
   // One instant, the shutter's middle: a Whitted frame is sharp everywhere.
   const float time = shutterMiddle(camera);
-  const Eye eye = Eye::at(camera, Eye(camera), time);
+  const Eye eye = CameraPath(camera).at(time);
   return runTiles(
       scene, camera, region, fb,
       [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
@@ -282,7 +292,7 @@ PassResult Renderer::renderWhittedPass(Scene& scene, const Camera& camera, const
 
 PassResult Renderer::renderFlashPass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
                                      std::uint32_t samples) {
-  const Eye eye(camera);
+  const CameraPath eye(camera);
   const std::uint64_t seed = settings_.seed ^ kFlashStream;
   return runTiles(
       scene, camera, region, fb,

@@ -209,13 +209,13 @@ struct Tracer {
     // A moving instance stands where the ray's time puts it.
     glm::mat3 moved(1.0f), movedNormal(1.0f);
     const glm::mat3* normalTransform = &v.normalTransform;
-    if (v.moves) [[unlikely]] {
-      moved = glm::mat3((1.0f - time) * v.transform + time * v.transformAtEnd);
+    if (v.motion) [[unlikely]] {
+      moved = glm::mat3(v.motion->at(time));
       movedNormal = glm::transpose(glm::inverse(moved));
       normalTransform = &movedNormal;
     }
     if (!merged)  // instances report object-space normals
-      n = v.moves ? glm::determinant(moved) * movedNormal * n : v.faceNormalTransform * n;
+      n = v.motion ? glm::determinant(moved) * movedNormal * n : v.faceNormalTransform * n;
     const float len = glm::length(n);
     if (!(len > 0.0f) || !std::isfinite(len)) return false;
     h.faceNormal = n / len;
@@ -234,7 +234,7 @@ struct Tracer {
         if (l > 0.0f && std::isfinite(l)) h.ns = ns / l;
       }
       if (textured) h.uv = b0 * m.uvs[idx[0]] + b1 * m.uvs[idx[1]] + b2 * m.uvs[idx[2]];
-      if (textured && r.normalTexture) applyNormalMap(v, v.moves ? moved : glm::mat3(v.transform), idx, h);
+      if (textured && r.normalTexture) applyNormalMap(v, v.motion ? moved : glm::mat3(v.transform), idx, h);
     }
     h.ng = glm::dot(h.faceNormal, h.ns) < 0.0f ? -h.faceNormal : h.faceNormal;
     return true;
