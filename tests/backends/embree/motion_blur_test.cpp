@@ -131,9 +131,8 @@ FrameBuffer renderBar(float startDegrees, float endDegrees, float instant) {
   Material lamp;
   lamp.baseColor = glm::vec3(0.0f);
   lamp.emission = glm::vec3(1.0f);
-  const InstanceId id =
-      scene.addInstance(scene.addMesh(box({-0.5f, -0.05f, -0.05f}, {0.5f, 0.05f, 0.05f})), scene.addMaterial(lamp),
-                        glm::mat4(1.0f));
+  const InstanceId id = scene.addInstance(scene.addMesh(box({-0.5f, -0.05f, -0.05f}, {0.5f, 0.05f, 0.05f})),
+                                          scene.addMaterial(lamp), glm::mat4(1.0f));
   auto pose = [](float degrees) {
     return glm::rotate(glm::translate(glm::mat4(1.0f), {0, 0, -kDepth}), glm::radians(degrees), {0, 0, 1});
   };

@@ -27,16 +27,14 @@ InstanceMotion::Pose InstanceMotion::decompose(const glm::mat4& m) {
   return {glm::vec3(m[3]), glm::normalize(glm::quat_cast(glm::mat3(q0, q1, q2))), u};
 }
 
-InstanceMotion::InstanceMotion(const glm::mat4& start, const glm::mat4& end)
-    : ends_{decompose(start), decompose(end)} {
+InstanceMotion::InstanceMotion(const glm::mat4& start, const glm::mat4& end) : ends_{decompose(start), decompose(end)} {
   // The same rotation twice over: take the shorter way round.
   if (glm::dot(ends_[0].rotation, ends_[1].rotation) < 0.0f) ends_[1].rotation = -ends_[1].rotation;
 }
 
 glm::mat4 InstanceMotion::at(float t) const {
-  const glm::mat3 linear =
-      glm::mat3_cast(glm::slerp(ends_[0].rotation, ends_[1].rotation, t)) *
-      ((1.0f - t) * ends_[0].scaleShear + t * ends_[1].scaleShear);
+  const glm::mat3 linear = glm::mat3_cast(glm::slerp(ends_[0].rotation, ends_[1].rotation, t)) *
+                           ((1.0f - t) * ends_[0].scaleShear + t * ends_[1].scaleShear);
   glm::mat4 m(linear);
   m[3] = glm::vec4((1.0f - t) * ends_[0].translation + t * ends_[1].translation, 1.0f);
   return m;

@@ -180,7 +180,7 @@ std::vector<std::uint32_t> placeInstances(SceneState& s) {
     const bool inTop = inst.level == Level::Top || inst.level == Level::Ghosted;
     // An instance moving over the frame interval needs two time steps,
     // which only the moving level's copy has.
-    const Level want = inst.motion                                                 ? Level::Moving
+    const Level want = inst.motion                                                ? Level::Moving
                        : m.data.usage == MeshUsage::Static && m.users.size() == 1 ? Level::Merged
                        : !inst.moved                                              ? Level::Top
                        : inTop && !inst.meshChanged                               ? Level::Ghosted
