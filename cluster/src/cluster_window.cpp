@@ -48,11 +48,22 @@ struct Node {
   bool viewportsSent = false;  // SetViewports sent since it joined
   std::string lastError;
   std::optional<ErrorReport> lastReport;  // the node's last ErrorReport since it joined
-  std::optional<HashReply> hash;  // the answer to the latest HashQuery
+  std::optional<HashReply> hash;          // the answer to the latest HashQuery
   // When the phases the client may wait in began (see phaseOf).
   Clock::time_point stateSince = Clock::now(), listSentAt{}, requestAt{}, lastTileAt{};
   std::pair<std::uint64_t, NodePhase> reportedLate{0, NodePhase::Idle};
+  // What a frame costs this node, for judging it late: the longest wait
+  // for its next tile (after the request or the tile before) in this frame
+  // and in the last one it finished since it joined (none yet: its first).
+  Clock::duration longestWait{}, expectedWait{};
+  bool finishedAFrame = false;
 };
+
+// A node's first frame after joining builds its scene and warms up: it is
+// late only past this many times timeouts.late. Later frames, past twice
+// the longest wait for one tile in its previous frame (or timeouts.late).
+constexpr int kFirstFrameGrace = 10;
+constexpr int kExpectedWaitFactor = 2;
 
 // A node that cannot render the frame as asked (a back-end it lacks, a
 // parameter its back-end refuses, an output it cannot fill) would fail the
@@ -143,7 +154,10 @@ struct ClusterWindow::Impl {
 
   void setState(Node& n, NodeState state) {
     if (n.state != state) n.stateSince = Clock::now();
-    if (state == NodeState::Joined || state == NodeState::Offline) n.viewportsSent = false;  // a new session
+    if (state == NodeState::Joined || state == NodeState::Offline) {  // a new session
+      n.viewportsSent = false;
+      n.finishedAFrame = false;
+    }
     n.state = state;
   }
 
@@ -156,11 +170,20 @@ struct ClusterWindow::Impl {
     if (round) {
       auto awaited = round->awaited();
       if (std::find(awaited.begin(), awaited.end(), i) != awaited.end()) {
-        if (!round->pendingOf(i).empty()) return {NodePhase::Render, n.requestAt};
+        // Each tile that arrives shows the node at work: it is waited for
+        // since its request or its latest tile.
+        if (!round->pendingOf(i).empty()) return {NodePhase::Render, std::max(n.requestAt, n.lastTileAt)};
         return {NodePhase::Barrier, std::max(n.requestAt, n.lastTileAt)};
       }
     }
     return {NodePhase::Idle, n.stateSince};
+  }
+
+  // How long node i may stay in one phase of this frame before it is late:
+  // judged by what its frames cost, not by one fixed time.
+  Clock::duration lateAfter(const Node& n) const {
+    if (!n.finishedAFrame) return kFirstFrameGrace * config.timeouts.late;
+    return std::max<Clock::duration>(config.timeouts.late, kExpectedWaitFactor * n.expectedWait);
   }
 
   // Says once per frame and phase which awaited node is late, in which phase and since when.
@@ -169,7 +192,7 @@ struct ClusterWindow::Impl {
     for (std::size_t i : round.awaited()) {
       auto [phase, since] = phaseOf(i, &round);
       Node& n = nodes[i];
-      if (phase == NodePhase::Idle || now - since < config.timeouts.late) continue;
+      if (phase == NodePhase::Idle || now - since < lateAfter(n)) continue;
       if (n.reportedLate == std::pair{round.frame(), phase}) continue;
       n.reportedLate = {round.frame(), phase};
       std::string line = n.config.address.text() + " (" + (n.name.empty() ? "?" : n.name) + "): " + name(phase) +
@@ -278,7 +301,10 @@ struct ClusterWindow::Impl {
         if (!round) return;
         if (const WorkItem* done = round->onTile(i, tile)) {
           strategy->tileDone(*done, tile.seconds);
-          nodes[i].lastTileAt = Clock::now();
+          Node& n = nodes[i];
+          const auto now = Clock::now();
+          n.longestWait = std::max(n.longestWait, now - std::max(n.requestAt, n.lastTileAt));
+          n.lastTileAt = now;
         }
         return;
       }
@@ -298,7 +324,8 @@ struct ClusterWindow::Impl {
         n.lastReport = parse<ErrorReport>(m);
         n.lastError = n.lastReport->reason;
         spdlog::warn("node {}: {} ({})", n.config.address.text(), n.lastError, name(n.lastReport->kind));
-        if (round && failsTheFrame(n.lastReport->kind)) round->fail("node " + n.config.address.text() + ": " + n.lastError);
+        if (round && failsTheFrame(n.lastReport->kind))
+          round->fail("node " + n.config.address.text() + ": " + n.lastError);
         return;
       }
       default:
@@ -522,6 +549,7 @@ ClusterFrame ClusterWindow::render(const med::View& view, std::int64_t sequenceF
   for (auto& [node, its] : round.pendingByNode()) {
     s.nodes[node].link->send(round.request(its));
     s.nodes[node].requestAt = Clock::now();
+    s.nodes[node].longestWait = {};
     round.sent(node);
   }
 
@@ -542,6 +570,12 @@ ClusterFrame ClusterWindow::render(const med::View& view, std::int64_t sequenceF
     }
   }
 
+  // What this frame cost each node that delivered it is what the next may cost.
+  for (std::size_t n : s.synced())
+    if (round.delivered(n)) {
+      s.nodes[n].expectedWait = s.nodes[n].longestWait;
+      s.nodes[n].finishedAFrame = true;
+    }
   if (s.strategy->frameDone()) {
     // The barrier: every tile is in (or given up), so the wall swaps at once.
     for (std::size_t n : s.synced())

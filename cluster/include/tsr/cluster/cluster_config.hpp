@@ -82,7 +82,10 @@ struct Timeouts {
   std::chrono::milliseconds heartbeat{500};
   std::chrono::milliseconds deadAfter{4000};  // no message for this long: the node is gone
   std::chrono::milliseconds retry{1000};      // between reconnection attempts
-  std::chrono::milliseconds late{1000};       // a node this long in one phase of a frame is reported
+  // A node this long in one phase of a frame is reported late: ten times
+  // this in its first frame after joining (it builds its scene), later at
+  // least twice its longest wait for one tile in its previous frame.
+  std::chrono::milliseconds late{1000};
 };
 
 struct ClusterConfig {
