@@ -149,13 +149,16 @@ std::vector<std::string> photonBackends() {
 }
 
 // `log` records every frame's tiles and their cost (--stats-json).
-FrameRenderer clusterRenderer(const RenderJob& options, const SceneSession& session, ClusterStatsLog& log) {
+// `progress` hears the share of each frame's tiles done as they arrive.
+FrameRenderer clusterRenderer(const RenderJob& options, const SceneSession& session, ClusterStatsLog& log,
+                              std::function<void(double)> progress) {
   auto registry = std::make_shared<med::ViewportRegistry>();
   registerBackends(*registry);
   std::shared_ptr<cluster::ClusterWindow> window{
       connectCluster(clusterConfig(options), options, frameOutputs(options), *registry).release(),
       [registry](cluster::ClusterWindow* w) { delete w; }};
   window->setContent(session.imported.root, session.imported.background);
+  window->setProgress(std::move(progress));
   return [window, &log](SceneSession& s, const sg::ChangeListPtr& delta, const med::View& view, int frame) {
     const auto started = std::chrono::steady_clock::now();
     const auto* camera = s.source.find<sg::Camera>(s.camera);
@@ -206,8 +209,16 @@ int renderSequence(const RenderJob& given, const SequenceOptions& sequence, cons
                                 ": the nodes render one layer of a window here, which keeps no per-node figures");
   med::RenderStats stats;
   ClusterStatsLog clusterStats;
+  // The bar moves with the cluster's tiles within a frame, not only between frames.
+  double framesShown = 0;
+  std::function<void(double)> onTiles;
   SequenceRenderer renderer = local ? localRenderer(options, windowLayers, session, stats)
-                                    : SequenceRenderer{clusterRenderer(options, session, clusterStats), 0, {}};
+                                    : SequenceRenderer{clusterRenderer(options, session, clusterStats,
+                                                                       [&](double share) {
+                                                                         if (onTiles) onTiles(share);
+                                                                       }),
+                                                       0,
+                                                       {}};
   auto write = [&](int frame, const med::FrameBuffer& image) {
     std::string path = framePath(options.output, frame);
     med::writeImage(path, image, "colour", options.display);
@@ -215,6 +226,7 @@ int renderSequence(const RenderJob& given, const SequenceOptions& sequence, cons
     return path;
   };
   ProgressBar bar(options.temporal.active() ? "rendering + " + method : "rendering", !options.quiet);
+  onTiles = [&](double share) { bar.update((framesShown + share) / sequence.frames); };
   std::unique_ptr<HighSampleFrames> high;
   if (options.temporal.highSpp) high = std::make_unique<HighSampleFrames>(options, session);
   std::unique_ptr<TemporalPcaSequence> pca;
@@ -266,7 +278,8 @@ int renderSequence(const RenderJob& given, const SequenceOptions& sequence, cons
       if (!options.quiet && !bar.active())
         std::cout << "wrote " << path << " (" << image.width << "x" << image.height << ", " << seconds << " s)\n";
     }
-    bar.update(double(frame + 1) / sequence.frames);
+    framesShown = frame + 1;
+    bar.update(framesShown / sequence.frames);
   }
   if (pca) {
     pca->finish();

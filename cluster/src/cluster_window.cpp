@@ -108,6 +108,7 @@ struct ClusterWindow::Impl {
   std::vector<Node> nodes;
 
   std::unique_ptr<FrameStrategy> strategy;
+  std::function<void(double)> progress;
   std::size_t reassigned = 0;
   std::uint64_t hashToken = 0;
   std::uint64_t frame = 0;
@@ -305,6 +306,11 @@ struct ClusterWindow::Impl {
           const auto now = Clock::now();
           n.longestWait = std::max(n.longestWait, now - std::max(n.requestAt, n.lastTileAt));
           n.lastTileAt = now;
+          if (progress) {
+            const auto& items = round->items();
+            const auto done = std::count_if(items.begin(), items.end(), [](const WorkItem& w) { return w.done; });
+            progress(double(done) / double(std::max<std::size_t>(1, items.size())));
+          }
         }
         return;
       }
@@ -522,6 +528,8 @@ std::vector<ReplicaHash> ClusterWindow::replicaHashes(std::chrono::milliseconds 
       out.push_back({i, s.nodes[i].hash->version, s.nodes[i].hash->hash});
   return out;
 }
+
+void ClusterWindow::setProgress(std::function<void(double)> progress) { impl_->progress = std::move(progress); }
 
 ClusterFrame ClusterWindow::render(const med::View& view, std::int64_t sequenceFrame) {
   Impl& s = *impl_;

@@ -6,6 +6,8 @@
 
 #include <regex>
 
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include "cluster_test_util.hpp"
@@ -92,6 +94,24 @@ TEST(ClusterRender, CooperativeOnThreeNodesEqualsLocal) {
   ClusterFrame f = app.window->render(app.view());
   EXPECT_TRUE(bitwiseEqual(f.image, app.reference(app.view())));
   for (std::size_t n = 0; n < 3; ++n) EXPECT_GT(f.busySeconds[n], 0.0) << "node " << n << " did no work";
+}
+
+// While the nodes work, the window reports each tile's arrival as the
+// share of the frame done: rising, one call a tile, ending at 1.
+TEST(ClusterRender, ProgressRisesWithEachTile) {
+  auto nodes = startNodes(2);
+  ClusterConfig c = configFor(ClusterMode::Cooperative, nodes, pathTracer(1));
+  c.cooperative.tileSize = 16;
+  Session app("builtin:cornell", c, pathTracer(1));
+  ASSERT_EQ(app.connect(), 2u);
+  app.publish();
+  std::vector<double> shares;
+  app.window->setProgress([&](double share) { shares.push_back(share); });
+  const ClusterFrame f = app.window->render(app.view());
+  ASSERT_EQ(shares.size(), f.tiles.size());
+  EXPECT_TRUE(std::is_sorted(shares.begin(), shares.end()));
+  EXPECT_GT(shares.front(), 0.0);
+  EXPECT_EQ(shares.back(), 1.0);
 }
 
 TEST(ClusterRender, AnimatedCooperativeFramesStayEqualWhileTilesMove) {

@@ -8,6 +8,7 @@
 //
 // Per frame: scene.commit() -> publish(scene, list) -> render(view).
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -76,8 +77,8 @@ struct ClusterFrame {
   // eye's whole view. summarizeWorkload() adds them up per node.
   std::vector<TileWork> tiles;
   std::vector<std::size_t> participants;  // the nodes online when the frame was planned
-  std::size_t offlineTiles = 0;     // wall tiles shown as offline fill
-  std::size_t reassignedItems = 0;  // work taken over from nodes lost during the frame
+  std::size_t offlineTiles = 0;           // wall tiles shown as offline fill
+  std::size_t reassignedItems = 0;        // work taken over from nodes lost during the frame
   // Nodes that were late (past timeouts.late in one phase) during the frame:
   // one line each, "ADDRESS (NAME): PHASE since HH:MM:SS.mmm (S s)".
   std::vector<std::string> lateNodes;
@@ -138,6 +139,9 @@ class ClusterWindow {
   // ahead (-1: none). Throws ClusterError when no node is left to render
   // (wall: never; its tiles show the offline fill).
   ClusterFrame render(const med::View& view, std::int64_t sequenceFrame = -1);
+  // Called on this thread as render()'s tiles arrive, with the share of the
+  // frame's tiles done (0..1): progress to show while the nodes work.
+  void setProgress(std::function<void(double)> progress);
   // Wall (tiled) mode: true lets the nodes keep their pixels, present them
   // and send none back, so the client's traffic no longer grows with the
   // wall's pixel count. For a client that shows no picture itself; the
