@@ -46,25 +46,35 @@ def shade_gltf_as_tessera():
             continue
         bsdf.distribution = "MULTI_GGX"
         out = next(n for n in tree.nodes if n.type == "OUTPUT_MATERIAL")
-        surface = bsdf.outputs[0]
-        strength = bsdf.inputs["Emission Strength"].default_value
-        if bsdf.inputs["Emission"].is_linked or strength * max(bsdf.inputs["Emission"].default_value[:3]) <= 0:
+        if bsdf.inputs["Emission"].is_linked:
             continue
-        emission = tree.nodes.new("ShaderNodeEmission")
-        emission.inputs["Color"].default_value = bsdf.inputs["Emission"].default_value
-        emission.inputs["Strength"].default_value = strength
-        bsdf.inputs["Emission Strength"].default_value = 0.0
-        geometry = tree.nodes.new("ShaderNodeNewGeometry")
-        front = tree.nodes.new("ShaderNodeMixShader")
-        black = tree.nodes.new("ShaderNodeBsdfTransparent")
-        black.inputs["Color"].default_value = (0, 0, 0, 1)
-        tree.links.new(geometry.outputs["Backfacing"], front.inputs["Fac"])
-        tree.links.new(emission.outputs[0], front.inputs[1])
-        tree.links.new(black.outputs[0], front.inputs[2])
-        add = tree.nodes.new("ShaderNodeAddShader")
-        tree.links.new(surface, add.inputs[0])
-        tree.links.new(front.outputs[0], add.inputs[1])
-        tree.links.new(add.outputs[0], out.inputs["Surface"])
+        shader = with_front_emission(tree, bsdf.outputs[0], bsdf)
+        if shader is not bsdf.outputs[0]:
+            bsdf.inputs["Emission Strength"].default_value = 0.0  # the emission shader carries it now
+            tree.links.new(shader, out.inputs["Surface"])
+
+
+def with_front_emission(tree, surface, bsdf):
+    """Inside Blender: `surface` plus the emission of Principled BSDF `bsdf`
+    leaving the front face only (a back face sees black); `surface` itself
+    when it emits nothing."""
+    strength = bsdf.inputs["Emission Strength"].default_value
+    if strength * max(bsdf.inputs["Emission"].default_value[:3]) <= 0:
+        return surface
+    emission = tree.nodes.new("ShaderNodeEmission")
+    emission.inputs["Color"].default_value = bsdf.inputs["Emission"].default_value
+    emission.inputs["Strength"].default_value = strength
+    geometry = tree.nodes.new("ShaderNodeNewGeometry")
+    front = tree.nodes.new("ShaderNodeMixShader")
+    black = tree.nodes.new("ShaderNodeBsdfTransparent")
+    black.inputs["Color"].default_value = (0, 0, 0, 1)
+    tree.links.new(geometry.outputs["Backfacing"], front.inputs["Fac"])
+    tree.links.new(emission.outputs[0], front.inputs[1])
+    tree.links.new(black.outputs[0], front.inputs[2])
+    add = tree.nodes.new("ShaderNodeAddShader")
+    tree.links.new(surface, add.inputs[0])
+    tree.links.new(front.outputs[0], add.inputs[1])
+    return add.outputs[0]
 
 
 def black_world(scene):

@@ -55,23 +55,7 @@ for mat in bpy.data.materials:
     out = next(n for n in tree.nodes if n.type == "OUTPUT_MATERIAL")
     diffuse = tree.nodes.new("ShaderNodeBsdfDiffuse")
     diffuse.inputs["Color"].default_value = bsdf.inputs["Base Color"].default_value
-    shader = diffuse.outputs[0]
-    strength = bsdf.inputs["Emission Strength"].default_value
-    if strength * max(bsdf.inputs["Emission"].default_value[:3]) > 0:
-        emission = tree.nodes.new("ShaderNodeEmission")
-        emission.inputs["Color"].default_value = bsdf.inputs["Emission"].default_value
-        emission.inputs["Strength"].default_value = strength
-        geometry = tree.nodes.new("ShaderNodeNewGeometry")  # glTF emits from the front face only
-        front = tree.nodes.new("ShaderNodeMixShader")
-        black = tree.nodes.new("ShaderNodeBsdfTransparent")
-        black.inputs["Color"].default_value = (0, 0, 0, 1)
-        tree.links.new(geometry.outputs["Backfacing"], front.inputs["Fac"])
-        tree.links.new(emission.outputs[0], front.inputs[1])
-        tree.links.new(black.outputs[0], front.inputs[2])
-        add = tree.nodes.new("ShaderNodeAddShader")
-        tree.links.new(diffuse.outputs[0], add.inputs[0])
-        tree.links.new(front.outputs[0], add.inputs[1])
-        shader = add.outputs[0]
+    shader = cycles_common.with_front_emission(tree, diffuse.outputs[0], bsdf)  # glTF emits from the front only
     tree.links.new(shader, out.inputs["Surface"])
 
 # The importer names unnamed materials Material_<index>, in the file's order.
