@@ -1,0 +1,71 @@
+#!/usr/bin/env python3
+"""Runs the command blocks the README and docs/ mark as runnable, against
+this build, and fails on a non-zero exit. A block is marked by its first
+line, a comment that may say how to make it small:
+
+    ```sh
+    # runnable: 240x240 -> 32x32; --spp 96 -> --spp 2
+    tessera-render builtin:cornell --size 240x240 --spp 96 --aperture 30 --focus-distance 880 --output dof.exr
+    ```
+
+Each "A -> B" replaces text A by B in the block before it runs. The block
+runs with bash -e in a fresh folder that sees the repository's configs/
+and scripts/, with the build's programs first on PATH.
+
+    runnable_docs.py BIN_DIR REPO_DIR
+"""
+import glob
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+MARK = re.compile(r"^#\s*runnable\b:?(.*)$")
+
+
+def blocks(path):
+    """(first line number, substitutions, text) of each marked fenced block."""
+    lines, found, i = open(path, encoding="utf-8").read().splitlines(), [], 0
+    while i < len(lines):
+        if lines[i].strip().startswith("```") and i + 1 < len(lines) and MARK.match(lines[i + 1].strip()):
+            rules = [r.split("->", 1) for r in MARK.match(lines[i + 1].strip()).group(1).split(";") if "->" in r]
+            end = i + 2
+            while end < len(lines) and not lines[end].strip().startswith("```"):
+                end += 1
+            found.append((i + 2, [(a.strip(), b.strip()) for a, b in rules], "\n".join(lines[i + 2:end])))
+            i = end
+        i += 1
+    return found
+
+
+def main():
+    bin_dir, repo = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
+    pages = [os.path.join(repo, "README.md")] + sorted(glob.glob(os.path.join(repo, "docs", "*.md")))
+    # BUILD: the folder scripts/cluster-demo.sh takes its programs from.
+    env = dict(os.environ, PATH=bin_dir + os.pathsep + os.environ.get("PATH", ""), BUILD=os.path.dirname(bin_dir))
+    failed, ran = [], 0
+    for page in pages:
+        for line, rules, text in blocks(page):
+            for a, b in rules:
+                if a not in text:
+                    failed.append("%s:%d: the substitution '%s' finds nothing" % (os.path.relpath(page, repo), line, a))
+                text = text.replace(a, b)
+            with tempfile.TemporaryDirectory() as work:
+                for folder in ("configs", "scripts"):
+                    os.symlink(os.path.join(repo, folder), os.path.join(work, folder))
+                r = subprocess.run(["bash", "-e", "-c", text], cwd=work, env=env, capture_output=True, text=True,
+                                   timeout=300)
+            ran += 1
+            where = "%s:%d" % (os.path.relpath(page, repo), line)
+            print("%s: exit %d" % (where, r.returncode))
+            if r.returncode != 0:
+                failed.append("%s failed (exit %d):\n%s\n%s%s" % (where, r.returncode, text, r.stdout, r.stderr))
+    for f in failed:
+        print(f)
+    print("%d runnable blocks run, %d failed" % (ran, len(failed)))
+    return 1 if failed or ran == 0 else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
