@@ -3,6 +3,7 @@
 #include "backends.hpp"
 #include "tsr/med/viewport_registry.hpp"
 #include "tsr/sg/node_world.hpp"
+#include "tsr/sg/shutter.hpp"
 
 #include <cmath>
 
@@ -64,9 +65,13 @@ void SceneSession::load(const std::string& scene, const sg::ImportOptions& optio
   }
 }
 
-void SceneSession::poseAnimations(double seconds, double frameInterval) {
+bool SceneSession::shutterStaysOpen() const {
   const auto* lens = source.find<sg::Camera>(camera);
-  const bool open = lens && lens->shutterClose() > lens->shutterOpen();
+  return lens && sg::shutterStaysOpen(lens->shutterOpen(), lens->shutterClose());
+}
+
+void SceneSession::poseAnimations(double seconds, double frameInterval) {
+  const bool open = shutterStaysOpen();
   for (const auto& animation : imported.animations)
     animation.apply(source, static_cast<float>(seconds), open ? static_cast<float>(frameInterval) : 0.0f);
 }

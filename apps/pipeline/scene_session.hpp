@@ -48,6 +48,8 @@ struct SceneSession {
   // of the frame (Transform::frameMotion, which the shutter blurs; a
   // shutter that is an instant leaves the motion unedited).
   void poseAnimations(double seconds, double frameInterval);
+  // Whether the camera's shutter stays open over part of the frame.
+  bool shutterStaysOpen() const;
   // Moves the rig's camera light to the camera and commits the frame's edits.
   sg::ChangeListPtr commit();
   // commit(), and the list applied to the replica.

@@ -47,8 +47,7 @@ int run(int argc, char** argv) {
   // One image of an animated scene through an open shutter shows the
   // motion of the animation's first frame interval (1 / --fps); an
   // instant's image is the scene as loaded.
-  if (const auto* lens = session.source.find<tsr::sg::Camera>(session.camera);
-      lens && lens->shutterClose() > lens->shutterOpen() && !session.imported.animations.empty())
+  if (session.shutterStaysOpen() && !session.imported.animations.empty())
     session.poseAnimations(0.0, 1.0 / sequence.fps);
   session.publish();
 

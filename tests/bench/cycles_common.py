@@ -128,3 +128,17 @@ def load(path):
     pixels = np.asarray(image.read_image(format="float"))[..., :3].astype(np.float64)
     image.close()
     return pixels
+
+
+def comparison_parser(doc):
+    """Outside Blender: the arguments every Cycles comparison takes
+    (--render, --size, --spp, --bounces, --out); a script adds its own."""
+    import argparse
+
+    ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--render", required=True, help="tessera-render")
+    ap.add_argument("--size", default="128x128")
+    ap.add_argument("--spp", type=int, default=1024)
+    ap.add_argument("--bounces", type=int, default=16)
+    ap.add_argument("--out", default=None)
+    return ap

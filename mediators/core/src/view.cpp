@@ -9,6 +9,7 @@
 
 #include "tsr/sg/coordinate_limit.hpp"
 #include "tsr/sg/node_world.hpp"
+#include "tsr/sg/shutter.hpp"
 
 namespace tsr::med {
 
@@ -26,7 +27,7 @@ View View::fromCamera(const sg::Camera& camera, std::uint32_t width, std::uint32
     v.focusDistance = camera.focusDistance();
   }
   // A shutter the camera cannot have is an instant at the frame's time.
-  if (camera.shutterOpen() >= 0.0f && camera.shutterOpen() <= camera.shutterClose() && camera.shutterClose() <= 1.0f) {
+  if (sg::shutterWithinFrame(camera.shutterOpen(), camera.shutterClose())) {
     v.shutterOpen = camera.shutterOpen();
     v.shutterClose = camera.shutterClose();
   }
@@ -86,7 +87,7 @@ void View::validate() const {
   };
   pose(cameraToWorld, "camera pose");
   if (cameraToWorldAtEnd) pose(*cameraToWorldAtEnd, "camera pose at the frame's end");
-  if (!(shutterOpen >= 0.0f && shutterOpen <= shutterClose && shutterClose <= 1.0f))
+  if (!sg::shutterWithinFrame(shutterOpen, shutterClose))
     fail("shutter " + number(shutterOpen) + "," + number(shutterClose) +
          " must open and close within the frame interval (0 <= open <= close <= 1)");
   if (!(apertureRadius >= 0.0f) || !sg::withinCoordinateLimit(apertureRadius))

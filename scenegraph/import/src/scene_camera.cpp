@@ -1,4 +1,5 @@
 #include "tsr/sg/import/scene_camera.hpp"
+#include "tsr/sg/shutter.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -101,7 +102,7 @@ void validate(const LookOverride& look) {
                                 ": expected the lens' f-number above 0 (e.g. 2.8)");
   if (look.fNumber && look.apertureRadius)
     throw std::invalid_argument("--f-number and --aperture both set the lens: give one");
-  if (look.shutter && !(look.shutter->x >= 0.0f && look.shutter->x <= look.shutter->y && look.shutter->y <= 1.0f))
+  if (look.shutter && !shutterWithinFrame(look.shutter->x, look.shutter->y))
     throw std::invalid_argument("--shutter " + std::to_string(look.shutter->x) + "," + std::to_string(look.shutter->y) +
                                 ": expected OPEN,CLOSE as fractions of the frame interval, 0 <= OPEN <= CLOSE <= 1");
   if (look.focusDistance && !(*look.focusDistance > 0.0f && withinCoordinateLimit(*look.focusDistance)))

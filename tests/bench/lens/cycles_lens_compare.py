@@ -28,13 +28,14 @@ Regions are the projections of named nodes' boxes, shrunk to their middle
 python3-numpy and python3-openimageio. Images already in --out are reused.
 At the defaults the four renders take about 9 minutes on two busy cores.
 """
-import argparse, json, math, os, subprocess, sys, tempfile
+import json, math, os, subprocess, sys, tempfile
 
 import numpy as np
 import OpenImageIO as oiio
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, ".."))
+import cycles_common  # noqa: E402
 from cycles_common import load  # noqa: E402
 sys.path.insert(0, os.path.join(HERE, "..", "quality"))
 from seen_error import displayed, seen_error  # noqa: E402
@@ -167,12 +168,7 @@ def disc_check(a, out):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--render", required=True, help="tessera-render")
-    ap.add_argument("--size", default="128x128")
-    ap.add_argument("--spp", type=int, default=1024)
-    ap.add_argument("--bounces", type=int, default=16)
-    ap.add_argument("--out", default=None)
+    ap = cycles_common.comparison_parser(__doc__)
     ap.add_argument("--no-pinhole", action="store_true", help="skip the pinhole baseline pair")
     a = ap.parse_args()
     out = a.out or tempfile.mkdtemp(prefix="tsr-lens-")

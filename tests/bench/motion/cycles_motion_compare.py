@@ -26,12 +26,13 @@ screen displacement over the shutter.
 Needs Debian's blender, python3-numpy and python3-openimageio. Images
 already in --out are reused.
 """
-import argparse, json, math, os, subprocess, sys, tempfile
+import json, math, os, subprocess, sys, tempfile
 
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, ".."))
+import cycles_common  # noqa: E402
 from cycles_common import load  # noqa: E402
 sys.path.insert(0, os.path.join(HERE, "..", "quality"))
 from seen_error import seen_error  # noqa: E402
@@ -183,13 +184,8 @@ def streak_check(a, out, shutter):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--render", required=True, help="tessera-render")
-    ap.add_argument("--size", default="128x128")
-    ap.add_argument("--spp", type=int, default=1024)
-    ap.add_argument("--bounces", type=int, default=16)
+    ap = cycles_common.comparison_parser(__doc__)
     ap.add_argument("--shutter", default="0.25,0.75", help="OPEN,CLOSE as fractions of the frame interval")
-    ap.add_argument("--out", default=None)
     a = ap.parse_args()
     shutter = tuple(float(v) for v in a.shutter.split(","))
     out = a.out or tempfile.mkdtemp(prefix="tsr-motion-")

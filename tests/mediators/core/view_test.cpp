@@ -80,3 +80,32 @@ TEST(View, ACameraUnderATransformFollowsIt) {
   loose.lookAt({1, 2, 3}, {0, 0, 0});
   EXPECT_TRUE(eyeAt(View::fromCamera(loose, 8, 8), {1, 2, 3}));
 }
+
+// A camera under a moving Transform carries the shutter and its pose at the
+// frame interval's end into the view (and each eye of a stereo pair); a
+// still one has none, and a shutter it cannot have is an instant.
+TEST(View, AMovingCameraCarriesItsShutterAndItsPoseAtTheFramesEnd) {
+  sg::Scene s;
+  auto& dolly = s.create<sg::Transform>("dolly");
+  auto& cam = s.create<sg::Camera>("camera");
+  cam.lookAt({0, 0, 5}, {0, 0, 0});
+  cam.setShutterOpen(0.25f);
+  cam.setShutterClose(0.75f);
+  dolly.addChild(cam.id());
+  View still = View::fromCamera(cam, 8, 8);
+  EXPECT_FALSE(still.cameraToWorldAtEnd.has_value());
+  EXPECT_EQ(still.shutterOpen, 0.25f);
+  EXPECT_EQ(still.shutterClose, 0.75f);
+  dolly.setFrameMotion(glm::translate(glm::mat4(1.0f), glm::vec3(2, 0, 0)));
+  const View moving = View::fromCamera(cam, 8, 8);
+  ASSERT_TRUE(moving.cameraToWorldAtEnd.has_value());
+  EXPECT_LT(glm::length(glm::vec3((*moving.cameraToWorldAtEnd)[3]) - glm::vec3(2, 0, 5)), 1e-5f);
+  EXPECT_LT(glm::length(glm::vec3(moving.cameraToWorld[3]) - glm::vec3(0, 0, 5)), 1e-5f) << "now: where it is";
+  const View left = moving.eye(med::Eye::Left, 0.2f, 5.0f);
+  EXPECT_LT(glm::length(glm::vec3((*left.cameraToWorldAtEnd)[3]) - glm::vec3(1.9f, 0, 5)), 1e-5f);
+  EXPECT_NO_THROW(moving.validate());
+  cam.setShutterOpen(0.9f);  // opens after it closes
+  const View instant = View::fromCamera(cam, 8, 8);
+  EXPECT_EQ(instant.shutterOpen, 0.0f);
+  EXPECT_EQ(instant.shutterClose, 0.0f);
+}

@@ -153,7 +153,6 @@ class CameraPath {
   explicit CameraPath(const Camera& c) : still_(c.cameraToWorld) {
     if (c.cameraToWorldAtEnd) motion_.emplace(c.cameraToWorld, *c.cameraToWorldAtEnd);
   }
-  const Eye& still() const { return still_; }
   Eye at(float t) const { return motion_ && t != 0.0f ? Eye(motion_->at(t)) : still_; }
 
  private:
@@ -214,7 +213,7 @@ PassResult Renderer::renderPass(Scene& scene, const Camera& camera, const Region
 
 PassResult Renderer::renderPaths(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
                                  const IrradianceField* field) {
-  const CameraPath eye(camera);
+  const CameraPath path(camera);
   const std::uint64_t seed = settings_.seed;
   const std::uint32_t samples = settings_.samplesPerPass;
   return runTiles(
@@ -225,7 +224,7 @@ PassResult Renderer::renderPaths(Scene& scene, const Camera& camera, const Regio
         const std::uint32_t firstSample = fb.sampleCount(x, y);
         for (std::uint32_t s = 0; s < samples; ++s) {
           Rng rng(pixelKey, firstSample + s);
-          const CameraRay ray = cameraRay(camera, eye, region, px, py, rng);
+          const CameraRay ray = cameraRay(camera, path, region, px, py, rng);
           tracer.time = ray.time;
           fb.accumulate(x, y, tracer.tracePath(rng, ray.origin, ray.direction, ray.eyePosition, ray.forward));
         }
@@ -249,7 +248,7 @@ PassResult Renderer::renderRadiancePass(Scene& scene, const Camera& camera, cons
                 " but the region is " + std::to_string(region.regionWidth()) + "x" +
                 std::to_string(region.regionHeight()));
   }
-  const CameraPath eye(camera);
+  const CameraPath path(camera);
   const std::uint64_t seed = settings_.seed;
   // Angle of one pixel on the axis; off the axis it shrinks with cos^1.5.
   const float pixelAngle = std::sqrt((camera.right - camera.left) / float(region.width) * (camera.top - camera.bottom) /
@@ -259,7 +258,7 @@ PassResult Renderer::renderRadiancePass(Scene& scene, const Camera& camera, cons
       scene, camera, region, fb,
       [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
         Rng rng(Rng::pixelKey(seed, px, py), fb.sampleCount(x, y));
-        const CameraRay ray = cameraRay(camera, eye, region, px, py, rng);
+        const CameraRay ray = cameraRay(camera, path, region, px, py, rng);
         RadianceSample& record = acc.samples_[acc.at(x, y)];
         record = RadianceSample{};
         tracer.time = ray.time;
@@ -292,7 +291,7 @@ PassResult Renderer::renderWhittedPass(Scene& scene, const Camera& camera, const
 
 PassResult Renderer::renderFlashPass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
                                      std::uint32_t samples) {
-  const CameraPath eye(camera);
+  const CameraPath path(camera);
   const std::uint64_t seed = settings_.seed ^ kFlashStream;
   return runTiles(
       scene, camera, region, fb,
@@ -301,7 +300,7 @@ PassResult Renderer::renderFlashPass(Scene& scene, const Camera& camera, const R
         const std::uint32_t first = fb.rangeSamples(x, y);
         for (std::uint32_t s = 0; s < samples; ++s) {
           Rng rng(pixelKey, first + s);
-          const CameraRay ray = cameraRay(camera, eye, region, px, py, rng);
+          const CameraRay ray = cameraRay(camera, path, region, px, py, rng);
           tracer.time = ray.time;
           float distance = kInf;
           const glm::vec3 flash = tracer.traceFlash(ray.origin, ray.direction, ray.eyePosition, distance);

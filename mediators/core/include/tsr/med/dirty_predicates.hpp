@@ -34,14 +34,11 @@ inline bool structureDirty(const ChangeEntry& e) {
          (sg::isParentType(e.type) && e.changed(sg::Group::Children));
 }
 
-// A transform's matrix: the instances and lights below it move.
+// A transform's matrix, or its motion over the frame interval (which
+// back-ends that blur motion place too): the instances and lights below it move.
 inline bool transformDirty(const ChangeEntry& e) {
-  return e.type == sg::ContainerType::Transform && e.changed(sg::Transform::Matrix);
-}
-// Its motion over the frame interval: back-ends that blur motion move
-// what is below it.
-inline bool frameMotionDirty(const ChangeEntry& e) {
-  return e.type == sg::ContainerType::Transform && e.changed(sg::Transform::FrameMotion);
+  return e.type == sg::ContainerType::Transform &&
+         (e.changed(sg::Transform::Matrix) || e.changed(sg::Transform::FrameMotion));
 }
 
 // A light's own fields: it is placed again where it stands.

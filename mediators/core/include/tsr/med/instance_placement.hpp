@@ -107,7 +107,7 @@ class InstancePlacement {
   void moveEdited(const sg::Scene& scene, const sg::MergedChanges& changes, BackendScene& backend, const Hooks& hooks) {
     std::unordered_set<std::uint32_t> instances, lights;
     for (const auto& [id, e] : changes.entries()) {
-      if (transformDirty(e) || frameMotionDirty(e)) {
+      if (transformDirty(e)) {
         if (auto it = flat_.instancesUnder.find(id); it != flat_.instancesUnder.end())
           instances.insert(it->second.begin(), it->second.end());
         if (auto it = flat_.lightsUnder.find(id); it != flat_.lightsUnder.end())
