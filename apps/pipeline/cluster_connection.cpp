@@ -1,5 +1,6 @@
 #include "cluster_connection.hpp"
 
+#include <algorithm>
 #include <iostream>
 
 #include "backends.hpp"
@@ -12,13 +13,21 @@ cluster::ClusterConfig clusterConfig(const RenderJob& options) {
   cluster::ClusterConfig config = cluster::loadClusterConfig(sequence.cluster);
   if (!sequence.nodes.empty()) config.replaceAddresses(cluster::parseNodeList(sequence.nodes));
   // What the command line names beats the config; the config beats the
-  // command line's defaults.
+  // command line's defaults. A parameter reaches the nodes whose back-end
+  // takes it (a mixed config's rasterising node gets no --spp); one that no
+  // node's back-end takes is an error.
   const med::ViewportRegistry& registry = backendRegistry();
+  std::vector<std::string> backends;
+  for (const auto& node : config.nodes)  // a node names what it has when it refuses an unknown back-end
+    if (registry.has(node.backend) && std::find(backends.begin(), backends.end(), node.backend) == backends.end())
+      backends.push_back(node.backend);
+  if (!backends.empty()) registry.requireDeclared(options.parameters, backends);
   for (auto& node : config.nodes) {
-    if (!registry.has(node.backend)) continue;  // the node names what it has when it refuses
-    registry.requireDeclared(options.parameters, {node.backend});
+    if (!registry.has(node.backend)) continue;
+    const med::ParameterTable& table = registry.capabilities(node.backend).parameters;
     for (const auto& [name, value] : options.parameters.all())
-      if (options.explicitParameters.count(name) || !node.parameters.has(name)) node.parameters.set(name, value);
+      if (table.declares(name) && (options.explicitParameters.count(name) || !node.parameters.has(name)))
+        node.parameters.set(name, value);
   }
   config.validate();
   for (const auto& node : config.nodes)

@@ -143,7 +143,9 @@ ClusterConfig parseClusterConfig(const std::string& text, const std::string& sou
       r.fail(e.what());
     }
     node.backend = r.get<std::string>(n, "backend", backend);
-    node.parameters = r.parameters(n, defaults);
+    // The config's parameters are its back-end's: a node that names another
+    // back-end has only its own.
+    node.parameters = r.parameters(n, node.backend == backend ? defaults : med::Parameters{});
     c.nodes.push_back(std::move(node));
   }
 

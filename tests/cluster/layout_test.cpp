@@ -69,6 +69,18 @@ TEST(ClusterConfig, ParsesModesNodesAndParameters) {
   EXPECT_EQ(c.nodes[1].address.text(), "10.0.0.2:6");
 }
 
+TEST(ClusterConfig, TheConfigsParametersAreItsBackEndsOnly) {
+  // A rasterising node in a path tracer's config gets none of its spp,
+  // seed or depth, which its back-end would refuse.
+  ClusterConfig c = parseClusterConfig(R"({
+    "mode": "stereo", "backend": "embree", "parameters": {"spp": 2, "seed": 3},
+    "nodes": [{"address": "127.0.0.1:1"}, {"address": "127.0.0.1:2", "backend": "vulkan", "parameters": {"msaa": 4}}]})");
+  EXPECT_EQ(c.nodes[0].parameters.all().count("spp"), 1u);
+  EXPECT_EQ(c.nodes[1].parameters.all().count("spp"), 0u);
+  EXPECT_EQ(c.nodes[1].parameters.all().count("seed"), 0u);
+  EXPECT_EQ(c.nodes[1].parameters.all().at("msaa"), tsr::med::ParameterValue(std::int64_t{4}));
+}
+
 TEST(ClusterConfig, RejectsWhatCannotWork) {
   EXPECT_THROW(parseClusterConfig("{"), ConfigError);
   EXPECT_THROW(parseClusterConfig(R"({"mode": "spiral", "nodes": [{}]})"), ConfigError);

@@ -228,6 +228,25 @@ TEST(RenderCli, AClusterLayerNeedsExactlyOneLayerOfTheNodesBackEndAndNoOtherBack
   EXPECT_EQ(WEXITSTATUS(status), 2) << "the config names the nodes' back-end, not --backend";
 }
 
+TEST(RenderCli, OnMixedBackEndsEachOptionReachesTheNodesThatTakeIt) {
+  // configs/mixed-backends.json: a path-traced and a rasterised eye. --spp
+  // is the path tracer's, msaa the rasterizer's; neither fails the other
+  // node, and a name neither back-end takes is still refused.
+  TempDir dir;
+  TokenFile token("cli token");
+  auto nodes = startNodes(2, {"--token-file", token.path()});
+  const fs::path config = dir.path / "mixed.json";
+  std::ofstream(config) << R"({"mode": "stereo", "backend": "embree", "parameters": {"spp": 2, "seed": 1},
+    "nodes": [{"address": "127.0.0.1:1"}, {"address": "127.0.0.1:2", "backend": "vulkan", "parameters": {}}],
+    "stereo": {"compose": "side-by-side"}})";
+  const std::string common = "builtin:cornell --size 32x24 --cluster " + config.string() + " --nodes " +
+                             addresses(nodes) + " --token-file " + token.path() + " --output ";
+  EXPECT_EQ(run(common + (dir.path / "a.exr").string() + " --spp 3 --param msaa=4"), 0);
+  EXPECT_TRUE(fs::exists(dir.path / "a.exr"));
+  EXPECT_EQ(WEXITSTATUS(run(common + (dir.path / "b.exr").string() + " --param nosuch=1 2>/dev/null")), 2);
+  EXPECT_FALSE(fs::exists(dir.path / "b.exr"));
+}
+
 TEST(RenderCli, FramesNeedAFrameNumberInTheOutputName) {
   EXPECT_NE(run("builtin:animated --frames 2 --output /tmp/no-hashes.exr 2>/dev/null"), 0);
   EXPECT_NE(run("builtin:cornell --nodes 127.0.0.1:1 2>/dev/null"), 0);
