@@ -12,11 +12,12 @@ Each "A -> B" replaces text A by B in the block before it runs. The block
 runs with bash -e in a fresh folder that sees the repository's configs/
 and scripts/, with the build's programs first on PATH.
 
-    runnable_docs.py BIN_DIR REPO_DIR
+    runnable_docs.py BIN_DIR REPO_DIR [PAGE ...]   (pages: only those, e.g. docs/viewer.md)
 """
 import glob
 import os
 import re
+import signal
 import subprocess
 import sys
 import tempfile
@@ -39,9 +40,32 @@ def blocks(path):
     return found
 
 
+def run_block(text, work, env, timeout=300):
+    """Exit status and output of the block. It runs in its own process
+    group, killed when the block ends, so what a failed block started in
+    the background (nodes) neither lingers nor holds the output open."""
+    with open(os.path.join(work, ".output"), "w+") as out:
+        p = subprocess.Popen(["bash", "-e", "-c", text], cwd=work, env=env, stdout=out, stderr=subprocess.STDOUT,
+                             start_new_session=True)
+        try:
+            code = p.wait(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            code = -1
+            print("timed out after %d s" % timeout, file=out)
+        try:
+            os.killpg(p.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        p.wait()
+        out.seek(0)
+        return code, out.read()
+
+
 def main():
     bin_dir, repo = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
     pages = [os.path.join(repo, "README.md")] + sorted(glob.glob(os.path.join(repo, "docs", "*.md")))
+    if len(sys.argv) > 3:
+        pages = [os.path.join(repo, p) for p in sys.argv[3:]]
     # BUILD: the folder scripts/cluster-demo.sh takes its programs from.
     env = dict(os.environ, PATH=bin_dir + os.pathsep + os.environ.get("PATH", ""), BUILD=os.path.dirname(bin_dir))
     failed, ran = [], 0
@@ -54,13 +78,12 @@ def main():
             with tempfile.TemporaryDirectory() as work:
                 for folder in ("configs", "scripts"):
                     os.symlink(os.path.join(repo, folder), os.path.join(work, folder))
-                r = subprocess.run(["bash", "-e", "-c", text], cwd=work, env=env, capture_output=True, text=True,
-                                   timeout=300)
+                code, output = run_block(text, work, env)
             ran += 1
             where = "%s:%d" % (os.path.relpath(page, repo), line)
-            print("%s: exit %d" % (where, r.returncode))
-            if r.returncode != 0:
-                failed.append("%s failed (exit %d):\n%s\n%s%s" % (where, r.returncode, text, r.stdout, r.stderr))
+            print("%s: exit %d" % (where, code))
+            if code != 0:
+                failed.append("%s failed (exit %d):\n%s\n%s" % (where, code, text, output))
     for f in failed:
         print(f)
     print("%d runnable blocks run, %d failed" % (ran, len(failed)))
