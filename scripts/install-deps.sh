@@ -19,6 +19,7 @@ packages=(
   assimp-testmodels   # real glTF models of the filter quality suite (tests/bench/quality/suite)
   python3-numpy python3-openimageio  # image metrics of the benchmark scripts
   chromium            # the web client's browser test (Playwright drives it)
+  curl                # docs/huge-models.md asks the culling service from the shell (its block is run by the docs test)
 )
 
 if [ "$(id -u)" -ne 0 ]; then

@@ -2,7 +2,7 @@
 # Sets everything up on a fresh Debian 12 machine (as root) and runs every
 # test: the full suite, then the scene graph (and the wire codec's fuzz
 # inputs) under ASan+UBSan and its concurrency test under TSan, the asan-ci
-# and tsan-ci presets (README "Sanitizers": scripts/sanitize.sh builds
+# and tsan-ci presets (docs/fuzzing-and-sanitizers.md: scripts/sanitize.sh builds
 # every layer under both and runs the whole suite), then every fuzz target
 # over its kept inputs plus a few mutations
 # (the clang fuzz build takes about 1.5 min on 2 cores).

@@ -40,7 +40,7 @@ def blocks(path):
     return found
 
 
-def run_block(text, work, env, timeout=300):
+def run_block(text, work, env, timeout=120):
     """Exit status and output of the block. It runs in its own process
     group, killed when the block ends, so what a failed block started in
     the background (nodes) neither lingers nor holds the output open."""
