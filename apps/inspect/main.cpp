@@ -13,6 +13,7 @@
 #include "error_line.hpp"
 #include "import_limit_options.hpp"
 #include "scene_glb.hpp"
+#include "tsr/med/file_replacement.hpp"
 #include "tsr/med/scene_flattening.hpp"
 #include "tsr/sg/import/importer.hpp"
 #include "tsr/sg/import/scene_stats.hpp"
@@ -105,10 +106,13 @@ int main(int argc, char** argv) {
     const tsr::sg::ImportResult result = tsr::sg::importScene(scene, source, options);
     const tsr::sg::SceneStats stats = tsr::sg::computeSceneStats(scene, result.root);
     if (!glb.empty()) {
-      const std::vector<std::uint8_t> bytes = tsr::app::glbOf(scene, tsr::med::flatten(scene, result.root).instances);
-      std::ofstream out(glb, std::ios::binary);
-      out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-      if (!out.flush()) throw std::runtime_error("cannot write " + glb);
+      const std::vector<std::uint8_t> bytes =
+          tsr::app::glbOf(scene, tsr::med::flatten(scene, result.root).instances, result.cameras);
+      tsr::med::replaceFile(glb, [&](const std::string& temporary) {  // a failed write leaves no partial .glb
+        std::ofstream out(temporary, std::ios::binary);
+        out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+        if (!out.flush()) throw std::runtime_error("cannot write " + glb);
+      });
     }
     if (json)
       std::cout << toJson(source, result, stats).dump(2) << "\n";

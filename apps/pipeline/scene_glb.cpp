@@ -1,11 +1,15 @@
 #include "scene_glb.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <sstream>
 
 #include <tiny_gltf.h>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/mat3x3.hpp>
+
+#include "tsr/sg/camera.hpp"
+#include "tsr/sg/node_world.hpp"
 
 namespace tsr::app {
 
@@ -37,14 +41,32 @@ int addAccessor(tinygltf::Model& m, int view, int componentType, std::size_t cou
   return int(m.accessors.size()) - 1;
 }
 
+void useExtension(tinygltf::Model& m, tinygltf::Material& material, const std::string& name, const char* key,
+                  double value) {
+  tinygltf::Value::Object values;
+  values[key] = tinygltf::Value(value);
+  material.extensions[name] = tinygltf::Value(values);
+  if (std::find(m.extensionsUsed.begin(), m.extensionsUsed.end(), name) == m.extensionsUsed.end())
+    m.extensionsUsed.push_back(name);
+}
+
 int addMaterial(tinygltf::Model& m, const sg::Container* material) {
   tinygltf::Material out;
   out.pbrMetallicRoughness.baseColorFactor = {0.8, 0.8, 0.8, 1.0};
   if (const auto* s = dynamic_cast<const sg::SurfaceMaterial*>(material)) {
+    out.name = s->name();
     out.pbrMetallicRoughness.baseColorFactor = {s->baseColor().r, s->baseColor().g, s->baseColor().b, s->opacity()};
     out.pbrMetallicRoughness.metallicFactor = s->metallic();
     out.pbrMetallicRoughness.roughnessFactor = s->roughness();
-    out.emissiveFactor = {s->emittedRadiance().r, s->emittedRadiance().g, s->emittedRadiance().b};
+    // glTF's emissiveFactor stops at 1: a brighter emitter (a lamp) keeps its
+    // radiance as factor times KHR_materials_emissive_strength.
+    const glm::vec3 emitted = s->emittedRadiance();
+    const double strength = std::max({1.0, double(emitted.r), double(emitted.g), double(emitted.b)});
+    out.emissiveFactor = {emitted.r / strength, emitted.g / strength, emitted.b / strength};
+    if (strength > 1.0) useExtension(m, out, "KHR_materials_emissive_strength", "emissiveStrength", strength);
+    if (s->transmission() > 0.0f)
+      useExtension(m, out, "KHR_materials_transmission", "transmissionFactor", s->transmission());
+    if (s->ior() != 1.5f) useExtension(m, out, "KHR_materials_ior", "ior", s->ior());
   } else if (const auto* p = dynamic_cast<const sg::SimpleMaterial*>(material)) {
     out.pbrMetallicRoughness.baseColorFactor = {p->diffuse().r, p->diffuse().g, p->diffuse().b,
                                                 1.0 - p->transparency()};
@@ -52,6 +74,28 @@ int addMaterial(tinygltf::Model& m, const sg::Container* material) {
   }
   m.materials.push_back(out);
   return int(m.materials.size()) - 1;
+}
+
+// A scene camera as a node in world space, so other tools open the scene
+// looking where Tessera looks.
+void addCamera(tinygltf::Model& m, const sg::Scene& scene, sg::ContainerId id) {
+  const auto* c = scene.find<sg::Camera>(id);
+  if (!c) return;
+  tinygltf::Camera camera;
+  camera.type = "perspective";
+  camera.name = c->name();
+  camera.perspective.yfov = c->verticalFov();
+  camera.perspective.znear = c->nearPlane();
+  camera.perspective.zfar = c->farPlane();
+  m.cameras.push_back(camera);
+  tinygltf::Node node;
+  node.camera = int(m.cameras.size()) - 1;
+  node.name = c->name();
+  const sg::Mat4 world = sg::cameraWorldPose(scene, id);
+  for (int column = 0; column < 4; ++column)
+    for (int row = 0; row < 4; ++row) node.matrix.push_back(world[column][row]);
+  m.nodes.push_back(node);
+  m.scenes[0].nodes.push_back(int(m.nodes.size()) - 1);
 }
 
 void addInstance(tinygltf::Model& m, const sg::Scene& scene, const med::FlatNode& instance) {
@@ -100,14 +144,16 @@ void addInstance(tinygltf::Model& m, const sg::Scene& scene, const med::FlatNode
 
 }  // namespace
 
-std::vector<std::uint8_t> glbOf(const sg::Scene& scene, const std::vector<med::FlatNode>& instances) {
+std::vector<std::uint8_t> glbOf(const sg::Scene& scene, const std::vector<med::FlatNode>& instances,
+                                const std::vector<sg::ContainerId>& cameras) {
   tinygltf::Model m;
   m.asset.version = "2.0";
-  m.asset.generator = "tessera-cull";
+  m.asset.generator = "Tessera";
   m.buffers.resize(1);
   m.scenes.resize(1);
   m.defaultScene = 0;
   for (const auto& instance : instances) addInstance(m, scene, instance);
+  for (sg::ContainerId camera : cameras) addCamera(m, scene, camera);
   std::ostringstream out;
   tinygltf::TinyGLTF writer;
   writer.WriteGltfSceneToStream(&m, out, false, true);

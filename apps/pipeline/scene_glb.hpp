@@ -1,9 +1,10 @@
 #pragma once
 // Geometry instances of a scene as a standalone glTF binary: each a mesh in
 // world space (positions, normals, indices) with its material's base
-// colour, metallic and roughness. One object for a web client that loads
-// objects one by one (tessera-cull), or a whole scene (tessera-inspect
-// --write-glb, e.g. a built-in plant for other tools).
+// colour, metallic, roughness, emission (with its strength), transmission
+// and ior, and the given cameras in world space. One object for a web client
+// that loads objects one by one (tessera-cull), or a whole scene
+// (tessera-inspect --write-glb, e.g. a built-in scene for other tools).
 #include <cstdint>
 #include <vector>
 
@@ -12,6 +13,7 @@
 
 namespace tsr::app {
 
-std::vector<std::uint8_t> glbOf(const sg::Scene& scene, const std::vector<med::FlatNode>& instances);
+std::vector<std::uint8_t> glbOf(const sg::Scene& scene, const std::vector<med::FlatNode>& instances,
+                                const std::vector<sg::ContainerId>& cameras = {});
 
 }  // namespace tsr::app

@@ -1,9 +1,16 @@
+#include <algorithm>
+#include <array>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
 
 #include "../sanitizers/resident_scale.hpp"
 #include "command_runner.hpp"
+#include "tsr/sg/camera.hpp"
+#include "tsr/sg/import/importer.hpp"
+#include "tsr/sg/node_world.hpp"
+#include "tsr/sg/scene.hpp"
+#include "tsr/sg/surface_material.hpp"
 
 namespace {
 
@@ -43,6 +50,43 @@ TEST_F(InspectCommand, WritesTheSceneAsAGlbThatReadsBack) {
     for (int c = 0; c < 3; ++c)
       EXPECT_NEAR(back["bounds"][end][c].get<double>(), original["bounds"][end][c].get<double>(), 1e-3) << end;
   expectOneErrorLine(run("builtin:cornell --write-glb /nonexistent-dir/x.glb"), "cannot write /nonexistent-dir/x.glb");
+}
+
+// What a built-in scene looks like survives the .glb: the camera where it
+// was, the ceiling lamp's radiance beyond glTF's emissive factor of 1 (as
+// KHR_materials_emissive_strength), the glass sphere's transmission.
+TEST_F(InspectCommand, AWrittenGlbKeepsTheCameraTheLampAndTheGlass) {
+  ASSERT_EQ(run("builtin:cornell --write-glb cornell.glb").status, 0);
+  tsr::sg::Scene builtin, written;
+  const auto a = tsr::sg::importScene(builtin, "builtin:cornell", {});
+  const auto b = tsr::sg::importScene(written, (dir / "cornell.glb").string(), {});
+  ASSERT_EQ(a.cameras.size(), 1u);
+  ASSERT_EQ(b.cameras.size(), 1u);
+  const tsr::sg::Mat4 poseA = tsr::sg::cameraWorldPose(builtin, a.cameras[0]);
+  const tsr::sg::Mat4 poseB = tsr::sg::cameraWorldPose(written, b.cameras[0]);
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) EXPECT_NEAR(poseA[c][r], poseB[c][r], 1e-3) << c << r;
+  EXPECT_NEAR(builtin.find<tsr::sg::Camera>(a.cameras[0])->verticalFov(),
+              written.find<tsr::sg::Camera>(b.cameras[0])->verticalFov(), 1e-6);
+  auto materials = [](const tsr::sg::Scene& scene) {
+    std::vector<std::array<float, 6>> out;
+    for (tsr::sg::ContainerId id : scene.ids())
+      if (const auto* m = scene.find<tsr::sg::SurfaceMaterial>(id))
+        out.push_back({m->emittedRadiance().r, m->emittedRadiance().g, m->emittedRadiance().b, m->transmission(),
+                       m->ior(), m->roughness()});
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  const auto before = materials(builtin), after = materials(written);
+  ASSERT_EQ(before.size(), after.size());
+  float brightest = 0, transmission = 0;
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    for (std::size_t k = 0; k < 6; ++k) EXPECT_NEAR(before[i][k], after[i][k], 1e-4 * (1 + before[i][k])) << i;
+    brightest = std::max(brightest, after[i][0]);
+    transmission = std::max(transmission, after[i][3]);
+  }
+  EXPECT_GT(brightest, 1.0f);  // the lamp, not clamped to glTF's factor
+  EXPECT_GT(transmission, 0.0f);
 }
 
 TEST_F(InspectCommand, PrintsJson) {

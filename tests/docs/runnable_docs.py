@@ -10,7 +10,7 @@ line, a comment that may say how to make it small:
 
 Each "A -> B" replaces text A by B in the block before it runs. The block
 runs with bash -e in a fresh folder that sees the repository's configs/
-and scripts/, with the build's programs first on PATH.
+scripts/ and tests/, with the build's programs first on PATH.
 
     runnable_docs.py BIN_DIR REPO_DIR [PAGE ...]   (pages: only those, e.g. docs/viewer.md)
 """
@@ -76,7 +76,7 @@ def main():
                     failed.append("%s:%d: the substitution '%s' finds nothing" % (os.path.relpath(page, repo), line, a))
                 text = text.replace(a, b)
             with tempfile.TemporaryDirectory() as work:
-                for folder in ("configs", "scripts"):
+                for folder in ("configs", "scripts", "tests"):
                     os.symlink(os.path.join(repo, folder), os.path.join(work, folder))
                 code, output = run_block(text, work, env)
             ran += 1
