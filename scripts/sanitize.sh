@@ -6,7 +6,7 @@
 # Builds the preset (Debug, every layer, node processes built with the
 # same sanitizer: the cluster tests start build/<preset>/bin/tessera-node)
 # and runs every test of it. CI (scripts/test.sh) runs the asan-ci and
-# tsan-ci subsets only (see README, "Sanitizers"). Runtime options and the
+# tsan-ci subsets only (see docs/fuzzing-and-sanitizers.md). Runtime options and the
 # suppressions of libraries we do not own (tests/sanitizers/*.supp, each
 # with its reason) come from the test presets in CMakePresets.json.
 set -euo pipefail

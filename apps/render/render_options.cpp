@@ -128,8 +128,8 @@ bool parseRenderOptions(int argc, char** argv, RenderJob& o, std::string& listPa
   addTemporalOptions(app, o.temporal);
   addSequenceOptions(app, o.sequence);
   app.add_option("--layers", o.layers,
-                 "layered window, composited by depth: BACKEND[:NODE],... bottom first, or a .json file (see the "
-                 "README); with --cluster the layer of the config's back-end renders on the nodes");
+                 "layered window, composited by depth: BACKEND[:NODE],... bottom first, or a .json file (see "
+                 "docs/rendering.md); with --cluster the layer of the config's back-end renders on the nodes");
   if (!parseCommandLine(app, argc, argv)) return false;
   if (!listParams.empty()) return true;
   parseSize(size, o.width, o.height);

@@ -50,7 +50,7 @@ bool parseViewerOptions(int argc, char** argv, ViewerOptions& o) {
   app.add_flag("--raster-while-moving", o.rasterWhileMoving,
                "path-traced viewports rasterise while the camera moves and path trace when it stops");
   app.add_option("--script", o.script,
-                 "run the actions of FILE, one a line (backend, orbit, pan, zoom, wait, screenshot, ...: see README)")
+                 "run the actions of FILE, one a line (backend, orbit, pan, zoom, wait, screenshot, ...: see docs/viewer.md)")
       ->check(FileName());
   app.add_flag("--exit-after", o.exitAfter, "quit when the --script is done (exit status 0)");
   app.add_flag("--hide-panels", o.hidePanels, "start with the panels hidden (H shows them)");

@@ -21,7 +21,7 @@ using tsr::test::Outcome;
 
 // Brightness: mean luminance of the colour clamped to [0, 1], as a PNG
 // shows it (unclamped, the emitter's own pixels would dominate). Embree (64
-// spp) over vulkan, measured (README, "Lights, cameras and the picture"):
+// spp) over vulkan, measured (docs/rendering.md, "Lights, cameras and the picture"):
 // builtin:cornell 1.05, the boxes under the default rig 1.00. Allowed:
 // within a factor of 1.3 either way.
 constexpr double kBrightnessFactor = 1.3;

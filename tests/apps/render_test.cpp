@@ -1,7 +1,5 @@
 // tessera-render as a user runs it: images, statistics, and one-line errors.
 #include <fstream>
-#include <regex>
-#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -48,38 +46,6 @@ TEST_F(RenderCommand, RendersTheCornellBoxWithStatsAndOutputs) {
   EXPECT_NEAR(sync + render, stats["seconds"].get<double>(), 1e-9);
   EXPECT_NEAR(stats["rays_per_second"].get<double>(), stats["rays"].get<double>() / render,
               1e-6 * stats["rays_per_second"].get<double>());
-}
-
-// The options the README's Commands section shows for tessera-render (a
-// command's continuation lines start with '['; text after '#' is comment).
-std::set<std::string> readmeRenderOptions() {
-  std::ifstream in(std::string(TSR_SOURCE_DIR) + "/README.md");
-  std::set<std::string> options;
-  bool inCommands = false, renderLine = false;
-  const std::regex option("--[a-z][a-z0-9-]*");
-  for (std::string line; std::getline(in, line);) {
-    if (line.rfind("## ", 0) == 0) inCommands = line == "## Commands";
-    if (!inCommands || line.rfind("    ", 0) != 0) continue;
-    line = line.substr(0, line.find('#'));
-    const auto text = line.find_first_not_of(' ');
-    if (text == std::string::npos) continue;
-    if (line[text] != '[') renderLine = line.compare(text, 15, "tessera-render ") == 0;
-    if (!renderLine) continue;
-    for (std::sregex_iterator m(line.begin(), line.end(), option), end; m != end; ++m) options.insert(m->str());
-  }
-  return options;
-}
-
-TEST_F(RenderCommand, HelpListsEveryOptionTheReadmeNames) {
-  const auto options = readmeRenderOptions();
-  for (const char* expected : {"--cluster", "--nodes", "--token-file", "--layers", "--frames", "--fps", "--temporal"})
-    ASSERT_TRUE(options.count(expected)) << "the README parser lost " << expected;
-  const Outcome r = run("--help");
-  ASSERT_EQ(r.status, 0) << r.err;
-  for (const auto& name : options) {
-    const std::regex listed("(^|[\\s,])" + name + "([\\s=,]|$)");
-    EXPECT_TRUE(std::regex_search(r.out, listed)) << name << " is missing from --help";
-  }
 }
 
 // --stats-json with --frames adds up the frames instead of being dropped.

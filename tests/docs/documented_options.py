@@ -12,7 +12,8 @@ import re
 import subprocess
 import sys
 
-OPTION = re.compile(r"(?<![\w-])(--[a-z][a-z0-9-]*)")
+# (An option given as another's value, --node-arg=--present, is that program's business.)
+OPTION = re.compile(r"(?<![\w=-])(--[a-z][a-z0-9-]*)")
 
 
 def code_lines(path):

@@ -98,7 +98,7 @@ TypeChecker::Check documentSchema(const TypeChecker& t) {
                                      {"scale", t.number()},
                                      {"strength", t.number()},
                                      {"extensions", t.object({{"KHR_texture_transform", textureTransform}})}});
-  // Tessera's volume extension (README "Participating media").
+  // Tessera's volume extension (docs/volumes.md).
   const auto tesseraVolume = t.object({{"emission", t.numbers(3)},
                                        {"absorption", t.numbers(3)},
                                        {"scattering", t.numbers(3)},

@@ -1,0 +1,55 @@
+#!/usr/bin/env python3
+"""Every relative link and image of the README and docs/ leads to a file of
+the repository (or, with #anchor, to a heading of that page), so moving or
+renaming a page breaks the build, not the reader.
+
+    page_links.py REPO_DIR
+"""
+import glob
+import os
+import re
+import sys
+
+LINK = re.compile(r"!?\[[^\]]*\]\(([^)\s]+)\)")
+
+
+def anchors(path):
+    """GitHub's anchors of a page's headings."""
+    out = set()
+    for line in open(path, encoding="utf-8"):
+        if line.startswith("#"):
+            text = line.lstrip("#").strip().lower()
+            out.add(re.sub(r"[^\w\- ]", "", text).replace(" ", "-"))
+    return out
+
+
+def main():
+    repo = os.path.abspath(sys.argv[1])
+    pages = [os.path.join(repo, "README.md")] + sorted(glob.glob(os.path.join(repo, "docs", "*.md")))
+    broken, checked = [], 0
+    for page in pages:
+        fenced = False
+        for number, line in enumerate(open(page, encoding="utf-8"), 1):
+            if line.strip().startswith("```"):
+                fenced = not fenced
+            if fenced:
+                continue
+            for target in LINK.findall(line):
+                if re.match(r"^[a-z]+:", target):
+                    continue  # http:, mailto:: not ours to check here
+                checked += 1
+                path, _, anchor = target.partition("#")
+                file = os.path.normpath(os.path.join(os.path.dirname(page), path)) if path else page
+                where = "%s:%d" % (os.path.relpath(page, repo), number)
+                if not os.path.exists(file):
+                    broken.append("%s: %s leads nowhere" % (where, target))
+                elif anchor and file.endswith(".md") and anchor not in anchors(file):
+                    broken.append("%s: %s names no heading of %s" % (where, target, os.path.relpath(file, repo)))
+    for b in broken:
+        print(b)
+    print("%d links checked, %d broken" % (checked, len(broken)))
+    return 1 if broken or checked == 0 else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
