@@ -75,6 +75,11 @@ void Viewer::runAction(const ScriptAction& a) {
   } else if (a.verb == "wait-frames") {
     framesToWait_ = a.count;
   } else if (a.verb == "wait-samples") {
+    // A playing animation moves the scene every frame, so the samples start
+    // again each frame: the wait would never end.
+    if (playing_)
+      throw std::runtime_error("wait samples while the animation plays would never end: stop it with 'time SECONDS' "
+                               "first");
     samplesToWait_ = a.count;
   } else if (a.verb == "param") {
     auto [name, value] = med::Parameters::parse(a.words[1]);

@@ -341,6 +341,11 @@ TEST_F(ViewerWindow, AFailingActionNamesItsLine) {
   const Outcome o = viewer("builtin:cornell --viewports vulkan --size 64x64 --param sigmaSS=4");
   EXPECT_EQ(o.status, 2);
   EXPECT_THAT(o.err, HasSubstr("unknown parameter 'sigmaSS'"));
+  // Waiting for samples while the animation plays would hang: refused.
+  writeScript("playing.txt", "wait samples 2\n");
+  const Outcome p = viewer("builtin:animated --viewports embree --size 32x32 --script playing.txt --exit-after");
+  EXPECT_EQ(p.status, 2);
+  EXPECT_THAT(p.err, HasSubstr("error: playing.txt:1: wait samples while the animation plays would never end"));
 }
 
 // --cluster: viewport 0's path tracer renders on two real tessera-node

@@ -57,7 +57,7 @@ std::vector<EmitterLight> emitterLights(SceneState& scene, std::uint32_t budget)
 // full series R / (1 - R) holds for a closed room; scenes are open (a
 // Cornell box has no front wall) and lose most light after two bounces, so
 // the series stops there: builtin:cornell then agrees with the path tracer
-// within the factor the README states.
+// within the factor docs/rendering.md states.
 glm::vec3 emitterAmbient(const SceneState& scene, const std::vector<EmitterLight>& lights);
 
 // Surface area of a triangle mesh.

@@ -139,7 +139,7 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
   }
   // Radiance filtering gathers samples up to maxRadius pixels away in every
   // frame: a region (a cluster tile) is traced with a halo that wide, so
-  // its pixels match the whole frame's (within the README's tolerance).
+  // its pixels match the whole frame's (within backends/embree/README.md's tolerance).
   embree::Region traced = region;
   if (radiance) {
     const auto halo = static_cast<std::uint32_t>(std::ceil(filter.radiance.maxRadius));

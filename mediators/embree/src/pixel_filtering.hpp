@@ -31,7 +31,7 @@ std::uint32_t flashSamplesFor(std::uint32_t samples);
 
 // Writes the filter's inputs from the accumulated samples into `out`. With
 // `hybrid`, out's colour is radiance filtering's image and what is left to
-// pixel filtering is per pixel: see hybrid filtering in the README.
+// pixel filtering is per pixel: see hybrid filtering in backends/embree/README.md.
 void writePixelFilterInputs(const embree::FrameBuffer& fb, PathClass pathClass, FrameBuffer& out,
                             const embree::RadianceAccumulator* hybrid = nullptr);
 

@@ -287,7 +287,7 @@ int main(int argc, char** argv) {
         methods.push_back(pca(fmt::format("PCA, per-pixel map, m > {} at {} spp (3.2), {}", mMin, o.highSpp, kName),
                               perPixel, o.highSpp, mMin));
     // The per-frame table and the PNGs show the first fixed truncation (with
-    // path-traced noise 2.3's rule keeps every mode; see the README), else
+    // path-traced noise 2.3's rule keeps every mode; see backends/temporal/README.md), else
     // the global one.
     std::size_t pcaIndex = methods.size();
     methods.push_back(pca("PCA, global M, " + kName, global));
