@@ -6,11 +6,12 @@ A renamed or dropped option breaks the test suite, not the reader.
 
     documented_options.py BIN_DIR REPO_DIR
 """
-import glob
 import os
 import re
 import subprocess
 import sys
+
+from doc_pages import pages, report
 
 # (An option given as another's value, --node-arg=--present, is that program's business.)
 OPTION = re.compile(r"(?<![\w=-])(--[a-z][a-z0-9-]*)")
@@ -58,9 +59,8 @@ def commands(line):
 
 def main():
     bin_dir, repo = sys.argv[1], sys.argv[2]
-    pages = [os.path.join(repo, "README.md")] + sorted(glob.glob(os.path.join(repo, "docs", "*.md")))
     helps, missing, checked = {}, [], 0
-    for page in pages:
+    for page in pages(repo):
         for line in code_lines(page):
             line = line.split(" #", 1)[0]  # a comment after the command
             for program, arguments in commands(line):
@@ -77,10 +77,8 @@ def main():
                     if option not in listed:
                         missing.append("%s: %s has no option %s (in: %s)" % (os.path.relpath(page, repo), program,
                                                                              option, line))
-    for m in missing:
-        print(m)
-    print("%d options on %d programs' command lines checked, %d missing" % (checked, len(helps), len(missing)))
-    return 1 if missing or checked == 0 else 0
+    return report(missing, "%d options on %d programs' command lines checked, %d missing" % (
+        checked, len(helps), len(missing)), checked)
 
 
 if __name__ == "__main__":

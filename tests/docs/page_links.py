@@ -5,10 +5,11 @@ renaming a page breaks the build, not the reader.
 
     page_links.py REPO_DIR
 """
-import glob
 import os
 import re
 import sys
+
+from doc_pages import pages, report
 
 LINK = re.compile(r"!?\[[^\]]*\]\(([^)\s]+)\)")
 
@@ -25,9 +26,8 @@ def anchors(path):
 
 def main():
     repo = os.path.abspath(sys.argv[1])
-    pages = [os.path.join(repo, "README.md")] + sorted(glob.glob(os.path.join(repo, "docs", "*.md")))
     broken, checked = [], 0
-    for page in pages:
+    for page in pages(repo):
         fenced = False
         for number, line in enumerate(open(page, encoding="utf-8"), 1):
             if line.strip().startswith("```"):
@@ -45,10 +45,7 @@ def main():
                     broken.append("%s: %s leads nowhere" % (where, target))
                 elif anchor and file.endswith(".md") and anchor not in anchors(file):
                     broken.append("%s: %s names no heading of %s" % (where, target, os.path.relpath(file, repo)))
-    for b in broken:
-        print(b)
-    print("%d links checked, %d broken" % (checked, len(broken)))
-    return 1 if broken or checked == 0 else 0
+    return report(broken, "%d links checked, %d broken" % (checked, len(broken)), checked)
 
 
 if __name__ == "__main__":

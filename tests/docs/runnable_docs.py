@@ -14,13 +14,14 @@ scripts/ and tests/, with the build's programs first on PATH.
 
     runnable_docs.py BIN_DIR REPO_DIR [PAGE ...]   (pages: only those, e.g. docs/viewer.md)
 """
-import glob
 import os
 import re
 import signal
 import subprocess
 import sys
 import tempfile
+
+from doc_pages import pages, report
 
 MARK = re.compile(r"^#\s*runnable\b:?(.*)$")
 
@@ -63,13 +64,11 @@ def run_block(text, work, env, timeout=120):
 
 def main():
     bin_dir, repo = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
-    pages = [os.path.join(repo, "README.md")] + sorted(glob.glob(os.path.join(repo, "docs", "*.md")))
-    if len(sys.argv) > 3:
-        pages = [os.path.join(repo, p) for p in sys.argv[3:]]
+    chosen = [os.path.join(repo, p) for p in sys.argv[3:]] or pages(repo)
     # BUILD: the folder scripts/cluster-demo.sh takes its programs from.
     env = dict(os.environ, PATH=bin_dir + os.pathsep + os.environ.get("PATH", ""), BUILD=os.path.dirname(bin_dir))
     failed, ran = [], 0
-    for page in pages:
+    for page in chosen:
         for line, rules, text in blocks(page):
             for a, b in rules:
                 if a not in text:
@@ -84,10 +83,7 @@ def main():
             print("%s: exit %d" % (where, code))
             if code != 0:
                 failed.append("%s failed (exit %d):\n%s\n%s" % (where, code, text, output))
-    for f in failed:
-        print(f)
-    print("%d runnable blocks run, %d failed" % (ran, len(failed)))
-    return 1 if failed or ran == 0 else 0
+    return report(failed, "%d runnable blocks run, %d failed" % (ran, len(failed)), ran)
 
 
 if __name__ == "__main__":
