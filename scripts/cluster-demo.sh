@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# README command 1: start two render nodes on loopback, path trace
+# What README command 1 (scripts/main.sh) runs: start two render nodes on loopback, path trace
 # builtin:cornell cooperatively on them, write the image, stop the nodes.
 #   scripts/cluster-demo.sh [OUTPUT.png [WxH [extra tessera-render options]]]
 # BUILD selects the build folder (default build/default).

@@ -36,7 +36,7 @@ bool parseAnaglyphOptions(int argc, char** argv, AnaglyphOptions& o) {
   std::string size = "640x480", method = "dubois";
   std::int64_t spp = 4, maxDepth = 8, seed = 0, threads = 0;
   float separation = 0, zeroParallax = 0;
-  app.add_option("scene", o.scene, "glTF file (.gltf/.glb) or builtin:NAME")->required();
+  app.add_option("scene", o.scene, sceneArgumentHelp())->required();
   app.add_option("--backend", o.backend, "embree, vulkan or coverage (here or on every node)");
   app.add_option("--size", size, "image size WxH (the window's initial size)");
   app.add_option("--spp", spp, "samples per pixel and eye")->check(CLI::Range(1, 1 << 20));

@@ -17,6 +17,7 @@
 #include "tsr/cluster/auth.hpp"
 #include "tsr/med/image_file.hpp"
 #include "tsr/sg/import/scene_stats.hpp"
+#include "tsr/sg/node_world.hpp"
 
 namespace {
 
@@ -54,7 +55,9 @@ tsr::app::StereoSettings defaultStereo(const tsr::app::AnaglyphOptions& o, const
   float distance = camera.zeroParallaxDistance();
   const auto stats = tsr::sg::computeSceneStats(session.source, session.imported.root);
   if (stats.hasBounds) {
-    const glm::vec3 eye(camera.pose()[3]), forward = -glm::normalize(glm::vec3(camera.pose()[2]));
+    // The camera's place in the world: a glTF camera hangs under a node.
+    const tsr::sg::Mat4 pose = tsr::sg::cameraWorldPose(camera);
+    const glm::vec3 eye(pose[3]), forward = -glm::normalize(glm::vec3(pose[2]));
     const glm::vec3 centre = (stats.boundsMin + stats.boundsMax) * 0.5f;
     const float along = glm::dot(centre - eye, forward);
     if (along > camera.nearPlane()) distance = along;

@@ -5,10 +5,19 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
+#include <string>
 
 #include "tsr/sg/import/importer.hpp"
 
 namespace tsr::app {
+
+// The help of a SCENE argument, naming every built-in scene the importer has.
+inline std::string sceneArgumentHelp() {
+  std::string help = "a .gltf/.glb file or one of the built-in scenes";
+  const char* separator = " ";
+  for (const std::string& name : sg::builtinSceneNames()) help += separator + ("builtin:" + name), separator = ", ";
+  return help;
+}
 
 class ImportLimitOptions {
  public:

@@ -34,7 +34,7 @@ int run(int argc, char** argv) {
   std::string scene, listen = "127.0.0.1:0", tokenFile, backend = "coverage";
   std::uint32_t maxObjects = 256;
   std::int64_t threads = 0;
-  app.add_option("scene", scene, "glTF file (.gltf/.glb) or builtin:NAME")->required();
+  app.add_option("scene", scene, tsr::app::sceneArgumentHelp())->required();
   app.add_option("--listen", listen, "HOST:PORT to listen on (port 0: a free port)")->capture_default_str();
   app.add_option("--token-file", tokenFile,
                  "file holding the token clients send as 'Authorization: Bearer TOKEN' (required beyond loopback)");

@@ -75,9 +75,7 @@ int main(int argc, char** argv) {
   std::string source;
   bool json = false;
   bool verbose = false;
-  app.add_option("SCENE", source,
-                 "a .gltf/.glb file or builtin:cornell, builtin:instances:N, builtin:animated, builtin:plant:TRIANGLES")
-      ->required();
+  app.add_option("SCENE", source, tsr::app::sceneArgumentHelp())->required();
   app.add_flag("--json", json, "print a JSON object instead of text");
   app.add_flag("-v,--verbose", verbose, "log the importer's progress to stderr");
   std::string glb;

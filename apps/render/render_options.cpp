@@ -22,8 +22,7 @@ bool parseRenderOptions(int argc, char** argv, RenderJob& o, std::string& listPa
   std::string size = "512x512";
   std::int64_t spp = 16, maxDepth = 8, seed = 0, threads = 0;
   std::vector<std::string> params;
-  auto* sceneOption =
-      app.add_option("scene", o.scene, "glTF file (.gltf/.glb) or builtin:NAME (required unless --list-params)");
+  auto* sceneOption = app.add_option("scene", o.scene, sceneArgumentHelp() + " (required unless --list-params)");
   // Required, so options taking several values (--aov, --param) leave it be.
   const bool listing = std::any_of(argv + 1, argv + argc,
                                    [](const char* a) { return std::string_view(a).starts_with("--list-params"); });

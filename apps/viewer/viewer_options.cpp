@@ -39,7 +39,7 @@ bool parseViewerOptions(int argc, char** argv, ViewerOptions& o) {
   std::string size = "1024x576", viewports = "embree";
   std::int64_t maxDepth = 8, threads = 0, limit = o.sampleLimit;
   std::vector<std::string> params;
-  app.add_option("scene", o.scene, "glTF file (.gltf/.glb) or builtin:NAME (default builtin:cornell)");
+  app.add_option("scene", o.scene, sceneArgumentHelp() + " (default builtin:cornell)");
   app.add_option("--viewports", viewports, "back-ends of the viewports, left to right: e.g. embree,vulkan");
   app.add_option("--size", size, "window size WxH");
   app.add_option("--spp", limit, "sample limit of the path tracer (it converges up to this)")
@@ -49,8 +49,9 @@ bool parseViewerOptions(int argc, char** argv, ViewerOptions& o) {
   app.add_option("--param", params, "back-end parameter name=value for every viewport (repeatable)");
   app.add_flag("--raster-while-moving", o.rasterWhileMoving,
                "path-traced viewports rasterise while the camera moves and path trace when it stops");
-  app.add_option("--script", o.script,
-                 "run the actions of FILE, one a line (backend, orbit, pan, zoom, wait, screenshot, ...: see docs/viewer.md)")
+  app.add_option(
+         "--script", o.script,
+         "run the actions of FILE, one a line (backend, orbit, pan, zoom, wait, screenshot, ...: see docs/viewer.md)")
       ->check(FileName());
   app.add_flag("--exit-after", o.exitAfter, "quit when the --script is done (exit status 0)");
   app.add_flag("--hide-panels", o.hidePanels, "start with the panels hidden (H shows them)");

@@ -263,9 +263,7 @@ int main(int argc, char** argv) {
   std::string logLevel = "warn";
   app.add_option("CONFIG", o.config, "cluster config with \"mode\": \"tiled\" (a grid or screens, see configs/)")
       ->required();
-  app.add_option("SCENE", o.scene,
-                 "a .gltf/.glb file or builtin:cornell, builtin:animated, builtin:instances:N, builtin:plant:TRIANGLES")
-      ->required();
+  app.add_option("SCENE", o.scene, tsr::app::sceneArgumentHelp())->required();
   app.add_option("--nodes", o.nodes, "node addresses A:P,B:Q,... in screen order (default: the config's)");
   app.add_option("--token-file", o.tokenFile, "file holding the token the nodes were started with")
       ->check(tsr::app::FileName());

@@ -46,6 +46,20 @@ TEST_F(AnaglyphCommand, TwoNodesRenderTheEyesOfTheLocalImage) {
   EXPECT_TRUE(sameColour(med::readImage((dir / "one-node.exr").string()), expected(med::AnaglyphMethod::Dubois)));
 }
 
+// Without --zero-parallax the screen plane goes through the centre of the
+// scene's bounds, seen from the camera where it sits in the world: about
+// 1080 mm in front of builtin:cornell's camera (at z = -800, the box's
+// centre at z = 280), with the eyes 1/30 of that apart.
+TEST_F(AnaglyphCommand, TheDefaultScreenPlaneGoesThroughTheSceneCentre) {
+  auto r = anaglyph("builtin:cornell" + kRender + " --output default.png");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto at = r.out.find("zero parallax ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const float zeroParallax = std::stof(r.out.substr(at + 14));
+  EXPECT_NEAR(zeroParallax, 1080.0f, 10.0f) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("eye separation " + std::to_string(int(zeroParallax / 30.0f))));
+}
+
 TEST_F(AnaglyphCommand, BadInputIsOneErrorLine) {
   expectOneErrorLine(anaglyph("builtin:cornell --method blue --output x.png"), "--method");
   expectOneErrorLine(anaglyph("builtin:cornell --nodes 127.0.0.1:1,127.0.0.1:2,127.0.0.1:3 --output x.png"),
