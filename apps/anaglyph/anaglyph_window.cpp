@@ -12,6 +12,7 @@
 
 #include "anaglyph_options.hpp"
 #include "tsr/med/image_file.hpp"
+#include "tsr/sg/node_world.hpp"
 #include "tsr/vk/swapchain_target.hpp"
 
 namespace tsr::app {
@@ -22,7 +23,7 @@ const sg::Camera& cameraOf(const SceneSession& session) { return *session.source
 
 // The orbit centre: the zero-parallax plane, where both eyes' images meet.
 CameraNavigation navigationFor(const SceneSession& session, const StereoSettings& stereo) {
-  return CameraNavigation(cameraOf(session).pose(), stereo.zeroParallax);
+  return CameraNavigation(sg::cameraWorldPose(cameraOf(session)), stereo.zeroParallax);
 }
 
 char keyName(int key) {
@@ -194,7 +195,7 @@ void AnaglyphWindow::frame() {
   glfwGetFramebufferSize(window_, &width, &height);
   if (width <= 0 || height <= 0) return;  // minimised
   const auto started = std::chrono::steady_clock::now();
-  if (moved_) session_.source.find<sg::Camera>(session_.camera)->setPose(navigation_.pose());
+  if (moved_) sg::setCameraWorldPose(*session_.source.find<sg::Camera>(session_.camera), navigation_.pose());
   moved_ = false;
   renderer_.publish(session_);
   const auto view =

@@ -4,7 +4,10 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/trigonometric.hpp>
+
+#include "tsr/sg/node_world.hpp"
 
 namespace tsr::app {
 
@@ -13,7 +16,7 @@ constexpr float kMaxPitch = 89.0f;  // lookAt with +Y up degenerates at the pole
 }
 
 void OrbitCamera::reset(const sg::Camera& camera, const glm::vec3& centre, float radius) {
-  const glm::mat4& pose = camera.pose();
+  const glm::mat4 pose = sg::cameraWorldPose(camera);  // navigation is in world space
   const glm::vec3 eye(pose[3]);
   const glm::vec3 forward = glm::normalize(-glm::vec3(pose[2]));
   radius_ = std::max(radius, 1e-4f);
@@ -83,7 +86,7 @@ void OrbitCamera::fly(float forward, float right, float up) {
 bool OrbitCamera::apply(sg::Camera& camera) {
   if (!changed_) return false;
   changed_ = false;
-  camera.lookAt(eye(), target_);
+  sg::setCameraWorldPose(camera, glm::inverse(glm::lookAt(eye(), target_, glm::vec3(0, 1, 0))));
   // Near and far bracket the scene from wherever the eye went.
   const float reach = distance_ + radius_ * 4.0f + glm::length(target_);
   camera.setNearPlane(std::max(std::min(distance_ * 1e-3f, radius_ * 1e-3f), 1e-5f));

@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <glm/matrix.hpp>
+
 #include "tsr/sg/scene.hpp"
 
 namespace tsr::sg {
@@ -31,6 +33,10 @@ Mat4 cameraWorldPose(const Scene& scene, ContainerId camera, FrameTime when) {
 
 Mat4 cameraWorldPose(const Camera& camera, FrameTime when) {
   return camera.scene() ? parentWorldMatrix(*camera.scene(), camera.id(), when) * camera.pose() : camera.pose();
+}
+
+void setCameraWorldPose(Camera& camera, const Mat4& world) {
+  camera.setPose(camera.scene() ? glm::inverse(parentWorldMatrix(*camera.scene(), camera.id())) * world : world);
 }
 
 }  // namespace tsr::sg

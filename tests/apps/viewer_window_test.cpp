@@ -4,9 +4,12 @@
 // screenshots and are compared with headless tessera-render images of the
 // same view.
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 
 #include <OpenImageIO/imageio.h>
+#include <glm/trigonometric.hpp>
+#include <glm/vec3.hpp>
 
 #include "../cluster/node_process.hpp"
 #include "command_runner.hpp"
@@ -175,6 +178,27 @@ TEST_F(ViewerWindow, SideBySideViewportsOrbitBookmarksAndLayeredExr) {
   const Outcome again = viewer("builtin:animated --viewports vulkan --size 100x100 --script back.txt --exit-after");
   ASSERT_EQ(again.status, 0) << again.err;
   EXPECT_LE(compare(image("back.png"), turned).maxAbs, 1.0 / 255 + 1e-6);
+}
+
+// Orbiting turns about the scene's centre in the world, also for a camera
+// that hangs under a node (builtin:cornell's, as every glTF camera): the
+// view after "orbit 30" is tessera-render's from the eye turned 30 degrees
+// about the centre's point on the view axis (278, 273, 279.6), 1079.6 mm away.
+TEST_F(ViewerWindow, OrbitTurnsAboutTheSceneCentre) {
+  writeScript("turn.txt", "orbit 30\nwait frames 2\nscreenshot turned.png\n");
+  const Outcome v = viewer("builtin:cornell --viewports vulkan --size 160x120 --script turn.txt --exit-after");
+  ASSERT_EQ(v.status, 0) << v.err;
+  const double yaw = glm::radians(210.0), along = 1079.6;  // from behind (+z view): yaw 180, then 30 more
+  const glm::dvec3 target(278, 273, 279.6), eye = target + along * glm::dvec3(std::sin(yaw), 0, std::cos(yaw));
+  char look[160];
+  std::snprintf(look, sizeof look, " --look-from %.3f,%.3f,%.3f --look-at %.3f,%.3f,%.3f", eye.x, eye.y, eye.z,
+                target.x, target.y, target.z);
+  const Outcome r =
+      render(std::string("builtin:cornell --backend vulkan --size 160x120 --quiet --output expected.png") + look);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Difference d = compare(image("turned.png"), image("expected.png"));
+  EXPECT_LE(d.meanAbs, 0.5 / 255) << "mean";
+  EXPECT_GT(litFraction(image("turned.png")), 0.3);
 }
 
 // A bookmarks file that does not parse (a typo by hand) is kept: saving a

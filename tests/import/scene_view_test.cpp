@@ -66,6 +66,21 @@ TEST(SceneView, AFramingCameraSeesTheWholeBounds) {
       }
 }
 
+// Navigation sets a camera's place in the world; under a node (builtin:
+// cornell's camera hangs under one) the node's transform is undone.
+TEST(SceneView, ACameraUnderANodeTakesTheWorldPoseItIsGiven) {
+  Scene cornell;
+  const ImportResult imported = importScene(cornell, "builtin:cornell");
+  Camera& camera = *cornell.find<Camera>(imported.cameras.front());
+  const Mat4 wanted = glm::inverse(glm::lookAt(Vec3(-200, 300, -600), Vec3(278, 273, 280), Vec3(0, 1, 0)));
+  ASSERT_GT(glm::length(Vec3(cameraWorldPose(cornell, camera.id())[3]) - Vec3(camera.pose()[3])), 1.0f)
+      << "the camera should hang under a transform for this test";
+  setCameraWorldPose(camera, wanted);
+  const Mat4 got = cameraWorldPose(cornell, camera.id());
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) EXPECT_NEAR(got[c][r], wanted[c][r], 1e-3f) << c << r;
+}
+
 TEST(SceneView, CamerasAreChosenByNameOrIndex) {
   BoxScene b;
   const std::vector<ContainerId> cams = {b.camera("near", {10, 0, 5}), b.camera("far", {10, 0, 50}),

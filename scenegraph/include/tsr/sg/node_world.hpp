@@ -23,5 +23,9 @@ Mat4 parentWorldMatrix(const Scene& scene, ContainerId node, FrameTime when = Fr
 Mat4 cameraWorldPose(const Scene& scene, ContainerId camera, FrameTime when = FrameTime::Now);
 // The same for a camera held by a scene (its pose, for one held by none).
 Mat4 cameraWorldPose(const Camera& camera, FrameTime when = FrameTime::Now);
+// Sets the camera's pose so that its world pose becomes `world`: the
+// transforms above it undone, so navigation in world space moves a camera
+// that hangs under a node (every glTF camera) where it is asked to.
+void setCameraWorldPose(Camera& camera, const Mat4& world);
 
 }  // namespace tsr::sg
