@@ -31,18 +31,26 @@ bool parseRenderOptions(int argc, char** argv, RenderJob& o, std::string& listPa
                  "print the parameters a back-end takes (for --param NAME=VALUE): name, type and range, default, "
                  "meaning; then stop");
   auto* backendOption =
-      app.add_option("--backend", o.backend, "embree, vulkan or coverage (with --cluster: the config's)");
-  app.add_option("--size", size, "image size WxH");
-  auto* sppOption = app.add_option("--spp", spp, "samples per pixel")->check(CLI::Range(1, 1 << 20));
-  auto* depthOption = app.add_option("--max-depth", maxDepth, "maximum path depth")->check(CLI::Range(0, 1024));
-  auto* seedOption = app.add_option("--seed", seed, "random seed")->check(CLI::NonNegativeNumber);
+      app.add_option("--backend", o.backend, "embree, vulkan or coverage (with --cluster: the config's)")
+          ->capture_default_str();
+  app.add_option("--size", size, "image size WxH")->capture_default_str();
+  auto* sppOption =
+      app.add_option("--spp", spp, "samples per pixel")->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  auto* depthOption =
+      app.add_option("--max-depth", maxDepth, "maximum path depth")->check(CLI::Range(0, 1024))->capture_default_str();
+  auto* seedOption =
+      app.add_option("--seed", seed, "random seed")->check(CLI::NonNegativeNumber)->capture_default_str();
   bool seedPerFrame = false;
   auto* seedPerFrameOption = app.add_flag(
       "--seed-per-frame", seedPerFrame,
       "with --frames, each frame draws its own random numbers (seed + frame): the noise moves instead of sticking to "
       "the screen as objects move through it (path tracer; default: one seed, as Cycles does)");
-  auto* threadsOption = app.add_option("--threads", threads, "render threads (0: all)")->check(CLI::Range(0, 4096));
-  app.add_option("--output", o.output, "image file; the format follows the extension")->check(FileName());
+  auto* threadsOption = app.add_option("--threads", threads, "render threads (0: all)")
+                            ->check(CLI::Range(0, 4096))
+                            ->capture_default_str();
+  app.add_option("--output", o.output, "image file; the format follows the extension")
+      ->check(FileName())
+      ->capture_default_str();
   app.add_option("--aov", o.aovs,
                  "extra outputs to write next to --output (albedo, normal, depth, direct, ...; with --cluster, "
                  "workload: each tile in its node's colour, darker the quicker it rendered)");

@@ -40,12 +40,17 @@ bool parseViewerOptions(int argc, char** argv, ViewerOptions& o) {
   std::int64_t maxDepth = 8, threads = 0, limit = o.sampleLimit;
   std::vector<std::string> params;
   app.add_option("scene", o.scene, sceneArgumentHelp() + " (default builtin:cornell)");
-  app.add_option("--viewports", viewports, "back-ends of the viewports, left to right: e.g. embree,vulkan");
-  app.add_option("--size", size, "window size WxH");
+  app.add_option("--viewports", viewports, "back-ends of the viewports, left to right: e.g. embree,vulkan")
+      ->capture_default_str();
+  app.add_option("--size", size, "window size WxH")->capture_default_str();
   app.add_option("--spp", limit, "sample limit of the path tracer (it converges up to this)")
-      ->check(CLI::Range(1, 1 << 20));
-  auto* depthOption = app.add_option("--max-depth", maxDepth, "maximum path depth")->check(CLI::Range(0, 1024));
-  auto* threadsOption = app.add_option("--threads", threads, "render threads (0: all)")->check(CLI::Range(0, 4096));
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
+  auto* depthOption =
+      app.add_option("--max-depth", maxDepth, "maximum path depth")->check(CLI::Range(0, 1024))->capture_default_str();
+  auto* threadsOption = app.add_option("--threads", threads, "render threads (0: all)")
+                            ->check(CLI::Range(0, 4096))
+                            ->capture_default_str();
   app.add_option("--param", params, "back-end parameter name=value for every viewport (repeatable)");
   app.add_flag("--raster-while-moving", o.rasterWhileMoving,
                "path-traced viewports rasterise while the camera moves and path trace when it stops");
