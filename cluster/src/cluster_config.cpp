@@ -1,6 +1,8 @@
 #include "tsr/cluster/cluster_config.hpp"
 
+#include <algorithm>
 #include <fstream>
+#include <initializer_list>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -52,6 +54,16 @@ struct Reader {
         fail("parameter '" + it.key() + "' must be a boolean, number or string");
     }
     return base;
+  }
+  // The keys an object of the config may hold: any other is most likely a
+  // typo ('lateMS'), which would otherwise be ignored without a word.
+  void only(const json& j, std::initializer_list<const char*> keys, const std::string& what) const {
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      if (std::any_of(keys.begin(), keys.end(), [&](const char* k) { return it.key() == k; })) continue;
+      std::string known;
+      for (const char* k : keys) known += (known.empty() ? "" : ", ") + std::string(k);
+      fail("unknown key '" + it.key() + "' in " + what + " (it takes " + known + ")");
+    }
   }
   const json& object(const json& j, const char* key) const {
     static const json empty = json::object();
@@ -110,6 +122,8 @@ ClusterConfig parseClusterConfig(const std::string& text, const std::string& sou
     r.fail(std::string("not valid JSON: ") + e.what());
   }
   if (!j.is_object()) r.fail("the top level must be an object");
+  r.only(j, {"mode", "compression", "backend", "parameters", "nodes", "cooperative", "wall", "stereo", "timeouts"},
+         "the config");
   ClusterConfig c;
   std::string mode = r.get<std::string>(j, "mode", "cooperative");
   if (mode == "cooperative")
@@ -136,6 +150,7 @@ ClusterConfig parseClusterConfig(const std::string& text, const std::string& sou
   if (!j.contains("nodes") || !j.at("nodes").is_array()) r.fail("'nodes' must be an array");
   for (const json& n : j.at("nodes")) {
     if (!n.is_object()) r.fail("each node must be an object");
+    r.only(n, {"address", "backend", "parameters"}, "a node");
     NodeConfig node;
     try {
       node.address = parseNodeAddress(r.get<std::string>(n, "address", "127.0.0.1:0"));
@@ -150,12 +165,14 @@ ClusterConfig parseClusterConfig(const std::string& text, const std::string& sou
   }
 
   const json& coop = r.object(j, "cooperative");
+  r.only(coop, {"tileSize", "tolerance", "maxMovesPerFrame"}, "'cooperative'");
   c.cooperative.tileSize = r.positive(coop, "tileSize", c.cooperative.tileSize);
   c.cooperative.tolerance = r.get<double>(coop, "tolerance", c.cooperative.tolerance);
   if (!(c.cooperative.tolerance >= 0)) r.fail("'tolerance' must not be negative");
   c.cooperative.maxMovesPerFrame = r.positive(coop, "maxMovesPerFrame", c.cooperative.maxMovesPerFrame);
 
   const json& wall = r.object(j, "wall");
+  r.only(wall, {"columns", "rows", "bezel", "frame", "screens", "offlineColour"}, "'wall'");
   c.wall.columns = r.positive(wall, "columns", c.wall.columns);
   c.wall.rows = r.positive(wall, "rows", c.wall.rows);
   std::int64_t bezel = r.get<std::int64_t>(wall, "bezel", 0);
@@ -171,6 +188,7 @@ ClusterConfig parseClusterConfig(const std::string& text, const std::string& sou
       r.fail("'screens' must be an array (at most 4096)");
     for (const json& sj : wall.at("screens")) {
       if (!sj.is_object()) r.fail("each screen must be an object");
+      r.only(sj, {"rect", "bezel", "eye", "window"}, "a screen");
       ScreenConfig s;
       auto rect = r.get<std::vector<std::int64_t>>(sj, "rect", {});
       if (rect.size() != 4) r.fail("a screen's 'rect' must be [x, y, width, height]");
@@ -195,6 +213,7 @@ ClusterConfig parseClusterConfig(const std::string& text, const std::string& sou
       }
       if (sj.contains("window")) {
         const json& wj = r.object(sj, "window");
+        r.only(wj, {"position", "size", "fullscreen"}, "a screen's 'window'");
         WindowPlacement w;
         auto pos = r.get<std::vector<std::int64_t>>(wj, "position", {0, 0});
         auto size = r.get<std::vector<std::int64_t>>(wj, "size", {0, 0});
@@ -221,6 +240,7 @@ ClusterConfig parseClusterConfig(const std::string& text, const std::string& sou
   }
 
   const json& stereo = r.object(j, "stereo");
+  r.only(stereo, {"compose", "eyeSeparation", "zeroParallax"}, "'stereo'");
   std::string compose = r.get<std::string>(stereo, "compose", "anaglyph");
   if (compose == "anaglyph")
     c.stereo.compose = StereoCompose::Anaglyph;
@@ -233,6 +253,7 @@ ClusterConfig parseClusterConfig(const std::string& text, const std::string& sou
   if (c.stereo.zeroParallax && !(*c.stereo.zeroParallax > 0)) r.fail("'zeroParallax' must be positive");
 
   const json& t = r.object(j, "timeouts");
+  r.only(t, {"connectMs", "frameMs", "heartbeatMs", "deadAfterMs", "retryMs", "lateMs"}, "'timeouts'");
   c.timeouts.connect = r.millis(t, "connectMs", c.timeouts.connect);
   c.timeouts.frame = r.millis(t, "frameMs", c.timeouts.frame);
   c.timeouts.heartbeat = r.millis(t, "heartbeatMs", c.timeouts.heartbeat);

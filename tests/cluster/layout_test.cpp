@@ -89,6 +89,16 @@ TEST(ClusterConfig, RejectsWhatCannotWork) {
                ConfigError);
   EXPECT_THROW(parseClusterConfig(R"({"nodes": [{"address": "nohost"}]})"), ConfigError);
   EXPECT_THROW(parseClusterConfig(R"({"nodes": [{"parameters": {"x": [1]}}]})"), ConfigError);
+  // A misspelt key is refused, naming it and what the object takes.
+  try {
+    parseClusterConfig(R"({"nodes": [{}], "timeouts": {"lateMS": 5}})", "c.json");
+    ADD_FAILURE() << "a misspelt key was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("c.json: unknown key 'lateMS' in 'timeouts' (it takes"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(parseClusterConfig(R"({"nodes": [{"adress": "127.0.0.1:1"}]})"), ConfigError);
+  EXPECT_THROW(parseClusterConfig(R"({"nodes": [{}], "bogus": 1})"), ConfigError);
   // Screens: a count that differs from the nodes', no frame, a screen wholly outside, eyes on some only.
   const std::string two = R"({"mode": "tiled", "nodes": [{}, {}], "wall": )";
   EXPECT_THROW(parseClusterConfig(two + R"({"frame": [10, 10], "screens": [{"rect": [0, 0, 5, 5]}]}})"), ConfigError);
