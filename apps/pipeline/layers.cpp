@@ -54,6 +54,10 @@ std::vector<LayerSpec> readLayerFile(const std::string& path) {
     const std::string where = path + " layer " + std::to_string(i);
     if (!j.is_object() || !j.contains("backend") || !j["backend"].is_string())
       throw std::invalid_argument("--layers: " + where + ": expected an object with a \"backend\" string");
+    for (const auto& [key, value] : j.items())  // a misspelt key would otherwise be ignored
+      if (key != "backend" && key != "root" && key != "parameters")
+        throw std::invalid_argument("--layers: " + where + ": unknown key \"" + key +
+                                    "\" (a layer takes backend, root, parameters)");
     LayerSpec layer;
     layer.backend = j["backend"].get<std::string>();
     if (j.contains("root")) {

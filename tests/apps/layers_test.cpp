@@ -106,6 +106,8 @@ TEST_F(LayersCommand, BadLayersAreOneErrorLine) {
   expectOneErrorLine(run("builtin:cornell --size 8x8 --layers missing.json"), "missing.json");
   std::ofstream(dir / "bad.json") << R"([{"root": "x"}])";
   expectOneErrorLine(run("builtin:cornell --size 8x8 --layers bad.json"), "backend");
+  std::ofstream(dir / "typo.json") << R"([{"backend": "embree", "rot": "box"}])";
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --layers typo.json"), "unknown key \"rot\"");
   expectOneErrorLine(run("builtin:cornell --size 8x8 --layers"), "--layers");
 }
 
