@@ -57,12 +57,23 @@ install(TARGETS ${tsr_exported} EXPORT TesseraTargets
 
 # Programs, as many as this build has (the viewer and the wall included when they exist).
 foreach(program IN ITEMS tessera-render tessera-node tessera-inspect tessera-launch tessera-anaglyph tessera-viewer
-                         tessera-wall)
+                         tessera-wall tessera-cull)
   if(TARGET ${program})
     install(TARGETS ${program} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
   endif()
 endforeach()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/configs/ DESTINATION ${CMAKE_INSTALL_DATADIR}/tessera/configs)
+# tessera-cull's page and the parts of three.js it loads (npm ci put them in
+# web/node_modules); an installed tessera-cull finds them beside its bin/.
+if(TARGET tessera-cull)
+  set(tsr_web_dest ${CMAKE_INSTALL_DATADIR}/tessera/web)
+  install(FILES ${PROJECT_SOURCE_DIR}/web/index.html DESTINATION ${tsr_web_dest})
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/web/src DESTINATION ${tsr_web_dest})
+  install(FILES ${PROJECT_SOURCE_DIR}/web/node_modules/three/build/three.module.js
+          DESTINATION ${tsr_web_dest}/node_modules/three/build OPTIONAL)
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/web/node_modules/three/examples/jsm
+          DESTINATION ${tsr_web_dest}/node_modules/three/examples OPTIONAL)
+endif()
 
 set(tsr_cmake_dir ${CMAKE_INSTALL_LIBDIR}/cmake/Tessera)
 # What the config must find again: the static libraries' own dependencies.

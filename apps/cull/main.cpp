@@ -8,7 +8,9 @@
 // tracer's image of a resting view (rendered here or on a cluster's nodes).
 // Prints "listening on HOST:PORT" (port 0 picks a free one) once it accepts
 // connections. Without a token file it listens only on loopback.
+#include <filesystem>
 #include <iostream>
+#include <system_error>
 
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
@@ -29,6 +31,18 @@
 
 namespace {
 
+// The page an installed tessera-cull serves lies beside its bin/
+// (share/tessera/web); one run from the build tree serves the sources' web/.
+std::string defaultWebFolder() {
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const std::filesystem::path installed = exe.parent_path().parent_path() / "share" / "tessera" / "web";
+    if (std::filesystem::is_regular_file(installed / "index.html", ec)) return installed.string();
+  }
+  return TSR_WEB_DIR;
+}
+
 int run(int argc, char** argv) {
   CLI::App app{"Rank a scene's objects by visible coverage for a browser's view, and serve them one by one"};
   std::string scene, listen = "127.0.0.1:0", tokenFile, backend = "coverage";
@@ -44,7 +58,7 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--threads", threads, "threads of the ranking id pass and of the previews (0: all)")
       ->check(CLI::Range(0, 4096));
-  std::string web = TSR_WEB_DIR, previewBackend = "embree";
+  std::string web = defaultWebFolder(), previewBackend = "embree";
   int previews = 4;
   std::uint32_t previewSpp = 64;
   app.add_option("--web", web, "the web client's folder (index.html, src/, node_modules/three)")->capture_default_str();

@@ -39,10 +39,28 @@ cmake --install "$build" --prefix "$work/prefix" > "$work/install.log"
 for f in bin/tessera-render bin/tessera-node bin/tessera-launch lib/libtsr_scenegraph.a lib/libtsr_mediator_embree.a \
          include/tsr/sg/scene.hpp include/tsr/med/viewport.hpp lib/cmake/Tessera/TesseraConfig.cmake \
          lib/cmake/Tessera/TesseraConfigVersion.cmake lib/cmake/Tessera/TesseraTargets.cmake \
-         share/tessera/configs/stereo-pair.json; do
+         share/tessera/configs/stereo-pair.json bin/tessera-cull share/tessera/web/index.html \
+         share/tessera/web/node_modules/three/build/three.module.js; do
   [[ -e "$work/prefix/$f" ]] || { echo "install_test: $f not installed" >&2; exit 1; }
 done
 echo "install_test: installed $(find "$work/prefix" -type f | wc -l) files"
+
+# The installed culling service serves its page and three.js from the
+# install, not from the source tree.
+"$work/prefix/bin/tessera-cull" builtin:cornell --listen 127.0.0.1:0 --previews 0 > "$work/cull.out" 2> "$work/cull.err" &
+cull=$!
+for _ in $(seq 200); do grep -q "^listening on " "$work/cull.out" 2>/dev/null && break; sleep 0.05; done
+address="$(sed -n 's/^listening on //p' "$work/cull.out")"
+page_ok=0
+if [[ -n "$address" ]] && curl -sf "http://$address/" | grep -q importmap \
+   && curl -sf -o /dev/null "http://$address/three/build/three.module.js"; then page_ok=1; fi
+kill "$cull" 2>/dev/null || true
+wait "$cull" 2>/dev/null || true
+[[ $page_ok == 1 ]] || { echo "install_test: the installed tessera-cull did not serve its page:" >&2; cat "$work/cull.err" >&2; exit 1; }
+grep -q "GET / will not work" "$work/cull.err" && { echo "install_test: the installed tessera-cull misses its page" >&2; exit 1; }
+"$work/prefix/bin/tessera-cull" --help | grep -qE -- "--web TEXT=$work/prefix/share/tessera/web( |$)" \
+  || { echo "install_test: the installed tessera-cull's --web default is not the installed page" >&2; exit 1; }
+echo "install_test: the installed tessera-cull serves its page and three.js from share/tessera/web"
 
 cmake -S "$source/tests/install/consumer" -B "$work/consumer" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$work/prefix" "${options[@]}" > "$work/consumer.log" \
