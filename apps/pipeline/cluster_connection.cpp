@@ -26,8 +26,10 @@ cluster::ClusterConfig clusterConfig(const RenderJob& options) {
     if (!registry.has(node.backend)) continue;
     const med::ParameterTable& table = registry.capabilities(node.backend).parameters;
     for (const auto& [name, value] : options.parameters.all())
-      if (table.declares(name) && (options.explicitParameters.count(name) || !node.parameters.has(name)))
+      if (table.declares(name) && (options.explicitParameters.count(name) || !node.parameters.has(name))) {
+        table.validate(name, value);  // each back-end's range, not only the first's
         node.parameters.set(name, value);
+      }
   }
   config.validate();
   for (const auto& node : config.nodes)

@@ -1,6 +1,7 @@
 #include "scene_glb.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <sstream>
 
@@ -66,7 +67,7 @@ int addMaterial(tinygltf::Model& m, const sg::Container* material) {
     if (strength > 1.0) useExtension(m, out, "KHR_materials_emissive_strength", "emissiveStrength", strength);
     if (s->transmission() > 0.0f)
       useExtension(m, out, "KHR_materials_transmission", "transmissionFactor", s->transmission());
-    if (s->ior() != 1.5f) useExtension(m, out, "KHR_materials_ior", "ior", s->ior());
+    if (s->ior() != 1.5f && s->ior() >= 1.0f) useExtension(m, out, "KHR_materials_ior", "ior", s->ior());
   } else if (const auto* p = dynamic_cast<const sg::SimpleMaterial*>(material)) {
     out.pbrMetallicRoughness.baseColorFactor = {p->diffuse().r, p->diffuse().g, p->diffuse().b,
                                                 1.0 - p->transparency()};
@@ -86,7 +87,7 @@ void addCamera(tinygltf::Model& m, const sg::Scene& scene, sg::ContainerId id) {
   camera.name = c->name();
   camera.perspective.yfov = c->verticalFov();
   camera.perspective.znear = c->nearPlane();
-  camera.perspective.zfar = c->farPlane();
+  if (std::isfinite(c->farPlane()) && c->farPlane() < 1e29f) camera.perspective.zfar = c->farPlane();  // else infinite
   m.cameras.push_back(camera);
   tinygltf::Node node;
   node.camera = int(m.cameras.size()) - 1;

@@ -269,15 +269,17 @@ void Viewer::setAnimationTime(double seconds) {
 void Viewer::renderPanes() {
   auto* camera = session_->source.find<sg::Camera>(session_->camera);
   const auto now = std::chrono::steady_clock::now();
+  const double dt =
+      lastFrame_.time_since_epoch().count() ? std::chrono::duration<double>(now - lastFrame_).count() : 0.0;
+  lastFrame_ = now;
+  if (playing_ && animationDuration_ > 0) setAnimationTime(std::fmod(animationTime_ + dt, animationDuration_));
+  // After the animations: the camera's world pose undoes this frame's
+  // transforms above it, not the last frame's.
   if (orbit_.apply(*camera)) {
     lastMove_ = now;
     framesSinceMove_ = 0;
   }
   ++framesSinceMove_;
-  const double dt =
-      lastFrame_.time_since_epoch().count() ? std::chrono::duration<double>(now - lastFrame_).count() : 0.0;
-  lastFrame_ = now;
-  if (playing_ && animationDuration_ > 0) setAnimationTime(std::fmod(animationTime_ + dt, animationDuration_));
   // Only frames with edits are published: the replica's change log keeps
   // the last 256 lists, and a viewport switched back to catches up from it.
   const bool edited = sceneChanged_ || session_->source.hasPendingChanges();

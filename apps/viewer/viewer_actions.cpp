@@ -77,7 +77,9 @@ void Viewer::runAction(const ScriptAction& a) {
   } else if (a.verb == "wait-samples") {
     // A playing animation moves the scene every frame, so the samples start
     // again each frame: the wait would never end.
-    if (playing_)
+    bool refining = false;
+    for (const auto& pane : panes_) refining |= registry_.capabilities(pane.backend()).progressive;
+    if (playing_ && refining && !convergence_.paused)
       throw std::runtime_error("wait samples while the animation plays would never end: stop it with 'time SECONDS' "
                                "first");
     samplesToWait_ = a.count;

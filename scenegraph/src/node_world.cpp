@@ -1,5 +1,6 @@
 #include "tsr/sg/node_world.hpp"
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -36,7 +37,11 @@ Mat4 cameraWorldPose(const Camera& camera, FrameTime when) {
 }
 
 void setCameraWorldPose(Camera& camera, const Mat4& world) {
-  camera.setPose(camera.scene() ? glm::inverse(parentWorldMatrix(*camera.scene(), camera.id())) * world : world);
+  const Mat4 parent = camera.scene() ? parentWorldMatrix(*camera.scene(), camera.id()) : Mat4(1.0f);
+  // A parent scaled to nothing (an animation passing through scale 0) has no
+  // inverse: the camera keeps its pose rather than taking NaNs.
+  if (!(std::abs(glm::determinant(parent)) > 1e-12f)) return;
+  camera.setPose(glm::inverse(parent) * world);
 }
 
 }  // namespace tsr::sg

@@ -11,16 +11,24 @@ import sys
 
 from doc_pages import pages, report
 
-LINK = re.compile(r"!?\[[^\]]*\]\(([^)\s]+)\)")
+# [text](target), [text](<target>), [text](target "title")
+LINK = re.compile(r"!?\[[^\]]*\]\(\s*<?([^)\s>]+)>?(?:\s+\"[^\"]*\")?\s*\)")
 
 
 def anchors(path):
-    """GitHub's anchors of a page's headings."""
-    out = set()
+    """GitHub's anchors of a page's headings (not of '#' lines inside code
+    blocks); a repeated heading gets -1, -2, ..."""
+    out, seen, fenced = set(), {}, False
     for line in open(path, encoding="utf-8"):
-        if line.startswith("#"):
-            text = line.lstrip("#").strip().lower()
-            out.add(re.sub(r"[^\w\- ]", "", text).replace(" ", "-"))
+        if line.strip().startswith("```"):
+            fenced = not fenced
+        if fenced or not line.startswith("#"):
+            continue
+        text = line.lstrip("#").strip().lower()
+        anchor = re.sub(r"[^\w\- ]", "", text).replace(" ", "-")
+        count = seen.get(anchor, 0)
+        seen[anchor] = count + 1
+        out.add(anchor if count == 0 else "%s-%d" % (anchor, count))
     return out
 
 
@@ -32,7 +40,7 @@ def main():
         for number, line in enumerate(open(page, encoding="utf-8"), 1):
             if line.strip().startswith("```"):
                 fenced = not fenced
-            if fenced:
+            if fenced or line.startswith("    "):  # code, fenced or indented
                 continue
             for target in LINK.findall(line):
                 if re.match(r"^[a-z]+:", target):

@@ -27,17 +27,27 @@ MARK = re.compile(r"^#\s*runnable\b:?(.*)$")
 
 
 def blocks(path):
-    """(first line number, substitutions, text) of each marked fenced block."""
+    """(first line number, substitutions, text) of each marked fenced block.
+    Raises ValueError for a fence that is never closed (the rest of the page
+    would run as shell) and for a substitution that replaces nothing."""
     lines, found, i = open(path, encoding="utf-8").read().splitlines(), [], 0
     while i < len(lines):
-        if lines[i].strip().startswith("```") and i + 1 < len(lines) and MARK.match(lines[i + 1].strip()):
-            rules = [r.split("->", 1) for r in MARK.match(lines[i + 1].strip()).group(1).split(";") if "->" in r]
-            end = i + 2
-            while end < len(lines) and not lines[end].strip().startswith("```"):
-                end += 1
-            found.append((i + 2, [(a.strip(), b.strip()) for a, b in rules], "\n".join(lines[i + 2:end])))
-            i = end
-        i += 1
+        if not lines[i].strip().startswith("```"):
+            i += 1
+            continue
+        end = i + 1
+        while end < len(lines) and not lines[end].strip().startswith("```"):
+            end += 1
+        if end == len(lines):
+            raise ValueError("line %d: a code fence that is never closed" % (i + 1))
+        mark = MARK.match(lines[i + 1].strip()) if i + 1 < end else None
+        if mark:
+            rules = [r.split("->", 1) for r in mark.group(1).split(";") if "->" in r]
+            rules = [(a.strip(), b.strip()) for a, b in rules]
+            if any(not a for a, _ in rules):
+                raise ValueError("line %d: a substitution with nothing to replace" % (i + 2))
+            found.append((i + 2, rules, "\n".join(lines[i + 2:end])))
+        i = end + 1
     return found
 
 
@@ -46,7 +56,7 @@ def run_block(text, work, env, timeout=120):
     group, killed when the block ends, so what a failed block started in
     the background (nodes) neither lingers nor holds the output open."""
     with open(os.path.join(work, ".output"), "w+") as out:
-        p = subprocess.Popen(["bash", "-e", "-c", text], cwd=work, env=env, stdout=out, stderr=subprocess.STDOUT,
+        p = subprocess.Popen(["bash", "-e", "-o", "pipefail", "-c", text], cwd=work, env=env, stdout=out, stderr=subprocess.STDOUT,
                              start_new_session=True)
         try:
             code = p.wait(timeout=timeout)
@@ -55,8 +65,8 @@ def run_block(text, work, env, timeout=120):
             print("timed out after %d s" % timeout, file=out)
         try:
             os.killpg(p.pid, signal.SIGKILL)
-        except ProcessLookupError:
-            pass
+        except (ProcessLookupError, PermissionError):
+            pass  # the group is gone already
         p.wait()
         out.seek(0)
         return code, out.read()
@@ -69,7 +79,12 @@ def main():
     env = dict(os.environ, PATH=bin_dir + os.pathsep + os.environ.get("PATH", ""), BUILD=os.path.dirname(bin_dir))
     failed, ran = [], 0
     for page in chosen:
-        for line, rules, text in blocks(page):
+        try:
+            marked = blocks(page)
+        except ValueError as e:
+            failed.append("%s: %s" % (os.path.relpath(page, repo), e))
+            continue
+        for line, rules, text in marked:
             for a, b in rules:
                 if a not in text:
                     failed.append("%s:%d: the substitution '%s' finds nothing" % (os.path.relpath(page, repo), line, a))

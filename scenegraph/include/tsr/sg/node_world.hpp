@@ -25,7 +25,8 @@ Mat4 cameraWorldPose(const Scene& scene, ContainerId camera, FrameTime when = Fr
 Mat4 cameraWorldPose(const Camera& camera, FrameTime when = FrameTime::Now);
 // Sets the camera's pose so that its world pose becomes `world`: the
 // transforms above it undone, so navigation in world space moves a camera
-// that hangs under a node (every glTF camera) where it is asked to.
+// that hangs under a node (every glTF camera) where it is asked to. Under a
+// transform that has no inverse (scale 0) the pose is left as it was.
 void setCameraWorldPose(Camera& camera, const Mat4& world);
 
 }  // namespace tsr::sg
