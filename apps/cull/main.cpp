@@ -24,6 +24,7 @@
 #include "http_service.hpp"
 #include "import_limit_options.hpp"
 #include "preview_viewports.hpp"
+#include "program_folder.hpp"
 #include "program_main.hpp"
 #include "tsr/cluster/auth.hpp"
 #include "tsr/cluster/node_address.hpp"
@@ -35,9 +36,8 @@ namespace {
 // (share/tessera/web); one run from the build tree serves the sources' web/.
 std::string defaultWebFolder() {
   std::error_code ec;
-  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    const std::filesystem::path installed = exe.parent_path().parent_path() / "share" / "tessera" / "web";
+  if (const auto folder = tsr::app::programFolder()) {
+    const std::filesystem::path installed = folder->parent_path() / "share" / "tessera" / "web";
     if (std::filesystem::is_regular_file(installed / "index.html", ec)) return installed.string();
   }
   return TSR_WEB_DIR;

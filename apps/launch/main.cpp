@@ -21,6 +21,7 @@
 #include "directory_rendezvous.hpp"
 #include "error_line.hpp"
 #include "launch_rank.hpp"
+#include "program_folder.hpp"
 #include "socket_rendezvous.hpp"
 
 namespace {
@@ -54,11 +55,8 @@ class Console {
 // tessera-node beside this program (an install or build folder), else on PATH.
 std::string defaultNodeBinary() {
   std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    const fs::path beside = self.parent_path() / "tessera-node";
-    if (fs::exists(beside, ec)) return beside.string();
-  }
+  if (const auto folder = tsr::app::programFolder(); folder && fs::exists(*folder / "tessera-node", ec))
+    return (*folder / "tessera-node").string();
   return "tessera-node";
 }
 
