@@ -26,6 +26,12 @@ std::vector<ParameterSpec> specs() {
       flagParameter("seedPerFrame", false,
                     "each animation frame draws its own random numbers (seed + frame): noise moves with the "
                     "picture instead of sticking to the screen"),
+      choiceParameter("sampler", "sobol", {"sobol", "independent"},
+                      "path samples: Owen-scrambled Sobol (stratified), or independent white noise"),
+      choiceParameter("lightChoice", "tree", {"tree", "power"},
+                      "emitter picked for a shadow ray: by what it gives at the point (light tree), or by power"),
+      flagParameter("equiangular", true,
+                    "light scattered in fog also sampled at distances towards the lights (equiangular, with MIS)"),
       integerParameter("threads", 0, 0, 4096, "render threads (0: all)"),
       flagParameter("directOnly", false, "direct light only (maxDepth 1)"),
       integerParameter("samplesPerPass", 1, 1, 4096, "samples per pass (unset: passes grow 1, 2, 4, 8)"),

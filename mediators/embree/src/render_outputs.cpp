@@ -23,6 +23,9 @@ embree::RenderSettings renderSettingsFrom(const Parameters& p, std::int64_t fram
   if (t.flag(p, "directOnly")) s.maxDepth = 1;
   s.samplesPerPass = static_cast<std::uint32_t>(t.integer(p, "samplesPerPass"));
   s.threads = static_cast<int>(t.integer(p, "threads"));
+  s.lightChoice = t.choice(p, "lightChoice") == "power" ? embree::LightChoice::Power : embree::LightChoice::Tree;
+  s.equiangular = t.flag(p, "equiangular");
+  s.sampler = t.choice(p, "sampler") == "independent" ? embree::SamplerKind::Independent : embree::SamplerKind::Sobol;
   return s;
 }
 

@@ -23,6 +23,7 @@
 #include <nlohmann/json.hpp>
 
 #include "quality_scene.hpp"
+#include "suite_scenes.hpp"
 #include "rel_mse.hpp"
 #include "seen_error.hpp"
 #include "tsr/med/embree/register.hpp"
@@ -33,6 +34,7 @@ using namespace tsr;
 using quality::QualityScene;
 using quality::SeenError;
 using quality::Shot;
+using quality::SceneSpec;
 
 namespace {
 
@@ -66,10 +68,6 @@ struct Score {
 };
 using Curve = std::vector<Score>;
 
-struct SceneSpec {
-  std::string key, label, source, environment, kind;
-  quality::Motion motion;  // suite.json's time, frameInterval and shutter; none: an instant
-};
 
 // filter: a filter name, optionally followed by +name=value settings of
 // its own (pixel+filterKernel=separable), so variants sit side by side.
@@ -97,6 +95,10 @@ med::Parameters parameters(const Options& o, std::uint32_t spp, const std::strin
 
 void note(const std::string& s) { std::cerr << "[filter_quality] " << s << std::endl; }
 
+quality::ReferenceOptions referenceOptions(const Options& o) {
+  return {o.size, o.refSpp, o.refSeed, o.maxDepth, o.threads, o.cache};
+}
+
 Score score(const Shot& shot, const med::FrameBuffer& ref, std::uint32_t spp, double seconds) {
   Score s;
   s.spp = spp;
@@ -106,42 +108,6 @@ Score score(const Shot& shot, const med::FrameBuffer& ref, std::uint32_t spp, do
   return s;
 }
 
-// The reference, from the cache when it holds one: never recomputed. A
-// moving scene's name says its time, frame interval and shutter.
-med::FrameBuffer reference(QualityScene& scene, const Options& o) {
-  namespace fs = std::filesystem;
-  const quality::Motion& m = scene.motion();
-  const std::string moving =
-      m.moves() ? fmt::format("_t{}_dt{}_shutter{}-{}", m.time, m.frameInterval, m.shutterOpen, m.shutterClose) : "";
-  const std::string name = fmt::format("{}{}_{}x{}_spp{}_seed{}_depth{}.exr", scene.key(), moving, o.size, o.size,
-                                       o.refSpp, o.refSeed, o.maxDepth);
-  const fs::path path = fs::path(o.cache) / name;
-  if (fs::exists(path)) {
-    med::FrameBuffer fb = med::readImage(path.string());
-    if (fb.width != o.size || fb.height != o.size)
-      throw std::runtime_error(path.string() + ": cached reference has the wrong size; delete it");
-    return fb;
-  }
-  note(fmt::format("rendering reference {} ({} spp at {}x{}); cached afterwards", name, o.refSpp, o.size, o.size));
-  med::Parameters p = parameters(o, o.refSpp, "none");
-  p.set("seed", std::int64_t(o.refSeed));
-  auto vp = scene.viewport(p);
-  // In steps, so a long reference shows progress.
-  Shot shot;
-  double seconds = 0;
-  for (std::uint32_t spp = std::min(o.refSpp, 256u);; spp = std::min(o.refSpp, spp * 2)) {
-    vp->setParameter("spp", std::int64_t{spp});
-    shot = scene.render(*vp, o.size);
-    seconds += shot.seconds;
-    note(fmt::format("  {} spp, {:.0f} s", spp, seconds));
-    if (spp == o.refSpp) break;
-  }
-  fs::create_directories(o.cache);
-  const fs::path partial = fs::path(o.cache) / (name + ".partial.exr");
-  med::writeImage(partial.string(), shot.image);
-  fs::rename(partial, path);
-  return shot.image;
-}
 
 // Interpolates y(x) piecewise linearly in log-log through the curve, the
 // end segments extended; pick reads (x, y) from a Score.
@@ -206,7 +172,7 @@ std::optional<Score> at(const Curve& c, std::uint32_t n) {
 }
 
 void measure(QualityScene& scene, const Options& o, SceneResult& r) {
-  const med::FrameBuffer ref = reference(scene, o);
+  const med::FrameBuffer ref = quality::reference(scene, referenceOptions(o));
   writePng(o, scene, "reference", ref);
 
   // Unfiltered: one progressive viewport; samples do not depend on the pass
@@ -432,37 +398,6 @@ std::string tables(const std::vector<SceneResult>& results, const Options& o) {
   return md.str();
 }
 
-std::vector<SceneSpec> suiteScenes(const std::string& folder) {
-  namespace fs = std::filesystem;
-  const fs::path manifest = fs::path(folder) / "suite.json";
-  std::ifstream in(manifest);
-  if (!in) throw std::runtime_error(manifest.string() + ": cannot read (run make_suite.py first)");
-  const auto json = nlohmann::json::parse(in);
-  std::vector<SceneSpec> out;
-  for (const auto& s : json.at("scenes")) {
-    SceneSpec spec;
-    spec.key = s.at("key").get<std::string>();
-    spec.label = s.value("label", spec.key);
-    const fs::path file = s.at("file").get<std::string>();
-    spec.source = (file.is_absolute() ? file : fs::path(folder) / file).string();
-    if (s.contains("environment")) spec.environment = (fs::path(folder) / s["environment"].get<std::string>()).string();
-    spec.kind = s.value("kind", "");
-    if (s.contains("shutter") || s.contains("frameInterval")) {
-      const auto shutter = s.value("shutter", std::vector<float>{0.0f, 0.0f});
-      spec.motion.time = s.value("time", 0.0f);
-      spec.motion.frameInterval = s.value("frameInterval", 0.0f);
-      if (shutter.size() != 2 || !(shutter[0] >= 0.0f && shutter[0] <= shutter[1] && shutter[1] <= 1.0f) ||
-          !(spec.motion.frameInterval > 0.0f) || !std::isfinite(spec.motion.time))
-        throw std::runtime_error(manifest.string() + ": scene " + spec.key +
-                                 ": shutter must be [open, close] with 0 <= open <= close <= 1, frameInterval > 0 "
-                                 "seconds and time finite");
-      spec.motion.shutterOpen = shutter[0];
-      spec.motion.shutterClose = shutter[1];
-    }
-    out.push_back(spec);
-  }
-  return out;
-}
 
 }  // namespace
 
@@ -500,9 +435,7 @@ int main(int argc, char** argv) {
   try {
     med::ViewportRegistry registry;
     med::registerEmbree(registry);
-    std::vector<SceneSpec> specs{{"builtin-cornell", "builtin:cornell", "builtin:cornell", "", "diffuse", {}}};
-    if (!o.suite.empty())
-      for (auto& s : suiteScenes(o.suite)) specs.push_back(std::move(s));
+    const std::vector<SceneSpec> specs = quality::suiteScenes(o.suite);
     std::vector<SceneResult> results;
     for (const auto& s : specs) {
       if (!o.scenes.empty() && std::find(o.scenes.begin(), o.scenes.end(), s.key) == o.scenes.end()) continue;

@@ -505,6 +505,7 @@ void rebuildEmitters(SceneState& s) {
     }
   }
   s.emitters = Distribution1D(power);
+  s.emitterTree = LightTree(s.emitterTriangles, power);
   spdlog::debug("tsr::embree: scene {} v{} has {} emissive triangles", s.uid, s.version, power.size());
 }
 }  // namespace

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "scene/instance_motion.hpp"
+#include "scene/light_tree.hpp"
 #include "scene/volume_field.hpp"
 #include "tsr/embree/distribution.hpp"
 #include "tsr/embree/scene.hpp"
@@ -208,7 +209,8 @@ struct SceneState {
                              // textured: views hold worldToVolume
   std::vector<InstanceView> views;
   std::vector<Light> activeLights;
-  Distribution1D emitters;
+  Distribution1D emitters;                        // by power alone (Whitted's light points, lightChoice=power)
+  LightTree emitterTree;                          // by what each gives at a point (light_tree.hpp)
   std::vector<EmitterTriangle> emitterTriangles;  // indexed like emitters
   std::vector<EmissiveRange> emissiveRanges;
 };

@@ -5,6 +5,7 @@
 // bookkeeping that sorts contributions into the filters' buffers.
 #include "tracing/delta_lights.hpp"
 #include "tracing/delta_tracking.hpp"
+#include "tracing/equiangular.hpp"
 #include "tracing/media.hpp"
 #include "tracing/scattering_point.hpp"
 #include "tracing/tracer.hpp"
@@ -41,6 +42,33 @@ struct VertexSamples {
 // Index-matched boundaries a ray may cross between two vertices.
 constexpr std::uint32_t kMaxCrossings = 64;
 
+// A segment of a ray through a homogeneous medium whose in-scattered
+// direct light is sampled twice, by free-flight distances (then light
+// sampling and phase sampling at the point) and by equiangular distances
+// towards a point of light, combined by MIS over the distance and the
+// light point (Kulla & Fajardo 2012, section 4).
+struct MediumSegment {
+  glm::vec3 org{0.0f}, dir{0.0f};
+  float tMax = 0.0f;
+  const Medium* medium = nullptr;
+  float t = 0.0f;  // where free flight stopped, once it has
+
+  // The density with which free flight stops at t (sampleFreeFlight: the
+  // mean over the channels).
+  float freeFlightPdf(float at) const {
+    const glm::vec3 sigma = medium->extinction();
+    const glm::vec3 T = transmittance(sigma, at);
+    return (sigma.x * T.x + sigma.y * T.y + sigma.z * T.z) / 3.0f;
+  }
+  float equiangularPdf(float at, const glm::vec3& light) const { return Equiangular(org, dir, tMax, light).density(at); }
+};
+
+// The power heuristic over three techniques, for the first.
+float powerHeuristic3(float a, float b, float c) {
+  const float d = a * a + b * b + c * c;
+  return d > 0.0f && std::isfinite(d) ? a * a / d : 0.0f;
+}
+
 // A scattering point inside a medium, as light sampling sees it: the phase
 // function in place of a BSDF, and shadow rays leaving from the point itself.
 struct MediumPoint {
@@ -53,6 +81,10 @@ struct MediumPoint {
     return glm::vec3(v);
   }
   glm::vec3 spawn(const glm::vec3&) const { return p; }
+  glm::vec3 ng{0.0f};  // no surface: the light tree bounds no cosine
+  // The segment free flight stopped in, when equiangular sampling shares
+  // its direct light.
+  const MediumSegment* segment = nullptr;
 };
 
 // The point just past an index-matched boundary, on the side `dir` goes to.
@@ -86,14 +118,14 @@ struct Continuation {
 // however few vertices it has.
 class PathWalk {
  public:
-  PathWalk(Tracer& tracer, Rng& rng, RadianceSample* record)
+  PathWalk(Tracer& tracer, Sampler& sampler, RadianceSample* record)
       : tracer_(tracer),
         scene_(tracer.scene),
         env_(tracer.scene.environment),
         envActive_(!env_.isBlack()),
         media_(tracer.scene.materialMedia || env_.medium()),
         mode_(tracer.settings.lightSampling),
-        rng_(rng),
+        sampler_(sampler),
         record_(record),
         stack_(env_.medium() ? &*env_.medium() : nullptr) {}
 
@@ -120,8 +152,15 @@ class PathWalk {
   // The medium segment from org along dir up to tMax (a surface, or
   // infinity): its emission, and where the flight ends. True with `at` set
   // when it scatters there.
-  bool flyThrough(const MediumAt& m, const glm::vec3& org, const glm::vec3& dir, float tMax, float& at);
+  bool flyThrough(const MediumAt& m, const glm::vec3& org, const glm::vec3& dir, float tMax, std::uint32_t depth,
+                  float& at);
   bool scatterInMedium(const Medium& m, const glm::vec3& p, std::uint32_t depth, glm::vec3& org, glm::vec3& dir);
+  // Whether direct light in this segment is also sampled by distance
+  // towards the lights: a scattering homogeneous medium, MIS, lights to
+  // sample, and a vertex there would still sample them.
+  bool equiangularActive(const MediumAt& m, std::uint32_t depth) const;
+  // The equiangular technique's sample of the segment's direct light.
+  void sampleEquiangular(const MediumSegment& s);
 
   Tracer& tracer_;
   const SceneState& scene_;
@@ -129,7 +168,7 @@ class PathWalk {
   const bool envActive_;
   const bool media_;  // any medium in the scene: shadow rays measure transmittance
   const LightSampling mode_;
-  Rng& rng_;
+  Sampler& sampler_;
   RadianceSample* record_;
   MediumStack stack_;
   float travelled_ = 0.0f;  // from the last vertex, across index-matched boundaries
@@ -146,6 +185,14 @@ class PathWalk {
   std::uint8_t mask_ = 0;
   float prevPdf_ = 0.0f;
   bool prevDelta_ = true;
+  // The last scattering vertex and its normal (zero in a medium): where
+  // light sampling would have picked an emitter the path then hits.
+  glm::vec3 prevPoint_{0.0f}, prevNormal_{0.0f};
+  // The current segment when equiangular sampling is active in it, and the
+  // one the last vertex lay in (for the MIS weight of an emitter the phase
+  // function's ray then hits).
+  MediumSegment segment_, prevSegment_;
+  bool segmentActive_ = false, prevSegmentActive_ = false;
 };
 
 PixelSample PathWalk::run(glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos, const glm::vec3& forward) {
@@ -159,7 +206,7 @@ PixelSample PathWalk::run(glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos,
     const bool hit = tracer_.intersect(org, dir, rh);
     if (const MediumAt m = media_ ? stack_.current() : MediumAt{}) {
       float at = 0.0f;
-      if (flyThrough(m, org, dir, hit ? rh.ray.tfar : kInf, at)) {
+      if (flyThrough(m, org, dir, hit ? rh.ray.tfar : kInf, depth, at)) {
         if (depth >= tracer_.settings.maxDepth) break;
         if (!scatterInMedium(*m.medium, org + at * dir, depth, org, dir)) break;
         ++depth;
@@ -201,25 +248,90 @@ PixelSample PathWalk::run(glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos,
   return out_;
 }
 
-bool PathWalk::flyThrough(const MediumAt& m, const glm::vec3& org, const glm::vec3& dir, float tMax, float& at) {
+bool PathWalk::flyThrough(const MediumAt& m, const glm::vec3& org, const glm::vec3& dir, float tMax,
+                          std::uint32_t depth, float& at) {
   FreeFlight f;
+  segmentActive_ = equiangularActive(m, depth);
+  if (segmentActive_) {
+    segment_ = MediumSegment{org, dir, tMax, m.medium};
+    sampleEquiangular(segment_);
+  }
   if (m.field()) {
     auto emit = [&](const glm::vec3& e) {
       if (maxComponent(e) > 0.0f) add(throughput_ * e, nonSpecular_);
     };
     f = deltaTrack(
-        FieldRay(m, org, dir), tMax, [&] { return rng_.uniform(); }, emit);
+        FieldRay(m, org, dir), tMax, [&] { return sampler_.uniform(); }, emit);
   } else {
     const glm::vec3 emitted = segmentEmission(*m.medium, tMax);
     if (maxComponent(emitted) > 0.0f) add(throughput_ * emitted, nonSpecular_);
-    const float uChannel = rng_.uniform(), uDistance = rng_.uniform();
+    const float uChannel = sampler_.uniform(), uDistance = sampler_.uniform();
     f = sampleFreeFlight(*m.medium, tMax, uChannel, uDistance);
   }
   throughput_ *= f.weight;
   if (!f.scattered) return false;
   if (nonSpecular_ == 0) pathLength_ += f.t;
   at = f.t;
+  segment_.t = f.t;
   return true;
+}
+
+bool PathWalk::equiangularActive(const MediumAt& m, std::uint32_t depth) const {
+  return tracer_.settings.equiangular && mode_ == LightSampling::Mis && !m.field() && maxComponent(m.medium->scattering) > 0.0f &&
+         depth < tracer_.settings.maxDepth && (!scene_.emitters.empty() || !scene_.activeLights.empty());
+}
+
+// A distance drawn towards one emitter point (picked at the segment's start)
+// and towards each point and spot light, each behind a shadow ray, weighted
+// against the free-flight techniques that reach the same light.
+void PathWalk::sampleEquiangular(const MediumSegment& s) {
+  const float uPick = sampler_.uniform();
+  const glm::vec2 uPoint = sampler_.uniform2();
+  const float uDistance = sampler_.uniform();
+  const Medium& m = *s.medium;
+  const glm::vec3 sigma = m.extinction();
+  auto inScattered = [&](float t) { return throughput_ * transmittance(sigma, t) * m.scattering; };
+
+  std::uint32_t i = 0;
+  float prob = 0.0f;
+  if (!scene_.emitters.empty() && tracer_.pickEmitter(s.org, glm::vec3(0.0f), uPick, i, prob)) {
+    const EmitterTriangle& tri = scene_.emitterTriangles[i];
+    const glm::vec2 b = sampleTriangle(uPoint);
+    const Equiangular eq(s.org, s.dir, s.tMax, tri.p0 + b.x * tri.e1 + b.y * tri.e2);
+    float pdfT = 0.0f;
+    const float t = eq.valid() ? eq.sample(uDistance, &pdfT) : 0.0f;
+    Tracer::EmitterSample es;
+    if (pdfT > 0.0f && tracer_.emitterPoint(s.org + t * s.dir, i, prob, b, es)) {
+      const MediumPoint point{s.org + t * s.dir, s.dir, m.g};
+      float phasePdf = 0.0f;
+      const glm::vec3 f = point.eval(es.wi, &phasePdf);
+      const glm::vec3 seen = shadow(point.p, es.wi, es.dist - rayEpsilon(es.point));
+      if (maxComponent(seen) > 0.0f) {
+        // In the free-flight techniques' measure: solid angle at the point,
+        // times the distance density over free flight's.
+        const float tri2 = es.dist * es.dist / glm::dot(tri.normal, -es.wi);
+        const float light = tracer_.emitterProbability(point.p, glm::vec3(0.0f), i) / tri.area * tri2;
+        const float self = es.pdf * pdfT / s.freeFlightPdf(t);
+        const float w = powerHeuristic3(self, light, phasePdf);
+        if (w > 0.0f) add(inScattered(t) * f * es.radiance * seen * (w / (es.pdf * pdfT)), nonSpecular_ + 1);
+      }
+    }
+  }
+  for (const Light& light : scene_.activeLights) {
+    if (std::holds_alternative<DirectionalLight>(light)) continue;
+    const auto* spot = std::get_if<SpotLight>(&light);
+    const Equiangular eq(s.org, s.dir, s.tMax, spot ? spot->position : std::get<PointLight>(light).position);
+    if (!eq.valid()) continue;
+    float pdfT = 0.0f;
+    const float t = eq.sample(uDistance, &pdfT);
+    LightArrival a;
+    const MediumPoint point{s.org + t * s.dir, s.dir, m.g};
+    if (!(pdfT > 0.0f) || !lightArriving(light, point.p, a)) continue;
+    const glm::vec3 f = point.eval(a.wi, nullptr);
+    const glm::vec3 seen = shadow(point.p, a.wi, a.tfar);
+    const float w = powerHeuristic(pdfT, s.freeFlightPdf(t));
+    if (maxComponent(seen) > 0.0f) add(inScattered(t) * f * a.li * seen * (w / pdfT), nonSpecular_ + 1);
+  }
 }
 
 // A scattering event in a medium: light sampled through the phase
@@ -228,7 +340,8 @@ bool PathWalk::flyThrough(const MediumAt& m, const glm::vec3& org, const glm::ve
 bool PathWalk::scatterInMedium(const Medium& m, const glm::vec3& p, std::uint32_t depth, glm::vec3& org,
                                glm::vec3& dir) {
   const VertexSamples u = drawSamples(false);
-  const MediumPoint point{p, dir, m.g};
+  MediumPoint point{p, dir, m.g};
+  if (segmentActive_) point.segment = &segment_;
   Continuation next;
   next.continues = true;
   next.dir = sampleHenyeyGreenstein(dir, m.g, u.bsdf);
@@ -243,6 +356,10 @@ bool PathWalk::scatterInMedium(const Medium& m, const glm::vec3& p, std::uint32_
   scale_ = next.scale;
   prevPdf_ = next.bs.pdf;
   prevDelta_ = false;
+  prevPoint_ = p;
+  prevNormal_ = glm::vec3(0.0f);
+  prevSegment_ = segment_;
+  prevSegmentActive_ = segmentActive_;
   travelled_ = 0.0f;
   org = p;
   dir = next.dir;
@@ -259,7 +376,7 @@ glm::vec3 PathWalk::shadow(glm::vec3 org, const glm::vec3& dir, float tfar) {
     const bool hit = tracer_.intersect(org, dir, rh, tfar);
     const float segment = hit ? rh.ray.tfar : tfar;
     if (const MediumAt m = stack.current())
-      passed *= m.field() ? ratioTrack(FieldRay(m, org, dir), segment, [&] { return rng_.uniform(); })
+      passed *= m.field() ? ratioTrack(FieldRay(m, org, dir), segment, [&] { return sampler_.uniform(); })
                           : transmittance(m.medium->extinction(), segment);
     if (!hit) return passed;
     SurfaceHit h;
@@ -294,7 +411,18 @@ void PathWalk::addEscaped(const glm::vec3& dir, std::uint32_t depth) {
 // Emission of the surface the path hit, seen from its front.
 void PathWalk::addEmitted(const SurfaceHit& h, const ResolvedMaterial& mat, const glm::vec3& dir, float t,
                           std::uint32_t depth) {
-  float w = unweighted(depth) ? 1.0f : bsdfHitWeight(mode_, prevPdf_, tracer_.emitterPdf(h, dir, t));
+  float w = 1.0f;
+  if (!unweighted(depth)) {
+    const float light = tracer_.emitterPdf(h, dir, t, prevPoint_, prevNormal_);
+    if (prevSegmentActive_) {  // the equiangular technique could have found it too
+      const MediumSegment& s = prevSegment_;
+      const float eq = s.equiangularPdf(s.t, h.p) / s.freeFlightPdf(s.t) *
+                       tracer_.emitterPdf(h, dir, t, s.org, glm::vec3(0.0f));
+      w = powerHeuristic3(prevPdf_, light, eq);
+    } else {
+      w = bsdfHitWeight(mode_, prevPdf_, light);
+    }
+  }
   add(throughput_ * Tracer::emission(mat, h.uv) * w, nonSpecular_);
 }
 
@@ -333,6 +461,9 @@ bool PathWalk::scatter(const ScatteringPoint& sp, const SurfaceHit& h, const RTC
   scale_ = next.scale;
   prevPdf_ = next.bs.pdf;
   prevDelta_ = next.bs.delta;
+  prevPoint_ = sp.p;
+  prevNormal_ = sp.ng;
+  prevSegmentActive_ = false;
   travelled_ = 0.0f;
   org = nextOrg;
   dir = next.dir;
@@ -345,12 +476,12 @@ VertexSamples PathWalk::drawSamples(bool delta) {
   u.emitters = sampleLights && !scene_.emitters.empty();
   u.environment = sampleLights && envActive_;
   if (u.emitters) {
-    u.emitterSelect = rng_.uniform();
-    u.emitterPoint = rng_.uniform2();
+    u.emitterSelect = sampler_.uniform();
+    u.emitterPoint = sampler_.uniform2();
   }
-  if (u.environment) u.environmentDir = rng_.uniform2();
-  u.bsdf = rng_.uniform2();
-  u.bsdfLobe = rng_.uniform();
+  if (u.environment) u.environmentDir = sampler_.uniform2();
+  u.bsdf = sampler_.uniform2();
+  u.bsdfLobe = sampler_.uniform();
   return u;
 }
 
@@ -388,7 +519,7 @@ void PathWalk::roulette(std::uint32_t depth, bool restart, Continuation& next) {
   }
   if (depth + 1 >= tracer_.settings.rouletteDepth) {
     float q = std::min(maxComponent(next.throughput * next.scale), 0.95f);
-    if (!(q > 0.0f) || rng_.uniform() >= q)
+    if (!(q > 0.0f) || sampler_.uniform() >= q)
       next.continues = false;
     else
       next.throughput /= q;
@@ -408,11 +539,19 @@ void PathWalk::sampleDirect(const Point& sp, const VertexSamples& u, bool fromFi
     glm::vec3 f = sp.eval(a.wi, nullptr);  // delta lights: no MIS
     if (maxComponent(f) <= 0.0f) continue;
     const glm::vec3 seen = shadow(sp.spawn(a.wi), a.wi, a.tfar);
-    if (maxComponent(seen) > 0.0f) add(throughput_ * f * a.li * seen, nonSpecular_ + 1);
+    float w = 1.0f;  // delta lights: no MIS, but for equiangular distances
+    if constexpr (std::is_same_v<Point, MediumPoint>)
+      if (sp.segment && !std::holds_alternative<DirectionalLight>(light)) {
+        const MediumSegment& s = *sp.segment;
+        const auto* spot = std::get_if<SpotLight>(&light);
+        w = powerHeuristic(s.freeFlightPdf(s.t),
+                           s.equiangularPdf(s.t, spot ? spot->position : std::get<PointLight>(light).position));
+      }
+    if (maxComponent(seen) > 0.0f) add(throughput_ * f * a.li * seen * w, nonSpecular_ + 1);
   }
   if (u.emitters) {
     Tracer::EmitterSample es;
-    if (tracer_.sampleEmitter(sp.p, u.emitterSelect, u.emitterPoint, es)) {
+    if (tracer_.sampleEmitter(sp.p, sp.ng, u.emitterSelect, u.emitterPoint, es)) {
       float bsdfPdf;
       glm::vec3 f = sp.eval(es.wi, &bsdfPdf);
       if (maxComponent(f) > 0.0f) {
@@ -420,7 +559,15 @@ void PathWalk::sampleDirect(const Point& sp, const VertexSamples& u, bool fromFi
         float dist = glm::length(es.point - o);
         const glm::vec3 seen = shadow(o, es.wi, dist - rayEpsilon(es.point));
         if (maxComponent(seen) > 0.0f) {
-          const float w = fromField ? 1.0f : lightSampleWeight(mode_, es.pdf, bsdfPdf);
+          float w = fromField ? 1.0f : lightSampleWeight(mode_, es.pdf, bsdfPdf);
+          if constexpr (std::is_same_v<Point, MediumPoint>)
+            if (sp.segment) {
+              const MediumSegment& s = *sp.segment;
+              const EmitterTriangle& tri = scene_.emitterTriangles[es.triangle];
+              const float fromStart = tracer_.emitterProbability(s.org, glm::vec3(0.0f), es.triangle) / tri.area *
+                                      es.dist * es.dist / glm::dot(tri.normal, -es.wi);
+              w = powerHeuristic3(es.pdf, bsdfPdf, s.equiangularPdf(s.t, es.point) / s.freeFlightPdf(s.t) * fromStart);
+            }
           add(throughput_ * f * es.radiance * seen * (w / es.pdf), nonSpecular_ + 1);
         }
       }
@@ -456,9 +603,9 @@ void PathWalk::classify(const BsdfSample& bs, MaterialType type) {
 
 }  // namespace
 
-PixelSample Tracer::tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos, const glm::vec3& forward,
+PixelSample Tracer::tracePath(Sampler& sampler, glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos, const glm::vec3& forward,
                               RadianceSample* record) {
-  return PathWalk(*this, rng, record).run(org, dir, camPos, forward);
+  return PathWalk(*this, sampler, record).run(org, dir, camPos, forward);
 }
 
 }  // namespace tsr::embree

@@ -27,7 +27,10 @@ std::uint64_t settingsHash(const RenderSettings& s) {
   std::uint64_t h = splitmix64(s.seed);
   h = splitmix64(h ^ s.maxDepth);
   h = splitmix64(h ^ s.rouletteDepth);
-  return splitmix64(h ^ std::uint64_t(s.lightSampling));
+  h = splitmix64(h ^ std::uint64_t(s.lightSampling));
+  h = splitmix64(h ^ std::uint64_t(s.lightChoice));
+  h = splitmix64(h ^ std::uint64_t(s.equiangular));
+  return splitmix64(h ^ std::uint64_t(s.sampler));
 }
 
 // FrameBuffer::Key::estimator of radiance passes (plain paths: 0, an
@@ -186,12 +189,12 @@ glm::vec3 windowPoint(const Camera& camera, const Region& region, std::uint32_t 
 // With the shutter open over an interval, the ray's time is uniform in it
 // (one more number, drawn only then: an instant's images stay as they were).
 CameraRay cameraRay(const Camera& camera, const CameraPath& path, const Region& region, std::uint32_t px,
-                    std::uint32_t py, Rng& rng) {
-  const glm::vec3 pinhole = windowPoint(camera, region, px, py, rng.uniform2());
+                    std::uint32_t py, Sampler& sampler) {
+  const glm::vec3 pinhole = windowPoint(camera, region, px, py, sampler.uniform2());
   glm::vec2 u(0.0f);
-  if (camera.apertureRadius > 0.0f) u = rng.uniform2();
+  if (camera.apertureRadius > 0.0f) u = sampler.uniform2();
   float time = camera.shutterOpen;
-  if (camera.shutterClose > camera.shutterOpen) time += (camera.shutterClose - camera.shutterOpen) * rng.uniform();
+  if (camera.shutterClose > camera.shutterOpen) time += (camera.shutterClose - camera.shutterOpen) * sampler.uniform();
   const Eye eye = path.at(time);
   if (camera.apertureRadius <= 0.0f)
     return {eye.position, glm::normalize(eye.rotation * pinhole), time, eye.position, eye.forward};
@@ -215,6 +218,7 @@ PassResult Renderer::renderPaths(Scene& scene, const Camera& camera, const Regio
                                  const IrradianceField* field) {
   const CameraPath path(camera);
   const std::uint64_t seed = settings_.seed;
+  const SamplerKind kind = settings_.sampler;
   const std::uint32_t samples = settings_.samplesPerPass;
   return runTiles(
       scene, camera, region, fb,
@@ -223,10 +227,10 @@ PassResult Renderer::renderPaths(Scene& scene, const Camera& camera, const Regio
         const std::uint64_t pixelKey = Rng::pixelKey(seed, px, py);
         const std::uint32_t firstSample = fb.sampleCount(x, y);
         for (std::uint32_t s = 0; s < samples; ++s) {
-          Rng rng(pixelKey, firstSample + s);
-          const CameraRay ray = cameraRay(camera, path, region, px, py, rng);
+          Sampler sampler(kind, pixelKey, firstSample + s);
+          const CameraRay ray = cameraRay(camera, path, region, px, py, sampler);
           tracer.time = ray.time;
-          fb.accumulate(x, y, tracer.tracePath(rng, ray.origin, ray.direction, ray.eyePosition, ray.forward));
+          fb.accumulate(x, y, tracer.tracePath(sampler, ray.origin, ray.direction, ray.eyePosition, ray.forward));
         }
       },
       field ? splitmix64(field->uid()) : 0);
@@ -250,6 +254,7 @@ PassResult Renderer::renderRadiancePass(Scene& scene, const Camera& camera, cons
   }
   const CameraPath path(camera);
   const std::uint64_t seed = settings_.seed;
+  const SamplerKind kind = settings_.sampler;
   // Angle of one pixel on the axis; off the axis it shrinks with cos^1.5.
   const float pixelAngle = std::sqrt((camera.right - camera.left) / float(region.width) * (camera.top - camera.bottom) /
                                      float(region.height)) /
@@ -257,12 +262,12 @@ PassResult Renderer::renderRadiancePass(Scene& scene, const Camera& camera, cons
   PassResult result = runTiles(
       scene, camera, region, fb,
       [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
-        Rng rng(Rng::pixelKey(seed, px, py), fb.sampleCount(x, y));
-        const CameraRay ray = cameraRay(camera, path, region, px, py, rng);
+        Sampler sampler(kind, Rng::pixelKey(seed, px, py), fb.sampleCount(x, y));
+        const CameraRay ray = cameraRay(camera, path, region, px, py, sampler);
         RadianceSample& record = acc.samples_[acc.at(x, y)];
         record = RadianceSample{};
         tracer.time = ray.time;
-        PixelSample sample = tracer.tracePath(rng, ray.origin, ray.direction, ray.eyePosition, ray.forward, &record);
+        PixelSample sample = tracer.tracePath(sampler, ray.origin, ray.direction, ray.eyePosition, ray.forward, &record);
         const float c = glm::dot(ray.direction, ray.forward);
         record.pixelAngle = pixelAngle * c * std::sqrt(c);
         record.unfiltered = sample.indirect - sample.caustic;
@@ -293,14 +298,15 @@ PassResult Renderer::renderFlashPass(Scene& scene, const Camera& camera, const R
                                      std::uint32_t samples) {
   const CameraPath path(camera);
   const std::uint64_t seed = settings_.seed ^ kFlashStream;
+  const SamplerKind kind = settings_.sampler;
   return runTiles(
       scene, camera, region, fb,
       [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
         const std::uint64_t pixelKey = Rng::pixelKey(seed, px, py);
         const std::uint32_t first = fb.rangeSamples(x, y);
         for (std::uint32_t s = 0; s < samples; ++s) {
-          Rng rng(pixelKey, first + s);
-          const CameraRay ray = cameraRay(camera, path, region, px, py, rng);
+          Sampler sampler(kind, pixelKey, first + s);
+          const CameraRay ray = cameraRay(camera, path, region, px, py, sampler);
           tracer.time = ray.time;
           float distance = kInf;
           const glm::vec3 flash = tracer.traceFlash(ray.origin, ray.direction, ray.eyePosition, distance);

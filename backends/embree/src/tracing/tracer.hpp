@@ -13,6 +13,7 @@
 #include "tsr/embree/radiance_filter.hpp"
 #include "tsr/embree/renderer.hpp"
 #include "tsr/embree/rng.hpp"
+#include "tsr/embree/sampler.hpp"
 #include "tsr/embree/sampling.hpp"
 
 #include <glm/geometric.hpp>
@@ -295,14 +296,22 @@ struct Tracer {
     return e;
   }
 
-  // Solid-angle density with which emitter sampling would have produced
-  // this hit, seen from distance t.
-  float emitterPdf(const SurfaceHit& h, const glm::vec3& dir, float t) const {
+  bool byTree() const { return settings.lightChoice == LightChoice::Tree; }
+
+  // Solid-angle density with which emitter sampling at `from` (normal n,
+  // zero in a medium) would have produced this hit, seen from distance t.
+  float emitterPdf(const SurfaceHit& h, const glm::vec3& dir, float t, const glm::vec3& from,
+                   const glm::vec3& n) const {
     if (h.instance->emissiveOffset == kNotEmissive || scene.emitters.empty()) return 0.0f;
     float cosL = glm::dot(h.faceNormal, -dir);
     if (cosL <= 0.0f) return 0.0f;
     const std::uint32_t i = h.instance->emissiveOffset + h.prim;
-    return scene.emitters.discreteProbability(i) / scene.emitterTriangles[i].area * t * t / cosL;
+    return emitterProbability(from, n, i) / scene.emitterTriangles[i].area * t * t / cosL;
+  }
+
+  // The probability with which pickEmitter(from, n, ...) picks triangle i.
+  float emitterProbability(const glm::vec3& from, const glm::vec3& n, std::uint32_t i) const {
+    return byTree() ? scene.emitterTree.pmf(from, n, i) : scene.emitters.discreteProbability(i);
   }
 
   struct EmitterSample {
@@ -311,12 +320,24 @@ struct Tracer {
     glm::vec3 radiance{0.0f};
     float pdf = 0.0f;
     glm::vec3 point{0.0f};
+    std::uint32_t triangle = 0;
   };
 
-  bool sampleEmitter(const glm::vec3& p, float uSelect, const glm::vec2& u, EmitterSample& out) const {
+  // The emitter triangle light sampling picks for point p with normal n
+  // (zero in a medium), and its probability.
+  bool pickEmitter(const glm::vec3& p, const glm::vec3& n, float uSelect, std::uint32_t& i, float& prob) const {
+    if (byTree()) return scene.emitterTree.sample(p, n, uSelect, i, prob);
+    i = scene.emitters.sampleDiscrete(uSelect, &prob);
+    return prob > 0.0f;
+  }
+
+  // A point on an emitter triangle for shading point p with normal n
+  // (zero in a medium).
+  bool sampleEmitter(const glm::vec3& p, const glm::vec3& n, float uSelect, const glm::vec2& u,
+                     EmitterSample& out) const {
     float prob = 0.0f;
-    std::uint32_t i = scene.emitters.sampleDiscrete(uSelect, &prob);
-    return emitterPoint(p, i, prob, sampleTriangle(u), out);
+    std::uint32_t i = 0;
+    return pickEmitter(p, n, uSelect, i, prob) && emitterPoint(p, i, prob, sampleTriangle(u), out);
   }
 
   // The point with barycentrics b on emitter triangle i, picked with
@@ -328,6 +349,7 @@ struct Tracer {
     const InstanceView& v = scene.views[range.instance];
     const EmitterTriangle& tri = scene.emitterTriangles[i];
     if (!(tri.area > 0.0f)) return false;
+    out.triangle = i;
     out.point = tri.p0 + b.x * tri.e1 + b.y * tri.e2;
     glm::vec3 d = out.point - p;
     float dist2 = glm::dot(d, d);
@@ -350,7 +372,7 @@ struct Tracer {
   // One path. With a record (zero-initialised by the caller), also fills
   // the radiance sample at the first non-specular vertex: Ľ_i collects
   // exactly the contributions classified indirect.
-  PixelSample tracePath(Rng& rng, glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos, const glm::vec3& forward,
+  PixelSample tracePath(Sampler& sampler, glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos, const glm::vec3& forward,
                         RadianceSample* record = nullptr);
   // The "virtual flash" colour of one camera ray (Schwenk 3.3.3): the
   // reflectivity of the first non-specular surface, perfect specular
