@@ -1,5 +1,5 @@
-// Filtered path tracing through real nodes: pixel filtering gathers from
-// neighbours many pixels away, so cooperative tiles are resolved on the
+// Filtered path tracing through real nodes: pixel filtering and the
+// denoiser gather from neighbours many pixels away, so cooperative tiles are resolved on the
 // client after assembly and must show no seams; radiance filtering traces
 // tiles with a halo and matches within a stated tolerance.
 #include <cmath>
@@ -77,6 +77,20 @@ TEST(ClusterFilter, PixelFilteredCooperativeTilesEqualTheLocalFilteredImage) {
   med::FrameBuffer reference = app.localImage();
   EXPECT_TRUE(bitwiseEqual(f.image, reference)) << "largest difference " << largestDifference(f.image, reference);
   EXPECT_TRUE(f.image.outputs.empty()) << "the filter's inputs stay on the client";
+}
+
+// The whole-image denoiser (filter=denoise) reaches tens of pixels across
+// tile borders too: its guides travel with the tiles and the client
+// denoises the assembled frame, equal to the local denoised image.
+TEST(ClusterFilter, DenoisedCooperativeTilesEqualTheLocalDenoisedImage) {
+  auto nodes = startNodes(2);
+  ClusterConfig c = configFor(ClusterMode::Cooperative, nodes, filtered("denoise"));
+  c.cooperative.tileSize = 16;
+  FilteredSession app(c, filtered("denoise"));
+  ClusterFrame f = app.window->render(app.view());
+  med::FrameBuffer reference = app.localImage();
+  EXPECT_TRUE(bitwiseEqual(f.image, reference)) << "largest difference " << largestDifference(f.image, reference);
+  EXPECT_TRUE(f.image.outputs.empty()) << "the denoiser's guides stay on the client";
 }
 
 // Media travel to the nodes (volume materials, their 3D textures, the

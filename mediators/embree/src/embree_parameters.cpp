@@ -35,7 +35,8 @@ std::vector<ParameterSpec> specs() {
       integerParameter("threads", 0, 0, 4096, "render threads (0: all)"),
       flagParameter("directOnly", false, "direct light only (maxDepth 1)"),
       integerParameter("samplesPerPass", 1, 1, 4096, "samples per pass (unset: passes grow 1, 2, 4, 8)"),
-      choiceParameter("filter", "none", {"none", "pixel", "atrous", "radiance", "hybrid"}, "preview filter"),
+      choiceParameter("filter", "none", {"none", "pixel", "atrous", "radiance", "hybrid", "denoise"},
+                      "preview filter"),
       choiceParameter("pathClass", "indirect", {"indirect", "caustic", "all"}, "paths the filter smooths"),
       choiceParameter("filterKernel", "separable", {"bilateral", "separable"}, "pixel filter kernel"),
       // A 10 % relative standard deviation: low enough that 8 spp previews
@@ -63,6 +64,13 @@ std::vector<ParameterSpec> specs() {
       flagParameter("ambientOcclusion", true, "radiance filter: occlusion-aware weights"),
       flagParameter("bilateral", false, "radiance filter: bilateral weights"),
       realParameter("radianceBlend", 0.0, 0, 1e6, "radiance filter: blend towards the unfiltered image"),
+      // The whole-image denoiser (filter=denoise): a-trous levels and its
+      // edge stops (SVGF's, the luminance one tighter: one frame's variance, not
+      // a history's; measured on builtin:cornell, docs/filtering.md).
+      integerParameter("denoiseLevels", 5, 1, 10, "denoiser: a-trous levels (footprint 4 * (2^levels - 1) + 1 px)"),
+      positiveParameter("denoiseSigmaL", 2.0, 1e6, "denoiser: luminance difference kept apart, in standard errors"),
+      realParameter("denoiseSigmaN", 64.0, 0, 1e6, "denoiser: exponent on the cosine between normals"),
+      positiveParameter("denoiseSigmaZ", 1.0, 1e6, "denoiser: depth difference kept apart, in depth steps per pixel"),
       choiceParameter("temporal", "", {"", "photons", "objectPca"}, "temporal method of an animation"),
       integerParameter("photonsPerFrame", 0, 0, 1 << 30, "photons traced per frame (0: automatic)"),
       integerParameter("photonFrames", 9, 1, 255, "odd window of frames photons are gathered from"),

@@ -25,6 +25,7 @@ std::vector<std::string> EmbreeViewport::resolveInputs() const {
   const FilterSettings filter = FilterSettings::from(settings_.parameters);
   std::vector<std::string> inputs;
   if (filter.usesPixelFilter()) inputs = pixelFilterInputs();
+  if (filter.usesDenoiser()) inputs = denoiseInputs();
   return inputs;
 }
 
@@ -36,6 +37,7 @@ std::vector<std::string> EmbreeViewport::resolveOutputs() const {
 void EmbreeViewport::resolve(FrameBuffer& frame) {
   const FilterSettings filter = FilterSettings::from(settings_.parameters);
   if (filter.usesPixelFilter()) pixelFilter_.resolve(frame, filter, true, frame.outputs.count(kBlendOutput) != 0);
+  if (filter.usesDenoiser()) denoiser_.resolve(frame, filter.denoise, true);
 }
 
 SceneAdapter::Update EmbreeViewport::synchronize(const sg::Replica& replica) {
@@ -65,16 +67,22 @@ void EmbreeViewport::resolveLocally(const FilterSettings& filter, std::uint32_t 
   // samples with it. A viewer that asks for one more sample each frame so
   // filters at 2, 4, 8, 16, ... and not at every frame. One sample has no
   // variance estimate to filter by.
+  // The denoiser follows the same schedule, and keeps showing its last
+  // image in between (its guides need no fresh samples to be blended).
   const std::uint32_t samples = accumulation_->sampleCount(0, 0);
-  const auto last = pixelFilter_.filteredAt();
+  const auto last = filter.usesDenoiser() ? denoiser_.denoisedAt() : pixelFilter_.filteredAt();
   const bool complete = samples >= spp && (!last || samples >= 2 * *last);
   const bool due = samples >= 2 && (embree::isFilterFrame(samples) || complete) && last != samples;
-  if (due || last) pixelFilter_.resolve(out, filter, due, control.wants(kBlendOutput));
+  if (filter.usesDenoiser()) {
+    if (due || last) denoiser_.resolve(out, filter.denoise, due);
+  } else if (due || last) {
+    pixelFilter_.resolve(out, filter, due, control.wants(kBlendOutput));
+  }
   auto explicitlyWanted = [&](const std::string& name) {
     return control.outputs &&
            std::find(control.outputs->begin(), control.outputs->end(), name) != control.outputs->end();
   };
-  for (const auto& name : pixelFilterInputs())
+  for (const auto& name : filter.usesDenoiser() ? denoiseInputs() : pixelFilterInputs())
     if (!explicitlyWanted(name)) out.outputs.erase(name);
 }
 
@@ -163,8 +171,10 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
   stats.syncSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   embree::RenderSettings settings = renderer_.settings();
   if (renderer_.restartIfStale(scene, camera, traced, *accumulation_,
-                               radiance ? embree::Estimator::Radiance : embree::Estimator::Paths))
+                               radiance ? embree::Estimator::Radiance : embree::Estimator::Paths)) {
     pixelFilter_.forget();
+    denoiser_.forget();
+  }
   // Unless samplesPerPass is given, passes grow 1, 2, 4, 8 samples per pixel:
   // the first image is ready after one sample, and later passes keep a
   // pixel's samples back to back (its paths find the same BVH nodes in
@@ -198,9 +208,11 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
     for (std::size_t i = 0; i < shown.size(); ++i) full.colour[i] = glm::vec4(shown[i], full.colour[i].a);
   }
   if (filter.usesPixelFilter() && stats.samples > 0) writeFilterInputs(scene, camera, traced, filter, full);
+  if (filter.usesDenoiser() && stats.samples > 0) writeDenoiseInputs(fb, full);
   out =
       crop(std::move(full), region.x0 - traced.x0, region.y0 - traced.y0, region.regionWidth(), region.regionHeight());
-  if (filter.usesPixelFilter() && stats.samples > 0) resolveLocally(filter, spp, out, control);
+  if ((filter.usesPixelFilter() || filter.usesDenoiser()) && stats.samples > 0)
+    resolveLocally(filter, spp, out, control);
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
 }

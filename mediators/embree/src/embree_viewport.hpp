@@ -7,6 +7,7 @@
 #include <memory>
 #include <mutex>
 
+#include "denoising.hpp"
 #include "embree_scene_adapter.hpp"
 #include "pixel_filtering.hpp"
 #include "render_outputs.hpp"
@@ -47,6 +48,7 @@ class EmbreeViewport final : public Viewport {
   embree::Renderer renderer_;
   std::unique_ptr<embree::FrameBuffer> accumulation_;
   PixelFilterResolver pixelFilter_;
+  DenoiseResolver denoiser_;
   std::unique_ptr<embree::RadianceAccumulator> radiance_;
 };
 

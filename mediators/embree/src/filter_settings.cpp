@@ -30,7 +30,8 @@ FilterSettings FilterSettings::from(const Parameters& p) {
                                {"pixel", FilterMode::Pixel},
                                {"atrous", FilterMode::Atrous},
                                {"radiance", FilterMode::Radiance},
-                               {"hybrid", FilterMode::Hybrid}});
+                               {"hybrid", FilterMode::Hybrid},
+                               {"denoise", FilterMode::Denoise}});
   s.pathClass = choose<PathClass>(
       p, "pathClass", {{"indirect", PathClass::Indirect}, {"caustic", PathClass::Caustic}, {"all", PathClass::All}});
   s.pixel.kernel = choose<embree::FilterKernel>(
@@ -58,6 +59,11 @@ FilterSettings FilterSettings::from(const Parameters& p) {
   s.radiance.bilateral = t.flag(p, "bilateral");
   s.radiance.blend = real(p, "radianceBlend");
   s.radiance.hybrid = s.mode == FilterMode::Hybrid;
+  s.denoise.levels = static_cast<unsigned>(t.integer(p, "denoiseLevels"));
+  s.denoise.sigmaLuminance = real(p, "denoiseSigmaL");
+  s.denoise.sigmaNormal = real(p, "denoiseSigmaN");
+  s.denoise.sigmaDepth = real(p, "denoiseSigmaZ");
+  s.denoise.threads = static_cast<int>(t.integer(p, "threads"));
   try {
     s.radiance.validate();
   } catch (const std::exception& e) {

@@ -3,7 +3,7 @@
 // All of them may change while an image converges: none restarts
 // accumulation, they only change how the accumulated samples are shown.
 //
-//   filter      none | pixel | atrous | radiance | hybrid     (none)
+//   filter      none | pixel | atrous | radiance | hybrid | denoise  (none)
 //   threshold   t: perceived variance the blend keeps under  (0.01)
 //   sigmaS      spatial std. dev., pixels                     (8)
 //   sigmaC      range colour std. dev.                        (0.02)
@@ -17,15 +17,18 @@
 //   warmupRadius (8 px), warmupFrames (4), maxRadius (12 px: cluster tiles
 //   are traced with a halo this wide), ambientOcclusion (true),
 //   bilateral (false), radianceBlend (0)
+// The whole-image denoiser (filter=denoise, tsr/embree/denoiser.hpp):
+//   denoiseLevels (5), denoiseSigmaL (2), denoiseSigmaN (64), denoiseSigmaZ (1)
 #include <string>
 
+#include "tsr/embree/denoiser.hpp"
 #include "tsr/embree/pixel_filter.hpp"
 #include "tsr/embree/radiance_filter.hpp"
 #include "tsr/med/parameters.hpp"
 
 namespace tsr::med::embree_mediator {
 
-enum class FilterMode { None, Pixel, Atrous, Radiance, Hybrid };
+enum class FilterMode { None, Pixel, Atrous, Radiance, Hybrid, Denoise };
 enum class PathClass { Indirect, Caustic, All };
 
 struct FilterSettings {
@@ -34,6 +37,7 @@ struct FilterSettings {
   float sigmaDRelative = 0.1f;
   embree::PixelFilterSettings pixel;  // sigmaD is set per frame from sigmaDRelative
   embree::RadianceFilterSettings radiance;
+  embree::DenoiseSettings denoise;
 
   // Throws ParameterError naming the parameter and what it accepts.
   static FilterSettings from(const Parameters& parameters);
@@ -41,6 +45,7 @@ struct FilterSettings {
     return mode == FilterMode::Pixel || mode == FilterMode::Atrous || mode == FilterMode::Hybrid;
   }
   bool usesRadianceFilter() const { return mode == FilterMode::Radiance || mode == FilterMode::Hybrid; }
+  bool usesDenoiser() const { return mode == FilterMode::Denoise; }
 };
 
 }  // namespace tsr::med::embree_mediator

@@ -64,8 +64,11 @@ TEST(EmbreeFurnace, RoughConductorAndDielectricLoseLittleAndGainNothing) {
   Material glass;
   glass.type = MaterialType::Dielectric;
   glass.baseColor = glm::vec3(1.0f);
+  // Rough refraction through a sphere has heavy-tailed paths (internal
+  // reflections): at 32 spp the mean wanders by +-3 % between seeds, so
+  // the gain check takes 256.
   glass.roughness = 0.3f;
-  c = furnace(glass, 64, 8);
+  c = furnace(glass, 64, 64);
   EXPECT_LT(c.x, 0.505f);
   EXPECT_GT(c.x, 0.45f);
 }
@@ -106,8 +109,11 @@ TEST(EmbreeFurnace, GltfTransmissionNeitherGainsNorLosesMuch) {
   glm::vec3 c = furnace(glass, 64, 8);
   RecordProperty("smooth", std::to_string(c.x / 0.5f));
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[k], 0.5f, 0.005f);
+  // Rough refraction through a sphere has heavy-tailed paths (internal
+  // reflections): at 32 spp the mean wanders by +-3 % between seeds, so
+  // the gain check takes 256.
   glass.roughness = 0.3f;
-  c = furnace(glass, 64, 8);
+  c = furnace(glass, 64, 64);
   RecordProperty("rough_0.3", std::to_string(c.x / 0.5f));
   EXPECT_LT(c.x, 0.505f);
   EXPECT_GT(c.x, 0.45f);

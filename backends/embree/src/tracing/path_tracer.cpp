@@ -185,6 +185,8 @@ class PathWalk {
   std::uint8_t mask_ = 0;
   float prevPdf_ = 0.0f;
   bool prevDelta_ = true;
+  bool aovFinal_ = false;         // the albedo and normal are those of a non-specular surface
+  glm::vec3 aovTint_{1.0f};       // the specular surfaces' colours before it
   // The last scattering vertex and its normal (zero in a medium): where
   // light sampling would have picked an emitter the path then hits.
   glm::vec3 prevPoint_{0.0f}, prevNormal_{0.0f};
@@ -230,16 +232,23 @@ PixelSample PathWalk::run(glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos,
       continue;
     }
     const SurfaceParameters at = Tracer::parameters(mat, h.uv);
-    if (depth == 0) {  // the first hit's AOVs
+    if (depth == 0) {  // the first hit's depth
       out_.hit = true;
       out_.depth = glm::dot(h.p - camPos, forward);
-      out_.albedo = at.colour;
-      out_.normal = glm::dot(h.ns, dir) > 0.0f ? -h.ns : h.ns;
     }
     if (mat.material.isEmissive() && glm::dot(h.faceNormal, dir) < 0.0f)
       addEmitted(h, mat, dir, travelled_ + rh.ray.tfar, depth);
     if (depth >= tracer_.settings.maxDepth) break;
     const ScatteringPoint sp(h, dir, mat.material, at);
+    // Albedo and normal of the first surface that is not a perfect mirror
+    // or clear glass (OIDN's convention: what a mirror shows has the
+    // texture and edges a denoiser must keep), tinted by the mirrors before it.
+    if (!aovFinal_) {
+      out_.albedo = aovTint_ * at.colour;
+      out_.normal = glm::dot(h.ns, dir) > 0.0f ? -h.ns : h.ns;
+      aovFinal_ = !sp.bsdf.isDelta();
+      aovTint_ *= at.colour;
+    }
     if (sp.facesAway() || !scatter(sp, h, rh.hit, depth, org, dir)) break;
     ++depth;
     crossings = 0;

@@ -1,0 +1,68 @@
+#include "denoising.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace tsr::med::embree_mediator {
+
+std::vector<std::string> denoiseInputs() { return {kDenoiseAlbedoOutput, kDenoiseNormalOutput, kDenoiseVarianceOutput}; }
+
+void writeDenoiseInputs(const embree::FrameBuffer& fb, FrameBuffer& out) {
+  const std::size_t n = std::size_t{fb.width()} * fb.height();
+  auto& albedo = out.outputs[kDenoiseAlbedoOutput];
+  auto& normal = out.outputs[kDenoiseNormalOutput];
+  auto& variance = out.outputs[kDenoiseVarianceOutput];
+  for (auto* image : {&albedo, &normal, &variance}) image->assign(n, glm::vec4(0.0f));
+  for (std::uint32_t y = 0; y < fb.height(); ++y)
+    for (std::uint32_t x = 0; x < fb.width(); ++x) {
+      const std::size_t i = out.index(x, y);
+      const std::uint32_t count = fb.sampleCount(x, y);
+      albedo[i] = glm::vec4(fb.albedo(x, y), 0.0f);
+      normal[i] = glm::vec4(fb.normal(x, y), fb.depth(x, y));
+      const glm::vec3 v = count > 0 ? fb.variance(embree::Channel::Colour, x, y) / float(count) : glm::vec3(0.0f);
+      variance[i] = glm::vec4(v, float(count));
+    }
+}
+
+std::optional<std::uint32_t> DenoiseResolver::denoisedAt() const {
+  if (!last_) return std::nullopt;
+  return last_->samples;
+}
+
+void DenoiseResolver::resolve(FrameBuffer& frame, const embree::DenoiseSettings& settings, bool refresh) {
+  const std::size_t n = frame.colour.size();
+  const std::vector<glm::vec4>* images[3] = {};
+  const char* names[3] = {kDenoiseAlbedoOutput, kDenoiseNormalOutput, kDenoiseVarianceOutput};
+  for (int k = 0; k < 3; ++k) {
+    auto it = frame.outputs.find(names[k]);
+    if (it == frame.outputs.end() || it->second.size() != n)
+      throw std::invalid_argument(std::string("denoising: the frame has no '") + names[k] + "' output");
+    images[k] = &it->second;
+  }
+  const bool stale = !last_ || last_->width != frame.width || last_->height != frame.height;
+  if (refresh || stale) {
+    std::vector<glm::vec3> colour(n), albedo(n), normal(n), variance(n);
+    std::vector<float> depth(n);
+    std::uint32_t samples = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      colour[i] = glm::vec3(frame.colour[i]);
+      albedo[i] = glm::vec3((*images[0])[i]);
+      normal[i] = glm::vec3((*images[1])[i]);
+      depth[i] = (*images[1])[i].a;
+      variance[i] = glm::vec3((*images[2])[i]);
+      samples = std::max(samples, static_cast<std::uint32_t>((*images[2])[i].a));
+    }
+    embree::DenoiseInput input;
+    input.width = frame.width;
+    input.height = frame.height;
+    input.colour = colour;
+    input.variance = variance;
+    input.albedo = albedo;
+    input.normal = normal;
+    input.depth = depth;
+    last_ = Kept{frame.width, frame.height, samples, embree::denoise(input, settings)};
+  }
+  for (std::size_t i = 0; i < n; ++i) frame.colour[i] = glm::vec4(last_->image[i], frame.colour[i].a);
+}
+
+}  // namespace tsr::med::embree_mediator

@@ -1,0 +1,44 @@
+#pragma once
+// The whole-image denoiser (filter=denoise, tsr/embree/denoiser.hpp) on a
+// viewport's frame. Its guides travel as named outputs beside the colour,
+// so the same resolve runs on a whole local frame and on a frame a cluster
+// client assembled from tiles: both give one image.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tsr/embree/denoiser.hpp"
+#include "tsr/embree/framebuffer.hpp"
+#include "tsr/med/frame_buffer.hpp"
+
+namespace tsr::med::embree_mediator {
+
+inline constexpr const char* kDenoiseAlbedoOutput = "denoise.albedo";      // rgb: first surface's albedo
+inline constexpr const char* kDenoiseNormalOutput = "denoise.normal";      // rgb: its normal, a: its depth
+inline constexpr const char* kDenoiseVarianceOutput = "denoise.variance";  // rgb: variance of the mean, a: samples
+
+std::vector<std::string> denoiseInputs();
+
+// Writes the denoiser's guides from the accumulated samples into `out`.
+void writeDenoiseInputs(const embree::FrameBuffer& fb, FrameBuffer& out);
+
+// Denoises frames from their guides; keeps the last denoised image, so a
+// frame between two denoising passes shows it instead of raw samples.
+class DenoiseResolver {
+ public:
+  // Replaces frame's colour with the denoised image: computed anew when
+  // `refresh`, or when nothing was denoised yet at this size; else the kept one.
+  void resolve(FrameBuffer& frame, const embree::DenoiseSettings& settings, bool refresh);
+  void forget() { last_.reset(); }
+  // The sample count the kept image was denoised at.
+  std::optional<std::uint32_t> denoisedAt() const;
+
+ private:
+  struct Kept {
+    std::uint32_t width = 0, height = 0, samples = 0;
+    std::vector<glm::vec3> image;
+  };
+  std::optional<Kept> last_;
+};
+
+}  // namespace tsr::med::embree_mediator
