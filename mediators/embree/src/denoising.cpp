@@ -1,7 +1,8 @@
 #include "denoising.hpp"
 
+#include "required_output.hpp"
+
 #include <algorithm>
-#include <stdexcept>
 
 namespace tsr::med::embree_mediator {
 
@@ -31,14 +32,9 @@ std::optional<std::uint32_t> DenoiseResolver::denoisedAt() const {
 
 void DenoiseResolver::resolve(FrameBuffer& frame, const embree::DenoiseSettings& settings, bool refresh) {
   const std::size_t n = frame.colour.size();
-  const std::vector<glm::vec4>* images[3] = {};
   const char* names[3] = {kDenoiseAlbedoOutput, kDenoiseNormalOutput, kDenoiseVarianceOutput};
-  for (int k = 0; k < 3; ++k) {
-    auto it = frame.outputs.find(names[k]);
-    if (it == frame.outputs.end() || it->second.size() != n)
-      throw std::invalid_argument(std::string("denoising: the frame has no '") + names[k] + "' output");
-    images[k] = &it->second;
-  }
+  const std::vector<glm::vec4>* images[3] = {};
+  for (int k = 0; k < 3; ++k) images[k] = &requiredOutput(frame, names[k], "denoising");
   const bool stale = !last_ || last_->width != frame.width || last_->height != frame.height;
   if (refresh || stale) {
     std::vector<glm::vec3> colour(n), albedo(n), normal(n), variance(n);

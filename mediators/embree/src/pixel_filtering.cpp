@@ -1,5 +1,7 @@
 #include "pixel_filtering.hpp"
 
+#include "required_output.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -75,12 +77,7 @@ void PixelFilterResolver::resolve(FrameBuffer& frame, const FilterSettings& sett
   const std::vector<glm::vec4>* images[5] = {};
   const char* names[5] = {kLowVarianceOutput, kHighVarianceOutput, kHighVarianceVarOutput, kRangeOutput,
                           kRangeGeometryOutput};
-  for (int k = 0; k < 5; ++k) {
-    auto it = frame.outputs.find(names[k]);
-    if (it == frame.outputs.end() || it->second.size() != n)
-      throw std::invalid_argument(std::string("pixel filtering: the frame has no '") + names[k] + "' output");
-    images[k] = &it->second;
-  }
+  for (int k = 0; k < 5; ++k) images[k] = &requiredOutput(frame, names[k], "pixel filtering");
   std::uint32_t samples = 0;
   for (std::size_t i = 0; i < n; ++i) {
     low[i] = glm::vec3((*images[0])[i]);

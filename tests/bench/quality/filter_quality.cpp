@@ -450,13 +450,7 @@ int main(int argc, char** argv) {
       note(fmt::format("{} done in {:.0f} s", s.label,
                        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()));
     }
-    const std::string md = tables(results, o);
-    std::cout << md;
-    if (!o.out.empty()) {
-      std::ofstream f(o.out);
-      f << md;
-      if (!f) throw std::runtime_error(o.out + ": cannot write");
-    }
+    quality::publishTables(tables(results, o), o.out);
   } catch (const std::exception& e) {
     std::cerr << "filter_quality: " << e.what() << "\n";
     return 1;

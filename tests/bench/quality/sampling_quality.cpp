@@ -69,6 +69,7 @@ struct Point {
   double seconds = 0;  // cumulative over one progressive viewport
   double relMse = NAN;
   quality::SeenError seen;
+  double meanRatio = NAN;  // the image's mean luminance over the reference's
 };
 
 struct SceneRow {
@@ -77,6 +78,12 @@ struct SceneRow {
 };
 
 void note(const std::string& s) { std::cerr << "[sampling_quality] " << s << std::endl; }
+
+double meanLuminance(const std::vector<glm::vec4>& image) {
+  double sum = 0.0;
+  for (const auto& c : image) sum += 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+  return image.empty() ? 0.0 : sum / double(image.size());
+}
 
 std::vector<Point> curve(quality::QualityScene& scene, const Options& o, const Config& c, const med::FrameBuffer& ref) {
   med::Parameters p;
@@ -93,7 +100,8 @@ std::vector<Point> curve(quality::QualityScene& scene, const Options& o, const C
     const quality::Shot shot = scene.render(*vp, o.reference.size);
     total += shot.seconds;
     Point pt{n, total, quality::relMse(shot.image.colour, ref.colour),
-             quality::seenError(shot.image.colour, ref.colour, ref.width, ref.height)};
+             quality::seenError(shot.image.colour, ref.colour, ref.width, ref.height),
+             meanLuminance(shot.image.colour) / meanLuminance(ref.colour)};
     out.push_back(pt);
     if (n == 8 && !o.pngDir.empty())
       med::writeImage(fmt::format("{}/{}_{}_8spp.png", o.pngDir, scene.key(), c.name), shot.image);
@@ -177,6 +185,18 @@ std::string tables(const std::vector<SceneRow>& rows, const std::vector<Config>&
     }
     md << "\nMedian over the scenes: " << num(median(r8)) << "x at 8 spp, " << num(median(rTime))
        << "x at equal time.\n";
+
+    md << "\n### Bias check: mean luminance of the " << o.spp.back()
+       << "-spp image over the reference's (which the defaults rendered)\n\n| scene |";
+    for (const auto& c : configs) md << " " << c.name << " |";
+    md << "\n|---|";
+    for (std::size_t i = 0; i < configs.size(); ++i) md << "---|";
+    md << "\n";
+    for (const auto& r : rows) {
+      md << "| " << r.label << " |";
+      for (const auto& c : r.curves) md << " " << fmt::format("{:.4f}", c.back().meanRatio) << " |";
+      md << "\n";
+    }
   }
   md << "\nReferences: " << o.reference.spp << " spp, seed " << o.reference.seed << ", " << o.reference.size << "x"
      << o.reference.size << ", depth " << o.reference.maxDepth << "; measured renders seed " << o.seed
@@ -233,13 +253,7 @@ int main(int argc, char** argv) {
       note(fmt::format("{} done in {:.0f} s", s.label,
                        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()));
     }
-    const std::string md = tables(rows, configs, o);
-    std::cout << md;
-    if (!o.out.empty()) {
-      std::ofstream f(o.out);
-      f << md;
-      if (!f) throw std::runtime_error(o.out + ": cannot write");
-    }
+    quality::publishTables(tables(rows, configs, o), o.out);
   } catch (const std::exception& e) {
     std::cerr << "sampling_quality: " << e.what() << "\n";
     return 1;

@@ -85,4 +85,12 @@ med::FrameBuffer reference(QualityScene& scene, const ReferenceOptions& o) {
   return shot.image;
 }
 
+void publishTables(const std::string& markdown, const std::string& path) {
+  std::cout << markdown;
+  if (path.empty()) return;
+  std::ofstream f(path);
+  f << markdown;
+  if (!f) throw std::runtime_error(path + ": cannot write");
+}
+
 }  // namespace tsr::quality

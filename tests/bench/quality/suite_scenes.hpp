@@ -34,4 +34,8 @@ struct ReferenceOptions {
 // name says its time, frame interval and shutter.
 med::FrameBuffer reference(QualityScene& scene, const ReferenceOptions& o);
 
+// Prints a harness's markdown tables and writes them to `path` too
+// (unless empty); throws when the file cannot be written.
+void publishTables(const std::string& markdown, const std::string& path);
+
 }  // namespace tsr::quality

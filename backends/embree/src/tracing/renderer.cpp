@@ -183,18 +183,22 @@ glm::vec3 windowPoint(const Camera& camera, const Region& region, std::uint32_t 
 }
 
 // A camera ray through a jittered point of full-image pixel (px, py); with
-// a lens, from a uniform point of the aperture (two more numbers of the
-// sample's stream, drawn only then: a pinhole's images stay as they were)
-// towards where the pinhole ray meets the plane in focus.
-// With the shutter open over an interval, the ray's time is uniform in it
-// (one more number, drawn only then: an instant's images stay as they were).
+// a lens, from a uniform point of the aperture towards where the pinhole
+// ray meets the plane in focus. With the shutter open over an interval,
+// the ray's time is uniform in it. The Sobol sampler draws the lens' and
+// the time's sets whether they are used or not, so a render with and
+// without a lens or shutter differ by the effect alone, not by their
+// noise; the independent sampler draws them only when used (its images
+// stay as they were before lenses and shutters).
 CameraRay cameraRay(const Camera& camera, const CameraPath& path, const Region& region, std::uint32_t px,
                     std::uint32_t py, Sampler& sampler) {
   const glm::vec3 pinhole = windowPoint(camera, region, px, py, sampler.uniform2());
+  const bool reserve = sampler.kind() == SamplerKind::Sobol;
   glm::vec2 u(0.0f);
-  if (camera.apertureRadius > 0.0f) u = sampler.uniform2();
+  if (camera.apertureRadius > 0.0f || reserve) u = sampler.uniform2();
   float time = camera.shutterOpen;
-  if (camera.shutterClose > camera.shutterOpen) time += (camera.shutterClose - camera.shutterOpen) * sampler.uniform();
+  const float uTime = camera.shutterClose > camera.shutterOpen || reserve ? sampler.uniform() : 0.0f;
+  if (camera.shutterClose > camera.shutterOpen) time += (camera.shutterClose - camera.shutterOpen) * uTime;
   const Eye eye = path.at(time);
   if (camera.apertureRadius <= 0.0f)
     return {eye.position, glm::normalize(eye.rotation * pinhole), time, eye.position, eye.forward};
