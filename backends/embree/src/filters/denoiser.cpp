@@ -16,8 +16,9 @@ namespace {
 constexpr glm::vec3 kLuma{0.2126f, 0.7152f, 0.0722f};
 // B3-spline taps of the a-trous wavelet, 1 4 6 4 1 / 16.
 constexpr float kTaps[5] = {1.0f / 16, 1.0f / 4, 3.0f / 8, 1.0f / 4, 1.0f / 16};
-// Below this albedo a pixel is not demodulated (emitters, black surfaces,
-// the background): dividing by it would only amplify noise.
+// The least albedo a channel is divided by (emitters, black surfaces and
+// the background have none). Every pixel is demodulated, or pixels in two
+// different units would be averaged where a texture goes dark.
 constexpr float kMinAlbedo = 0.02f;
 
 glm::vec3 finiteOr0(const glm::vec3& v) {
@@ -114,7 +115,7 @@ std::vector<glm::vec3> denoise(const DenoiseInput& in, const DenoiseSettings& s)
   std::vector<float> v(n), nextV(n);
   for (std::size_t i = 0; i < n; ++i) {
     const glm::vec3 a = finiteOr0(in.albedo[i]);
-    modulation[i] = glm::dot(kLuma, a) >= kMinAlbedo ? glm::max(a, glm::vec3(kMinAlbedo)) : glm::vec3(1.0f);
+    modulation[i] = glm::max(a, glm::vec3(kMinAlbedo));
     c[i] = finiteOr0(in.colour[i]) / modulation[i];
     const glm::vec3 var = glm::max(finiteOr0(in.variance[i]), glm::vec3(0.0f)) / (modulation[i] * modulation[i]);
     // Var[lum] <= sum_c w_c Var_c for any correlation of the channels.
