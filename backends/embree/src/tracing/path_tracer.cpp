@@ -238,14 +238,17 @@ PixelSample PathWalk::run(glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos,
     }
     if (mat.material.isEmissive() && glm::dot(h.faceNormal, dir) < 0.0f)
       addEmitted(h, mat, dir, travelled_ + rh.ray.tfar, depth);
-    if (depth >= tracer_.settings.maxDepth) break;
-    const ScatteringPoint sp(h, dir, mat.material, at);
     // Albedo and normal of the first surface that is not a perfect mirror
     // or clear glass (OIDN's convention: what a mirror shows has the
-    // texture and edges a denoiser must keep), tinted by the mirrors before it.
+    // texture and edges a denoiser must keep), tinted by the mirrors before
+    // it; the last surface's where the path ends on a mirror.
     if (!aovFinal_) {
       out_.albedo = aovTint_ * at.colour;
       out_.normal = glm::dot(h.ns, dir) > 0.0f ? -h.ns : h.ns;
+    }
+    if (depth >= tracer_.settings.maxDepth) break;
+    const ScatteringPoint sp(h, dir, mat.material, at);
+    if (!aovFinal_) {
       aovFinal_ = !sp.bsdf.isDelta();
       aovTint_ *= at.colour;
     }
