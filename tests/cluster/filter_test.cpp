@@ -68,29 +68,21 @@ float largestDifference(const med::FrameBuffer& a, const med::FrameBuffer& b) {
   return worst;
 }
 
-TEST(ClusterFilter, PixelFilteredCooperativeTilesEqualTheLocalFilteredImage) {
-  auto nodes = startNodes(2);
-  ClusterConfig c = configFor(ClusterMode::Cooperative, nodes, filtered("pixel"));
-  c.cooperative.tileSize = 16;  // many tile borders for a seam to show at
-  FilteredSession app(c, filtered("pixel"));
-  ClusterFrame f = app.window->render(app.view());
-  med::FrameBuffer reference = app.localImage();
-  EXPECT_TRUE(bitwiseEqual(f.image, reference)) << "largest difference " << largestDifference(f.image, reference);
-  EXPECT_TRUE(f.image.outputs.empty()) << "the filter's inputs stay on the client";
-}
-
-// The whole-image denoiser (filter=denoise) reaches tens of pixels across
-// tile borders too: its guides travel with the tiles and the client
-// denoises the assembled frame, equal to the local denoised image.
-TEST(ClusterFilter, DenoisedCooperativeTilesEqualTheLocalDenoisedImage) {
-  auto nodes = startNodes(2);
-  ClusterConfig c = configFor(ClusterMode::Cooperative, nodes, filtered("denoise"));
-  c.cooperative.tileSize = 16;
-  FilteredSession app(c, filtered("denoise"));
-  ClusterFrame f = app.window->render(app.view());
-  med::FrameBuffer reference = app.localImage();
-  EXPECT_TRUE(bitwiseEqual(f.image, reference)) << "largest difference " << largestDifference(f.image, reference);
-  EXPECT_TRUE(f.image.outputs.empty()) << "the denoiser's guides stay on the client";
+// Pixel filtering and the whole-image denoiser (filter=denoise) reach many
+// pixels across tile borders: their inputs travel with the tiles and the
+// client resolves the assembled frame, equal to the local filtered image.
+TEST(ClusterFilter, FilteredCooperativeTilesEqualTheLocalFilteredImage) {
+  for (const char* mode : {"pixel", "denoise"}) {
+    auto nodes = startNodes(2);
+    ClusterConfig c = configFor(ClusterMode::Cooperative, nodes, filtered(mode));
+    c.cooperative.tileSize = 16;  // many tile borders for a seam to show at
+    FilteredSession app(c, filtered(mode));
+    ClusterFrame f = app.window->render(app.view());
+    med::FrameBuffer reference = app.localImage();
+    EXPECT_TRUE(bitwiseEqual(f.image, reference))
+        << mode << ": largest difference " << largestDifference(f.image, reference);
+    EXPECT_TRUE(f.image.outputs.empty()) << mode << ": the filter's inputs stay on the client";
+  }
 }
 
 // Media travel to the nodes (volume materials, their 3D textures, the

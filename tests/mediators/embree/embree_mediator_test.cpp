@@ -216,6 +216,32 @@ TEST_F(EmbreeMediator, ConvergedImagesAreReusedUntilSomethingChanges) {
   EXPECT_GT(viewport->render(replica, view, image).rays, 0u);
 }
 
+// The sampling parameters reach the path tracer: each restarts the samples
+// held and gives another image, and setting it back gives the first again.
+TEST_F(EmbreeMediator, SamplingParametersRestartAndChangeTheImage) {
+  auto viewport = rig.registry.create(rig.settings(2), contexts);
+  const auto view = rig.view(replica.scene());
+  med::FrameBuffer first;
+  viewport->render(replica, view, first);
+  for (const auto& [name, value] : std::vector<std::pair<std::string, med::ParameterValue>>{
+           {"sampler", std::string("independent")}, {"lightChoice", std::string("power")}}) {
+    auto other = rig.registry.create(rig.settings(2), contexts);
+    other->setParameter(name, value);
+    med::FrameBuffer image;
+    EXPECT_EQ(other->render(replica, view, image).samples, 2u) << name;
+    EXPECT_GT(test::differingPixels(first, image), 0u) << name << " changes which samples are taken";
+    viewport->setParameter(name, value);
+    med::FrameBuffer again;
+    EXPECT_GT(viewport->render(replica, view, again).rays, 0u) << name << " restarts the samples held";
+    expectSameBits(again, image, name.c_str());
+    viewport->setParameter("sampler", std::string("sobol"));
+    viewport->setParameter("lightChoice", std::string("tree"));
+    med::FrameBuffer back;
+    viewport->render(replica, view, back);
+    expectSameBits(back, first, "the defaults again");
+  }
+}
+
 TEST_F(EmbreeMediator, GrowingPassesGiveTheSameImageAsSingleSamplePasses) {
   auto view = rig.view(replica.scene());
   std::vector<double> progress;

@@ -107,7 +107,14 @@ std::uint32_t LightTree::build(std::size_t begin, std::size_t end, std::span<con
     centres.hi = glm::max(centres.hi, c);
   }
   const auto index = std::uint32_t(nodes_.size());
-  nodes_.push_back(Node{all.lo, all.hi, all.cone, all.power, std::uint32_t(begin), std::uint32_t(end - begin)});
+  Node node{all.lo, all.hi, all.cone};
+  node.centre = 0.5f * (all.lo + all.hi);
+  node.halfDiagonal = 0.5f * glm::length(all.hi - all.lo);
+  node.sinTheta = safeSqrt(1.0f - all.cone.cosTheta * all.cone.cosTheta);
+  node.power = all.power;
+  node.index = std::uint32_t(begin);
+  node.count = std::uint32_t(end - begin);
+  nodes_.push_back(node);
   if (end - begin == 1 || depth >= kMaxDepth) {
     for (std::size_t i = begin; i < end; ++i) trails_[order_[i]] = trail;
     return index;
@@ -158,11 +165,11 @@ std::uint32_t LightTree::build(std::size_t begin, std::size_t end, std::span<con
 // An upper bound on what the node's triangles can send to p (pbrt-v4's
 // LightBounds::Importance, emitters one-sided: theta_e = pi/2).
 float LightTree::importance(const Node& node, const glm::vec3& p, const glm::vec3& n) const {
-  const glm::vec3 centre = 0.5f * (node.lo + node.hi);
-  const glm::vec3 toPoint = p - centre;
-  const float halfDiagonal = 0.5f * glm::length(node.hi - node.lo);
-  const float d2 = std::max(glm::dot(toPoint, toPoint), halfDiagonal * halfDiagonal);
-  const float dist = std::sqrt(glm::dot(toPoint, toPoint));
+  const glm::vec3 toPoint = p - node.centre;
+  const float halfDiagonal = node.halfDiagonal;
+  const float squared = glm::dot(toPoint, toPoint);
+  const float d2 = std::max(squared, halfDiagonal * halfDiagonal);
+  const float dist = std::sqrt(squared);
   const glm::vec3 wi = dist > 0.0f ? toPoint / dist : glm::vec3(0.0f);
   // cos and sin of a - b, clamped to 1 and 0 when a < b.
   auto cosSub = [](float sinA, float cosA, float sinB, float cosB) {
@@ -177,7 +184,7 @@ float LightTree::importance(const Node& node, const glm::vec3& p, const glm::vec
   const float sinB = safeSqrt(1.0f - cosB * cosB);
 
   const float cosW = glm::dot(node.cone.w, wi), sinW = safeSqrt(1.0f - cosW * cosW);
-  const float cosO = node.cone.cosTheta, sinO = safeSqrt(1.0f - cosO * cosO);
+  const float cosO = node.cone.cosTheta, sinO = node.sinTheta;
   const float cosX = cosSub(sinW, cosW, sinO, cosO), sinX = sinSub(sinW, cosW, sinO, cosO);
   const float cosThetaP = cosSub(sinX, cosX, sinB, cosB);
   if (cosThetaP <= 0.0f) return 0.0f;  // every normal faces away from p

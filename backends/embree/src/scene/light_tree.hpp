@@ -45,6 +45,10 @@ class LightTree {
   struct Node {
     glm::vec3 lo{0.0f}, hi{0.0f};
     DirectionCone cone;
+    // Kept from the build for importance(), which runs at every vertex.
+    glm::vec3 centre{0.0f};
+    float halfDiagonal = 0.0f;
+    float sinTheta = 0.0f;  // of the cone
     float power = 0.0f;
     // Interior: the second child's index (the first follows the node);
     // leaf: its first entry in order_, `count` of them (more than one only

@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <variant>
 
 namespace tsr::embree {
@@ -28,6 +29,13 @@ struct LightArrival {
   glm::vec3 li{0.0f};
   float tfar = std::numeric_limits<float>::infinity();
 };
+
+// Where a point or spot light stands; nothing for a directional light.
+inline std::optional<glm::vec3> lightPosition(const Light& light) {
+  if (const auto* sl = std::get_if<SpotLight>(&light)) return sl->position;
+  if (const auto* pl = std::get_if<PointLight>(&light)) return pl->position;
+  return std::nullopt;
+}
 
 // False when nothing arrives: the point is at the light's position, or
 // outside a spot light's cone.

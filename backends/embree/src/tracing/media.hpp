@@ -87,6 +87,13 @@ inline glm::vec3 segmentEmission(const Medium& m, float t) {
   return out;
 }
 
+// The density with which a free flight (one channel picked at random,
+// then its distance) stops at distance t where the channels' extinction is
+// sigma and their transmittance T: the channels' mean of sigma T.
+inline float collisionDensity(const glm::vec3& sigma, const glm::vec3& T) {
+  return (sigma.x * T.x + sigma.y * T.y + sigma.z * T.z) / 3.0f;
+}
+
 struct FreeFlight {
   bool scattered = false;  // a real collision before tMax
   float t = 0.0f;
@@ -102,7 +109,7 @@ inline FreeFlight sampleFreeFlight(const Medium& m, float tMax, float uChannel, 
   f.t = sigma[c] > 0.0f ? -std::log1p(-uDistance) / sigma[c] : std::numeric_limits<float>::infinity();
   if (f.t < tMax) {
     const glm::vec3 T = transmittance(sigma, f.t);
-    const float pdf = (sigma.x * T.x + sigma.y * T.y + sigma.z * T.z) / 3.0f;
+    const float pdf = collisionDensity(sigma, T);
     f.scattered = true;
     f.weight = pdf > 0.0f ? T * m.scattering / pdf : glm::vec3(0.0f);
     return f;

@@ -57,10 +57,14 @@ struct MediumSegment {
   // mean over the channels).
   float freeFlightPdf(float at) const {
     const glm::vec3 sigma = medium->extinction();
-    const glm::vec3 T = transmittance(sigma, at);
-    return (sigma.x * T.x + sigma.y * T.y + sigma.z * T.z) / 3.0f;
+    return collisionDensity(sigma, transmittance(sigma, at));
   }
-  float equiangularPdf(float at, const glm::vec3& light) const { return Equiangular(org, dir, tMax, light).density(at); }
+  // The equiangular density of distance `at` towards `light`, over free
+  // flight's: the equiangular technique in the free-flight techniques'
+  // measure (times its light point's density in solid angle).
+  float equiangularOverFreeFlight(float at, const glm::vec3& light) const {
+    return Equiangular(org, dir, tMax, light).density(at) / freeFlightPdf(at);
+  }
 };
 
 // The power heuristic over three techniques, for the first.
@@ -321,8 +325,8 @@ void PathWalk::sampleEquiangular(const MediumSegment& s) {
       if (maxComponent(seen) > 0.0f) {
         // In the free-flight techniques' measure: solid angle at the point,
         // times the distance density over free flight's.
-        const float tri2 = es.dist * es.dist / glm::dot(tri.normal, -es.wi);
-        const float light = tracer_.emitterProbability(point.p, glm::vec3(0.0f), i) / tri.area * tri2;
+        const float light =
+            tracer_.emitterSolidAnglePdf(point.p, glm::vec3(0.0f), i, es.dist, glm::dot(tri.normal, -es.wi));
         const float self = es.pdf * pdfT / s.freeFlightPdf(t);
         const float w = powerHeuristic3(self, light, phasePdf);
         if (w > 0.0f) add(inScattered(t) * f * es.radiance * seen * (w / (es.pdf * pdfT)), nonSpecular_ + 1);
@@ -330,9 +334,9 @@ void PathWalk::sampleEquiangular(const MediumSegment& s) {
     }
   }
   for (const Light& light : scene_.activeLights) {
-    if (std::holds_alternative<DirectionalLight>(light)) continue;
-    const auto* spot = std::get_if<SpotLight>(&light);
-    const Equiangular eq(s.org, s.dir, s.tMax, spot ? spot->position : std::get<PointLight>(light).position);
+    const std::optional<glm::vec3> position = lightPosition(light);
+    if (!position) continue;
+    const Equiangular eq(s.org, s.dir, s.tMax, *position);
     if (!eq.valid()) continue;
     float pdfT = 0.0f;
     const float t = eq.sample(uDistance, &pdfT);
@@ -428,8 +432,7 @@ void PathWalk::addEmitted(const SurfaceHit& h, const ResolvedMaterial& mat, cons
     const float light = tracer_.emitterPdf(h, dir, t, prevPoint_, prevNormal_);
     if (prevSegmentActive_) {  // the equiangular technique could have found it too
       const MediumSegment& s = prevSegment_;
-      const float eq = s.equiangularPdf(s.t, h.p) / s.freeFlightPdf(s.t) *
-                       tracer_.emitterPdf(h, dir, t, s.org, glm::vec3(0.0f));
+      const float eq = s.equiangularOverFreeFlight(s.t, h.p) * tracer_.emitterPdf(h, dir, t, s.org, glm::vec3(0.0f));
       w = powerHeuristic3(prevPdf_, light, eq);
     } else {
       w = bsdfHitWeight(mode_, prevPdf_, light);
@@ -553,11 +556,9 @@ void PathWalk::sampleDirect(const Point& sp, const VertexSamples& u, bool fromFi
     const glm::vec3 seen = shadow(sp.spawn(a.wi), a.wi, a.tfar);
     float w = 1.0f;  // delta lights: no MIS, but for equiangular distances
     if constexpr (std::is_same_v<Point, MediumPoint>)
-      if (sp.segment && !std::holds_alternative<DirectionalLight>(light)) {
+      if (const std::optional<glm::vec3> position = lightPosition(light); sp.segment && position) {
         const MediumSegment& s = *sp.segment;
-        const auto* spot = std::get_if<SpotLight>(&light);
-        w = powerHeuristic(s.freeFlightPdf(s.t),
-                           s.equiangularPdf(s.t, spot ? spot->position : std::get<PointLight>(light).position));
+        w = powerHeuristic(s.freeFlightPdf(s.t), Equiangular(s.org, s.dir, s.tMax, *position).density(s.t));
       }
     if (maxComponent(seen) > 0.0f) add(throughput_ * f * a.li * seen * w, nonSpecular_ + 1);
   }
@@ -575,10 +576,9 @@ void PathWalk::sampleDirect(const Point& sp, const VertexSamples& u, bool fromFi
           if constexpr (std::is_same_v<Point, MediumPoint>)
             if (sp.segment) {
               const MediumSegment& s = *sp.segment;
-              const EmitterTriangle& tri = scene_.emitterTriangles[es.triangle];
-              const float fromStart = tracer_.emitterProbability(s.org, glm::vec3(0.0f), es.triangle) / tri.area *
-                                      es.dist * es.dist / glm::dot(tri.normal, -es.wi);
-              w = powerHeuristic3(es.pdf, bsdfPdf, s.equiangularPdf(s.t, es.point) / s.freeFlightPdf(s.t) * fromStart);
+              const float cosL = glm::dot(scene_.emitterTriangles[es.triangle].normal, -es.wi);
+              const float fromStart = tracer_.emitterSolidAnglePdf(s.org, glm::vec3(0.0f), es.triangle, es.dist, cosL);
+              w = powerHeuristic3(es.pdf, bsdfPdf, s.equiangularOverFreeFlight(s.t, es.point) * fromStart);
             }
           add(throughput_ * f * es.radiance * seen * (w / es.pdf), nonSpecular_ + 1);
         }

@@ -305,8 +305,15 @@ struct Tracer {
     if (h.instance->emissiveOffset == kNotEmissive || scene.emitters.empty()) return 0.0f;
     float cosL = glm::dot(h.faceNormal, -dir);
     if (cosL <= 0.0f) return 0.0f;
-    const std::uint32_t i = h.instance->emissiveOffset + h.prim;
-    return emitterProbability(from, n, i) / scene.emitterTriangles[i].area * t * t / cosL;
+    return emitterSolidAnglePdf(from, n, h.instance->emissiveOffset + h.prim, t, cosL);
+  }
+
+  // The density, in solid angle at a point `dist` away, with which light
+  // sampling at `from` (normal n) picks a point of emitter triangle i seen
+  // at cosine cosL from its side.
+  float emitterSolidAnglePdf(const glm::vec3& from, const glm::vec3& n, std::uint32_t i, float dist,
+                             float cosL) const {
+    return emitterProbability(from, n, i) / scene.emitterTriangles[i].area * dist * dist / cosL;
   }
 
   // The probability with which pickEmitter(from, n, ...) picks triangle i.
