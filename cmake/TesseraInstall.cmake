@@ -9,7 +9,7 @@ include(CMakePackageConfigHelpers)
 
 # Library target -> name under Tessera:: (back-ends by their own name).
 set(tsr_export_names
-  tsr_scenegraph scenegraph  tsr_import import
+  tsr_imageio imageio  tsr_scenegraph scenegraph  tsr_import import
   tsr_embree embree  tsr_vulkan vulkan  tsr_coverage coverage  tsr_temporal temporal
   tsr_mediator_core mediator_core  tsr_mediator_embree mediator_embree
   tsr_mediator_vulkan mediator_vulkan  tsr_mediator_coverage mediator_coverage
@@ -93,7 +93,6 @@ configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/TesseraConfig.cmake.in
 write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/TesseraConfigVersion.cmake
                                  COMPATIBILITY SameMinorVersion)
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/TesseraConfig.cmake ${CMAKE_CURRENT_BINARY_DIR}/TesseraConfigVersion.cmake
-              ${CMAKE_CURRENT_LIST_DIR}/TesseraFixOpenImageIO.cmake
         DESTINATION ${tsr_cmake_dir})
 
 # cpack -G DEB: one package with programs and development files; run-time

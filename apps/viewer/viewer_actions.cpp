@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <span>
 
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
-#include <OpenImageIO/imageio.h>
 
+#include "tsr/imageio/image_codec.hpp"
 #include "tsr/med/coverage/ranking.hpp"
 #include "tsr/med/file_replacement.hpp"
 #include "tsr/med/image_file.hpp"
@@ -166,12 +167,10 @@ void Viewer::screenshotWindow(const std::string& path) {
     rgb[3 * i + 2] = bytes[4 * i + (bgra ? 0 : 2)];
   }
   // The bytes are sRGB-encoded already: written as they are.
+  imageio::Layout layout;
+  layout.width = w, layout.height = h, layout.channels = 3;
   med::replaceFile(path, [&](const std::string& temporary) {
-    auto file = OIIO::ImageOutput::create(path);
-    if (!file) throw std::runtime_error(path + ": " + OIIO::geterror());
-    OIIO::ImageSpec spec(int(w), int(h), 3, OIIO::TypeDesc::UINT8);
-    if (!file->open(temporary, spec) || !file->write_image(OIIO::TypeDesc::UINT8, rgb.data()) || !file->close())
-      throw std::runtime_error(path + ": " + file->geterror());
+    imageio::writeFile(temporary, path, layout, std::as_bytes(std::span(rgb)));
   });
   status_ = "wrote " + path;
   std::cout << "wrote " << path << std::endl;

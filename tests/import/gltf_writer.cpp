@@ -2,9 +2,10 @@
 
 #include <fstream>
 #include <random>
+#include <span>
 #include <stdexcept>
 
-#include <OpenImageIO/imageio.h>
+#include "tsr/imageio/image_codec.hpp"
 
 namespace tsr::test {
 
@@ -50,11 +51,10 @@ void writeText(const std::string& path, const std::string& text) {
 }
 
 void writePng(const std::string& path, int width, int height, int channels, const std::vector<std::uint8_t>& pixels) {
-  auto out = OIIO::ImageOutput::create(path);
-  OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
-  spec.attribute("oiio:UnassociatedAlpha", 1);  // straight alpha, as glTF stores it
-  if (!out || !out->open(path, spec) || !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) || !out->close())
-    throw std::runtime_error("cannot write " + path);
+  imageio::Layout layout;
+  layout.width = std::uint32_t(width), layout.height = std::uint32_t(height), layout.channels = std::uint32_t(channels);
+  layout.straightAlpha = true;  // as glTF stores it
+  imageio::writeFile(path, path, layout, std::as_bytes(std::span(pixels)));
 }
 
 GltfBuilder::GltfBuilder() { doc = {{"asset", {{"version", "2.0"}, {"generator", "tsr import tests"}}}}; }

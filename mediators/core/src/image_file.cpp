@@ -3,10 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <span>
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
-
+#include "tsr/imageio/image_codec.hpp"
 #include "tsr/med/file_replacement.hpp"
 
 namespace tsr::med {
@@ -54,28 +53,44 @@ std::vector<glm::vec4> pixelsOf(const FrameBuffer& fb, const std::string& output
   return it->second;
 }
 
+template <class T>
+std::span<const std::byte> bytesOf(const std::vector<T>& v) {
+  return std::as_bytes(std::span(v));
+}
+
+// Runs an image codec call; its errors become ImageFileError.
+template <class F>
+auto coded(F&& f) {
+  try {
+    return f();
+  } catch (const imageio::CodecError& e) {
+    throw ImageFileError(e.what());
+  }
+}
+
+imageio::Layout layoutOf(const FrameBuffer& fb, std::uint32_t channels, imageio::Sample sample) {
+  imageio::Layout l;
+  l.width = fb.width, l.height = fb.height, l.channels = channels, l.sample = sample;
+  return l;
+}
+
 // Writes `path` in the format `named` (the final name) says.
 void writeImageFile(const std::string& path, const std::string& named, const FrameBuffer& fb,
                     const std::vector<glm::vec4>& pixels) {
-  auto file = OIIO::ImageOutput::create(named);
-  if (!file) throw ImageFileError(named + ": " + OIIO::geterror());
-  bool floats = isFloatFormat(named);
+  const bool floats = isFloatFormat(named);
   // Float formats keep alpha; 8-bit ones are viewed as pictures, so opaque RGB.
-  int channels = floats && named.find(".pfm") == std::string::npos && named.find(".hdr") == std::string::npos ? 4 : 3;
-  OIIO::ImageSpec spec(static_cast<int>(fb.width), static_cast<int>(fb.height), channels,
-                       floats ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-  if (!file->open(path, spec)) throw ImageFileError(named + ": " + file->geterror());
-  bool ok;
-  if (floats) {
+  const std::uint32_t channels =
+      floats && named.find(".pfm") == std::string::npos && named.find(".hdr") == std::string::npos ? 4 : 3;
+  coded([&] {
+    if (!floats)
+      return imageio::writeFile(path, named, layoutOf(fb, channels, imageio::Sample::UInt8),
+                                bytesOf(srgbBytes(pixels)));
     std::vector<float> data;
     data.reserve(pixels.size() * channels);
     for (const auto& p : pixels)
-      for (int c = 0; c < channels; ++c) data.push_back(p[c]);
-    ok = file->write_image(OIIO::TypeDesc::FLOAT, data.data());
-  } else {
-    ok = file->write_image(OIIO::TypeDesc::UINT8, srgbBytes(pixels).data());
-  }
-  if (!ok || !file->close()) throw ImageFileError(named + ": " + file->geterror());
+      for (std::uint32_t c = 0; c < channels; ++c) data.push_back(p[int(c)]);
+    imageio::writeFile(path, named, layoutOf(fb, channels, imageio::Sample::Float), bytesOf(data));
+  });
 }
 }  // namespace
 
@@ -98,17 +113,12 @@ void writeLayeredExr(const std::string& path, const FrameBuffer& fb) {
       for (int c = 0; c < 3; ++c) px[at++] = v[c];
     }
   }
+  imageio::Layout layout = layoutOf(fb, std::uint32_t(channels), imageio::Sample::Float);
+  layout.channelNames = names;
+  layout.alphaChannel = 3;
+  layout.depthChannel = 4;
   replaceFile(path, [&](const std::string& temporary) {
-    auto file = OIIO::ImageOutput::create(path);
-    if (!file) throw ImageFileError(path + ": " + OIIO::geterror());
-    OIIO::ImageSpec spec(static_cast<int>(fb.width), static_cast<int>(fb.height), static_cast<int>(channels),
-                         OIIO::TypeDesc::FLOAT);
-    spec.channelnames = names;
-    spec.alpha_channel = 3;
-    spec.z_channel = 4;
-    if (!file->open(temporary, spec)) throw ImageFileError(path + ": " + file->geterror());
-    if (!file->write_image(OIIO::TypeDesc::FLOAT, data.data()) || !file->close())
-      throw ImageFileError(path + ": " + file->geterror());
+    coded([&] { imageio::writeFile(temporary, path, layout, bytesOf(data)); });
   });
 }
 
@@ -128,35 +138,22 @@ std::vector<std::uint8_t> encodePng(const FrameBuffer& fb, const DisplayTransfor
   std::vector<glm::vec4> pixels = fb.colour;
   if (!display.identity())
     for (auto& p : pixels) p = display.apply(p);
-  std::vector<unsigned char> bytes;
-  OIIO::Filesystem::IOVecOutput memory(bytes);
-  auto file = OIIO::ImageOutput::create("frame.png", &memory);
-  if (!file) throw ImageFileError("png: " + OIIO::geterror());
-  OIIO::ImageSpec spec(static_cast<int>(fb.width), static_cast<int>(fb.height), 3, OIIO::TypeDesc::UINT8);
-  spec.attribute("png:compressionLevel", 3);  // streamed frames: speed over the last few percent
-  if (!file->open("frame.png", spec) || !file->write_image(OIIO::TypeDesc::UINT8, srgbBytes(pixels).data()) ||
-      !file->close())
-    throw ImageFileError("png: " + file->geterror());
-  return {bytes.begin(), bytes.end()};
+  imageio::Layout layout = layoutOf(fb, 3, imageio::Sample::UInt8);
+  layout.pngCompression = 3;  // streamed frames: speed over the last few percent
+  return coded([&] { return imageio::encode("frame.png", layout, bytesOf(srgbBytes(pixels))); });
 }
 
 FrameBuffer readImage(const std::string& path) {
-  auto file = OIIO::ImageInput::open(path);
-  if (!file) throw ImageFileError(path + ": " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = file->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) throw ImageFileError(path + ": empty image");
-  std::vector<float> data(std::size_t(spec.width) * spec.height * spec.nchannels);
-  if (!file->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data.data()))
-    throw ImageFileError(path + ": " + file->geterror());
-  bool linear = spec.format.is_floating_point();
-  FrameBuffer fb(static_cast<std::uint32_t>(spec.width), static_cast<std::uint32_t>(spec.height));
+  const imageio::Image image = coded([&] { return imageio::readFile(path, imageio::Sample::Float); });
+  const int channels = int(image.channels);
+  FrameBuffer fb(image.width, image.height);
   for (std::size_t i = 0; i < fb.colour.size(); ++i) {
     glm::vec4 p(0, 0, 0, 1);
-    for (int c = 0; c < std::min(spec.nchannels, 4); ++c) {
-      float v = data[i * spec.nchannels + c];
-      p[c] = (linear || c == 3) ? v : decodeSrgb(v);
+    for (int c = 0; c < std::min(channels, 4); ++c) {
+      float v = image.floats[i * std::size_t(channels) + std::size_t(c)];
+      p[c] = (image.floatingPoint || c == 3) ? v : decodeSrgb(v);
     }
-    if (spec.nchannels == 1) p = glm::vec4(p.r, p.r, p.r, 1);
+    if (channels == 1) p = glm::vec4(p.r, p.r, p.r, 1);
     fb.colour[i] = p;
   }
   return fb;

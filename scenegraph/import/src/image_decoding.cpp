@@ -2,10 +2,8 @@
 
 #include <cstring>
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
-
 #include "png_structure.hpp"
+#include "tsr/imageio/image_codec.hpp"
 #include "tsr/sg/import/import_error.hpp"
 
 namespace tsr::sg {
@@ -33,31 +31,17 @@ parsed::Image decodeImage(const std::vector<std::uint8_t>& bytes, const std::str
     if (const std::string problem = pngStructureProblem(bytes); !problem.empty())
       throw ImportError(source, what + " " + problem);
 
-  OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
-  // glTF colours are straight (unassociated) alpha; keep them as stored.
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  // With a config, OpenImageIO takes the proxy from it, not from the argument.
-  OIIO::Filesystem::IOProxy* proxy = &reader;
-  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-  auto input = OIIO::ImageInput::open(name, &config, &reader);
-  if (!input) throw ImportError(source, what + " cannot be decoded: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = input->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.nchannels > 4)
-    throw ImportError(source, what + " has an unsupported size or channel count");
-  const std::uint64_t pixels = std::uint64_t(spec.width) * std::uint64_t(spec.height);
-  if (pixels > maxPixels)
-    throw ImportError(source, what + " has " + std::to_string(pixels) + " pixels, more than the limit of " +
-                                  std::to_string(maxPixels));
-
+  imageio::Image decoded;
+  try {
+    decoded = imageio::decode(bytes, name, maxPixels);
+  } catch (const imageio::CodecError& e) {
+    throw ImportError(source, what + " " + e.what());
+  }
   parsed::Image img;
-  img.width = static_cast<std::uint32_t>(spec.width);
-  img.height = static_cast<std::uint32_t>(spec.height);
-  img.channels = static_cast<std::uint32_t>(spec.nchannels);
-  img.pixels.resize(static_cast<std::size_t>(pixels) * img.channels);
-  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, img.pixels.data()))
-    throw ImportError(source, what + " cannot be decoded: " + input->geterror());
-  input->close();
+  img.width = decoded.width;
+  img.height = decoded.height;
+  img.channels = decoded.channels;
+  img.pixels = std::move(decoded.bytes);
   return img;
 }
 
