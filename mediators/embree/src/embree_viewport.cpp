@@ -110,19 +110,16 @@ FrameBuffer crop(FrameBuffer full, std::uint32_t x0, std::uint32_t y0, std::uint
 void EmbreeViewport::renderWhitted(const embree::Camera& camera, const embree::Region& region, FrameBuffer& out,
                                    const RenderControl& control, std::chrono::steady_clock::time_point start,
                                    RenderStats& stats) {
-  if (!accumulation_ || accumulation_->width() != region.regionWidth() ||
-      accumulation_->height() != region.regionHeight())
-    accumulation_ = std::make_unique<embree::FrameBuffer>(region.regionWidth(), region.regionHeight());
+  if (!whitted_ || whitted_->width() != region.regionWidth() || whitted_->height() != region.regionHeight())
+    whitted_ = std::make_unique<embree::WhittedImage>(region.regionWidth(), region.regionHeight());
   embree::Scene& scene = context_->adapter.scene();
   scene.commit();
   stats.syncSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (renderer_.restartIfStale(scene, camera, region, *accumulation_, embree::Estimator::Whitted))
-    pixelFilter_.forget();
-  if (accumulation_->sampleCount(0, 0) == 0 && !(control.cancel && control.cancel->load()))
-    stats.rays += renderer_.renderWhittedPass(scene, camera, region, *accumulation_).rays;
+  if (!(control.cancel && control.cancel->load()))
+    stats.rays += renderer_.renderWhitted(scene, camera, region, *whitted_).rays;
   if (control.progress) control.progress(1.0);
-  stats.samples = accumulation_->sampleCount(0, 0);
-  out = accumulatedFrame(*accumulation_, control);
+  stats.samples = whitted_->complete() ? 1 : 0;
+  writeWhittedFrame(*whitted_, control, out);
 }
 
 RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view, FrameBuffer& out,

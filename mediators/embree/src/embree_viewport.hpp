@@ -47,6 +47,7 @@ class EmbreeViewport final : public Viewport {
   std::shared_ptr<EmbreeContext> context_;
   embree::Renderer renderer_;
   std::unique_ptr<embree::FrameBuffer> accumulation_;
+  std::unique_ptr<embree::WhittedImage> whitted_;  // mode=whitted: the image shown, apart from the path tracer's
   PixelFilterResolver pixelFilter_;
   DenoiseResolver denoiser_;
   std::unique_ptr<embree::RadianceAccumulator> radiance_;

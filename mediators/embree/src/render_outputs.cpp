@@ -1,5 +1,7 @@
 #include "render_outputs.hpp"
 
+#include <algorithm>
+
 #include "embree_parameters.hpp"
 
 namespace tsr::med::embree_mediator {
@@ -57,6 +59,28 @@ FrameBuffer accumulatedFrame(const embree::FrameBuffer& fb, const RenderControl&
   fill(kIndirect, [&](std::uint32_t x, std::uint32_t y) { return fb.mean(embree::Channel::Indirect, x, y); });
   fill(kVariance, [&](std::uint32_t x, std::uint32_t y) { return fb.variance(embree::Channel::Colour, x, y); });
   return full;
+}
+
+void writeWhittedFrame(const embree::WhittedImage& image, const RenderControl& control, FrameBuffer& full) {
+  full.width = image.width();
+  full.height = image.height();
+  full.colour.assign(image.colour().begin(), image.colour().end());
+  full.depth.assign(image.depth().begin(), image.depth().end());
+  const std::vector<std::string> written = accumulatedOutputNames();
+  std::erase_if(full.outputs, [&](const auto& output) {
+    return !control.wants(output.first) || std::find(written.begin(), written.end(), output.first) == written.end();
+  });
+  auto fill = [&](const char* name, auto read) {
+    if (!control.wants(name)) return;
+    auto& pixels = full.outputs[name];
+    pixels.resize(full.colour.size());
+    for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = glm::vec4(read(i), 1.0f);
+  };
+  fill(kAlbedo, [&](std::size_t i) { return image.albedo()[i]; });
+  fill(kNormal, [&](std::size_t i) { return image.normal()[i]; });
+  fill(kDirect, [&](std::size_t i) { return glm::vec3(image.colour()[i]); });
+  fill(kIndirect, [](std::size_t) { return glm::vec3(0.0f); });
+  fill(kVariance, [](std::size_t) { return glm::vec3(0.0f); });
 }
 
 }  // namespace tsr::med::embree_mediator

@@ -172,3 +172,24 @@ TEST(WhittedViewport, AMalformedModeIsRefusedNamingTheChoices) {
   auto viewport = rig.registry.create(rig.settings("path"), rig.contexts);
   EXPECT_THROW(viewport->setParameter("mode", std::string("")), med::BadParameterValue);
 }
+
+// Figure 5.6's chain shows the Whitted image while the camera rests and
+// goes back to the path tracer: the path tracer's samples outlive the
+// Whitted frame (its own image, not the accumulation buffer), and a second
+// Whitted frame of the same view traces nothing.
+TEST(WhittedViewport, TheWhittedFrameLeavesThePathTracersSamplesAlone) {
+  WhittedRig rig;
+  auto viewport = rig.registry.create(rig.settings("path"), rig.contexts);
+  viewport->setParameter("spp", std::int64_t{4});
+  med::FrameBuffer path, whitted, again;
+  const med::RenderStats first = viewport->render(rig.replica, rig.view(), path);
+  ASSERT_EQ(first.samples, 4u);
+  viewport->setParameter("mode", std::string("whitted"));
+  EXPECT_GT(viewport->render(rig.replica, rig.view(), whitted).rays, 0u);
+  EXPECT_EQ(viewport->render(rig.replica, rig.view(), whitted).rays, 0u) << "the same view again is free";
+  viewport->setParameter("mode", std::string("path"));
+  const med::RenderStats back = viewport->render(rig.replica, rig.view(), again);
+  EXPECT_EQ(back.samples, 4u);
+  EXPECT_EQ(back.rays, 0u) << "the four samples were kept";
+  EXPECT_EQ(again.colour, path.colour);
+}

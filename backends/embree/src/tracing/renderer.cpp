@@ -11,6 +11,7 @@
 #include <oneapi/tbb/task_arena.h>
 #include <spdlog/spdlog.h>
 
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -33,10 +34,10 @@ std::uint64_t settingsHash(const RenderSettings& s) {
   return splitmix64(h ^ std::uint64_t(s.sampler));
 }
 
-// FrameBuffer::Key::estimator of radiance passes (plain paths: 0, an
-// irradiance field: a hash of its uid).
+// FrameKey::estimator of radiance passes (plain paths: 0, an irradiance
+// field: a hash of its uid).
 constexpr std::uint64_t kRadianceEstimator = 0x3C6EF372FE94F82Bull;
-// ... and of Whitted passes.
+// ... and of a WhittedImage.
 constexpr std::uint64_t kWhittedEstimator = 0xA54FF53A5F1D36F1ull;
 
 std::uint64_t estimatorKey(Estimator e) {
@@ -45,8 +46,6 @@ std::uint64_t estimatorKey(Estimator e) {
       return 0;
     case Estimator::Radiance:
       return kRadianceEstimator;
-    case Estimator::Whitted:
-      return kWhittedEstimator;
   }
   return 0;
 }
@@ -69,29 +68,34 @@ bool Renderer::restartIfStale(Scene& scene, const Camera& camera, const Region& 
   return restartIfStale(scene, camera, region, fb, estimatorKey(estimator));
 }
 
-bool Renderer::restartIfStale(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
-                              std::optional<std::uint64_t> estimator) {
+bool Renderer::rekey(Scene& scene, const Camera& camera, const Region& region, std::uint32_t width,
+                     std::uint32_t height, std::optional<FrameKey>& held, std::optional<std::uint64_t> estimator) {
   camera.validate();
   region.validate();
-  if (fb.width() != region.regionWidth() || fb.height() != region.regionHeight()) {
-    throw Error("frame buffer is " + std::to_string(fb.width()) + "x" + std::to_string(fb.height()) +
-                " but the region is " + std::to_string(region.regionWidth()) + "x" +
-                std::to_string(region.regionHeight()));
+  if (width != region.regionWidth() || height != region.regionHeight()) {
+    throw Error("frame buffer is " + std::to_string(width) + "x" + std::to_string(height) + " but the region is " +
+                std::to_string(region.regionWidth()) + "x" + std::to_string(region.regionHeight()));
   }
   scene.commit();
-  const std::uint64_t held = fb.key_ ? fb.key_->estimator : 0;
-  FrameBuffer::Key key{scene.uid(), scene.version(), camera, region, settingsHash(settings_), estimator.value_or(held)};
-  if (fb.key_ && *fb.key_ == key) return false;
+  const FrameKey key{scene.uid(), scene.version(),         camera,
+                     region,      settingsHash(settings_), estimator.value_or(held ? held->estimator : 0)};
+  if (held && *held == key) return false;
+  held = key;
+  return true;
+}
+
+bool Renderer::restartIfStale(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
+                              std::optional<std::uint64_t> estimator) {
+  std::optional<FrameKey> key = fb.key_;
+  if (!rekey(scene, camera, region, fb.width(), fb.height(), key, estimator)) return false;
   fb.reset();
   fb.key_ = key;
   return true;
 }
 
 template <class PerPixel>
-PassResult Renderer::runTiles(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
-                              PerPixel&& perPixel, std::optional<std::uint64_t> estimator) {
+PassResult Renderer::runTiles(Scene& scene, const Region& region, PerPixel&& perPixel) {
   PassResult result;
-  result.restarted = restartIfStale(scene, camera, region, fb, estimator);
 
   const SceneState& state = scene.state();
   const RenderSettings settings = settings_;
@@ -224,9 +228,9 @@ PassResult Renderer::renderPaths(Scene& scene, const Camera& camera, const Regio
   const std::uint64_t seed = settings_.seed;
   const SamplerKind kind = settings_.sampler;
   const std::uint32_t samples = settings_.samplesPerPass;
-  return runTiles(
-      scene, camera, region, fb,
-      [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
+  const bool restarted = restartIfStale(scene, camera, region, fb, field ? splitmix64(field->uid()) : 0);
+  PassResult result = runTiles(
+      scene, region, [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
         tracer.irradiance = field;
         const std::uint64_t pixelKey = Rng::pixelKey(seed, px, py);
         const std::uint32_t firstSample = fb.sampleCount(x, y);
@@ -236,8 +240,9 @@ PassResult Renderer::renderPaths(Scene& scene, const Camera& camera, const Regio
           tracer.time = ray.time;
           fb.accumulate(x, y, tracer.tracePath(sampler, ray.origin, ray.direction, ray.eyePosition, ray.forward));
         }
-      },
-      field ? splitmix64(field->uid()) : 0);
+      });
+  result.restarted = restarted;
+  return result;
 }
 
 PassResult Renderer::renderWithIrradiance(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
@@ -263,39 +268,49 @@ PassResult Renderer::renderRadiancePass(Scene& scene, const Camera& camera, cons
   const float pixelAngle = std::sqrt((camera.right - camera.left) / float(region.width) * (camera.top - camera.bottom) /
                                      float(region.height)) /
                            camera.near;
+  const bool restarted = restartIfStale(scene, camera, region, fb, kRadianceEstimator);
   PassResult result = runTiles(
-      scene, camera, region, fb,
-      [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
+      scene, region, [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
         Sampler sampler(kind, Rng::pixelKey(seed, px, py), fb.sampleCount(x, y));
         const CameraRay ray = cameraRay(camera, path, region, px, py, sampler);
         RadianceSample& record = acc.samples_[acc.at(x, y)];
         record = RadianceSample{};
         tracer.time = ray.time;
-        PixelSample sample = tracer.tracePath(sampler, ray.origin, ray.direction, ray.eyePosition, ray.forward, &record);
+        PixelSample sample =
+            tracer.tracePath(sampler, ray.origin, ray.direction, ray.eyePosition, ray.forward, &record);
         const float c = glm::dot(ray.direction, ray.forward);
         record.pixelAngle = pixelAngle * c * std::sqrt(c);
         record.unfiltered = sample.indirect - sample.caustic;
         fb.accumulate(x, y, sample);
-      },
-      kRadianceEstimator);
+      });
+  result.restarted = restarted;
   if (result.completed) arena_->arena.execute([&] { RadianceFilterStep::run(fb, acc, filter); });
   return result;
 }
 
-PassResult Renderer::renderWhittedPass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb) {
+PassResult Renderer::renderWhitted(Scene& scene, const Camera& camera, const Region& region, WhittedImage& image) {
+  const bool restarted = rekey(scene, camera, region, image.width(), image.height(), image.key_, kWhittedEstimator);
+  if (!restarted && image.complete_) return PassResult{true, false, 0, 0};
+  image.complete_ = false;
   // One instant, the shutter's middle: a Whitted frame is sharp everywhere.
   const float time = shutterMiddle(camera);
   const Eye eye = CameraPath(camera).at(time);
-  return runTiles(
-      scene, camera, region, fb,
-      [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
-        if (fb.sampleCount(x, y) > 0) return;
+  const std::uint32_t width = image.width();
+  PassResult result = runTiles(
+      scene, region, [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
         // Through the pixel's centre and the lens'.
         const glm::vec3 dir = glm::normalize(eye.rotation * windowPoint(camera, region, px, py, glm::vec2(0.5f)));
         tracer.time = time;
-        fb.accumulate(x, y, tracer.traceWhitted(eye.position, dir, eye.position, eye.forward));
-      },
-      kWhittedEstimator);
+        const PixelSample s = tracer.traceWhitted(eye.position, dir, eye.position, eye.forward);
+        const std::size_t i = std::size_t(y) * width + x;
+        image.colour_[i] = glm::vec4(s.direct + s.indirect, s.hit ? 1.0f : 0.0f);
+        image.depth_[i] = s.hit ? s.depth : std::numeric_limits<float>::infinity();
+        image.albedo_[i] = s.albedo;
+        image.normal_[i] = s.normal;
+      });
+  result.restarted = restarted;
+  image.complete_ = result.completed;
+  return result;
 }
 
 PassResult Renderer::renderFlashPass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
@@ -303,9 +318,9 @@ PassResult Renderer::renderFlashPass(Scene& scene, const Camera& camera, const R
   const CameraPath path(camera);
   const std::uint64_t seed = settings_.seed ^ kFlashStream;
   const SamplerKind kind = settings_.sampler;
-  return runTiles(
-      scene, camera, region, fb,
-      [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
+  const bool restarted = restartIfStale(scene, camera, region, fb, std::nullopt);
+  PassResult result = runTiles(
+      scene, region, [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
         const std::uint64_t pixelKey = Rng::pixelKey(seed, px, py);
         const std::uint32_t first = fb.rangeSamples(x, y);
         for (std::uint32_t s = 0; s < samples; ++s) {
@@ -316,8 +331,9 @@ PassResult Renderer::renderFlashPass(Scene& scene, const Camera& camera, const R
           const glm::vec3 flash = tracer.traceFlash(ray.origin, ray.direction, ray.eyePosition, distance);
           fb.accumulateRange(x, y, flash, distance * glm::dot(ray.direction, ray.forward));
         }
-      },
-      std::nullopt);
+      });
+  result.restarted = restarted;
+  return result;
 }
 
 }  // namespace tsr::embree

@@ -58,6 +58,17 @@ struct PixelSample {
 // surface with the background matches neither, nor gathers either.
 inline constexpr glm::vec3 kFlashMiss{-1.0f};
 
+// What an image was rendered for; any difference restarts it.
+struct FrameKey {
+  std::uint64_t sceneUid = 0;
+  std::uint64_t sceneVersion = 0;
+  Camera camera;
+  Region region;
+  std::uint64_t settingsHash = 0;
+  std::uint64_t estimator = 0;  // plain paths, radiance records, one irradiance field's uid, or Whitted
+  bool operator==(const FrameKey&) const = default;
+};
+
 class FrameBuffer {
  public:
   FrameBuffer(std::uint32_t width, std::uint32_t height);
@@ -92,17 +103,6 @@ class FrameBuffer {
  private:
   friend class Renderer;
 
-  // What the accumulated samples were computed for; any difference restarts.
-  struct Key {
-    std::uint64_t sceneUid = 0;
-    std::uint64_t sceneVersion = 0;
-    Camera camera;
-    Region region;
-    std::uint64_t settingsHash = 0;
-    std::uint64_t estimator = 0;  // plain paths, radiance records, or one irradiance field's uid
-    bool operator==(const Key&) const = default;
-  };
-
   std::size_t at(std::uint32_t x, std::uint32_t y) const { return std::size_t(y) * width_ + x; }
 
   // One pixel's running state, kept together: a sample updates all of it,
@@ -125,7 +125,7 @@ class FrameBuffer {
   std::uint32_t width_;
   std::uint32_t height_;
   std::vector<Pixel> pixels_;
-  std::optional<Key> key_;
+  std::optional<FrameKey> key_;  // what the accumulated samples were computed for
   std::uint64_t epoch_ = 0;
 };
 

@@ -7,6 +7,7 @@
 #include "tsr/embree/region.hpp"
 #include "tsr/embree/sampler.hpp"
 #include "tsr/embree/scene.hpp"
+#include "tsr/embree/whitted_image.hpp"
 
 #include <atomic>
 #include <cstdint>
@@ -25,9 +26,7 @@ enum class LightChoice { Tree, Power };
 
 // How a pass estimates a pixel. Samples of different estimators do not mix
 // in one frame buffer: a pass of another one restarts it.
-// Whitted is no estimator of the path tracer's image but its own one-sample
-// image (renderWhittedPass).
-enum class Estimator { Paths, Radiance, Whitted };
+enum class Estimator { Paths, Radiance };
 
 struct RenderSettings {
   std::uint64_t seed = 0;
@@ -38,7 +37,7 @@ struct RenderSettings {
   int threads = 0;  // 0 = all hardware threads
   LightSampling lightSampling = LightSampling::Mis;
   LightChoice lightChoice = LightChoice::Tree;
-  bool equiangular = true;  // light in homogeneous media also sampled by distance towards the lights
+  bool equiangular = true;                   // light in homogeneous media also sampled by distance towards the lights
   SamplerKind sampler = SamplerKind::Sobol;  // where each path's random numbers come from (sampler.hpp)
 };
 
@@ -89,10 +88,10 @@ class Renderer {
   // maxDepth, sharp; other surfaces are lit straight from the point, spot and
   // directional lights and from the centroids of emitter triangles, each
   // behind one shadow ray, so shadows are hard; the environment lights them
-  // from their normal's direction. No indirect light. fb holds it as colour
-  // and Direct with one sample (its own estimator: path passes restart fb);
-  // pixels that have it already are left alone, so a second call is free.
-  PassResult renderWhittedPass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb);
+  // from their normal's direction. No indirect light. A second call for the
+  // same scene, camera, region and settings is free (nothing is traced).
+  // image must be region-sized.
+  PassResult renderWhitted(Scene& scene, const Camera& camera, const Region& region, WhittedImage& image);
 
   // Radiance filtering (radiance_filter.hpp): traces one path per pixel
   // (samplesPerPass is ignored), accumulating it into fb as renderPass does
@@ -121,15 +120,18 @@ class Renderer {
 
  private:
   struct Arena;
-  // Validates, commits, restarts fb if stale for `estimator` (its key in
-  // FrameBuffer::Key; none: the pass joins whichever estimator fb holds, as
-  // flash samples do), then calls perPixel(tracer, x, y, fullImageX,
-  // fullImageY) over parallel tiles.
+  // Calls perPixel(tracer, x, y, fullImageX, fullImageY) over parallel
+  // tiles of the region (after the caller's staleness check).
   template <class PerPixel>
-  PassResult runTiles(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb, PerPixel&& perPixel,
-                      std::optional<std::uint64_t> estimator);
+  PassResult runTiles(Scene& scene, const Region& region, PerPixel&& perPixel);
+  // Validates, commits, restarts fb if stale for `estimator` (FrameKey's;
+  // none: the pass joins whichever estimator fb holds, as flash samples do).
   bool restartIfStale(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
                       std::optional<std::uint64_t> estimator);
+  // Validates, commits, and replaces `held` by the key of an image of
+  // `estimator` rendered now; returns whether it differed.
+  bool rekey(Scene& scene, const Camera& camera, const Region& region, std::uint32_t width, std::uint32_t height,
+             std::optional<FrameKey>& held, std::optional<std::uint64_t> estimator);
   // Path samples for renderPass; with a field, for renderWithIrradiance.
   PassResult renderPaths(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
                          const IrradianceField* field);
