@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <map>
 #include <stdexcept>
 #include <string_view>
 
@@ -166,28 +167,36 @@ bool parseRenderOptions(int argc, char** argv, RenderJob& o, std::string& listPa
   o.display.curve = med::parseToneCurve(tonemap);
   o.backendGiven = backendOption->count() > 0;
   limits.apply(o.import);
+  // A setting is given once: by --param or by its own option, not both (a
+  // --param the option overrode would go unchecked and unused).
+  std::map<std::string, std::string> givenBy;
+  auto claim = [&](const std::string& name, const std::string& by) {
+    if (auto [it, fresh] = givenBy.emplace(name, by); !fresh)
+      throw std::invalid_argument(by + " and " + it->second + " both set '" + name + "': give it once");
+    o.explicitParameters.insert(name);
+  };
   for (const auto& p : params) {
     auto [name, value] = med::Parameters::parse(p);
+    claim(name, "--param " + p);
     o.parameters.set(name, value);
-    o.explicitParameters.insert(name);
   }
   // Unset, the back-end's own default applies (--list-params shows it).
   auto flag = [&](CLI::Option* option, const std::string& name, std::int64_t value) {
     if (!*option) return;
-    o.explicitParameters.insert(name);
+    claim(name, option->get_name());
     o.parameters.set(name, value);
   };
   flag(sppOption, "spp", spp);
   flag(depthOption, "maxDepth", maxDepth);
   flag(seedOption, "seed", seed);
   if (*seedPerFrameOption && seedPerFrame) {
-    o.explicitParameters.insert("seedPerFrame");
+    claim("seedPerFrame", "--seed-per-frame");
     o.parameters.set("seedPerFrame", true);
   }
   flag(threadsOption, "threads", threads);
   for (const auto& [option, name] : filterOptions) {
     if (!*option) continue;
-    o.explicitParameters.insert(name);
+    claim(name, option->get_name());
     auto [unused, value] = med::Parameters::parse(name + "=" + option->as<std::string>());
     o.parameters.set(name, value);
   }

@@ -94,8 +94,14 @@ bool parseViewerOptions(int argc, char** argv, ViewerOptions& o) {
   if (o.exitAfter && o.script.empty()) throw std::invalid_argument("--exit-after needs --script FILE");
   for (const auto& p : params) {
     auto [name, value] = med::Parameters::parse(p);
+    if (o.parameters.has(name)) throw std::invalid_argument("--param " + p + ": '" + name + "' is given twice");
     o.parameters.set(name, value);
   }
+  // A setting is given once: by --param or by its own option, not both.
+  for (const auto& [option, name] : {std::pair{depthOption, "maxDepth"}, std::pair{threadsOption, "threads"}})
+    if (*option && o.parameters.has(name))
+      throw std::invalid_argument(option->get_name() + " and --param " + name + " both set '" + name +
+                                  "': give it once");
   if (*depthOption || !o.parameters.has("maxDepth")) o.parameters.set("maxDepth", maxDepth);
   if (*threadsOption || !o.parameters.has("threads")) o.parameters.set("threads", threads);
   usePreviewFilterUnlessSet(o.parameters);

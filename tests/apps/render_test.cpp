@@ -107,6 +107,11 @@ TEST_F(RenderCommand, UnknownParametersAreRefusedNamingTheValidOnes) {
   expectOneErrorLine(run("builtin:cornell --size 8x8 --param sigmaS=100"),
                      "sigmaS = 100: expected a number in (0, 64]");
   expectOneErrorLine(run("builtin:cornell --size 8x8 --param filter=gauss"), "one of none|pixel|atrous");
+  // A setting given twice is refused, not silently overridden (the --param
+  // value would never be checked).
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --spp 1 --param spp=-3"),
+                     "--spp and --param spp=-3 both set 'spp': give it once");
+  expectOneErrorLine(run("builtin:cornell --size 8x8 --param seed=1 --param seed=2"), "both set 'seed'");
   expectOneErrorLine(run("builtin:cornell --size 8x8 --layers embree,vulkan --param msaa=4 --param bogus=1"),
                      "none of the back-ends embree, vulkan takes it");
   EXPECT_FALSE(std::filesystem::exists(dir / "render.png"));

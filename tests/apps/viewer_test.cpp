@@ -34,6 +34,16 @@ TEST_F(ViewerCommand, BadScriptLineIsAnErrorNamingFileAndLine) {
   EXPECT_THAT(r.err, HasSubstr("error: bad.txt:3: degrees 'sideways' is not a number"));
 }
 
+TEST_F(ViewerCommand, ASettingGivenTwiceIsRefused) {
+  for (const auto& [args, message] :
+       {std::pair{"--max-depth 2 --param maxDepth=3", "--max-depth and --param maxDepth both set 'maxDepth'"},
+        std::pair{"--param seed=1 --param seed=2", "--param seed=2: 'seed' is given twice"}}) {
+    const Outcome r = run(std::string("builtin:cornell ") + args);
+    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_THAT(r.err, HasSubstr(message)) << args;
+  }
+}
+
 TEST_F(ViewerCommand, UsageErrorsExitWithTwo) {
   for (const char* args : {"--viewports embree,,vulkan", "--viewports raytracer", "--size 0x10", "--exit-after",
                            "--script missing.txt", "builtin:nothing", "--spp 0"}) {
