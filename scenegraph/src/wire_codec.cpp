@@ -15,7 +15,7 @@ void encodeAppend(const ChangeList& list, std::vector<std::uint8_t>& out) {
   ByteWriter w(out);
   std::size_t start = w.size();
   w.raw(kMagic, sizeof kMagic);
-  w.u8(kProtocolVersion);
+  w.u8(kWireFormatVersion);
   w.u8(static_cast<std::uint8_t>(list.kind()));
   w.u32(0);  // payload length, patched below
   w.varint(list.version());
@@ -53,9 +53,9 @@ std::size_t decodeHeader(std::span<const std::uint8_t> header, const DecodeLimit
   if (std::memcmp(magic.data(), kMagic, sizeof kMagic) != 0)
     throw DecodeError(0, "not a Tessera change list (bad magic)");
   std::uint8_t protocol = r.u8();
-  if (protocol != kProtocolVersion)
+  if (protocol != kWireFormatVersion)
     throw DecodeError(
-        4, "protocol version " + std::to_string(protocol) + ", this build speaks " + std::to_string(kProtocolVersion));
+        4, "protocol version " + std::to_string(protocol) + ", this build speaks " + std::to_string(kWireFormatVersion));
   std::uint8_t kind = r.u8();
   if (kind > 1) throw DecodeError(5, "unknown change list kind " + std::to_string(kind));
   std::uint32_t length = r.u32();

@@ -213,7 +213,7 @@ TEST(WireCodec, MalformedHeadersAndBodiesAreNamed) {
 
   // Hand-built payloads with a valid header.
   auto withPayload = [](std::vector<std::uint8_t> payload) {
-    std::vector<std::uint8_t> out = {'T', 'S', 'R', 'C', kProtocolVersion, 0};
+    std::vector<std::uint8_t> out = {'T', 'S', 'R', 'C', kWireFormatVersion, 0};
     auto n = static_cast<std::uint32_t>(payload.size());
     out.insert(out.end(), {std::uint8_t(n), std::uint8_t(n >> 8), std::uint8_t(n >> 16), std::uint8_t(n >> 24)});
     out.insert(out.end(), payload.begin(), payload.end());

@@ -40,7 +40,6 @@ FrameBuffer Window::render(const sg::Replica& replica, const View& view, const R
       compositeByDepth(result, layerImage);
     }
   }
-  for (const auto& effect : effects_) effect(result);
   return result;
 }
 

@@ -29,7 +29,6 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, ".."))
 from cycles_common import load  # noqa: E402
 
-CYCLES_SPP = [8, 16, 32, 64, 128, 256, 512, 1024]
 
 
 def displayed(linear):
@@ -81,8 +80,10 @@ def main():
     ap.add_argument("--ref-spp", type=int, default=4096)
     ap.add_argument("--bounces", type=int, default=8)
     ap.add_argument("--filters", default="pixel,denoise")
+    ap.add_argument("--max-spp", type=int, default=1024, help="Cycles' curve goes 8, 16, ... up to this")
     ap.add_argument("--work", default=None, help="keep images here (default: a temporary folder)")
     a = ap.parse_args()
+    cycles_spp = [8 << k for k in range(20) if (8 << k) <= a.max_spp]
     work = a.work or tempfile.mkdtemp(prefix="tsr-cycles-sampling-")
     os.makedirs(work, exist_ok=True)
     width, height = a.size.split("x")
@@ -117,7 +118,7 @@ def main():
         c_ref, _ = cycles(scene, a.ref_spp, key)
         _, c_base = cycles(scene, 1, key)
         c_curve = []
-        for spp in CYCLES_SPP:
+        for spp in cycles_spp:
             img, s = cycles(scene, spp, key)
             c_curve.append((spp, max(s - c_base, 1e-3), seen_error(img, c_ref)))
         t_ref, _, _ = tessera(scene, a.ref_spp, key)
@@ -154,7 +155,7 @@ def main():
     print("|---|---|---|---|---|")
     for key, _, _, _, filtered, _, _ in rows:
         for filt, (s, err, reach) in filtered.items():
-            ratio = "%.1fx" % (reach / s) if reach else "beyond %d spp" % CYCLES_SPP[-1]
+            ratio = "%.1fx" % (reach / s) if reach else "beyond %d spp" % cycles_spp[-1]
             print("| %s | %s | %.4f, %.3f s | %s | %s |" % (key, filt, err[0], s, "%.2f s" % reach if reach else "-",
                                                          ratio))
     print()

@@ -65,7 +65,6 @@ struct WallConfig {
   std::vector<ScreenConfig> screens;
   glm::vec4 offlineColour{0.25f, 0.0f, 0.25f, 1.0f};  // fill of a tile whose node is gone
 
-  std::size_t screenCount() const { return screens.empty() ? std::size_t{columns} * rows : screens.size(); }
   bool stereo() const { return !screens.empty() && screens.front().eye.has_value(); }
 };
 

@@ -22,7 +22,7 @@
 
 namespace tsr::sg {
 
-inline constexpr std::uint8_t kProtocolVersion = 1;
+inline constexpr std::uint8_t kWireFormatVersion = 1;
 inline constexpr std::size_t kWireHeaderBytes = 10;
 
 std::vector<std::uint8_t> encode(const ChangeList& list);

@@ -71,11 +71,6 @@ inline bool pointsRangeOnly(const ChangeEntry& e, sg::FieldMask meshFields) {
   return true;
 }
 
-// Otherwise a mesh edit is new topology: the mesh is built again.
-inline bool topologyDirty(const ChangeEntry& e, sg::FieldMask meshFields) {
-  return meshDirty(e, meshFields) && !pointsRangeOnly(e, meshFields);
-}
-
 // After this entry some back-end mesh, material or texture may be used by
 // nothing: something was destroyed, rebound or re-referenced, or the graph
 // changed shape. Value edits (a colour, a range of vertices) never orphan.

@@ -20,8 +20,6 @@ class SceneAdapter {
 
   // Brings the back-end scene to the replica's version.
   Update catchUp(const sg::Replica& replica);
-  // Forgets the conversion; the next catchUp converts from scratch.
-  void invalidate() { version_.reset(); }
   std::optional<std::uint64_t> version() const { return version_; }
 
  protected:

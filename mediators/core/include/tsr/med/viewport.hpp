@@ -121,13 +121,9 @@ class Viewport {
 
  private:
   friend class ViewportRegistry;
-  // Set by the registry that made the viewport; viewports made directly
-  // (a client's stand-in for a node's) say what they can do themselves.
+  // Set by the registry that made the viewport.
   const BackendCapabilities* capabilities_ = &kUndeclared;
   static const BackendCapabilities kUndeclared;
-
- protected:
-  void declareCapabilities(const BackendCapabilities& c) { capabilities_ = &c; }
 };
 
 }  // namespace tsr::med

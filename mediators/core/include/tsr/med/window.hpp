@@ -1,7 +1,6 @@
 #pragma once
 // Ordered layers of viewports over one image, composited by depth and
-// alpha, then post effects. Inactive layers are skipped without cost.
-#include <functional>
+// alpha. Inactive layers are skipped without cost.
 #include <memory>
 #include <vector>
 
@@ -11,12 +10,9 @@ namespace tsr::med {
 
 class Window {
  public:
-  using PostEffect = std::function<void(FrameBuffer&)>;
-
   Viewport& addLayer(std::unique_ptr<Viewport> viewport);
   const std::vector<std::unique_ptr<Viewport>>& layers() const { return layers_; }
   Viewport& layer(std::size_t i) { return *layers_.at(i); }
-  void addPostEffect(PostEffect effect) { effects_.push_back(std::move(effect)); }
 
   // Renders every active layer for `view` and composites them in order.
   FrameBuffer render(const sg::Replica& replica, const View& view, const RenderControl& control = {});
@@ -29,7 +25,6 @@ class Window {
 
  private:
   std::vector<std::unique_ptr<Viewport>> layers_;
-  std::vector<PostEffect> effects_;
   std::vector<RenderStats> stats_;
 };
 
