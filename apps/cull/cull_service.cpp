@@ -60,10 +60,11 @@ med::View CullService::viewOf(const CullQuery& q) const {
   return view;
 }
 
-CullAnswer CullService::cull(const CullQuery& q) {
+CullAnswer CullService::cull(const CullQuery& q, const std::atomic<bool>* cancel) {
   const med::View view = viewOf(q);
   med::FrameBuffer image;
   med::RenderControl control;
+  control.cancel = cancel;
   control.outputs = std::vector<std::string>{med::kIdOutput};
   {
     std::lock_guard lock(mutex_);
