@@ -57,8 +57,7 @@ class HttpService::Session : public std::enable_shared_from_this<Session> {
 
   void start(ClientTable::Refusal refusal) {
     if (refusal == ClientTable::Refusal::None) return readRequest(true);
-    refusing_ = true;
-    ++service_.refusing_;
+    refusing_ = true;  // counted by admit()
     const std::string who = address_.to_string();
     refuse(refusal == ClientTable::Refusal::Address
                ? httpRefusal(11, http::status::too_many_requests,
@@ -258,29 +257,40 @@ void HttpService::serve(tcp::acceptor& acceptor) {
 }
 
 void HttpService::accept(tcp::acceptor& acceptor) {
-  acceptor.async_accept(
-      asio::make_strand(acceptor.get_executor()), [this, &acceptor](beast::error_code ec, tcp::socket socket) {
-        if (ec == asio::error::operation_aborted) return;
-        if (ec) {
-          // Out of file descriptors, most likely: the backlog waits a moment.
-          auto pause = std::make_shared<asio::steady_timer>(acceptor.get_executor(), std::chrono::milliseconds(50));
-          pause->async_wait([this, &acceptor, pause](beast::error_code) { accept(acceptor); });
-          return;
-        }
-        accept(acceptor);
-        const auto remote = socket.remote_endpoint(ec);
-        if (ec) return;  // gone already
-        ClientSlot connection;
-        const auto refusal = clients_.take(remote.address(), SlotKind::Connection, connection);
-        if (refusal != ClientTable::Refusal::None) {
-          ++refusedConnections_;
-          // Refusing costs a socket too: beyond as many refusals under way as
-          // connections allowed, a connection is closed unanswered.
-          if (refusing_.load() >= options_.limits.maxConnections) return;
-        }
-        auto session = std::make_shared<Session>(*this, std::move(socket), remote.address(), std::move(connection));
-        asio::dispatch(session->executor(), [session, refusal] { session->start(refusal); });
-      });
+  acceptor.async_accept(asio::make_strand(acceptor.get_executor()),
+                        [this, &acceptor](beast::error_code ec, tcp::socket socket) {
+                          if (ec == asio::error::operation_aborted) return;
+                          if (ec) return pauseAccepting(acceptor, ec);
+                          admit(std::move(socket));
+                          // Refusing costs a socket too: with as many refusals under
+                          // way as connections allowed, new ones wait in the backlog.
+                          if (refusing_.load() >= options_.limits.maxConnections) return pauseAccepting(acceptor, {});
+                          accept(acceptor);
+                        });
+}
+
+// A moment's pause, the backlog waiting: out of file descriptors (said at
+// most every 10 s, a flood must not flood the log too) or refusing too many.
+void HttpService::pauseAccepting(tcp::acceptor& acceptor, const beast::error_code& ec) {
+  const auto now = std::chrono::steady_clock::now().time_since_epoch();
+  if (ec && now - std::chrono::steady_clock::duration(lastAcceptWarning_.load()) >= std::chrono::seconds(10)) {
+    lastAcceptWarning_ = now.count();
+    spdlog::warn("accepting failed ({}): pausing; raise the open-file limit or lower --max-connections", ec.message());
+  }
+  auto pause = std::make_shared<asio::steady_timer>(acceptor.get_executor(), std::chrono::milliseconds(50));
+  pause->async_wait([this, &acceptor, pause](beast::error_code) { accept(acceptor); });
+}
+
+void HttpService::admit(tcp::socket socket) {
+  beast::error_code ec;
+  const auto remote = socket.remote_endpoint(ec);
+  if (ec) return;  // gone already
+  ClientSlot connection;
+  const auto refusal = clients_.take(remote.address(), SlotKind::Connection, connection);
+  if (refusal != ClientTable::Refusal::None) ++refusedConnections_;
+  auto session = std::make_shared<Session>(*this, std::move(socket), remote.address(), std::move(connection));
+  if (refusal != ClientTable::Refusal::None) ++refusing_;  // counted before the next accept looks
+  asio::dispatch(session->executor(), [session, refusal] { session->start(refusal); });
 }
 
 std::string HttpService::sceneJson() const { return cull_.sceneJson(previews_.enabled()); }

@@ -9,6 +9,7 @@
 // cannot set headers: WebSockets); the page's own files do not.
 #include <atomic>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -42,6 +43,8 @@ class HttpService : private ServedScene {
  private:
   class Session;
   void accept(boost::asio::ip::tcp::acceptor& acceptor);
+  void pauseAccepting(boost::asio::ip::tcp::acceptor& acceptor, const boost::system::error_code& ec);
+  void admit(boost::asio::ip::tcp::socket socket);
 
   std::string sceneJson() const override;
   std::optional<std::vector<std::uint8_t>> objectGlb(sg::ContainerId id) const override;
@@ -57,6 +60,7 @@ class HttpService : private ServedScene {
   CullQueue queue_;
   std::atomic<int> refusing_{0};  // connections being refused (answered, then closed)
   std::atomic<std::uint64_t> refusedConnections_{0}, refusedRequests_{0}, refusedPreviews_{0}, timedOut_{0};
+  std::atomic<std::int64_t> lastAcceptWarning_{std::numeric_limits<std::int64_t>::min() / 2};  // steady ticks
 };
 
 }  // namespace tsr::app
