@@ -15,7 +15,9 @@ from /proc.
       CLIENTS clients, each from its own address 127.0.1.N, each sending
       REQUESTS POST /v1/cull for different views (orbiting the scene's
       centre): answered count, errors, latency median / p95 / p99 / max,
-      the service's peak memory.
+      the service's peak memory. With --give-up S each client closes its
+      connection after S seconds without an answer (counted as given up):
+      /v1/status then shows how many rankings the service dropped unranked.
 """
 import argparse, errno, json, math, os, selectors, socket, statistics, subprocess, sys, threading, time
 
@@ -173,8 +175,10 @@ def culls(a):
                                    "width": width, "height": height, "max_objects": a.k}).encode()
                 try:
                     status, answer, seconds = http(port, "POST", "/v1/cull", body, source=f"127.0.1.{c + 1}",
-                                                   timeout=120)
+                                                   timeout=a.give_up or 120)
                     ok = status == 200 and "objects" in json.loads(answer)
+                except socket.timeout:
+                    ok, status, seconds = False, "gave up", 0
                 except (OSError, ValueError) as e:
                     ok, status, seconds = False, str(e), 0
                 with lock:
@@ -192,11 +196,12 @@ def culls(a):
         print(f"{a.clients} clients x {a.requests} POST /v1/cull ({a.size}, K={a.k}) on {a.scene}:")
         print(f"  answered {len(latencies)} of {a.clients * a.requests}, errors {len(errors)} {errors[:3]}, "
               f"{wall:.1f} s in all ({len(latencies) / wall:.1f} answers/s)")
-        ms = [s * 1000 for s in latencies]
+        ms = [s * 1000 for s in latencies] or [0]
         print(f"  latency median {statistics.median(ms):.0f} ms, p95 {pct(ms, 95):.0f} ms, p99 {pct(ms, 99):.0f} ms, "
               f"max {max(ms):.0f} ms")
         print(f"  service memory: after start {idle:.0f} MiB, peak during the load {peak:.0f} MiB, "
               f"peak since start {memory(service.pid)[1]:.0f} MiB")
+        time.sleep(1.0)  # the last given-up requests leave the queue
         print("  status:", http(port, "GET", "/v1/status")[1].decode())
     finally:
         service.kill()
@@ -215,6 +220,7 @@ def main():
     ap.add_argument("--requests", type=int, default=20)
     ap.add_argument("--size", default="960x540")
     ap.add_argument("--k", type=int, default=256)
+    ap.add_argument("--give-up", type=float, default=0, help="seconds a client waits for an answer (0: 120)")
     ap.add_argument("--service", nargs=argparse.REMAINDER, default=[], help="more tessera-cull options (last)")
     a = ap.parse_args()
     crowd(a) if a.mode == "crowd" else culls(a)
