@@ -39,7 +39,8 @@ class CullService {
   std::uint64_t totalTriangles() const { return totalTriangles_; }
 
   // The query's pose and field of view at its size, with the near and far
-  // planes of the scene's own camera (they fit its scale).
+  // planes of the scene's own camera (they fit its scale); CullRequestError
+  // for a view no back-end could render.
   med::View viewOf(const CullQuery& query) const;
   // The scene's own camera, as a query would give it (the page starts there).
   CullQuery sceneView() const;

@@ -105,6 +105,7 @@ HttpResponse HttpRoutes::respond(const HttpRequest& request, Route& route) const
     if (target == "/v1/cull") {
       if (request.method() != http::verb::post) return httpReply(v, http::status::method_not_allowed, "use POST\n");
       route.query = parseCullRequest(request.body(), maxObjects_);
+      scene_.viewOf(route.query);  // refused here (400), not in the queue (500)
       route.kind = Route::Kind::Cull;
       return {};
     }

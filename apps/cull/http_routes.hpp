@@ -13,6 +13,7 @@
 
 #include "access_token.hpp"
 #include "cull_query.hpp"
+#include "tsr/med/view.hpp"
 #include "web_files.hpp"
 
 namespace tsr::app {
@@ -35,6 +36,9 @@ class ServedScene {
   virtual std::optional<std::vector<std::uint8_t>> objectGlb(sg::ContainerId id) const = 0;
   virtual std::string statusJson() const = 0;
   virtual bool previews() const = 0;
+  // The query as the ranking renders it (cull_view.hpp): CullRequestError
+  // for one it could not.
+  virtual med::View viewOf(const CullQuery& query) const = 0;
 };
 
 struct Route {

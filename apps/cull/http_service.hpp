@@ -50,6 +50,7 @@ class HttpService : private ServedScene {
   std::optional<std::vector<std::uint8_t>> objectGlb(sg::ContainerId id) const override;
   std::string statusJson() const override;
   bool previews() const override { return previews_.enabled(); }
+  med::View viewOf(const CullQuery& query) const override { return cull_.viewOf(query); }
 
   CullService& cull_;
   PreviewStreams& previews_;

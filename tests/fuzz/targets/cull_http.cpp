@@ -9,6 +9,7 @@
 #include <boost/beast/http.hpp>
 
 #include "cull_request.hpp"
+#include "cull_view.hpp"
 #include "fuzz_targets.hpp"
 #include "http_routes.hpp"
 #include "preview_request.hpp"
@@ -21,6 +22,7 @@ namespace {
 namespace http = boost::beast::http;
 
 constexpr std::uint32_t kMaxObjects = 64;
+constexpr float kNear = 0.1f, kFar = 1000.0f;  // a small scene's camera planes
 
 // A scene of two objects as the routes see it (the ranking itself renders
 // with the coverage back-end, which the fuzz build leaves out).
@@ -33,6 +35,7 @@ class SmallScene : public app::ServedScene {
   }
   std::string statusJson() const override { return R"({"cull":{"waiting":0}})"; }
   bool previews() const override { return true; }
+  med::View viewOf(const app::CullQuery& query) const override { return app::cullView(query, kNear, kFar); }
 };
 
 // The web client's folder: a page and one module.
@@ -89,6 +92,7 @@ void cullHttpRequest(Bytes bytes) {
       check(q.maxObjects >= 1 && q.maxObjects <= kMaxObjects);
       check(finite(q.position) && finite(q.target) && finite(q.up) && q.position != q.target);
       check(q.fovDegrees > 0.5f && q.fovDegrees < 179.5f);
+      app::cullView(q, kNear, kFar).validate();  // the routes checked it: it must not throw
       reply = app::httpReply(request.version(), http::status::ok, app::cullAnswerJson({}), "application/json");
       break;
     }
@@ -96,7 +100,8 @@ void cullHttpRequest(Bytes bytes) {
       check(routes.authorised(request));
       return;  // the WebSocket's messages have a target of their own
     case app::Route::Kind::Reply:
-      check(reply.result_int() >= 200 && reply.result_int() < 600);
+      // 500 is what the routes answer to an exception nobody meant: a finding.
+      check(reply.result_int() >= 200 && reply.result_int() < 600 && reply.result_int() != 500);
       break;
   }
   std::ostringstream out;
@@ -129,6 +134,10 @@ void cullPreviewMessage(Bytes bytes) {
   } catch (const app::CullRequestError&) {
     check(std::uint64_t(q.width) * q.height > 1024 * 1024);
   }
+  // As the stream's renderer takes it: a view, or a refusal naming why.
+  try {
+    app::cullView(q, kNear, kFar).validate();
+  } catch (const app::CullRequestError&) {}
 }
 
 }  // namespace tsr::fuzz
