@@ -7,7 +7,9 @@
 #include <gtest/gtest.h>
 #include <sys/socket.h>
 
+#include <algorithm>
 #include <chrono>
+#include <memory>
 #include <optional>
 #include <string>
 #include <thread>
@@ -61,11 +63,34 @@ class Raw {
   tcp::socket socket_;
 };
 
-tsr::cluster::test::ListeningProcess strictService() {
-  return tsr::cluster::test::ListeningProcess({TSR_CULL_BINARY, "builtin:cornell", "--listen", "127.0.0.1:0",
-                                               "--threads", "1", "--previews", "0", "--header-timeout", "1",
-                                               "--keepalive-timeout", "1", "--transfer-timeout", "1", "--min-rate",
-                                               "1024", "--max-connections-per-address", std::to_string(kPerAddress)});
+tsr::cluster::test::ListeningProcess strictService(const std::vector<std::string>& more = {}) {
+  std::vector<std::string> args{TSR_CULL_BINARY,
+                                "builtin:cornell",
+                                "--listen",
+                                "127.0.0.1:0",
+                                "--threads",
+                                "1",
+                                "--previews",
+                                "0",
+                                "--header-timeout",
+                                "1",
+                                "--keepalive-timeout",
+                                "1",
+                                "--transfer-timeout",
+                                "1",
+                                "--min-rate",
+                                "1024",
+                                "--max-connections-per-address",
+                                std::to_string(kPerAddress)};
+  args.insert(args.end(), more.begin(), more.end());
+  return tsr::cluster::test::ListeningProcess(args);
+}
+
+// A /v1/cull request of the Cornell box at side x side pixels, closing after.
+std::string cullRequest(int side) {
+  const std::string body = tsr::app::test::cornellView(side, side, 3).dump();
+  return "POST /v1/cull HTTP/1.1\r\nHost: x\r\nConnection: close\r\nContent-Length: " + std::to_string(body.size()) +
+         "\r\n\r\n" + body;
 }
 
 // A client from 127.0.0.2 (plain HTTP/1.1, a connection per request).
@@ -160,6 +185,40 @@ TEST(CullLimits, ASlowBodyAndAnIdleKeepAliveConnectionAreClosedAtTheirDeadlines)
   EXPECT_LT(Clock::now() - start, std::chrono::seconds(12));
   const json s = statusOnce(port, [](const json& s) { return s["connections"]["timed_out"] >= 2; });
   EXPECT_GE(s["connections"]["timed_out"].get<int>(), 2) << s;
+}
+
+// One address over its share of rankings in flight gets 429 while its
+// first one is ranked; a ranking whose client left before its turn is
+// dropped unranked. (A 1024x1024 ranking takes a good tenth of a second
+// here; the second request arrives within a millisecond of the first.)
+TEST(CullLimits, AnAddressOverItsShareOfRankingsGets429AndALeftClientsRankingIsDropped) {
+  auto service = strictService({"--max-requests-per-address", "1"});
+  const std::uint16_t port = service.address().port;
+  asio::io_context io;
+  {
+    Raw first(io, "127.0.0.4", port), second(io, "127.0.0.4", port);
+    first.send(cullRequest(1024));
+    second.send(cullRequest(1024));
+    const auto [a, aEnd] = first.untilClosed();
+    const auto [b, bEnd] = second.untilClosed();
+    const std::vector<std::string> heads{a.substr(0, 12), b.substr(0, 12)};
+    EXPECT_EQ(std::count(heads.begin(), heads.end(), "HTTP/1.1 200"), 1) << a.substr(0, 200) << b.substr(0, 200);
+    EXPECT_EQ(std::count(heads.begin(), heads.end(), "HTTP/1.1 429"), 1);
+    EXPECT_NE((a + b).find("Retry-After: 1"), std::string::npos);
+  }
+  {
+    Raw stays(io, "127.0.0.5", port);
+    auto leaves = std::make_unique<Raw>(io, "127.0.0.6", port);
+    stays.send(cullRequest(1024));
+    leaves->send(cullRequest(1024));
+    leaves.reset();
+    EXPECT_EQ(stays.untilClosed().first.substr(0, 12), "HTTP/1.1 200");
+  }
+  const json s =
+      statusOnce(port, [](const json& s) { return s["cull"]["answered"] == 2 && s["cull"]["dropped"] == 1; });
+  EXPECT_EQ(s["cull"]["answered"].get<int>(), 2) << s;
+  EXPECT_EQ(s["cull"]["dropped"].get<int>(), 1) << s;
+  EXPECT_EQ(s["cull"]["refused"].get<int>(), 1) << s;
 }
 
 TEST(CullLimits, StatusSaysHowBusyTheServiceIsAndWhatItsLimitsAre) {
