@@ -29,8 +29,9 @@ std::chrono::steady_clock::duration deadline(ServiceLimits::Seconds s) {
 }
 
 bool quietEnd(const beast::error_code& ec) {
-  return ec == http::error::end_of_stream || ec == asio::error::connection_reset || ec == asio::error::eof ||
-         ec == asio::error::operation_aborted || ec == asio::error::broken_pipe;
+  return ec == http::error::end_of_stream || ec == http::error::partial_message ||
+         ec == asio::error::connection_reset || ec == asio::error::eof || ec == asio::error::operation_aborted ||
+         ec == asio::error::broken_pipe;
 }
 
 }  // namespace
