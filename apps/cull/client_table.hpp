@@ -19,7 +19,7 @@ class ClientTable;
 class ClientSlot {
  public:
   ClientSlot() = default;
-  ClientSlot(ClientTable* table, boost::asio::ip::address address, SlotKind kind)
+  ClientSlot(ClientTable* table, const boost::asio::ip::address& address, SlotKind kind)
       : table_(table), address_(address), kind_(kind) {}
   ClientSlot(ClientSlot&& other) noexcept { *this = std::move(other); }
   ClientSlot& operator=(ClientSlot&& other) noexcept;

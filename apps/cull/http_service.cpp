@@ -44,7 +44,7 @@ bool quietEnd(const beast::error_code& ec) {
 // the linger ends, so the refusal is read, not reset.
 class HttpService::Session : public std::enable_shared_from_this<Session> {
  public:
-  Session(HttpService& service, tcp::socket socket, asio::ip::address address, ClientSlot connection)
+  Session(HttpService& service, tcp::socket socket, const asio::ip::address& address, ClientSlot connection)
       : service_(service),
         limits_(service.options_.limits),
         stream_(std::move(socket)),

@@ -87,7 +87,7 @@ class PreviewClient : public std::enable_shared_from_this<PreviewClient> {
     try {
       PreviewRequest request = parsePreviewRequest(text);
       std::lock_guard lock(mutex_);
-      next_ = std::move(request);
+      next_ = request;
       cancel_ = true;
       wake_.notify_all();
     } catch (const CullRequestError& e) {
@@ -133,7 +133,7 @@ class PreviewClient : public std::enable_shared_from_this<PreviewClient> {
         std::unique_lock lock(mutex_);
         wake_.wait(lock, [this] { return closed_ || next_; });
         if (closed_) return;
-        request = std::move(*next_);
+        request = *next_;
         next_.reset();
         cancel_ = false;
       }

@@ -225,7 +225,8 @@ TEST(CullPreviewCluster, PreviewsRenderOnTheNodesTheConfigNames) {
                                 nodes[1]->address().host + ":" + std::to_string(nodes[1]->address().port);
   tsr::cluster::test::ListeningProcess service({TSR_CULL_BINARY, "builtin:cornell", "--listen", "127.0.0.1:0",
                                                 "--threads", "1", "--preview-spp", std::to_string(kSampleLimit),
-                                                "--cluster", TSR_CONFIGS "/cooperative-2.json", "--nodes", addresses});
+                                                "--cluster", std::string(TSR_CONFIGS) + "/cooperative-2.json",
+                                                "--nodes", addresses});
   PreviewClient remote(service.address().port);
   remote.send({{"seq", 1}, {"view", previewView(64, 48)}});
   Frame far;

@@ -40,7 +40,7 @@ class SmallScene : public app::ServedScene {
 
 // The web client's folder: a page and one module.
 std::filesystem::path webFolder() {
-  const auto root = std::filesystem::temp_directory_path() / ("tsr-fuzz-web-" + std::to_string(::getpid()));
+  auto root = std::filesystem::temp_directory_path() / ("tsr-fuzz-web-" + std::to_string(::getpid()));
   std::filesystem::create_directories(root / "src");
   std::ofstream(root / "index.html") << "<!doctype html><title>t</title>";
   std::ofstream(root / "src" / "main.js") << "export {};";
