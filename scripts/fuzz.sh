@@ -8,7 +8,7 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 targets=(wire_codec cluster_messages pixel_codec gltf_import import_cache cluster_config launch_address_file launch_rank_line
-         viewer_script camera_bookmarks anaglyph_script)
+         viewer_script camera_bookmarks anaglyph_script cull_http_request cull_preview_message)
 [ $# -eq 2 ] || { echo "usage: scripts/fuzz.sh TARGET|all SECONDS|-runs=N" >&2; exit 2; }
 [ "$1" = all ] || targets=("$1")
 cmake --preset fuzz > /dev/null && cmake --build build/fuzz -j"${FUZZ_JOBS:-2}" \

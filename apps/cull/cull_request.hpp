@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "cull_service.hpp"
+#include "cull_query.hpp"
 
 namespace tsr::app {
 

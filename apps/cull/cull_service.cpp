@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "backends.hpp"
+#include "cull_view.hpp"
 #include "scene_glb.hpp"
 #include "tsr/med/coverage/ranking.hpp"
 #include "tsr/med/scene_flattening.hpp"
@@ -50,20 +51,14 @@ CullService::CullService(const std::string& scene, const sg::ImportOptions& impo
 
 med::View CullService::viewOf(const CullQuery& q) const {
   const auto* sceneCamera = session_.replica.scene().find<sg::Camera>(session_.camera);
-  sg::Camera camera;
-  camera.setNearPlane(sceneCamera->nearPlane());
-  camera.setFarPlane(sceneCamera->farPlane());
-  camera.setVerticalFov(glm::radians(q.fovDegrees));
-  camera.lookAt(q.position, q.target, q.up);
-  med::View view = med::View::fromCamera(camera, q.width, q.height);
-  view.validate();
-  return view;
+  return cullView(q, sceneCamera->nearPlane(), sceneCamera->farPlane());
 }
 
-CullAnswer CullService::cull(const CullQuery& q) {
+CullAnswer CullService::cull(const CullQuery& q, const std::atomic<bool>* cancel) {
   const med::View view = viewOf(q);
   med::FrameBuffer image;
   med::RenderControl control;
+  control.cancel = cancel;
   control.outputs = std::vector<std::string>{med::kIdOutput};
   {
     std::lock_guard lock(mutex_);

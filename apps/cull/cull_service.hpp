@@ -3,6 +3,7 @@
 // cover most of its pixels out (Schwenk, 5.4.3), ranked by the coverage
 // renderer over one converted scene; and each object as a standalone glTF
 // binary, in world space, for the client to load.
+#include <atomic>
 #include <cstdint>
 #include <mutex>
 #include <optional>
@@ -13,33 +14,13 @@
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
+#include "cull_query.hpp"
 #include "scene_session.hpp"
 #include "tsr/med/context_pool.hpp"
 #include "tsr/med/scene_flattening.hpp"
 #include "tsr/med/viewport_registry.hpp"
 
 namespace tsr::app {
-
-struct CullQuery {
-  glm::vec3 position{0.0f}, target{0.0f, 0.0f, -1.0f}, up{0.0f, 1.0f, 0.0f};
-  float fovDegrees = 45.0f;  // vertical
-  std::uint32_t width = 0, height = 0;
-  std::uint32_t maxObjects = 0;
-};
-
-struct CulledObject {
-  sg::ContainerId id = sg::kNoContainer;
-  std::string name;
-  std::uint64_t pixels = 0;
-  double fraction = 0;  // of the view's pixels
-  std::uint64_t triangles = 0;
-};
-
-struct CullAnswer {
-  std::vector<CulledObject> objects;  // by pixels, most first; at most maxObjects
-  double coveredFraction = 0;         // of the view's pixels, by every object seen
-  std::uint64_t totalObjects = 0, totalTriangles = 0;
-};
 
 class CullService {
  public:
@@ -48,8 +29,9 @@ class CullService {
   CullService(const std::string& scene, const sg::ImportOptions& import, const std::string& backend,
               const med::Parameters& parameters);
 
-  // Thread-safe; renders are serialised on the one converted scene.
-  CullAnswer cull(const CullQuery& query);
+  // Thread-safe; renders are serialised on the one converted scene. A set
+  // `cancel` stops the render early (the answer is then meaningless).
+  CullAnswer cull(const CullQuery& query, const std::atomic<bool>* cancel = nullptr);
   // The object's geometry under it, in world space, as a .glb; nothing for
   // an id that names no object of the ranking's kind.
   std::optional<std::vector<std::uint8_t>> objectGlb(sg::ContainerId id) const;
@@ -57,7 +39,8 @@ class CullService {
   std::uint64_t totalTriangles() const { return totalTriangles_; }
 
   // The query's pose and field of view at its size, with the near and far
-  // planes of the scene's own camera (they fit its scale).
+  // planes of the scene's own camera (they fit its scale); CullRequestError
+  // for a view no back-end could render.
   med::View viewOf(const CullQuery& query) const;
   // The scene's own camera, as a query would give it (the page starts there).
   CullQuery sceneView() const;

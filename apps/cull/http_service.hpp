@@ -1,20 +1,28 @@
 #pragma once
-// tessera-cull's HTTP side (Boost.Beast): POST /v1/cull, GET
-// /v1/objects/{id}.glb, GET /v1/scene, the /v1/preview WebSocket and the
-// web client's files; one thread per connection (at most kMaxConnections),
-// requests bounded in header and body, every refusal a 4xx with a one-line
-// message, and the service serving on regardless. With a token, /v1/ asks
-// for it ("Authorization: Bearer TOKEN", or "?access_token=TOKEN" where a
-// browser cannot set headers: WebSockets); the page's own files do not.
+// tessera-cull's HTTP side (Boost.Beast, asynchronous): POST /v1/cull, GET
+// /v1/objects/{id}.glb, /v1/scene, /v1/status, the /v1/preview WebSocket
+// and the web client's files. Every connection runs on a strand of a small
+// fixed pool of threads, each read and write under a deadline
+// (ServiceLimits); rankings wait in a bounded queue for their own worker,
+// previews render on their own threads. With a token, /v1/ asks for it
+// ("Authorization: Bearer TOKEN", or "?access_token=TOKEN" where a browser
+// cannot set headers: WebSockets); the page's own files do not.
 #include <atomic>
 #include <cstdint>
+#include <limits>
+#include <memory>
 #include <string>
 
+#include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
-#include <boost/beast/http.hpp>
 
+#include "access_token.hpp"
+#include "client_table.hpp"
+#include "cull_queue.hpp"
 #include "cull_service.hpp"
+#include "http_routes.hpp"
 #include "preview_stream.hpp"
+#include "service_limits.hpp"
 #include "web_files.hpp"
 
 namespace tsr::app {
@@ -22,30 +30,38 @@ namespace tsr::app {
 struct HttpOptions {
   std::string token;               // empty: none asked (loopback only)
   std::uint32_t maxObjects = 256;  // the most a request may ask for, and the default
+  ServiceLimits limits;
 };
 
-class HttpService {
+class HttpService : private ServedScene {
  public:
-  static constexpr int kMaxConnections = 64;
-  static constexpr std::size_t kMaxBodyBytes = 64 * 1024;
-  static constexpr std::size_t kMaxHeaderBytes = 8 * 1024;
-
-  HttpService(CullService& cull, PreviewStreams& previews, const WebFiles& web, HttpOptions options)
-      : cull_(cull), previews_(previews), web_(web), options_(std::move(options)) {}
-  // Accepts connections on `acceptor` until the process ends.
+  HttpService(CullService& cull, PreviewStreams& previews, const WebFiles& web, HttpOptions options);
+  // Accepts connections on `acceptor` (its io_context) and runs the
+  // network's threads until the process ends.
   void serve(boost::asio::ip::tcp::acceptor& acceptor);
 
  private:
-  void session(boost::asio::ip::tcp::socket socket);
-  boost::beast::http::response<boost::beast::http::string_body> handle(
-      const boost::beast::http::request<boost::beast::http::string_body>& request);
-  bool authorised(const boost::beast::http::request<boost::beast::http::string_body>& request) const;
+  class Session;
+  void accept(boost::asio::ip::tcp::acceptor& acceptor);
+  void pauseAccepting(boost::asio::ip::tcp::acceptor& acceptor, const boost::system::error_code& ec);
+  void admit(boost::asio::ip::tcp::socket socket);
+
+  std::string sceneJson() const override;
+  std::optional<std::vector<std::uint8_t>> objectGlb(sg::ContainerId id) const override;
+  std::string statusJson() const override;
+  bool previews() const override { return previews_.enabled(); }
+  med::View viewOf(const CullQuery& query) const override { return cull_.viewOf(query); }
 
   CullService& cull_;
   PreviewStreams& previews_;
-  const WebFiles& web_;
-  HttpOptions options_;
-  std::atomic<int> connections_{0};
+  const HttpOptions options_;
+  const AccessToken token_;
+  const HttpRoutes routes_;
+  ClientTable clients_;
+  CullQueue queue_;
+  std::atomic<int> refusing_{0};  // connections being refused (answered, then closed)
+  std::atomic<std::uint64_t> refusedConnections_{0}, refusedRequests_{0}, refusedPreviews_{0}, timedOut_{0};
+  std::atomic<std::int64_t> lastAcceptWarning_{std::numeric_limits<std::int64_t>::min() / 2};  // steady ticks
 };
 
 }  // namespace tsr::app

@@ -2,12 +2,18 @@
 //              [--max-objects K] [--threads N] [--web DIR] [--previews N]
 //              [--preview-backend embree] [--preview-spp N]
 //              [--cluster CONFIG [--nodes ...] [--node-token-file F]]
+//              [limits: --io-threads --max-connections --max-connections-per-address
+//               --max-requests-per-address --max-previews-per-address --cull-queue
+//               --header-timeout --keepalive-timeout --transfer-timeout --min-rate
+//               --ping-timeout]
 // The culling service of Schwenk 5.4.3: POST /v1/cull ranks the scene's
 // objects by visible coverage for a view, GET /v1/objects/ID.glb serves one
 // object, GET / the three.js client, and /v1/preview streams the path
 // tracer's image of a resting view (rendered here or on a cluster's nodes).
 // Prints "listening on HOST:PORT" (port 0 picks a free one) once it accepts
 // connections. Without a token file it listens only on loopback.
+#include <sys/resource.h>
+
 #include <filesystem>
 #include <iostream>
 #include <system_error>
@@ -26,6 +32,7 @@
 #include "preview_viewports.hpp"
 #include "program_folder.hpp"
 #include "program_main.hpp"
+#include "service_limits.hpp"
 #include "tsr/cluster/auth.hpp"
 #include "tsr/cluster/node_address.hpp"
 #include "web_files.hpp"
@@ -41,6 +48,30 @@ std::string defaultWebFolder() {
     if (std::filesystem::is_regular_file(installed / "index.html", ec)) return installed.string();
   }
   return TSR_WEB_DIR;
+}
+
+// Each connection holds a file descriptor: the soft limit goes up to the
+// hard one, and the connection limit down to what the descriptors allow
+// (a few dozen kept for the scene, the web files and the log).
+void fitOpenFiles(tsr::app::ServiceLimits& limits) {
+  constexpr rlim_t kReserved = 64;
+  rlimit files{};
+  if (getrlimit(RLIMIT_NOFILE, &files) != 0) return;
+  const rlim_t want = rlim_t(limits.maxConnections) * 2 + kReserved;  // admitted and refused ones
+  if (files.rlim_cur < want && files.rlim_cur < files.rlim_max) {
+    const rlim_t before = files.rlim_cur;
+    files.rlim_cur = files.rlim_max == RLIM_INFINITY ? want : std::min(want, files.rlim_max);
+    if (setrlimit(RLIMIT_NOFILE, &files) == 0)
+      spdlog::info("open-file limit raised from {} to {} for {} connections", before, files.rlim_cur,
+                   limits.maxConnections);
+    getrlimit(RLIMIT_NOFILE, &files);
+  }
+  if (files.rlim_cur != RLIM_INFINITY && files.rlim_cur < want) {
+    const int fit = int(std::max<rlim_t>(files.rlim_cur, 2 * kReserved) - kReserved) / 2;
+    spdlog::warn("the open-file limit ({}) allows {} connections, not --max-connections {}: raise it (ulimit -n)",
+                 files.rlim_cur, fit, limits.maxConnections);
+    limits.maxConnections = fit;
+  }
 }
 
 int run(int argc, char** argv) {
@@ -76,17 +107,72 @@ int run(int argc, char** argv) {
   clusterGroup->add_option("--nodes", cluster.sequence.nodes, "HOST:PORT,... replacing the config's node addresses");
   clusterGroup->add_option("--node-token-file", cluster.sequence.tokenFile, "the nodes' shared token")
       ->check(CLI::ExistingFile);
+  tsr::app::ServiceLimits service;
+  auto* limitGroup = app.add_option_group("Limits", "what one client may hold, and how long the service waits");
+  double headerTimeout = service.headerTimeout.count(), keepAliveTimeout = service.keepAliveTimeout.count(),
+         transferTimeout = service.transferTimeout.count(), pingTimeout = service.pingTimeout.count();
+  limitGroup->add_option("--io-threads", service.ioThreads, "threads serving the connections")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  limitGroup->add_option("--max-connections", service.maxConnections, "connections open at once, from everyone")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  limitGroup
+      ->add_option("--max-connections-per-address", service.connectionsPerAddress,
+                   "connections open at once from one client address (more: 429)")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  limitGroup
+      ->add_option("--max-requests-per-address", service.requestsPerAddress,
+                   "/v1/cull requests waiting or ranked at once for one client address (more: 429)")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  limitGroup
+      ->add_option("--max-previews-per-address", service.previewsPerAddress,
+                   "/v1/preview streams at once from one client address (more: 429)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  limitGroup->add_option("--cull-queue", service.cullQueue, "/v1/cull requests waiting, from everyone (more: 503)")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  limitGroup
+      ->add_option("--header-timeout", headerTimeout, "seconds a new connection has for its request line and headers")
+      ->check(CLI::Range(0.1, 3600.0))
+      ->capture_default_str();
+  limitGroup
+      ->add_option("--keepalive-timeout", keepAliveTimeout,
+                   "seconds an idle keep-alive connection has for its next request's headers")
+      ->check(CLI::Range(0.1, 3600.0))
+      ->capture_default_str();
+  limitGroup
+      ->add_option("--transfer-timeout", transferTimeout,
+                   "seconds a request body or a response has, plus its size at --min-rate")
+      ->check(CLI::Range(0.1, 3600.0))
+      ->capture_default_str();
+  limitGroup->add_option("--min-rate", service.minRate, "bytes per second a body or a response must at least move")
+      ->check(CLI::Range(std::uint64_t(1), std::uint64_t(1) << 40))
+      ->capture_default_str();
+  limitGroup
+      ->add_option("--ping-timeout", pingTimeout,
+                   "seconds a /v1/preview WebSocket may leave a ping unanswered (pinged at half of it)")
+      ->check(CLI::Range(1.0, 3600.0))
+      ->capture_default_str();
   tsr::app::ImportLimitOptions limits;
   tsr::sg::ImportOptions import;
   limits.add(app, import);
   if (!tsr::app::parseCommandLine(app, argc, argv)) return 0;
   limits.apply(import);
+  service.headerTimeout = tsr::app::ServiceLimits::Seconds(headerTimeout);
+  service.keepAliveTimeout = tsr::app::ServiceLimits::Seconds(keepAliveTimeout);
+  service.transferTimeout = tsr::app::ServiceLimits::Seconds(transferTimeout);
+  service.pingTimeout = tsr::app::ServiceLimits::Seconds(pingTimeout);
 
   spdlog::set_default_logger(spdlog::stderr_color_mt("cull"));
+  fitOpenFiles(service);
   const std::string token = tokenFile.empty() ? "" : tsr::cluster::readTokenFile(tokenFile);
   const tsr::cluster::NodeAddress address =
       tsr::cluster::parseNodeAddress(listen.find(':') == std::string::npos ? listen + ":0" : listen);
-  boost::asio::io_context io;
+  boost::asio::io_context io(service.ioThreads);
   boost::asio::ip::tcp::resolver resolver(io);
   const auto endpoint = resolver.resolve(address.host, std::to_string(address.port))->endpoint();
   if (token.empty() && !endpoint.address().is_loopback())
@@ -101,6 +187,8 @@ int run(int argc, char** argv) {
   tsr::app::PreviewOptions preview;
   preview.maxStreams = previews;
   preview.sampleLimit = previewSpp;
+  preview.handshakeTimeout = service.headerTimeout;
+  preview.pingTimeout = service.pingTimeout;
   if (previews > 0)
     preview.open = tsr::app::previewViewports(cull, previewBackend, parameters, cluster, preview.maxStreams);
   tsr::app::PreviewStreams streams(cull, std::move(preview));
@@ -110,7 +198,7 @@ int run(int argc, char** argv) {
   boost::asio::ip::tcp::acceptor acceptor(io, endpoint);
   std::cout << "listening on " << address.host << ":" << acceptor.local_endpoint().port() << std::endl;
   std::cerr << scene << ": " << cull.totalObjects() << " objects" << std::endl;
-  tsr::app::HttpService http(cull, streams, webFiles, {token, maxObjects});
+  tsr::app::HttpService http(cull, streams, webFiles, {token, maxObjects, service});
   http.serve(acceptor);
   return 0;
 }

@@ -1,7 +1,5 @@
 #include "preview_stream.hpp"
 
-#include <unistd.h>
-
 #include <condition_variable>
 #include <mutex>
 #include <optional>
@@ -10,13 +8,13 @@
 #include <vector>
 
 #include <spdlog/spdlog.h>
-#include <boost/asio/io_context.hpp>
 #include <boost/asio/post.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/websocket.hpp>
 #include <nlohmann/json.hpp>
 
 #include "cull_request.hpp"
+#include "preview_request.hpp"
 #include "tsr/med/image_file.hpp"
 
 namespace tsr::app {
@@ -25,104 +23,95 @@ namespace {
 
 namespace beast = boost::beast;
 namespace websocket = beast::websocket;
-using boost::asio::ip::tcp;
 using nlohmann::json;
-
-struct PreviewRequest {
-  std::uint32_t seq = 0;
-  std::optional<CullQuery> view;  // none: stop refining
-};
-
-PreviewRequest parsePreviewRequest(const std::string& text) {
-  const json j = json::parse(text, nullptr, false);
-  if (j.is_discarded() || !j.is_object()) throw CullRequestError("the message is not a JSON object");
-  for (const auto& [key, value] : j.items())
-    if (key != "seq" && key != "view" && key != "stop")
-      throw CullRequestError("unknown field '" + key + "' (fields: seq, view, stop)");
-  PreviewRequest r;
-  if (!j.contains("seq") || !j["seq"].is_number_unsigned() || j["seq"].get<std::uint64_t>() > 0xffffffffu)
-    throw CullRequestError("seq: expected an integer from 0 to 4294967295");
-  r.seq = j["seq"].get<std::uint32_t>();
-  if (j.contains("view") == j.contains("stop")) throw CullRequestError("expected either view or stop");
-  if (j.contains("view")) {
-    if (!j["view"].is_object()) throw CullRequestError("view: expected an object");
-    r.view = parseCullRequest(j["view"].dump(), 1);
-  }
-  return r;
-}
 
 void putU32(std::vector<std::uint8_t>& out, std::uint32_t v) {
   for (int i = 0; i < 4; ++i) out.push_back(std::uint8_t(v >> (8 * i)));
 }
 
-// One browser's stream: an Asio loop of its own reads the client's
-// messages and writes frames (only the newest unsent one is kept: a slow
-// client skips frames, it never queues them); a render thread refines the
-// current view, cancelled mid-pass when a new message arrives.
-class PreviewClient {
+// One browser's stream: its reads and writes run on the connection's
+// strand (only the newest unsent frame is kept: a slow client skips
+// frames, it never queues them); a render thread of its own refines the
+// current view, cancelled mid-pass when a new message arrives. Both hold
+// the client alive; it ends when the socket closes and the thread sees it.
+class PreviewClient : public std::enable_shared_from_this<PreviewClient> {
  public:
-  PreviewClient(tcp::socket& accepted, const CullService& cull, const PreviewOptions& options)
-      : ws_(adopt(io_, accepted)), cull_(cull), options_(options) {}
-
-  void run(const beast::http::request<beast::http::string_body>& upgrade) {
-    ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
-    ws_.read_message_max(PreviewOptions::kMaxMessageBytes);
-    ws_.accept(upgrade);
-    std::thread renderer([this] { renderLoop(); });
-    read();
-    io_.run();
-    {
-      std::lock_guard lock(mutex_);
-      closed_ = true;
-      cancel_ = true;
-    }
-    wake_.notify_all();
-    renderer.join();
+  PreviewClient(beast::tcp_stream stream, const CullService& cull, const PreviewOptions& options,
+                std::atomic<int>* counted, ClientSlot connection, ClientSlot preview)
+      : ws_(std::move(stream)),
+        cull_(cull),
+        options_(options),
+        counted_(counted),
+        slots_{std::move(connection), std::move(preview)} {}
+  ~PreviewClient() {
+    if (counted_) --*counted_;
   }
 
-  // The connection moves onto this client's own loop (the acceptor's loop
-  // runs nowhere: the HTTP side is synchronous).
-  static tcp::socket adopt(boost::asio::io_context& io, tcp::socket& socket) {
-    tcp::socket own(io);
-    own.assign(socket.local_endpoint().protocol(), ::dup(socket.native_handle()));
-    socket.close();
-    return own;
+  void start(HttpRequest upgrade) {
+    // The WebSocket keeps its own deadlines: none on the TCP stream below it.
+    beast::get_lowest_layer(ws_).expires_never();
+    websocket::stream_base::timeout timeout;
+    timeout.handshake_timeout = std::chrono::duration_cast<std::chrono::milliseconds>(options_.handshakeTimeout);
+    timeout.idle_timeout = std::chrono::duration_cast<std::chrono::milliseconds>(options_.pingTimeout);
+    timeout.keep_alive_pings = true;  // a ping at half the idle time; no answer by its end closes
+    ws_.set_option(timeout);
+    ws_.read_message_max(PreviewOptions::kMaxMessageBytes);
+    upgrade_ = std::move(upgrade);
+    ws_.async_accept(upgrade_, [self = shared_from_this()](beast::error_code ec) {
+      if (ec) return;
+      if (!self->counted_) {  // over the limit: open, say why, close
+        self->ws_.async_close({websocket::close_code::try_again_later, "busy: too many previews at once"},
+                              [self](beast::error_code) {});
+        return;
+      }
+      std::thread([self] { self->renderLoop(); }).detach();
+      self->read();
+    });
   }
 
  private:
   void read() {
-    ws_.async_read(in_, [this](beast::error_code ec, std::size_t) {
-      if (ec) {
-        std::lock_guard lock(mutex_);
-        closed_ = true;
-        cancel_ = true;
-        wake_.notify_all();
-        return;
-      }
-      const std::string text = beast::buffers_to_string(in_.data());
-      in_.consume(in_.size());
-      try {
-        PreviewRequest request = parsePreviewRequest(text);
-        std::lock_guard lock(mutex_);
-        next_ = std::move(request);
-        cancel_ = true;
-        wake_.notify_all();
-      } catch (const CullRequestError& e) {
-        sendText(json{{"error", std::string("bad message: ") + e.what()}}.dump());
-      }
-      read();
-    });
+    ws_.async_read(in_, [self = shared_from_this()](beast::error_code ec, std::size_t) { self->onRead(ec); });
   }
 
-  // From any thread: the frame replaces one not yet sent.
+  void onRead(beast::error_code ec) {
+    if (ec) {
+      std::lock_guard lock(mutex_);
+      closed_ = true;
+      cancel_ = true;
+      wake_.notify_all();
+      return;
+    }
+    const std::string text = beast::buffers_to_string(in_.data());
+    in_.consume(in_.size());
+    try {
+      PreviewRequest request = parsePreviewRequest(text);
+      std::lock_guard lock(mutex_);
+      next_ = request;
+      cancel_ = true;
+      wake_.notify_all();
+    } catch (const CullRequestError& e) {
+      queue(json{{"error", std::string("bad message: ") + e.what()}}.dump(), false);
+    }
+    read();
+  }
+
+  // On the strand: the frame replaces one not yet sent.
+  void queue(std::vector<std::uint8_t> message, bool binary) {
+    pending_ = std::move(message);
+    pendingBinary_ = binary;
+    if (!writing_) write();
+  }
+  void queue(const std::string& text, bool binary) {
+    queue(std::vector<std::uint8_t>(text.begin(), text.end()), binary);
+  }
+
+  // From the render thread.
   void send(std::vector<std::uint8_t> message, bool binary) {
-    boost::asio::post(io_, [this, message = std::move(message), binary]() mutable {
-      pending_ = std::move(message);
-      pendingBinary_ = binary;
-      if (!writing_) write();
+    boost::asio::post(ws_.get_executor(), [self = shared_from_this(), message = std::move(message), binary]() mutable {
+      self->queue(std::move(message), binary);
     });
   }
-  void sendText(const std::string& text) { send({text.begin(), text.end()}, false); }
 
   void write() {
     if (!pending_) return;
@@ -130,9 +119,9 @@ class PreviewClient {
     out_ = std::move(*pending_);
     pending_.reset();
     ws_.binary(pendingBinary_);
-    ws_.async_write(boost::asio::buffer(out_), [this](beast::error_code ec, std::size_t) {
-      writing_ = false;
-      if (!ec) write();
+    ws_.async_write(boost::asio::buffer(out_), [self = shared_from_this()](beast::error_code ec, std::size_t) {
+      self->writing_ = false;
+      if (!ec) self->write();
     });
   }
 
@@ -144,7 +133,7 @@ class PreviewClient {
         std::unique_lock lock(mutex_);
         wake_.wait(lock, [this] { return closed_ || next_; });
         if (closed_) return;
-        request = std::move(*next_);
+        request = *next_;
         next_.reset();
         cancel_ = false;
       }
@@ -154,7 +143,8 @@ class PreviewClient {
         refine(*viewport, request.seq, *request.view);
       } catch (const std::exception& e) {
         spdlog::warn("preview failed: {}", e.what());
-        sendText(json{{"seq", request.seq}, {"error", e.what()}}.dump());
+        const std::string text = json{{"seq", request.seq}, {"error", e.what()}}.dump();
+        send({text.begin(), text.end()}, false);
       }
     }
   }
@@ -162,9 +152,7 @@ class PreviewClient {
   // Samples 1, 2, 4, ... up to the limit, a frame after each step, until
   // the client says something new.
   void refine(med::Viewport& viewport, std::uint32_t seq, const CullQuery& query) {
-    if (std::uint64_t(query.width) * query.height > options_.maxPixels)
-      throw CullRequestError("view of " + std::to_string(query.width) + "x" + std::to_string(query.height) +
-                             " pixels: previews take at most " + std::to_string(options_.maxPixels));
+    checkPreviewSize(query, options_.maxPixels);
     const med::View view = cull_.viewOf(query);
     med::FrameBuffer frame;
     med::RenderControl control;
@@ -188,10 +176,12 @@ class PreviewClient {
     }
   }
 
-  boost::asio::io_context io_;
-  websocket::stream<tcp::socket> ws_;
+  websocket::stream<beast::tcp_stream> ws_;
   const CullService& cull_;
   const PreviewOptions& options_;
+  std::atomic<int>* counted_;  // the service's stream count, or none when refused
+  ClientSlot slots_[2];
+  HttpRequest upgrade_;
   beast::flat_buffer in_;
   std::optional<std::vector<std::uint8_t>> pending_;
   bool pendingBinary_ = true, writing_ = false;
@@ -206,22 +196,15 @@ class PreviewClient {
 
 }  // namespace
 
-void PreviewStreams::serve(tcp::socket socket, const beast::http::request<beast::http::string_body>& upgrade) {
+void PreviewStreams::serve(beast::tcp_stream stream, HttpRequest upgrade, ClientSlot connection, ClientSlot preview) {
+  std::atomic<int>* counted = &streams_;
   if (streams_.fetch_add(1) >= options_.maxStreams) {
     --streams_;
-    websocket::stream<tcp::socket> ws(std::move(socket));
-    beast::error_code ec;
-    ws.accept(upgrade, ec);
-    if (!ec) ws.close({websocket::close_code::try_again_later, "busy: too many previews at once"}, ec);
-    return;
+    counted = nullptr;
   }
-  try {
-    auto client = std::make_unique<PreviewClient>(socket, cull_, options_);
-    client->run(upgrade);
-  } catch (const std::exception& e) {
-    spdlog::warn("preview stream ended: {}", e.what());
-  }
-  --streams_;
+  std::make_shared<PreviewClient>(std::move(stream), cull_, options_, counted, std::move(connection),
+                                  std::move(preview))
+      ->start(std::move(upgrade));
 }
 
 }  // namespace tsr::app

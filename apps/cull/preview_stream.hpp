@@ -9,15 +9,20 @@
 // binary frames, better each time, until the sample limit or the next
 // message: 16 bytes (little-endian uint32 seq, samples, width, height)
 // then the image as PNG. Problems come as text {"seq": N, "error": "..."}.
+// The socket is served on the network's threads (the connection's strand);
+// each stream renders on a thread of its own. A stream that answers no
+// ping for `pingTimeout` is closed.
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <memory>
 
-#include <boost/asio/ip/tcp.hpp>
-#include <boost/beast/http.hpp>
+#include <boost/beast/core/tcp_stream.hpp>
 
+#include "client_table.hpp"
 #include "cull_service.hpp"
+#include "http_routes.hpp"
 #include "tsr/med/viewport.hpp"
 
 namespace tsr::app {
@@ -29,6 +34,7 @@ struct PreviewOptions {
   int maxStreams = 4;                     // more are refused with "busy"
   std::uint32_t sampleLimit = 64;         // per pixel, then the image stands
   std::uint64_t maxPixels = 1024 * 1024;  // per frame
+  std::chrono::duration<double> handshakeTimeout{5.0}, pingTimeout{20.0};
   static constexpr std::size_t kMaxMessageBytes = 4096;
 };
 
@@ -36,10 +42,13 @@ class PreviewStreams {
  public:
   PreviewStreams(const CullService& cull, PreviewOptions options) : cull_(cull), options_(std::move(options)) {}
   bool enabled() const { return bool(options_.open); }
+  int active() const { return streams_.load(); }
+  int limit() const { return options_.maxStreams; }
   // Takes over the connection whose request asked for the upgrade and
-  // streams until the client leaves.
-  void serve(boost::asio::ip::tcp::socket socket,
-             const boost::beast::http::request<boost::beast::http::string_body>& upgrade);
+  // streams until the client leaves, holding the client's slots (its
+  // connection, its stream) as long. Over the limit the WebSocket opens
+  // and closes at once: "busy".
+  void serve(boost::beast::tcp_stream stream, HttpRequest upgrade, ClientSlot connection, ClientSlot preview);
 
  private:
   const CullService& cull_;

@@ -7,8 +7,11 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <memory>
+#include <thread>
 
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/beast/core.hpp>
@@ -42,6 +45,18 @@ class PreviewClient {
   explicit PreviewClient(std::uint16_t port, const std::string& target = "/v1/preview") : ws_(io_) {
     ws_.next_layer().connect({boost::asio::ip::make_address("127.0.0.1"), port});
     ws_.handshake("127.0.0.1", target);
+  }
+  // The connection's bytes as they come, unparsed (no pong is sent), until it closes.
+  std::string readRawUntilClosed(boost::system::error_code& ec) {
+    timeval timeout{15, 0};
+    setsockopt(ws_.next_layer().native_handle(), SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+    std::string bytes;
+    char chunk[4096];
+    for (;;) {
+      const std::size_t n = ws_.next_layer().read_some(boost::asio::buffer(chunk), ec);
+      bytes.append(chunk, n);
+      if (ec) return bytes;
+    }
   }
   void send(const json& message) {
     ws_.text(true);
@@ -210,7 +225,8 @@ TEST(CullPreviewCluster, PreviewsRenderOnTheNodesTheConfigNames) {
                                 nodes[1]->address().host + ":" + std::to_string(nodes[1]->address().port);
   tsr::cluster::test::ListeningProcess service({TSR_CULL_BINARY, "builtin:cornell", "--listen", "127.0.0.1:0",
                                                 "--threads", "1", "--preview-spp", std::to_string(kSampleLimit),
-                                                "--cluster", TSR_CONFIGS "/cooperative-2.json", "--nodes", addresses});
+                                                "--cluster", std::string(TSR_CONFIGS) + "/cooperative-2.json",
+                                                "--nodes", addresses});
   PreviewClient remote(service.address().port);
   remote.send({{"seq", 1}, {"view", previewView(64, 48)}});
   Frame far;
@@ -245,6 +261,43 @@ TEST(CullPreviewAccess, WithATokenTheStreamAsksForItAndThePageDoesNot) {
   PreviewClient client(port, "/v1/preview?access_token=preview-token");
   client.send({{"seq", 1}, {"view", previewView(16, 16)}});
   EXPECT_EQ(client.next().seq, 1u);
+}
+
+// A stream that answers no ping is closed after --ping-timeout; a second
+// stream from the same address over --max-previews-per-address gets 429.
+TEST(CullPreviewLimits, AStreamThatAnswersNoPingClosesAndOneAddressHoldsItsShare) {
+  tsr::cluster::test::ListeningProcess service({TSR_CULL_BINARY, "builtin:cornell", "--listen", "127.0.0.1:0",
+                                                "--threads", "1", "--ping-timeout", "1", "--max-previews-per-address",
+                                                "1"});
+  const std::uint16_t port = service.address().port;
+  PreviewClient first(port);
+  try {
+    PreviewClient second(port);
+    ADD_FAILURE() << "a second stream from 127.0.0.1 was accepted";
+  } catch (const boost::system::system_error& e) {
+    EXPECT_EQ(e.code(), websocket::error::upgrade_declined) << e.what();
+  }
+  // The first one never reads, so it never answers the service's ping: the
+  // raw socket sees the ping, then the end, within the timeout and a margin.
+  const auto start = std::chrono::steady_clock::now();
+  boost::system::error_code ec;
+  std::string raw = first.readRawUntilClosed(ec);
+  EXPECT_TRUE(ec == boost::asio::error::eof || ec == boost::asio::error::connection_reset) << ec.message();
+  ASSERT_GE(raw.size(), 2u);
+  EXPECT_EQ(std::uint8_t(raw[0]), 0x89u) << "a ping frame first";
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(10));
+  // The address's share is free again (a moment after the client sees the end).
+  std::unique_ptr<PreviewClient> again;
+  for (int attempt = 0; !again && attempt < 50; ++attempt) {
+    try {
+      again = std::make_unique<PreviewClient>(port);
+    } catch (const boost::system::system_error&) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+  }
+  ASSERT_TRUE(again) << "the stream's share was not given back";
+  again->send({{"seq", 7}, {"view", previewView(16, 16)}});
+  EXPECT_EQ(again->next().seq, 7u);
 }
 
 }  // namespace

@@ -25,6 +25,10 @@ std::vector<Target> allTargets() {
 #ifdef TSR_FUZZ_HAVE_ANAGLYPH
       {"anaglyph_script", &anaglyphScript},
 #endif
+#ifdef TSR_FUZZ_HAVE_CULL
+      {"cull_http_request", &cullHttpRequest},
+      {"cull_preview_message", &cullPreviewMessage},
+#endif
   };
 }
 

@@ -35,6 +35,10 @@ void viewerScript(Bytes bytes);
 void cameraBookmarks(Bytes bytes);
 // tessera-anaglyph's --script file.
 void anaglyphScript(Bytes bytes);
+// tessera-cull: one HTTP request through parsing and routing to its reply;
+// one text message of a /v1/preview stream.
+void cullHttpRequest(Bytes bytes);
+void cullPreviewMessage(Bytes bytes);
 
 struct Target {
   std::string_view name;  // the folder of its corpus and regressions
