@@ -130,6 +130,16 @@ def load(path):
     return pixels
 
 
+def timed(command):
+    """Outside Blender: wall-clock seconds of running `command` (its output dropped)."""
+    import subprocess
+    import time
+
+    start = time.perf_counter()
+    subprocess.run(command, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    return time.perf_counter() - start
+
+
 def comparison_parser(doc):
     """Outside Blender: the arguments every Cycles comparison takes
     (--render, --size, --spp, --bounces, --out); a script adds its own."""

@@ -11,13 +11,13 @@ each at equal spp against Tessera's reference, with render times.
 DIR holds the suite (python3 tests/bench/quality/suite/make_suite.py DIR).
 Needs Debian's blender, python3-numpy and python3-openimageio.
 """
-import argparse, os, sys, subprocess, tempfile, time
+import argparse, os, sys, tempfile
 
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, ".."))
-from cycles_common import load  # noqa: E402
+from cycles_common import load, timed  # noqa: E402
 
 
 
@@ -25,12 +25,6 @@ from cycles_common import load  # noqa: E402
 def rel_mse(image, reference):
     """tests/bench/quality/rel_mse.hpp's relMSE: mean over pixels and RGB of (y^ - y)^2 / (y^2 + 0.01)."""
     return float(np.mean((image - reference) ** 2 / (reference ** 2 + 1e-2)))
-
-
-def timed(command):
-    start = time.perf_counter()
-    subprocess.run(command, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    return time.perf_counter() - start
 
 
 def main():

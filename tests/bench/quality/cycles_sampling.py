@@ -21,13 +21,12 @@ import os
 import subprocess
 import sys
 import tempfile
-import time
 
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, ".."))
-from cycles_common import load  # noqa: E402
+from cycles_common import load, timed  # noqa: E402
 
 
 
@@ -63,12 +62,6 @@ def seen_error(image, reference, tile=16):
         for x in range(0, w, tile):
             worst = max(worst, float(np.sqrt(np.mean(d[y:y + tile, x:x + tile]))))
     return float(np.sqrt(np.mean(d))), worst
-
-
-def timed(command):
-    start = time.perf_counter()
-    subprocess.run(command, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    return time.perf_counter() - start
 
 
 def main():
