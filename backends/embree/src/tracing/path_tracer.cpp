@@ -568,9 +568,8 @@ void PathWalk::sampleDirect(const Point& sp, const VertexSamples& u, bool fromFi
       float bsdfPdf;
       glm::vec3 f = sp.eval(es.wi, &bsdfPdf);
       if (maxComponent(f) > 0.0f) {
-        glm::vec3 o = sp.spawn(es.wi);
-        float dist = glm::length(es.point - o);
-        const glm::vec3 seen = shadow(o, es.wi, dist - rayEpsilon(es.point));
+        const ShadowRay ray = shadowRayTo(sp, es.point, es.wi);
+        const glm::vec3 seen = shadow(ray.org, ray.dir, ray.tfar);
         if (maxComponent(seen) > 0.0f) {
           float w = fromField ? 1.0f : lightSampleWeight(mode_, es.pdf, bsdfPdf);
           if constexpr (std::is_same_v<Point, MediumPoint>)

@@ -69,4 +69,21 @@ struct ScatteringPoint {
   }
 };
 
+// A shadow ray from `from` (a scattering point, or a point in a medium)
+// to `target`, a point on a light that wi points at: it leaves where
+// from.spawn(wi) says and aims from there, so it meets the light's surface
+// at the target itself and stops just short of it. (Aimed along wi from the
+// offset origin instead, it crosses the light's plane early at oblique
+// angles and finds the light itself in the way.)
+struct ShadowRay {
+  glm::vec3 org, dir;
+  float tfar;
+};
+template <class Point>
+ShadowRay shadowRayTo(const Point& from, const glm::vec3& target, const glm::vec3& wi) {
+  const glm::vec3 o = from.spawn(wi), d = target - o;
+  const float dist = glm::length(d);
+  return {o, d / dist, dist - rayEpsilon(target)};
+}
+
 }  // namespace tsr::embree

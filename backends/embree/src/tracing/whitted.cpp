@@ -66,8 +66,8 @@ PixelSample Tracer::traceWhitted(const glm::vec3& org, const glm::vec3& dir, con
       if (!emitterPoint(sp.p, i, prob, centroid, es)) continue;
       const glm::vec3 f = sp.eval(es.wi, nullptr);
       if (maxComponent(f) <= 0.0f) continue;
-      const glm::vec3 o = sp.spawn(es.wi);
-      if (shadowed(o, es.wi, glm::length(es.point - o) - rayEpsilon(es.point))) continue;
+      const ShadowRay ray = shadowRayTo(sp, es.point, es.wi);
+      if (shadowed(ray.org, ray.dir, ray.tfar)) continue;
       sum += f * es.radiance / es.pdf;
     }
     if (envActive) sum += sp.bsdf.colour * env.radiance(sp.frame.n);
