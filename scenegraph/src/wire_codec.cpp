@@ -54,8 +54,8 @@ std::size_t decodeHeader(std::span<const std::uint8_t> header, const DecodeLimit
     throw DecodeError(0, "not a Tessera change list (bad magic)");
   std::uint8_t protocol = r.u8();
   if (protocol != kWireFormatVersion)
-    throw DecodeError(
-        4, "protocol version " + std::to_string(protocol) + ", this build speaks " + std::to_string(kWireFormatVersion));
+    throw DecodeError(4, "protocol version " + std::to_string(protocol) + ", this build speaks " +
+                             std::to_string(kWireFormatVersion));
   std::uint8_t kind = r.u8();
   if (kind > 1) throw DecodeError(5, "unknown change list kind " + std::to_string(kind));
   std::uint32_t length = r.u32();
