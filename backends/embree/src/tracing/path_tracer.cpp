@@ -321,7 +321,8 @@ void PathWalk::sampleEquiangular(const MediumSegment& s) {
       const MediumPoint point{s.org + t * s.dir, s.dir, m.g};
       float phasePdf = 0.0f;
       const glm::vec3 f = point.eval(es.wi, &phasePdf);
-      const glm::vec3 seen = shadow(point.p, es.wi, es.dist - rayEpsilon(es.point));
+      const ShadowRay ray = shadowRayTo(point, es.point, es.wi);
+      const glm::vec3 seen = shadow(ray.org, ray.dir, ray.tfar);
       if (maxComponent(seen) > 0.0f) {
         // In the free-flight techniques' measure: solid angle at the point,
         // times the distance density over free flight's.
