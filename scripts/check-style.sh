@@ -3,6 +3,7 @@
 #
 #   scripts/check-style.sh [BASE] [--build DIR] [--jobs N]
 #   scripts/check-style.sh --all [--build DIR] [--jobs N]
+#   scripts/check-style.sh --format
 #
 # BASE is the git ref the change is measured from (default: origin/main if
 # it exists, else HEAD~1); the working tree's edits count too. clang-format
@@ -14,6 +15,8 @@
 # (findings in our headers count once). Compile commands come from DIR
 # (default build/default; configure it first: the default preset exports
 # compile_commands.json). --jobs runs that many clang-tidy processes (default 2).
+# --format checks only clang-format, over every tracked C++ file, and needs no
+# build: the test command runs it so the whole tree stays formatted.
 # Exit 0: clean; 1: findings; 2: usage error.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -21,6 +24,7 @@ cd "$(dirname "$0")/.."
 base=""
 build=build/default
 all=0
+format_only=0
 jobs=2
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -29,12 +33,28 @@ while [ $# -gt 0 ]; do
       [ $# -ge 2 ] && [[ "$2" =~ ^[1-9][0-9]*$ ]] || { echo "error: --jobs needs a positive count" >&2; exit 2; }
       jobs=$2; shift 2 ;;
     --all) all=1; shift ;;
-    -h|--help) sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --format) format_only=1; shift ;;
+    -h|--help) sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     -*) echo "error: unknown option $1 (see --help)" >&2; exit 2 ;;
     *) [ -z "$base" ] || { echo "error: one BASE only, got '$base' and '$1'" >&2; exit 2; }; base=$1; shift ;;
   esac
 done
 [ $all -eq 0 ] || [ -z "$base" ] || { echo "error: --all takes no BASE (got '$base')" >&2; exit 2; }
+
+# Whole-tree clang-format, nothing else.
+if [ $format_only -eq 1 ]; then
+  [ $all -eq 0 ] && [ -z "$base" ] || { echo "error: --format takes neither BASE nor --all" >&2; exit 2; }
+  command -v clang-format >/dev/null || { echo "error: clang-format not found (scripts/install-deps.sh installs it)" >&2; exit 2; }
+  mapfile -t files < <(git ls-files -- '*.cpp' '*.hpp' '*.h')
+  unformatted=()
+  for f in "${files[@]}"; do
+    clang-format --dry-run --Werror "$f" >/dev/null 2>&1 || unformatted+=("$f")
+  done
+  echo "check-style: clang-format: ${#unformatted[@]} of ${#files[@]} file(s) differ from .clang-format"
+  [ ${#unformatted[@]} -eq 0 ] && exit 0
+  for f in "${unformatted[@]}"; do echo "  $f (fix: clang-format -i $f)"; done
+  exit 1
+fi
 if [ $all -eq 0 ] && [ -z "$base" ]; then
   if git rev-parse -q --verify origin/main >/dev/null; then base=origin/main; else base=HEAD~1; fi
 fi

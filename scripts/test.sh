@@ -5,10 +5,12 @@
 # and tsan-ci presets (docs/fuzzing-and-sanitizers.md: scripts/sanitize.sh builds
 # every layer under both and runs the whole suite), then every fuzz target
 # over its kept inputs plus a few mutations
-# (the clang fuzz build takes about 1.5 min on 2 cores).
+# (the clang fuzz build takes about 1.5 min on 2 cores). First of all, the
+# whole tree must match .clang-format (half a minute, no build needed).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
+bash scripts/check-style.sh --format
 jobs=$(nproc)
 
 cmake --preset default

@@ -69,9 +69,10 @@ bool parseRenderOptions(int argc, char** argv, RenderJob& o, std::string& listPa
   std::string filter, pathClass, filterKernel;
   double threshold = 0, sigmaS = 0, sigmaC = 0, sigmaD = 0;
   auto* filterGroup = app.add_option_group("Filtering (embree)", "low-noise previews: Schwenk, chapters 3 and 4");
-  filterOptions.emplace_back(filterGroup->add_option("--filter", filter, "none, pixel, atrous, radiance, hybrid or denoise")
-                                 ->check(CLI::IsMember({"none", "pixel", "atrous", "radiance", "hybrid", "denoise"})),
-                             "filter");
+  filterOptions.emplace_back(
+      filterGroup->add_option("--filter", filter, "none, pixel, atrous, radiance, hybrid or denoise")
+          ->check(CLI::IsMember({"none", "pixel", "atrous", "radiance", "hybrid", "denoise"})),
+      "filter");
   filterOptions.emplace_back(
       filterGroup->add_option("--threshold", threshold, "perceived variance kept under (default 0.01)")
           ->check(FiniteNonNegative()),

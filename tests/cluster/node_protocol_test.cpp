@@ -169,8 +169,7 @@ TEST_F(HostileInput, CorruptChangeListClosesThatClientOnly) {
   ASSERT_EQ(raw.read(m), Outcome::Message);
   raw.send(hs.onChallenge(m));
   ASSERT_EQ(raw.read(m), Outcome::Message);
-  raw.send(
-      frameFromPayload(Snapshot::kType, std::vector<std::uint8_t>{'T', 'S', 'R', 'C', 1, 1, 50, 0, 0, 0, 9}));
+  raw.send(frameFromPayload(Snapshot::kType, std::vector<std::uint8_t>{'T', 'S', 'R', 'C', 1, 1, 50, 0, 0, 0, 9}));
   ASSERT_EQ(raw.read(m), Outcome::Message);
   ASSERT_EQ(m.type, ErrorReport::kType);
   EXPECT_EQ(parse<ErrorReport>(m).kind, ErrorReport::Kind::SceneRejected);

@@ -87,8 +87,7 @@ void clusterMessages(const fs::path& dir) {
 
   const std::vector<Bytes> lists = richStream();
   std::vector<Bytes> replica{frame(frameFromPayload(Snapshot::kType, lists[0]))};
-  for (std::size_t i = 1; i < lists.size(); ++i)
-    replica.push_back(frame(frameFromPayload(Changes::kType, lists[i])));
+  for (std::size_t i = 1; i < lists.size(); ++i) replica.push_back(frame(frameFromPayload(Changes::kType, lists[i])));
   replica.push_back(frame(makeFrame(Applied{2})));
   put(dir, "replica", concat(replica));
 
@@ -123,7 +122,8 @@ void clusterMessages(const fs::path& dir) {
   put(dir, "service",
       concat({frame(makeFrame(HashQuery{5})), frame(makeFrame(HashReply{5, 2, 0xabcdef})),
               frame(makeFrame(Heartbeat{1})), frame(makeFrame(HeartbeatAck{1})),
-              frame(makeFrame(ErrorReport{ErrorReport::Kind::RenderFailed, "no such viewport"})), frame(makeFrame(Bye{}))}));
+              frame(makeFrame(ErrorReport{ErrorReport::Kind::RenderFailed, "no such viewport"})),
+              frame(makeFrame(Bye{}))}));
 }
 
 void pixelCodec(const fs::path& dir) {

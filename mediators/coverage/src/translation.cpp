@@ -21,5 +21,4 @@ bool isTransparent(const sg::Container* material) {
   return false;
 }
 
-
 }  // namespace tsr::med::coverage_mediator

@@ -6,7 +6,9 @@
 
 namespace tsr::med::embree_mediator {
 
-std::vector<std::string> denoiseInputs() { return {kDenoiseAlbedoOutput, kDenoiseNormalOutput, kDenoiseVarianceOutput}; }
+std::vector<std::string> denoiseInputs() {
+  return {kDenoiseAlbedoOutput, kDenoiseNormalOutput, kDenoiseVarianceOutput};
+}
 
 void writeDenoiseInputs(const embree::FrameBuffer& fb, FrameBuffer& out) {
   const std::size_t n = std::size_t{fb.width()} * fb.height();

@@ -35,8 +35,7 @@ std::vector<ParameterSpec> specs() {
       integerParameter("threads", 0, 0, 4096, "render threads (0: all)"),
       flagParameter("directOnly", false, "direct light only (maxDepth 1)"),
       integerParameter("samplesPerPass", 1, 1, 4096, "samples per pass (unset: passes grow 1, 2, 4, 8)"),
-      choiceParameter("filter", "none", {"none", "pixel", "atrous", "radiance", "hybrid", "denoise"},
-                      "preview filter"),
+      choiceParameter("filter", "none", {"none", "pixel", "atrous", "radiance", "hybrid", "denoise"}, "preview filter"),
       choiceParameter("pathClass", "indirect", {"indirect", "caustic", "all"}, "paths the filter smooths"),
       choiceParameter("filterKernel", "separable", {"bilateral", "separable"}, "pixel filter kernel"),
       // A 10 % relative standard deviation: low enough that 8 spp previews

@@ -3,8 +3,8 @@
 // the image tile by tile; a checkerboard keeps its contrast (demodulation
 // by albedo); a small highlight keeps its energy; a sparse field of spikes
 // leaves no grid of the a-trous steps; bad input is refused.
-#include "test_scenes.hpp"
 #include "tsr/embree/denoiser.hpp"
+#include "test_scenes.hpp"
 #include "tsr/embree/error.hpp"
 
 #include <gtest/gtest.h>
@@ -172,8 +172,8 @@ TEST(Denoiser, PrintsNoGridOfItsSteps) {
   };
   for (int lag : {2, 4, 8, 16}) {
     const double before = correlation(lag - 1), at = correlation(lag), after = correlation(lag + 1);
-    EXPECT_LT(at, std::max(before, after) + 0.02) << "autocorrelation peaks at lag " << lag << ": " << before << ", "
-                                                  << at << ", " << after;
+    EXPECT_LT(at, std::max(before, after) + 0.02)
+        << "autocorrelation peaks at lag " << lag << ": " << before << ", " << at << ", " << after;
   }
 }
 

@@ -131,9 +131,9 @@ glm::vec3 roomOfLamps(LightChoice choice, std::uint32_t depth, std::uint32_t spp
   for (int i = 0; i < 6; ++i)
     for (int j = 0; j < 6; ++j) {
       const float x = -5.0f + 2.0f * float(i), z = -5.0f + 2.0f * float(j), h = 0.1f;
-      scene.addInstance(scene.addMesh(quad({x - h, 0.8f, z - h}, {x + h, 0.8f, z - h}, {x + h, 0.8f, z + h},
-                                           {x - h, 0.8f, z + h})),
-                        lampMaterial, glm::mat4(1.0f));
+      scene.addInstance(
+          scene.addMesh(quad({x - h, 0.8f, z - h}, {x + h, 0.8f, z - h}, {x + h, 0.8f, z + h}, {x - h, 0.8f, z + h})),
+          lampMaterial, glm::mat4(1.0f));
     }
   RenderSettings s;
   s.maxDepth = depth;

@@ -557,8 +557,8 @@ TEST(PixelFilter, AtrousPrintsNoGridOfItsSteps) {
   // Level steps of sigmaS 8 over 3 levels: 8 sqrt(3/63) 2^(k-1) = 1.75, 3.5, 7.
   for (int lag : {2, 4, 7, 14}) {
     const double before = correlation(lag - 1), at = correlation(lag), after = correlation(lag + 1);
-    EXPECT_LT(at, std::max(before, after) + 0.02) << "autocorrelation peaks at lag " << lag << ": " << before << ", "
-                                                  << at << ", " << after;
+    EXPECT_LT(at, std::max(before, after) + 0.02)
+        << "autocorrelation peaks at lag " << lag << ": " << before << ", " << at << ", " << after;
   }
 }
 

@@ -4,8 +4,8 @@
 // function of their arguments, the independent sampler is the old white
 // noise bit for bit, and on a lit floor the stratified samples give a
 // lower error than white noise at the same sample count.
-#include "test_scenes.hpp"
 #include "tsr/embree/sampler.hpp"
+#include "test_scenes.hpp"
 
 #include <gtest/gtest.h>
 
@@ -147,8 +147,8 @@ TEST(Sampler, StratifiedDirectLightHasLessErrorAndTheSameMean) {
   const FrameBuffer a = lampOnFloor(SamplerKind::Sobol, 256, 3);
   const double diff = luminance(meanColour(a)) - luminance(meanColour(ref));
   const double se = std::hypot(meanStandardError(a), meanStandardError(ref));
-  EXPECT_LT(std::abs(diff), 4.0 * se + 1e-6) << "sobol mean " << luminance(meanColour(a)) << ", reference "
-                                              << luminance(meanColour(ref));
+  EXPECT_LT(std::abs(diff), 4.0 * se + 1e-6)
+      << "sobol mean " << luminance(meanColour(a)) << ", reference " << luminance(meanColour(ref));
 }
 
 }  // namespace

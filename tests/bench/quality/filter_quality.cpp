@@ -23,18 +23,18 @@
 #include <nlohmann/json.hpp>
 
 #include "quality_scene.hpp"
-#include "suite_scenes.hpp"
 #include "rel_mse.hpp"
 #include "seen_error.hpp"
+#include "suite_scenes.hpp"
 #include "tsr/med/embree/register.hpp"
 #include "tsr/med/image_file.hpp"
 #include "tsr/med/viewport.hpp"
 
 using namespace tsr;
 using quality::QualityScene;
+using quality::SceneSpec;
 using quality::SeenError;
 using quality::Shot;
-using quality::SceneSpec;
 
 namespace {
 
@@ -67,7 +67,6 @@ struct Score {
   SeenError seen;
 };
 using Curve = std::vector<Score>;
-
 
 // filter: a filter name, optionally followed by +name=value settings of
 // its own (pixel+filterKernel=separable), so variants sit side by side.
@@ -107,7 +106,6 @@ Score score(const Shot& shot, const med::FrameBuffer& ref, std::uint32_t spp, do
   s.seen = quality::seenError(shot.image.colour, ref.colour, ref.width, ref.height);
   return s;
 }
-
 
 // Interpolates y(x) piecewise linearly in log-log through the curve, the
 // end segments extended; pick reads (x, y) from a Score.
@@ -397,7 +395,6 @@ std::string tables(const std::vector<SceneResult>& results, const Options& o) {
   }
   return md.str();
 }
-
 
 }  // namespace
 

@@ -167,7 +167,8 @@ std::string tables(const std::vector<SceneRow>& rows, const std::vector<Config>&
     const std::string& b = configs.back().name;
     md << "\n### " << a << " / " << b << ": how many times lower the seen error (whole) is with " << b
        << "\n\nequal spp at 8, 64 and 128 (or the nearest measured), and at equal time: " << b
-       << "'s error at the time " << a << " takes for 8 spp.\n\n| scene | 8 spp | 64 spp | worst tile, 8 spp | equal time |\n"
+       << "'s error at the time " << a
+       << " takes for 8 spp.\n\n| scene | 8 spp | 64 spp | worst tile, 8 spp | equal time |\n"
        << "|---|---|---|---|---|\n";
     std::vector<double> r8, rTime;
     for (const auto& r : rows) {
@@ -215,7 +216,9 @@ std::string tables(const std::vector<SceneRow>& rows, const std::vector<Config>&
 int main(int argc, char** argv) {
   Options o;
   CLI::App app{"sampling_quality: unfiltered error against spp and time for sampler configurations, over a suite"};
-  app.add_option("--size", o.reference.size, "image width and height")->capture_default_str()->check(CLI::Range(16, 4096));
+  app.add_option("--size", o.reference.size, "image width and height")
+      ->capture_default_str()
+      ->check(CLI::Range(16, 4096));
   app.add_option("--ref-spp", o.reference.spp, "reference samples per pixel")
       ->capture_default_str()
       ->check(CLI::Range(64, 1 << 20));

@@ -23,8 +23,8 @@ inline constexpr int kSeenBlurRadius = 2;
 inline constexpr int kSeenTile = 16;
 
 struct SeenError {
-  double whole = 0;      // RMSE over every pixel and RGB channel
-  double worstTile = 0;  // the largest RMSE of one 16x16 tile (border tiles may be smaller)
+  double whole = 0;                      // RMSE over every pixel and RGB channel
+  double worstTile = 0;                  // the largest RMSE of one 16x16 tile (border tiles may be smaller)
   std::uint32_t worstX = 0, worstY = 0;  // that tile's top-left pixel
 };
 
@@ -43,8 +43,7 @@ inline void boxPass(const std::vector<float>& in, std::vector<float>& out, int w
     for (int i = 0; i < len; ++i) {
       double s = 0;
       const int lo = std::max(0, i - r), hi = std::min(len - 1, i + r);
-      for (int k = lo; k <= hi; ++k)
-        s += in[alongX ? std::size_t(line) * w + k : std::size_t(k) * w + line];
+      for (int k = lo; k <= hi; ++k) s += in[alongX ? std::size_t(line) * w + k : std::size_t(k) * w + line];
       out[alongX ? std::size_t(line) * w + i : std::size_t(i) * w + line] = float(s / double(hi - lo + 1));
     }
 }

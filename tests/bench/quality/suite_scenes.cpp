@@ -61,7 +61,9 @@ med::FrameBuffer reference(QualityScene& scene, const ReferenceOptions& o) {
       throw std::runtime_error(path.string() + ": cached reference has the wrong size; delete it");
     return fb;
   }
-  std::cerr << fmt::format("[quality] rendering reference {} ({} spp at {}x{}); cached afterwards", name, o.spp, o.size, o.size) << std::endl;
+  std::cerr << fmt::format("[quality] rendering reference {} ({} spp at {}x{}); cached afterwards", name, o.spp, o.size,
+                           o.size)
+            << std::endl;
   med::Parameters p;
   p.set("spp", std::int64_t{o.spp});
   p.set("seed", std::int64_t(o.seed));

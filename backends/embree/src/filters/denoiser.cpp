@@ -146,7 +146,8 @@ std::vector<glm::vec3> denoise(const DenoiseInput& in, const DenoiseSettings& s)
                 const float zj = g.depth[j];
                 if (std::isfinite(zi) != std::isfinite(zj)) continue;  // surface and background never mix
                 if (std::isfinite(zi)) {
-                  const float reach = s.sigmaDepth * g.slope[i] * float(step * std::max(std::abs(kx - 2), std::abs(ky - 2)));
+                  const float reach =
+                      s.sigmaDepth * g.slope[i] * float(step * std::max(std::abs(kx - 2), std::abs(ky - 2)));
                   wgt *= std::exp(-std::abs(zi - zj) / (reach + 1e-3f * std::abs(zi) + 1e-6f));
                   const float cosine = std::max(0.0f, glm::dot(ni, g.normal[j]));
                   wgt *= std::pow(cosine, s.sigmaNormal);

@@ -262,7 +262,7 @@ void pass(int w, int h, const Range& rg, const Plane& sigma, float factor, const
     SpatialTable table;
     for (int y = y0; y < y1; ++y) {
       const std::size_t row = std::size_t(y) * w;
-      const Row rw{rg.r.data() + row, rg.g.data() + row, rg.b.data() + row,  rg.d.data() + row, rg.e.data() + row,
+      const Row rw{rg.r.data() + row,  rg.g.data() + row,  rg.b.data() + row,  rg.d.data() + row, rg.e.data() + row,
                    in.lr.data() + row, in.lg.data() + row, in.lb.data() + row, in.v.data() + row, ma.data() + row,
                    va.data() + row,    mo.data() + row,    vo.data() + row,    in.q.data() + row};
       for (int x = 0; x < w; ++x) {
@@ -407,13 +407,14 @@ void atrous(const Image& im, const Range& rg, const Plane& sigma, State& s, Plan
             for (int tx = 0; tx < 5; ++tx) {
               const float u = float(tx - 2) * step, v = float(ty - 2) * step;
               // The centre tap stays on the pixel itself.
-              const int ox = tx == 2 && ty == 2 ? 0 : static_cast<int>(std::floor(rot.c * u - rot.s * v + pattern.shiftX));
-              const int oy = tx == 2 && ty == 2 ? 0 : static_cast<int>(std::floor(rot.s * u + rot.c * v + pattern.shiftY));
+              const int ox =
+                  tx == 2 && ty == 2 ? 0 : static_cast<int>(std::floor(rot.c * u - rot.s * v + pattern.shiftX));
+              const int oy =
+                  tx == 2 && ty == 2 ? 0 : static_cast<int>(std::floor(rot.s * u + rot.c * v + pattern.shiftY));
               const int xx = x + ox, yy = y + oy;
               if (xx < 0 || xx >= w || yy < 0 || yy >= h) continue;
               const std::size_t i = std::size_t(yy) * w + xx;
-              const float dr = rg.r[i] - cr, dg = rg.g[i] - cg, db = rg.b[i] - cb, dd = rg.d[i] - cd,
-                          de = rg.e[i] - ce;
+              const float dr = rg.r[i] - cr, dg = rg.g[i] - cg, db = rg.b[i] - cb, dd = rg.d[i] - cd, de = rg.e[i] - ce;
               const float wt = B3[ty] * B3[tx] * fastExp(-(dr * dr + dg * dg + db * db + dd * dd + de * de));
               a += wt;
               sr += wt * (s.lr[i] - lr);

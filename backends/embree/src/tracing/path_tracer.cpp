@@ -189,8 +189,8 @@ class PathWalk {
   std::uint8_t mask_ = 0;
   float prevPdf_ = 0.0f;
   bool prevDelta_ = true;
-  bool aovFinal_ = false;         // the albedo and normal are those of a non-specular surface
-  glm::vec3 aovTint_{1.0f};       // the specular surfaces' colours before it
+  bool aovFinal_ = false;    // the albedo and normal are those of a non-specular surface
+  glm::vec3 aovTint_{1.0f};  // the specular surfaces' colours before it
   // The last scattering vertex and its normal (zero in a medium): where
   // light sampling would have picked an emitter the path then hits.
   glm::vec3 prevPoint_{0.0f}, prevNormal_{0.0f};
@@ -293,8 +293,9 @@ bool PathWalk::flyThrough(const MediumAt& m, const glm::vec3& org, const glm::ve
 }
 
 bool PathWalk::equiangularActive(const MediumAt& m, std::uint32_t depth) const {
-  return tracer_.settings.equiangular && mode_ == LightSampling::Mis && !m.field() && maxComponent(m.medium->scattering) > 0.0f &&
-         depth < tracer_.settings.maxDepth && (!scene_.emitters.empty() || !scene_.activeLights.empty());
+  return tracer_.settings.equiangular && mode_ == LightSampling::Mis && !m.field() &&
+         maxComponent(m.medium->scattering) > 0.0f && depth < tracer_.settings.maxDepth &&
+         (!scene_.emitters.empty() || !scene_.activeLights.empty());
 }
 
 // A distance drawn towards one emitter point (picked at the segment's start)
@@ -615,8 +616,8 @@ void PathWalk::classify(const BsdfSample& bs, MaterialType type) {
 
 }  // namespace
 
-PixelSample Tracer::tracePath(Sampler& sampler, glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos, const glm::vec3& forward,
-                              RadianceSample* record) {
+PixelSample Tracer::tracePath(Sampler& sampler, glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos,
+                              const glm::vec3& forward, RadianceSample* record) {
   return PathWalk(*this, sampler, record).run(org, dir, camPos, forward);
 }
 

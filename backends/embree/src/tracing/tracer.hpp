@@ -311,8 +311,7 @@ struct Tracer {
   // The density, in solid angle at a point `dist` away, with which light
   // sampling at `from` (normal n) picks a point of emitter triangle i seen
   // at cosine cosL from its side.
-  float emitterSolidAnglePdf(const glm::vec3& from, const glm::vec3& n, std::uint32_t i, float dist,
-                             float cosL) const {
+  float emitterSolidAnglePdf(const glm::vec3& from, const glm::vec3& n, std::uint32_t i, float dist, float cosL) const {
     return emitterProbability(from, n, i) / scene.emitterTriangles[i].area * dist * dist / cosL;
   }
 
@@ -379,8 +378,8 @@ struct Tracer {
   // One path. With a record (zero-initialised by the caller), also fills
   // the radiance sample at the first non-specular vertex: Ľ_i collects
   // exactly the contributions classified indirect.
-  PixelSample tracePath(Sampler& sampler, glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos, const glm::vec3& forward,
-                        RadianceSample* record = nullptr);
+  PixelSample tracePath(Sampler& sampler, glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos,
+                        const glm::vec3& forward, RadianceSample* record = nullptr);
   // The "virtual flash" colour of one camera ray (Schwenk 3.3.3): the
   // reflectivity of the first non-specular surface, perfect specular
   // surfaces followed Whitted-style, lit by ambient light plus an

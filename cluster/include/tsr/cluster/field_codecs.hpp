@@ -57,8 +57,8 @@ struct SVarint {
     std::size_t at = r.offset();
     std::int64_t x = r.svarint();
     if (x < lo || x > hi)
-      throw sg::DecodeError(at, std::string(what) + " " + std::to_string(x) + " outside [" + std::to_string(lo) +
-                                    ", " + std::to_string(hi) + "]");
+      throw sg::DecodeError(at, std::string(what) + " " + std::to_string(x) + " outside [" + std::to_string(lo) + ", " +
+                                    std::to_string(hi) + "]");
     v = static_cast<T>(x);
   }
 };
@@ -147,7 +147,8 @@ struct AnimationFrame {
   void read(sg::ByteReader& r, std::int64_t& v, const char* what, const Owner&) const {
     std::size_t at = r.offset();
     std::uint64_t x = r.varint();
-    if (x > max) throw sg::DecodeError(at, std::string(what) + " " + std::to_string(x) + " exceeds " + std::to_string(max));
+    if (x > max)
+      throw sg::DecodeError(at, std::string(what) + " " + std::to_string(x) + " exceeds " + std::to_string(max));
     v = static_cast<std::int64_t>(x) + lowest;
   }
 };
@@ -356,7 +357,7 @@ constexpr codec::List<Elem> listOf(std::size_t max, std::size_t minElementBytes,
 }
 template <class Elem>
 constexpr codec::List<Elem, codec::DistinctElements> distinctListOf(std::size_t max, std::size_t minElementBytes,
-                                                                   Elem elem) {
+                                                                    Elem elem) {
   return {max, minElementBytes, elem, {}};
 }
 template <class Elem, class E, class K>

@@ -39,7 +39,9 @@ constexpr MessageField<Owner, T, Codec> field(const char* name, T Owner::*member
 
 // A struct that declares its fields.
 template <class T>
-concept DeclaresFields = requires { T::fields(); };
+concept DeclaresFields = requires {
+  T::fields();
+};
 
 template <DeclaresFields T>
 void writeFields(sg::ByteWriter& w, const T& value) {

@@ -110,9 +110,7 @@ struct Auth {
   static constexpr MessageType kType{3};
   static constexpr MessageSpec kSpec{kType, "Auth", Sender::Client, 64, kBeforeAuth};
   Digest clientProof{};
-  static constexpr auto fields() {
-    return std::tuple{field("client proof", &Auth::clientProof, wire::fixedBytes())};
-  }
+  static constexpr auto fields() { return std::tuple{field("client proof", &Auth::clientProof, wire::fixedBytes())}; }
   bool operator==(const Auth&) const = default;
 };
 
@@ -134,9 +132,7 @@ struct Reject {
   static constexpr MessageType kType{5};
   static constexpr MessageSpec kSpec{kType, "Reject", Sender::Node, 8 * kKiB, kBeforeAuth};
   std::string reason;
-  static constexpr auto fields() {
-    return std::tuple{field("reason", &Reject::reason, wire::text(kMaxReasonBytes))};
-  }
+  static constexpr auto fields() { return std::tuple{field("reason", &Reject::reason, wire::text(kMaxReasonBytes))}; }
   bool operator==(const Reject&) const = default;
 };
 
@@ -157,9 +153,7 @@ struct Changes {
   static constexpr MessageType kType{7};
   static constexpr MessageSpec kSpec{kType, "Changes", Sender::Client, 1024 * kMiB, kAfterAuth};
   std::vector<std::uint8_t> changes;
-  static constexpr auto fields() {
-    return std::tuple{field("change list", &Changes::changes, wire::rest<Changes>())};
-  }
+  static constexpr auto fields() { return std::tuple{field("change list", &Changes::changes, wire::rest<Changes>())}; }
   bool operator==(const Changes&) const = default;
 };
 
@@ -234,7 +228,8 @@ struct RenderJob {
         field("rectangle", &RenderJob::rects,
               wire::listOf(kMaxRectsPerJob, 4, wire::rectIn(&RenderJob::view, kMaxImageSide, kMaxRectPixels))),
         // Distinct, non-empty names: each is one image in the tile's pixels.
-        field("output name", &RenderJob::outputs, wire::distinctListOf(kMaxOutputs, 2, wire::nonEmptyText(kMaxNameBytes))),
+        field("output name", &RenderJob::outputs,
+              wire::distinctListOf(kMaxOutputs, 2, wire::nonEmptyText(kMaxNameBytes))),
         field("resolve flag", &RenderJob::resolve, wire::flag())};
   }
   bool operator==(const RenderJob&) const = default;
@@ -250,11 +245,11 @@ struct RenderRequest {
   // lookahead, e.g. the path tracer's photons); -1: none.
   std::int64_t sequenceFrame = -1;
   static constexpr auto fields() {
-    return std::tuple{field("frame", &RenderRequest::frame, wire::varint()),
-                      field("compression", &RenderRequest::compression, wire::enumUpTo(Compression::Kept)),
-                      field("render job", &RenderRequest::jobs, wire::listOf(kMaxJobs, 100, wire::nested())),
-                      field("animation frame", &RenderRequest::sequenceFrame,
-                            wire::animationFrame(-1, kMaxSequenceFrame))};
+    return std::tuple{
+        field("frame", &RenderRequest::frame, wire::varint()),
+        field("compression", &RenderRequest::compression, wire::enumUpTo(Compression::Kept)),
+        field("render job", &RenderRequest::jobs, wire::listOf(kMaxJobs, 100, wire::nested())),
+        field("animation frame", &RenderRequest::sequenceFrame, wire::animationFrame(-1, kMaxSequenceFrame))};
   }
   bool operator==(const RenderRequest&) const = default;
 };
@@ -424,9 +419,9 @@ struct MessageList {
   static constexpr std::size_t size = sizeof...(M);
 };
 
-using Messages = MessageList<Hello, Challenge, Auth, Welcome, Reject, Snapshot, Changes, Applied, SetViewports,
-                             RenderRequest, RenderTile, FrameDone, Swap, HashQuery, HashReply, Heartbeat, HeartbeatAck,
-                             ErrorReport, Bye, Prepare>;
+using Messages =
+    MessageList<Hello, Challenge, Auth, Welcome, Reject, Snapshot, Changes, Applied, SetViewports, RenderRequest,
+                RenderTile, FrameDone, Swap, HashQuery, HashReply, Heartbeat, HeartbeatAck, ErrorReport, Bye, Prepare>;
 
 // Header + payload of a message struct.
 Frame frameFromPayload(MessageType type, std::span<const std::uint8_t> payload);

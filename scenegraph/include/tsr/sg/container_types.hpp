@@ -15,9 +15,8 @@
 
 namespace tsr::sg {
 
-using ContainerTypes =
-    std::tuple<Group, Transform, Geometry, Image, SimpleMaterial, SurfaceMaterial, Light, Camera, Background,
-               VolumeMaterial>;
+using ContainerTypes = std::tuple<Group, Transform, Geometry, Image, SimpleMaterial, SurfaceMaterial, Light, Camera,
+                                  Background, VolumeMaterial>;
 static_assert(std::tuple_size_v<ContainerTypes> == kContainerTypeCount);
 
 }  // namespace tsr::sg

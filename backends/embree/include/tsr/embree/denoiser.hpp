@@ -19,7 +19,7 @@
 namespace tsr::embree {
 
 struct DenoiseSettings {
-  unsigned levels = 5;        // a-trous levels: the footprint is 4 * (2^levels - 1) + 1 pixels wide
+  unsigned levels = 5;          // a-trous levels: the footprint is 4 * (2^levels - 1) + 1 pixels wide
   float sigmaLuminance = 2.0f;  // luminance difference allowed, in standard errors of the pixels' means
   float sigmaNormal = 64.0f;    // exponent on the cosine between normals
   float sigmaDepth = 1.0f;      // depth difference allowed, in units of the local depth gradient per pixel

@@ -30,8 +30,8 @@ struct PixelFilterSettings {
   float sigmaD = 1.0f;   // range std. dev. of depth, world units; +inf ignores depth (background is still kept apart)
   bool adaptiveWidth = false;      // per-pixel sigma from u and the target f (3.15-3.17, c = 4)
   float adaptiveTarget = 0.5f;     // target f of 3.15 as a fraction of threshold (f < t so the blend can reach t)
-  bool spikeRemoval = false;  // clamp Lu to [Lf/c, c Lf] per channel before blending (3.18, c = 2 up to 8 spp,
-                              // growing as sqrt(n/8) after, so the clamp's bias fades as the image converges)
+  bool spikeRemoval = false;       // clamp Lu to [Lf/c, c Lf] per channel before blending (3.18, c = 2 up to 8 spp,
+                                   // growing as sqrt(n/8) after, so the clamp's bias fades as the image converges)
   bool antialiasRecovery = false;  // edge model with three range windows (3.19-3.20); Separable kernel only
   unsigned iterations = 3;         // N of 3.14 (Separable) / number of a-trous levels (Atrous); >= 1
   float minBackground = 1e-3f;     // floor on the luminance Lb (3.10) so u = Var/Lb^2 stays finite on black
