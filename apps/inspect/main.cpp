@@ -105,7 +105,7 @@ int main(int argc, char** argv) {
     const tsr::sg::SceneStats stats = tsr::sg::computeSceneStats(scene, result.root);
     if (!glb.empty()) {
       const std::vector<std::uint8_t> bytes =
-          tsr::app::glbOf(scene, tsr::med::flatten(scene, result.root).instances, result.cameras);
+          tsr::app::glbOf(scene, tsr::med::flatten(scene, result.root).instances, result.cameras, result.metresPerUnit);
       tsr::med::replaceFile(glb, [&](const std::string& temporary) {  // a failed write leaves no partial .glb
         std::ofstream out(temporary, std::ios::binary);
         out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));

@@ -78,21 +78,24 @@ int addMaterial(tinygltf::Model& m, const sg::Container* material) {
 }
 
 // A scene camera as a node in world space, so other tools open the scene
-// looking where Tessera looks.
-void addCamera(tinygltf::Model& m, const sg::Scene& scene, sg::ContainerId id) {
+// looking where Tessera looks; in metres, unscaled (a camera's node should
+// carry no scale).
+void addCamera(tinygltf::Model& m, const sg::Scene& scene, sg::ContainerId id, float metresPerUnit) {
   const auto* c = scene.find<sg::Camera>(id);
   if (!c) return;
   tinygltf::Camera camera;
   camera.type = "perspective";
   camera.name = c->name();
   camera.perspective.yfov = c->verticalFov();
-  camera.perspective.znear = c->nearPlane();
-  if (std::isfinite(c->farPlane()) && c->farPlane() < 1e29f) camera.perspective.zfar = c->farPlane();  // else infinite
+  camera.perspective.znear = c->nearPlane() * metresPerUnit;
+  if (std::isfinite(c->farPlane()) && c->farPlane() < 1e29f)
+    camera.perspective.zfar = c->farPlane() * metresPerUnit;  // else infinite
   m.cameras.push_back(camera);
   tinygltf::Node node;
   node.camera = int(m.cameras.size()) - 1;
   node.name = c->name();
-  const sg::Mat4 world = sg::cameraWorldPose(scene, id);
+  sg::Mat4 world = sg::cameraWorldPose(scene, id);
+  world[3] = sg::Vec4(sg::Vec3(world[3]) * metresPerUnit, 1.0f);
   for (int column = 0; column < 4; ++column)
     for (int row = 0; row < 4; ++row) node.matrix.push_back(world[column][row]);
   m.nodes.push_back(node);
@@ -146,7 +149,7 @@ void addInstance(tinygltf::Model& m, const sg::Scene& scene, const med::FlatNode
 }  // namespace
 
 std::vector<std::uint8_t> glbOf(const sg::Scene& scene, const std::vector<med::FlatNode>& instances,
-                                const std::vector<sg::ContainerId>& cameras) {
+                                const std::vector<sg::ContainerId>& cameras, float metresPerUnit) {
   tinygltf::Model m;
   m.asset.version = "2.0";
   m.asset.generator = "Tessera";
@@ -154,7 +157,15 @@ std::vector<std::uint8_t> glbOf(const sg::Scene& scene, const std::vector<med::F
   m.scenes.resize(1);
   m.defaultScene = 0;
   for (const auto& instance : instances) addInstance(m, scene, instance);
-  for (sg::ContainerId camera : cameras) addCamera(m, scene, camera);
+  if (metresPerUnit != 1.0f) {  // the meshes under one scaled node
+    tinygltf::Node units;
+    units.name = "scene units";
+    units.scale = {metresPerUnit, metresPerUnit, metresPerUnit};
+    units.children = m.scenes[0].nodes;
+    m.nodes.push_back(units);
+    m.scenes[0].nodes = {int(m.nodes.size()) - 1};
+  }
+  for (sg::ContainerId camera : cameras) addCamera(m, scene, camera, metresPerUnit);
   std::ostringstream out;
   tinygltf::TinyGLTF writer;
   writer.WriteGltfSceneToStream(&m, out, false, true);

@@ -48,7 +48,7 @@ void SceneSession::load(const std::string& scene, const sg::ImportOptions& optio
     camera = sg::chooseCamera(source, imported.cameras, view.camera);
   else
     camera = imported.cameras.empty() ? sg::addFramingCamera(source, imported.root) : imported.cameras.front();
-  if (view.look.any()) camera = sg::applyLookOverride(source, imported.root, camera, view.look);
+  if (view.look.any()) camera = sg::applyLookOverride(source, imported.root, camera, view.look, imported.metresPerUnit);
   if (view.defaultLight && !sg::hasOwnLighting(source, imported.root, imported.background))
     rig = sg::addDefaultLightRig(source, imported.root, imported.background);
   if (view.focusOn) {

@@ -286,7 +286,8 @@ int main(int argc, char** argv) {
                  "thin lens radius in scene units: depth of field on path-tracing nodes (0: a pinhole)");
   app.add_option("--f-number", o.fNumber,
                  "the lens as an f-number instead of --aperture (radius = focal length / (2 N), the focal length a "
-                 "full-frame camera has at this field of view, in metres)");
+                 "full-frame camera has at this field of view, in metres converted to the scene's unit: glTF metres, "
+                 "builtin:cornell millimetres)");
   app.add_option("--focus-distance", o.focusDistance, "distance in focus along the view, scene units");
   app.add_flag("--seed-per-frame", o.seedPerFrame,
                "each frame draws its own random numbers (seed + frame) on path-tracing nodes: the noise moves "

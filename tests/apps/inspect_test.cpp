@@ -8,6 +8,7 @@
 #include "command_runner.hpp"
 #include "tsr/sg/camera.hpp"
 #include "tsr/sg/import/importer.hpp"
+#include "tsr/sg/import/scene_stats.hpp"
 #include "tsr/sg/node_world.hpp"
 #include "tsr/sg/scene.hpp"
 #include "tsr/sg/surface_material.hpp"
@@ -54,7 +55,8 @@ TEST_F(InspectCommand, WritesTheSceneAsAGlbThatReadsBack) {
 
 // What a built-in scene looks like survives the .glb: the camera where it
 // was, the ceiling lamp's radiance beyond glTF's emissive factor of 1 (as
-// KHR_materials_emissive_strength), the glass sphere's transmission.
+// KHR_materials_emissive_strength), the glass sphere's transmission; and its
+// size: the box's millimetres become glTF's metres (0.556 m wide).
 TEST_F(InspectCommand, AWrittenGlbKeepsTheCameraTheLampAndTheGlass) {
   ASSERT_EQ(run("builtin:cornell --write-glb cornell.glb").status, 0);
   tsr::sg::Scene builtin, written;
@@ -64,8 +66,15 @@ TEST_F(InspectCommand, AWrittenGlbKeepsTheCameraTheLampAndTheGlass) {
   ASSERT_EQ(b.cameras.size(), 1u);
   const tsr::sg::Mat4 poseA = tsr::sg::cameraWorldPose(builtin, a.cameras[0]);
   const tsr::sg::Mat4 poseB = tsr::sg::cameraWorldPose(written, b.cameras[0]);
+  EXPECT_FLOAT_EQ(a.metresPerUnit, 0.001f);
+  EXPECT_FLOAT_EQ(b.metresPerUnit, 1.0f);
   for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) EXPECT_NEAR(poseA[c][r], poseB[c][r], 1e-3) << c << r;
+    for (int r = 0; r < 4; ++r)
+      EXPECT_NEAR(poseA[c][r] * (c == 3 && r < 3 ? a.metresPerUnit : 1.0f), poseB[c][r], 1e-5) << c << r;
+  const auto boundsA = tsr::sg::computeSceneStats(builtin, a.root),
+             boundsB = tsr::sg::computeSceneStats(written, b.root);
+  EXPECT_NEAR(boundsB.boundsMax.x - boundsB.boundsMin.x, 0.556, 1e-3) << "metres wide";
+  EXPECT_NEAR(boundsA.boundsMax.x - boundsA.boundsMin.x, 556, 1) << "millimetres wide";
   EXPECT_NEAR(builtin.find<tsr::sg::Camera>(a.cameras[0])->verticalFov(),
               written.find<tsr::sg::Camera>(b.cameras[0])->verticalFov(), 1e-6);
   auto materials = [](const tsr::sg::Scene& scene) {

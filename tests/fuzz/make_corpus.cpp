@@ -10,6 +10,7 @@
 #include <iostream>
 
 #include "gltf_writer.hpp"
+#include "scene_cache.hpp"
 #include "test_scenes.hpp"
 #include "tsr/cluster/messages.hpp"
 #include "tsr/cluster/pixel_codec.hpp"
@@ -149,6 +150,23 @@ void gltfImport(const fs::path& dir) {
     put(dir, name, tsr::test::readBytes(tmp.file(name)));
 }
 
+// The scene part of a real import-cache entry (what follows the checked
+// header), so a change of the cache's format re-makes this seed. (The rich
+// scene names image files, and such files are not cached.)
+void importCache(const fs::path& dir) {
+  tsr::test::TempDir tmp;
+  tsr::test::tinyScene().writeGltf(tmp.file("tiny.gltf"), true);
+  tsr::sg::ImportOptions options;
+  options.cacheDir = tmp.file("cache");
+  tsr::sg::Scene scene;
+  tsr::sg::importScene(scene, tmp.file("tiny.gltf"), options);
+  for (const auto& e : fs::directory_iterator(options.cacheDir)) {
+    const Bytes entry = tsr::test::readBytes(e.path().string());
+    if (entry.size() > tsr::sg::cache::kHeaderBytes)
+      put(dir, "tiny", Bytes(entry.begin() + tsr::sg::cache::kHeaderBytes, entry.end()));
+  }
+}
+
 void clusterConfig(const fs::path& dir, const fs::path& configs) {
   for (const auto& e : fs::directory_iterator(configs))
     if (e.path().extension() == ".json")
@@ -167,6 +185,7 @@ int main(int argc, char** argv) {
   clusterMessages(out / "cluster_messages");
   pixelCodec(out / "pixel_codec");
   gltfImport(out / "gltf_import");
+  importCache(out / "import_cache");
   clusterConfig(out / "cluster_config", argv[2]);
   return 0;
 }

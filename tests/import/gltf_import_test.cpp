@@ -170,7 +170,6 @@ TEST_F(RichScene, LightsAndCamerasHangUnderTheirNodes) {
   ASSERT_TRUE(point && spot && sun);
   expectNear(point->color(), Vec3(1.0f, 0.5f, 0.25f));
   EXPECT_FLOAT_EQ(point->intensity(), 20.0f);
-  EXPECT_FLOAT_EQ(point->range(), 7.0f);
   EXPECT_FLOAT_EQ(spot->innerConeAngle(), 0.2f);
   EXPECT_FLOAT_EQ(spot->outerConeAngle(), 0.6f);
   EXPECT_EQ(sun->kind(), LightKind::Directional);

@@ -98,19 +98,42 @@ TEST(SceneView, LookOverridesPlaceANewCameraOrWidenTheChosenOne) {
   BoxScene b;
   const ContainerId base = b.camera("base", {10, 0, 5});
   const std::size_t before = b.scene.size();
-  EXPECT_EQ(applyLookOverride(b.scene, b.root, base, lookOf({}, {}, 90.0f)), base);
+  EXPECT_EQ(applyLookOverride(b.scene, b.root, base, lookOf({}, {}, 90.0f), 1.0f), base);
   EXPECT_NEAR(b.scene.find<Camera>(base)->verticalFov(), glm::radians(90.0f), 1e-6f);
   EXPECT_EQ(b.scene.size(), before) << "a field of view alone makes no camera";
 
-  const ContainerId look = applyLookOverride(b.scene, b.root, base, lookOf(Vec3(10, 8, 0), {}, {}));
+  const ContainerId look = applyLookOverride(b.scene, b.root, base, lookOf(Vec3(10, 8, 0), {}, {}), 1.0f);
   EXPECT_NE(look, base);
   EXPECT_LT(glm::length(position(b.scene, look) - Vec3(10, 8, 0)), 1e-4f);
   const Vec3 forward = -Vec3(cameraWorldPose(b.scene, look)[2]);
   EXPECT_LT(glm::length(forward - Vec3(0, -1, 0)), 1e-4f) << "looks at the bounds' centre, straight down";
 
-  EXPECT_THROW(applyLookOverride(b.scene, b.root, base, lookOf(Vec3(1), Vec3(1), {})), std::invalid_argument);
-  EXPECT_THROW(applyLookOverride(b.scene, b.root, base, lookOf({}, {}, 180.0f)), std::invalid_argument);
-  EXPECT_THROW(applyLookOverride(b.scene, b.root, base, lookOf({}, Vec3(NAN, 0, 0), {})), std::invalid_argument);
+  EXPECT_THROW(applyLookOverride(b.scene, b.root, base, lookOf(Vec3(1), Vec3(1), {}), 1.0f), std::invalid_argument);
+  EXPECT_THROW(applyLookOverride(b.scene, b.root, base, lookOf({}, {}, 180.0f), 1.0f), std::invalid_argument);
+  EXPECT_THROW(applyLookOverride(b.scene, b.root, base, lookOf({}, Vec3(NAN, 0, 0), {}), 1.0f), std::invalid_argument);
+}
+
+// builtin:cornell is in millimetres, glTF in metres: an f-number and the
+// eyes' separation mean the same physical lens and eyes in both.
+TEST(SceneView, PhysicalSettingsFollowTheScenesUnit) {
+  Scene cornell;
+  const ImportResult imported = importScene(cornell, "builtin:cornell");
+  EXPECT_FLOAT_EQ(imported.metresPerUnit, 0.001f);
+  const Camera& camera = *cornell.find<Camera>(imported.cameras.front());
+  EXPECT_NEAR(camera.eyeSeparation(), 65.0f, 1e-3f) << "65 mm between the eyes";
+  LookOverride f2;
+  f2.fNumber = 2.0f;
+  const ContainerId lens = applyLookOverride(cornell, imported.root, camera.id(), f2, imported.metresPerUnit);
+  const float metres = apertureOfFNumber(2.0f, camera.verticalFov());
+  EXPECT_NEAR(cornell.find<Camera>(lens)->apertureRadius(), metres * 1000.0f, 1e-3f);
+  EXPECT_GT(cornell.find<Camera>(lens)->apertureRadius(), 5.0f) << "f/2 is millimetres wide, not a pinhole";
+  EXPECT_THROW(applyLookOverride(cornell, imported.root, camera.id(), f2, 0.0f), std::invalid_argument);
+
+  BoxScene b;
+  const ContainerId base = b.camera("base", {10, 0, 5});
+  const ContainerId same = applyLookOverride(b.scene, b.root, base, f2, 1.0f);
+  EXPECT_FLOAT_EQ(b.scene.find<Camera>(same)->apertureRadius(),
+                  apertureOfFNumber(2.0f, b.scene.find<Camera>(base)->verticalFov()));
 }
 
 TEST(SceneView, OnlyASceneWithoutLightGetsTheRigAndItsLightFollowsTheCamera) {

@@ -42,6 +42,7 @@ constexpr float kFovDegrees = 37.0f;
 
 parsed::Scene cornellBox() {
   parsed::Scene s;
+  s.metresPerUnit = 0.001f;  // the classic data's millimetres
   s.materials.resize(kCornellMaterialCount);
   auto diffuse = [](std::string name, Vec3 c) { return material(std::move(name), c, 0.0f, 1.0f); };
   s.materials[kWhite] = diffuse("white", Vec3(1, 1, 1));

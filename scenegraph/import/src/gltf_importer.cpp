@@ -430,8 +430,10 @@ class Converter {
         fail(what + " has unknown type '" + src.type + "'");
       if (!src.color.empty()) l.color = vec<3>(src.color, what + " color");
       l.intensity = finite(src.intensity, what + " intensity");
-      l.range = finite(src.range, what + " range");
-      if (l.intensity < 0.0f || l.range < 0.0f) fail(what + " has a negative intensity or range");
+      // range is checked, then dropped: light falls off with the square of
+      // the distance and ends nowhere, as in Blender (glTF allows that).
+      if (l.intensity < 0.0f || finite(src.range, what + " range") < 0.0f)
+        fail(what + " has a negative intensity or range");
       if (l.kind == LightKind::Spot) {
         l.innerCone = finite(src.spot.innerConeAngle, what + " innerConeAngle");
         l.outerCone = finite(src.spot.outerConeAngle, what + " outerConeAngle");

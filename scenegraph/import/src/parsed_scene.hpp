@@ -88,7 +88,6 @@ struct Light {
   LightKind kind = LightKind::Point;
   Vec3 color{1.0f};
   float intensity = 1.0f;
-  float range = 0.0f;
   float innerCone = 0.0f;
   float outerCone = 0.7853982f;
 };
@@ -140,6 +139,9 @@ struct Scene {
   std::vector<int> roots;
   std::vector<AnimationClip> animations;
   Vec3 background{0.0f};
+  // The length of one scene unit: glTF's are metres; the built-in Cornell
+  // box keeps its classic millimetres.
+  float metresPerUnit = 1.0f;
   std::optional<Volume> medium;  // fog filling the scene outside every volume
   std::vector<std::string> warnings;
   std::size_t skippedPrimitives = 0;

@@ -214,7 +214,6 @@ std::vector<std::uint8_t> encodeScene(const Scene& s) {
     w.pod(std::uint8_t(l.kind));
     w.pod(l.color);
     w.pod(l.intensity);
-    w.pod(l.range);
     w.pod(l.innerCone);
     w.pod(l.outerCone);
   }
@@ -287,7 +286,6 @@ Scene decodeScene(std::span<const std::uint8_t> bytes) {
     l.kind = r.enumeration<LightKind>(std::uint8_t(LightKind::Directional), "a light kind");
     l.color = r.pod<Vec3>();
     l.intensity = r.pod<float>();
-    l.range = r.pod<float>();
     l.innerCone = r.pod<float>();
     l.outerCone = r.pod<float>();
   }

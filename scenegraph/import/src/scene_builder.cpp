@@ -152,7 +152,6 @@ class Builder {
     l.setKind(src.kind);
     l.setColor(src.color);
     l.setIntensity(src.intensity);
-    l.setRange(src.range);
     l.setInnerConeAngle(src.innerCone);
     l.setOuterConeAngle(src.outerCone);
     result_.lights.push_back(l.id());
@@ -168,6 +167,9 @@ class Builder {
     c.setFarPlane(src.zfar);
     c.setApertureRadius(src.apertureRadius);
     c.setFocusDistance(src.focusDistance);
+    // Stereo defaults are lengths in metres (eyes 65 mm apart).
+    c.setEyeSeparation(c.eyeSeparation() / data_.metresPerUnit);
+    c.setZeroParallaxDistance(c.zeroParallaxDistance() / data_.metresPerUnit);
     result_.cameras.push_back(c.id());
     return c.id();
   }
@@ -198,6 +200,7 @@ class Builder {
 
 ImportResult buildScene(Scene& scene, const parsed::Scene& data) {
   ImportResult result;
+  result.metresPerUnit = data.metresPerUnit;
   Builder(scene, data, result).build();
   return result;
 }

@@ -110,13 +110,16 @@ void validate(const LookOverride& look) {
                                 ": expected a distance in scene units above 0");
 }
 
-ContainerId applyLookOverride(Scene& scene, ContainerId root, ContainerId base, const LookOverride& look) {
+ContainerId applyLookOverride(Scene& scene, ContainerId root, ContainerId base, const LookOverride& look,
+                              float metresPerUnit) {
   validate(look);
+  if (!(metresPerUnit > 0.0f && std::isfinite(metresPerUnit)))
+    throw std::invalid_argument("a scene unit of " + std::to_string(metresPerUnit) + " m: expected a length above 0");
   auto* original = scene.find<Camera>(base);
   if (!original) throw std::invalid_argument("container " + std::to_string(base) + " is not a camera of the scene");
   const float fov = look.fovDegrees ? glm::radians(*look.fovDegrees) : original->verticalFov();
   const float aperture =
-      look.fNumber ? apertureOfFNumber(*look.fNumber, fov) : look.apertureRadius.value_or(original->apertureRadius());
+      look.fNumber ? apertureOfFNumber(*look.fNumber, fov) / metresPerUnit : look.apertureRadius.value_or(original->apertureRadius());
   const float focus = look.focusDistance.value_or(original->focusDistance());
   const Vec2 shutter = look.shutter.value_or(Vec2(original->shutterOpen(), original->shutterClose()));
   if (!look.from && !look.at) {

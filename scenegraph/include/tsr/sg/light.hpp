@@ -10,7 +10,7 @@ enum class LightKind : std::uint8_t { Point, Spot, Directional, Count };
 
 class Light final : public ContainerOf<Light, ContainerType::Light> {
  public:
-  enum Field : FieldIndex { Kind = kFirstOwnField, Color, Intensity, Position, Direction, InnerCone, OuterCone, Range };
+  enum Field : FieldIndex { Kind = kFirstOwnField, Color, Intensity, Position, Direction, InnerCone, OuterCone };
 
   LightKind kind() const { return kind_; }
   const Vec3& color() const { return color_; }
@@ -21,7 +21,6 @@ class Light final : public ContainerOf<Light, ContainerType::Light> {
   const Vec3& direction() const { return direction_; }
   float innerConeAngle() const { return innerCone_; }  // radians
   float outerConeAngle() const { return outerCone_; }  // radians
-  float range() const { return range_; }               // 0: unlimited
 
   void setKind(LightKind k) { set<&Light::kind_>(k); }
   void setColor(const Vec3& v) { set<&Light::color_>(v); }
@@ -30,7 +29,6 @@ class Light final : public ContainerOf<Light, ContainerType::Light> {
   void setDirection(const Vec3& v) { set<&Light::direction_>(v); }
   void setInnerConeAngle(float v) { set<&Light::innerCone_>(v); }
   void setOuterConeAngle(float v) { set<&Light::outerCone_>(v); }
-  void setRange(float v) { set<&Light::range_>(v); }
 
   static constexpr auto fieldSpecs() {
     using M = Light;
@@ -40,8 +38,7 @@ class Light final : public ContainerOf<Light, ContainerType::Light> {
                       valueField(Position, "position", &M::position_, &M::setPosition),
                       valueField(Direction, "direction", &M::direction_, &M::setDirection),
                       valueField(InnerCone, "innerConeAngle", &M::innerCone_, &M::setInnerConeAngle),
-                      valueField(OuterCone, "outerConeAngle", &M::outerCone_, &M::setOuterConeAngle),
-                      valueField(Range, "range", &M::range_, &M::setRange)};
+                      valueField(OuterCone, "outerConeAngle", &M::outerCone_, &M::setOuterConeAngle)};
   }
 
  private:
@@ -52,7 +49,6 @@ class Light final : public ContainerOf<Light, ContainerType::Light> {
   Vec3 direction_{0.0f, 0.0f, -1.0f};
   float innerCone_ = 0.0f;
   float outerCone_ = 0.7853982f;
-  float range_ = 0.0f;
 };
 
 }  // namespace tsr::sg

@@ -22,7 +22,7 @@
 
 namespace tsr::sg {
 
-inline constexpr std::uint8_t kWireFormatVersion = 1;
+inline constexpr std::uint8_t kWireFormatVersion = 2;  // 2: Light lost its unused range
 inline constexpr std::size_t kWireHeaderBytes = 10;
 
 std::vector<std::uint8_t> encode(const ChangeList& list);

@@ -63,6 +63,10 @@ struct ImportResult {
   std::vector<Animation> animations;
   std::vector<std::string> warnings;
   ImportCounts counts;
+  // The length of one scene unit in metres (glTF: 1; builtin:cornell and the
+  // scenes built on it: 0.001). Physical settings — an f-number, the eyes'
+  // separation — convert through it.
+  float metresPerUnit = 1.0f;
   // With ImportOptions::cacheDir: "hit", "stored", "rebuilt (REASON)" or
   // "not stored (REASON)"; empty without a cache.
   std::string cache = {};

@@ -50,11 +50,13 @@ void validate(const LookOverride& look);
 // world; field of view and stereo settings from `base`, near and far planes
 // holding the bounds of `root`); with only a field of view, lens or
 // shutter, `base` itself with those (still moved by its parents).
-// Validates first.
-ContainerId applyLookOverride(Scene& scene, ContainerId root, ContainerId base, const LookOverride& look);
+// An f-number becomes a radius in scene units of `metresPerUnit` metres
+// (ImportResult::metresPerUnit). Validates first.
+ContainerId applyLookOverride(Scene& scene, ContainerId root, ContainerId base, const LookOverride& look,
+                              float metresPerUnit);
 
-// The aperture radius of f-number `n` for a vertical field of view (radians):
-// a full-frame camera's focal length, 0.012 m / tan(fov / 2), over 2n.
+// The aperture radius in metres of f-number `n` for a vertical field of view
+// (radians): a full-frame camera's focal length, 0.012 m / tan(fov / 2), over 2n.
 float apertureOfFNumber(float n, float verticalFov);
 
 }  // namespace tsr::sg
