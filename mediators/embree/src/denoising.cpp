@@ -27,17 +27,18 @@ void writeDenoiseInputs(const embree::FrameBuffer& fb, FrameBuffer& out) {
     }
 }
 
-std::optional<std::uint32_t> DenoiseResolver::denoisedAt() const {
-  if (!last_) return std::nullopt;
+std::optional<std::uint32_t> DenoiseResolver::denoisedAt(std::uint64_t epoch) const {
+  if (!last_ || last_->epoch != epoch) return std::nullopt;
   return last_->samples;
 }
 
-void DenoiseResolver::resolve(FrameBuffer& frame, const embree::DenoiseSettings& settings, bool refresh) {
+void DenoiseResolver::resolve(FrameBuffer& frame, const embree::DenoiseSettings& settings, bool refresh,
+                              std::uint64_t epoch) {
   const std::size_t n = frame.colour.size();
   const char* names[3] = {kDenoiseAlbedoOutput, kDenoiseNormalOutput, kDenoiseVarianceOutput};
   const std::vector<glm::vec4>* images[3] = {};
   for (int k = 0; k < 3; ++k) images[k] = &requiredOutput(frame, names[k], "denoising");
-  const bool stale = !last_ || last_->width != frame.width || last_->height != frame.height;
+  const bool stale = !last_ || last_->epoch != epoch || last_->width != frame.width || last_->height != frame.height;
   if (refresh || stale) {
     std::vector<glm::vec3> colour(n), albedo(n), normal(n), variance(n);
     std::vector<float> depth(n);
@@ -58,7 +59,7 @@ void DenoiseResolver::resolve(FrameBuffer& frame, const embree::DenoiseSettings&
     input.albedo = albedo;
     input.normal = normal;
     input.depth = depth;
-    last_ = Kept{frame.width, frame.height, samples, embree::denoise(input, settings)};
+    last_ = Kept{frame.width, frame.height, samples, epoch, embree::denoise(input, settings)};
   }
   for (std::size_t i = 0; i < n; ++i) frame.colour[i] = glm::vec4(last_->image[i], frame.colour[i].a);
 }

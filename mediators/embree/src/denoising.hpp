@@ -23,19 +23,22 @@ std::vector<std::string> denoiseInputs();
 void writeDenoiseInputs(const embree::FrameBuffer& fb, FrameBuffer& out);
 
 // Denoises frames from their guides; keeps the last denoised image, so a
-// frame between two denoising passes shows it instead of raw samples.
+// frame between two denoising passes shows it instead of raw samples. The
+// kept image belongs to one accumulation (embree::FrameBuffer::epoch): when
+// the path tracer restarts it, the image is no longer offered.
 class DenoiseResolver {
  public:
   // Replaces frame's colour with the denoised image: computed anew when
-  // `refresh`, or when nothing was denoised yet at this size; else the kept one.
-  void resolve(FrameBuffer& frame, const embree::DenoiseSettings& settings, bool refresh);
-  void forget() { last_.reset(); }
-  // The sample count the kept image was denoised at.
-  std::optional<std::uint32_t> denoisedAt() const;
+  // `refresh`, or when nothing of accumulation `epoch` was denoised yet at
+  // this size; else the kept one.
+  void resolve(FrameBuffer& frame, const embree::DenoiseSettings& settings, bool refresh, std::uint64_t epoch);
+  // The sample count the kept image of accumulation `epoch` was denoised at.
+  std::optional<std::uint32_t> denoisedAt(std::uint64_t epoch) const;
 
  private:
   struct Kept {
     std::uint32_t width = 0, height = 0, samples = 0;
+    std::uint64_t epoch = 0;
     std::vector<glm::vec3> image;
   };
   std::optional<Kept> last_;

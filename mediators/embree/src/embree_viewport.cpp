@@ -34,10 +34,12 @@ std::vector<std::string> EmbreeViewport::resolveOutputs() const {
   return {kBlendOutput};
 }
 
+// A frame assembled by the caller (a cluster's tiles) belongs to no
+// accumulation of this viewport: epoch 0, which no FrameBuffer has.
 void EmbreeViewport::resolve(FrameBuffer& frame) {
   const FilterSettings filter = FilterSettings::from(settings_.parameters);
-  if (filter.usesPixelFilter()) pixelFilter_.resolve(frame, filter, true, frame.outputs.count(kBlendOutput) != 0);
-  if (filter.usesDenoiser()) denoiser_.resolve(frame, filter.denoise, true);
+  if (filter.usesPixelFilter()) pixelFilter_.resolve(frame, filter, true, frame.outputs.count(kBlendOutput) != 0, 0);
+  if (filter.usesDenoiser()) denoiser_.resolve(frame, filter.denoise, true, 0);
 }
 
 SceneAdapter::Update EmbreeViewport::synchronize(const sg::Replica& replica) {
@@ -70,13 +72,14 @@ void EmbreeViewport::resolveLocally(const FilterSettings& filter, std::uint32_t 
   // The denoiser follows the same schedule, and keeps showing its last
   // image in between (its guides need no fresh samples to be blended).
   const std::uint32_t samples = accumulation_->sampleCount(0, 0);
-  const auto last = filter.usesDenoiser() ? denoiser_.denoisedAt() : pixelFilter_.filteredAt();
+  const std::uint64_t epoch = accumulation_->epoch();
+  const auto last = filter.usesDenoiser() ? denoiser_.denoisedAt(epoch) : pixelFilter_.filteredAt(epoch);
   const bool complete = samples >= spp && (!last || samples >= 2 * *last);
   const bool due = samples >= 2 && (embree::isFilterFrame(samples) || complete) && last != samples;
   if (filter.usesDenoiser()) {
-    if (due || last) denoiser_.resolve(out, filter.denoise, due);
+    if (due || last) denoiser_.resolve(out, filter.denoise, due, epoch);
   } else if (due || last) {
-    pixelFilter_.resolve(out, filter, due, control.wants(kBlendOutput));
+    pixelFilter_.resolve(out, filter, due, control.wants(kBlendOutput), epoch);
   }
   auto explicitlyWanted = [&](const std::string& name) {
     return control.outputs &&
@@ -113,7 +116,6 @@ void EmbreeViewport::renderWhitted(const embree::Camera& camera, const embree::R
   if (!whitted_ || whitted_->width() != region.regionWidth() || whitted_->height() != region.regionHeight())
     whitted_ = std::make_unique<embree::WhittedImage>(region.regionWidth(), region.regionHeight());
   embree::Scene& scene = context_->adapter.scene();
-  scene.commit();
   stats.syncSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!(control.cancel && control.cancel->load()))
     stats.rays += renderer_.renderWhitted(scene, camera, region, *whitted_).rays;
@@ -160,18 +162,16 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
       (!radiance_ || radiance_->width() != traced.regionWidth() || radiance_->height() != traced.regionHeight()))
     radiance_ = std::make_unique<embree::RadianceAccumulator>(traced.regionWidth(), traced.regionHeight());
 
-  // Progressive: passes until the target sample count. The back-end decides
-  // whether the samples held still fit the scene, camera, region and
-  // settings, and restarts them if not; a converged image is reused if they do.
+  // Progressive: passes until the target sample count. The back-end alone
+  // decides, once a frame, whether the samples held still fit the scene,
+  // camera, region and settings: it commits what the catch-up changed
+  // (building acceleration structures) and restarts the accumulation if
+  // not, and the filters see the new epoch; a converged image is reused.
   embree::Scene& scene = context_->adapter.scene();
-  scene.commit();  // builds the acceleration structures the catch-up touched
+  renderer_.restartIfStale(scene, camera, traced, *accumulation_,
+                           radiance ? embree::Estimator::Radiance : embree::Estimator::Paths);
   stats.syncSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   embree::RenderSettings settings = renderer_.settings();
-  if (renderer_.restartIfStale(scene, camera, traced, *accumulation_,
-                               radiance ? embree::Estimator::Radiance : embree::Estimator::Paths)) {
-    pixelFilter_.forget();
-    denoiser_.forget();
-  }
   // Unless samplesPerPass is given, passes grow 1, 2, 4, 8 samples per pixel:
   // the first image is ready after one sample, and later passes keep a
   // pixel's samples back to back (its paths find the same BVH nodes in

@@ -65,12 +65,13 @@ float depthSigma(const std::vector<float>& depth, float relative) {
 
 }  // namespace
 
-std::optional<std::uint32_t> PixelFilterResolver::filteredAt() const {
-  if (!filtered_) return std::nullopt;
+std::optional<std::uint32_t> PixelFilterResolver::filteredAt(std::uint64_t epoch) const {
+  if (!filtered_ || filteredEpoch_ != epoch) return std::nullopt;
   return filtered_->samples;
 }
 
-void PixelFilterResolver::resolve(FrameBuffer& frame, const FilterSettings& settings, bool refilter, bool blendOutput) {
+void PixelFilterResolver::resolve(FrameBuffer& frame, const FilterSettings& settings, bool refilter, bool blendOutput,
+                                  std::uint64_t epoch) {
   const std::size_t n = frame.colour.size();
   std::vector<glm::vec3> low(n), high(n), var(n), range(n);
   std::vector<float> spread(n), rangeDepth(n);
@@ -100,8 +101,8 @@ void PixelFilterResolver::resolve(FrameBuffer& frame, const FilterSettings& sett
   input.samples = samples;
   embree::PixelFilterSettings pixel = settings.pixel;
   pixel.sigmaD = depthSigma(rangeDepth, settings.sigmaDRelative);
-  const bool stale = !filtered_ || filtered_->width != frame.width || filtered_->height != frame.height ||
-                     filtered_->samples > samples;
+  const bool stale = !filtered_ || filteredEpoch_ != epoch || filtered_->width != frame.width ||
+                     filtered_->height != frame.height || filtered_->samples > samples;
   auto sameFilter = [](const embree::PixelFilterSettings& a, const embree::PixelFilterSettings& b) {
     return a.kernel == b.kernel && a.sigmaS == b.sigmaS && a.sigmaC == b.sigmaC && a.sigmaD == b.sigmaD &&
            a.adaptiveWidth == b.adaptiveWidth && a.antialiasRecovery == b.antialiasRecovery &&
@@ -110,6 +111,7 @@ void PixelFilterResolver::resolve(FrameBuffer& frame, const FilterSettings& sett
   if (refilter || stale || !sameFilter(pixel, filteredWith_)) {
     filtered_ = embree::filterHighVariance(input, pixel);
     filteredWith_ = pixel;
+    filteredEpoch_ = epoch;
   }
   embree::BlendResult blended = embree::blend(input, *filtered_, pixel);
   for (std::size_t i = 0; i < n; ++i) frame.colour[i] = glm::vec4(blended.radiance[i], frame.colour[i].a);

@@ -36,20 +36,24 @@ void writePixelFilterInputs(const embree::FrameBuffer& fb, PathClass pathClass, 
                             const embree::RadianceAccumulator* hybrid = nullptr);
 
 // Filters and blends frames from their filter outputs; keeps the last
-// filtered buffer, so that frames between two filter passes only blend.
+// filtered buffer, so that frames between two filter passes only blend. The
+// kept buffer belongs to one accumulation (embree::FrameBuffer::epoch): when
+// the path tracer restarts it, the buffer is no longer used.
 class PixelFilterResolver {
  public:
   // Replaces frame's colour (rgb) with the blended image; filters anew when
-  // `refilter`, when nothing was filtered yet, or when the settings or the
-  // frame's size changed. Fills the "blend" output when `blendOutput`.
-  void resolve(FrameBuffer& frame, const FilterSettings& settings, bool refilter, bool blendOutput);
-  void forget() { filtered_.reset(); }
-  // The sample count the kept filtered buffer was made from.
-  std::optional<std::uint32_t> filteredAt() const;
+  // `refilter`, when nothing of accumulation `epoch` was filtered yet, or
+  // when the settings or the frame's size changed. Fills the "blend" output
+  // when `blendOutput`.
+  void resolve(FrameBuffer& frame, const FilterSettings& settings, bool refilter, bool blendOutput,
+               std::uint64_t epoch);
+  // The sample count the kept filtered buffer of accumulation `epoch` was made from.
+  std::optional<std::uint32_t> filteredAt(std::uint64_t epoch) const;
 
  private:
   std::optional<embree::FilteredBuffer> filtered_;
   embree::PixelFilterSettings filteredWith_;
+  std::uint64_t filteredEpoch_ = 0;
 };
 
 }  // namespace tsr::med::embree_mediator

@@ -24,16 +24,6 @@ struct Renderer::Arena {
 
 namespace {
 
-std::uint64_t settingsHash(const RenderSettings& s) {
-  std::uint64_t h = splitmix64(s.seed);
-  h = splitmix64(h ^ s.maxDepth);
-  h = splitmix64(h ^ s.rouletteDepth);
-  h = splitmix64(h ^ std::uint64_t(s.lightSampling));
-  h = splitmix64(h ^ std::uint64_t(s.lightChoice));
-  h = splitmix64(h ^ std::uint64_t(s.equiangular));
-  return splitmix64(h ^ std::uint64_t(s.sampler));
-}
-
 // FrameKey::estimator of radiance passes (plain paths: 0, an irradiance
 // field: a hash of its uid).
 constexpr std::uint64_t kRadianceEstimator = 0x3C6EF372FE94F82Bull;
@@ -77,8 +67,8 @@ bool Renderer::rekey(Scene& scene, const Camera& camera, const Region& region, s
                 std::to_string(region.regionWidth()) + "x" + std::to_string(region.regionHeight()));
   }
   scene.commit();
-  const FrameKey key{scene.uid(), scene.version(),         camera,
-                     region,      settingsHash(settings_), estimator.value_or(held ? held->estimator : 0)};
+  const FrameKey key{scene.uid(), scene.version(),          camera,
+                     region,      imageSettings(settings_), estimator.value_or(held ? held->estimator : 0)};
   if (held && *held == key) return false;
   held = key;
   return true;

@@ -2,6 +2,7 @@
 
 #include "tsr/embree/camera.hpp"
 #include "tsr/embree/region.hpp"
+#include "tsr/embree/render_settings.hpp"
 
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -64,7 +65,7 @@ struct FrameKey {
   std::uint64_t sceneVersion = 0;
   Camera camera;
   Region region;
-  std::uint64_t settingsHash = 0;
+  RenderSettings settings;      // imageSettings: what changes the samples
   std::uint64_t estimator = 0;  // plain paths, radiance records, one irradiance field's uid, or Whitted
   bool operator==(const FrameKey&) const = default;
 };

@@ -5,6 +5,7 @@
 #include "tsr/embree/irradiance_field.hpp"
 #include "tsr/embree/radiance_filter.hpp"
 #include "tsr/embree/region.hpp"
+#include "tsr/embree/render_settings.hpp"
 #include "tsr/embree/sampler.hpp"
 #include "tsr/embree/scene.hpp"
 #include "tsr/embree/whitted_image.hpp"
@@ -16,30 +17,9 @@
 
 namespace tsr::embree {
 
-// Which estimator handles emitters and the environment. Mis is the normal
-// mode; the single-strategy modes exist to validate it (same expectation).
-enum class LightSampling { Mis, LightOnly, BsdfOnly };
-
-// How the emitter triangle for a shadow ray is picked: by what each can
-// give at the shading point (a light tree), or by power alone.
-enum class LightChoice { Tree, Power };
-
 // How a pass estimates a pixel. Samples of different estimators do not mix
 // in one frame buffer: a pass of another one restarts it.
 enum class Estimator { Paths, Radiance };
-
-struct RenderSettings {
-  std::uint64_t seed = 0;
-  std::uint32_t maxDepth = 8;        // scattering events; 1 = direct lighting only
-  std::uint32_t rouletteDepth = 3;   // Russian roulette from this many events on
-  std::uint32_t samplesPerPass = 1;  // per pixel
-  std::uint32_t tileSize = 16;
-  int threads = 0;  // 0 = all hardware threads
-  LightSampling lightSampling = LightSampling::Mis;
-  LightChoice lightChoice = LightChoice::Tree;
-  bool equiangular = true;                   // light in homogeneous media also sampled by distance towards the lights
-  SamplerKind sampler = SamplerKind::Sobol;  // where each path's random numbers come from (sampler.hpp)
-};
 
 struct PassResult {
   bool completed = false;         // false if cancelled midway

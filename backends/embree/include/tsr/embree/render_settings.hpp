@@ -1,0 +1,43 @@
+#pragma once
+// What the path tracer is told besides the scene, camera and region.
+#include "tsr/embree/sampler.hpp"
+
+#include <cstdint>
+
+namespace tsr::embree {
+
+// Which estimator handles emitters and the environment. Mis is the normal
+// mode; the single-strategy modes exist to validate it (same expectation).
+enum class LightSampling { Mis, LightOnly, BsdfOnly };
+
+// How the emitter triangle for a shadow ray is picked: by what each can
+// give at the shading point (a light tree), or by power alone.
+enum class LightChoice { Tree, Power };
+
+struct RenderSettings {
+  std::uint64_t seed = 0;
+  std::uint32_t maxDepth = 8;        // scattering events; 1 = direct lighting only
+  std::uint32_t rouletteDepth = 3;   // Russian roulette from this many events on
+  std::uint32_t samplesPerPass = 1;  // per pixel
+  std::uint32_t tileSize = 16;
+  int threads = 0;  // 0 = all hardware threads
+  LightSampling lightSampling = LightSampling::Mis;
+  LightChoice lightChoice = LightChoice::Tree;
+  bool equiangular = true;                   // light in homogeneous media also sampled by distance towards the lights
+  SamplerKind sampler = SamplerKind::Sobol;  // where each path's random numbers come from (sampler.hpp)
+  bool operator==(const RenderSettings&) const = default;
+};
+
+// The settings with those that only cut and schedule the work (pass size,
+// tile size, threads) set to their defaults: what an accumulated image
+// depends on. A field added above counts unless it is named here, so
+// forgetting one restarts accumulation too often, never too rarely.
+inline RenderSettings imageSettings(RenderSettings s) {
+  const RenderSettings defaults;
+  s.samplesPerPass = defaults.samplesPerPass;
+  s.tileSize = defaults.tileSize;
+  s.threads = defaults.threads;
+  return s;
+}
+
+}  // namespace tsr::embree
