@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "option_values.hpp"
+#include "parameter_option.hpp"
 #include "render_job.hpp"
 
 namespace tsr::app {
@@ -34,15 +35,15 @@ bool parseAnaglyphOptions(int argc, char** argv, AnaglyphOptions& o) {
              "zero-parallax "
              "distance, M red-cyan/Dubois, R reset the view, Esc quit.");
   std::string size = "640x480", method = "dubois";
-  std::int64_t spp = 4, maxDepth = 8, seed = 0, threads = 0;
+  std::int64_t spp = 4, maxDepth = 0, seed = 0, threads = 0;
   float separation = 0, zeroParallax = 0;
   app.add_option("scene", o.scene, sceneArgumentHelp())->required();
   app.add_option("--backend", o.backend, "embree, vulkan or coverage (here or on every node)")->capture_default_str();
   app.add_option("--size", size, "image size WxH (the window's initial size)")->capture_default_str();
   app.add_option("--spp", spp, "samples per pixel and eye")->check(CLI::Range(1, 1 << 20))->capture_default_str();
-  app.add_option("--max-depth", maxDepth, "maximum path depth")->check(CLI::Range(0, 1024))->capture_default_str();
-  app.add_option("--seed", seed, "random seed")->check(CLI::NonNegativeNumber)->capture_default_str();
-  app.add_option("--threads", threads, "render threads (0: all)")->check(CLI::Range(0, 4096))->capture_default_str();
+  addParameterOption(app, "--max-depth", "embree", "maxDepth", maxDepth);
+  addParameterOption(app, "--seed", "embree", "seed", seed);
+  addParameterOption(app, "--threads", "embree", "threads", threads);
   app.add_option("--method", method,
                  "red-cyan (red from the left eye, cyan from the right) or dubois "
                  "(least-squares projection in linear RGB: truer colours)")

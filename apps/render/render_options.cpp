@@ -3,6 +3,7 @@
 #include "command_line.hpp"
 #include "import_limit_options.hpp"
 #include "option_values.hpp"
+#include "parameter_option.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -21,7 +22,7 @@ namespace tsr::app {
 bool parseRenderOptions(int argc, char** argv, RenderJob& o, std::string& listParams) {
   CLI::App app{"Render a scene with one of Tessera's back-ends"};
   std::string size = "512x512";
-  std::int64_t spp = 16, maxDepth = 8, seed = 0, threads = 0;
+  std::int64_t spp = 16, maxDepth = 0, seed = 0, threads = 0;
   std::vector<std::string> params;
   auto* sceneOption = app.add_option("scene", o.scene, sceneArgumentHelp() + " (required unless --list-params)");
   // Required, so options taking several values (--aov, --param) leave it be.
@@ -37,18 +38,14 @@ bool parseRenderOptions(int argc, char** argv, RenderJob& o, std::string& listPa
   app.add_option("--size", size, "image size WxH")->capture_default_str();
   auto* sppOption =
       app.add_option("--spp", spp, "samples per pixel")->check(CLI::Range(1, 1 << 20))->capture_default_str();
-  auto* depthOption =
-      app.add_option("--max-depth", maxDepth, "maximum path depth")->check(CLI::Range(0, 1024))->capture_default_str();
-  auto* seedOption =
-      app.add_option("--seed", seed, "random seed")->check(CLI::NonNegativeNumber)->capture_default_str();
+  auto* depthOption = addParameterOption(app, "--max-depth", "embree", "maxDepth", maxDepth);
+  auto* seedOption = addParameterOption(app, "--seed", "embree", "seed", seed);
   bool seedPerFrame = false;
   auto* seedPerFrameOption = app.add_flag(
       "--seed-per-frame", seedPerFrame,
       "with --frames, each frame draws its own random numbers (seed + frame): the noise moves instead of sticking to "
       "the screen as objects move through it (path tracer; default: one seed, as Cycles does)");
-  auto* threadsOption = app.add_option("--threads", threads, "render threads (0: all)")
-                            ->check(CLI::Range(0, 4096))
-                            ->capture_default_str();
+  auto* threadsOption = addParameterOption(app, "--threads", "embree", "threads", threads);
   app.add_option("--output", o.output, "image file; the format follows the extension")
       ->check(FileName())
       ->capture_default_str();
@@ -113,7 +110,8 @@ bool parseRenderOptions(int argc, char** argv, RenderJob& o, std::string& listPa
   auto* fNumberOption = viewGroup->add_option(
       "--f-number", fNumber,
       "the lens as an f-number instead of --aperture: radius = focal length / (2 N), the focal length a full-frame "
-      "camera has at this field of view, in metres");
+      "camera has at this field of view, in metres converted to the scene's unit (glTF: metres; builtin:cornell: "
+      "millimetres)");
   fNumberOption->excludes(apertureOption);
   auto* focusOption =
       viewGroup->add_option("--focus-distance", focusDistance, "distance in focus along the view, scene units");

@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "option_values.hpp"
+#include "parameter_option.hpp"
 #include "render_job.hpp"
 
 namespace tsr::app {
@@ -37,7 +38,7 @@ bool parseViewerOptions(int argc, char** argv, ViewerOptions& o) {
   CLI::App app{"Look at a scene interactively, one or more viewports side by side, each with its own back-end"};
   app.footer(viewerKeyHelp());
   std::string size = "1024x576", viewports = "embree";
-  std::int64_t maxDepth = 8, threads = 0, limit = o.sampleLimit;
+  std::int64_t maxDepth = 0, threads = 0, limit = o.sampleLimit;
   std::vector<std::string> params;
   app.add_option("scene", o.scene, sceneArgumentHelp() + " (default builtin:cornell)");
   app.add_option("--viewports", viewports, "back-ends of the viewports, left to right: e.g. embree,vulkan")
@@ -46,11 +47,8 @@ bool parseViewerOptions(int argc, char** argv, ViewerOptions& o) {
   app.add_option("--spp", limit, "sample limit of the path tracer (it converges up to this)")
       ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
-  auto* depthOption =
-      app.add_option("--max-depth", maxDepth, "maximum path depth")->check(CLI::Range(0, 1024))->capture_default_str();
-  auto* threadsOption = app.add_option("--threads", threads, "render threads (0: all)")
-                            ->check(CLI::Range(0, 4096))
-                            ->capture_default_str();
+  auto* depthOption = addParameterOption(app, "--max-depth", "embree", "maxDepth", maxDepth);
+  auto* threadsOption = addParameterOption(app, "--threads", "embree", "threads", threads);
   app.add_option("--param", params, "back-end parameter name=value for every viewport (repeatable)");
   app.add_flag("--raster-while-moving", o.rasterWhileMoving,
                "path-traced viewports rasterise while the camera moves and path trace when it stops");

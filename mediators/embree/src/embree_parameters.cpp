@@ -1,6 +1,7 @@
 #include "embree_parameters.hpp"
 
 #include "tsr/embree/photon_sequence.hpp"
+#include "tsr/embree/render_settings.hpp"
 #include "tsr/temporal/truncation.hpp"
 
 namespace tsr::med::embree_mediator {
@@ -15,14 +16,15 @@ constexpr std::int64_t kMaxSpp = 1 << 20;
 std::vector<ParameterSpec> specs() {
   const embree::PhotonSettings photons;
   const temporal::TruncationRule pca;
+  const embree::RenderSettings tracer;  // the path tracer's own defaults, said there once
   return {
       // Figure 5.6's chain: the path tracer converges, and a Whitted-style
       // image (one sample: sharp reflections, refractions and hard shadows,
       // no indirect light, no filter) bridges the moment the camera rests.
       choiceParameter("mode", "path", {"path", "whitted"}, "renderer: progressive path tracer, or one Whitted sample"),
       integerParameter("spp", 16, 1, kMaxSpp, "samples per pixel the progressive image converges to"),
-      integerParameter("maxDepth", 8, 0, 1024, "maximum path depth"),
-      integerParameter("seed", 0, 0, INT64_MAX, "random seed"),
+      integerParameter("maxDepth", tracer.maxDepth, 0, 1024, "maximum path depth"),
+      integerParameter("seed", std::int64_t(tracer.seed), 0, INT64_MAX, "random seed"),
       flagParameter("seedPerFrame", false,
                     "each animation frame draws its own random numbers (seed + frame): noise moves with the "
                     "picture instead of sticking to the screen"),
@@ -30,11 +32,12 @@ std::vector<ParameterSpec> specs() {
                       "path samples: Owen-scrambled Sobol (stratified), or independent white noise"),
       choiceParameter("lightChoice", "tree", {"tree", "power"},
                       "emitter picked for a shadow ray: by what it gives at the point (light tree), or by power"),
-      flagParameter("equiangular", true,
+      flagParameter("equiangular", tracer.equiangular,
                     "light scattered in fog also sampled at distances towards the lights (equiangular, with MIS)"),
-      integerParameter("threads", 0, 0, 4096, "render threads (0: all)"),
+      integerParameter("threads", tracer.threads, 0, 4096, "render threads (0: all)"),
       flagParameter("directOnly", false, "direct light only (maxDepth 1)"),
-      integerParameter("samplesPerPass", 1, 1, 4096, "samples per pass (unset: passes grow 1, 2, 4, 8)"),
+      integerParameter("samplesPerPass", tracer.samplesPerPass, 1, 4096,
+                       "samples per pass (unset: passes grow 1, 2, 4, 8)"),
       choiceParameter("filter", "none", {"none", "pixel", "atrous", "radiance", "hybrid", "denoise"}, "preview filter"),
       choiceParameter("pathClass", "indirect", {"indirect", "caustic", "all"}, "paths the filter smooths"),
       choiceParameter("filterKernel", "separable", {"bilateral", "separable"}, "pixel filter kernel"),
