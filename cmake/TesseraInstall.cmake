@@ -7,21 +7,34 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-# Library target -> name under Tessera:: (back-ends by their own name).
-set(tsr_export_names
-  tsr_imageio imageio  tsr_scenegraph scenegraph  tsr_import import
-  tsr_embree embree  tsr_vulkan vulkan  tsr_coverage coverage  tsr_temporal temporal
-  tsr_mediator_core mediator_core  tsr_mediator_embree mediator_embree
-  tsr_mediator_vulkan mediator_vulkan  tsr_mediator_coverage mediator_coverage
-  tsr_cluster cluster)
+# The static libraries of the library layers (every folder the top-level
+# CMakeLists adds, apps aside), each exported as Tessera::NAME for its target
+# tsr_NAME: a back-end added to TSR_BACKENDS is installed without a list here.
+function(tsr_collect_libraries dir out)
+  get_property(targets DIRECTORY ${dir} PROPERTY BUILDSYSTEM_TARGETS)
+  get_property(children DIRECTORY ${dir} PROPERTY SUBDIRECTORIES)
+  set(found ${${out}})
+  foreach(target IN LISTS targets)
+    get_target_property(type ${target} TYPE)
+    if(type STREQUAL "STATIC_LIBRARY" AND target MATCHES "^tsr_")
+      list(APPEND found ${target})
+    endif()
+  endforeach()
+  foreach(child IN LISTS children)
+    file(RELATIVE_PATH relative ${PROJECT_SOURCE_DIR} ${child})
+    if(NOT relative MATCHES "^(apps|tests)(/|$)")
+      tsr_collect_libraries(${child} found)
+    endif()
+  endforeach()
+  set(${out} ${found} PARENT_SCOPE)
+endfunction()
+set(tsr_libraries "")
+tsr_collect_libraries(${PROJECT_SOURCE_DIR} tsr_libraries)
 
 set(tsr_exported "")
 set(tsr_mediator_libs "")
-while(tsr_export_names)
-  list(POP_FRONT tsr_export_names target name)
-  if(NOT TARGET ${target})
-    continue()
-  endif()
+foreach(target IN LISTS tsr_libraries)
+  string(REGEX REPLACE "^tsr_" "" name ${target})
   list(APPEND tsr_exported ${target})
   if(target MATCHES "^tsr_mediator_")
     list(APPEND tsr_mediator_libs ${target})
@@ -41,7 +54,7 @@ while(tsr_export_names)
   endforeach()
   list(APPEND interface "$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>")
   set_property(TARGET ${target} PROPERTY INTERFACE_INCLUDE_DIRECTORIES "${interface}")
-endwhile()
+endforeach()
 
 # Tessera::mediators: the mediator core and every back-end's mediator this
 # build has (each offers med::registerXxx(registry)).
