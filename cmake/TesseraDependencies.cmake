@@ -1,5 +1,5 @@
-# Every third-party package Tessera uses, found once. Package names and the
-# gotchas behind the workarounds are in ../shared/TOOLCHAIN.md.
+# Every third-party package Tessera uses, found once. scripts/install-deps.sh
+# installs them by Debian package name; each workaround says its reason beside it.
 find_package(Threads REQUIRED)
 find_package(glm REQUIRED)
 find_package(spdlog REQUIRED)

@@ -26,7 +26,7 @@ command -v pathtracer >/dev/null || { echo "pathtracer missing: apt-get install 
 printf '%-8s %14s %14s %8s %12s %12s %8s\n' scene "embree Mray/s" "tessera Mray/s" ratio "embree s/spp" "tessera s/spp" ratio
 for variant in plain heavy; do
   extra=(); [ "$variant" = heavy ] && extra=(--sphere-tris 1000000)
-  python3 "$here/../shared/scenes/make_cornell.py" "$work/$variant" "${extra[@]}" >/dev/null
+  python3 "$here/tests/bench/scenes/make_cornell.py" "$work/$variant" "${extra[@]}" >/dev/null
   : >"$work/rounds"
   for round in $(seq "$rounds"); do
     run_ref() {

@@ -15,7 +15,7 @@ namespace tsr::embree::test {
 
 std::shared_ptr<Device> sharedDevice();
 
-// UV sphere built like shared/scenes/make_cornell.py: about `tris`
+// UV sphere built like tests/bench/scenes/make_cornell.py: about `tris`
 // triangles; smooth normals only when asked for.
 MeshData uvSphere(const glm::vec3& centre, float radius, int tris, bool normals);
 // An axis-aligned box, closed, faces wound counter-clockwise seen from

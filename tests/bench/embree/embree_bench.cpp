@@ -1,5 +1,5 @@
 // Path tracer rays/s against raw incoherent rtcIntersect1 rays/s on the same
-// scene in the same run: the Cornell box of shared/scenes/make_cornell.py
+// scene in the same run: the Cornell box of tests/bench/scenes/make_cornell.py
 // with its ~1M-triangle sphere. Prints the ratio at the end.
 #include "test_scenes.hpp"
 #include "tsr/embree/rng.hpp"
@@ -25,7 +25,7 @@ struct Bench {
   Bench() {
     camera = test::cornellBox(scene, 1000000);
     scene.commit();
-    // TBB workers keep spinning for a while after the BVH build (TOOLCHAIN.md gotcha 6).
+    // TBB workers keep spinning for a while after the BVH build (an idle TBB arena spins before it sleeps).
     std::this_thread::sleep_for(std::chrono::seconds(2));
   }
 };

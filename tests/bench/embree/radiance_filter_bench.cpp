@@ -1,5 +1,5 @@
 // One 512x512 radiance-filtering pass against one 1-spp path tracing pass on
-// the plain Cornell box (shared/scenes/make_cornell.py, no sphere). The
+// the plain Cornell box (tests/bench/scenes/make_cornell.py, no sphere). The
 // radiance pass is timed at frame 1 (warm-up radius, the widest kernels)
 // and at frame 8 (radii from the variance estimate).
 #include "test_scenes.hpp"

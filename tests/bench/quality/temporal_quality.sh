@@ -5,7 +5,7 @@
 #   tests/bench/quality/temporal_quality.sh BUILD_BIN_DIR [--gltf] [temporal_quality options...]
 #
 # --gltf: instead, an animated glTF with a moving camera: make_cornell.py's
-# box (../shared/scenes) animated by animate_cornell.py (camera trucking,
+# box (tests/bench/scenes) animated by animate_cornell.py (camera trucking,
 # light and box moving); its table, frames and strip get a "_gltf" suffix.
 #
 # The default run is short (96x96, 16 frames). References are cached in
@@ -28,10 +28,8 @@ for a in "$@"; do if [[ "$a" == "--gltf" ]]; then gltf=1; else args+=("$a"); fi;
 have() { local o; for o in "${args[@]}"; do [[ "$o" == "$1" || "$o" == "$1="* ]] && return 0; done; return 1; }
 suffix=${gltf:+_gltf}
 if [[ -n "$gltf" ]]; then
-  shared="$repo/../shared"
-  [[ -f "$shared/scenes/make_cornell.py" ]] || { echo "$0: $shared/scenes/make_cornell.py not found" >&2; exit 1; }
   mkdir -p build/quality-cache/scene
-  python3 "$shared/scenes/make_cornell.py" build/quality-cache/scene > /dev/null
+  python3 tests/bench/scenes/make_cornell.py build/quality-cache/scene > /dev/null
   python3 tests/bench/quality/animate_cornell.py build/quality-cache/scene/cornell.gltf \
     build/quality-cache/scene/cornell_animated.gltf
   have --scene || args+=(--scene build/quality-cache/scene/cornell_animated.gltf)
