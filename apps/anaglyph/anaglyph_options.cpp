@@ -8,6 +8,7 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "backends.hpp"
 #include "option_values.hpp"
 #include "parameter_option.hpp"
 #include "render_job.hpp"
@@ -38,7 +39,7 @@ bool parseAnaglyphOptions(int argc, char** argv, AnaglyphOptions& o) {
   std::int64_t spp = 4, maxDepth = 0, seed = 0, threads = 0;
   float separation = 0, zeroParallax = 0;
   app.add_option("scene", o.scene, sceneArgumentHelp())->required();
-  app.add_option("--backend", o.backend, "embree, vulkan or coverage (here or on every node)")->capture_default_str();
+  app.add_option("--backend", o.backend, backendChoices() + " (here or on every node)")->capture_default_str();
   app.add_option("--size", size, "image size WxH (the window's initial size)")->capture_default_str();
   app.add_option("--spp", spp, "samples per pixel and eye")->check(CLI::Range(1, 1 << 20))->capture_default_str();
   addParameterOption(app, "--max-depth", "embree", "maxDepth", maxDepth);

@@ -14,4 +14,12 @@ const med::ViewportRegistry& backendRegistry() {
   return registry;
 }
 
+std::string backendChoices() {
+  const std::vector<std::string> names = backendRegistry().backends();
+  std::string text;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    text += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+  return text;
+}
+
 }  // namespace tsr::app

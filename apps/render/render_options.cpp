@@ -1,5 +1,6 @@
 #include "render_options.hpp"
 
+#include "backends.hpp"
 #include "command_line.hpp"
 #include "import_limit_options.hpp"
 #include "option_values.hpp"
@@ -32,9 +33,8 @@ bool parseRenderOptions(int argc, char** argv, RenderJob& o, std::string& listPa
   app.add_option("--list-params", listParams,
                  "print the parameters a back-end takes (for --param NAME=VALUE): name, type and range, default, "
                  "meaning; then stop");
-  auto* backendOption =
-      app.add_option("--backend", o.backend, "embree, vulkan or coverage (with --cluster: the config's)")
-          ->capture_default_str();
+  auto* backendOption = app.add_option("--backend", o.backend, backendChoices() + " (with --cluster: the config's)")
+                            ->capture_default_str();
   app.add_option("--size", size, "image size WxH")->capture_default_str();
   auto* sppOption =
       app.add_option("--spp", spp, "samples per pixel")->check(CLI::Range(1, 1 << 20))->capture_default_str();
