@@ -3,7 +3,7 @@
 // nodes the balancer gives them within the same frame.
 #include <optional>
 
-#include "frame_strategy.hpp"
+#include "modes/frame_strategy.hpp"
 #include "tsr/cluster/tile_balancer.hpp"
 #include "tsr/cluster/wall_layout.hpp"
 

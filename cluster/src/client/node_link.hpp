@@ -6,8 +6,8 @@
 #include <atomic>
 #include <memory>
 
-#include "connection.hpp"
-#include "link_event.hpp"
+#include "client/link_event.hpp"
+#include "protocol/connection.hpp"
 #include "tsr/cluster/cluster_config.hpp"
 
 namespace tsr::cluster {

@@ -1,4 +1,4 @@
-#include "render_worker.hpp"
+#include "node/render_worker.hpp"
 
 #include <spdlog/spdlog.h>
 

@@ -1,4 +1,4 @@
-#include "frame_round.hpp"
+#include "client/frame_round.hpp"
 
 #include <algorithm>
 

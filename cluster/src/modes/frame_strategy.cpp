@@ -1,4 +1,4 @@
-#include "frame_strategy.hpp"
+#include "modes/frame_strategy.hpp"
 
 #include "tsr/cluster/cluster_window.hpp"
 #include "tsr/med/compositing.hpp"

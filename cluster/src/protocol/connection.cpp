@@ -1,4 +1,4 @@
-#include "connection.hpp"
+#include "protocol/connection.hpp"
 
 #include <algorithm>
 #include <array>

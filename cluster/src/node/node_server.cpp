@@ -6,7 +6,7 @@
 
 #include <spdlog/spdlog.h>
 
-#include "node_session.hpp"
+#include "node/node_session.hpp"
 
 namespace tsr::cluster {
 

@@ -1,4 +1,4 @@
-#include "node_session.hpp"
+#include "node/node_session.hpp"
 
 #include <algorithm>
 #include <chrono>

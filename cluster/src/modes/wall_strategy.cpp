@@ -3,7 +3,7 @@
 // lost node's screen shows the offline fill; nobody takes it over, since
 // nobody else can show it. On a stereo wall each screen shows one eye; the
 // client's frame is then the two stitched eyes, composed.
-#include "frame_strategy.hpp"
+#include "modes/frame_strategy.hpp"
 #include "tsr/cluster/wall_layout.hpp"
 
 namespace tsr::cluster {

@@ -9,7 +9,7 @@
 #include <memory>
 #include <vector>
 
-#include "frame_round.hpp"
+#include "client/frame_round.hpp"
 #include "tsr/cluster/cluster_config.hpp"
 
 namespace tsr::cluster {

@@ -2,7 +2,7 @@
 // left when one is gone); the client composes them.
 #include <algorithm>
 
-#include "frame_strategy.hpp"
+#include "modes/frame_strategy.hpp"
 
 namespace tsr::cluster {
 

@@ -13,7 +13,7 @@
 #include <functional>
 #include <memory>
 
-#include "asio.hpp"
+#include "protocol/asio.hpp"
 #include "tsr/cluster/messages.hpp"
 
 namespace tsr::cluster {

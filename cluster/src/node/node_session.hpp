@@ -7,8 +7,8 @@
 #include <memory>
 #include <tuple>
 
-#include "connection.hpp"
-#include "render_worker.hpp"
+#include "node/render_worker.hpp"
+#include "protocol/connection.hpp"
 #include "tsr/cluster/node_server.hpp"
 #include "tsr/med/context_pool.hpp"
 #include "tsr/med/viewport_registry.hpp"

@@ -1,4 +1,4 @@
-#include "node_link.hpp"
+#include "client/node_link.hpp"
 
 #include <spdlog/spdlog.h>
 

@@ -7,9 +7,9 @@
 
 #include <spdlog/spdlog.h>
 
-#include "frame_round.hpp"
-#include "frame_strategy.hpp"
-#include "node_link.hpp"
+#include "client/frame_round.hpp"
+#include "client/node_link.hpp"
+#include "modes/frame_strategy.hpp"
 #include "tsr/cluster/protocol_error.hpp"
 #include "tsr/sg/wire_codec.hpp"
 
