@@ -1,4 +1,4 @@
-#include "builtin_assembly.hpp"
+#include "builtin/builtin_assembly.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
 

@@ -1,4 +1,4 @@
-#include "gltf_loader.hpp"
+#include "gltf/gltf_loader.hpp"
 
 #include <algorithm>
 #include <cstring>
@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "gltf_validation.hpp"
+#include "gltf/gltf_validation.hpp"
 
 namespace tsr::sg::gltf {
 namespace {

@@ -1,4 +1,4 @@
-#include "scene_cache.hpp"
+#include "cache/scene_cache.hpp"
 
 #include <unistd.h>
 
@@ -6,7 +6,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "parsed_scene_codec.hpp"
+#include "cache/parsed_scene_codec.hpp"
 
 namespace tsr::sg::cache {
 namespace {

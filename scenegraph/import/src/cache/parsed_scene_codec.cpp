@@ -1,11 +1,11 @@
-#include "parsed_scene_codec.hpp"
+#include "cache/parsed_scene_codec.hpp"
 
 #include <cstring>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
 
-#include "parsed_scene_validation.hpp"
+#include "cache/parsed_scene_validation.hpp"
 
 namespace tsr::sg::parsed {
 namespace {

@@ -1,4 +1,4 @@
-#include "gltf_importer.hpp"
+#include "gltf/gltf_importer.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -7,10 +7,10 @@
 #include <spdlog/spdlog.h>
 #include <glm/gtc/type_ptr.hpp>
 
-#include "gltf_accessors.hpp"
-#include "gltf_loader.hpp"
-#include "image_decoding.hpp"
-#include "normal_generation.hpp"
+#include "gltf/gltf_accessors.hpp"
+#include "gltf/gltf_loader.hpp"
+#include "gltf/normal_generation.hpp"
+#include "images/image_decoding.hpp"
 #include "tsr/sg/coordinate_limit.hpp"
 
 namespace tsr::sg::gltf {

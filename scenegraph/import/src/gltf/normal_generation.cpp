@@ -1,4 +1,4 @@
-#include "normal_generation.hpp"
+#include "gltf/normal_generation.hpp"
 
 #include <cmath>
 

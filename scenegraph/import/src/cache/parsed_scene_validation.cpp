@@ -1,4 +1,4 @@
-#include "parsed_scene_validation.hpp"
+#include "cache/parsed_scene_validation.hpp"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "gltf_accessors.hpp"
+#include "gltf/gltf_accessors.hpp"
 
 #include <cmath>
 #include <cstring>

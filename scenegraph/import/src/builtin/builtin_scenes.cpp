@@ -1,12 +1,12 @@
-#include "builtin_scenes.hpp"
+#include "builtin/builtin_scenes.hpp"
 
 #include <cmath>
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "builtin_assembly.hpp"
-#include "mesh_shapes.hpp"
+#include "builtin/builtin_assembly.hpp"
+#include "builtin/mesh_shapes.hpp"
 
 namespace tsr::sg::builtin {
 namespace {

@@ -1,4 +1,4 @@
-#include "png_structure.hpp"
+#include "images/png_structure.hpp"
 
 #include <array>
 #include <cstring>

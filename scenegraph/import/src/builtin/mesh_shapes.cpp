@@ -1,4 +1,4 @@
-#include "mesh_shapes.hpp"
+#include "builtin/mesh_shapes.hpp"
 
 #include <cmath>
 

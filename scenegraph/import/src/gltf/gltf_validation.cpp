@@ -1,4 +1,4 @@
-#include "gltf_validation.hpp"
+#include "gltf/gltf_validation.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -1,8 +1,8 @@
-#include "image_decoding.hpp"
+#include "images/image_decoding.hpp"
 
 #include <cstring>
 
-#include "png_structure.hpp"
+#include "images/png_structure.hpp"
 #include "tsr/imageio/image_codec.hpp"
 #include "tsr/sg/import/import_error.hpp"
 
