@@ -9,7 +9,7 @@
 
 #include "backends.hpp"
 #include "cull_view.hpp"
-#include "scene_glb.hpp"
+#include "scene/scene_glb.hpp"
 #include "tsr/med/coverage/ranking.hpp"
 #include "tsr/med/scene_flattening.hpp"
 #include "tsr/sg/import/scene_stats.hpp"

@@ -15,7 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cull_query.hpp"
-#include "scene_session.hpp"
+#include "scene/scene_session.hpp"
 #include "tsr/med/context_pool.hpp"
 #include "tsr/med/scene_flattening.hpp"
 #include "tsr/med/viewport_registry.hpp"

@@ -4,7 +4,7 @@
 
 #include <spdlog/spdlog.h>
 
-#include "cluster_connection.hpp"
+#include "cluster/cluster_connection.hpp"
 #include "preview_filter.hpp"
 #include "tsr/cluster/cluster_viewport.hpp"
 

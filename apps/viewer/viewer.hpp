@@ -12,7 +12,7 @@
 
 #include "camera_bookmarks.hpp"
 #include "orbit_camera.hpp"
-#include "scene_session.hpp"
+#include "scene/scene_session.hpp"
 #include "tsr/med/viewport_registry.hpp"
 #include "viewer_options.hpp"
 #include "viewer_pane.hpp"

@@ -24,7 +24,7 @@
 #include "option_values.hpp"
 #include "preview_filter.hpp"
 #include "render_job.hpp"
-#include "scene_session.hpp"
+#include "scene/scene_session.hpp"
 #include "tsr/cluster/auth.hpp"
 #include "tsr/cluster/cluster_window.hpp"
 #include "tsr/cluster/workload.hpp"

@@ -1,4 +1,4 @@
-#include "stats_json.hpp"
+#include "outputs/stats_json.hpp"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "temporal_options.hpp"
+#include "sequence/temporal_options.hpp"
 
 #include <stdexcept>
 

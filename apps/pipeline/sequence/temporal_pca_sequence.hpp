@@ -9,7 +9,7 @@
 #include <map>
 #include <memory>
 
-#include "temporal_options.hpp"
+#include "sequence/temporal_options.hpp"
 #include "tsr/med/frame_buffer.hpp"
 #include "tsr/temporal/windowed_pca.hpp"
 

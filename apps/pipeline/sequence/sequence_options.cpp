@@ -1,4 +1,4 @@
-#include "sequence_options.hpp"
+#include "sequence/sequence_options.hpp"
 
 #include <cstdio>
 

@@ -1,4 +1,4 @@
-#include "sequence_render.hpp"
+#include "sequence/sequence_render.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -10,15 +10,15 @@
 #include <unordered_set>
 
 #include "backends.hpp"
-#include "cluster_connection.hpp"
-#include "cluster_layer.hpp"
-#include "cluster_stats.hpp"
-#include "high_sample_frames.hpp"
+#include "cluster/cluster_connection.hpp"
+#include "cluster/cluster_layer.hpp"
+#include "cluster/cluster_stats.hpp"
 #include "option_values.hpp"
+#include "outputs/stats_json.hpp"
 #include "progress_bar.hpp"
-#include "scene_session.hpp"
-#include "stats_json.hpp"
-#include "temporal_pca_sequence.hpp"
+#include "scene/scene_session.hpp"
+#include "sequence/high_sample_frames.hpp"
+#include "sequence/temporal_pca_sequence.hpp"
 #include "tsr/cluster/cluster_window.hpp"
 #include "tsr/med/image_file.hpp"
 #include "tsr/med/viewport_registry.hpp"

@@ -6,7 +6,7 @@
 // process exit status.
 #include "layers.hpp"
 #include "render_job.hpp"
-#include "sequence_options.hpp"
+#include "sequence/sequence_options.hpp"
 
 namespace tsr::app {
 

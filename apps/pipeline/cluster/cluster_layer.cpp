@@ -1,9 +1,9 @@
-#include "cluster_layer.hpp"
+#include "cluster/cluster_layer.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 
-#include "cluster_connection.hpp"
+#include "cluster/cluster_connection.hpp"
 #include "tsr/cluster/cluster_viewport.hpp"
 
 namespace tsr::app {

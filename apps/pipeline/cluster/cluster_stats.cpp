@@ -1,4 +1,4 @@
-#include "cluster_stats.hpp"
+#include "cluster/cluster_stats.hpp"
 
 #include <algorithm>
 

@@ -15,7 +15,7 @@
 #include <glm/vec4.hpp>
 
 #include "render_job.hpp"
-#include "scene_session.hpp"
+#include "scene/scene_session.hpp"
 #include "tsr/med/context_pool.hpp"
 #include "tsr/med/viewport_registry.hpp"
 #include "tsr/med/window.hpp"

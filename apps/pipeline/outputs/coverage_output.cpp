@@ -1,4 +1,4 @@
-#include "coverage_output.hpp"
+#include "outputs/coverage_output.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -1,4 +1,4 @@
-#include "scene_session.hpp"
+#include "scene/scene_session.hpp"
 
 #include "backends.hpp"
 #include "tsr/med/viewport_registry.hpp"

@@ -1,4 +1,4 @@
-#include "temporal_pca_sequence.hpp"
+#include "sequence/temporal_pca_sequence.hpp"
 
 #include <algorithm>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "high_sample_frames.hpp"
+#include "sequence/high_sample_frames.hpp"
 
 #include <algorithm>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "cluster_connection.hpp"
+#include "cluster/cluster_connection.hpp"
 
 #include <algorithm>
 #include <iostream>

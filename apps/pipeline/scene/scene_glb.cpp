@@ -1,4 +1,4 @@
-#include "scene_glb.hpp"
+#include "scene/scene_glb.hpp"
 
 #include <algorithm>
 #include <cmath>
