@@ -25,17 +25,17 @@
 #include <boost/asio/ip/tcp.hpp>
 
 #include "command_line.hpp"
-#include "cull_service.hpp"
 #include "error_line.hpp"
-#include "http_service.hpp"
 #include "import_limit_options.hpp"
-#include "preview_viewports.hpp"
+#include "preview/preview_viewports.hpp"
 #include "program_folder.hpp"
 #include "program_main.hpp"
+#include "requests/web_files.hpp"
+#include "service/cull_service.hpp"
+#include "service/http_service.hpp"
 #include "service_limits.hpp"
 #include "tsr/cluster/auth.hpp"
 #include "tsr/cluster/node_address.hpp"
-#include "web_files.hpp"
 
 namespace {
 

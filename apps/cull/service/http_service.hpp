@@ -16,14 +16,14 @@
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
 
-#include "access_token.hpp"
-#include "client_table.hpp"
-#include "cull_queue.hpp"
-#include "cull_service.hpp"
-#include "http_routes.hpp"
-#include "preview_stream.hpp"
+#include "preview/preview_stream.hpp"
+#include "requests/access_token.hpp"
+#include "requests/http_routes.hpp"
+#include "requests/web_files.hpp"
+#include "service/client_table.hpp"
+#include "service/cull_queue.hpp"
+#include "service/cull_service.hpp"
 #include "service_limits.hpp"
-#include "web_files.hpp"
 
 namespace tsr::app {
 

@@ -1,8 +1,8 @@
-#include "preview_request.hpp"
+#include "requests/preview_request.hpp"
 
 #include <nlohmann/json.hpp>
 
-#include "cull_request.hpp"
+#include "requests/cull_request.hpp"
 
 namespace tsr::app {
 

@@ -1,4 +1,4 @@
-#include "preview_viewports.hpp"
+#include "preview/preview_viewports.hpp"
 
 #include <stdexcept>
 

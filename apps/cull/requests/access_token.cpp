@@ -1,4 +1,4 @@
-#include "access_token.hpp"
+#include "requests/access_token.hpp"
 
 #include "tsr/cluster/auth.hpp"
 

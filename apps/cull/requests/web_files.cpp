@@ -1,4 +1,4 @@
-#include "web_files.hpp"
+#include "requests/web_files.hpp"
 
 #include <array>
 #include <fstream>

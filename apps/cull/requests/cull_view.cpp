@@ -1,8 +1,8 @@
-#include "cull_view.hpp"
+#include "requests/cull_view.hpp"
 
 #include <glm/trigonometric.hpp>
 
-#include "cull_request.hpp"
+#include "requests/cull_request.hpp"
 #include "tsr/sg/camera.hpp"
 
 namespace tsr::app {

@@ -1,4 +1,4 @@
-#include "preview_stream.hpp"
+#include "preview/preview_stream.hpp"
 
 #include <condition_variable>
 #include <mutex>
@@ -13,8 +13,8 @@
 #include <boost/beast/websocket.hpp>
 #include <nlohmann/json.hpp>
 
-#include "cull_request.hpp"
-#include "preview_request.hpp"
+#include "requests/cull_request.hpp"
+#include "requests/preview_request.hpp"
 #include "tsr/med/image_file.hpp"
 
 namespace tsr::app {

@@ -1,4 +1,4 @@
-#include "cull_queue.hpp"
+#include "service/cull_queue.hpp"
 
 #include <spdlog/spdlog.h>
 

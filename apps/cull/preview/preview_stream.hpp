@@ -20,9 +20,9 @@
 
 #include <boost/beast/core/tcp_stream.hpp>
 
-#include "client_table.hpp"
-#include "cull_service.hpp"
-#include "http_routes.hpp"
+#include "requests/http_routes.hpp"
+#include "service/client_table.hpp"
+#include "service/cull_service.hpp"
 #include "tsr/med/viewport.hpp"
 
 namespace tsr::app {

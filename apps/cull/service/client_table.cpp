@@ -1,4 +1,4 @@
-#include "client_table.hpp"
+#include "service/client_table.hpp"
 
 #include <utility>
 

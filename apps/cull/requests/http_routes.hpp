@@ -11,10 +11,10 @@
 
 #include <boost/beast/http.hpp>
 
-#include "access_token.hpp"
 #include "cull_query.hpp"
+#include "requests/access_token.hpp"
+#include "requests/web_files.hpp"
 #include "tsr/med/view.hpp"
-#include "web_files.hpp"
 
 namespace tsr::app {
 

@@ -8,8 +8,8 @@
 #include <memory>
 #include <string>
 
-#include "cull_service.hpp"
 #include "render_job.hpp"
+#include "service/cull_service.hpp"
 #include "tsr/med/viewport.hpp"
 
 namespace tsr::app {

@@ -1,4 +1,4 @@
-#include "cull_service.hpp"
+#include "service/cull_service.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "backends.hpp"
-#include "cull_view.hpp"
+#include "requests/cull_view.hpp"
 #include "scene/scene_glb.hpp"
 #include "tsr/med/coverage/ranking.hpp"
 #include "tsr/med/scene_flattening.hpp"

@@ -1,11 +1,11 @@
-#include "http_routes.hpp"
+#include "requests/http_routes.hpp"
 
 #include <charconv>
 
 #include <spdlog/spdlog.h>
 #include <boost/beast/websocket/rfc6455.hpp>
 
-#include "cull_request.hpp"
+#include "requests/cull_request.hpp"
 
 namespace tsr::app {
 

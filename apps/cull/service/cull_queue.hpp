@@ -16,7 +16,7 @@
 #include <string>
 #include <thread>
 
-#include "cull_service.hpp"
+#include "service/cull_service.hpp"
 
 namespace tsr::app {
 

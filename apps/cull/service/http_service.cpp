@@ -1,4 +1,4 @@
-#include "http_service.hpp"
+#include "service/http_service.hpp"
 
 #include <array>
 #include <optional>
@@ -13,7 +13,7 @@
 #include <boost/beast/http.hpp>
 #include <nlohmann/json.hpp>
 
-#include "cull_request.hpp"
+#include "requests/cull_request.hpp"
 
 namespace tsr::app {
 

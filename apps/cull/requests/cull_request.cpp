@@ -1,4 +1,4 @@
-#include "cull_request.hpp"
+#include "requests/cull_request.hpp"
 
 #include <cmath>
 
