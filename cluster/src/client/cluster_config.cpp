@@ -113,18 +113,10 @@ void ClusterConfig::validate() const {
   }
 }
 
-ClusterConfig parseClusterConfig(const std::string& text, const std::string& source) {
-  Reader r{source};
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::exception& e) {
-    r.fail(std::string("not valid JSON: ") + e.what());
-  }
-  if (!j.is_object()) r.fail("the top level must be an object");
-  r.only(j, {"mode", "compression", "backend", "parameters", "nodes", "cooperative", "wall", "stereo", "timeouts"},
-         "the config");
-  ClusterConfig c;
+namespace {
+
+// "mode": cooperative, tiled (or wall), stereo.
+void readMode(const Reader& r, const json& j, ClusterConfig& c) {
   std::string mode = r.get<std::string>(j, "mode", "cooperative");
   if (mode == "cooperative")
     c.mode = ClusterMode::Cooperative;
@@ -134,7 +126,10 @@ ClusterConfig parseClusterConfig(const std::string& text, const std::string& sou
     c.mode = ClusterMode::Stereo;
   else
     r.fail("unknown mode '" + mode + "' (cooperative, tiled, stereo)");
+}
 
+// "compression" of the pixels nodes send: lz4, zstd, none.
+void readCompression(const Reader& r, const json& j, ClusterConfig& c) {
   std::string compression = r.get<std::string>(j, "compression", "lz4");
   if (compression == "lz4")
     c.compression = Compression::Lz4;
@@ -144,7 +139,10 @@ ClusterConfig parseClusterConfig(const std::string& text, const std::string& sou
     c.compression = Compression::None;
   else
     r.fail("unknown compression '" + compression + "' (lz4, zstd, none)");
+}
 
+// "nodes", each with the config's back-end and parameters unless it names its own.
+void readNodes(const Reader& r, const json& j, ClusterConfig& c) {
   std::string backend = r.get<std::string>(j, "backend", "embree");
   med::Parameters defaults = r.parameters(j, {});
   if (!j.contains("nodes") || !j.at("nodes").is_array()) r.fail("'nodes' must be an array");
@@ -163,14 +161,70 @@ ClusterConfig parseClusterConfig(const std::string& text, const std::string& sou
     node.parameters = r.parameters(n, node.backend == backend ? defaults : med::Parameters{});
     c.nodes.push_back(std::move(node));
   }
+}
 
+// "cooperative": tiles and their balancing.
+void readCooperative(const Reader& r, const json& j, ClusterConfig& c) {
   const json& coop = r.object(j, "cooperative");
   r.only(coop, {"tileSize", "tolerance", "maxMovesPerFrame"}, "'cooperative'");
   c.cooperative.tileSize = r.positive(coop, "tileSize", c.cooperative.tileSize);
   c.cooperative.tolerance = r.get<double>(coop, "tolerance", c.cooperative.tolerance);
   if (!(c.cooperative.tolerance >= 0)) r.fail("'tolerance' must not be negative");
   c.cooperative.maxMovesPerFrame = r.positive(coop, "maxMovesPerFrame", c.cooperative.maxMovesPerFrame);
+}
 
+// A screen's window: where it opens on the node's display, and how big.
+WindowPlacement readWindow(const Reader& r, const json& wj) {
+  r.only(wj, {"position", "size", "fullscreen"}, "a screen's 'window'");
+  WindowPlacement w;
+  auto pos = r.get<std::vector<std::int64_t>>(wj, "position", {0, 0});
+  auto size = r.get<std::vector<std::int64_t>>(wj, "size", {0, 0});
+  if (pos.size() != 2 || size.size() != 2)
+    r.fail("a window's 'position' and 'size' must be [x, y] and [width, height]");
+  for (std::int64_t v : pos)
+    if (v < -(1 << 20) || v > 1 << 20) r.fail("a window's 'position' must lie within +-1048576");
+  for (std::int64_t v : size)
+    if (v < 0 || v > 16384) r.fail("a window's 'size' must be 0..16384 (0: the screen's pixels)");
+  w.x = static_cast<std::int32_t>(pos[0]);
+  w.y = static_cast<std::int32_t>(pos[1]);
+  w.width = static_cast<std::uint32_t>(size[0]);
+  w.height = static_cast<std::uint32_t>(size[1]);
+  w.fullscreen = r.get<bool>(wj, "fullscreen", false);
+  return w;
+}
+
+// One screen of a wall: its rectangle of the virtual frame, bezel, eye and window.
+ScreenConfig readScreen(const Reader& r, const json& sj) {
+  if (!sj.is_object()) r.fail("each screen must be an object");
+  r.only(sj, {"rect", "bezel", "eye", "window"}, "a screen");
+  ScreenConfig s;
+  auto rect = r.get<std::vector<std::int64_t>>(sj, "rect", {});
+  if (rect.size() != 4) r.fail("a screen's 'rect' must be [x, y, width, height]");
+  for (std::int64_t v : rect)
+    if (v < -(1 << 20) || v > 1 << 20) r.fail("a screen's 'rect' must lie within +-1048576");
+  if (rect[2] <= 0 || rect[3] <= 0) r.fail("a screen's 'rect' must have a positive width and height");
+  s.x = static_cast<std::int32_t>(rect[0]);
+  s.y = static_cast<std::int32_t>(rect[1]);
+  s.width = static_cast<std::uint32_t>(rect[2]);
+  s.height = static_cast<std::uint32_t>(rect[3]);
+  std::int64_t b = r.get<std::int64_t>(sj, "bezel", 0);
+  if (b < -65535 || b > 65535) r.fail("a screen's 'bezel' must be -65535..65535");
+  s.bezel = static_cast<std::int32_t>(b);
+  if (sj.contains("eye")) {
+    std::string eye = r.get<std::string>(sj, "eye", "");
+    if (eye == "left")
+      s.eye = med::Eye::Left;
+    else if (eye == "right")
+      s.eye = med::Eye::Right;
+    else
+      r.fail("unknown eye '" + eye + "' (left, right)");
+  }
+  if (sj.contains("window")) s.window = readWindow(r, r.object(sj, "window"));
+  return s;
+}
+
+// "wall": a grid of columns and rows, or screens one by one in a virtual frame.
+void readWall(const Reader& r, const json& j, ClusterConfig& c) {
   const json& wall = r.object(j, "wall");
   r.only(wall, {"columns", "rows", "bezel", "frame", "screens", "offlineColour"}, "'wall'");
   c.wall.columns = r.positive(wall, "columns", c.wall.columns);
@@ -186,59 +240,17 @@ ClusterConfig parseClusterConfig(const std::string& text, const std::string& sou
     c.wall.frameHeight = static_cast<std::uint32_t>(frame[1]);
     if (!wall.at("screens").is_array() || wall.at("screens").size() > 4096)
       r.fail("'screens' must be an array (at most 4096)");
-    for (const json& sj : wall.at("screens")) {
-      if (!sj.is_object()) r.fail("each screen must be an object");
-      r.only(sj, {"rect", "bezel", "eye", "window"}, "a screen");
-      ScreenConfig s;
-      auto rect = r.get<std::vector<std::int64_t>>(sj, "rect", {});
-      if (rect.size() != 4) r.fail("a screen's 'rect' must be [x, y, width, height]");
-      for (std::int64_t v : rect)
-        if (v < -(1 << 20) || v > 1 << 20) r.fail("a screen's 'rect' must lie within +-1048576");
-      if (rect[2] <= 0 || rect[3] <= 0) r.fail("a screen's 'rect' must have a positive width and height");
-      s.x = static_cast<std::int32_t>(rect[0]);
-      s.y = static_cast<std::int32_t>(rect[1]);
-      s.width = static_cast<std::uint32_t>(rect[2]);
-      s.height = static_cast<std::uint32_t>(rect[3]);
-      std::int64_t b = r.get<std::int64_t>(sj, "bezel", 0);
-      if (b < -65535 || b > 65535) r.fail("a screen's 'bezel' must be -65535..65535");
-      s.bezel = static_cast<std::int32_t>(b);
-      if (sj.contains("eye")) {
-        std::string eye = r.get<std::string>(sj, "eye", "");
-        if (eye == "left")
-          s.eye = med::Eye::Left;
-        else if (eye == "right")
-          s.eye = med::Eye::Right;
-        else
-          r.fail("unknown eye '" + eye + "' (left, right)");
-      }
-      if (sj.contains("window")) {
-        const json& wj = r.object(sj, "window");
-        r.only(wj, {"position", "size", "fullscreen"}, "a screen's 'window'");
-        WindowPlacement w;
-        auto pos = r.get<std::vector<std::int64_t>>(wj, "position", {0, 0});
-        auto size = r.get<std::vector<std::int64_t>>(wj, "size", {0, 0});
-        if (pos.size() != 2 || size.size() != 2)
-          r.fail("a window's 'position' and 'size' must be [x, y] and [width, height]");
-        for (std::int64_t v : pos)
-          if (v < -(1 << 20) || v > 1 << 20) r.fail("a window's 'position' must lie within +-1048576");
-        for (std::int64_t v : size)
-          if (v < 0 || v > 16384) r.fail("a window's 'size' must be 0..16384 (0: the screen's pixels)");
-        w.x = static_cast<std::int32_t>(pos[0]);
-        w.y = static_cast<std::int32_t>(pos[1]);
-        w.width = static_cast<std::uint32_t>(size[0]);
-        w.height = static_cast<std::uint32_t>(size[1]);
-        w.fullscreen = r.get<bool>(wj, "fullscreen", false);
-        s.window = w;
-      }
-      c.wall.screens.push_back(s);
-    }
+    for (const json& sj : wall.at("screens")) c.wall.screens.push_back(readScreen(r, sj));
   }
   if (wall.contains("offlineColour")) {
     auto rgb = r.get<std::vector<float>>(wall, "offlineColour", {});
     if (rgb.size() != 3) r.fail("'offlineColour' must be [r, g, b]");
     c.wall.offlineColour = glm::vec4(rgb[0], rgb[1], rgb[2], 1.0f);
   }
+}
 
+// "stereo": how the eyes are composed, and their separation and zero parallax.
+void readStereo(const Reader& r, const json& j, ClusterConfig& c) {
   const json& stereo = r.object(j, "stereo");
   r.only(stereo, {"compose", "eyeSeparation", "zeroParallax"}, "'stereo'");
   std::string compose = r.get<std::string>(stereo, "compose", "anaglyph");
@@ -251,7 +263,10 @@ ClusterConfig parseClusterConfig(const std::string& text, const std::string& sou
   if (stereo.contains("eyeSeparation")) c.stereo.eyeSeparation = r.get<float>(stereo, "eyeSeparation", 0);
   if (stereo.contains("zeroParallax")) c.stereo.zeroParallax = r.get<float>(stereo, "zeroParallax", 0);
   if (c.stereo.zeroParallax && !(*c.stereo.zeroParallax > 0)) r.fail("'zeroParallax' must be positive");
+}
 
+// "timeouts", in milliseconds.
+void readTimeouts(const Reader& r, const json& j, ClusterConfig& c) {
   const json& t = r.object(j, "timeouts");
   r.only(t, {"connectMs", "frameMs", "heartbeatMs", "deadAfterMs", "retryMs", "lateMs"}, "'timeouts'");
   c.timeouts.connect = r.millis(t, "connectMs", c.timeouts.connect);
@@ -260,6 +275,31 @@ ClusterConfig parseClusterConfig(const std::string& text, const std::string& sou
   c.timeouts.deadAfter = r.millis(t, "deadAfterMs", c.timeouts.deadAfter);
   c.timeouts.retry = r.millis(t, "retryMs", c.timeouts.retry);
   c.timeouts.late = r.millis(t, "lateMs", c.timeouts.late);
+}
+
+}  // namespace
+
+// The config's sections in order, each read and checked by its own step;
+// the first problem fails the whole with the source named.
+ClusterConfig parseClusterConfig(const std::string& text, const std::string& source) {
+  Reader r{source};
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::exception& e) {
+    r.fail(std::string("not valid JSON: ") + e.what());
+  }
+  if (!j.is_object()) r.fail("the top level must be an object");
+  r.only(j, {"mode", "compression", "backend", "parameters", "nodes", "cooperative", "wall", "stereo", "timeouts"},
+         "the config");
+  ClusterConfig c;
+  readMode(r, j, c);
+  readCompression(r, j, c);
+  readNodes(r, j, c);
+  readCooperative(r, j, c);
+  readWall(r, j, c);
+  readStereo(r, j, c);
+  readTimeouts(r, j, c);
   try {
     c.validate();
   } catch (const ConfigError& e) {
