@@ -171,13 +171,15 @@ FrameRenderer clusterRenderer(const RenderJob& options, const SceneSession& sess
   };
 }
 
-}  // namespace
+// The temporal method as messages name it: "pca (image space)", "photons".
+std::string temporalName(const TemporalOptions& temporal) {
+  return temporal.method + (temporal.method == "pca" ? " (" + temporal.space + " space)" : "");
+}
 
-int renderSequence(const RenderJob& given, const SequenceOptions& sequence, const std::vector<LayerSpec>& layers) {
-  SceneSession session;
-  session.load(given.scene, given.import, given.view);
-  // --temporal-space auto settles on the scene's camera; what depends on
-  // it is checked here, the rest with the command line.
+// The job as the sequence runs it: --temporal-space auto settles on the
+// scene's camera; what depends on it is checked here, the rest with the
+// command line.
+RenderJob sequenceJob(const RenderJob& given, const SceneSession& session, const std::vector<LayerSpec>& layers) {
   RenderJob options = given;
   const bool moves = cameraMoves(session);
   options.temporal.resolveSpace(moves);
@@ -186,8 +188,7 @@ int renderSequence(const RenderJob& given, const SequenceOptions& sequence, cons
               << (moves ? "moves" : "stays still") << " (--temporal-space chooses)\n";
   checkTemporalOptions(options.temporal, static_cast<int>(samplesPerPixel(options)));
   options.temporal.applyTo(options.parameters);
-  const std::string method =
-      options.temporal.method + (options.temporal.method == "pca" ? " (" + options.temporal.space + " space)" : "");
+  const std::string method = temporalName(options.temporal);
   if (options.temporal.imagePca() && !layers.empty())
     throw std::invalid_argument("--temporal pca with --layers: each frame is rebuilt from the bottom layer's direct "
                                 "and indirect light, so the layers above it would be lost");
@@ -197,6 +198,32 @@ int renderSequence(const RenderJob& given, const SequenceOptions& sequence, cons
     for (const auto& b : able) names += (names.empty() ? "--backend " : " or --backend ") + b;
     throw std::invalid_argument("--temporal " + method + " runs in the path tracer's photon pass: it needs " + names);
   }
+  return options;
+}
+
+// The closing line of --temporal pca: frames written, time spent, windows and modes.
+void reportPca(const RenderJob& options, const SequenceOptions& sequence, const TemporalPcaSequence& pca,
+               const HighSampleFrames* high, double renderSeconds) {
+  std::cout << "wrote " << sequence.frames << " frames " << framePath(options.output, 0) << ".. (rendering "
+            << renderSeconds << " s, pca " << pca.denoiseSeconds() << " s in " << pca.windows() << " window(s), "
+            << pca.meanModes() << " modes on average"
+            << (high
+                    ? ", " + std::to_string(high->pixelsRendered()) + " pixels re-rendered at " +
+                          std::to_string(options.temporal.highSpp) + " spp in " + std::to_string(high->seconds()) + " s"
+                    : std::string())
+            << ")\n";
+}
+
+}  // namespace
+
+// In steps: the job settled for the scene, the renderer (here, or on the
+// nodes), then frames posed, rendered and written in order (through the
+// temporal PCA when it is on), and the statistics.
+int renderSequence(const RenderJob& given, const SequenceOptions& sequence, const std::vector<LayerSpec>& layers) {
+  SceneSession session;
+  session.load(given.scene, given.import, given.view);
+  RenderJob options = sequenceJob(given, session, layers);
+  const std::string method = temporalName(options.temporal);
   // A cluster without layers renders the whole window on the nodes; one
   // whose viewports look ahead (photons) is a layer of a window here, which
   // sends the nodes every frame ahead of the one shown.
@@ -284,15 +311,7 @@ int renderSequence(const RenderJob& given, const SequenceOptions& sequence, cons
   if (pca) {
     pca->finish();
     bar.finish();
-    if (!options.quiet)
-      std::cout << "wrote " << sequence.frames << " frames " << framePath(options.output, 0) << ".. (rendering "
-                << renderSeconds << " s, pca " << pca->denoiseSeconds() << " s in " << pca->windows() << " window(s), "
-                << pca->meanModes() << " modes on average"
-                << (high ? ", " + std::to_string(high->pixelsRendered()) + " pixels re-rendered at " +
-                               std::to_string(options.temporal.highSpp) + " spp in " + std::to_string(high->seconds()) +
-                               " s"
-                         : std::string())
-                << ")\n";
+    if (!options.quiet) reportPca(options, sequence, *pca, high.get(), renderSeconds);
   }
   if (!options.statsJson.empty()) {
     if (local)
