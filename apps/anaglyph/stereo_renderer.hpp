@@ -8,7 +8,7 @@
 #include <memory>
 #include <string>
 
-#include "scene_session.hpp"
+#include "scene/scene_session.hpp"
 #include "tsr/cluster/cluster_window.hpp"
 #include "tsr/med/context_pool.hpp"
 #include "tsr/med/viewport_registry.hpp"

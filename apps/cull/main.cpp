@@ -25,17 +25,17 @@
 #include <boost/asio/ip/tcp.hpp>
 
 #include "command_line.hpp"
-#include "cull_service.hpp"
 #include "error_line.hpp"
-#include "http_service.hpp"
 #include "import_limit_options.hpp"
-#include "preview_viewports.hpp"
+#include "preview/preview_viewports.hpp"
 #include "program_folder.hpp"
 #include "program_main.hpp"
+#include "requests/web_files.hpp"
+#include "service/cull_service.hpp"
+#include "service/http_service.hpp"
 #include "service_limits.hpp"
 #include "tsr/cluster/auth.hpp"
 #include "tsr/cluster/node_address.hpp"
-#include "web_files.hpp"
 
 namespace {
 
@@ -74,105 +74,128 @@ void fitOpenFiles(tsr::app::ServiceLimits& limits) {
   }
 }
 
-int run(int argc, char** argv) {
-  CLI::App app{"Rank a scene's objects by visible coverage for a browser's view, and serve them one by one"};
+// What the command line sets.
+struct CullOptions {
   std::string scene, listen = "127.0.0.1:0", tokenFile, backend = "coverage";
   std::uint32_t maxObjects = 256;
   std::int64_t threads = 0;
-  app.add_option("scene", scene, tsr::app::sceneArgumentHelp())->required();
-  app.add_option("--listen", listen, "HOST:PORT to listen on (port 0: a free port)")->capture_default_str();
-  app.add_option("--token-file", tokenFile,
-                 "file holding the token clients send as 'Authorization: Bearer TOKEN' (required beyond loopback)");
-  app.add_option("--backend", backend, "the ranking back-end: one with an object-id output")->capture_default_str();
-  app.add_option("--max-objects", maxObjects, "the most objects one request may ask for, and the default")
-      ->check(CLI::Range(1u, 100000u))
-      ->capture_default_str();
-  app.add_option("--threads", threads, "threads of the ranking id pass and of the previews (0: all)")
-      ->check(CLI::Range(0, 4096));
   std::string web = defaultWebFolder(), previewBackend = "embree";
   int previews = 4;
   std::uint32_t previewSpp = 64;
-  app.add_option("--web", web, "the web client's folder (index.html, src/, node_modules/three)")->capture_default_str();
-  app.add_option("--previews", previews, "path-traced previews streamed at once (0: none)")
-      ->check(CLI::Range(0, 32))
-      ->capture_default_str();
-  app.add_option("--preview-backend", previewBackend, "the back-end of the streamed previews")->capture_default_str();
-  app.add_option("--preview-spp", previewSpp, "samples per pixel a preview refines to, then stands")
-      ->check(CLI::Range(1u, 65536u))
-      ->capture_default_str();
-  tsr::app::RenderJob cluster;
-  auto* clusterGroup = app.add_option_group("Cluster", "render the previews on tessera-node processes");
-  clusterGroup->add_option("--cluster", cluster.sequence.cluster, "cluster config (configs/*.json)")
-      ->check(CLI::ExistingFile);
-  clusterGroup->add_option("--nodes", cluster.sequence.nodes, "HOST:PORT,... replacing the config's node addresses");
-  clusterGroup->add_option("--node-token-file", cluster.sequence.tokenFile, "the nodes' shared token")
-      ->check(CLI::ExistingFile);
+  tsr::app::RenderJob cluster;  // its sequence's --cluster, --nodes and --node-token-file
   tsr::app::ServiceLimits service;
-  auto* limitGroup = app.add_option_group("Limits", "what one client may hold, and how long the service waits");
+  // The limits' timeouts in seconds as the command line gives them; set into `service` after parsing.
   double headerTimeout = service.headerTimeout.count(), keepAliveTimeout = service.keepAliveTimeout.count(),
          transferTimeout = service.transferTimeout.count(), pingTimeout = service.pingTimeout.count();
-  limitGroup->add_option("--io-threads", service.ioThreads, "threads serving the connections")
+  tsr::app::ImportLimitOptions limits;
+  tsr::sg::ImportOptions import;
+};
+
+// The scene, where to listen, the ranking, the web client, the previews and their cluster.
+void addServiceOptions(CLI::App& app, CullOptions& o) {
+  app.add_option("scene", o.scene, tsr::app::sceneArgumentHelp())->required();
+  app.add_option("--listen", o.listen, "HOST:PORT to listen on (port 0: a free port)")->capture_default_str();
+  app.add_option("--token-file", o.tokenFile,
+                 "file holding the token clients send as 'Authorization: Bearer TOKEN' (required beyond loopback)");
+  app.add_option("--backend", o.backend, "the ranking back-end: one with an object-id output")->capture_default_str();
+  app.add_option("--max-objects", o.maxObjects, "the most objects one request may ask for, and the default")
+      ->check(CLI::Range(1u, 100000u))
+      ->capture_default_str();
+  app.add_option("--threads", o.threads, "threads of the ranking id pass and of the previews (0: all)")
+      ->check(CLI::Range(0, 4096));
+  app.add_option("--web", o.web, "the web client's folder (index.html, src/, node_modules/three)")
+      ->capture_default_str();
+  app.add_option("--previews", o.previews, "path-traced previews streamed at once (0: none)")
+      ->check(CLI::Range(0, 32))
+      ->capture_default_str();
+  app.add_option("--preview-backend", o.previewBackend, "the back-end of the streamed previews")->capture_default_str();
+  app.add_option("--preview-spp", o.previewSpp, "samples per pixel a preview refines to, then stands")
+      ->check(CLI::Range(1u, 65536u))
+      ->capture_default_str();
+  auto* clusterGroup = app.add_option_group("Cluster", "render the previews on tessera-node processes");
+  clusterGroup->add_option("--cluster", o.cluster.sequence.cluster, "cluster config (configs/*.json)")
+      ->check(CLI::ExistingFile);
+  clusterGroup->add_option("--nodes", o.cluster.sequence.nodes, "HOST:PORT,... replacing the config's node addresses");
+  clusterGroup->add_option("--node-token-file", o.cluster.sequence.tokenFile, "the nodes' shared token")
+      ->check(CLI::ExistingFile);
+}
+
+// What one client may hold, and how long the service waits.
+void addLimitOptions(CLI::App& app, CullOptions& o) {
+  auto* limitGroup = app.add_option_group("Limits", "what one client may hold, and how long the service waits");
+  limitGroup->add_option("--io-threads", o.service.ioThreads, "threads serving the connections")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
-  limitGroup->add_option("--max-connections", service.maxConnections, "connections open at once, from everyone")
+  limitGroup->add_option("--max-connections", o.service.maxConnections, "connections open at once, from everyone")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
   limitGroup
-      ->add_option("--max-connections-per-address", service.connectionsPerAddress,
+      ->add_option("--max-connections-per-address", o.service.connectionsPerAddress,
                    "connections open at once from one client address (more: 429)")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
   limitGroup
-      ->add_option("--max-requests-per-address", service.requestsPerAddress,
+      ->add_option("--max-requests-per-address", o.service.requestsPerAddress,
                    "/v1/cull requests waiting or ranked at once for one client address (more: 429)")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   limitGroup
-      ->add_option("--max-previews-per-address", service.previewsPerAddress,
+      ->add_option("--max-previews-per-address", o.service.previewsPerAddress,
                    "/v1/preview streams at once from one client address (more: 429)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  limitGroup->add_option("--cull-queue", service.cullQueue, "/v1/cull requests waiting, from everyone (more: 503)")
+  limitGroup->add_option("--cull-queue", o.service.cullQueue, "/v1/cull requests waiting, from everyone (more: 503)")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
   limitGroup
-      ->add_option("--header-timeout", headerTimeout, "seconds a new connection has for its request line and headers")
+      ->add_option("--header-timeout", o.headerTimeout, "seconds a new connection has for its request line and headers")
       ->check(CLI::Range(0.1, 3600.0))
       ->capture_default_str();
   limitGroup
-      ->add_option("--keepalive-timeout", keepAliveTimeout,
+      ->add_option("--keepalive-timeout", o.keepAliveTimeout,
                    "seconds an idle keep-alive connection has for its next request's headers")
       ->check(CLI::Range(0.1, 3600.0))
       ->capture_default_str();
   limitGroup
-      ->add_option("--transfer-timeout", transferTimeout,
+      ->add_option("--transfer-timeout", o.transferTimeout,
                    "seconds a request body or a response has, plus its size at --min-rate")
       ->check(CLI::Range(0.1, 3600.0))
       ->capture_default_str();
-  limitGroup->add_option("--min-rate", service.minRate, "bytes per second a body or a response must at least move")
+  limitGroup->add_option("--min-rate", o.service.minRate, "bytes per second a body or a response must at least move")
       ->check(CLI::Range(std::uint64_t(1), std::uint64_t(1) << 40))
       ->capture_default_str();
   limitGroup
-      ->add_option("--ping-timeout", pingTimeout,
+      ->add_option("--ping-timeout", o.pingTimeout,
                    "seconds a /v1/preview WebSocket may leave a ping unanswered (pinged at half of it)")
       ->check(CLI::Range(1.0, 3600.0))
       ->capture_default_str();
-  tsr::app::ImportLimitOptions limits;
-  tsr::sg::ImportOptions import;
-  limits.add(app, import);
-  if (!tsr::app::parseCommandLine(app, argc, argv)) return 0;
-  limits.apply(import);
-  service.headerTimeout = tsr::app::ServiceLimits::Seconds(headerTimeout);
-  service.keepAliveTimeout = tsr::app::ServiceLimits::Seconds(keepAliveTimeout);
-  service.transferTimeout = tsr::app::ServiceLimits::Seconds(transferTimeout);
-  service.pingTimeout = tsr::app::ServiceLimits::Seconds(pingTimeout);
+}
+
+// False when the command line only asked for help.
+bool parseOptions(int argc, char** argv, CullOptions& o) {
+  CLI::App app{"Rank a scene's objects by visible coverage for a browser's view, and serve them one by one"};
+  addServiceOptions(app, o);
+  addLimitOptions(app, o);
+  o.limits.add(app, o.import);
+  if (!tsr::app::parseCommandLine(app, argc, argv)) return false;
+  o.limits.apply(o.import);
+  o.service.headerTimeout = tsr::app::ServiceLimits::Seconds(o.headerTimeout);
+  o.service.keepAliveTimeout = tsr::app::ServiceLimits::Seconds(o.keepAliveTimeout);
+  o.service.transferTimeout = tsr::app::ServiceLimits::Seconds(o.transferTimeout);
+  o.service.pingTimeout = tsr::app::ServiceLimits::Seconds(o.pingTimeout);
+  return true;
+}
+
+int run(int argc, char** argv) {
+  CullOptions o;
+  if (!parseOptions(argc, argv, o)) return 0;
 
   spdlog::set_default_logger(spdlog::stderr_color_mt("cull"));
-  fitOpenFiles(service);
-  const std::string token = tokenFile.empty() ? "" : tsr::cluster::readTokenFile(tokenFile);
+  fitOpenFiles(o.service);
+  const std::string token = o.tokenFile.empty() ? "" : tsr::cluster::readTokenFile(o.tokenFile);
   const tsr::cluster::NodeAddress address =
-      tsr::cluster::parseNodeAddress(listen.find(':') == std::string::npos ? listen + ":0" : listen);
-  boost::asio::io_context io(service.ioThreads);
+      tsr::cluster::parseNodeAddress(o.listen.find(':') == std::string::npos ? o.listen + ":0" : o.listen);
+  boost::asio::io_context io(o.service.ioThreads);
   boost::asio::ip::tcp::resolver resolver(io);
   const auto endpoint = resolver.resolve(address.host, std::to_string(address.port))->endpoint();
   if (token.empty() && !endpoint.address().is_loopback())
@@ -180,25 +203,26 @@ int run(int argc, char** argv) {
                                 ") without --token-file: anyone who reaches it could use the service");
 
   tsr::med::Parameters parameters;
-  if (threads) parameters.set("threads", threads);
-  if (cluster.sequence.cluster.empty() && (!cluster.sequence.nodes.empty() || !cluster.sequence.tokenFile.empty()))
+  if (o.threads) parameters.set("threads", o.threads);
+  if (o.cluster.sequence.cluster.empty() &&
+      (!o.cluster.sequence.nodes.empty() || !o.cluster.sequence.tokenFile.empty()))
     throw std::invalid_argument("--nodes and --node-token-file go with --cluster CONFIG");
-  tsr::app::CullService cull(scene, import, backend, parameters);
+  tsr::app::CullService cull(o.scene, o.import, o.backend, parameters);
   tsr::app::PreviewOptions preview;
-  preview.maxStreams = previews;
-  preview.sampleLimit = previewSpp;
-  preview.handshakeTimeout = service.headerTimeout;
-  preview.pingTimeout = service.pingTimeout;
-  if (previews > 0)
-    preview.open = tsr::app::previewViewports(cull, previewBackend, parameters, cluster, preview.maxStreams);
+  preview.maxStreams = o.previews;
+  preview.sampleLimit = o.previewSpp;
+  preview.handshakeTimeout = o.service.headerTimeout;
+  preview.pingTimeout = o.service.pingTimeout;
+  if (o.previews > 0)
+    preview.open = tsr::app::previewViewports(cull, o.previewBackend, parameters, o.cluster, preview.maxStreams);
   tsr::app::PreviewStreams streams(cull, std::move(preview));
-  const tsr::app::WebFiles webFiles(web);
+  const tsr::app::WebFiles webFiles(o.web);
   if (const std::string why = webFiles.missing(); !why.empty()) spdlog::warn("GET / will not work: {}", why);
 
   boost::asio::ip::tcp::acceptor acceptor(io, endpoint);
   std::cout << "listening on " << address.host << ":" << acceptor.local_endpoint().port() << std::endl;
-  std::cerr << scene << ": " << cull.totalObjects() << " objects" << std::endl;
-  tsr::app::HttpService http(cull, streams, webFiles, {token, maxObjects, service});
+  std::cerr << o.scene << ": " << cull.totalObjects() << " objects" << std::endl;
+  tsr::app::HttpService http(cull, streams, webFiles, {token, o.maxObjects, o.service});
   http.serve(acceptor);
   return 0;
 }

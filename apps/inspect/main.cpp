@@ -12,7 +12,7 @@
 
 #include "error_line.hpp"
 #include "import_limit_options.hpp"
-#include "scene_glb.hpp"
+#include "scene/scene_glb.hpp"
 #include "tsr/med/file_replacement.hpp"
 #include "tsr/med/scene_flattening.hpp"
 #include "tsr/sg/import/importer.hpp"

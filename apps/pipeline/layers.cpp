@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "stats_json.hpp"
+#include "outputs/stats_json.hpp"
 
 namespace tsr::app {
 

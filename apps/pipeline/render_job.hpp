@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "scene_session.hpp"
-#include "sequence_options.hpp"
-#include "temporal_options.hpp"
+#include "scene/scene_session.hpp"
+#include "sequence/sequence_options.hpp"
+#include "sequence/temporal_options.hpp"
 #include "tsr/med/display_transform.hpp"
 #include "tsr/med/parameters.hpp"
 #include "tsr/sg/import/importer.hpp"

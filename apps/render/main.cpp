@@ -6,17 +6,17 @@
 #include <spdlog/spdlog.h>
 
 #include "backends.hpp"
-#include "cluster_layer.hpp"
-#include "coverage_output.hpp"
+#include "cluster/cluster_layer.hpp"
 #include "error_line.hpp"
 #include "layers.hpp"
 #include "option_values.hpp"
+#include "outputs/coverage_output.hpp"
+#include "outputs/stats_json.hpp"
 #include "program_main.hpp"
 #include "progress_bar.hpp"
 #include "render_options.hpp"
-#include "scene_session.hpp"
-#include "sequence_render.hpp"
-#include "stats_json.hpp"
+#include "scene/scene_session.hpp"
+#include "sequence/sequence_render.hpp"
 #include "tsr/med/image_file.hpp"
 #include "tsr/med/viewport_registry.hpp"
 

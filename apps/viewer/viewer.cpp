@@ -10,7 +10,7 @@
 #include <spdlog/spdlog.h>
 
 #include "backends.hpp"
-#include "cluster_connection.hpp"
+#include "cluster/cluster_connection.hpp"
 #include "imgui_overlay.hpp"
 #include "tsr/cluster/cluster_viewport.hpp"
 #include "tsr/med/coverage/ranking.hpp"

@@ -12,7 +12,7 @@
 
 #include "camera_bookmarks.hpp"
 #include "orbit_camera.hpp"
-#include "scene_session.hpp"
+#include "scene/scene_session.hpp"
 #include "tsr/med/viewport_registry.hpp"
 #include "viewer_options.hpp"
 #include "viewer_pane.hpp"
@@ -61,6 +61,11 @@ class Viewer {
   void runAction(const ScriptAction& action);
   void renderPanes();
   void drawPanels();
+  // The parts of drawPanels (viewer_panels.cpp): the viewer's own panel and
+  // its camera section, and one viewport's panel.
+  void drawViewerPanel();
+  void drawCameraSection();
+  void drawPanePanel(std::size_t i, std::uint32_t pw);
   void present();
 
   void screenshotPane(std::size_t pane, const std::string& path);

@@ -61,8 +61,14 @@ std::optional<std::pair<std::string, med::ParameterValue>> parameterControl(cons
 }  // namespace
 
 void Viewer::drawPanels() {
-  // The viewer's panel at the bottom left, each viewport's at its top right;
-  // both fit their contents.
+  drawViewerPanel();
+  const std::uint32_t pw = paneWidth(width_);
+  for (std::size_t i = 0; i < panes_.size(); ++i) drawPanePanel(i, pw);
+}
+
+// The viewer's panel at the bottom left, each viewport's at its top right;
+// both fit their contents.
+void Viewer::drawViewerPanel() {
   ImGui::SetNextWindowPos(ImVec2(8, float(height_) - 8), ImGuiCond_FirstUseEver, ImVec2(0, 1));
   ImGui::Begin("tessera-viewer", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   ImGui::PushItemWidth(160);
@@ -70,29 +76,7 @@ void Viewer::drawPanels() {
   ImGui::Text("%.1f frames/s", ImGui::GetIO().Framerate);
   if (!status_.empty()) ImGui::TextWrapped("%s", status_.c_str());
 
-  if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) {
-    if (ImGui::Button("Frame scene (F)")) frameScene();
-    ImGui::SameLine();
-    if (ImGui::Button("Orbit 15")) orbit_.orbit(15.0f, 0.0f);
-    bool rasterise = convergence_.rasterWhileMoving;
-    if (ImGui::Checkbox("Rasterise while moving", &rasterise)) convergence_.rasterWhileMoving = rasterise;
-    static char name[64] = "view";
-    ImGui::SetNextItemWidth(140);
-    ImGui::InputText("##bookmark", name, sizeof(name));
-    ImGui::SameLine();
-    if (ImGui::Button("Save bookmark")) {
-      try {
-        saveBookmark(name);
-      } catch (const std::exception& e) {
-        bookmarkMessage_ = std::string("error: ") + e.what();
-      }
-    }
-    for (std::size_t i = 0; i < bookmarks_.bookmarks.size(); ++i) {
-      const std::string label = std::to_string(i + 1) + ": " + bookmarks_.bookmarks[i].name;
-      if (ImGui::Selectable(label.c_str())) loadBookmark(bookmarks_.bookmarks[i].name);
-    }
-    if (!bookmarkMessage_.empty()) ImGui::TextWrapped("%s", bookmarkMessage_.c_str());
-  }
+  drawCameraSection();
 
   if (ImGui::CollapsingHeader("Lens and shutter")) {
     // Depth of field (path tracer): the aperture up to a tenth of the
@@ -129,76 +113,103 @@ void Viewer::drawPanels() {
   }
   ImGui::PopItemWidth();
   ImGui::End();
+}
 
-  const std::uint32_t pw = paneWidth(width_);
-  for (std::size_t i = 0; i < panes_.size(); ++i) {
-    ViewerPane& pane = panes_[i];
-    const std::string title = "Viewport " + std::to_string(i);
-    ImGui::SetNextWindowPos(ImVec2(float(std::uint32_t(i) * pw + pw) - 8.0f, 8), ImGuiCond_FirstUseEver, ImVec2(1, 0));
-    ImGui::Begin(title.c_str(), nullptr, ImGuiWindowFlags_AlwaysAutoResize);
-    ImGui::PushItemWidth(160);
-    const auto names = registry_.backends();
-    if (ImGui::BeginCombo("back-end", pane.backend().c_str())) {
-      for (const auto& name : names) {
-        const std::string label = name + (pane.hasViewport(name) ? "  (converted)" : "");
-        if (ImGui::Selectable(label.c_str(), name == pane.backend())) pane.setBackend(name);
-      }
-      ImGui::EndCombo();
+// Framing, orbiting, the raster while moving, and the bookmarks.
+void Viewer::drawCameraSection() {
+  if (!ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  if (ImGui::Button("Frame scene (F)")) frameScene();
+  ImGui::SameLine();
+  if (ImGui::Button("Orbit 15")) orbit_.orbit(15.0f, 0.0f);
+  bool rasterise = convergence_.rasterWhileMoving;
+  if (ImGui::Checkbox("Rasterise while moving", &rasterise)) convergence_.rasterWhileMoving = rasterise;
+  static char name[64] = "view";
+  ImGui::SetNextItemWidth(140);
+  ImGui::InputText("##bookmark", name, sizeof(name));
+  ImGui::SameLine();
+  if (ImGui::Button("Save bookmark")) {
+    try {
+      saveBookmark(name);
+    } catch (const std::exception& e) {
+      bookmarkMessage_ = std::string("error: ") + e.what();
     }
-    const med::RenderStats& stats = pane.stats();
-    ImGui::Text("showing %s%s, last render %.1f ms", pane.shownBackend().c_str(),
-                pane.showingWhitted() ? " (Whitted until the path tracer catches up)" : "", stats.seconds * 1e3);
-    if (pane.isRemote(pane.shownBackend())) {
-      ImGui::Text("rendered on the cluster's nodes (%s)", options_.cluster.c_str());
-      if (cluster_ && pane.frame().outputs.count(std::string(cluster::kWorkloadOutput))) {
-        ImGui::Checkbox("workload over the image (O)", &showWorkload_);
-        const cluster::FrameWorkload& w = cluster_->lastWorkload();
-        ImGui::Text("balance %.2f (slowest node's render time over the mean)", w.balance);
-        for (std::size_t n = 0; n < w.nodes.size(); ++n) {
-          const glm::vec3 c = cluster::nodeColour(n);
-          ImGui::TextColored(ImVec4(std::pow(c.r, 1 / 2.2f), std::pow(c.g, 1 / 2.2f), std::pow(c.b, 1 / 2.2f), 1),
-                             "node %zu: %zu tiles, %.1f ms", n, w.nodes[n].tiles, w.nodes[n].seconds * 1e3);
-        }
-      }
-    } else if (pane.progressive()) {
-      ImGui::Text("%u spp of %u %s", pane.samples(), convergence_.sampleLimit,
-                  convergence_.paused ? "(paused)"
-                  : pane.converging() ? ""
-                                      : "(done)");
-      ImGui::Text("%.2f spp/s, %.2f Mrays/s (since restart)", pane.samplesPerSecond(), pane.raysPerSecond() * 1e-6);
-    }
-    if (!pane.isRemote(pane.backend()) && ImGui::CollapsingHeader("Parameters", ImGuiTreeNodeFlags_DefaultOpen)) {
-      // Every parameter the back-end declares, in a scrolling list (the path
-      // tracer has dozens); spp is the viewer's: the sample limit sets it.
-      const med::ParameterTable& table = registry_.capabilities(pane.backend()).parameters;
-      ImGui::BeginChild("parameters", ImVec2(360, std::min(200.0f, 26.0f * float(table.specs().size()))), true);
-      for (const auto& spec : table.specs()) {
-        if (spec.name == "spp") continue;
-        try {
-          if (auto edited = parameterControl(table, spec, pane.parameters()))
-            pane.setParameter(registry_, edited->first, edited->second);
-        } catch (const med::ParameterError& e) {
-          status_ = e.what();
-        }
-      }
-      ImGui::EndChild();
-    }
-    if (pane.frame().outputs.count(med::kIdOutput)) {
-      const auto ranked = med::rankObjects(pane.frame(), session_->replica.scene());
-      ImGui::Text("%zu objects seen; click one here or in the image", ranked.size());
-      ImGui::BeginChild("ranking", ImVec2(260, 140), true);
-      for (const auto& r : ranked) {
-        char label[200];
-        std::snprintf(label, sizeof(label), "%5.1f%%  %s##%llu", r.fraction * 100.0,
-                      r.name.empty() ? ("#" + std::to_string(r.id)).c_str() : r.name.c_str(),
-                      static_cast<unsigned long long>(r.id));
-        if (ImGui::Selectable(label, r.id == selected_)) selected_ = r.id == selected_ ? sg::kNoContainer : r.id;
-      }
-      ImGui::EndChild();
-    }
-    ImGui::PopItemWidth();
-    ImGui::End();
   }
+  for (std::size_t i = 0; i < bookmarks_.bookmarks.size(); ++i) {
+    const std::string label = std::to_string(i + 1) + ": " + bookmarks_.bookmarks[i].name;
+    if (ImGui::Selectable(label.c_str())) loadBookmark(bookmarks_.bookmarks[i].name);
+  }
+  if (!bookmarkMessage_.empty()) ImGui::TextWrapped("%s", bookmarkMessage_.c_str());
+}
+
+// Viewport i's panel: its back-end, what it shows and costs, its
+// parameters, and the objects it sees.
+void Viewer::drawPanePanel(std::size_t i, std::uint32_t pw) {
+  ViewerPane& pane = panes_[i];
+  const std::string title = "Viewport " + std::to_string(i);
+  ImGui::SetNextWindowPos(ImVec2(float(std::uint32_t(i) * pw + pw) - 8.0f, 8), ImGuiCond_FirstUseEver, ImVec2(1, 0));
+  ImGui::Begin(title.c_str(), nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  ImGui::PushItemWidth(160);
+  const auto names = registry_.backends();
+  if (ImGui::BeginCombo("back-end", pane.backend().c_str())) {
+    for (const auto& name : names) {
+      const std::string label = name + (pane.hasViewport(name) ? "  (converted)" : "");
+      if (ImGui::Selectable(label.c_str(), name == pane.backend())) pane.setBackend(name);
+    }
+    ImGui::EndCombo();
+  }
+  const med::RenderStats& stats = pane.stats();
+  ImGui::Text("showing %s%s, last render %.1f ms", pane.shownBackend().c_str(),
+              pane.showingWhitted() ? " (Whitted until the path tracer catches up)" : "", stats.seconds * 1e3);
+  if (pane.isRemote(pane.shownBackend())) {
+    ImGui::Text("rendered on the cluster's nodes (%s)", options_.cluster.c_str());
+    if (cluster_ && pane.frame().outputs.count(std::string(cluster::kWorkloadOutput))) {
+      ImGui::Checkbox("workload over the image (O)", &showWorkload_);
+      const cluster::FrameWorkload& w = cluster_->lastWorkload();
+      ImGui::Text("balance %.2f (slowest node's render time over the mean)", w.balance);
+      for (std::size_t n = 0; n < w.nodes.size(); ++n) {
+        const glm::vec3 c = cluster::nodeColour(n);
+        ImGui::TextColored(ImVec4(std::pow(c.r, 1 / 2.2f), std::pow(c.g, 1 / 2.2f), std::pow(c.b, 1 / 2.2f), 1),
+                           "node %zu: %zu tiles, %.1f ms", n, w.nodes[n].tiles, w.nodes[n].seconds * 1e3);
+      }
+    }
+  } else if (pane.progressive()) {
+    ImGui::Text("%u spp of %u %s", pane.samples(), convergence_.sampleLimit,
+                convergence_.paused ? "(paused)"
+                : pane.converging() ? ""
+                                    : "(done)");
+    ImGui::Text("%.2f spp/s, %.2f Mrays/s (since restart)", pane.samplesPerSecond(), pane.raysPerSecond() * 1e-6);
+  }
+  if (!pane.isRemote(pane.backend()) && ImGui::CollapsingHeader("Parameters", ImGuiTreeNodeFlags_DefaultOpen)) {
+    // Every parameter the back-end declares, in a scrolling list (the path
+    // tracer has dozens); spp is the viewer's: the sample limit sets it.
+    const med::ParameterTable& table = registry_.capabilities(pane.backend()).parameters;
+    ImGui::BeginChild("parameters", ImVec2(360, std::min(200.0f, 26.0f * float(table.specs().size()))), true);
+    for (const auto& spec : table.specs()) {
+      if (spec.name == "spp") continue;
+      try {
+        if (auto edited = parameterControl(table, spec, pane.parameters()))
+          pane.setParameter(registry_, edited->first, edited->second);
+      } catch (const med::ParameterError& e) {
+        status_ = e.what();
+      }
+    }
+    ImGui::EndChild();
+  }
+  if (pane.frame().outputs.count(med::kIdOutput)) {
+    const auto ranked = med::rankObjects(pane.frame(), session_->replica.scene());
+    ImGui::Text("%zu objects seen; click one here or in the image", ranked.size());
+    ImGui::BeginChild("ranking", ImVec2(260, 140), true);
+    for (const auto& r : ranked) {
+      char label[200];
+      std::snprintf(label, sizeof(label), "%5.1f%%  %s##%llu", r.fraction * 100.0,
+                    r.name.empty() ? ("#" + std::to_string(r.id)).c_str() : r.name.c_str(),
+                    static_cast<unsigned long long>(r.id));
+      if (ImGui::Selectable(label, r.id == selected_)) selected_ = r.id == selected_ ? sg::kNoContainer : r.id;
+    }
+    ImGui::EndChild();
+  }
+  ImGui::PopItemWidth();
+  ImGui::End();
 }
 
 }  // namespace tsr::app

@@ -24,7 +24,7 @@
 #include "option_values.hpp"
 #include "preview_filter.hpp"
 #include "render_job.hpp"
-#include "scene_session.hpp"
+#include "scene/scene_session.hpp"
 #include "tsr/cluster/auth.hpp"
 #include "tsr/cluster/cluster_window.hpp"
 #include "tsr/cluster/workload.hpp"
@@ -117,7 +117,9 @@ tsr::med::FrameBuffer withWorkloadOver(tsr::med::FrameBuffer frame) {
   return frame;
 }
 
-int run(const Options& o) {
+// The cluster config as the wall runs it: tiled, with --nodes' addresses,
+// --spp, --seed-per-frame, the preview filter and --param applied, validated.
+tsr::cluster::ClusterConfig wallConfig(const Options& o) {
   tsr::cluster::ClusterConfig config = tsr::cluster::loadClusterConfig(o.config);
   if (config.mode != tsr::cluster::ClusterMode::Tiled)
     throw std::invalid_argument(o.config + ": a wall needs \"mode\": \"tiled\"");
@@ -143,6 +145,59 @@ int run(const Options& o) {
   }
   if (!config.nodes.empty()) std::cout << tsr::app::previewFilterLine(config.nodes.front().parameters) << std::endl;
   config.validate();
+  return config;
+}
+
+// The client's cost per frame after the first (which carries the snapshots).
+struct Totals {
+  std::uint64_t frames = 0, sent = 0, received = 0;
+  double seconds = 0, assemble = 0, barrier = 0;
+
+  void report() const {
+    if (frames > 0) {
+      double n = static_cast<double>(frames);
+      std::cout << std::fixed;
+      std::cout.precision(3);
+      std::cout << "client per frame (" << frames << " frames after the first): " << 1e3 * seconds / n << " ms in all, "
+                << 1e3 * assemble / n << " ms assembling tiles, " << 1e3 * barrier / n << " ms barrier spread, "
+                << static_cast<double>(sent) / n << " bytes sent, " << static_cast<double>(received) / n
+                << " bytes received" << std::endl;
+    }
+  }
+};
+
+// Says which nodes dropped out since the frame before and which came back.
+void reportNodeChanges(const std::vector<tsr::cluster::NodeStatus>& status, std::vector<NodeState>& before,
+                       std::uint64_t frame) {
+  for (std::size_t i = 0; i < status.size(); ++i) {
+    bool wasIn = before[i] == NodeState::Synced, isIn = status[i].state == NodeState::Synced;
+    if (wasIn && !isIn)
+      std::cout << "node " << status[i].address.text() << " dropped out (" << status[i].lastError << "): screen " << i
+                << " marked offline" << std::endl;
+    if (!wasIn && isIn && frame > 0)
+      std::cout << "node " << status[i].address.text() << " is back on screen " << i << std::endl;
+    before[i] = status[i].state;
+  }
+}
+
+// --output: the last frame (with the workload over or beside it).
+void writeOutputs(const Options& o, const tsr::cluster::ClusterFrame& last) {
+  if (!o.output.empty() && last.image.width > 0) {
+    const tsr::med::FrameBuffer& shown = o.workload == "over" ? withWorkloadOver(last.image) : last.image;
+    tsr::med::replaceFile(o.output, [&](const std::string& temporary) { tsr::med::writeImage(temporary, shown); });
+    std::cout << "wrote " << o.output << std::endl;
+    if (o.workload == "beside") {
+      const std::string beside = tsr::app::aovPath(o.output, std::string(tsr::cluster::kWorkloadOutput));
+      tsr::med::replaceFile(beside, [&](const std::string& temporary) {
+        tsr::med::writeImage(temporary, last.image, std::string(tsr::cluster::kWorkloadOutput));
+      });
+      std::cout << "wrote " << beside << std::endl;
+    }
+  }
+}
+
+int run(const Options& o) {
+  tsr::cluster::ClusterConfig config = wallConfig(o);
   std::uint32_t width = config.wall.frameWidth ? config.wall.frameWidth : 960;
   std::uint32_t height = config.wall.frameHeight ? config.wall.frameHeight : 540;
   if (!o.size.empty()) tsr::app::parseSize(o.size, width, height);
@@ -169,11 +224,7 @@ int run(const Options& o) {
   auto started = Clock::now(), lastStatus = started;
   std::uint64_t framesSinceStatus = 0;
   tsr::cluster::ClusterFrame last;
-  // The client's cost per frame after the first (which carries the snapshots).
-  struct Totals {
-    std::uint64_t frames = 0, sent = 0, received = 0;
-    double seconds = 0, assemble = 0, barrier = 0;
-  } totals;
+  Totals totals;
   auto bytes = [&] {
     std::pair<std::uint64_t, std::uint64_t> b{0, 0};
     for (const auto& s : wall.status()) {
@@ -211,16 +262,7 @@ int run(const Options& o) {
       totals.received += bytesAfter.second - bytesBefore.second;
     }
     for (const auto& late : last.lateNodes) std::cout << "late: frame " << last.frame << ": " << late << std::endl;
-    auto status = wall.status();
-    for (std::size_t i = 0; i < status.size(); ++i) {
-      bool wasIn = before[i] == NodeState::Synced, isIn = status[i].state == NodeState::Synced;
-      if (wasIn && !isIn)
-        std::cout << "node " << status[i].address.text() << " dropped out (" << status[i].lastError << "): screen " << i
-                  << " marked offline" << std::endl;
-      if (!wasIn && isIn && frame > 0)
-        std::cout << "node " << status[i].address.text() << " is back on screen " << i << std::endl;
-      before[i] = status[i].state;
-    }
+    reportNodeChanges(wall.status(), before, frame);
     auto now = Clock::now();
     double since = std::chrono::duration<double>(now - lastStatus).count();
     bool lastFrame = o.frames != 0 && frame + 1 == o.frames;
@@ -231,27 +273,8 @@ int run(const Options& o) {
       framesSinceStatus = 0;
     }
   }
-  if (totals.frames > 0) {
-    double n = static_cast<double>(totals.frames);
-    std::cout << std::fixed;
-    std::cout.precision(3);
-    std::cout << "client per frame (" << totals.frames << " frames after the first): " << 1e3 * totals.seconds / n
-              << " ms in all, " << 1e3 * totals.assemble / n << " ms assembling tiles, " << 1e3 * totals.barrier / n
-              << " ms barrier spread, " << static_cast<double>(totals.sent) / n << " bytes sent, "
-              << static_cast<double>(totals.received) / n << " bytes received" << std::endl;
-  }
-  if (!o.output.empty() && last.image.width > 0) {
-    const tsr::med::FrameBuffer& shown = o.workload == "over" ? withWorkloadOver(last.image) : last.image;
-    tsr::med::replaceFile(o.output, [&](const std::string& temporary) { tsr::med::writeImage(temporary, shown); });
-    std::cout << "wrote " << o.output << std::endl;
-    if (o.workload == "beside") {
-      const std::string beside = tsr::app::aovPath(o.output, std::string(tsr::cluster::kWorkloadOutput));
-      tsr::med::replaceFile(beside, [&](const std::string& temporary) {
-        tsr::med::writeImage(temporary, last.image, std::string(tsr::cluster::kWorkloadOutput));
-      });
-      std::cout << "wrote " << beside << std::endl;
-    }
-  }
+  totals.report();
+  writeOutputs(o, last);
   return 0;
 }
 

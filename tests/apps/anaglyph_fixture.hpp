@@ -8,7 +8,7 @@
 #include "backends.hpp"
 #include "command_runner.hpp"
 #include "preview_filter.hpp"
-#include "scene_session.hpp"
+#include "scene/scene_session.hpp"
 #include "tsr/med/compositing.hpp"
 #include "tsr/med/image_file.hpp"
 

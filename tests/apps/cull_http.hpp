@@ -10,7 +10,7 @@
 #include <glm/trigonometric.hpp>
 #include <nlohmann/json.hpp>
 
-#include "scene_session.hpp"
+#include "scene/scene_session.hpp"
 #include "tsr/med/view.hpp"
 
 namespace tsr::app::test {

@@ -18,7 +18,7 @@
 #include "../cluster/node_process.hpp"
 #include "backends.hpp"
 #include "cull_http.hpp"
-#include "scene_session.hpp"
+#include "scene/scene_session.hpp"
 #include "tsr/med/coverage/ranking.hpp"
 #include "tsr/med/scene_flattening.hpp"
 

@@ -9,8 +9,8 @@
 #include <fstream>
 #include <iostream>
 
+#include "cache/scene_cache.hpp"
 #include "gltf_writer.hpp"
-#include "scene_cache.hpp"
 #include "test_scenes.hpp"
 #include "tsr/cluster/messages.hpp"
 #include "tsr/cluster/pixel_codec.hpp"

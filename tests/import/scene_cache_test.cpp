@@ -6,8 +6,8 @@
 
 #include <filesystem>
 
-#include "parsed_scene_codec.hpp"
-#include "scene_cache.hpp"
+#include "cache/parsed_scene_codec.hpp"
+#include "cache/scene_cache.hpp"
 #include "test_scenes.hpp"
 #include "tsr/sg/geometry.hpp"
 #include "tsr/sg/import/importer.hpp"

@@ -18,6 +18,55 @@ bool hasExtension(const std::vector<VkExtensionProperties>& list, const char* na
     if (std::strcmp(e.extensionName, name) == 0) return true;
   return false;
 }
+
+// The device create() runs on, and its graphics queue family.
+struct PhysicalChoice {
+  VkPhysicalDevice physical = VK_NULL_HANDLE;
+  std::uint32_t queueFamily = 0;
+  VkPhysicalDeviceProperties properties{};
+};
+
+// The first Vulkan 1.3 device with a graphics queue whose name holds
+// options.deviceNameContains (and, to present, with the swapchain
+// extension); throws naming every device seen when none matches.
+PhysicalChoice choosePhysicalDevice(VkInstance instance, const DeviceOptions& options, bool wantSwapchain) {
+  PhysicalChoice chosen;
+  std::uint32_t count = 0;
+  check(vkEnumeratePhysicalDevices(instance, &count, nullptr), "vkEnumeratePhysicalDevices");
+  std::vector<VkPhysicalDevice> physicals(count);
+  check(vkEnumeratePhysicalDevices(instance, &count, physicals.data()), "vkEnumeratePhysicalDevices");
+  std::string seen;
+  for (VkPhysicalDevice p : physicals) {
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(p, &props);
+    seen += std::string(seen.empty() ? "" : ", ") + props.deviceName;
+    if (props.apiVersion < VK_API_VERSION_1_3) continue;
+    if (!options.deviceNameContains.empty() &&
+        std::string(props.deviceName).find(options.deviceNameContains) == std::string::npos)
+      continue;
+    std::uint32_t extCount = 0;
+    vkEnumerateDeviceExtensionProperties(p, nullptr, &extCount, nullptr);
+    std::vector<VkExtensionProperties> exts(extCount);
+    vkEnumerateDeviceExtensionProperties(p, nullptr, &extCount, exts.data());
+    if (wantSwapchain && !hasExtension(exts, VK_KHR_SWAPCHAIN_EXTENSION_NAME)) continue;
+    std::uint32_t qCount = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(p, &qCount, nullptr);
+    std::vector<VkQueueFamilyProperties> families(qCount);
+    vkGetPhysicalDeviceQueueFamilyProperties(p, &qCount, families.data());
+    for (std::uint32_t i = 0; i < qCount; ++i) {
+      if (families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) {
+        chosen.physical = p;
+        chosen.queueFamily = i;
+        chosen.properties = props;
+        break;
+      }
+    }
+    if (chosen.physical != VK_NULL_HANDLE) break;
+  }
+  if (chosen.physical == VK_NULL_HANDLE)
+    throw Error("no Vulkan 1.3 device with a graphics queue matches (found: " + (seen.empty() ? "none" : seen) + ")");
+  return chosen;
+}
 }  // namespace
 
 bool Device::validationLayerAvailable() {
@@ -98,41 +147,11 @@ std::shared_ptr<Device> Device::create(const DeviceOptions& options) {
     check(create(d->instance_, &messenger, nullptr, &d->messenger_), "vkCreateDebugUtilsMessengerEXT");
   }
 
-  std::uint32_t count = 0;
-  check(vkEnumeratePhysicalDevices(d->instance_, &count, nullptr), "vkEnumeratePhysicalDevices");
-  std::vector<VkPhysicalDevice> physicals(count);
-  check(vkEnumeratePhysicalDevices(d->instance_, &count, physicals.data()), "vkEnumeratePhysicalDevices");
   const bool wantSwapchain = !options.instanceExtensions.empty();
-  std::string seen;
-  for (VkPhysicalDevice p : physicals) {
-    VkPhysicalDeviceProperties props;
-    vkGetPhysicalDeviceProperties(p, &props);
-    seen += std::string(seen.empty() ? "" : ", ") + props.deviceName;
-    if (props.apiVersion < VK_API_VERSION_1_3) continue;
-    if (!options.deviceNameContains.empty() &&
-        std::string(props.deviceName).find(options.deviceNameContains) == std::string::npos)
-      continue;
-    std::uint32_t extCount = 0;
-    vkEnumerateDeviceExtensionProperties(p, nullptr, &extCount, nullptr);
-    std::vector<VkExtensionProperties> exts(extCount);
-    vkEnumerateDeviceExtensionProperties(p, nullptr, &extCount, exts.data());
-    if (wantSwapchain && !hasExtension(exts, VK_KHR_SWAPCHAIN_EXTENSION_NAME)) continue;
-    std::uint32_t qCount = 0;
-    vkGetPhysicalDeviceQueueFamilyProperties(p, &qCount, nullptr);
-    std::vector<VkQueueFamilyProperties> families(qCount);
-    vkGetPhysicalDeviceQueueFamilyProperties(p, &qCount, families.data());
-    for (std::uint32_t i = 0; i < qCount; ++i) {
-      if (families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) {
-        d->physical_ = p;
-        d->queueFamily_ = i;
-        d->properties_ = props;
-        break;
-      }
-    }
-    if (d->physical_ != VK_NULL_HANDLE) break;
-  }
-  if (d->physical_ == VK_NULL_HANDLE)
-    throw Error("no Vulkan 1.3 device with a graphics queue matches (found: " + (seen.empty() ? "none" : seen) + ")");
+  const PhysicalChoice chosen = choosePhysicalDevice(d->instance_, options, wantSwapchain);
+  d->physical_ = chosen.physical;
+  d->queueFamily_ = chosen.queueFamily;
+  d->properties_ = chosen.properties;
   vkGetPhysicalDeviceMemoryProperties(d->physical_, &d->memory_);
 
   VkPhysicalDeviceVulkan13Features f13 =

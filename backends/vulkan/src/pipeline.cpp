@@ -20,8 +20,69 @@ VkShaderModule createModule(VkDevice device, std::span<const std::uint32_t> code
   check(vkCreateShaderModule(device, &ci, nullptr, &m), "vkCreateShaderModule");
   return m;
 }
+
+// Filled triangles, culled as asked, with depth bias when asked.
+VkPipelineRasterizationStateCreateInfo rasterization(const PipelineDesc& d) {
+  VkPipelineRasterizationStateCreateInfo rs =
+      vkStruct<VkPipelineRasterizationStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO);
+  rs.polygonMode = VK_POLYGON_MODE_FILL;
+  rs.cullMode = d.cull;
+  // The projection flips y, so counter-clockwise in the image (as the viewer
+  // sees it) stays counter-clockwise in framebuffer terms.
+  rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+  rs.depthBiasEnable = d.depthBias ? VK_TRUE : VK_FALSE;
+  rs.lineWidth = 1.0f;
+  return rs;
+}
+
+VkPipelineMultisampleStateCreateInfo multisample(const PipelineDesc& d) {
+  VkPipelineMultisampleStateCreateInfo ms =
+      vkStruct<VkPipelineMultisampleStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO);
+  ms.rasterizationSamples = d.samples;
+  return ms;
+}
+
+// Depth always tested; written and compared as asked.
+VkPipelineDepthStencilStateCreateInfo depthStencil(const PipelineDesc& d) {
+  VkPipelineDepthStencilStateCreateInfo ds =
+      vkStruct<VkPipelineDepthStencilStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO);
+  ds.depthTestEnable = VK_TRUE;
+  ds.depthWriteEnable = d.depthWrite ? VK_TRUE : VK_FALSE;
+  ds.depthCompareOp = d.depthCompare;
+  return ds;
+}
+
+// All four channels written; alpha blending, or dual-source blending (the
+// shader's second output weighs the destination).
+VkPipelineColorBlendAttachmentState colourBlend(const PipelineDesc& d) {
+  VkPipelineColorBlendAttachmentState attachment{};
+  attachment.colorWriteMask =
+      VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+  if (d.blend) {
+    attachment.blendEnable = VK_TRUE;
+    attachment.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+    attachment.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+    attachment.colorBlendOp = VK_BLEND_OP_ADD;
+    attachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+    attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+    attachment.alphaBlendOp = VK_BLEND_OP_ADD;
+  }
+  if (d.dualSourceBlend) {
+    attachment.blendEnable = VK_TRUE;
+    attachment.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
+    attachment.dstColorBlendFactor = VK_BLEND_FACTOR_SRC1_COLOR;
+    attachment.colorBlendOp = VK_BLEND_OP_ADD;
+    attachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+    attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_SRC1_ALPHA;
+    attachment.alphaBlendOp = VK_BLEND_OP_ADD;
+  }
+  return attachment;
+}
+
 }  // namespace
 
+// The shaders, their specialization and the vertex streams here; the
+// fixed-function state from the named parts above.
 Pipeline::Pipeline(const Device& device, const PipelineDesc& d) : device_(device.handle()) {
   VkShaderModule vert = createModule(device_, d.vertexSpirv);
   VkShaderModule frag = d.fragmentSpirv.empty() ? VK_NULL_HANDLE : createModule(device_, d.fragmentSpirv);
@@ -80,47 +141,10 @@ Pipeline::Pipeline(const Device& device, const PipelineDesc& d) : device_(device
   vp.viewportCount = 1;
   vp.scissorCount = 1;
 
-  VkPipelineRasterizationStateCreateInfo rs =
-      vkStruct<VkPipelineRasterizationStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO);
-  rs.polygonMode = VK_POLYGON_MODE_FILL;
-  rs.cullMode = d.cull;
-  // The projection flips y, so counter-clockwise in the image (as the viewer
-  // sees it) stays counter-clockwise in framebuffer terms.
-  rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-  rs.depthBiasEnable = d.depthBias ? VK_TRUE : VK_FALSE;
-  rs.lineWidth = 1.0f;
-
-  VkPipelineMultisampleStateCreateInfo ms =
-      vkStruct<VkPipelineMultisampleStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO);
-  ms.rasterizationSamples = d.samples;
-
-  VkPipelineDepthStencilStateCreateInfo ds =
-      vkStruct<VkPipelineDepthStencilStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO);
-  ds.depthTestEnable = VK_TRUE;
-  ds.depthWriteEnable = d.depthWrite ? VK_TRUE : VK_FALSE;
-  ds.depthCompareOp = d.depthCompare;
-
-  VkPipelineColorBlendAttachmentState attachment{};
-  attachment.colorWriteMask =
-      VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-  if (d.blend) {
-    attachment.blendEnable = VK_TRUE;
-    attachment.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
-    attachment.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
-    attachment.colorBlendOp = VK_BLEND_OP_ADD;
-    attachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-    attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
-    attachment.alphaBlendOp = VK_BLEND_OP_ADD;
-  }
-  if (d.dualSourceBlend) {
-    attachment.blendEnable = VK_TRUE;
-    attachment.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
-    attachment.dstColorBlendFactor = VK_BLEND_FACTOR_SRC1_COLOR;
-    attachment.colorBlendOp = VK_BLEND_OP_ADD;
-    attachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-    attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_SRC1_ALPHA;
-    attachment.alphaBlendOp = VK_BLEND_OP_ADD;
-  }
+  const VkPipelineRasterizationStateCreateInfo rs = rasterization(d);
+  const VkPipelineMultisampleStateCreateInfo ms = multisample(d);
+  const VkPipelineDepthStencilStateCreateInfo ds = depthStencil(d);
+  const VkPipelineColorBlendAttachmentState attachment = colourBlend(d);
   const bool hasColour = d.colourFormat != VK_FORMAT_UNDEFINED;
   VkPipelineColorBlendStateCreateInfo cb =
       vkStruct<VkPipelineColorBlendStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO);

@@ -4,11 +4,11 @@
 
 #include <spdlog/spdlog.h>
 
-#include "builtin_scenes.hpp"
-#include "gltf_importer.hpp"
-#include "gltf_loader.hpp"
+#include "builtin/builtin_scenes.hpp"
+#include "cache/scene_cache.hpp"
+#include "gltf/gltf_importer.hpp"
+#include "gltf/gltf_loader.hpp"
 #include "parsed_scene.hpp"
-#include "scene_cache.hpp"
 #include "tsr/sg/import/importer.hpp"
 #include "tsr/sg/scene.hpp"
 

@@ -17,7 +17,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "backends.hpp"
-#include "scene_session.hpp"
+#include "scene/scene_session.hpp"
 #include "tsr/med/coverage/ranking.hpp"
 #include "tsr/med/scene_flattening.hpp"
 #include "tsr/sg/node_world.hpp"

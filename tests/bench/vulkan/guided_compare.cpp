@@ -16,7 +16,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "scene_session.hpp"
+#include "scene/scene_session.hpp"
 #include "tsr/med/scene_flattening.hpp"
 #include "tsr/med/vulkan/register.hpp"
 #include "tsr/sg/node_world.hpp"

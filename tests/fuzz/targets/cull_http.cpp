@@ -8,11 +8,11 @@
 
 #include <boost/beast/http.hpp>
 
-#include "cull_request.hpp"
-#include "cull_view.hpp"
 #include "fuzz_targets.hpp"
-#include "http_routes.hpp"
-#include "preview_request.hpp"
+#include "requests/cull_request.hpp"
+#include "requests/cull_view.hpp"
+#include "requests/http_routes.hpp"
+#include "requests/preview_request.hpp"
 #include "service_limits.hpp"
 
 namespace tsr::fuzz {

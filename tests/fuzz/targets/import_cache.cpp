@@ -2,8 +2,8 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "cache/parsed_scene_codec.hpp"
 #include "fuzz_targets.hpp"
-#include "parsed_scene_codec.hpp"
 
 namespace tsr::fuzz {
 

@@ -19,8 +19,9 @@
 //   Prepare                                      a frame ahead, for temporal viewports
 //
 // Adding a message: declare it here and add it to `Messages`; handle it on
-// the receiving side (NodeSession::on<M> in node_session.cpp, or
-// ClusterWindow's receive() in cluster_window.cpp) and send it from the other.
+// the receiving side (NodeSession::on<M> in src/node/node_session.cpp, or
+// ClusterWindow::Impl::receive() in src/client/node_messages.cpp) and send it
+// from the other.
 #include <array>
 #include <cstdint>
 #include <memory>

@@ -1,0 +1,156 @@
+#include "cache/scene_cache.hpp"
+
+#include <unistd.h>
+
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+
+#include "cache/parsed_scene_codec.hpp"
+
+namespace tsr::sg::cache {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr char kMagic[8] = {'T', 'S', 'R', 'S', 'C', 'E', 'N', 'E'};
+constexpr std::uint32_t kFormat = 1;
+
+// Two 64-bit lanes over 8-byte words (multiply, rotate, xor): not
+// cryptographic, but 128 bits make accidental collisions negligible, and a
+// matching entry is still validated like any outside input.
+struct Hash128 {
+  std::uint64_t a = 0x9E3779B97F4A7C15ull, b = 0xC2B2AE3D27D4EB4Full;
+  void add(std::span<const std::uint8_t> bytes) {
+    std::size_t i = 0;
+    for (; i + 8 <= bytes.size(); i += 8) {
+      std::uint64_t w;
+      std::memcpy(&w, bytes.data() + i, 8);
+      mix(w);
+    }
+    std::uint64_t tail = 0;
+    if (i < bytes.size()) std::memcpy(&tail, bytes.data() + i, bytes.size() - i);
+    mix(tail ^ (std::uint64_t(bytes.size()) << 56));
+  }
+  void mix(std::uint64_t w) {
+    a = rotl((a ^ w) * 0x87C37B91114253D5ull, 31) + b;
+    b = rotl((b + w) * 0x4CF5AD432745937Full, 33) ^ a;
+  }
+  static std::uint64_t rotl(std::uint64_t x, int r) { return (x << r) | (x >> (64 - r)); }
+  std::string hex() const {
+    char out[33];
+    std::snprintf(out, sizeof out, "%016llx%016llx", static_cast<unsigned long long>(a),
+                  static_cast<unsigned long long>(b));
+    return out;
+  }
+};
+
+std::string hashOf(std::span<const std::uint8_t> bytes) {
+  Hash128 h;
+  h.add(bytes);
+  return h.hex();
+}
+
+struct Header {
+  char magic[8];
+  std::uint32_t format;
+  std::uint32_t importerVersion;
+  char key[64];
+  std::uint64_t payloadBytes;
+  char payloadHash[32];
+};
+static_assert(sizeof(Header) == kHeaderBytes);
+
+}  // namespace
+
+std::string key(std::span<const std::uint8_t> source, const ImportOptions& o) {
+  const std::uint64_t settings[] = {kImporterVersion, o.smoothNormals,       o.maxFileBytes,
+                                    o.maxJsonValues,  o.maxAccessorElements, o.maxImagePixels};
+  return hashOf(source) + hashOf({reinterpret_cast<const std::uint8_t*>(settings), sizeof settings});
+}
+
+fs::path entryPath(const fs::path& dir, const std::string& key) { return dir / (key + ".tsrscene"); }
+
+std::optional<parsed::Scene> load(const fs::path& entry, const std::string& key, std::string& why) {
+  std::error_code ec;
+  if (!fs::is_regular_file(entry, ec)) {
+    why = "no entry";
+    return std::nullopt;
+  }
+  const std::uint64_t size = fs::file_size(entry, ec);
+  if (ec || size < sizeof(Header)) {
+    why = "the entry is shorter than its header";
+    return std::nullopt;
+  }
+  std::ifstream in(entry, std::ios::binary);
+  Header h;
+  if (!in.read(reinterpret_cast<char*>(&h), sizeof h)) {
+    why = "the entry cannot be read";
+    return std::nullopt;
+  }
+  if (std::memcmp(h.magic, kMagic, 8) != 0 || h.format != kFormat) {
+    why = "not a converted scene of this format";
+    return std::nullopt;
+  }
+  if (h.importerVersion != kImporterVersion) {
+    why = "made by importer version " + std::to_string(h.importerVersion);
+    return std::nullopt;
+  }
+  if (key.size() != sizeof h.key || std::memcmp(h.key, key.data(), sizeof h.key) != 0) {
+    why = "the entry is for another file";
+    return std::nullopt;
+  }
+  if (h.payloadBytes != size - sizeof(Header)) {
+    why = "the entry is truncated or too long";
+    return std::nullopt;
+  }
+  std::vector<std::uint8_t> payload(h.payloadBytes);
+  if (!in.read(reinterpret_cast<char*>(payload.data()), static_cast<std::streamsize>(payload.size()))) {
+    why = "the entry cannot be read";
+    return std::nullopt;
+  }
+  if (std::memcmp(h.payloadHash, hashOf(payload).data(), sizeof h.payloadHash) != 0) {
+    why = "the entry is damaged (its hash does not match)";
+    return std::nullopt;
+  }
+  try {
+    return parsed::decodeScene(payload);
+  } catch (const std::exception& e) {
+    why = std::string("the entry is invalid: ") + e.what();
+    return std::nullopt;
+  }
+}
+
+bool store(const fs::path& entry, const std::string& key, const parsed::Scene& scene, std::string& why) {
+  const std::vector<std::uint8_t> payload = parsed::encodeScene(scene);
+  Header h{};
+  std::memcpy(h.magic, kMagic, 8);
+  h.format = kFormat;
+  h.importerVersion = kImporterVersion;
+  if (key.size() != sizeof h.key) throw std::logic_error("cache keys are 64 characters");
+  std::memcpy(h.key, key.data(), sizeof h.key);
+  h.payloadBytes = payload.size();
+  std::memcpy(h.payloadHash, hashOf(payload).data(), sizeof h.payloadHash);
+  std::error_code ec;
+  fs::create_directories(entry.parent_path(), ec);
+  // Another process may write the same entry: each writes its own file, the rename is atomic.
+  const fs::path temporary = entry.string() + ".tmp" + std::to_string(::getpid());
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(&h), sizeof h);
+    out.write(reinterpret_cast<const char*>(payload.data()), static_cast<std::streamsize>(payload.size()));
+    if (!out.flush()) {
+      why = "cannot write '" + temporary.string() + "'";
+      fs::remove(temporary, ec);
+      return false;
+    }
+  }
+  fs::rename(temporary, entry, ec);
+  if (ec) {
+    why = "cannot rename into '" + entry.string() + "': " + ec.message();
+    fs::remove(temporary, ec);
+    return false;
+  }
+  return true;
+}
+
+}  // namespace tsr::sg::cache
