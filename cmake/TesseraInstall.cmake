@@ -10,6 +10,7 @@ include(CMakePackageConfigHelpers)
 # Library target -> name under Tessera:: (back-ends by their own name).
 set(tsr_export_names
   tsr_imageio imageio  tsr_scenegraph scenegraph  tsr_import import
+  tsr_backend_common backend_common  tsr_embree_device embree_device
   tsr_embree embree  tsr_vulkan vulkan  tsr_coverage coverage  tsr_temporal temporal
   tsr_mediator_core mediator_core  tsr_mediator_embree mediator_embree
   tsr_mediator_vulkan mediator_vulkan  tsr_mediator_coverage mediator_coverage
