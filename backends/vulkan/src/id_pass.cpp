@@ -1,5 +1,6 @@
 #include "id_pass.hpp"
 
+#include "projection.hpp"
 #include "readback.hpp"
 #include "scene_state.hpp"
 #include "spirv.hpp"
@@ -73,7 +74,7 @@ std::uint32_t IdPass::render(SceneState& s, const Camera& camera, const Region& 
     drawOrder_ =
         Buffer(device_, std::max<VkDeviceSize>(drawn * 4, 1024), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, Buffer::kHost);
   if (!s.opaqueOrder.empty()) std::memcpy(drawOrder_.mapped(), s.opaqueOrder.data(), s.opaqueOrder.size() * 4);
-  const glm::mat4 viewProj = camera.projection(region) * camera.worldToCamera();
+  const glm::mat4 viewProj = projection(camera, region) * camera.worldToCamera();
   std::memcpy(frame_.mapped(), &viewProj, sizeof viewProj);
   if (!s.objectBuffer)  // a scene that never had an instance
     s.objectBuffer = Buffer(device_, 4096, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, Buffer::kHost);

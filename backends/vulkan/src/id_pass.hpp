@@ -5,9 +5,8 @@
 #include "image.hpp"
 #include "pipeline.hpp"
 
-#include "tsr/vk/camera.hpp"
 #include "tsr/vk/id_buffer.hpp"
-#include "tsr/vk/region.hpp"
+#include "tsr/vk/vocabulary.hpp"
 
 #include <optional>
 

@@ -1,5 +1,6 @@
 #include "readback.hpp"
 
+#include "projection.hpp"
 #include "vk_struct.hpp"
 
 namespace tsr::vk {
@@ -32,7 +33,7 @@ void recordReadback(VkCommandBuffer cmd, const Image& colour, const Image& depth
 
 void readLinearDepth(const Buffer& depthOut, const Camera& camera, std::span<float> out) {
   const auto* depth = static_cast<const float*>(depthOut.mapped());
-  for (std::size_t i = 0; i < out.size(); ++i) out[i] = camera.linearDepth(depth[i]);
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = linearDepth(camera, depth[i]);
 }
 
 }  // namespace tsr::vk

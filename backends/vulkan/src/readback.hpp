@@ -9,7 +9,7 @@
 
 #include "buffer.hpp"
 #include "image.hpp"
-#include "tsr/vk/camera.hpp"
+#include "tsr/vk/vocabulary.hpp"
 
 namespace tsr::vk {
 

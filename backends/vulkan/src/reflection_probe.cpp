@@ -7,6 +7,7 @@
 // frame come later), without transparent instances and without the mirrors
 // and glass themselves (they would hide what they reflect).
 #include "probe_prefilter.hpp"
+#include "projection.hpp"
 #include "renderer_impl.hpp"
 
 #include <glm/gtc/constants.hpp>
@@ -162,7 +163,7 @@ void Renderer::Impl::updateProbe(const SceneState& s, const RenderSettings& sett
                                            glm::half_pi<float>(), 1.0f, 1e-3f * size, 4.0f * size);
       const Region region = Region::full(kProbeSize, kProbeSize);
       GpuFrame face = frame;
-      face.viewProj = camera.projection(region) * camera.worldToCamera();
+      face.viewProj = projection(camera, region) * camera.worldToCamera();
       face.invViewProj = glm::inverse(face.viewProj);
       face.cameraPos = glm::vec4(centre, 1.0f);
       face.viewport = glm::vec4(float(kProbeSize), float(kProbeSize), 0.0f, 0.0f);

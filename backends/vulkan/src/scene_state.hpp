@@ -8,9 +8,9 @@
 
 #include "tsr/vk/device.hpp"
 #include "tsr/vk/environment.hpp"
-#include "tsr/vk/light.hpp"
 #include "tsr/vk/material.hpp"
 #include "tsr/vk/mesh.hpp"
+#include "tsr/vk/vocabulary.hpp"
 
 #include <glm/vec3.hpp>
 

@@ -3,7 +3,7 @@
 #include "image.hpp"
 
 #include "tsr/vk/device.hpp"
-#include "tsr/vk/light.hpp"
+#include "tsr/vk/vocabulary.hpp"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>

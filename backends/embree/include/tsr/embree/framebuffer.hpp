@@ -1,7 +1,6 @@
 #pragma once
 
-#include "tsr/embree/camera.hpp"
-#include "tsr/embree/region.hpp"
+#include "tsr/embree/vocabulary.hpp"
 
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
