@@ -6,8 +6,8 @@
 // one camera. The faces are drawn without shadows (the shadow maps of this
 // frame come later), without transparent instances and without the mirrors
 // and glass themselves (they would hide what they reflect).
-#include "probe_prefilter.hpp"
 #include "projection.hpp"
+#include "reflections/probe_prefilter.hpp"
 #include "renderer_impl.hpp"
 
 #include <glm/gtc/constants.hpp>

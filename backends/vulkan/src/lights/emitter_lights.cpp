@@ -1,6 +1,6 @@
-#include "emitter_lights.hpp"
+#include "lights/emitter_lights.hpp"
 
-#include "scene_state.hpp"
+#include "scene/scene_state.hpp"
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "image.hpp"
+#include "resources/image.hpp"
 
 #include "tsr/vk/device.hpp"
 #include "tsr/vk/vocabulary.hpp"

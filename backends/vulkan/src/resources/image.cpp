@@ -1,6 +1,6 @@
-#include "image.hpp"
+#include "resources/image.hpp"
 
-#include "buffer.hpp"
+#include "resources/buffer.hpp"
 
 #include "tsr/vk/error.hpp"
 #include "vk_struct.hpp"

@@ -1,10 +1,10 @@
 #pragma once
 
-#include "buffer.hpp"
-#include "emitter_lights.hpp"
-#include "geometry_arena.hpp"
 #include "gpu_types.hpp"
-#include "image.hpp"
+#include "lights/emitter_lights.hpp"
+#include "resources/buffer.hpp"
+#include "resources/image.hpp"
+#include "scene/geometry_arena.hpp"
 
 #include "tsr/vk/device.hpp"
 #include "tsr/vk/environment.hpp"

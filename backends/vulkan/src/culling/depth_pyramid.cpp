@@ -1,4 +1,4 @@
-#include "depth_pyramid.hpp"
+#include "culling/depth_pyramid.hpp"
 
 #include "spirv.hpp"
 

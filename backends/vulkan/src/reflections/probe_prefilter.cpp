@@ -1,5 +1,5 @@
-#include "probe_prefilter.hpp"
-#include "ggx_prefilter.hpp"
+#include "reflections/probe_prefilter.hpp"
+#include "reflections/ggx_prefilter.hpp"
 
 #include <glm/geometric.hpp>
 

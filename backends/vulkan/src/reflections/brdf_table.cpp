@@ -1,5 +1,5 @@
-#include "brdf_table.hpp"
-#include "radical_inverse.hpp"
+#include "reflections/brdf_table.hpp"
+#include "reflections/radical_inverse.hpp"
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>

@@ -1,4 +1,4 @@
-#include "compute_pipeline.hpp"
+#include "resources/compute_pipeline.hpp"
 
 #include "tsr/vk/error.hpp"
 #include "vk_struct.hpp"

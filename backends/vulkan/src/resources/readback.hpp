@@ -7,8 +7,8 @@
 
 #include <vulkan/vulkan.h>
 
-#include "buffer.hpp"
-#include "image.hpp"
+#include "resources/buffer.hpp"
+#include "resources/image.hpp"
 #include "tsr/vk/vocabulary.hpp"
 
 namespace tsr::vk {

@@ -1,4 +1,4 @@
-#include "buffer.hpp"
+#include "resources/buffer.hpp"
 
 #include "tsr/vk/error.hpp"
 #include "vk_struct.hpp"

@@ -1,8 +1,8 @@
-#include "id_pass.hpp"
+#include "passes/id_pass.hpp"
 
 #include "projection.hpp"
-#include "readback.hpp"
-#include "scene_state.hpp"
+#include "resources/readback.hpp"
+#include "scene/scene_state.hpp"
 #include "spirv.hpp"
 #include "vk_struct.hpp"
 

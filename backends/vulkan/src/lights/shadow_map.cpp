@@ -1,6 +1,6 @@
-#include "shadow_map.hpp"
+#include "lights/shadow_map.hpp"
 
-#include "render_target.hpp"
+#include "resources/render_target.hpp"
 
 #include "tsr/vk/error.hpp"
 #include "vk_struct.hpp"

@@ -1,4 +1,4 @@
-#include "command_slot.hpp"
+#include "resources/command_slot.hpp"
 
 #include <string>
 

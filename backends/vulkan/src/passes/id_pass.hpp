@@ -1,9 +1,9 @@
 #pragma once
 
-#include "buffer.hpp"
-#include "command_slot.hpp"
-#include "image.hpp"
-#include "pipeline.hpp"
+#include "resources/buffer.hpp"
+#include "resources/command_slot.hpp"
+#include "resources/image.hpp"
+#include "resources/pipeline.hpp"
 
 #include "tsr/vk/id_buffer.hpp"
 #include "tsr/vk/vocabulary.hpp"

@@ -1,10 +1,10 @@
 #pragma once
 
-#include "buffer.hpp"
-#include "command_slot.hpp"
-#include "compute_pipeline.hpp"
-#include "depth_pyramid.hpp"
-#include "scene_state.hpp"
+#include "culling/depth_pyramid.hpp"
+#include "resources/buffer.hpp"
+#include "resources/command_slot.hpp"
+#include "resources/compute_pipeline.hpp"
+#include "scene/scene_state.hpp"
 
 #include <glm/mat4x4.hpp>
 

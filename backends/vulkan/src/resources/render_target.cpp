@@ -1,4 +1,4 @@
-#include "render_target.hpp"
+#include "resources/render_target.hpp"
 
 #include "tsr/vk/error.hpp"
 

@@ -3,7 +3,7 @@
 // from D around r (a Hammersley set of `samples`), reflected, weighted by
 // n.l. Shared by the environment's levels (environment.cpp) and the
 // reflection probe's (probe_prefilter.cpp); `radiance(l)` looks one up.
-#include "radical_inverse.hpp"
+#include "reflections/radical_inverse.hpp"
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>

@@ -1,4 +1,4 @@
-#include "geometry_arena.hpp"
+#include "scene/geometry_arena.hpp"
 
 #include "tsr/vk/error.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "compute_pipeline.hpp"
+#include "resources/compute_pipeline.hpp"
 
 #include "tsr/vk/device.hpp"
 

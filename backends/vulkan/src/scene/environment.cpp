@@ -1,5 +1,5 @@
 #include "tsr/vk/environment.hpp"
-#include "ggx_prefilter.hpp"
+#include "reflections/ggx_prefilter.hpp"
 
 #include "tsr/vk/error.hpp"
 

@@ -1,4 +1,4 @@
-#include "readback.hpp"
+#include "resources/readback.hpp"
 
 #include "projection.hpp"
 #include "vk_struct.hpp"

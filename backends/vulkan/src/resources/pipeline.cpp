@@ -1,4 +1,4 @@
-#include "pipeline.hpp"
+#include "resources/pipeline.hpp"
 
 #include "tsr/vk/error.hpp"
 #include "vk_struct.hpp"

@@ -1,6 +1,6 @@
 #include "tsr/vk/scene.hpp"
 
-#include "scene_state.hpp"
+#include "scene/scene_state.hpp"
 
 #include "tsr/vk/error.hpp"
 #include "vk_struct.hpp"

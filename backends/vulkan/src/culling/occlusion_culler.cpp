@@ -1,4 +1,4 @@
-#include "occlusion_culler.hpp"
+#include "culling/occlusion_culler.hpp"
 
 #include "spirv.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "buffer.hpp"
+#include "resources/buffer.hpp"
 
 #include "tsr/vk/device.hpp"
 #include "tsr/vk/mesh.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 
-#include "buffer.hpp"
-#include "image.hpp"
+#include "resources/buffer.hpp"
+#include "resources/image.hpp"
 
 #include "tsr/vk/device.hpp"
 
