@@ -7,7 +7,7 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-# The static libraries of the library layers (every folder the top-level
+# The static and header-only libraries of the library layers (every folder the top-level
 # CMakeLists adds, apps aside), each exported as Tessera::NAME for its target
 # tsr_NAME: a back-end added to TSR_BACKENDS is installed without a list here.
 function(tsr_collect_libraries dir out)
@@ -16,7 +16,7 @@ function(tsr_collect_libraries dir out)
   set(found ${${out}})
   foreach(target IN LISTS targets)
     get_target_property(type ${target} TYPE)
-    if(type STREQUAL "STATIC_LIBRARY" AND target MATCHES "^tsr_")
+    if(type MATCHES "^(STATIC|INTERFACE)_LIBRARY$" AND target MATCHES "^tsr_")
       list(APPEND found ${target})
     endif()
   endforeach()

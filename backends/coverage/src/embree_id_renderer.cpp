@@ -1,6 +1,7 @@
 #include "tsr/cov/embree_id_renderer.hpp"
 
-#include "embree_device.hpp"
+#include "tsr/backend/embree_device.hpp"
+#include "tsr/backend/validate.hpp"
 #include "tsr/cov/error.hpp"
 
 #include <tbb/blocked_range.h>
@@ -89,7 +90,7 @@ constexpr std::uint32_t kPacket = 4;  // 4x4 pixels per rtcIntersect16
 
 struct EmbreeIdRenderer::State {
   EmbreeIdSettings settings;
-  EmbreeDevice device;
+  backend::EmbreeDevice device{[](const std::string& message) { throw Error(message); }};
   RTCScene top = nullptr;
   std::vector<std::unique_ptr<MeshRecord>> meshes;
   std::vector<std::unique_ptr<InstanceRecord>> instances;
@@ -279,8 +280,8 @@ void EmbreeIdRenderer::commit() {
 }
 
 IdBuffer EmbreeIdRenderer::render(const Camera& camera, const Region& region) {
-  camera.validate();
-  region.validate();
+  backend::validate<Error>(camera);
+  backend::validate<Error>(region);
   commit();
   IdBuffer out(region);
   const State& s = *state_;

@@ -57,13 +57,13 @@ layout(set = 0, binding = 5) uniform sampler2DArrayShadow shadowMaps;
 // Reversed depth of the nearer of opaque geometry and see-through volumes'
 // back faces, for the volumes' thickness (volume.frag).
 layout(set = 0, binding = 6) uniform sampler2D volumeBackDepth;
-// The split-sum table (src/brdf_table.hpp): x = n.v, y = roughness.
+// The split-sum table (src/reflections/brdf_table.hpp): x = n.v, y = roughness.
 layout(set = 0, binding = 7) uniform sampler2D brdfTable;
 // The environment prefiltered by roughness (Environment::prefiltered()).
 layout(set = 0, binding = 8) uniform sampler2D environmentMap;
-// The reflection probe's six faces (src/reflection_probe.cpp).
+// The reflection probe's six faces (src/reflections/reflection_probe.cpp).
 layout(set = 0, binding = 9) uniform sampler2DArray reflectionProbe;
-// The probe prefiltered by roughness (src/probe_prefilter.hpp).
+// The probe prefiltered by roughness (src/reflections/probe_prefilter.hpp).
 layout(set = 0, binding = 10) uniform sampler2D probeLevels;
 
 layout(push_constant) uniform Push {

@@ -1,5 +1,5 @@
 #version 450
-// Two-phase occlusion culling (src/occlusion_culler.hpp). One invocation per
+// Two-phase occlusion culling (src/culling/occlusion_culler.hpp). One invocation per
 // opaque draw position. Phase 0 (early): a draw command for each object seen
 // last frame and inside the frustum. Phase 1 (late): every object's bounds
 // against the depth pyramid of what the early draws left; visible ones not

@@ -1,4 +1,4 @@
-// Level 0 of the depth pyramid (src/depth_pyramid.hpp): each pixel's farthest
+// Level 0 of the depth pyramid (src/culling/depth_pyramid.hpp): each pixel's farthest
 // depth over its samples. Depth is reversed (near = 1), so farthest is the
 // minimum; an object nearer than nothing here is behind every sample.
 layout(local_size_x = 8, local_size_y = 8) in;

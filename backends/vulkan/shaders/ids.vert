@@ -1,6 +1,6 @@
 #version 450
 // Id pass: positions only; each instance's object id goes flat to the fragment.
-// Its own descriptor layout (src/id_pass.cpp), not common.glsl's.
+// Its own descriptor layout (src/passes/id_pass.cpp), not common.glsl's.
 
 struct Instance {
   mat4 model;

@@ -1,5 +1,5 @@
-// Reflection-probe lookups (src/reflection_probe.cpp draws the faces,
-// src/probe_prefilter.cpp prefilters them by roughness). A
+// Reflection-probe lookups (src/reflections/reflection_probe.cpp draws the faces,
+// src/reflections/probe_prefilter.cpp prefilters them by roughness). A
 // direction from a point inside the scene's bounds is first followed to
 // the bounds' box and looked up from the probe's centre towards that hit
 // (box-projected, "parallax-corrected" cube mapping), which is exact for a

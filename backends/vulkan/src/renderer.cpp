@@ -1,6 +1,8 @@
 #include "tsr/vk/renderer.hpp"
 
+#include "projection.hpp"
 #include "renderer_impl.hpp"
+#include "tsr/backend/validate.hpp"
 
 namespace tsr::vk {
 
@@ -172,8 +174,8 @@ void Renderer::setSettings(const RenderSettings& settings) {
 }
 
 void Renderer::render(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb) {
-  camera.validate();
-  region.validate();
+  backend::validate<Error>(camera);
+  backend::validate<Error>(region);
   if (fb.width() != region.regionWidth() || fb.height() != region.regionHeight())
     throw Error("frame buffer is " + std::to_string(fb.width()) + "x" + std::to_string(fb.height()) +
                 " but the region is " + std::to_string(region.regionWidth()) + "x" +
@@ -269,7 +271,7 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
   const VkSampleCountFlagBits samples = sampleBits(settings.msaaSamples);
   const glm::vec3 camPos(camera.cameraToWorld[3]);
   GpuFrame frame{};
-  viewProj = camera.projection(region) * camera.worldToCamera();
+  viewProj = projection(camera, region) * camera.worldToCamera();
   frame.viewProj = viewProj;
   frame.cameraPos = glm::vec4(camPos, 1.0f);
   frame.ambient = glm::vec4(s.environment.averageRadiance() + ambientFromEmitters, 0.0f);
@@ -363,8 +365,8 @@ void Renderer::Impl::readColour(FrameBuffer& fb) const {
 }
 
 void Renderer::renderIds(Scene& scene, const Camera& camera, const Region& region, IdBuffer& ids) {
-  camera.validate();
-  region.validate();
+  backend::validate<Error>(camera);
+  backend::validate<Error>(region);
   if (ids.width != region.regionWidth() || ids.height != region.regionHeight() ||
       ids.ids.size() != std::size_t(ids.width) * ids.height || ids.depth.size() != ids.ids.size())
     throw Error("id buffer is " + std::to_string(ids.width) + "x" + std::to_string(ids.height) + " but the region is " +

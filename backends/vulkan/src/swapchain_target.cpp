@@ -1,7 +1,7 @@
 #include "tsr/vk/swapchain_target.hpp"
 
-#include "buffer.hpp"
-#include "image.hpp"
+#include "resources/buffer.hpp"
+#include "resources/image.hpp"
 #include "tsr/vk/error.hpp"
 #include "vk_struct.hpp"
 

@@ -42,17 +42,6 @@ BakedSky bakeGradient(const sg::Background& background) {
   return sky;
 }
 
-PlacedLight placeLight(const sg::Light& light, const glm::mat4& world) {
-  PlacedLight p;
-  p.kind = light.kind();
-  p.power = light.color() * light.intensity();
-  p.position = glm::vec3(world * glm::vec4(light.position(), 1.0f));
-  p.direction = glm::normalize(glm::vec3(world * glm::vec4(light.direction(), 0.0f)));
-  p.innerCone = light.innerConeAngle();
-  p.outerCone = light.outerConeAngle();
-  return p;
-}
-
 std::pair<glm::vec3, glm::vec3> usableUvTransform(const sg::SurfaceMaterial& s, sg::TextureSlot slot) {
   const auto [row0, row1] = s.uvTransform(slot);
   auto finite = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };

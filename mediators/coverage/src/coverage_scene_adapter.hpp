@@ -18,12 +18,6 @@ namespace tsr::med::coverage_mediator {
 struct CoverageTypes {
   using Device = IdRendererSource;
   using Scene = IdScene;
-  using MeshId = cov::MeshId;
-  using MaterialId = coverage_mediator::MaterialId;
-  using InstanceId = cov::InstanceId;
-  using TextureId = coverage_mediator::TextureId;
-  using LightId = coverage_mediator::LightId;
-  using Light = NoLight;
   using Environment = NoEnvironment;
   using Error = cov::Error;
   static constexpr const char* kName = "coverage";
@@ -37,7 +31,6 @@ struct CoverageTypes {
     return {isTransparent(m) || (volume && !m)};
   }
   static NoTexture texture(const sg::Image&) { return {}; }
-  static NoLight light(const sg::Light&, const glm::mat4&) { return {}; }
   static NoEnvironment background(const sg::Scene&, sg::ContainerId) { return {}; }
   // What the instance's pixels report: see objectOf.
   static std::optional<cov::ObjectId> object(const sg::Scene& scene, const FlatNode& node) {

@@ -4,6 +4,7 @@
 
 #include "tsr/med/coverage/false_colour.hpp"
 #include "tsr/med/coverage/ranking.hpp"
+#include "tsr/med/view_translation.hpp"
 
 namespace tsr::med::coverage_mediator {
 
@@ -26,8 +27,8 @@ RenderStats CoverageViewport::render(const sg::Replica& replica, const View& vie
   stats.update = context_->adapter.catchUp(replica);
   stats.syncSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  cov::Camera camera{view.cameraToWorld, view.left, view.right, view.bottom, view.top, view.nearPlane};
-  cov::Region region{view.width, view.height, view.region.x0, view.region.y0, view.region.x1, view.region.y1};
+  const cov::Camera camera = cameraOf(view);
+  const cov::Region region = regionOf(view);
   const cov::IdBuffer ids = context_->adapter.scene().renderer().render(camera, region);
 
   out = FrameBuffer(ids.width(), ids.height());

@@ -4,7 +4,8 @@
 // so the coverage pass syncs through the same path as the path tracer and
 // the rasterizer. A material here is only "transparent or not"; changing it
 // flips the instances that use it. The id pass has no textures, lights or
-// environment: those calls hold nothing.
+// environment: those calls hold nothing. Handles are the back-ends' shared
+// ones (backends/common).
 #include <functional>
 #include <memory>
 #include <optional>
@@ -13,6 +14,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "tsr/backend/light.hpp"
 #include "tsr/cov/id_renderer.hpp"
 
 namespace tsr::med::coverage_mediator {
@@ -25,12 +27,9 @@ struct IdRendererSource {
 struct Transparency {
   bool transparent = false;
 };
-enum class MaterialId : std::uint32_t {};
 struct NoTexture {};
-enum class TextureId : std::uint32_t {};
-struct NoLight {};
-enum class LightId : std::uint32_t {};
 struct NoEnvironment {};
+using backend::MaterialId, backend::TextureId, backend::LightId;
 
 class IdScene {
  public:
@@ -58,8 +57,8 @@ class IdScene {
 
   TextureId addTexture(NoTexture) { return TextureId{0}; }
   void removeTexture(TextureId) {}
-  LightId addLight(NoLight) { return LightId{0}; }
-  void setLight(LightId, NoLight) {}
+  LightId addLight(const backend::Light&) { return LightId{0}; }
+  void setLight(LightId, const backend::Light&) {}
   void removeLight(LightId) {}
   void setEnvironment(NoEnvironment) {}
 

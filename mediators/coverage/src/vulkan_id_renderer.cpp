@@ -2,6 +2,7 @@
 
 #include <mutex>
 
+#include "tsr/backend/validate.hpp"
 #include "tsr/cov/error.hpp"
 #include "tsr/vk/error.hpp"
 #include "tsr/vk/renderer.hpp"
@@ -182,16 +183,16 @@ std::size_t VulkanIdRenderer::meshCount() const { return state_->meshes.size(); 
 std::size_t VulkanIdRenderer::instanceCount() const { return state_->instances.size(); }
 
 cov::IdBuffer VulkanIdRenderer::render(const cov::Camera& camera, const cov::Region& region) {
-  camera.validate();
-  region.validate();
+  backend::validate<cov::Error>(camera);
+  backend::validate<cov::Error>(region);
   State& s = *state_;
   std::lock_guard lock(s.shared->mutex);
-  vk::Camera c{camera.cameraToWorld, camera.left, camera.right,      camera.bottom,
-               camera.top,           camera.near, camera.near * 1e7f};
-  vk::Region r{region.width, region.height, region.x0, region.y0, region.x1, region.y1};
-  vk::IdBuffer ids(r.regionWidth(), r.regionHeight());
+  // The id pass never clips: the far plane goes far out.
+  vk::Camera c = camera;
+  c.far = camera.near * 1e7f;
+  vk::IdBuffer ids(region.regionWidth(), region.regionHeight());
   translated([&] {
-    s.renderer.renderIds(s.scene, c, r, ids);
+    s.renderer.renderIds(s.scene, c, region, ids);
     return 0;
   });
   cov::IdBuffer out(region);

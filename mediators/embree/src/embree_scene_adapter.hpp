@@ -14,12 +14,6 @@ namespace tsr::med::embree_mediator {
 struct EmbreeTypes {
   using Device = embree::Device;
   using Scene = embree::Scene;
-  using MeshId = embree::MeshId;
-  using MaterialId = embree::MaterialId;
-  using InstanceId = embree::InstanceId;
-  using TextureId = embree::TextureId;
-  using LightId = embree::LightId;
-  using Light = embree::Light;
   using Environment = embree::Environment;
   using Error = embree::Error;
   static constexpr const char* kName = "embree";
@@ -30,7 +24,6 @@ struct EmbreeTypes {
     return translateMaterial(m, v, t);
   }
   static embree::Texture texture(const sg::Image& i) { return translateImage(i); }
-  static embree::Light light(const sg::Light& l, const glm::mat4& world) { return translateLight(l, world); }
   static embree::Environment background(const sg::Scene& s, sg::ContainerId b) { return translateBackground(s, b); }
 };
 

@@ -1,6 +1,7 @@
 #include "embree_viewport.hpp"
 
 #include "embree_parameters.hpp"
+#include "tsr/med/view_translation.hpp"
 
 #include <algorithm>
 #include <chrono>

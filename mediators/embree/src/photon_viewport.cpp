@@ -7,6 +7,7 @@
 
 #include "embree_parameters.hpp"
 #include "render_outputs.hpp"
+#include "tsr/med/view_translation.hpp"
 
 namespace tsr::med::embree_mediator {
 

@@ -31,17 +31,6 @@ embree::RenderSettings renderSettingsFrom(const Parameters& p, std::int64_t fram
   return s;
 }
 
-embree::Camera cameraOf(const View& view) {
-  return embree::Camera{
-      view.cameraToWorld,     view.left,           view.right,         view.bottom,      view.top,
-      view.nearPlane,         view.apertureRadius, view.focusDistance, view.shutterOpen, view.shutterClose,
-      view.cameraToWorldAtEnd};
-}
-
-embree::Region regionOf(const View& view) {
-  return embree::Region{view.width, view.height, view.region.x0, view.region.y0, view.region.x1, view.region.y1};
-}
-
 FrameBuffer accumulatedFrame(const embree::FrameBuffer& fb, const RenderControl& control) {
   FrameBuffer full(fb.width(), fb.height());
   full.colour = fb.colourImage();

@@ -16,8 +16,6 @@ std::vector<std::string> accumulatedOutputNames();
 // seed, maxDepth, directOnly, samplesPerPass, threads; with seedPerFrame,
 // the seed of animation frame `frame` (RenderControl::frame, -1: none).
 embree::RenderSettings renderSettingsFrom(const Parameters& parameters, std::int64_t frame = -1);
-embree::Camera cameraOf(const View& view);
-embree::Region regionOf(const View& view);
 
 // Colour and depth of `fb`, and the named outputs the caller reads
 // (control.wants): all five cost about a tenth of a 16-spp pass at 512².

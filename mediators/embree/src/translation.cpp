@@ -109,18 +109,6 @@ embree::Texture translateImage(const sg::Image& image) {
   return embree::Texture(image.width(), image.height(), linearTexels(image));
 }
 
-embree::Light translateLight(const sg::Light& light, const glm::mat4& world) {
-  const PlacedLight l = placeLight(light, world);
-  switch (l.kind) {
-    case sg::LightKind::Spot:
-      return embree::SpotLight{l.position, l.direction, l.power, l.innerCone, l.outerCone};
-    case sg::LightKind::Directional:
-      return embree::DirectionalLight{l.direction, l.power};
-    default:
-      return embree::PointLight{l.position, l.power};
-  }
-}
-
 embree::Environment translateBackground(const sg::Scene& scene, sg::ContainerId id) {
   const auto* bg = scene.find<sg::Background>(id);
   if (!bg) return embree::Environment();

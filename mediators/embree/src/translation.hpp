@@ -1,12 +1,12 @@
 #pragma once
-// Scene graph values in the path tracer's vocabulary: materials, lights,
-// the background, textures and meshes. Pure functions; the adapter decides
+// Scene graph values in the path tracer's vocabulary: materials, the
+// background, textures and meshes (lights are shared by every back-end:
+// tsr/med/light_translation.hpp). Pure functions; the adapter decides
 // when to call them.
 #include <functional>
 #include <optional>
 
 #include "tsr/embree/environment.hpp"
-#include "tsr/embree/light.hpp"
 #include "tsr/embree/material.hpp"
 #include "tsr/embree/mesh.hpp"
 #include "tsr/embree/texture.hpp"
@@ -32,9 +32,6 @@ embree::Medium translateMedium(const sg::VolumeMaterial& volume, const TextureLo
 
 // RGBA, linear; sRGB 8-bit images are decoded.
 embree::Texture translateImage(const sg::Image& image);
-
-// A light placed by its world matrix.
-embree::Light translateLight(const sg::Light& light, const glm::mat4& world);
 
 // Colour, gradient (baked into a small lat-long map) or environment image.
 // With the background's medium (fog), if it names one.

@@ -130,18 +130,6 @@ vk::Texture translateImage(const sg::Image& image) {
   return vk::Texture::fromFloat(w, h, texels);
 }
 
-vk::Light translateLight(const sg::Light& light, const glm::mat4& world) {
-  const PlacedLight l = placeLight(light, world);
-  switch (l.kind) {
-    case sg::LightKind::Spot:
-      return vk::SpotLight{l.position, l.direction, l.power, l.innerCone, l.outerCone};
-    case sg::LightKind::Directional:
-      return vk::DirectionalLight{l.direction, l.power};
-    default:
-      return vk::PointLight{l.position, l.power};
-  }
-}
-
 vk::Environment translateBackground(const sg::Scene& scene, sg::ContainerId id) {
   const auto* bg = scene.find<sg::Background>(id);
   if (!bg) return vk::Environment();

@@ -1,6 +1,7 @@
 #pragma once
-// Scene graph values in the rasterizer's vocabulary: materials, lights, the
-// background, textures and meshes. Pure functions; the adapter decides when
+// Scene graph values in the rasterizer's vocabulary: materials, the
+// background, textures and meshes (lights are shared by every back-end:
+// tsr/med/light_translation.hpp). Pure functions; the adapter decides when
 // to call them. Material classes follow the Embree mediator's rules so both
 // back-ends light the same scene the same way.
 #include <functional>
@@ -10,7 +11,6 @@
 
 #include "tsr/sg/scene.hpp"
 #include "tsr/vk/environment.hpp"
-#include "tsr/vk/light.hpp"
 #include "tsr/vk/material.hpp"
 #include "tsr/vk/mesh.hpp"
 #include "tsr/vk/texture.hpp"
@@ -37,9 +37,6 @@ vk::Medium translateMedium(const sg::VolumeMaterial& volume);
 
 // RGBA; 8-bit sRGB images stay 8-bit (the sampler decodes), the rest float.
 vk::Texture translateImage(const sg::Image& image);
-
-// A light placed by its world matrix.
-vk::Light translateLight(const sg::Light& light, const glm::mat4& world);
 
 // The rasterizer keeps the environment's average as ambient light, and the
 // background's medium as fog (its textures ignored).

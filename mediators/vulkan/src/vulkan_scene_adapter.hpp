@@ -13,12 +13,6 @@ namespace tsr::med::vulkan_mediator {
 struct VulkanTypes {
   using Device = vk::Device;
   using Scene = vk::Scene;
-  using MeshId = vk::MeshId;
-  using MaterialId = vk::MaterialId;
-  using InstanceId = vk::InstanceId;
-  using TextureId = vk::TextureId;
-  using LightId = vk::LightId;
-  using Light = vk::Light;
   using Environment = vk::Environment;
   using Error = vk::Error;
   static constexpr const char* kName = "vulkan";
@@ -29,7 +23,6 @@ struct VulkanTypes {
     return translateMaterial(m, v, t);
   }
   static vk::Texture texture(const sg::Image& i) { return translateImage(i); }
-  static vk::Light light(const sg::Light& l, const glm::mat4& world) { return translateLight(l, world); }
   static vk::Environment background(const sg::Scene& s, sg::ContainerId b) { return translateBackground(s, b); }
 };
 

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "translation.hpp"
+#include "tsr/med/view_translation.hpp"
 
 namespace tsr::med::vulkan_mediator {
 
@@ -65,8 +66,8 @@ RenderStats VulkanViewport::render(const sg::Replica& replica, const View& view,
   else
     renderer_->setSettings(settings);
 
-  vk::Camera camera{view.cameraToWorld, view.left, view.right, view.bottom, view.top, view.nearPlane, view.farPlane};
-  vk::Region region{view.width, view.height, view.region.x0, view.region.y0, view.region.x1, view.region.y1};
+  const vk::Camera camera = cameraOf(view);
+  const vk::Region region = regionOf(view);
   vk::FrameBuffer fb(region.regionWidth(), region.regionHeight());
   renderer_->render(context_->adapter.scene(), camera, region, fb);
 

@@ -4,6 +4,7 @@
 // leaves the same streak; a shutter that is an instant changes nothing of
 // a still scene; and the image stays the same across threads and tiles.
 #include "test_scenes.hpp"
+#include "tsr/backend/validate.hpp"
 #include "tsr/embree/error.hpp"
 
 #include <gtest/gtest.h>
@@ -169,7 +170,7 @@ TEST(EmbreeMotionBlur, AShutterOutsideTheFrameIntervalIsRefused) {
   for (const auto& [open, close] : {std::pair{-0.1f, 0.5f}, std::pair{0.6f, 0.5f}, std::pair{0.0f, 1.5f}}) {
     camera.shutterOpen = open;
     camera.shutterClose = close;
-    EXPECT_THROW(camera.validate(), Error) << open << "," << close;
+    EXPECT_THROW(backend::validate<Error>(camera), Error) << open << "," << close;
   }
 }
 

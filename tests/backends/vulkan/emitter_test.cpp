@@ -2,7 +2,7 @@
 // the patches a mesh is cut into keep its area and orientation, clustering
 // keeps the flux, and a small panel lights the floor below it as the
 // irradiance formula says.
-#include "emitter_lights.hpp"
+#include "lights/emitter_lights.hpp"
 #include "test_util.hpp"
 
 #include "tsr/vk/renderer.hpp"

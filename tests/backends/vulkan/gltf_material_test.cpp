@@ -1,6 +1,6 @@
 // glTF's metallic-roughness BRDF in the rasterizer (issue 28): properties,
 // not pixels copied from a run.
-#include "brdf_table.hpp"
+#include "reflections/brdf_table.hpp"
 #include "test_util.hpp"
 
 #include "tsr/vk/renderer.hpp"

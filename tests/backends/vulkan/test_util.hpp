@@ -1,11 +1,10 @@
 #pragma once
 
-#include "tsr/vk/camera.hpp"
 #include "tsr/vk/device.hpp"
 #include "tsr/vk/error.hpp"
 #include "tsr/vk/framebuffer.hpp"
 #include "tsr/vk/mesh.hpp"
-#include "tsr/vk/region.hpp"
+#include "tsr/vk/vocabulary.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/vec3.hpp>

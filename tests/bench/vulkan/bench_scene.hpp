@@ -1,7 +1,7 @@
 #pragma once
 
-#include "tsr/vk/camera.hpp"
 #include "tsr/vk/mesh.hpp"
+#include "tsr/vk/vocabulary.hpp"
 
 #include <glm/mat4x4.hpp>
 

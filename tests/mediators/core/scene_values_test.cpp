@@ -19,21 +19,6 @@ TEST(SceneValues, TexelsAreLinearAndExpanded) {
   EXPECT_NEAR(med::linearTexels(img)[1].g, 188.0f / 255.0f, 1e-6f);
 }
 
-TEST(SceneValues, LightsArePlacedByTheirWorldMatrix) {
-  sg::Scene s;
-  auto& light = s.create<sg::Light>();
-  light.setKind(sg::LightKind::Spot);
-  light.setColor({1, 0.5f, 0.25f});
-  light.setIntensity(8);
-  glm::mat4 world = glm::translate(glm::mat4(1.0f), glm::vec3(1, 2, 3)) *
-                    glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(0, 1, 0));
-  auto p = med::placeLight(light, world);
-  EXPECT_EQ(p.kind, sg::LightKind::Spot);
-  EXPECT_EQ(p.position, glm::vec3(1, 2, 3));
-  EXPECT_NEAR(p.direction.x, -1.0f, 1e-6f) << "-Z turned 90 degrees about Y";
-  EXPECT_EQ(p.power, glm::vec3(8, 4, 2));
-}
-
 TEST(SceneValues, SurfaceClassesFollowTheThresholds) {
   sg::Scene s;
   auto& m = s.create<sg::SurfaceMaterial>();

@@ -1,9 +1,9 @@
 #include "tsr/embree/scene.hpp"
 
+#include "limits.hpp"
 #include "scene/scene_levels.hpp"
 #include "scene/scene_state.hpp"
 #include "tsr/embree/error.hpp"
-#include "tsr/embree/limits.hpp"
 #include "tsr/embree/sampling.hpp"
 
 #include <spdlog/spdlog.h>

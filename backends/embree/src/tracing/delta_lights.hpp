@@ -3,7 +3,7 @@
 // from one of them (the path tracer's direct light) and a spot light's
 // falloff (which the photon pass also applies to the photons it emits).
 // The one place that says how these lights shine. Private to the back-end.
-#include "tsr/embree/light.hpp"
+#include "tsr/embree/vocabulary.hpp"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>

@@ -3,6 +3,7 @@
 #include "filters/radiance_filter_step.hpp"
 #include "scene/instance_motion.hpp"
 #include "tracing/tracer.hpp"
+#include "tsr/backend/validate.hpp"
 #include "tsr/embree/error.hpp"
 
 #include <oneapi/tbb/blocked_range.h>
@@ -60,8 +61,8 @@ bool Renderer::restartIfStale(Scene& scene, const Camera& camera, const Region& 
 
 bool Renderer::rekey(Scene& scene, const Camera& camera, const Region& region, std::uint32_t width,
                      std::uint32_t height, std::optional<FrameKey>& held, std::optional<std::uint64_t> estimator) {
-  camera.validate();
-  region.validate();
+  backend::validate<Error>(camera);
+  backend::validate<Error>(region);
   if (width != region.regionWidth() || height != region.regionHeight()) {
     throw Error("frame buffer is " + std::to_string(width) + "x" + std::to_string(height) + " but the region is " +
                 std::to_string(region.regionWidth()) + "x" + std::to_string(region.regionHeight()));

@@ -4,12 +4,12 @@
 // path tracer (path_tracer.cpp), the range-buffer pass (flash_pass.cpp)
 // and the photon pass (photons/photon_pass.cpp) build on it. Private to
 // the back-end.
+#include "limits.hpp"
 #include "scene/scene_state.hpp"
 #include "tracing/alpha_test.hpp"
 #include "tracing/bsdf.hpp"
 #include "tsr/embree/framebuffer.hpp"
 #include "tsr/embree/irradiance_field.hpp"
-#include "tsr/embree/limits.hpp"
 #include "tsr/embree/radiance_filter.hpp"
 #include "tsr/embree/renderer.hpp"
 #include "tsr/embree/rng.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 
 #include "tsr/cov/ids.hpp"
-#include "tsr/cov/region.hpp"
+#include "tsr/cov/vocabulary.hpp"
 
 #include <cstddef>
 #include <cstdint>

@@ -1,10 +1,9 @@
 #pragma once
 
-#include "tsr/cov/camera.hpp"
 #include "tsr/cov/id_buffer.hpp"
 #include "tsr/cov/ids.hpp"
 #include "tsr/cov/mesh.hpp"
-#include "tsr/cov/region.hpp"
+#include "tsr/cov/vocabulary.hpp"
 
 #include <glm/mat4x4.hpp>
 

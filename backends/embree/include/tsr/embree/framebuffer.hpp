@@ -1,8 +1,7 @@
 #pragma once
 
-#include "tsr/embree/camera.hpp"
-#include "tsr/embree/region.hpp"
 #include "tsr/embree/render_settings.hpp"
+#include "tsr/embree/vocabulary.hpp"
 
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>

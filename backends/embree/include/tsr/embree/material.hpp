@@ -1,7 +1,7 @@
 #pragma once
 
-#include "tsr/embree/ids.hpp"
 #include "tsr/embree/medium.hpp"
+#include "tsr/embree/vocabulary.hpp"
 
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>

@@ -7,7 +7,7 @@
 // (left: lowest x, top: highest y), stretched over the object-space
 // bounding box of the mesh the medium fills (a scene-wide medium has
 // none). A textured medium is heterogeneous and traced by delta tracking.
-#include "tsr/embree/ids.hpp"
+#include "tsr/embree/vocabulary.hpp"
 
 #include <glm/vec3.hpp>
 

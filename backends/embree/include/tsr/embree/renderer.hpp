@@ -1,13 +1,12 @@
 #pragma once
 
-#include "tsr/embree/camera.hpp"
 #include "tsr/embree/framebuffer.hpp"
 #include "tsr/embree/irradiance_field.hpp"
 #include "tsr/embree/radiance_filter.hpp"
-#include "tsr/embree/region.hpp"
 #include "tsr/embree/render_settings.hpp"
 #include "tsr/embree/sampler.hpp"
 #include "tsr/embree/scene.hpp"
+#include "tsr/embree/vocabulary.hpp"
 #include "tsr/embree/whitted_image.hpp"
 
 #include <atomic>

@@ -2,11 +2,10 @@
 
 #include "tsr/embree/device.hpp"
 #include "tsr/embree/environment.hpp"
-#include "tsr/embree/ids.hpp"
-#include "tsr/embree/light.hpp"
 #include "tsr/embree/material.hpp"
 #include "tsr/embree/mesh.hpp"
 #include "tsr/embree/texture.hpp"
+#include "tsr/embree/vocabulary.hpp"
 
 #include <glm/mat4x4.hpp>
 

@@ -1,7 +1,7 @@
 #pragma once
 
-#include "tsr/vk/ids.hpp"
 #include "tsr/vk/medium.hpp"
+#include "tsr/vk/vocabulary.hpp"
 
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>

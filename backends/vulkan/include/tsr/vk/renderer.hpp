@@ -1,11 +1,10 @@
 #pragma once
 
-#include "tsr/vk/camera.hpp"
 #include "tsr/vk/device.hpp"
 #include "tsr/vk/framebuffer.hpp"
 #include "tsr/vk/id_buffer.hpp"
-#include "tsr/vk/region.hpp"
 #include "tsr/vk/scene.hpp"
+#include "tsr/vk/vocabulary.hpp"
 
 #include <glm/vec4.hpp>
 

@@ -2,11 +2,10 @@
 
 #include "tsr/vk/device.hpp"
 #include "tsr/vk/environment.hpp"
-#include "tsr/vk/ids.hpp"
-#include "tsr/vk/light.hpp"
 #include "tsr/vk/material.hpp"
 #include "tsr/vk/mesh.hpp"
 #include "tsr/vk/texture.hpp"
+#include "tsr/vk/vocabulary.hpp"
 
 #include <glm/mat4x4.hpp>
 

@@ -6,8 +6,9 @@
 // indexes so an edit of one geometry or one material costs what uses it,
 // not every instance. Back-ends whose scene API has
 // addInstance / setInstanceTransform / setInstanceMaterial / removeInstance
-// and addLight / setLight / removeLight plug in through a types struct:
-//   struct Types { using Scene, MeshId, MaterialId, InstanceId, LightId, Light; };
+// and addLight / setLight / removeLight, in the shared vocabulary's handles
+// and lights (backends/common), plug in through a types struct:
+//   struct Types { using Scene; };
 // A Types with `static std::optional<ObjectId> object(const sg::Scene&, const FlatNode&)`
 // also tags each instance with an object id (addInstance's fourth argument);
 // none skips the instance.
@@ -16,6 +17,8 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "tsr/backend/ids.hpp"
+#include "tsr/backend/light.hpp"
 #include "tsr/med/dirty_predicates.hpp"
 #include "tsr/med/scene_flattening.hpp"
 
@@ -37,24 +40,24 @@ template <class Types>
 class InstancePlacement {
  public:
   using BackendScene = typename Types::Scene;
-  using MaterialId = typename Types::MaterialId;
+  using MaterialId = backend::MaterialId;
 
   struct Placed {
-    typename Types::InstanceId id;
+    backend::InstanceId id;
     sg::ContainerId geometry;
     glm::mat4 world;
     MaterialId material;
     glm::mat4 worldAtEnd;  // the world matrix at the frame interval's end (world when still)
   };
-  static constexpr bool kBlursMotion = BlursMotion<BackendScene, typename Types::InstanceId>;
+  static constexpr bool kBlursMotion = BlursMotion<BackendScene, backend::InstanceId>;
 
   // What the adapter decides; the placement only applies it.
   struct Hooks {
     // The back-end mesh of a geometry, or none when it is not rendered here.
-    std::function<std::optional<typename Types::MeshId>(sg::ContainerId geometry)> mesh;
+    std::function<std::optional<backend::MeshId>(sg::ContainerId geometry)> mesh;
     std::function<MaterialId(sg::ContainerId geometry)> material;
     // A light placed by its world matrix, or none.
-    std::function<std::optional<typename Types::Light>(const FlatNode& node)> light;
+    std::function<std::optional<backend::Light>(const FlatNode& node)> light;
   };
 
   void clear() {
@@ -158,9 +161,9 @@ class InstancePlacement {
  private:
   using Iterator = typename std::unordered_map<FlatKey, Placed>::iterator;
 
-  bool add(const sg::Scene& scene, const FlatNode& node, typename Types::MeshId mesh, MaterialId material,
+  bool add(const sg::Scene& scene, const FlatNode& node, backend::MeshId mesh, MaterialId material,
            BackendScene& backend) {
-    typename Types::InstanceId id;
+    backend::InstanceId id;
     if constexpr (TagsObjects<Types>) {
       auto object = Types::object(scene, node);
       if (!object) return false;
@@ -233,7 +236,7 @@ class InstancePlacement {
   std::unordered_map<FlatKey, Placed> instances_;
   std::unordered_map<sg::ContainerId, std::unordered_set<FlatKey>> byGeometry_;
   std::unordered_map<MaterialId, std::size_t> materialUsers_;
-  std::unordered_map<FlatKey, typename Types::LightId> lights_;
+  std::unordered_map<FlatKey, backend::LightId> lights_;
 };
 
 }  // namespace tsr::med

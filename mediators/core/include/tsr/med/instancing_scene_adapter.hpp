@@ -7,11 +7,12 @@
 // each guarded by a named dirty predicate (dirty_predicates.hpp), so a
 // moved transform updates only the instances below it, a material edit
 // only that material, and a ranged vertex edit only that range: none of
-// them costs a pass over every instance. A back-end plugs in through a
-// Types struct:
+// them costs a pass over every instance. The back-ends share their handles
+// and lights (backends/common), so lights are translated here, once
+// (light_translation.hpp). A back-end plugs in through a Types struct:
 //
 //   struct Types {
-//     using Device, Scene, MeshId, MaterialId, InstanceId, TextureId, LightId, Light, Environment;
+//     using Device, Scene, Environment;
 //     using Error;                                   // what the back-end throws for data it refuses
 //     static constexpr const char* kName;            // logs; attachment "<kName>.hidden" hides geometry
 //     static constexpr bool kResizableMeshes;        // setMeshData may change a mesh's size
@@ -21,7 +22,6 @@
 //     static auto material(const sg::Container* surface, const sg::VolumeMaterial* volume,
 //                          const std::function<std::optional<TextureId>(sg::ContainerId)>&);
 //     static auto texture(const sg::Image&);
-//     static Light light(const sg::Light&, const glm::mat4& world);
 //     static Environment background(const sg::Scene&, sg::ContainerId background);
 //   };
 #include <bit>
@@ -35,6 +35,7 @@
 #include <spdlog/spdlog.h>
 
 #include "tsr/med/instance_placement.hpp"
+#include "tsr/med/light_translation.hpp"
 #include "tsr/med/scene_adapter.hpp"
 
 namespace tsr::med {
@@ -189,7 +190,7 @@ class InstancingSceneAdapter final : public SceneAdapter {
   }
 
   // Vertex edits by range keep the topology: update those ranges only.
-  void updateRanges(const sg::Geometry& g, typename Types::MeshId mesh, const ChangeEntry& e) {
+  void updateRanges(const sg::Geometry& g, backend::MeshId mesh, const ChangeEntry& e) {
     using G = sg::Geometry;
     const auto* pos = e.rangedEdit(G::Positions);
     const auto* nrm = (Types::kMeshFields & sg::fieldBit(G::Normals)) ? e.rangedEdit(G::Normals) : nullptr;
@@ -219,16 +220,16 @@ class InstancingSceneAdapter final : public SceneAdapter {
 
   typename InstancePlacement<Types>::Hooks hooks(const sg::Scene& scene) {
     typename InstancePlacement<Types>::Hooks h;
-    h.mesh = [this, &scene](sg::ContainerId geometry) -> std::optional<typename Types::MeshId> {
+    h.mesh = [this, &scene](sg::ContainerId geometry) -> std::optional<backend::MeshId> {
       const auto* g = scene.find<sg::Geometry>(geometry);
       if (!g || hidden(*g)) return std::nullopt;
       return meshFor(scene, geometry);
     };
     h.material = [this, &scene](sg::ContainerId geometry) { return materialOfGeometry(scene, geometry); };
-    h.light = [&scene](const FlatNode& node) -> std::optional<typename Types::Light> {
+    h.light = [&scene](const FlatNode& node) -> std::optional<backend::Light> {
       const auto* light = scene.find<sg::Light>(node.id);
       if (!light) return std::nullopt;
-      return Types::light(*light, node.world);
+      return translateLight(*light, node.world);
     };
     return h;
   }
@@ -266,7 +267,7 @@ class InstancingSceneAdapter final : public SceneAdapter {
     });
   }
 
-  std::optional<typename Types::MeshId> meshFor(const sg::Scene& scene, sg::ContainerId id) {
+  std::optional<backend::MeshId> meshFor(const sg::Scene& scene, sg::ContainerId id) {
     if (auto it = meshes_.find(id); it != meshes_.end()) return it->second;
     if (unrenderable_.count(id)) return std::nullopt;
     const auto* g = scene.find<sg::Geometry>(id);
@@ -304,19 +305,19 @@ class InstancingSceneAdapter final : public SceneAdapter {
     return (surface && references(*surface, image)) || (volume && references(*volume, image));
   }
 
-  typename Types::MaterialId materialFor(const sg::Scene& scene, const MaterialKey& key) {
+  backend::MaterialId materialFor(const sg::Scene& scene, const MaterialKey& key) {
     if (auto it = materials_.find(key); it != materials_.end()) return it->second;
     auto m = scene_->addMaterial(translate(scene, key));
     materials_.emplace(key, m);
     return m;
   }
 
-  typename Types::MaterialId materialOfGeometry(const sg::Scene& scene, sg::ContainerId geometry) {
+  backend::MaterialId materialOfGeometry(const sg::Scene& scene, sg::ContainerId geometry) {
     const auto* g = scene.find<sg::Geometry>(geometry);
     return materialFor(scene, g ? MaterialKey{g->material(), g->volume()} : MaterialKey{});
   }
 
-  std::optional<typename Types::TextureId> textureFor(const sg::Scene& scene, sg::ContainerId id) {
+  std::optional<backend::TextureId> textureFor(const sg::Scene& scene, sg::ContainerId id) {
     if (auto it = textures_.find(id); it != textures_.end()) return it->second;
     const auto* image = scene.find<sg::Image>(id);
     if (!image) return std::nullopt;
@@ -335,10 +336,10 @@ class InstancingSceneAdapter final : public SceneAdapter {
   std::unique_ptr<BackendScene> scene_;
   typename Types::Environment environment_;
   InstancePlacement<Types> placement_;
-  std::unordered_map<sg::ContainerId, typename Types::MeshId> meshes_;
-  std::unordered_set<sg::ContainerId> unrenderable_;             // invalid or empty geometry, skipped
-  std::map<MaterialKey, typename Types::MaterialId> materials_;  // kNoContainer: the default, or no volume
-  std::unordered_map<sg::ContainerId, typename Types::TextureId> textures_;
+  std::unordered_map<sg::ContainerId, backend::MeshId> meshes_;
+  std::unordered_set<sg::ContainerId> unrenderable_;      // invalid or empty geometry, skipped
+  std::map<MaterialKey, backend::MaterialId> materials_;  // kNoContainer: the default, or no volume
+  std::unordered_map<sg::ContainerId, backend::TextureId> textures_;
   Counters counters_;
 };
 

@@ -1,7 +1,7 @@
 #pragma once
 // Scene graph values in the form every back-end's translation starts from:
-// linear RGBA texels, a baked gradient sky, a light placed in the world,
-// and the class of surface a material describes. One place, so that the
+// linear RGBA texels, a baked gradient sky and the class of surface a
+// material describes (lights: light_translation.hpp). One place, so that the
 // back-ends agree (the cross-back-end tests compare their images).
 #include <cstdint>
 #include <utility>
@@ -25,15 +25,6 @@ struct BakedSky {
   std::vector<glm::vec4> texels;
 };
 BakedSky bakeGradient(const sg::Background& background);
-
-struct PlacedLight {
-  sg::LightKind kind = sg::LightKind::Point;
-  glm::vec3 position{0.0f};
-  glm::vec3 direction{0.0f, 0.0f, -1.0f};  // normalised, where the light shines
-  glm::vec3 power{1.0f};                   // colour x intensity
-  float innerCone = 0.0f, outerCone = 0.0f;
-};
-PlacedLight placeLight(const sg::Light& light, const glm::mat4& world);
 
 // How a SurfaceMaterial maps onto the surface models back-ends share:
 // transmission over 0.5 is glass (smooth below roughness 0.05) or a rough

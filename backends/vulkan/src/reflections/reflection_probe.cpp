@@ -1,0 +1,275 @@
+// The reflection probe: the scene seen from the centre of its bounds as six
+// 90-degree faces (shaders/probe.glsl samples them), so mirrors and glass
+// show the room instead of the environment's average. Drawn only when an
+// instance is a Mirror or Glass and the scene changed since the last
+// probe; each face is its own submission because the frame uniform holds
+// one camera. The faces are drawn without shadows (the shadow maps of this
+// frame come later), without transparent instances and without the mirrors
+// and glass themselves (they would hide what they reflect).
+#include "projection.hpp"
+#include "reflections/probe_prefilter.hpp"
+#include "renderer_impl.hpp"
+
+#include <glm/gtc/constants.hpp>
+
+namespace tsr::vk {
+
+// Usable only when its centre is outside every mirror and glass instance
+// (a probe inside a mirror sphere sees its inside); rough surfaces reflect
+// it only when the centre is outside every instance but a room around the
+// whole scene, so that what it sees is the scene around that centre, and
+// when some surface is glossy enough to show it.
+Renderer::Impl::ProbeUse Renderer::Impl::wantsProbe(const SceneState& s) const {
+  if (s.sceneEmpty) return ProbeUse::None;
+  const glm::vec3 centre = 0.5f * (s.sceneMin + s.sceneMax);
+  const auto alive = std::count_if(s.instances.begin(), s.instances.end(), [](const auto& i) { return i.alive; });
+  bool anyReflective = false, anyGlossy = false, centreFree = true;
+  for (const DrawGroup& g : s.opaqueGroups) {
+    const Material& m = s.materials[g.material].material;
+    const bool mirror = reflective(m);
+    anyReflective = anyReflective || mirror;
+    anyGlossy = anyGlossy || glossy(m);
+    for (std::uint32_t i = g.first; i < g.first + g.count; ++i) {
+      glm::vec3 lo, hi;
+      s.instanceBounds(s.opaqueOrder[i], lo, hi);
+      if (glm::all(glm::greaterThanEqual(centre, lo)) && glm::all(glm::lessThanEqual(centre, hi))) {
+        if (mirror) return ProbeUse::None;
+        // A room around the rest of the scene does not hide it from its centre.
+        const bool container = alive > 1 && glm::all(glm::greaterThanEqual(hi - lo, 0.99f * (s.sceneMax - s.sceneMin)));
+        centreFree = centreFree && container;
+      }
+    }
+  }
+  if (centreFree && anyGlossy) return ProbeUse::RoughReflections;
+  return anyReflective ? ProbeUse::Mirrors : ProbeUse::None;
+}
+
+bool Renderer::Impl::hiddenFromProbe(const SceneState& s, std::uint32_t slot) {
+  glm::vec3 lo, hi;
+  s.instanceBounds(slot, lo, hi);
+  const glm::vec3 margin = 1e-3f * (s.sceneMax - s.sceneMin);
+  return glm::all(glm::greaterThan(lo, s.sceneMin + margin)) && glm::all(glm::lessThan(hi, s.sceneMax - margin));
+}
+
+void Renderer::Impl::ensureProbeImages() {
+  if (probe[0]) return;
+  for (Image& img : probe) {
+    ImageDesc d;
+    d.width = d.height = kProbeSize;
+    d.layers = 6;
+    d.arrayView = true;
+    d.format = colourFormat(1);
+    d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    img = Image(device, d);
+  }
+  ImageDesc d;
+  d.width = d.height = kProbeSize;
+  d.format = kDepthFormat;
+  d.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
+  d.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+  probeDepth = Image(device, d);
+  const std::vector<glm::vec4> black(std::size_t(ProbeLevels::kSize) * ProbeLevels::kHeight, glm::vec4(0.0f));
+  probeLevels = uploadImage(device, ProbeLevels::kSize, ProbeLevels::kHeight, VK_FORMAT_R32G32B32A32_SFLOAT,
+                            black.data(), black.size() * sizeof(glm::vec4));
+  probeFresh = true;
+}
+
+void Renderer::Impl::writeProbeDescriptor(const SceneState& s, const Image& image) {
+  const VkDescriptorImageInfo info[2] = {{s.sampler, image.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+                                         {s.sampler, probeLevels.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
+  VkWriteDescriptorSet w[2];
+  for (std::uint32_t i = 0; i < 2; ++i) {
+    w[i] = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+    w[i].dstSet = frameSet;
+    w[i].dstBinding = 9 + i;
+    w[i].descriptorCount = 1;
+    w[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    w[i].pImageInfo = &info[i];
+  }
+  vkUpdateDescriptorSets(device.handle(), 2, w, 0, nullptr);
+}
+
+// After the faces were drawn into probe[probeCurrent] (SHADER_READ_ONLY):
+// copies them to the host and prefilters them into the rough levels.
+void Renderer::Impl::prefilterProbeLevels(const SceneState& s) {
+  const Image& faces = probe[probeCurrent];
+  const bool full = faces.desc().format == VK_FORMAT_R32G32B32A32_SFLOAT;
+  const std::size_t texels = std::size_t(6) * kProbeSize * kProbeSize;
+  const VkDeviceSize bytes = texels * (full ? 16 : 8);
+  ensureHost(device, probeReadback, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+  VkCommandBuffer cmd = commands->buffer();
+  check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
+  VkCommandBufferBeginInfo bi = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
+  imageBarrier(cmd, faces.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+               VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+               VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, 6);
+  VkBufferImageCopy region{};
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 6};
+  region.imageExtent = {kProbeSize, kProbeSize, 1};
+  vkCmdCopyImageToBuffer(cmd, faces.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, probeReadback.handle(), 1, &region);
+  imageBarrier(cmd, faces.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
+               VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT, 6);
+  VkBufferMemoryBarrier host = vkStruct<VkBufferMemoryBarrier>(VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER);
+  host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+  host.srcQueueFamilyIndex = host.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  host.buffer = probeReadback.handle();
+  host.size = VK_WHOLE_SIZE;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1, &host, 0,
+                       nullptr);
+  check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+  commands->submitAndWait("reflection probe readback");
+
+  std::vector<glm::vec4> radiance(texels);
+  if (full) {
+    std::memcpy(radiance.data(), probeReadback.mapped(), texels * sizeof(glm::vec4));
+  } else {
+    const auto* half = static_cast<const std::uint16_t*>(probeReadback.mapped());
+    for (std::size_t i = 0; i < texels; ++i)
+      for (int c = 0; c < 4; ++c) radiance[i][c] = glm::unpackHalf1x16(half[4 * i + c]);
+  }
+  const std::vector<glm::vec4> levels = prefilterProbe(radiance, kProbeSize, s.environment, fog);
+  probeLevels = uploadImage(device, ProbeLevels::kSize, ProbeLevels::kHeight, VK_FORMAT_R32G32B32A32_SFLOAT,
+                            levels.data(), levels.size() * sizeof(glm::vec4));
+}
+
+// Called after prepareFrame (which wrote this frame's uniform and
+// descriptors); leaves both as the frame needs them.
+void Renderer::Impl::updateProbe(const SceneState& s, const RenderSettings& settings, GpuFrame& frame,
+                                 RenderStats& stats) {
+  ensureProbeImages();
+  const ProbeKey key{&s, s.version};
+  // Bounds of every instance: once per scene version, not every frame.
+  if (probeWantedFor != key) {
+    probeWanted = wantsProbe(s);
+    probeWantedFor = key;
+  }
+  const ProbeUse wanted = settings.reflectionProbe ? probeWanted : ProbeUse::None;
+  const bool use = wanted != ProbeUse::None;
+  if (use && (probeHeld != key || probeUseHeld != wanted)) {
+    // Draw into the image the shader does not read; the probe flag is off
+    // while drawing, so the faces never sample a probe.
+    Image& into = probe[1 - probeCurrent];
+    writeProbeDescriptor(s, probe[probeCurrent]);
+    const glm::vec3 centre = 0.5f * (s.sceneMin + s.sceneMax);
+    const float size = std::max(glm::length(s.sceneMax - s.sceneMin), 1e-3f);
+    RenderSettings faceSettings = settings;
+    faceSettings.msaaSamples = 1;
+    for (std::uint32_t f = 0; f < 6; ++f) {
+      const Camera camera = Camera::lookAt(centre, centre + kProbeFaceForward[f], kProbeFaceUp[f],
+                                           glm::half_pi<float>(), 1.0f, 1e-3f * size, 4.0f * size);
+      const Region region = Region::full(kProbeSize, kProbeSize);
+      GpuFrame face = frame;
+      face.viewProj = projection(camera, region) * camera.worldToCamera();
+      face.invViewProj = glm::inverse(face.viewProj);
+      face.cameraPos = glm::vec4(centre, 1.0f);
+      face.viewport = glm::vec4(float(kProbeSize), float(kProbeSize), 0.0f, 0.0f);
+      face.probeCentre = glm::vec4(0.0f);
+      std::memcpy(frameBuffer.mapped(), &face, sizeof(face));
+
+      VkCommandBuffer cmd = commands->buffer();
+      check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
+      VkCommandBufferBeginInfo bi = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
+      bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+      check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
+      if (f == 0) prepareProbeLayouts(cmd, into);
+      imageBarrier(cmd, probeDepth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                   VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+                   VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+                   VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &frameSet, 0, nullptr);
+      VkRenderingAttachmentInfo ca = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
+      ca.imageView = into.layerView(f);
+      ca.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+      ca.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+      ca.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+      // Alpha 0 marks the background for prefilterProbe().
+      ca.clearValue.color = {{clearColour.r, clearColour.g, clearColour.b, 0.0f}};
+      VkRenderingAttachmentInfo da = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
+      da.imageView = probeDepth.view();
+      da.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+      da.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+      da.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+      da.clearValue.depthStencil = {0.0f, 0};
+      VkRenderingInfo ri = vkStruct<VkRenderingInfo>(VK_STRUCTURE_TYPE_RENDERING_INFO);
+      ri.renderArea = {{0, 0}, {kProbeSize, kProbeSize}};
+      ri.layerCount = 1;
+      ri.colorAttachmentCount = 1;
+      ri.pColorAttachments = &ca;
+      ri.pDepthAttachment = &da;
+      vkCmdBeginRendering(cmd, &ri);
+      VkViewport vp{0.0f, 0.0f, float(kProbeSize), float(kProbeSize), 0.0f, 1.0f};
+      vkCmdSetViewport(cmd, 0, 1, &vp);
+      vkCmdSetScissor(cmd, 0, 1, &ri.renderArea);
+      boundPipeline = VK_NULL_HANDLE;
+      boundBlock = boundMaterial = ~0u;
+      RenderStats ignored;
+      drawingProbe = true;
+      drawOpaque(cmd, s, faceSettings, false, VK_NULL_HANDLE, ignored);
+      drawingProbe = false;
+      vkCmdEndRendering(cmd);
+      if (f == 5)
+        imageBarrier(cmd, into.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                     VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                     VK_ACCESS_SHADER_READ_BIT, 6);
+      check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+      commands->submitAndWait("reflection probe");
+    }
+    probeCurrent = 1 - probeCurrent;
+    probeHeld = key;
+    probeUseHeld = wanted;
+    probeCentreHeld = centre;
+    if (wanted == ProbeUse::RoughReflections) prefilterProbeLevels(s);
+    ++stats.probes;
+  } else if (probeFresh) {
+    VkCommandBuffer cmd = commands->buffer();
+    check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
+    VkCommandBufferBeginInfo bi = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
+    check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
+    prepareProbeLayouts(cmd, probe[1 - probeCurrent]);
+    imageBarrier(cmd, probe[1 - probeCurrent].handle(), VK_IMAGE_ASPECT_COLOR_BIT,
+                 VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                 VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                 VK_ACCESS_SHADER_READ_BIT, 6);
+    check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+    commands->submitAndWait("reflection probe layouts");
+  }
+  frame.probeCentre = use && probeHeld
+                          ? glm::vec4(probeCentreHeld, probeUseHeld == ProbeUse::RoughReflections ? 2.0f : 1.0f)
+                          : glm::vec4(0.0f);
+  std::memcpy(frameBuffer.mapped(), &frame, sizeof(frame));
+  writeProbeDescriptor(s, probe[probeCurrent]);
+}
+
+// Both probe images and the frame's sampled images get defined layouts
+// before anything samples them: `into` is made a colour attachment, the
+// other probe image (first time) and fresh shadow and volume images
+// shader-readable (their contents are drawn later, where used).
+void Renderer::Impl::prepareProbeLayouts(VkCommandBuffer cmd, const Image& into) {
+  imageBarrier(cmd, into.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+               VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
+               VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, 6);
+  if (probeFresh) {
+    const Image& other = &into == &probe[0] ? probe[1] : probe[0];
+    imageBarrier(cmd, other.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+                 VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT, 6);
+    probeFresh = false;
+  }
+  if (!shadowsHeld)
+    imageBarrier(cmd, shadowMap->image().handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+                 VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT, shadowMap->layers());
+  if (volumeBackFresh) {
+    imageBarrier(cmd, volumeBack->handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+                 VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+    volumeBackFresh = false;
+  }
+}
+
+}  // namespace tsr::vk

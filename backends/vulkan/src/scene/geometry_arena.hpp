@@ -1,0 +1,69 @@
+#pragma once
+
+#include "resources/buffer.hpp"
+
+#include "tsr/vk/device.hpp"
+#include "tsr/vk/mesh.hpp"
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace tsr::vk {
+
+// Where one mesh lives in the arena: its block, first vertex and first index.
+struct GeometrySpan {
+  std::uint32_t block = 0;
+  std::uint32_t baseVertex = 0;
+  std::uint32_t firstIndex = 0;
+};
+
+// The geometry of many meshes in few large buffers (the seed's static
+// geometry chunk): each block holds four streams (positions, normals, uvs,
+// 32-bit mesh-local indices) filled front to back, so consecutive draws of
+// different meshes bind nothing new and can share one indirect call. Blocks
+// double in size up to a cap; a mesh larger than the cap gets a block of
+// its own. Space of removed meshes is reused only when its whole block
+// empties. Memory that is device-local and host-visible (lavapipe, BAR) is
+// written directly, other memory through staging copies.
+class GeometryArena {
+ public:
+  explicit GeometryArena(const Device& device);
+
+  // Copies the mesh in; missing normals and uvs are zero. Returns where it is.
+  GeometrySpan add(const MeshData& data);
+  // Replaces positions (and normals when given) [first, first + n) of a mesh.
+  void updateVertices(const GeometrySpan& span, std::uint32_t first, std::span<const glm::vec3> positions,
+                      std::span<const glm::vec3> normals);
+  void release(const GeometrySpan& span);
+  // A mesh's positions and indices read back, for the rare uses that need
+  // them on the CPU (emitter patches, bounds after a vertex edit): the
+  // scene keeps no copy.
+  std::vector<glm::vec3> positions(const GeometrySpan& span, std::uint32_t count) const;
+  std::vector<std::uint32_t> indices(const GeometrySpan& span, std::uint32_t count) const;
+
+  // Binds the block's position stream (streams = 1) or all three, and its indices.
+  void bind(VkCommandBuffer cmd, std::uint32_t block, std::uint32_t streams) const;
+  std::uint64_t bytesAllocated() const { return allocated_; }
+
+ private:
+  struct Block {
+    Buffer positions, normals, uvs, indices;
+    std::uint32_t vertexCapacity = 0, indexCapacity = 0;
+    std::uint32_t vertices = 0, indexCount = 0;
+    std::uint32_t live = 0;  // meshes in it
+  };
+  std::uint32_t blockFor(std::uint32_t vertices, std::uint32_t indices);
+  void write(const Buffer& dst, VkDeviceSize offset, const void* bytes, VkDeviceSize size);
+  void read(const Buffer& src, VkDeviceSize offset, void* bytes, VkDeviceSize size) const;
+
+  const Device& device_;
+  std::vector<Block> blocks_;
+  std::uint32_t current_ = 0;  // the block being filled
+  std::uint64_t allocated_ = 0;
+  bool hostVisible_ = true;
+};
+
+}  // namespace tsr::vk
