@@ -107,19 +107,30 @@ std::pair<std::size_t, std::size_t> fiveFrames(std::size_t k, std::size_t lo, st
   return {a, a + span - 1};
 }
 
-// The window's frames, oldest first, with `half`'s counts and energies (a
-// half-set's energy counted twice: it stands for all photons) and their
-// prefix sums over time. `Slot` is the sequence's buffered frame.
-template <class Slot>
-Window windowOf(const std::vector<const Slot*>& slots, std::size_t centre, std::size_t elements, PhotonHalf half,
-                float scale) {
+}  // namespace
+
+Reconstruction PhotonSequence::reconstruct(std::int64_t frame, PhotonHalf half) const {
+  const State& s = *s_;
+  const PhotonSettings& cfg = s.settings;
+  const State::Slot* centreSlot = &s.buffered(frame);
+  const ElementSet& set = *s.elements;
+  const std::size_t elements = set.elementCount();
+  const std::int64_t h = lookahead();
+
   Window w;
   w.elements = elements;
-  w.centre = centre;
+  std::vector<const State::Slot*> slots;
+  for (std::int64_t f = frame - h; f <= frame + h; ++f)
+    if (const State::Slot* sl = s.slot(f)) {
+      if (f == frame) w.centre = slots.size();
+      slots.push_back(sl);
+    }
   w.frames = slots.size();
   w.count.resize(w.frames * elements);
   w.countPrefix.assign((w.frames + 1) * elements, 0);
   w.energyPrefix.assign((w.frames + 1) * elements, glm::vec3(0.0f));
+  // A half-set's energy counts twice: it stands for all photons.
+  const float scale = half == PhotonHalf::All ? 1.0f : 2.0f;
   for (std::size_t k = 0; k < w.frames; ++k) {
     for (std::size_t e = 0; e < elements; ++e) {
       const std::uint32_t* c = &slots[k]->count[2 * e];
@@ -131,12 +142,9 @@ Window windowOf(const std::vector<const Slot*>& slots, std::size_t centre, std::
       w.energyPrefix[(k + 1) * elements + e] = w.energyPrefix[k * elements + e] + energy;
     }
   }
-  return w;
-}
 
-// Eq. 5 over the whole window, the common case, computed once.
-std::vector<glm::vec3> wholeWindowIrradiance(const Window& w, const ElementGeometry& geo) {
-  const std::size_t elements = w.elements;
+  const ElementGeometry& geo = centreSlot->geometry;
+  // Eq. 5 over the whole window, the common case, computed once.
   std::vector<glm::vec3> wholeWindow(w.frames * elements);
   for (std::size_t k = 0; k < w.frames; ++k)
     for (std::size_t e = 0; e < elements; ++e) {
@@ -144,235 +152,28 @@ std::vector<glm::vec3> wholeWindowIrradiance(const Window& w, const ElementGeome
       wholeWindow[k * elements + e] =
           geo.area[e] > 0.0f ? w.energy(a, b, e) / (float(b - a + 1) * geo.area[e]) : glm::vec3(0.0f);
     }
-  return wholeWindow;
-}
-
-// A light whose power steps between two frames (switched, dimmed at
-// once) changes every element it reaches: the window of every element
-// ends there. The emitted power is known exactly, so unlike the counts'
-// test this needs no noise margin; gradual changes below the step pass.
-// Returns the first and last frame around `centre` without such a step.
-template <class Slot>
-std::pair<std::size_t, std::size_t> emissionExtent(const std::vector<const Slot*>& slots, std::size_t centre,
-                                                   float emissionStep) {
+  // A light whose power steps between two frames (switched, dimmed at
+  // once) changes every element it reaches: the window of every element
+  // ends there. The emitted power is known exactly, so unlike the counts'
+  // test this needs no noise margin; gradual changes below the step pass.
   auto emissionJump = [&](std::size_t a, std::size_t b) {
     const auto& pa = slots[a]->sourcePower;
     const auto& pb = slots[b]->sourcePower;
     if (pa.size() != pb.size()) return true;
     for (std::size_t i = 0; i < pa.size(); ++i) {
       const float la = luminance(pa[i]), lb = luminance(pb[i]);
-      if (std::abs(la - lb) > emissionStep * std::max(la, lb)) return true;
+      if (std::abs(la - lb) > cfg.emissionStep * std::max(la, lb)) return true;
     }
     return false;
   };
-  std::pair<std::size_t, std::size_t> emission{centre, centre};
+  std::pair<std::size_t, std::size_t> emission{w.centre, w.centre};
   while (emission.first > 0 && !emissionJump(emission.first - 1, emission.first)) --emission.first;
-  while (emission.second + 1 < slots.size() && !emissionJump(emission.second, emission.second + 1)) ++emission.second;
-  return emission;
-}
-
-// What the filter of every element reads: the window, the mesh, the
-// settings and what follows from them.
-struct FilterInputs {
-  const Window& w;
-  const ElementSet& set;
-  const ElementGeometry& geo;
-  const PhotonSettings& cfg;
-  const std::vector<glm::vec3>& wholeWindow;
-  std::pair<std::size_t, std::size_t> emission;
-  float sigmaT, cosCrease;
-  float target;  // eq. 4: photons in the support
-  std::size_t minSide;
-  float quantum;  // one photon's energy in this half-set
-};
-
-// Per thread: visit stamps for the ring search.
-struct Scratch {
-  std::vector<std::uint32_t> stamp;
-  std::uint32_t current = 0;
-  std::vector<std::uint32_t> members;
-  std::vector<std::uint32_t> ringEnd;
-  std::vector<float> supportCounts;  // photons per frame over the support
-};
-
-// Ring neighbourhoods of q (BFS layers over shared corners, not across
-// creases) until the support holds `want` photons over frames [lo, hi],
-// plus one ring, into sc.members and sc.ringEnd. Returns the number of rings.
-std::size_t growSupport(const FilterInputs& in, Scratch& sc, std::size_t q, std::size_t lo, std::size_t hi,
-                        float want) {
-  const Window& w = in.w;
-  const ElementSet& set = in.set;
-  if (++sc.current == 0) std::fill(sc.stamp.begin(), sc.stamp.end(), 0), sc.current = 1;
-  sc.members.assign(1, std::uint32_t(q));
-  sc.ringEnd.assign(1, 1);
-  sc.stamp[q] = sc.current;
-  float photons = float(w.photons(lo, hi, q));
-  std::size_t rings = 0, extra = 0;
-  while (rings < in.cfg.maxRings + 1) {
-    if (photons >= want || rings == in.cfg.maxRings) {
-      if (extra == 1) break;
-      extra = 1;
-    }
-    const std::size_t from = rings == 0 ? 0 : sc.ringEnd[rings - 1], to = sc.ringEnd[rings];
-    for (std::size_t m = from; m < to; ++m) {
-      const std::uint32_t* c = &set.corners[3 * std::size_t(sc.members[m])];
-      for (int k = 0; k < 3; ++k) {
-        for (std::uint32_t i = set.vertexStart[c[k]]; i < set.vertexStart[c[k] + 1]; ++i) {
-          const std::uint32_t p = set.vertexElements[i];
-          if (sc.stamp[p] == sc.current) continue;
-          sc.stamp[p] = sc.current;
-          if (glm::dot(in.geo.normal[p], in.geo.normal[q]) < in.cosCrease) continue;
-          sc.members.push_back(p);
-          photons += float(w.photons(lo, hi, p));
-        }
-      }
-    }
-    if (sc.members.size() == to) break;  // nothing more to reach
-    sc.ringEnd.push_back(std::uint32_t(sc.members.size()));
-    ++rings;
-    if (extra == 1) break;
-  }
-  return rings;
-}
-
-// Element q's temporal window: frames [lo, hi] around the centre.
-struct Extent {
-  std::size_t back = 0, fwd = 0, lo = 0, hi = 0;
-  std::size_t wholeRings = 0;  // the rings of the whole window's support
-};
-
-// The validity test counts the photons of the support the whole window
-// would use, not of q alone: one element sees a few photons a frame, and
-// with sigma = sqrt(mu) a step of several times its level would pass
-// (002 tests the energy of a region large enough to be stable). The
-// window ends at an emission step too.
-Extent temporalExtent(const FilterInputs& in, Scratch& sc, std::size_t q) {
-  const Window& w = in.w;
-  Extent x;
-  x.wholeRings = growSupport(in, sc, q, 0, w.frames - 1, in.target);
-  sc.supportCounts.assign(w.frames, 0.0f);
-  for (std::uint32_t p : sc.members)
-    for (std::size_t k = 0; k < w.frames; ++k) sc.supportCounts[k] += float(w.n(k, p));
-  auto [back, fwd] = validExtent(sc.supportCounts, w.centre, in.cfg.validityK, in.minSide);
-  x.back = std::min(back, w.centre - in.emission.first);
-  x.fwd = std::min(fwd, in.emission.second - w.centre);
-  x.lo = w.centre - x.back;
-  x.hi = w.centre + x.fwd;
-  return x;
-}
-
-// Weber eq. 2 at q over the support sc.members and frames [lo, hi]: weights
-// by distance (sigmaS), time (sigmaT) and irradiance difference (sigmaI).
-glm::vec3 bilateral(const FilterInputs& in, const Scratch& sc, std::size_t q, std::size_t lo, std::size_t hi,
-                    float sigmaS) {
-  const Window& w = in.w;
-  const ElementGeometry& geo = in.geo;
-  const std::size_t elements = w.elements;
-  const bool whole = lo == 0 && hi + 1 == w.frames;
-  auto irradiance = [&](std::size_t k, std::size_t p) {  // Weber eq. 5
-    if (whole) return in.wholeWindow[k * elements + p];
-    const auto [a, b] = fiveFrames(k, lo, hi);
-    const float area = geo.area[p];
-    return area > 0.0f ? w.energy(a, b, p) / (float(b - a + 1) * area) : glm::vec3(0.0f);
-  };
-  const auto [a0, b0] = fiveFrames(w.centre, lo, hi);
-  const float ref = luminance(irradiance(w.centre, q));
-  // sigma_I = l * I_t0(q) (§5.1.3), but never below the reference's own
-  // Poisson noise, nor, where q saw no photon, below one photon's worth.
-  const float n5 = float(w.photons(a0, b0, q));
-  const float floorI = geo.area[q] > 0.0f ? in.quantum / (float(b0 - a0 + 1) * geo.area[q]) : 0.0f;
-  const float sigmaI = std::max(in.cfg.influence, 1.0f / std::sqrt(std::max(n5, 1.0f))) * std::max(ref, floorI);
-  const float invS = sigmaS > 0.0f ? 1.0f / (2.0f * sigmaS * sigmaS) : 0.0f;
-  const float invI = sigmaI > 0.0f ? 1.0f / (2.0f * sigmaI * sigmaI) : 0.0f;
-  const float invT = 1.0f / (2.0f * in.sigmaT * in.sigmaT);
-  float wT[256];
-  for (std::size_t k = lo; k <= hi; ++k) {
-    const float dt = float(k) - float(w.centre);
-    wT[k] = std::exp(-dt * dt * invT);
-  }
-  glm::vec3 sum(0.0f);
-  float weights = 0.0f;
-  for (std::uint32_t p : sc.members) {
-    const glm::vec3 d = geo.centroid[p] - geo.centroid[q];
-    const float wS = std::exp(-glm::dot(d, d) * invS);
-    for (std::size_t k = lo; k <= hi; ++k) {
-      const glm::vec3 value = irradiance(k, p);
-      const float di = luminance(value) - ref;
-      const float wgt = wS * wT[k] * (sigmaI > 0.0f ? std::exp(-di * di * invI) : 1.0f);
-      sum += wgt * value;
-      weights += wgt;
-    }
-  }
-  return weights > 0.0f ? sum / weights : glm::vec3(0.0f);
-}
-
-// One element: its temporal window, its support over that window, and the
-// filtered irradiance; `cut` says whether its window is shorter than the
-// whole.
-void filterElement(const FilterInputs& in, Scratch& sc, std::size_t q, Reconstruction& out,
-                   std::vector<glm::vec3>& filtered, std::vector<std::uint8_t>& cut) {
-  const Window& w = in.w;
-  if (sc.stamp.size() != w.elements) sc.stamp.assign(w.elements, 0), sc.current = 0;
-  const Extent x = temporalExtent(in, sc, q);
-  out.backward[q] = std::uint8_t(x.back);
-  out.forward[q] = std::uint8_t(x.fwd);
-  cut[q] = (x.lo > 0 || x.hi + 1 < w.frames) ? 1 : 0;
-  const std::size_t rings =
-      (x.lo == 0 && x.hi + 1 == w.frames) ? x.wholeRings : growSupport(in, sc, q, x.lo, x.hi, in.target);
-  out.rings[q] = std::uint8_t(rings);
-  float ringRadius = 0.0f;
-  if (rings > 0)
-    for (std::size_t m = sc.ringEnd[rings - 1]; m < sc.members.size(); ++m)
-      ringRadius = std::max(ringRadius, glm::length(in.geo.centroid[sc.members[m]] - in.geo.centroid[q]));
-  filtered[q] = bilateral(in, sc, q, x.lo, x.hi, 0.5f * ringRadius);
-}
-
-// The share of lit elements whose window was cut short.
-float spatialFallback(const Window& w, const std::vector<std::uint8_t>& cut) {
-  std::size_t lit = 0, cutLit = 0;
-  for (std::size_t e = 0; e < w.elements; ++e) {
-    if (w.photons(0, w.frames - 1, e) == 0) continue;
-    ++lit;
-    cutLit += cut[e];
-  }
-  return lit ? float(cutLit) / float(lit) : 0.0f;
-}
-
-}  // namespace
-
-// In steps: the window of buffered frames around `frame`, the emission
-// steps that bound it, then each element filtered in parallel, and the
-// corner values that make the field continuous.
-Reconstruction PhotonSequence::reconstruct(std::int64_t frame, PhotonHalf half) const {
-  const State& s = *s_;
-  const PhotonSettings& cfg = s.settings;
-  const State::Slot* centreSlot = &s.buffered(frame);
-  const ElementSet& set = *s.elements;
-  const std::size_t elements = set.elementCount();
-  const std::int64_t h = lookahead();
-
-  std::vector<const State::Slot*> slots;
-  std::size_t centre = 0;
-  for (std::int64_t f = frame - h; f <= frame + h; ++f)
-    if (const State::Slot* sl = s.slot(f)) {
-      if (f == frame) centre = slots.size();
-      slots.push_back(sl);
-    }
-  const float scale = half == PhotonHalf::All ? 1.0f : 2.0f;
-  const Window w = windowOf(slots, centre, elements, half, scale);
-  const ElementGeometry& geo = centreSlot->geometry;
-  const std::vector<glm::vec3> wholeWindow = wholeWindowIrradiance(w, geo);
-  const FilterInputs in{w,
-                        set,
-                        geo,
-                        cfg,
-                        wholeWindow,
-                        emissionExtent(slots, w.centre, cfg.emissionStep),
-                        0.5f * float(cfg.tMax),
-                        std::cos(cfg.creaseAngle),
-                        1.0f / (cfg.accuracy * cfg.accuracy),
-                        (std::max(cfg.minFrames, 1u) - 1) / 2,
-                        scale * s.photonEnergy};
+  while (emission.second + 1 < w.frames && !emissionJump(emission.second, emission.second + 1)) ++emission.second;
+  const float sigmaT = 0.5f * float(cfg.tMax);
+  const float cosCrease = std::cos(cfg.creaseAngle);
+  const float target = 1.0f / (cfg.accuracy * cfg.accuracy);  // eq. 4: photons in the support
+  const std::size_t minSide = (std::max(cfg.minFrames, 1u) - 1) / 2;
+  const float quantum = scale * s.photonEnergy;  // one photon's energy in this half-set
 
   Reconstruction out;
   out.backward.resize(elements);
@@ -380,15 +181,133 @@ Reconstruction PhotonSequence::reconstruct(std::int64_t frame, PhotonHalf half) 
   out.rings.resize(elements);
   std::vector<glm::vec3> filtered(elements, glm::vec3(0.0f));
   std::vector<std::uint8_t> cut(elements, 0);
+
+  // Per thread: visit stamps for the ring search.
+  struct Scratch {
+    std::vector<std::uint32_t> stamp;
+    std::uint32_t current = 0;
+    std::vector<std::uint32_t> members;
+    std::vector<std::uint32_t> ringEnd;
+    std::vector<float> supportCounts;  // photons per frame over the support
+  };
   tbb::enumerable_thread_specific<Scratch> scratch;
+
+  auto element = [&](std::size_t q) {
+    Scratch& sc = scratch.local();
+    if (sc.stamp.size() != elements) sc.stamp.assign(elements, 0), sc.current = 0;
+    // Ring neighbourhoods (BFS layers over shared corners, not across
+    // creases) until the support holds `target` photons over frames
+    // [lo, hi], plus one ring. Returns the number of rings.
+    auto grow = [&](std::size_t lo, std::size_t hi, float want) {
+      if (++sc.current == 0) std::fill(sc.stamp.begin(), sc.stamp.end(), 0), sc.current = 1;
+      sc.members.assign(1, std::uint32_t(q));
+      sc.ringEnd.assign(1, 1);
+      sc.stamp[q] = sc.current;
+      float photons = float(w.photons(lo, hi, q));
+      std::size_t rings = 0, extra = 0;
+      while (rings < cfg.maxRings + 1) {
+        if (photons >= want || rings == cfg.maxRings) {
+          if (extra == 1) break;
+          extra = 1;
+        }
+        const std::size_t from = rings == 0 ? 0 : sc.ringEnd[rings - 1], to = sc.ringEnd[rings];
+        for (std::size_t m = from; m < to; ++m) {
+          const std::uint32_t* c = &set.corners[3 * std::size_t(sc.members[m])];
+          for (int k = 0; k < 3; ++k) {
+            for (std::uint32_t i = set.vertexStart[c[k]]; i < set.vertexStart[c[k] + 1]; ++i) {
+              const std::uint32_t p = set.vertexElements[i];
+              if (sc.stamp[p] == sc.current) continue;
+              sc.stamp[p] = sc.current;
+              if (glm::dot(geo.normal[p], geo.normal[q]) < cosCrease) continue;
+              sc.members.push_back(p);
+              photons += float(w.photons(lo, hi, p));
+            }
+          }
+        }
+        if (sc.members.size() == to) break;  // nothing more to reach
+        sc.ringEnd.push_back(std::uint32_t(sc.members.size()));
+        ++rings;
+        if (extra == 1) break;
+      }
+      return rings;
+    };
+
+    // The validity test counts the photons of the support the whole window
+    // would use, not of q alone: one element sees a few photons a frame, and
+    // with sigma = sqrt(mu) a step of several times its level would pass
+    // (002 tests the energy of a region large enough to be stable).
+    const std::size_t wholeRings = grow(0, w.frames - 1, target);
+    sc.supportCounts.assign(w.frames, 0.0f);
+    for (std::uint32_t p : sc.members)
+      for (std::size_t k = 0; k < w.frames; ++k) sc.supportCounts[k] += float(w.n(k, p));
+    auto [back, fwd] = validExtent(sc.supportCounts, w.centre, cfg.validityK, minSide);
+    back = std::min(back, w.centre - emission.first);
+    fwd = std::min(fwd, emission.second - w.centre);
+    out.backward[q] = std::uint8_t(back);
+    out.forward[q] = std::uint8_t(fwd);
+    const std::size_t lo = w.centre - back, hi = w.centre + fwd;
+    cut[q] = (lo > 0 || hi + 1 < w.frames) ? 1 : 0;
+    const std::size_t rings = (lo == 0 && hi + 1 == w.frames) ? wholeRings : grow(lo, hi, target);
+    out.rings[q] = std::uint8_t(rings);
+    float ringRadius = 0.0f;
+    if (rings > 0)
+      for (std::size_t m = sc.ringEnd[rings - 1]; m < sc.members.size(); ++m)
+        ringRadius = std::max(ringRadius, glm::length(geo.centroid[sc.members[m]] - geo.centroid[q]));
+    const float sigmaS = 0.5f * ringRadius;
+
+    const bool whole = lo == 0 && hi + 1 == w.frames;
+    auto irradiance = [&](std::size_t k, std::size_t p) {  // Weber eq. 5
+      if (whole) return wholeWindow[k * elements + p];
+      const auto [a, b] = fiveFrames(k, lo, hi);
+      const float area = geo.area[p];
+      return area > 0.0f ? w.energy(a, b, p) / (float(b - a + 1) * area) : glm::vec3(0.0f);
+    };
+    const auto [a0, b0] = fiveFrames(w.centre, lo, hi);
+    const float ref = luminance(irradiance(w.centre, q));
+    // sigma_I = l * I_t0(q) (§5.1.3), but never below the reference's own
+    // Poisson noise, nor, where q saw no photon, below one photon's worth.
+    const float n5 = float(w.photons(a0, b0, q));
+    const float floorI = geo.area[q] > 0.0f ? quantum / (float(b0 - a0 + 1) * geo.area[q]) : 0.0f;
+    const float sigmaI = std::max(cfg.influence, 1.0f / std::sqrt(std::max(n5, 1.0f))) * std::max(ref, floorI);
+    const float invS = sigmaS > 0.0f ? 1.0f / (2.0f * sigmaS * sigmaS) : 0.0f;
+    const float invI = sigmaI > 0.0f ? 1.0f / (2.0f * sigmaI * sigmaI) : 0.0f;
+    const float invT = 1.0f / (2.0f * sigmaT * sigmaT);
+    float wT[256];
+    for (std::size_t k = lo; k <= hi; ++k) {
+      const float dt = float(k) - float(w.centre);
+      wT[k] = std::exp(-dt * dt * invT);
+    }
+    glm::vec3 sum(0.0f);
+    float weights = 0.0f;
+    for (std::uint32_t p : sc.members) {
+      const glm::vec3 d = geo.centroid[p] - geo.centroid[q];
+      const float wS = std::exp(-glm::dot(d, d) * invS);
+      for (std::size_t k = lo; k <= hi; ++k) {
+        const glm::vec3 value = irradiance(k, p);
+        const float di = luminance(value) - ref;
+        const float wgt = wS * wT[k] * (sigmaI > 0.0f ? std::exp(-di * di * invI) : 1.0f);
+        sum += wgt * value;
+        weights += wgt;
+      }
+    }
+    filtered[q] = weights > 0.0f ? sum / weights : glm::vec3(0.0f);
+  };
+
   s.arena->execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, elements, 256), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t q = r.begin(); q != r.end(); ++q) filterElement(in, scratch.local(), q, out, filtered, cut);
+      for (std::size_t q = r.begin(); q != r.end(); ++q) element(q);
     });
   });
 
-  std::vector<glm::vec3> corner = cornerValues(set, geo, filtered, in.cosCrease, *s.arena);
-  out.spatialFallback = spatialFallback(w, cut);
+  std::vector<glm::vec3> corner = cornerValues(set, geo, filtered, cosCrease, *s.arena);
+
+  std::size_t lit = 0, cutLit = 0;
+  for (std::size_t e = 0; e < elements; ++e) {
+    if (w.photons(0, w.frames - 1, e) == 0) continue;
+    ++lit;
+    cutLit += cut[e];
+  }
+  out.spatialFallback = lit ? float(cutLit) / float(lit) : 0.0f;
   out.field.elements_ = s.elements;
   out.field.element_ = std::move(filtered);
   out.field.corner_ = std::move(corner);
