@@ -57,4 +57,7 @@ render vulkan-fog builtin:cornell-fog --backend vulkan
 render vulkan-instances builtin:instances:50 --backend vulkan
 render coverage $cornell --backend coverage
 render vulkan-plant builtin:plant:20000 --backend vulkan --param visibility=guided
+# Sequences: three frames each (NAME.0001.exr ...), temporal PCA and photons.
+render "pca.####" builtin:animated --frames 3 --temporal pca --spp 4
+render "photons.####" builtin:animated --frames 3 --temporal photons --spp 4 --photon-frames 3
 echo "render_baseline: $count renders in $out" >&2

@@ -61,7 +61,7 @@ double analyticMean() {
         for (int i = 0; i < 4; ++i) {
           float cx = kCamera.left + (kCamera.right - kCamera.left) * ((float(px) + (i + 0.5f) / 4) / kSize);
           float cy = kCamera.top - (kCamera.top - kCamera.bottom) * ((float(py) + (j + 0.5f) / 4) / kSize);
-          glm::vec3 d = rot * glm::vec3(cx, cy, -1.0f);
+          glm::vec3 d = rot * glm::vec3(cx, cy, -kCamera.near);  // the window lies on the near plane
           glm::vec3 p = kEye + d * (-kEye.y / d.y);
           sum += kAlbedo * kLe * formFactor(p.x, p.z);
         }

@@ -36,7 +36,7 @@ float pixelAverage(std::uint32_t px, std::uint32_t py, F f) {
     for (int i = 0; i < 8; ++i) {
       float cx = kCamera.left + (kCamera.right - kCamera.left) * ((float(px) + (float(i) + 0.5f) / 8) / kSize);
       float cy = kCamera.top - (kCamera.top - kCamera.bottom) * ((float(py) + (float(j) + 0.5f) / 8) / kSize);
-      glm::vec3 d = rot * glm::vec3(cx, cy, -1.0f);
+      glm::vec3 d = rot * glm::vec3(cx, cy, -kCamera.near);  // the window lies on the near plane
       glm::vec3 p = kEye + d * (-kEye.y / d.y);
       sum += f(p);
     }
