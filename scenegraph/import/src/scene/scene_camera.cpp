@@ -118,8 +118,8 @@ ContainerId applyLookOverride(Scene& scene, ContainerId root, ContainerId base, 
   auto* original = scene.find<Camera>(base);
   if (!original) throw std::invalid_argument("container " + std::to_string(base) + " is not a camera of the scene");
   const float fov = look.fovDegrees ? glm::radians(*look.fovDegrees) : original->verticalFov();
-  const float aperture =
-      look.fNumber ? apertureOfFNumber(*look.fNumber, fov) / metresPerUnit : look.apertureRadius.value_or(original->apertureRadius());
+  const float aperture = look.fNumber ? apertureOfFNumber(*look.fNumber, fov) / metresPerUnit
+                                      : look.apertureRadius.value_or(original->apertureRadius());
   const float focus = look.focusDistance.value_or(original->focusDistance());
   const Vec2 shutter = look.shutter.value_or(Vec2(original->shutterOpen(), original->shutterClose()));
   if (!look.from && !look.at) {
