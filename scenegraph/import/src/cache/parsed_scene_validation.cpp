@@ -153,8 +153,7 @@ void validateScene(const Scene& s) {
     for (int p : s.meshes[i].primitives)
       reference(p, s.primitives.size(), false, "mesh " + std::to_string(i) + ": primitive");
   for (const Light& l : s.lights)
-    if (!finite(l.color) || !std::isfinite(l.intensity) || !std::isfinite(l.innerCone) ||
-        !std::isfinite(l.outerCone))
+    if (!finite(l.color) || !std::isfinite(l.intensity) || !std::isfinite(l.innerCone) || !std::isfinite(l.outerCone))
       fail("light '" + l.name + "' holds NaN or infinity");
   for (const Camera& c : s.cameras)
     if (!(c.yfov > 0.0f && c.yfov < 3.1415926f) || !(c.znear > 0.0f && std::isfinite(c.znear)) ||
