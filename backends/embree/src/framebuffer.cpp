@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -38,7 +39,17 @@ void FrameBuffer::accumulate(std::uint32_t x, std::uint32_t y, const PixelSample
   p.alpha += ((s.hit ? 1.0f : 0.0f) - p.alpha) * inv;
   p.albedo += (s.albedo - p.albedo) * inv;
   p.normal += (s.normal - p.normal) * inv;
+  p.emitted += (s.emitted - p.emitted) * inv;
   if (s.hit) p.depth = std::min(p.depth, s.depth);
+  if (std::has_single_bit(p.count)) {
+    p.firstHalf = p.prefix;
+    p.prefix = p.mean[0] - p.emitted;
+  }
+}
+
+std::uint32_t FrameBuffer::firstHalfCount(std::uint32_t x, std::uint32_t y) const {
+  const std::uint32_t count = pixels_[at(x, y)].count;
+  return count > 0 ? std::bit_floor(count) / 2 : 0;
 }
 
 void FrameBuffer::accumulateRange(std::uint32_t x, std::uint32_t y, const glm::vec3& flash, float depth) {

@@ -417,6 +417,7 @@ void PathWalk::add(const glm::vec3& c, std::uint32_t nonSpecularVertices) {
     if (record_ && !specularAfterDiffuse_) record_->radiance += c;
   } else {
     out_.direct += v;
+    if (nonSpecularVertices == 0) out_.emitted += v;
   }
 }
 

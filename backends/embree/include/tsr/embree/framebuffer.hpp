@@ -26,6 +26,10 @@ struct PixelSample {
   glm::vec3 direct{0.0f};
   glm::vec3 indirect{0.0f};
   glm::vec3 caustic{0.0f};  // part of indirect
+  // Emission seen from the camera, straight or through perfect mirrors and
+  // clear glass (part of direct): lamps and sky as they appear, whose only
+  // noise is which samples cover them. The denoiser leaves it as it is.
+  glm::vec3 emitted{0.0f};
   bool hit = false;
   float depth = 0.0f;  // camera-space depth of the first hit, if hit
   glm::vec3 albedo{0.0f};
@@ -43,6 +47,13 @@ struct PixelSample {
 //    space) of the nearest first hit over the samples; +infinity if none hit
 //  - albedo, normal: mean base colour and world shading normal (facing the
 //    camera) at the first hit; zero on misses
+//  - emitted: mean of PixelSample::emitted
+//  - first half: the mean of colour minus emitted over the pixel's first
+//    P/2 samples, P the largest power of two not above its count. At a power-of-two count the
+//    two halves are the first and the second half of the samples, each an
+//    aligned block of the sampler's sequence and so stratified on its own
+//    (splitting by parity would not be: the even points of a Sobol
+//    sequence share half of each pixel). The denoiser compares the halves.
 //  - range colour: mean "virtual flash" colour (Renderer::renderFlashPass),
 //    the edge-stopping image of pixel filtering; zero until a flash pass ran;
 //    camera rays that hit nothing count as kFlashMiss
@@ -89,6 +100,9 @@ class FrameBuffer {
   float depth(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].depth; }
   glm::vec3 albedo(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].albedo; }
   glm::vec3 normal(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].normal; }
+  glm::vec3 emitted(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].emitted; }
+  glm::vec3 firstHalf(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].firstHalf; }
+  std::uint32_t firstHalfCount(std::uint32_t x, std::uint32_t y) const;
   glm::vec3 rangeColour(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].range; }
   std::uint32_t rangeSamples(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].rangeCount; }
   float rangeSpread(std::uint32_t x, std::uint32_t y) const;
@@ -115,6 +129,9 @@ class FrameBuffer {
     glm::vec3 m2[kChannels]{glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
     glm::vec3 albedo{0.0f};
     glm::vec3 normal{0.0f};
+    glm::vec3 emitted{0.0f};
+    glm::vec3 firstHalf{0.0f};  // mean colour - emitted of the first P/2 samples
+    glm::vec3 prefix{0.0f};     // the same of the first P samples
     std::uint32_t rangeCount = 0;
     glm::vec3 range{0.0f};
     float rangeM2 = 0.0f;  // sum of squared deviations of the flash samples from their mean
