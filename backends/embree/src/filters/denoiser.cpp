@@ -1,5 +1,6 @@
 #include "tsr/embree/denoiser.hpp"
 
+#include "filters/denoiser_detail.hpp"
 #include "filters/pixel_filter_detail.hpp"
 #include "tsr/embree/error.hpp"
 
@@ -16,10 +17,7 @@ namespace {
 constexpr glm::vec3 kLuma{0.2126f, 0.7152f, 0.0722f};
 // B3-spline taps of the a-trous wavelet, 1 4 6 4 1 / 16.
 constexpr float kTaps[5] = {1.0f / 16, 1.0f / 4, 3.0f / 8, 1.0f / 4, 1.0f / 16};
-// The least albedo a channel is divided by (emitters, black surfaces and
-// the background have none). Every pixel is demodulated, or pixels in two
-// different units would be averaged where a texture goes dark.
-constexpr float kMinAlbedo = 0.02f;
+constexpr float kMinAlbedo = detail::kMinDenoiseAlbedo;
 
 glm::vec3 finiteOr0(const glm::vec3& v) {
   return {std::isfinite(v.x) ? v.x : 0.0f, std::isfinite(v.y) ? v.y : 0.0f, std::isfinite(v.z) ? v.z : 0.0f};
@@ -97,6 +95,13 @@ void check(const DenoiseInput& in, const DenoiseSettings& s) {
   size(in.albedo.size(), "albedo");
   size(in.normal.size(), "normal");
   size(in.depth.size(), "depth");
+  if (!in.emitted.empty()) size(in.emitted.size(), "emitted");
+  if (s.method == DenoiseMethod::Regression) {
+    size(in.firstHalf.size(), "firstHalf");
+    size(in.firstHalfShare.size(), "firstHalfShare");
+    if (s.radius < 1 || s.radius > 32) throw Error("denoiser: radius must be 1 to 32");
+    if (s.patchRadius > 8) throw Error("denoiser: patchRadius must be 0 to 8");
+  }
   if (s.levels < 1 || s.levels > 10) throw Error("denoiser: levels must be 1 to 10");
   if (!(s.sigmaLuminance > 0.0f) || !(s.sigmaNormal >= 0.0f) || !(s.sigmaDepth > 0.0f))
     throw Error("denoiser: sigmaLuminance and sigmaDepth must be > 0, sigmaNormal >= 0");
@@ -106,6 +111,21 @@ void check(const DenoiseInput& in, const DenoiseSettings& s) {
 
 std::vector<glm::vec3> denoise(const DenoiseInput& in, const DenoiseSettings& s) {
   check(in, s);
+  auto run = [&](const DenoiseInput& input) {
+    return s.method == DenoiseMethod::Regression ? detail::regressionDenoise(input, s)
+                                                 : detail::atrousDenoise(input, s);
+  };
+  if (in.emitted.empty()) return run(in);
+  std::vector<glm::vec3> scattered(in.colour.size());
+  for (std::size_t i = 0; i < scattered.size(); ++i) scattered[i] = in.colour[i] - finiteOr0(in.emitted[i]);
+  DenoiseInput without = in;
+  without.colour = scattered;
+  std::vector<glm::vec3> out = run(without);
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] += finiteOr0(in.emitted[i]);
+  return out;
+}
+
+std::vector<glm::vec3> detail::atrousDenoise(const DenoiseInput& in, const DenoiseSettings& s) {
   const int w = int(in.width), h = int(in.height);
   const std::size_t n = std::size_t(w) * h;
   const Guide g = guideOf(in);
