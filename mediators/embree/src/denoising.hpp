@@ -16,6 +16,8 @@ namespace tsr::med::embree_mediator {
 inline constexpr const char* kDenoiseAlbedoOutput = "denoise.albedo";      // rgb: first surface's albedo
 inline constexpr const char* kDenoiseNormalOutput = "denoise.normal";      // rgb: its normal, a: its depth
 inline constexpr const char* kDenoiseVarianceOutput = "denoise.variance";  // rgb: variance of the mean, a: samples
+inline constexpr const char* kDenoiseHalfOutput = "denoise.half";  // rgb: first half's mean, a: its share of samples
+inline constexpr const char* kDenoiseEmittedOutput = "denoise.emitted";  // rgb: emission seen from the camera
 
 std::vector<std::string> denoiseInputs();
 
@@ -30,7 +32,7 @@ class DenoiseResolver {
  public:
   // Replaces frame's colour with the denoised image: computed anew when
   // `refresh`, or when nothing of accumulation `epoch` was denoised yet at
-  // this size; else the kept one.
+  // this size with these settings; else the kept one.
   void resolve(FrameBuffer& frame, const embree::DenoiseSettings& settings, bool refresh, std::uint64_t epoch);
   // The sample count the kept image of accumulation `epoch` was denoised at.
   std::optional<std::uint32_t> denoisedAt(std::uint64_t epoch) const;
@@ -39,6 +41,7 @@ class DenoiseResolver {
   struct Kept {
     std::uint32_t width = 0, height = 0, samples = 0;
     std::uint64_t epoch = 0;
+    embree::DenoiseSettings settings;
     std::vector<glm::vec3> image;
   };
   std::optional<Kept> last_;

@@ -69,6 +69,10 @@ std::vector<ParameterSpec> specs() {
       // The whole-image denoiser (filter=denoise): a-trous levels and its
       // edge stops (SVGF's, the luminance one tighter: one frame's variance, not
       // a history's; measured on builtin:cornell, docs/filtering.md).
+      choiceParameter("denoiseMethod", "regression", {"regression", "atrous"},
+                      "denoiser: first-order regression (NFOR) or the cheaper a-trous wavelet"),
+      integerParameter("denoiseRadius", 7, 1, 32, "denoiser (regression): window radius, px"),
+      integerParameter("denoisePatch", 3, 0, 8, "denoiser (regression): non-local-means patch radius, px"),
       integerParameter("denoiseLevels", 5, 1, 10, "denoiser: a-trous levels (footprint 4 * (2^levels - 1) + 1 px)"),
       positiveParameter("denoiseSigmaL", 2.0, 1e6, "denoiser: luminance difference kept apart, in standard errors"),
       realParameter("denoiseSigmaN", 64.0, 0, 1e6, "denoiser: exponent on the cosine between normals"),

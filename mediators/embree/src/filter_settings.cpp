@@ -59,6 +59,11 @@ FilterSettings FilterSettings::from(const Parameters& p) {
   s.radiance.bilateral = t.flag(p, "bilateral");
   s.radiance.blend = real(p, "radianceBlend");
   s.radiance.hybrid = s.mode == FilterMode::Hybrid;
+  s.denoise.method = choose<embree::DenoiseMethod>(
+      p, "denoiseMethod",
+      {{"regression", embree::DenoiseMethod::Regression}, {"atrous", embree::DenoiseMethod::Atrous}});
+  s.denoise.radius = static_cast<unsigned>(t.integer(p, "denoiseRadius"));
+  s.denoise.patchRadius = static_cast<unsigned>(t.integer(p, "denoisePatch"));
   s.denoise.levels = static_cast<unsigned>(t.integer(p, "denoiseLevels"));
   s.denoise.sigmaLuminance = real(p, "denoiseSigmaL");
   s.denoise.sigmaNormal = real(p, "denoiseSigmaN");

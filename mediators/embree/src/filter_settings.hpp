@@ -18,7 +18,9 @@
 //   are traced with a halo this wide), ambientOcclusion (true),
 //   bilateral (false), radianceBlend (0)
 // The whole-image denoiser (filter=denoise, tsr/embree/denoiser.hpp):
-//   denoiseLevels (5), denoiseSigmaL (2), denoiseSigmaN (64), denoiseSigmaZ (1)
+//   denoiseMethod regression | atrous  (regression)
+//   regression: denoiseRadius (9), denoisePatch (3)
+//   atrous: denoiseLevels (5), denoiseSigmaL (2), denoiseSigmaN (64), denoiseSigmaZ (1)
 #include <string>
 
 #include "tsr/embree/denoiser.hpp"

@@ -216,6 +216,24 @@ TEST_F(EmbreeMediator, ConvergedImagesAreReusedUntilSomethingChanges) {
   EXPECT_GT(viewport->render(replica, view, image).rays, 0u);
 }
 
+// A denoiser setting changed on a converged image denoises the samples held
+// again, with no new samples: the image a viewer shows follows the control.
+TEST_F(EmbreeMediator, DenoiserSettingsApplyToTheSamplesHeld) {
+  auto viewport = rig.registry.create(rig.settings(8), contexts);
+  viewport->setParameter("filter", std::string("denoise"));
+  const auto view = rig.view(replica.scene());
+  med::FrameBuffer regression, atrous, again;
+  viewport->render(replica, view, regression);
+  viewport->setParameter("denoiseMethod", std::string("atrous"));
+  EXPECT_EQ(viewport->render(replica, view, atrous).rays, 0u) << "the samples held are reused";
+  EXPECT_GT(test::differingPixels(regression, atrous), 0u) << "the other method's image";
+  auto fresh = rig.registry.create(rig.settings(8), contexts);
+  fresh->setParameter("filter", std::string("denoise"));
+  fresh->setParameter("denoiseMethod", std::string("atrous"));
+  fresh->render(replica, view, again);
+  expectSameBits(atrous, again, "as if set before rendering");
+}
+
 // The sampling parameters reach the path tracer: each restarts the samples
 // held and gives another image, and setting it back gives the first again.
 TEST_F(EmbreeMediator, SamplingParametersRestartAndChangeTheImage) {
