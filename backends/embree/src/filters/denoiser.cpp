@@ -1,6 +1,7 @@
 #include "tsr/embree/denoiser.hpp"
 
 #include "filters/denoiser_detail.hpp"
+#include "filters/image_blur.hpp"
 #include "filters/pixel_filter_detail.hpp"
 #include "tsr/embree/error.hpp"
 
@@ -58,28 +59,6 @@ Guide guideOf(const DenoiseInput& in) {
       g.slope[std::size_t(y) * w + x] = s;
     }
   return g;
-}
-
-// Variance of the luminance, blurred over 3x3 pixels (SVGF's prefilter: a
-// single pixel's estimate of its variance is itself noisy).
-std::vector<float> blurredVariance(const std::vector<float>& v, int w, int h, int threads) {
-  std::vector<float> out(v.size());
-  pf::parallelRows(threads, h, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y)
-      for (int x = 0; x < w; ++x) {
-        float sum = 0.0f, weights = 0.0f;
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx) {
-            const int nx = x + dx, ny = y + dy;
-            if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
-            const float k = (dx == 0 ? 2.0f : 1.0f) * (dy == 0 ? 2.0f : 1.0f);
-            sum += k * v[std::size_t(ny) * w + nx];
-            weights += k;
-          }
-        out[std::size_t(y) * w + x] = sum / weights;
-      }
-  });
-  return out;
 }
 
 void check(const DenoiseInput& in, const DenoiseSettings& s) {
@@ -144,7 +123,7 @@ std::vector<glm::vec3> detail::atrousDenoise(const DenoiseInput& in, const Denoi
 
   for (unsigned level = 0; level < s.levels; ++level) {
     const int step = 1 << level;
-    const std::vector<float> sigmaV = blurredVariance(v, w, h, s.threads);
+    const std::vector<float> sigmaV = pf::blur121(v, w, h, s.threads);
     pf::parallelRows(s.threads, h, [&](int y0, int y1) {
       for (int y = y0; y < y1; ++y)
         for (int x = 0; x < w; ++x) {

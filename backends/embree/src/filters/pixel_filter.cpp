@@ -1,5 +1,6 @@
 #include "tsr/embree/pixel_filter.hpp"
 
+#include "filters/image_blur.hpp"
 #include "filters/pixel_filter_detail.hpp"
 #include "tsr/embree/error.hpp"
 
@@ -73,27 +74,6 @@ pf::Range scaledRange(const PixelFilterInput& in, const PixelFilterSettings& s, 
   return r;
 }
 
-// Box mean of radius 2 (clamped at the borders), separable.
-pf::Plane boxBlur(const pf::Plane& in, int w, int h) {
-  constexpr int R = 2;
-  pf::Plane tmp(in.size()), out(in.size());
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      float s = 0;
-      const int x0 = std::max(x - R, 0), x1 = std::min(x + R, w - 1);
-      for (int i = x0; i <= x1; ++i) s += in[std::size_t(y) * w + i];
-      tmp[std::size_t(y) * w + x] = s / float(x1 - x0 + 1);
-    }
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      float s = 0;
-      const int y0 = std::max(y - R, 0), y1 = std::min(y + R, h - 1);
-      for (int i = y0; i <= y1; ++i) s += tmp[std::size_t(i) * w + x];
-      out[std::size_t(y) * w + x] = s / float(y1 - y0 + 1);
-    }
-  return out;
-}
-
 // 3.15-3.17: the box extent e that would bring u down to the target f,
 // sigma = 1.5 e, clamped to [g, c g] above the guide g = sigmaS / sqrt(n),
 // c = 4, and never wider than sigmaS. The paper's lower end g/c left
@@ -106,8 +86,8 @@ pf::Plane adaptiveSigma(const PixelFilterInput& in, const PixelFilterSettings& s
   const std::size_t n = st.v.size();
   pf::Plane lum(n);
   for (std::size_t i = 0; i < n; ++i) lum[i] = kLuma.x * st.lr[i] + kLuma.y * st.lg[i] + kLuma.z * st.lb[i];
-  const pf::Plane meanVar = boxBlur(st.v, w, h);
-  const pf::Plane meanLum = boxBlur(lum, w, h);
+  const pf::Plane meanVar = pf::boxMean(st.v, w, h, 2);
+  const pf::Plane meanLum = pf::boxMean(lum, w, h, 2);
   constexpr float c = 4.0f;
   const float guide = s.sigmaS / std::sqrt(float(std::max(in.samples, 1u)));
   const float lo = guide, hi = std::min(guide * c, s.sigmaS);

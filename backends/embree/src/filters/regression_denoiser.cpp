@@ -3,6 +3,7 @@
 // cross-filtered between the two halves of each pixel's samples, two
 // strengths selected per pixel by their error estimated from the halves.
 #include "filters/denoiser_detail.hpp"
+#include "filters/image_blur.hpp"
 #include "filters/pixel_filter_detail.hpp"
 
 #include <Eigen/Cholesky>
@@ -72,24 +73,6 @@ struct Setup {
   }
 };
 
-Plane blur3x3(const Plane& v, int w, int h) {
-  Plane out(v.size());
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      float sum = 0.0f, weights = 0.0f;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int nx = x + dx, ny = y + dy;
-          if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
-          const float k = (dx == 0 ? 2.0f : 1.0f) * (dy == 0 ? 2.0f : 1.0f);
-          sum += k * v[std::size_t(ny) * w + nx];
-          weights += k;
-        }
-      out[std::size_t(y) * w + x] = sum / weights;
-    }
-  return out;
-}
-
 float finiteOr0(float v) { return std::isfinite(v) ? v : 0.0f; }
 
 Setup setupOf(const DenoiseInput& in, const DenoiseSettings& settings) {
@@ -156,7 +139,7 @@ Setup setupOf(const DenoiseInput& in, const DenoiseSettings& settings) {
   for (int k = 0; k < 2; ++k)
     for (int c = 0; c < 3; ++c) {
       s.half[k][c] = s.padOf(half[k][c]);
-      s.guideVar[k][c] = s.padOf(blur3x3(s.halfVar[k][c], s.w, s.h));
+      s.guideVar[k][c] = s.padOf(pf::blur121(s.halfVar[k][c], s.w, s.h, s.threads));
     }
   return s;
 }
@@ -359,27 +342,6 @@ Planes regress(const Setup& s, const Planes& target, const Planes& guide, const 
   return out;
 }
 
-Plane boxBlur(const Plane& v, int w, int h, int radius) {
-  Plane across(v.size()), out(v.size());
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      float sum = 0.0f;
-      int count = 0;
-      for (int k = std::max(0, x - radius); k <= std::min(w - 1, x + radius); ++k, ++count)
-        sum += v[std::size_t(y) * w + k];
-      across[std::size_t(y) * w + x] = sum / float(count);
-    }
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      float sum = 0.0f;
-      int count = 0;
-      for (int k = std::max(0, y - radius); k <= std::min(h - 1, y + radius); ++k, ++count)
-        sum += across[std::size_t(k) * w + x];
-      out[std::size_t(y) * w + x] = sum / float(count);
-    }
-  return out;
-}
-
 }  // namespace
 
 std::vector<glm::vec3> regressionDenoise(const DenoiseInput& in, const DenoiseSettings& settings) {
@@ -402,7 +364,7 @@ std::vector<glm::vec3> regressionDenoise(const DenoiseInput& in, const DenoiseSe
       }
     }
     results.push_back(std::move(raw));
-    errors.push_back(boxBlur(error, s.w, s.h, kErrorRadius));
+    errors.push_back(pf::boxMean(error, s.w, s.h, kErrorRadius));
   }
   for (const float k : kStrengths) {
     // Cross-filtered: each half with weights from the other.
@@ -424,7 +386,7 @@ std::vector<glm::vec3> regressionDenoise(const DenoiseInput& in, const DenoiseSe
       }
     }
     results.push_back(std::move(combined));
-    errors.push_back(boxBlur(error, s.w, s.h, kErrorRadius));
+    errors.push_back(pf::boxMean(error, s.w, s.h, kErrorRadius));
   }
   // Each pixel takes the candidate of least estimated error; the choice is
   // softened over 3x3 pixels so neighbours that chose differently blend.
@@ -436,7 +398,7 @@ std::vector<glm::vec3> regressionDenoise(const DenoiseInput& in, const DenoiseSe
       if (errors[k][i] < errors[best][i]) best = k;
     picks[best][i] = 1.0f;
   }
-  for (Plane& pick : picks) pick = boxBlur(pick, s.w, s.h, 1);
+  for (Plane& pick : picks) pick = pf::boxMean(pick, s.w, s.h, 1);
   std::vector<glm::vec3> out(n, glm::vec3(0.0f));
   for (std::size_t k = 0; k < candidates; ++k)
     for (std::size_t i = 0; i < n; ++i)
