@@ -325,6 +325,14 @@ std::string tables(const std::vector<SceneResult>& results, const Options& o) {
         md << " n/a |";
         continue;
       }
+      // Below its fewest samples' time the curve would be extrapolated
+      // into nonsense: the filter cannot show that picture within T.
+      double fastest = INFINITY;
+      for (const Score& sc : it->second) fastest = std::min(fastest, sc.seconds);
+      if (t < fastest) {
+        md << " slower |";
+        continue;
+      }
       const double e = logLog(it->second, t, timeSeen);
       if (e < bestError) bestError = e, best = f;
       md << " " << num(e) << " |";
@@ -387,7 +395,7 @@ std::string tables(const std::vector<SceneResult>& results, const Options& o) {
      << o.consistencySpp
      << " spp, log-log interpolation). Equal time: filters rendered on fresh viewports (scene converted "
         "beforehand), wall time of the render call, interpolated in log-log; unfiltered times cumulative over one "
-        "progressive viewport.\n";
+        "progressive viewport; slower: the filter's fewest timed spp take longer than T.\n";
   if (!o.extra.empty()) {
     md << "Filter parameters set on every filtered render:";
     for (const auto& e : o.extra) md << " " << e;
