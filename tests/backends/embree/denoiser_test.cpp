@@ -262,6 +262,18 @@ TEST_P(DenoiserMethods, PrintsNoGridOfItsSteps) {
   }
 }
 
+// Images smaller than the window and the patches: every pixel comes back
+// finite and, on a flat noiseless image, unchanged.
+TEST_P(DenoiserMethods, ImagesSmallerThanTheWindowAreDenoised) {
+  for (const auto& [w, h] : {std::pair{1u, 1u}, std::pair{3u, 2u}, std::pair{40u, 1u}}) {
+    Images im(w, h);
+    for (std::size_t i = 0; i < im.colour.size(); ++i) im.split(i, [] { return glm::vec3(0.25f); });
+    const std::vector<glm::vec3> out = denoise(im.input(), settings());
+    ASSERT_EQ(out.size(), im.colour.size());
+    for (const glm::vec3& c : out) EXPECT_NEAR(c.y, 0.25f, 1e-4f) << w << "x" << h;
+  }
+}
+
 TEST(Denoiser, RefusesImagesOfOtherSizesAndBadSettings) {
   Images im(8, 8);
   DenoiseInput in = im.input();
