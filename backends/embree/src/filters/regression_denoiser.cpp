@@ -1,7 +1,8 @@
 // The regression method of the whole-image denoiser (denoiser.hpp): NFOR's
 // collaborative first-order regression with non-local-means weights,
-// cross-filtered between the two halves of each pixel's samples, two
-// strengths selected per pixel by their error estimated from the halves.
+// cross-filtered between the two halves of each pixel's samples; per pixel
+// the unfiltered mean or one of two strengths, whichever has the least
+// error estimated from the halves.
 #include "filters/denoiser_detail.hpp"
 #include "filters/image_blur.hpp"
 #include "filters/pixel_filter_detail.hpp"
