@@ -66,9 +66,10 @@ std::vector<ParameterSpec> specs() {
       flagParameter("ambientOcclusion", true, "radiance filter: occlusion-aware weights"),
       flagParameter("bilateral", false, "radiance filter: bilateral weights"),
       realParameter("radianceBlend", 0.0, 0, 1e6, "radiance filter: blend towards the unfiltered image"),
-      // The whole-image denoiser (filter=denoise): a-trous levels and its
-      // edge stops (SVGF's, the luminance one tighter: one frame's variance, not
-      // a history's; measured on builtin:cornell, docs/filtering.md).
+      // The whole-image denoiser (filter=denoise): its method, the regression's
+      // window and patches (measured on the suite, docs/filtering.md), then
+      // the a-trous levels and edge stops (SVGF's, the luminance one tighter:
+      // one frame's variance, not a history's; measured on builtin:cornell).
       choiceParameter("denoiseMethod", "regression", {"regression", "atrous"},
                       "denoiser: first-order regression (NFOR) or the cheaper a-trous wavelet"),
       integerParameter("denoiseRadius", 7, 1, 32, "denoiser (regression): window radius, px"),

@@ -19,7 +19,7 @@
 //   bilateral (false), radianceBlend (0)
 // The whole-image denoiser (filter=denoise, tsr/embree/denoiser.hpp):
 //   denoiseMethod regression | atrous  (regression)
-//   regression: denoiseRadius (9), denoisePatch (3)
+//   regression: denoiseRadius (7), denoisePatch (3)
 //   atrous: denoiseLevels (5), denoiseSigmaL (2), denoiseSigmaN (64), denoiseSigmaZ (1)
 #include <string>
 

@@ -1,10 +1,13 @@
-// What pixel filtering reads from the renderer: paths classified relative
-// to the first non-specular surface, and the "virtual flash" range colour.
+// What pixel filtering and the denoiser read from the renderer: paths
+// classified relative to the first non-specular surface, the "virtual
+// flash" range colour, and each pixel's first half of its samples.
 #include "test_scenes.hpp"
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <limits>
+#include <vector>
 
 namespace tsr::embree::test {
 namespace {
@@ -163,6 +166,29 @@ TEST(EmbreeFilterInputs, FlashSpreadMarksPixelsThatMixSurfaces) {
   EXPECT_NEAR(fb.rangeDepth(4, 8), 2.0f, 1e-3f);
   EXPECT_NEAR(fb.rangeDepth(8, 8), 2.0f, 1e-3f) << "the hits' mean, not diluted by the misses";
   EXPECT_EQ(fb.rangeDepth(12, 8), std::numeric_limits<float>::infinity());
+}
+
+// The first half: at every count n, the mean of colour - emitted over the
+// first bit_floor(n) / 2 samples.
+TEST(EmbreeFilterInputs, FirstHalfIsTheMeanOfTheFirstHalfOfThePowerOfTwoSamples) {
+  FrameBuffer fb(1, 1);
+  std::vector<glm::vec3> scattered;
+  for (std::uint32_t n = 1; n <= 13; ++n) {
+    PixelSample s;
+    s.direct = glm::vec3(float(n), 2.0f * float(n), 0.5f);
+    s.emitted = n % 3 == 0 ? glm::vec3(1.0f) : glm::vec3(0.0f);
+    s.direct += s.emitted;
+    fb.accumulate(0, 0, s);
+    scattered.push_back(s.direct - s.emitted);
+    const std::uint32_t half = std::bit_floor(n) / 2;
+    ASSERT_EQ(fb.firstHalfCount(0, 0), half) << n;
+    if (half == 0) continue;
+    glm::vec3 mean(0.0f);
+    for (std::uint32_t k = 0; k < half; ++k) mean += scattered[k] / float(half);
+    EXPECT_NEAR(fb.firstHalf(0, 0).x, mean.x, 1e-4f) << n;
+    EXPECT_NEAR(fb.firstHalf(0, 0).y, mean.y, 1e-4f) << n;
+  }
+  EXPECT_NEAR(fb.emitted(0, 0).x, 4.0f / 13.0f, 1e-5f);
 }
 
 }  // namespace

@@ -7,8 +7,6 @@
 #include "filters/image_blur.hpp"
 #include "filters/pixel_filter_detail.hpp"
 
-#include <Eigen/Cholesky>
-#include <Eigen/Core>
 #include <Eigen/Dense>
 #include <glm/common.hpp>
 

@@ -52,7 +52,8 @@ struct DenoiseInput {
   std::uint32_t width = 0;
   std::uint32_t height = 0;
   std::span<const glm::vec3> colour;    // the pixel's mean radiance
-  std::span<const glm::vec3> variance;  // variance of that mean (per-sample variance / n), per channel
+  std::span<const glm::vec3> variance;  // variance of that mean (per-sample variance / n), per channel;
+                                        // read by atrous only (regression estimates it from the halves)
   std::span<const glm::vec3> albedo;    // mean albedo of the first surface
   std::span<const glm::vec3> normal;    // mean normal of the first surface (need not be unit)
   std::span<const float> depth;         // camera-space depth; non-finite: nothing hit
