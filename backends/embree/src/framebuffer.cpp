@@ -17,17 +17,43 @@ FrameBuffer::FrameBuffer(std::uint32_t width, std::uint32_t height) : width_(wid
   reset();
 }
 
-void FrameBuffer::reset() {
+FrameBuffer::Pixel FrameBuffer::emptyPixel() {
   Pixel empty;
   empty.depth = std::numeric_limits<float>::infinity();
-  pixels_.assign(std::size_t(width_) * height_, empty);
+  return empty;
+}
+
+void FrameBuffer::reset() {
+  pixels_.assign(std::size_t(width_) * height_, emptyPixel());
   key_.reset();
+  carriesHistory_ = false;
+  epoch_ = nextEpoch();
+}
+
+std::uint64_t FrameBuffer::nextEpoch() {
   static std::atomic<std::uint64_t> epochs{0};
-  epoch_ = epochs.fetch_add(1, std::memory_order_relaxed) + 1;
+  return epochs.fetch_add(1, std::memory_order_relaxed) + 1;
+}
+
+// A jittered sample's depth differs from the pixel centre's by the surface's
+// slope across the pixel: 5 % holds all but grazing views, which the
+// history then loses, as it loses a surface that truly moved that far.
+constexpr float kDepthTolerance = 0.05f;
+// The normals of the sample and the history's mean may differ by ~60 deg
+// (the mean of a pixel on an edge between two faces).
+constexpr float kNormalAgreement = 0.5f;
+
+bool FrameBuffer::continues(const Pixel& p, const PixelSample& s) {
+  if (s.hit != std::isfinite(p.depth)) return false;
+  if (!s.hit) return true;
+  return s.object == p.object && std::abs(s.depth - p.depth) <= kDepthTolerance * p.depth &&
+         glm::dot(s.normal, p.normal) >= kNormalAgreement * glm::length(p.normal);
 }
 
 void FrameBuffer::accumulate(std::uint32_t x, std::uint32_t y, const PixelSample& s) {
   Pixel& p = pixels_[at(x, y)];
+  if (p.inherited != 0 && p.count == p.inherited && !continues(p, s)) [[unlikely]]
+    p = emptyPixel();
   const float inv = 1.0f / float(++p.count);
   const glm::vec3 values[kChannels] = {s.direct + s.indirect, s.direct, s.indirect, s.caustic};
   for (int c = 0; c < kChannels; ++c) {
@@ -40,7 +66,10 @@ void FrameBuffer::accumulate(std::uint32_t x, std::uint32_t y, const PixelSample
   p.albedo += (s.albedo - p.albedo) * inv;
   p.normal += (s.normal - p.normal) * inv;
   p.emitted += (s.emitted - p.emitted) * inv;
-  if (s.hit) p.depth = std::min(p.depth, s.depth);
+  if (s.hit && s.depth <= p.depth) {
+    p.depth = s.depth;
+    p.object = s.object;
+  }
   if (std::has_single_bit(p.count)) {
     p.firstHalf = p.prefix;
     p.prefix = p.mean[0] - p.emitted;

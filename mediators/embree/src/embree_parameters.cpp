@@ -78,6 +78,13 @@ std::vector<ParameterSpec> specs() {
       positiveParameter("denoiseSigmaL", 2.0, 1e6, "denoiser: luminance difference kept apart, in standard errors"),
       realParameter("denoiseSigmaN", 64.0, 0, 1e6, "denoiser: exponent on the cosine between normals"),
       positiveParameter("denoiseSigmaZ", 1.0, 1e6, "denoiser: depth difference kept apart, in depth steps per pixel"),
+      // Temporal reprojection (FrameBuffer::reproject): the interactive
+      // programs turn it on; the limit was measured on an orbit (docs/viewer.md).
+      flagParameter("history", false,
+                    "a moving camera or moving objects keep the samples of the surfaces still in view, reprojected, "
+                    "instead of restarting"),
+      integerParameter("historyLimit", 16, 1, 1 << 16,
+                       "history: samples a pixel carries over a move at most (light that changed fades within them)"),
       choiceParameter("temporal", "", {"", "photons", "objectPca"}, "temporal method of an animation"),
       integerParameter("photonsPerFrame", 0, 0, 1 << 30, "photons traced per frame (0: automatic)"),
       integerParameter("photonFrames", 9, 1, 255, "odd window of frames photons are gathered from"),

@@ -72,11 +72,15 @@ void EmbreeViewport::resolveLocally(const FilterSettings& filter, std::uint32_t 
   // variance estimate to filter by.
   // The denoiser follows the same schedule, and keeps showing its last
   // image in between (its guides need no fresh samples to be blended).
-  const std::uint32_t samples = accumulation_->sampleCount(0, 0);
+  // A reprojected history is filtered at each of its first new samples (the
+  // view moves, a frame or two each): its inherited samples give the
+  // variance one traced sample lacks. Then the schedule takes over.
+  const std::uint32_t samples = accumulation_->tracedCount(0, 0);
   const std::uint64_t epoch = accumulation_->epoch();
   const auto last = filter.usesDenoiser() ? denoiser_.denoisedAt(epoch) : pixelFilter_.filteredAt(epoch);
   const bool complete = samples >= spp && (!last || samples >= 2 * *last);
-  const bool due = samples >= 2 && (embree::isFilterFrame(samples) || complete) && last != samples;
+  const bool scheduled = samples >= 2 && (embree::isFilterFrame(samples) || complete);
+  const bool due = (scheduled || (accumulation_->carriesHistory() && samples < 4)) && last != samples;
   if (filter.usesDenoiser()) {
     if (due || last) denoiser_.resolve(out, filter.denoise, due, epoch);
   } else if (due || last) {
@@ -163,7 +167,8 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
       (!radiance_ || radiance_->width() != traced.regionWidth() || radiance_->height() != traced.regionHeight()))
     radiance_ = std::make_unique<embree::RadianceAccumulator>(traced.regionWidth(), traced.regionHeight());
 
-  // Progressive: passes until the target sample count. The back-end alone
+  // Progressive: passes until the target sample count of samples traced
+  // for this view (a reprojected history comes on top). The back-end alone
   // decides, once a frame, whether the samples held still fit the scene,
   // camera, region and settings: it commits what the catch-up changed
   // (building acceleration structures) and restarts the accumulation if
@@ -183,7 +188,7 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
   std::uint32_t passSize = settings.samplesPerPass;
   for (;;) {
     embree::FrameBuffer& fb = *accumulation_;
-    const std::uint32_t done = fb.sampleCount(0, 0);
+    const std::uint32_t done = fb.tracedCount(0, 0);
     if (done >= spp) break;
     if (control.cancel && control.cancel->load()) break;
     if (growPasses && !radiance) {
@@ -194,10 +199,10 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
     auto pass = radiance ? renderer_.renderRadiancePass(scene, camera, traced, fb, *radiance_, filter.radiance)
                          : renderer_.renderPass(scene, camera, traced, fb);
     stats.rays += pass.rays;
-    if (control.progress) control.progress(std::min(1.0, fb.sampleCount(0, 0) / double(spp)));
+    if (control.progress) control.progress(std::min(1.0, fb.tracedCount(0, 0) / double(spp)));
     if (!pass.completed) break;
   }
-  stats.samples = accumulation_->sampleCount(0, 0);
+  stats.samples = accumulation_->tracedCount(0, 0);
 
   const embree::FrameBuffer& fb = *accumulation_;
   FrameBuffer full = accumulatedFrame(fb, control);

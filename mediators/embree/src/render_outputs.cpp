@@ -28,6 +28,7 @@ embree::RenderSettings renderSettingsFrom(const Parameters& p, std::int64_t fram
   s.lightChoice = t.choice(p, "lightChoice") == "power" ? embree::LightChoice::Power : embree::LightChoice::Tree;
   s.equiangular = t.flag(p, "equiangular");
   s.sampler = t.choice(p, "sampler") == "independent" ? embree::SamplerKind::Independent : embree::SamplerKind::Sobol;
+  s.historyLimit = t.flag(p, "history") ? static_cast<std::uint32_t>(t.integer(p, "historyLimit")) : 0;
   return s;
 }
 

@@ -127,6 +127,7 @@ void SceneState::mark(std::uint32_t id, bool placed) {
 
 void SceneState::edit(const Edit& e) {
   ++version;
+  if (!e.placementOnly) ++appearance;
   if (e.instance != kNoId) mark(e.instance, e.placed);
   if (e.mesh != kNoId && meshes[e.mesh] && !meshes[e.mesh]->dirty) {
     meshes[e.mesh]->dirty = true;
@@ -260,7 +261,7 @@ void Scene::setInstanceTransform(InstanceId id, const glm::mat4& transform, cons
   inst.transform = transform;
   inst.motion = atEnd != transform ? std::make_unique<InstanceMotion>(transform, atEnd) : nullptr;
   inst.moved = true;  // commit() gives the transform to the copy in the level it goes to
-  state_->edit({.instance = index(id), .placed = true});
+  state_->edit({.instance = index(id), .placed = true, .placementOnly = true});
 }
 
 void Scene::setInstanceMaterial(InstanceId id, MaterialId material) {
@@ -529,6 +530,7 @@ void Scene::commit() {
 }
 
 std::uint64_t Scene::version() const { return state_->version; }
+std::uint64_t Scene::appearanceVersion() const { return state_->appearance; }
 std::uint64_t Scene::uid() const { return state_->uid; }
 
 std::size_t Scene::instanceCount() const {

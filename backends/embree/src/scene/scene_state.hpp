@@ -141,6 +141,7 @@ struct Edit {
   bool materials = false;          // resolved materials
   bool lights = false;
   bool emitters = false;  // emission changed: the emitter distribution
+  bool placementOnly = false;  // an instance moved and nothing else: appearance stays
 };
 
 // Edits since the last commit, which refreshes exactly these.
@@ -186,6 +187,7 @@ struct SceneState {
   std::vector<std::uint32_t> shrunkMeshes;
   std::uint64_t uid = 0;
   std::uint64_t version = 1;
+  std::uint64_t appearance = 1;  // all edits but moves (Scene::appearanceVersion)
 
   // The one way to edit: restarts accumulation (bumps the version) and
   // records what commit() must refresh.

@@ -236,9 +236,10 @@ PixelSample PathWalk::run(glm::vec3 org, glm::vec3 dir, const glm::vec3& camPos,
       continue;
     }
     const SurfaceParameters at = Tracer::parameters(mat, h.uv);
-    if (depth == 0) {  // the first hit's depth
+    if (depth == 0) {  // the first hit's depth and instance
       out_.hit = true;
       out_.depth = glm::dot(h.p - camPos, forward);
+      out_.object = std::uint32_t(h.instance - tracer_.scene.views.data());
     }
     if (mat.material.isEmissive() && glm::dot(h.faceNormal, dir) < 0.0f)
       addEmitted(h, mat, dir, travelled_ + rh.ray.tfar, depth);

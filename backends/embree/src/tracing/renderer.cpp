@@ -68,18 +68,57 @@ bool Renderer::rekey(Scene& scene, const Camera& camera, const Region& region, s
                 std::to_string(region.regionWidth()) + "x" + std::to_string(region.regionHeight()));
   }
   scene.commit();
-  const FrameKey key{scene.uid(), scene.version(),          camera,
-                     region,      imageSettings(settings_), estimator.value_or(held ? held->estimator : 0)};
+  const FrameKey key{scene.uid(),
+                     scene.version(),
+                     camera,
+                     region,
+                     imageSettings(settings_),
+                     estimator.value_or(held ? held->estimator : 0),
+                     scene.appearanceVersion()};
   if (held && *held == key) return false;
   held = key;
   return true;
 }
 
+namespace {
+
+// Whether samples taken for `then` may be reprojected to `now`: the same
+// scene looking the same (instances may have moved), the same settings,
+// plain path samples on both sides.
+bool historyCarries(const FrameKey& then, const FrameKey& now) {
+  return then.sceneUid == now.sceneUid && then.sceneAppearance == now.sceneAppearance &&
+         then.settings == now.settings && then.estimator == 0 && now.estimator == 0 &&
+         then.region.width == now.region.width && then.region.height == now.region.height;
+}
+
+// Each instance's placement (world from object), by instance index.
+std::vector<glm::mat4> placements(const Scene& scene) {
+  const SceneState& state = scene.state();
+  std::vector<glm::mat4> out(state.views.size());
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = state.views[i].transform;
+  return out;
+}
+
+}  // namespace
+
 bool Renderer::restartIfStale(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
                               std::optional<std::uint64_t> estimator) {
-  std::optional<FrameKey> key = fb.key_;
+  const std::optional<FrameKey> held = fb.key_;
+  std::optional<FrameKey> key = held;
   if (!rekey(scene, camera, region, fb.width(), fb.height(), key, estimator)) return false;
-  fb.reset();
+  if (settings_.historyLimit > 0) {
+    std::vector<glm::mat4> now = placements(scene);
+    if (held && historyCarries(*held, *key)) {
+      const Reprojection r{held->camera, camera, held->region, region, fb.placements_, now, settings_.historyLimit};
+      arena_->arena.execute([&] { fb.reproject(r); });
+    } else {
+      fb.reset();
+    }
+    fb.placements_ = std::move(now);
+  } else {
+    fb.reset();
+    fb.placements_.clear();
+  }
   fb.key_ = key;
   return true;
 }

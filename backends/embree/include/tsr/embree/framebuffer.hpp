@@ -3,11 +3,14 @@
 #include "tsr/embree/render_settings.hpp"
 #include "tsr/embree/vocabulary.hpp"
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 #include <cstdint>
+#include <limits>
 #include <optional>
+#include <span>
 #include <vector>
 
 namespace tsr::embree {
@@ -21,6 +24,9 @@ namespace tsr::embree {
 enum class Channel { Colour = 0, Direct = 1, Indirect = 2, Caustic = 3 };
 inline constexpr int kChannels = 4;
 
+// PixelSample::object of a camera ray that hit nothing.
+inline constexpr std::uint32_t kNoObject = std::numeric_limits<std::uint32_t>::max();
+
 // What one camera sample produced; used by the renderer to accumulate.
 struct PixelSample {
   glm::vec3 direct{0.0f};
@@ -32,6 +38,7 @@ struct PixelSample {
   glm::vec3 emitted{0.0f};
   bool hit = false;
   float depth = 0.0f;  // camera-space depth of the first hit, if hit
+  std::uint32_t object = kNoObject;  // the instance of the first hit (its index in the scene), if hit
   glm::vec3 albedo{0.0f};
   glm::vec3 normal{0.0f};
 };
@@ -77,7 +84,23 @@ struct FrameKey {
   Region region;
   RenderSettings settings;      // imageSettings: what changes the samples
   std::uint64_t estimator = 0;  // plain paths, radiance records, one irradiance field's uid, or Whitted
+  // Scene::appearanceVersion: unchanged when only instances moved, so the
+  // samples may be carried to the new placement (FrameBuffer::reproject).
+  std::uint64_t sceneAppearance = 0;
   bool operator==(const FrameKey&) const = default;
+};
+
+// What a frame buffer's history is carried across (FrameBuffer::reproject):
+// the camera and region its samples were taken for and the ones wanted now,
+// each instance's placement (world from object, by instance index; an
+// instance missing from either list carries nothing) then and now, and the
+// most samples a pixel may carry, so that light which changed while moving
+// fades out of the history within that many samples.
+struct Reprojection {
+  Camera fromCamera, toCamera;
+  Region fromRegion, toRegion;
+  std::span<const glm::mat4> placedThen, placedNow;
+  std::uint32_t historyLimit = 16;
 };
 
 class FrameBuffer {
@@ -93,11 +116,35 @@ class FrameBuffer {
   std::uint64_t epoch() const { return epoch_; }
   void accumulate(std::uint32_t x, std::uint32_t y, const PixelSample& sample);
 
+  // Restarts as reset() does, but each pixel first takes over what the old
+  // samples knew of the surface it shows now (temporal reprojection, after
+  // SVGF and the render cache): the old depths are splatted into the new view
+  // (instances moved as placed) to predict what each pixel sees, and the
+  // pixel gathers, bilinearly, the old pixels that saw the same instance at
+  // that depth; their counts, capped at r.historyLimit and rounded down to a
+  // power of two, become the pixel's inherited samples. Its first new sample
+  // checks the prediction: if it hits another instance, another depth, a
+  // surface facing elsewhere, or nothing where something was, the pixel
+  // drops what it inherited. The old samples must be of r.from*; the key
+  // they were rendered for stays (the renderer sets the new one).
+  void reproject(const Reprojection& r);
+
   std::uint32_t sampleCount(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].count; }
+  // Of sampleCount, those carried over by reproject() (0 once dropped); the
+  // rest were traced for this view.
+  std::uint32_t inheritedCount(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].inherited; }
+  std::uint32_t tracedCount(std::uint32_t x, std::uint32_t y) const {
+    const Pixel& p = pixels_[at(x, y)];
+    return p.count - p.inherited;
+  }
+  // Whether reproject() started this accumulation (until the next restart).
+  bool carriesHistory() const { return carriesHistory_; }
   glm::vec4 colour(std::uint32_t x, std::uint32_t y) const;
   glm::vec3 mean(Channel c, std::uint32_t x, std::uint32_t y) const;
   glm::vec3 variance(Channel c, std::uint32_t x, std::uint32_t y) const;
   float depth(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].depth; }
+  // The instance of the nearest first hit (kNoObject if none hit).
+  std::uint32_t object(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].object; }
   glm::vec3 albedo(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].albedo; }
   glm::vec3 normal(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].normal; }
   glm::vec3 emitted(std::uint32_t x, std::uint32_t y) const { return pixels_[at(x, y)].emitted; }
@@ -123,8 +170,10 @@ class FrameBuffer {
   // and samples arrive pixel by pixel.
   struct Pixel {
     std::uint32_t count = 0;
+    std::uint32_t inherited = 0;  // of count, carried over by reproject()
     float alpha = 0.0f;
     float depth;
+    std::uint32_t object = kNoObject;  // of the nearest hit
     glm::vec3 mean[kChannels]{glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
     glm::vec3 m2[kChannels]{glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
     glm::vec3 albedo{0.0f};
@@ -142,8 +191,18 @@ class FrameBuffer {
   std::uint32_t width_;
   std::uint32_t height_;
   std::vector<Pixel> pixels_;
+  static Pixel emptyPixel();
+  static std::uint64_t nextEpoch();
+  // Whether the first new sample of a pixel that inherited samples sees what
+  // reproject() predicted.
+  static bool continues(const Pixel& p, const PixelSample& s);
+
   std::optional<FrameKey> key_;  // what the accumulated samples were computed for
   std::uint64_t epoch_ = 0;
+  bool carriesHistory_ = false;
+  // Each instance's placement when key_ was set (Renderer: with a history
+  // limit only), for the next reproject().
+  std::vector<glm::mat4> placements_;
 };
 
 }  // namespace tsr::embree

@@ -25,6 +25,10 @@ struct RenderSettings {
   LightChoice lightChoice = LightChoice::Tree;
   bool equiangular = true;                   // light in homogeneous media also sampled by distance towards the lights
   SamplerKind sampler = SamplerKind::Sobol;  // where each path's random numbers come from (sampler.hpp)
+  // A change of the camera or of where instances stand carries up to this
+  // many samples a pixel over to the new view (FrameBuffer::reproject)
+  // instead of restarting; 0: every change restarts. Other edits restart.
+  std::uint32_t historyLimit = 0;
   bool operator==(const RenderSettings&) const = default;
 };
 
@@ -37,6 +41,7 @@ inline RenderSettings imageSettings(RenderSettings s) {
   s.samplesPerPass = defaults.samplesPerPass;
   s.tileSize = defaults.tileSize;
   s.threads = defaults.threads;
+  s.historyLimit = defaults.historyLimit;  // how a restart goes, not what a still view converges to
   return s;
 }
 

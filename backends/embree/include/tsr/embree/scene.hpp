@@ -68,6 +68,9 @@ class Scene {
   void commit();
 
   std::uint64_t version() const;
+  // Bumped by every edit but setInstanceTransform: equal, the scene differs
+  // at most by where instances stand (what a reprojected history survives).
+  std::uint64_t appearanceVersion() const;
   std::uint64_t uid() const;  // distinguishes scenes for the accumulation key
   std::size_t instanceCount() const;
   std::size_t meshCount() const;
