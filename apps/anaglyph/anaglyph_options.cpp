@@ -2,7 +2,7 @@
 
 #include "command_line.hpp"
 #include "import_limit_options.hpp"
-#include "preview_filter.hpp"
+#include "preview_defaults.hpp"
 
 #include <CLI/CLI.hpp>
 #include <iostream>
@@ -99,7 +99,7 @@ bool parseAnaglyphOptions(int argc, char** argv, AnaglyphOptions& o) {
     auto [name, value] = med::Parameters::parse(p);
     o.parameters.set(name, value);
   }
-  usePreviewFilterUnlessSet(o.parameters);
+  usePreviewDefaultsUnlessSet(o.parameters);
   return true;
 }
 

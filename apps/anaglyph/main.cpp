@@ -11,7 +11,7 @@
 #include "anaglyph_window.hpp"
 #include "backends.hpp"
 #include "error_line.hpp"
-#include "preview_filter.hpp"
+#include "preview_defaults.hpp"
 #include "program_main.hpp"
 #include "progress_bar.hpp"
 #include "tsr/cluster/auth.hpp"
@@ -95,7 +95,7 @@ int run(int argc, char** argv) {
     return 0;
   }
   if (registry.capabilities(o.backend).parameters.declares("filter"))
-    std::cout << tsr::app::previewFilterLine(o.parameters) << std::endl;
+    std::cout << tsr::app::previewDefaultsLine(o.parameters) << std::endl;
   tsr::app::AnaglyphWindow window(session, *renderer, stereo, o.width, o.height, !script.empty());
   if (script.empty())
     window.run();

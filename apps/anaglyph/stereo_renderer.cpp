@@ -8,8 +8,10 @@ namespace {
 
 class LocalStereo final : public StereoRenderer {
  public:
-  LocalStereo(const med::ViewportRegistry& registry, med::ViewportSettings settings)
-      : viewport_(registry.create(std::move(settings), contexts_)) {}
+  // A viewport per eye, sharing one converted scene: each keeps its own
+  // samples (and history) instead of restarting at every other render.
+  LocalStereo(const med::ViewportRegistry& registry, const med::ViewportSettings& settings)
+      : left_(registry.create(settings, contexts_)), right_(registry.create(settings, contexts_)) {}
 
   void publish(SceneSession& session) override { session.publish(); }
 
@@ -18,15 +20,15 @@ class LocalStereo final : public StereoRenderer {
     StereoPair pair;
     med::RenderControl control;
     if (progress) control.progress = [&](double f) { progress(0.5 * f); };
-    viewport_->render(session.replica, centre.eye(med::Eye::Left, separation, zeroParallax), pair.left, control);
+    left_->render(session.replica, centre.eye(med::Eye::Left, separation, zeroParallax), pair.left, control);
     if (progress) control.progress = [&](double f) { progress(0.5 + 0.5 * f); };
-    viewport_->render(session.replica, centre.eye(med::Eye::Right, separation, zeroParallax), pair.right, control);
+    right_->render(session.replica, centre.eye(med::Eye::Right, separation, zeroParallax), pair.right, control);
     return pair;
   }
 
  private:
   med::ContextPool contexts_;
-  std::unique_ptr<med::Viewport> viewport_;
+  std::unique_ptr<med::Viewport> left_, right_;
 };
 
 class ClusterStereo final : public StereoRenderer {
@@ -55,7 +57,7 @@ class ClusterStereo final : public StereoRenderer {
 }  // namespace
 
 std::unique_ptr<StereoRenderer> localStereo(const med::ViewportRegistry& registry, med::ViewportSettings settings) {
-  return std::make_unique<LocalStereo>(registry, std::move(settings));
+  return std::make_unique<LocalStereo>(registry, settings);
 }
 
 std::unique_ptr<StereoRenderer> clusterStereo(const cluster::ClusterConfig& config,

@@ -7,7 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include "error_line.hpp"
-#include "preview_filter.hpp"
+#include "preview_defaults.hpp"
 #include "viewer.hpp"
 #include "viewer_options.hpp"
 
@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
   try {
     tsr::app::ViewerOptions options;
     if (!tsr::app::parseViewerOptions(argc, argv, options)) return 0;
-    std::cout << tsr::app::previewFilterLine(options.parameters) << std::endl;
+    std::cout << tsr::app::previewDefaultsLine(options.parameters) << std::endl;
     tsr::app::Viewer viewer(std::move(options));
     return viewer.run();
   } catch (const std::exception& e) {

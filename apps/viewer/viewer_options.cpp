@@ -2,7 +2,7 @@
 
 #include "command_line.hpp"
 #include "import_limit_options.hpp"
-#include "preview_filter.hpp"
+#include "preview_defaults.hpp"
 
 #include <iostream>
 #include <stdexcept>
@@ -102,7 +102,7 @@ bool parseViewerOptions(int argc, char** argv, ViewerOptions& o) {
                                   "': give it once");
   if (*depthOption || !o.parameters.has("maxDepth")) o.parameters.set("maxDepth", maxDepth);
   if (*threadsOption || !o.parameters.has("threads")) o.parameters.set("threads", threads);
-  usePreviewFilterUnlessSet(o.parameters);
+  usePreviewDefaultsUnlessSet(o.parameters);
   return true;
 }
 

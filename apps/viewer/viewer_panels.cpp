@@ -66,11 +66,26 @@ void Viewer::drawPanels() {
   for (std::size_t i = 0; i < panes_.size(); ++i) drawPanePanel(i, pw);
 }
 
-// The viewer's panel at the bottom left, each viewport's at its top right;
-// both fit their contents.
+namespace {
+
+// The panels leave the picture to the user: they open collapsed, the
+// viewer's at the window's top left and each viewport's at its pane's top
+// right, so their title bars never overlap; opened, each fits its contents
+// up to a quarter of the picture under it (0.45 x 0.55 of the pane) and
+// scrolls beyond.
+void placePanel(const ImVec2& at, const ImVec2& pivot, float paneWidth, float height) {
+  ImGui::SetNextWindowPos(at, ImGuiCond_FirstUseEver, pivot);
+  ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(0.45f * paneWidth, 0.55f * height));
+}
+
+}  // namespace
+
+// The viewer's panel: the scene, the camera, lens and shutter, animation
+// and the path tracer's convergence.
 void Viewer::drawViewerPanel() {
-  ImGui::SetNextWindowPos(ImVec2(8, float(height_) - 8), ImGuiCond_FirstUseEver, ImVec2(0, 1));
-  ImGui::Begin("tessera-viewer", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  placePanel(ImVec2(8, 8), ImVec2(0, 0), float(paneWidth(width_)), float(height_));
+  ImGui::Begin("tessera-viewer", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_HorizontalScrollbar);
   ImGui::PushItemWidth(160);
   ImGui::TextWrapped("%s", sceneName_.c_str());
   ImGui::Text("%.1f frames/s", ImGui::GetIO().Framerate);
@@ -146,8 +161,8 @@ void Viewer::drawCameraSection() {
 void Viewer::drawPanePanel(std::size_t i, std::uint32_t pw) {
   ViewerPane& pane = panes_[i];
   const std::string title = "Viewport " + std::to_string(i);
-  ImGui::SetNextWindowPos(ImVec2(float(std::uint32_t(i) * pw + pw) - 8.0f, 8), ImGuiCond_FirstUseEver, ImVec2(1, 0));
-  ImGui::Begin(title.c_str(), nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  placePanel(ImVec2(float(std::uint32_t(i) * pw + pw) - 8.0f, 8), ImVec2(1, 0), float(pw), float(height_));
+  ImGui::Begin(title.c_str(), nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_HorizontalScrollbar);
   ImGui::PushItemWidth(160);
   const auto names = registry_.backends();
   if (ImGui::BeginCombo("back-end", pane.backend().c_str())) {

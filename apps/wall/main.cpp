@@ -22,7 +22,7 @@
 #include "error_line.hpp"
 #include "import_limit_options.hpp"
 #include "option_values.hpp"
-#include "preview_filter.hpp"
+#include "preview_defaults.hpp"
 #include "render_job.hpp"
 #include "scene/scene_session.hpp"
 #include "tsr/cluster/auth.hpp"
@@ -130,7 +130,7 @@ tsr::cluster::ClusterConfig wallConfig(const Options& o) {
     const tsr::med::ParameterTable& table = registry.capabilities(n.backend).parameters;
     if (o.spp > 0 && table.declares("spp")) n.parameters.set("spp", o.spp);
     if (o.seedPerFrame && table.declares("seedPerFrame")) n.parameters.set("seedPerFrame", true);
-    tsr::app::usePreviewFilterUnlessSet(n.parameters, &table);
+    tsr::app::usePreviewDefaultsUnlessSet(n.parameters, &table);
   }
   for (const std::string& p : o.params) {
     auto [name, value] = tsr::med::Parameters::parse(p);
@@ -143,7 +143,7 @@ tsr::cluster::ClusterConfig wallConfig(const Options& o) {
     }
     if (!taken) throw std::invalid_argument("--param " + p + ": no node's back-end takes '" + name + "'");
   }
-  if (!config.nodes.empty()) std::cout << tsr::app::previewFilterLine(config.nodes.front().parameters) << std::endl;
+  if (!config.nodes.empty()) std::cout << tsr::app::previewDefaultsLine(config.nodes.front().parameters) << std::endl;
   config.validate();
   return config;
 }

@@ -7,7 +7,7 @@
 
 #include "backends.hpp"
 #include "command_runner.hpp"
-#include "preview_filter.hpp"
+#include "preview_defaults.hpp"
 #include "scene/scene_session.hpp"
 #include "tsr/med/compositing.hpp"
 #include "tsr/med/image_file.hpp"
@@ -35,7 +35,7 @@ inline med::FrameBuffer composedLocally(med::AnaglyphMethod method, float separa
   settings.parameters.set("maxDepth", std::int64_t{3});
   settings.parameters.set("seed", std::int64_t{7});
   settings.parameters.set("threads", std::int64_t{1});
-  app::usePreviewFilterUnlessSet(settings.parameters);  // as tessera-anaglyph opens
+  app::usePreviewDefaultsUnlessSet(settings.parameters);  // as tessera-anaglyph opens
   const auto view = med::View::fromCamera(*session.replica.scene().find<sg::Camera>(session.camera), 64, 48);
   med::FrameBuffer left, right;
   registry.create(settings, contexts)

@@ -34,7 +34,9 @@ TEST_F(AnaglyphWindow, ShowsTheHeadlessImageAndFollowsKeysAndMouse) {
                                            "key ]\nframes 1\nscreenshot wider.png\n"
                                            "key m\nframes 1\nscreenshot redcyan.png\n"
                                            "orbit 80 0\nframes 1\nscreenshot orbited.png\n";
-  auto r = anaglyph("builtin:cornell" + kRender + kEyes + " --script actions.script");
+  // Without the history, each change shows what a fresh render shows (with
+  // it, the eyes' samples move with them: another image, measured apart).
+  auto r = anaglyph("builtin:cornell" + kRender + kEyes + " --param history=false --script actions.script");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("eye separation 75, zero parallax 1000, dubois"));
   auto shot = [&](const char* name) { return med::readImage((dir / name).string()); };

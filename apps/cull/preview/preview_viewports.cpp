@@ -5,7 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include "cluster/cluster_connection.hpp"
-#include "preview_filter.hpp"
+#include "preview_defaults.hpp"
 #include "tsr/cluster/cluster_viewport.hpp"
 
 namespace tsr::app {
@@ -19,11 +19,11 @@ std::function<std::unique_ptr<med::Viewport>()> previewViewports(CullService& cu
     filtered.quiet = true;     // stdout's first line is "listening on ..."
     const cluster::ClusterConfig named = cluster::loadClusterConfig(job.sequence.cluster);
     if (!named.nodes.empty() && registry.has(named.nodes.front().backend))
-      usePreviewFilterUnlessSet(filtered.parameters, &registry.capabilities(named.nodes.front().backend).parameters);
+      usePreviewDefaultsUnlessSet(filtered.parameters, &registry.capabilities(named.nodes.front().backend).parameters);
     const cluster::ClusterConfig config = clusterConfig(filtered);
     std::shared_ptr<cluster::ClusterWindow> window = connectCluster(config, filtered, {}, registry);
     spdlog::info("previews render on {} nodes; {}", config.nodes.size(),
-                 previewFilterLine(config.nodes.front().parameters));
+                 previewDefaultsLine(config.nodes.front().parameters));
     const med::ViewportSettings settings = cull.settingsFor(config.nodes.front().backend, {});
     if (maxStreams > 1) spdlog::info("previews render on the cluster: one stream at a time");
     maxStreams = 1;
@@ -35,8 +35,8 @@ std::function<std::unique_ptr<med::Viewport>()> previewViewports(CullService& cu
   if (!registry.capabilities(backend).progressive)
     throw std::invalid_argument("--preview-backend " + backend + ": it does not refine progressively (try embree)");
   med::Parameters filtered = parameters;
-  usePreviewFilterUnlessSet(filtered, &registry.capabilities(backend).parameters);
-  spdlog::info("previews: {}", previewFilterLine(filtered));
+  usePreviewDefaultsUnlessSet(filtered, &registry.capabilities(backend).parameters);
+  spdlog::info("previews: {}", previewDefaultsLine(filtered));
   const med::ViewportSettings settings = cull.settingsFor(backend, filtered);
   return [&cull, settings] { return cull.registry().create(settings, cull.contexts()); };
 }

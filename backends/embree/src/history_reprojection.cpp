@@ -9,7 +9,6 @@
 #include <oneapi/tbb/parallel_for.h>
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -180,9 +179,13 @@ void FrameBuffer::reproject(const Reprojection& r) {
       if (w <= 0.0f || !from.inside(ox, oy)) continue;
       const Pixel& p = old[std::size_t(oy) * oldColumns + std::uint32_t(ox)];
       if (p.count == 0) continue;
-      if (hit ? (p.object != object || !(std::abs(p.depth - -q.z) <= kGatherDepthTolerance * -q.z))
-              : std::isfinite(p.depth))
-        continue;
+      // The old pixel saw the predicted surface: the same instance at that
+      // depth, or the sky. A silhouette pixel's far side does not count: what
+      // it holds is mostly the near side's.
+      const float dq = -q.z;
+      const bool seen = hit ? p.object == object && std::abs(p.depth - dq) <= kGatherDepthTolerance * dq
+                            : !std::isfinite(p.depth);
+      if (!seen) continue;
       taps[n] = &p;
       weights[n++] = w;
       total += w;
@@ -204,6 +207,7 @@ void FrameBuffer::reproject(const Reprojection& r) {
       out.normal += w * p.normal;
       out.emitted += w * p.emitted;
       out.firstHalf += w * (p.count >= 2 ? p.firstHalf : p.mean[0] - p.emitted);
+      out.prefix += w * p.prefix;
       if (p.rangeCount > 0) {
         rangeWeight += w;
         out.range += w * p.range;
@@ -212,11 +216,12 @@ void FrameBuffer::reproject(const Reprojection& r) {
         rangeHits += w * float(p.rangeHits);
       }
     }
-    const std::uint32_t carried = std::bit_floor(std::min(std::uint32_t(count + 0.5f), limit));
+    // The halves the denoiser compares (FrameBuffer's first half and prefix)
+    // are blended like the rest: each of the old pixels' own.
+    const std::uint32_t carried = std::min(std::uint32_t(count + 0.5f), limit);
     if (carried == 0) return;
     out.count = out.inherited = carried;
     for (int c = 0; c < kChannels; ++c) out.m2[c] = variance[c] * float(carried - 1);
-    out.prefix = out.mean[0] - out.emitted;
     out.depth = d;
     out.object = hit ? object : kNoObject;
     if (rangeWeight > 0.0f) {

@@ -12,9 +12,14 @@ constexpr const char* kNormal = "normal";
 constexpr const char* kDirect = "direct";
 constexpr const char* kIndirect = "indirect";
 constexpr const char* kVariance = "variance";
+// Per pixel: samples traced for this view (r) and carried over from the
+// views before by the history (g).
+constexpr const char* kSamples = "samples";
 }  // namespace
 
-std::vector<std::string> accumulatedOutputNames() { return {kAlbedo, kNormal, kDirect, kIndirect, kVariance}; }
+std::vector<std::string> accumulatedOutputNames() {
+  return {kAlbedo, kNormal, kDirect, kIndirect, kVariance, kSamples};
+}
 
 embree::RenderSettings renderSettingsFrom(const Parameters& p, std::int64_t frame) {
   embree::RenderSettings s;
@@ -48,6 +53,9 @@ FrameBuffer accumulatedFrame(const embree::FrameBuffer& fb, const RenderControl&
   fill(kDirect, [&](std::uint32_t x, std::uint32_t y) { return fb.mean(embree::Channel::Direct, x, y); });
   fill(kIndirect, [&](std::uint32_t x, std::uint32_t y) { return fb.mean(embree::Channel::Indirect, x, y); });
   fill(kVariance, [&](std::uint32_t x, std::uint32_t y) { return fb.variance(embree::Channel::Colour, x, y); });
+  fill(kSamples, [&](std::uint32_t x, std::uint32_t y) {
+    return glm::vec3(float(fb.tracedCount(x, y)), float(fb.inheritedCount(x, y)), 0.0f);
+  });
   return full;
 }
 
@@ -71,6 +79,7 @@ void writeWhittedFrame(const embree::WhittedImage& image, const RenderControl& c
   fill(kDirect, [&](std::size_t i) { return glm::vec3(image.colour()[i]); });
   fill(kIndirect, [](std::size_t) { return glm::vec3(0.0f); });
   fill(kVariance, [](std::size_t) { return glm::vec3(0.0f); });
+  fill(kSamples, [&](std::size_t) { return glm::vec3(image.complete() ? 1.0f : 0.0f, 0.0f, 0.0f); });
 }
 
 }  // namespace tsr::med::embree_mediator

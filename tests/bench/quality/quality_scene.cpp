@@ -153,13 +153,32 @@ std::vector<Shot> QualityScene::renderAhead(med::Viewport& viewport, std::uint32
 
 Shot QualityScene::render(med::Viewport& viewport, std::uint32_t size, bool wantBlend,
                           const std::vector<std::string>& outputs) {
-  const auto view = med::View::fromCamera(*replica_.scene().find<sg::Camera>(camera_), size, size);
+  return renderSized(viewport, size, size, outputs, wantBlend);
+}
+
+void QualityScene::orbit(float degrees, float pivotDistance) {
+  auto* camera = source_.find<sg::Camera>(camera_);
+  if (!cameraPose_) cameraPose_ = camera->pose();
+  const glm::mat4& pose = *cameraPose_;
+  const glm::vec3 pivot = glm::vec3(pose[3]) - glm::normalize(glm::vec3(pose[2])) * pivotDistance;
+  const glm::mat4 turn = glm::translate(glm::mat4(1.0f), pivot) *
+                         glm::rotate(glm::mat4(1.0f), glm::radians(degrees), glm::vec3(0, 1, 0)) *
+                         glm::translate(glm::mat4(1.0f), -pivot);
+  camera->setPose(turn * pose);
+  lastCommit_ = source_.commit();
+  replica_.apply(lastCommit_);
+}
+
+Shot QualityScene::renderSized(med::Viewport& viewport, std::uint32_t width, std::uint32_t height,
+                               const std::vector<std::string>& outputs, bool wantBlend) {
+  const auto view = med::View::fromCamera(*replica_.scene().find<sg::Camera>(camera_), width, height);
   med::RenderControl control;
   control.outputs = outputs;
   if (wantBlend) control.outputs->push_back("blend");
   Shot shot;
   const auto stats = viewport.render(replica_, view, shot.image, control);
   shot.seconds = stats.seconds - stats.syncSeconds;
+  shot.totalSeconds = stats.seconds;
   shot.samples = stats.samples;
   return shot;
 }

@@ -21,6 +21,7 @@ namespace tsr::quality {
 struct Shot {
   med::FrameBuffer image;
   double seconds = 0;  // the render call without catching up (conversion, BVH)
+  double totalSeconds = 0;  // the whole render call
   std::uint32_t samples = 0;
 };
 
@@ -59,6 +60,14 @@ class QualityScene {
   // `outputs`: named outputs to fill besides colour (and "blend" if asked).
   Shot render(med::Viewport& viewport, std::uint32_t size, bool wantBlend = false,
               const std::vector<std::string>& outputs = {});
+  // The same at width x height.
+  Shot renderSized(med::Viewport& viewport, std::uint32_t width, std::uint32_t height,
+                   const std::vector<std::string>& outputs = {}, bool wantBlend = false);
+
+  // Turns the camera from where it was imported by `degrees` about the
+  // vertical (world +Y) axis through the point `pivotDistance` ahead of it
+  // (an orbit, as the viewer's), then commits.
+  void orbit(float degrees, float pivotDistance);
 
   // Poses the scene's animations at `seconds` (with their motion over the
   // frame interval when the shutter stays open), scales every light's

@@ -52,17 +52,19 @@ med::FrameBuffer reference(QualityScene& scene, const ReferenceOptions& o) {
   const Motion& m = scene.motion();
   const std::string moving =
       m.moves() ? fmt::format("_t{}_dt{}_shutter{}-{}", m.time, m.frameInterval, m.shutterOpen, m.shutterClose) : "";
-  const std::string name = fmt::format("{}{}_{}x{}_spp{}_seed{}_depth{}.exr", scene.key(), moving, o.size, o.size,
-                                       o.spp, o.seed, o.maxDepth);
+  const std::uint32_t height = o.height ? o.height : o.size;
+  const std::string pose = o.pose.empty() ? "" : "_" + o.pose;
+  const std::string name = fmt::format("{}{}{}_{}x{}_spp{}_seed{}_depth{}.exr", scene.key(), moving, pose, o.size,
+                                       height, o.spp, o.seed, o.maxDepth);
   const fs::path path = fs::path(o.cache) / name;
   if (fs::exists(path)) {
     med::FrameBuffer fb = med::readImage(path.string());
-    if (fb.width != o.size || fb.height != o.size)
+    if (fb.width != o.size || fb.height != height)
       throw std::runtime_error(path.string() + ": cached reference has the wrong size; delete it");
     return fb;
   }
   std::cerr << fmt::format("[quality] rendering reference {} ({} spp at {}x{}); cached afterwards", name, o.spp, o.size,
-                           o.size)
+                           height)
             << std::endl;
   med::Parameters p;
   p.set("spp", std::int64_t{o.spp});
@@ -75,7 +77,7 @@ med::FrameBuffer reference(QualityScene& scene, const ReferenceOptions& o) {
   double seconds = 0;
   for (std::uint32_t spp = std::min(o.spp, 256u);; spp = std::min(o.spp, spp * 2)) {
     vp->setParameter("spp", std::int64_t{spp});
-    shot = scene.render(*vp, o.size);
+    shot = scene.renderSized(*vp, o.size, height);
     seconds += shot.seconds;
     std::cerr << fmt::format("[quality]   {} spp, {:.0f} s", spp, seconds) << std::endl;
     if (spp == o.spp) break;

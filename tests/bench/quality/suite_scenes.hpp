@@ -26,6 +26,8 @@ struct ReferenceOptions {
   std::uint32_t maxDepth = 8;
   int threads = 0;
   std::string cache = "build/quality-cache";
+  std::uint32_t height = 0;  // 0: size (square)
+  std::string pose;          // names a camera moved from the scene's own (empty: as imported)
 };
 
 // The unfiltered reference of a scene with the path tracer's defaults, from

@@ -3,6 +3,8 @@
 // contexts are shared.
 #include <gtest/gtest.h>
 
+#include <atomic>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "../viewport_rig.hpp"
@@ -279,7 +281,7 @@ TEST_F(EmbreeMediator, FillsOnlyTheOutputsTheCallerReads) {
   auto view = rig.view(replica.scene());
   med::FrameBuffer all, some;
   rig.registry.create(rig.settings(), contexts)->render(replica, view, all);
-  EXPECT_EQ(all.outputs.size(), 5u) << "albedo, normal, direct, indirect, variance";
+  EXPECT_EQ(all.outputs.size(), 6u) << "albedo, normal, direct, indirect, variance, samples";
   med::RenderControl control;
   control.outputs = std::vector<std::string>{"normal", "no-such-output"};
   rig.registry.create(rig.settings(), contexts)->render(replica, view, some, control);
@@ -358,4 +360,46 @@ TEST_F(IncrementalSync, FogFillsTheSceneFromTheBackground) {
   fog.setAbsorption(glm::vec3(0.0005f));
   rig.source.find<sg::Background>(rig.imported.background)->setMedium(fog.id());
   check("fog");
+}
+
+// The history parameter: off, a panned view restarts; on, it carries the
+// samples held to the pixels that show the same surfaces. The window slides
+// by whole pixels and the render is cancelled before tracing, so the image
+// shown is the carried history alone: the old one moved by those pixels.
+TEST_F(EmbreeMediator, HistoryCarriesAPannedViewAndIsOffUnlessAsked) {
+  for (const bool history : {false, true}) {
+    SCOPED_TRACE(history ? "history on" : "history off");
+    auto viewport = rig.registry.create(rig.settings(4), contexts);
+    if (history) viewport->setParameter("history", true);
+    med::View view = rig.view(replica.scene());
+    med::FrameBuffer before, after;
+    viewport->render(replica, view, before);
+    constexpr std::uint32_t kShift = 2;
+    const float step = (view.right - view.left) / float(view.width) * float(kShift);
+    view.left += step;
+    view.right += step;
+    std::atomic<bool> cancel{true};
+    med::RenderControl control;
+    control.cancel = &cancel;
+    EXPECT_EQ(viewport->render(replica, view, after, control).samples, 0u) << "nothing traced for the new view";
+    const auto& samples = after.outputs.at("samples");
+    std::size_t carried = 0;
+    for (std::uint32_t y = 0; y < kSize; ++y)
+      for (std::uint32_t x = 0; x + kShift < kSize; ++x) {
+        const std::size_t i = after.index(x, y), from = before.index(x + kShift, y);
+        EXPECT_EQ(samples[i].r, 0.0f);
+        if (!history) {
+          ASSERT_EQ(samples[i].g, 0.0f) << x << ", " << y;
+          continue;
+        }
+        if (samples[i].g == 0.0f) continue;  // nothing there: the box's opening, or an edge the depth test refused
+        ++carried;
+        ASSERT_EQ(samples[i].g, 4.0f);
+        for (int c = 0; c < 4; ++c)
+          EXPECT_NEAR(after.colour[i][c], before.colour[from][c], 1e-4f * (1.0f + std::abs(before.colour[from][c])));
+      }
+    if (history) {
+      EXPECT_GT(carried, kSize * kSize / 2);
+    }
+  }
 }

@@ -121,8 +121,8 @@ class FrameBuffer {
   // SVGF and the render cache): the old depths are splatted into the new view
   // (instances moved as placed) to predict what each pixel sees, and the
   // pixel gathers, bilinearly, the old pixels that saw the same instance at
-  // that depth; their counts, capped at r.historyLimit and rounded down to a
-  // power of two, become the pixel's inherited samples. Its first new sample
+  // that depth; their counts, capped at r.historyLimit, become the pixel's
+  // inherited samples. Its first new sample
   // checks the prediction: if it hits another instance, another depth, a
   // surface facing elsewhere, or nothing where something was, the pixel
   // drops what it inherited. The old samples must be of r.from*; the key
