@@ -183,8 +183,8 @@ void FrameBuffer::reproject(const Reprojection& r) {
       // depth, or the sky. A silhouette pixel's far side does not count: what
       // it holds is mostly the near side's.
       const float dq = -q.z;
-      const bool seen = hit ? p.object == object && std::abs(p.depth - dq) <= kGatherDepthTolerance * dq
-                            : !std::isfinite(p.depth);
+      const bool seen =
+          hit ? p.object == object && std::abs(p.depth - dq) <= kGatherDepthTolerance * dq : !std::isfinite(p.depth);
       if (!seen) continue;
       taps[n] = &p;
       weights[n++] = w;

@@ -106,10 +106,8 @@ std::vector<Method> methods(const Options& o) {
   return {
       {"restart, " + o.previewFilter, with({{"filter", o.previewFilter}})},
       {"restart, denoise", with({{"filter", std::string("denoise")}})},
-      {"history, " + o.previewFilter,
-       with({{"filter", o.previewFilter}, {"history", true}, {"historyLimit", limit}})},
-      {"history, denoise",
-       with({{"filter", std::string("denoise")}, {"history", true}, {"historyLimit", limit}})},
+      {"history, " + o.previewFilter, with({{"filter", o.previewFilter}, {"history", true}, {"historyLimit", limit}})},
+      {"history, denoise", with({{"filter", std::string("denoise")}, {"history", true}, {"historyLimit", limit}})},
       {"still camera, 4 spp denoised", with({{"filter", std::string("denoise")}}), 4},
   };
 }
@@ -125,8 +123,9 @@ void writePng(const Options& o, const std::string& name, const med::FrameBuffer&
 int main(int argc, char** argv) {
   Options o;
   CLI::App app{"Temporal reprojection on an orbiting camera: seen error, relMSE and flicker per method"};
-  app.add_option("--scene", o.scenes, "scene keys: builtin-cornell or the suite's (default: builtin-cornell, indirect-room, "
-                                      "rough-metal)");
+  app.add_option("--scene", o.scenes,
+                 "scene keys: builtin-cornell or the suite's (default: builtin-cornell, indirect-room, "
+                 "rough-metal)");
   app.add_option("--suite", o.suite, "the suite's folder (make_suite.py's output)")->required();
   app.add_option("--width", o.width, "image width")->check(CLI::Range(8, 4096));
   app.add_option("--height", o.height, "image height")->check(CLI::Range(8, 4096));
@@ -208,17 +207,17 @@ int main(int argc, char** argv) {
         res.rel.push_back(quality::relMse(shot.image.colour, references[f]));
         frames.push_back(shot.image.colour);
         if (key == o.scenes.front() && std::find(o.strip.begin(), o.strip.end(), f) != o.strip.end())
-          writePng(o, fmt::format("{}_{}_frame{:02}", spec.key, m.name.substr(0, m.name.find(',')) +
-                                                                  (m.name.find("denoise") != std::string::npos
-                                                                       ? "-denoise"
-                                                                       : "-" + o.previewFilter),
-                                  f),
+          writePng(o,
+                   fmt::format("{}_{}_frame{:02}", spec.key,
+                               m.name.substr(0, m.name.find(',')) +
+                                   (m.name.find("denoise") != std::string::npos ? "-denoise" : "-" + o.previewFilter),
+                               f),
                    shot.image);
         if (key == o.scenes.front() && !o.pngDir.empty() && m.name == "history, denoise" &&
             std::find(o.strip.begin(), o.strip.end(), f) != o.strip.end())
-          med::writeImage((std::filesystem::path(o.pngDir) / fmt::format("{}_carried_frame{:02}.png", spec.key, f))
-                              .string(),
-                          shot.image, "samples");
+          med::writeImage(
+              (std::filesystem::path(o.pngDir) / fmt::format("{}_carried_frame{:02}.png", spec.key, f)).string(),
+              shot.image, "samples");
       }
       res.flicker = quality::temporalRelMse(frames, references);
       table += fmt::format("| {} | {} | {} | {} | {} | {} | {:.3f} |\n", spec.label, m.name,
@@ -250,12 +249,12 @@ int main(int argc, char** argv) {
     const Result& rp = results["restart, " + o.previewFilter];
     const Result& hp = results["history, " + o.previewFilter];
     const Result& still = results["still camera, 4 spp denoised"];
-    ratios += fmt::format("| {} | {:.2f}x | {:.2f}x ({} vs {}) | {:.2f}x | {:.2f}x | {:+.1f} % ({:.3f} vs {:.3f} s) |\n",
-                          spec.label, meanFrom(rd.seen, o.fromFrame) / meanFrom(hd.seen, o.fromFrame),
-                          meanFrom(still.seen, o.fromFrame) / meanFrom(hd.seen, o.fromFrame),
-                          num(meanFrom(hd.seen, o.fromFrame)), num(meanFrom(still.seen, o.fromFrame)),
-                          rd.flicker / hd.flicker, rp.flicker / hp.flicker, 100.0 * (carried - plain) / plain, carried,
-                          plain);
+    ratios += fmt::format(
+        "| {} | {:.2f}x | {:.2f}x ({} vs {}) | {:.2f}x | {:.2f}x | {:+.1f} % ({:.3f} vs {:.3f} s) |\n", spec.label,
+        meanFrom(rd.seen, o.fromFrame) / meanFrom(hd.seen, o.fromFrame),
+        meanFrom(still.seen, o.fromFrame) / meanFrom(hd.seen, o.fromFrame), num(meanFrom(hd.seen, o.fromFrame)),
+        num(meanFrom(still.seen, o.fromFrame)), rd.flicker / hd.flicker, rp.flicker / hp.flicker,
+        100.0 * (carried - plain) / plain, carried, plain);
   }
   quality::publishTables(table + ratios, o.out);
   return 0;

@@ -20,7 +20,7 @@ namespace tsr::quality {
 
 struct Shot {
   med::FrameBuffer image;
-  double seconds = 0;  // the render call without catching up (conversion, BVH)
+  double seconds = 0;       // the render call without catching up (conversion, BVH)
   double totalSeconds = 0;  // the whole render call
   std::uint32_t samples = 0;
 };

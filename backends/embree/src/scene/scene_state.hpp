@@ -140,7 +140,7 @@ struct Edit {
   std::uint32_t mesh = kNoId;      // whose data changed: its BVH and its instances' bounds
   bool materials = false;          // resolved materials
   bool lights = false;
-  bool emitters = false;  // emission changed: the emitter distribution
+  bool emitters = false;       // emission changed: the emitter distribution
   bool placementOnly = false;  // an instance moved and nothing else: appearance stays
 };
 

@@ -37,7 +37,7 @@ struct PixelSample {
   // noise is which samples cover them. The denoiser leaves it as it is.
   glm::vec3 emitted{0.0f};
   bool hit = false;
-  float depth = 0.0f;  // camera-space depth of the first hit, if hit
+  float depth = 0.0f;                // camera-space depth of the first hit, if hit
   std::uint32_t object = kNoObject;  // the instance of the first hit (its index in the scene), if hit
   glm::vec3 albedo{0.0f};
   glm::vec3 normal{0.0f};
