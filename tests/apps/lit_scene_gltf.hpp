@@ -3,6 +3,8 @@
 // lights, no emissive material and no environment (so the default light rig
 // applies), three cameras ("front", "top", and "tracking" under the
 // animated node "dolly", which moves 2 units along +X in one second).
+// With `sun`, a directional light of its own stands still (the default rig
+// follows the camera, so it moves whenever the camera does).
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -33,7 +35,7 @@ inline std::string base64(const std::vector<std::uint8_t>& bytes) {
 inline constexpr float kFrontEye[3] = {0.0f, 1.5f, 6.0f};
 inline constexpr float kCameraYfov = 0.8f;
 
-inline void writeLitSceneGltf(const std::string& path) {
+inline void writeLitSceneGltf(const std::string& path, bool sun = false) {
   std::vector<std::uint8_t> bin;
   nlohmann::json views = nlohmann::json::array(), accessors = nlohmann::json::array();
   auto add = [&](const std::vector<float>& values, const char* type, int components, bool bounds) {
@@ -120,6 +122,16 @@ inline void writeLitSceneGltf(const std::string& path) {
                   {{"name", "dolly"}, {"children", {6}}},
                   {{"name", "tracking camera"}, {"camera", 2}, {"translation", eye}}};
   doc["scenes"] = {{{"nodes", {0, 1, 2, 3, 4, 5}}}};
+  if (sun) {
+    doc["extensionsUsed"] = {"KHR_lights_punctual"};
+    doc["extensions"] = {
+        {"KHR_lights_punctual", {{"lights", {{{"type", "directional"}, {"intensity", 3.0}, {"color", {1, 1, 1}}}}}}}};
+    // Pointing down and away from the front camera (-60 degrees about X).
+    doc["nodes"].push_back({{"name", "sun"},
+                            {"rotation", {-0.5, 0.0, 0.0, 0.8660254}},
+                            {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    doc["scenes"][0]["nodes"].push_back(7);
+  }
   doc["scene"] = 0;
   nlohmann::json sampler = {{"input", times}, {"output", moves}, {"interpolation", "LINEAR"}};
   nlohmann::json channel = {{"sampler", 0}, {"target", {{"node", 5}, {"path", "translation"}}}};

@@ -301,3 +301,37 @@ TEST_F(RenderCommand, TemporalPhotonsFlickerLessThanFrameByFrame) {
   expectOneErrorLine(run("builtin:animated --frames 2 --temporal photons --backend vulkan --output p.####.png"),
                      "--backend embree");
 }
+
+// --temporal reproject: each frame adds --spp samples to the samples of the
+// frame before, carried to its view (the path tracer's history); without
+// it every frame starts afresh. The samples output says which is which.
+TEST_F(RenderCommand, TemporalReprojectCarriesTheSamplesOfTheFrameBefore) {
+  tsr::test::writeLitSceneGltf((dir / "lit.gltf").string(), true);
+  const std::string common =
+      "lit.gltf --size 24x24 --spp 1 --threads 1 --frames 4 --fps 8 --camera tracking --aov samples --quiet ";
+  ASSERT_EQ(run(common + "--temporal reproject --output r.####.exr").status, 0);
+  ASSERT_EQ(run(common + "--output f.####.exr").status, 0);
+  double before = 0;
+  for (int f = 0; f < 4; ++f) {
+    const std::string stem = "000" + std::to_string(f);
+    const auto carried = tsr::med::readImage((dir / ("r." + stem + ".samples.exr")).string());
+    const auto fresh = tsr::med::readImage((dir / ("f." + stem + ".samples.exr")).string());
+    double mean = 0;
+    for (std::size_t p = 0; p < carried.colour.size(); ++p) {
+      EXPECT_EQ(carried.colour[p].r, 1.0f) << "one sample traced a frame";
+      EXPECT_EQ(fresh.colour[p].g, 0.0f) << "frame by frame, nothing is carried";
+      mean += carried.colour[p].g / double(carried.colour.size());
+    }
+    if (f == 0) {
+      EXPECT_EQ(mean, 0.0) << "the first frame has nothing to carry";
+    } else {
+      EXPECT_GT(mean, before + 0.5) << "frame " << f << " carries more than the one before";
+    }
+    before = mean;
+  }
+  expectOneErrorLine(run("lit.gltf --frames 2 --temporal reproject --backend vulkan --output v.####.png"),
+                     "--backend embree");
+  expectOneErrorLine(run("lit.gltf --frames 2 --temporal reproject --direct-spp 4 --output v.####.png"),
+                     "--direct-spp");
+  expectOneErrorLine(run("lit.gltf --temporal reproject --output v.png"), "--frames");
+}

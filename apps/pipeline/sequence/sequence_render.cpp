@@ -138,14 +138,20 @@ bool cameraMoves(const SceneSession& session) {
   return false;
 }
 
-// The back-ends with a temporal photon pass: those that declare the
-// "temporal" parameter.
-std::vector<std::string> photonBackends() {
+// The back-ends that declare `parameter`: "temporal" for a temporal photon
+// pass, "history" for reprojected samples.
+std::vector<std::string> backendsDeclaring(const std::string& parameter) {
   const med::ViewportRegistry& registry = backendRegistry();
   std::vector<std::string> names;
   for (const auto& b : registry.backends())
-    if (registry.capabilities(b).parameters.declares("temporal")) names.push_back(b);
+    if (registry.capabilities(b).parameters.declares(parameter)) names.push_back(b);
   return names;
+}
+
+std::string backendChoice(const std::vector<std::string>& names) {
+  std::string text;
+  for (const auto& b : names) text += (text.empty() ? "--backend " : " or --backend ") + b;
+  return text;
 }
 
 // `log` records every frame's tiles and their cost (--stats-json).
@@ -192,12 +198,15 @@ RenderJob sequenceJob(const RenderJob& given, const SceneSession& session, const
   if (options.temporal.imagePca() && !layers.empty())
     throw std::invalid_argument("--temporal pca with --layers: each frame is rebuilt from the bottom layer's direct "
                                 "and indirect light, so the layers above it would be lost");
-  if (const auto able = photonBackends();
-      options.temporal.inBackend() && std::find(able.begin(), able.end(), options.backend) == able.end()) {
-    std::string names;
-    for (const auto& b : able) names += (names.empty() ? "--backend " : " or --backend ") + b;
-    throw std::invalid_argument("--temporal " + method + " runs in the path tracer's photon pass: it needs " + names);
-  }
+  if (const auto able = backendsDeclaring("temporal");
+      options.temporal.inBackend() && std::find(able.begin(), able.end(), options.backend) == able.end())
+    throw std::invalid_argument("--temporal " + method +
+                                " runs in the path tracer's photon pass: it needs " + backendChoice(able));
+  if (const auto able = backendsDeclaring("history");
+      options.temporal.reprojects() && std::find(able.begin(), able.end(), options.backend) == able.end())
+    throw std::invalid_argument("--temporal reproject carries the path tracer's samples from frame to frame: it "
+                                "needs " +
+                                backendChoice(able));
   return options;
 }
 

@@ -11,9 +11,11 @@ void addTemporalOptions(CLI::App& app, TemporalOptions& o) {
       app.add_option_group("Temporal (with --frames)", "flicker-free animations: indirect light denoised over time");
   g->add_option("--temporal", o.method,
                 "pca: project the indirect light onto its temporal PCA basis (Meyer & Anderson); photons: "
-                "spatio-temporal photon density estimation (--backend embree). With pca --spp is the indirect "
+                "spatio-temporal photon density estimation (--backend embree); reproject: each frame adds --spp "
+                "samples to the samples of the frame before, reprojected to its view where the same surfaces show "
+                "(--backend embree's history, as the interactive programs use it). With pca --spp is the indirect "
                 "sample count, with photons the direct one")
-      ->check(CLI::IsMember({"pca", "photons"}));
+      ->check(CLI::IsMember({"pca", "photons", "reproject"}));
   g->add_option("--temporal-space", o.space,
                 "where pca projects: image (the frames' indirect light), object (irradiance on surface elements "
                 "fixed to the meshes, estimated by --photons-per-frame photons per frame; --spp is then the direct "
@@ -69,6 +71,11 @@ void checkTemporalOptions(const TemporalOptions& o, int spp) {
   if (o.method == "photons" && o.photonFrames % 2 == 0)
     throw std::invalid_argument("--photon-frames " + std::to_string(o.photonFrames) +
                                 " must be odd: the window is centred on the frame it reconstructs");
+  if (o.method == "reproject" && o.modes)
+    throw std::invalid_argument("--temporal-modes is pca's truncation: it needs --temporal pca");
+  if (o.method == "reproject" && o.directSpp)
+    throw std::invalid_argument("--direct-spp with --temporal reproject: the history carries whole samples, so "
+                                "--spp is the count of every kind of light");
   if (o.method == "photons" && o.directSpp)
     throw std::invalid_argument("--direct-spp with --temporal photons: photons carry the indirect light, so --spp "
                                 "is already the direct-light sample count");
@@ -104,6 +111,10 @@ void TemporalOptions::resolveSpace(bool cameraMoves) {
 }
 
 void TemporalOptions::applyTo(med::Parameters& parameters) const {
+  if (reprojects()) {
+    parameters.set("history", true);
+    return;
+  }
   if (!inBackend()) return;
   parameters.set("photonsPerFrame", std::int64_t{photonsPerFrame});
   if (method == "photons") {

@@ -1,6 +1,7 @@
 #pragma once
 // tessera-render's temporal noise reduction options (with --frames):
 //   --temporal pca|photons   denoise the indirect light over the sequence
+//   --temporal reproject     each frame adds --spp samples to the last one's, reprojected
 //   --direct-spp N           samples of direct light per frame
 //   --temporal-modes M       fixed PCA truncation (default: automatic, 2.3)
 //   --temporal-epsilon E, --temporal-epsilon-change C, --temporal-global,
@@ -41,11 +42,14 @@ struct TemporalOptions {
   bool imagePca() const { return method == "pca" && space == "image"; }
   // The method runs in the path tracer's temporal viewport.
   bool inBackend() const { return method == "photons" || (method == "pca" && space == "object"); }
+  // The path tracer's history carries each frame's samples to the next.
+  bool reprojects() const { return method == "reproject"; }
   // Settles space "auto" (pca only): object when the camera moves.
   void resolveSpace(bool cameraMoves);
   // The viewport parameters that select the method in the back-end
-  // (photons, or object-space pca: the path tracer's temporal viewport);
-  // none for image-space pca, which works on the rendered frames.
+  // (photons, or object-space pca: the path tracer's temporal viewport;
+  // reproject: its history); none for image-space pca, which works on the
+  // rendered frames.
   void applyTo(med::Parameters& parameters) const;
 };
 
