@@ -200,8 +200,8 @@ RenderJob sequenceJob(const RenderJob& given, const SceneSession& session, const
                                 "and indirect light, so the layers above it would be lost");
   if (const auto able = backendsDeclaring("temporal");
       options.temporal.inBackend() && std::find(able.begin(), able.end(), options.backend) == able.end())
-    throw std::invalid_argument("--temporal " + method +
-                                " runs in the path tracer's photon pass: it needs " + backendChoice(able));
+    throw std::invalid_argument("--temporal " + method + " runs in the path tracer's photon pass: it needs " +
+                                backendChoice(able));
   if (const auto able = backendsDeclaring("history");
       options.temporal.reprojects() && std::find(able.begin(), able.end(), options.backend) == able.end())
     throw std::invalid_argument("--temporal reproject carries the path tracer's samples from frame to frame: it "
