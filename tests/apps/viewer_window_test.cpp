@@ -145,6 +145,34 @@ TEST_F(ViewerWindow, ScriptedBackendSwitchesMatchHeadlessRenders) {
   EXPECT_GT(compare(window, image("vulkan-again.png")).meanAbs, 0.01) << "panels drawn over the image";
 }
 
+// The panels leave the picture to the user: at the default size, with two
+// viewports side by side (as issue 43 saw them covering most of both
+// pictures), they open collapsed and cover little of either picture, and
+// the viewer opens with the path tracer's history on.
+TEST_F(ViewerWindow, PanelsOpenCollapsedAndCoverLittleOfThePictures) {
+  writeScript("panels.txt", "time 0\nwait frames 2\nscreenshot left.png 0\nscreenshot right.png 1\n"
+                            "window-screenshot window.png\n");
+  const Outcome v = viewer("builtin:cornell --viewports vulkan,vulkan --script panels.txt --exit-after");
+  ASSERT_EQ(v.status, 0) << v.err;
+  EXPECT_THAT(v.out, HasSubstr("history while moving: on"));
+  const auto window = image("window.png"), left = image("left.png"), right = image("right.png");
+  ASSERT_EQ(left.width + right.width, window.width);
+  for (const auto* pane : {&left, &right}) {
+    const std::uint32_t x0 = pane == &left ? 0 : left.width;
+    std::size_t covered = 0;
+    for (std::uint32_t y = 0; y < pane->height; ++y)
+      for (std::uint32_t x = 0; x < pane->width; ++x) {
+        const glm::vec4 a = window.colour[window.index(x0 + x, y)], b = pane->colour[pane->index(x, y)];
+        covered += std::abs(encode(a.r) - encode(b.r)) + std::abs(encode(a.g) - encode(b.g)) +
+                       std::abs(encode(a.b) - encode(b.b)) >
+                   3.0 / 255;
+      }
+    const double share = double(covered) / double(pane->colour.size());
+    EXPECT_GT(share, 0.005) << "the panels' title bars are drawn";
+    EXPECT_LT(share, 0.05) << "a collapsed panel covers little of its picture";
+  }
+}
+
 TEST_F(ViewerWindow, SideBySideViewportsOrbitBookmarksAndLayeredExr) {
   writeScript("orbit.txt", "time 0\n"
                            "wait frames 2\n"
