@@ -93,8 +93,14 @@ struct Prediction {
 }  // namespace
 
 void FrameBuffer::reproject(const Reprojection& r) {
-  std::vector<Pixel> old(std::size_t(width_) * height_, emptyPixel());
-  old.swap(pixels_);
+  // The old samples move to the spare buffer and the new ones fill the
+  // spare's memory: fresh 40 MB a frame (500x400) would cost more in page
+  // faults than the reprojection itself.
+  // Every new pixel is written below (the gather), so the spare's stale
+  // contents need no clearing first.
+  spare_.swap(pixels_);
+  pixels_.resize(std::size_t(width_) * height_);
+  const std::vector<Pixel>& old = spare_;
   epoch_ = nextEpoch();
   carriesHistory_ = false;
   const Projection from(r.fromCamera, r.fromRegion), to(r.toCamera, r.toRegion);
@@ -129,6 +135,7 @@ void FrameBuffer::reproject(const Reprojection& r) {
         }
       }
   } else {
+    pixels_.assign(size, emptyPixel());
     return;  // sizes that do not match their regions: nothing to carry
   }
 
@@ -158,6 +165,7 @@ void FrameBuffer::reproject(const Reprojection& r) {
   const std::uint32_t limit = std::max<std::uint32_t>(r.historyLimit, 1);
   auto gather = [&](std::uint32_t x, std::uint32_t y) {
     const std::size_t i = std::size_t(y) * to.columns + x;
+    pixels_[i] = emptyPixel();  // unless the history holds something for it
     const float d = predicted.depth[i];
     const bool hit = std::isfinite(d);
     if (!hit && !predicted.sky[i]) return;

@@ -203,6 +203,7 @@ class FrameBuffer {
   // Each instance's placement when key_ was set (Renderer: with a history
   // limit only), for the next reproject().
   std::vector<glm::mat4> placements_;
+  std::vector<Pixel> spare_;  // reproject()'s old samples, kept for the next one's memory
 };
 
 }  // namespace tsr::embree
