@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <tuple>
+
 namespace tsr::embree::test {
 namespace {
 
@@ -34,6 +36,22 @@ RenderSettings withHistory(std::uint32_t limit = 16) {
   s.samplesPerPass = 16;
   return s;
 }
+
+// The scene rendered once at 16 spp with the history on; later passes of
+// one sample (frames).
+struct Rendered : BoxBeforeWall {
+  Renderer renderer{withHistory()};
+  const Region region = Region::full(kSize, kSize);
+  FrameBuffer fb{kSize, kSize};
+  FrameBuffer before{kSize, kSize};
+  Rendered() {
+    renderer.renderPass(scene, camera, region, fb);
+    before = fb;
+    RenderSettings one = withHistory();
+    one.samplesPerPass = 1;
+    renderer.setSettings(one);
+  }
+};
 
 // The object every sample of an 8-spp render of the view sees, per pixel
 // (kNoObject where they disagree): the pixels inside one surface.
@@ -143,17 +161,10 @@ TEST(EmbreeHistory, OneSampleAFrameAddsUpToTheLimit) {
 }
 
 TEST(EmbreeHistory, DisoccludedPixelsDoNotKeepWhatHidThem) {
-  BoxBeforeWall f;
-  Renderer renderer(withHistory());
-  const Region region = Region::full(kSize, kSize);
-  FrameBuffer fb(kSize, kSize);
-  renderer.renderPass(f.scene, f.camera, region, fb);
-  const FrameBuffer before = fb;
+  Rendered f;
+  auto [renderer, region, fb, before] = std::tie(f.renderer, f.region, f.fb, f.before);
   Camera moved = f.camera;
   moved.cameraToWorld = glm::translate(moved.cameraToWorld, glm::vec3(0.6f, 0, 0));
-  RenderSettings one = withHistory();
-  one.samplesPerPass = 1;
-  renderer.setSettings(one);
   renderer.renderPass(f.scene, moved, region, fb);
   const auto solid = solidObjects(f.scene, moved);
   const std::uint32_t wall = std::uint32_t(f.wall), box = std::uint32_t(f.box);
@@ -171,16 +182,9 @@ TEST(EmbreeHistory, DisoccludedPixelsDoNotKeepWhatHidThem) {
 }
 
 TEST(EmbreeHistory, AMovedObjectLeavesNoTrailAndTakesItsSamplesAlong) {
-  BoxBeforeWall f;
-  Renderer renderer(withHistory());
-  const Region region = Region::full(kSize, kSize);
-  FrameBuffer fb(kSize, kSize);
-  renderer.renderPass(f.scene, f.camera, region, fb);
-  const FrameBuffer before = fb;
+  Rendered f;
+  auto [renderer, region, fb, before] = std::tie(f.renderer, f.region, f.fb, f.before);
   f.scene.setInstanceTransform(f.box, glm::translate(glm::mat4(1.0f), glm::vec3(0.8f, 0, 0)));
-  RenderSettings one = withHistory();
-  one.samplesPerPass = 1;
-  renderer.setSettings(one);
   const auto solid = solidObjects(f.scene, f.camera);
   const std::uint32_t wall = std::uint32_t(f.wall), box = std::uint32_t(f.box);
   for (int frame = 0; frame < 2; ++frame) renderer.renderPass(f.scene, f.camera, region, fb);
@@ -205,13 +209,8 @@ TEST(EmbreeHistory, AMovedObjectLeavesNoTrailAndTakesItsSamplesAlong) {
 // told that the box moved when it did not, the pixels where it was predicted
 // see the wall and drop what they inherited.
 TEST(EmbreeHistory, APredictionTheFirstSampleRefutesIsDropped) {
-  BoxBeforeWall f;
-  RenderSettings s = withHistory();
-  Renderer renderer(s);
-  const Region region = Region::full(kSize, kSize);
-  FrameBuffer fb(kSize, kSize);
-  renderer.renderPass(f.scene, f.camera, region, fb);
-  const FrameBuffer before = fb;
+  Rendered f;
+  auto [renderer, region, fb, before] = std::tie(f.renderer, f.region, f.fb, f.before);
   const std::vector<glm::mat4> then(2, glm::mat4(1.0f));
   std::vector<glm::mat4> told = then;
   told[std::uint32_t(f.box)] = glm::translate(glm::mat4(1.0f), glm::vec3(0.8f, 0, 0));
@@ -224,8 +223,6 @@ TEST(EmbreeHistory, APredictionTheFirstSampleRefutesIsDropped) {
         predictedBox.push_back(y * kSize + x);
   ASSERT_GT(predictedBox.size(), 20u) << "the box carried to where it was said to be";
   // The renderer sees an unchanged key: the pass adds to what reproject() left.
-  s.samplesPerPass = 1;
-  renderer.setSettings(s);
   EXPECT_FALSE(renderer.renderPass(f.scene, f.camera, region, fb).restarted);
   const auto solid = solidObjects(f.scene, f.camera);
   std::size_t checked = 0;

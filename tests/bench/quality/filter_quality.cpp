@@ -95,14 +95,14 @@ med::Parameters parameters(const Options& o, std::uint32_t spp, const std::strin
 void note(const std::string& s) { std::cerr << "[filter_quality] " << s << std::endl; }
 
 quality::ReferenceOptions referenceOptions(const Options& o) {
-  quality::ReferenceOptions r;
-  r.size = o.size;
-  r.spp = o.refSpp;
-  r.seed = o.refSeed;
-  r.maxDepth = o.maxDepth;
-  r.threads = o.threads;
-  r.cache = o.cache;
-  return r;
+  return {.size = o.size,
+          .spp = o.refSpp,
+          .seed = o.refSeed,
+          .maxDepth = o.maxDepth,
+          .threads = o.threads,
+          .cache = o.cache,
+          .height = 0,
+          .pose = {}};
 }
 
 Score score(const Shot& shot, const med::FrameBuffer& ref, std::uint32_t spp, double seconds) {

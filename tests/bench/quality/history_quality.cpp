@@ -180,13 +180,12 @@ int main(int argc, char** argv) {
       const int tenths = int(std::lround(angle * 10));
       if (!byAngle.count(tenths)) {
         scene.orbit(angle, pivot);
-        quality::ReferenceOptions r;
-        r.size = o.width;
-        r.height = o.height;
-        r.spp = o.refSpp;
-        r.threads = o.threads;
-        r.cache = o.cache;
-        r.pose = fmt::format("orbit{}_pivot{:.3f}", tenths, pivot);
+        const quality::ReferenceOptions r{.size = o.width,
+                                          .spp = o.refSpp,
+                                          .threads = o.threads,
+                                          .cache = o.cache,
+                                          .height = o.height,
+                                          .pose = fmt::format("orbit{}_pivot{:.3f}", tenths, pivot)};
         byAngle[tenths] = quality::reference(scene, r).colour;
       }
       references.push_back(byAngle[tenths]);
