@@ -57,6 +57,12 @@ struct Projection {
     return std::isfinite(d) ? toWorld * glm::vec4(w * (d / near), 1.0f) : toWorld * glm::vec4(w, 0.0f);
   }
   bool inside(int x, int y) const { return x >= 0 && y >= 0 && x < int(columns) && y < int(rows); }
+  // Pixel coordinates within a pixel of the region (and so safe to turn
+  // into ints): a point near the eye plane projects arbitrarily far, or to
+  // infinity or NaN.
+  bool nearRegion(const glm::vec2& at) const {
+    return at.x >= -1.0f && at.y >= -1.0f && at.x <= float(columns) + 1.0f && at.y <= float(rows) + 1.0f;
+  }
 
   glm::mat4 toWorld, toCamera;
   float left, right, bottom, top, near;
@@ -124,6 +130,7 @@ void FrameBuffer::reproject(const Reprojection& r) {
         const glm::vec3 q(to.toCamera * world);
         if (!(q.z < 0.0f)) continue;
         const glm::vec2 at = to.pixelOf(q);
+        if (!to.nearRegion(at)) continue;
         const int x = int(std::floor(at.x)), y = int(std::floor(at.y));
         if (!to.inside(x, y)) continue;
         const std::size_t i = std::size_t(y) * to.columns + std::uint32_t(x);
@@ -175,6 +182,7 @@ void FrameBuffer::reproject(const Reprojection& r) {
     const glm::vec3 q(from.toCamera * world);
     if (!(q.z < 0.0f)) return;
     const glm::vec2 at = from.pixelOf(q) - glm::vec2(0.5f);
+    if (!from.nearRegion(at)) return;
     const int bx = int(std::floor(at.x)), by = int(std::floor(at.y));
     const float tx = at.x - float(bx), ty = at.y - float(by);
     const Pixel* taps[4];
