@@ -9,6 +9,8 @@
 #include <oneapi/tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -114,12 +116,20 @@ void FrameBuffer::reproject(const Reprojection& r) {
   const std::size_t size = pixels_.size();
 
   // 1. Splat: every old pixel's nearest hit, moved with its instance, lands
-  // in the new view; the nearest landing per pixel is the prediction.
-  Prediction splat{std::vector<float>(size, kInfinity), std::vector<std::uint32_t>(size, kNoObject),
-                   std::vector<std::uint8_t>(size, 0)};
+  // in the new view; the nearest landing per pixel is the prediction. Rows
+  // splat in parallel: a landing is kept by an atomic minimum of (depth,
+  // instance) packed in 64 bits (positive floats order as their bits), so
+  // the result does not depend on the order (equal depths: the lower id).
+  if (from.columns * from.rows != old.size() || to.columns * to.rows != size) {
+    pixels_.assign(size, emptyPixel());
+    return;  // sizes that do not match their regions: nothing to carry
+  }
+  constexpr std::uint64_t kNothing = ~std::uint64_t{0};
+  std::vector<std::uint64_t> nearest(size, kNothing);
+  std::vector<std::uint8_t> skyLanded(size, 0);
   const auto oldColumns = from.columns;
-  if (from.columns * from.rows == old.size() && to.columns * to.rows == size) {
-    for (std::uint32_t oy = 0; oy < from.rows; ++oy)
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, from.rows), [&](const tbb::blocked_range<std::uint32_t>& rows) {
+    for (std::uint32_t oy = rows.begin(); oy != rows.end(); ++oy)
       for (std::uint32_t ox = 0; ox < from.columns; ++ox) {
         const Pixel& p = old[std::size_t(oy) * oldColumns + ox];
         if (p.count == 0) continue;
@@ -135,37 +145,46 @@ void FrameBuffer::reproject(const Reprojection& r) {
         if (!to.inside(x, y)) continue;
         const std::size_t i = std::size_t(y) * to.columns + std::uint32_t(x);
         if (!hit) {
-          splat.sky[i] = 1;
-        } else if (-q.z < splat.depth[i]) {
-          splat.depth[i] = -q.z;
-          splat.object[i] = p.object;
+          std::atomic_ref<std::uint8_t>(skyLanded[i]).store(1, std::memory_order_relaxed);
+          continue;
+        }
+        const std::uint64_t key = std::uint64_t(std::bit_cast<std::uint32_t>(-q.z)) << 32 | p.object;
+        std::atomic_ref<std::uint64_t> slot(nearest[i]);
+        std::uint64_t held = slot.load(std::memory_order_relaxed);
+        while (key < held && !slot.compare_exchange_weak(held, key, std::memory_order_relaxed)) {
         }
       }
-  } else {
-    pixels_.assign(size, emptyPixel());
-    return;  // sizes that do not match their regions: nothing to carry
-  }
+  });
+  Prediction splat{std::vector<float>(size, kInfinity), std::vector<std::uint32_t>(size, kNoObject),
+                   std::move(skyLanded)};
+  for (std::size_t i = 0; i < size; ++i)
+    if (nearest[i] != kNothing) {
+      splat.depth[i] = std::bit_cast<float>(std::uint32_t(nearest[i] >> 32));
+      splat.object[i] = std::uint32_t(nearest[i]);
+    }
 
   // 2. Gaps one pixel wide (a surface seen larger than before) take their
   // nearest neighbour's prediction; the first sample checks it.
   Prediction predicted = splat;
-  for (std::uint32_t y = 0; y < to.rows; ++y)
-    for (std::uint32_t x = 0; x < to.columns; ++x) {
-      const std::size_t i = std::size_t(y) * to.columns + x;
-      if (std::isfinite(splat.depth[i]) || splat.sky[i]) continue;
-      bool sky = false;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          if (!to.inside(int(x) + dx, int(y) + dy)) continue;
-          const std::size_t n = std::size_t(int(y) + dy) * to.columns + std::uint32_t(int(x) + dx);
-          sky = sky || splat.sky[n];
-          if (splat.depth[n] < predicted.depth[i]) {
-            predicted.depth[i] = splat.depth[n];
-            predicted.object[i] = splat.object[n];
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, to.rows), [&](const tbb::blocked_range<std::uint32_t>& rows) {
+    for (std::uint32_t y = rows.begin(); y != rows.end(); ++y)
+      for (std::uint32_t x = 0; x < to.columns; ++x) {
+        const std::size_t i = std::size_t(y) * to.columns + x;
+        if (std::isfinite(splat.depth[i]) || splat.sky[i]) continue;
+        bool sky = false;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            if (!to.inside(int(x) + dx, int(y) + dy)) continue;
+            const std::size_t n = std::size_t(int(y) + dy) * to.columns + std::uint32_t(int(x) + dx);
+            sky = sky || splat.sky[n];
+            if (splat.depth[n] < predicted.depth[i]) {
+              predicted.depth[i] = splat.depth[n];
+              predicted.object[i] = splat.object[n];
+            }
           }
-        }
-      if (!std::isfinite(predicted.depth[i])) predicted.sky[i] = sky;
-    }
+        if (!std::isfinite(predicted.depth[i])) predicted.sky[i] = sky;
+      }
+  });
 
   // 3. Gather: each pixel takes the old pixels around where its predicted
   // surface was, bilinearly, those that saw the same instance at that depth.
