@@ -128,33 +128,33 @@ void FrameBuffer::reproject(const Reprojection& r) {
   std::vector<std::uint64_t> nearest(size, kNothing);
   std::vector<std::uint8_t> skyLanded(size, 0);
   const auto oldColumns = from.columns;
-  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, from.rows), [&](const tbb::blocked_range<std::uint32_t>& rows) {
-    for (std::uint32_t oy = rows.begin(); oy != rows.end(); ++oy)
-      for (std::uint32_t ox = 0; ox < from.columns; ++ox) {
-        const Pixel& p = old[std::size_t(oy) * oldColumns + ox];
-        if (p.count == 0) continue;
-        const bool hit = std::isfinite(p.depth);
-        if (hit && !motions.known(p.object)) continue;
-        glm::vec4 world = from.worldAt(ox, oy, p.depth);
-        if (hit) world = motions.forward[p.object] * world;
-        const glm::vec3 q(to.toCamera * world);
-        if (!(q.z < 0.0f)) continue;
-        const glm::vec2 at = to.pixelOf(q);
-        if (!to.nearRegion(at)) continue;
-        const int x = int(std::floor(at.x)), y = int(std::floor(at.y));
-        if (!to.inside(x, y)) continue;
-        const std::size_t i = std::size_t(y) * to.columns + std::uint32_t(x);
-        if (!hit) {
-          std::atomic_ref<std::uint8_t>(skyLanded[i]).store(1, std::memory_order_relaxed);
-          continue;
-        }
-        const std::uint64_t key = std::uint64_t(std::bit_cast<std::uint32_t>(-q.z)) << 32 | p.object;
-        std::atomic_ref<std::uint64_t> slot(nearest[i]);
-        std::uint64_t held = slot.load(std::memory_order_relaxed);
-        while (key < held && !slot.compare_exchange_weak(held, key, std::memory_order_relaxed)) {
-        }
-      }
-  });
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, from.rows),
+                    [&](const tbb::blocked_range<std::uint32_t>& rows) {
+                      for (std::uint32_t oy = rows.begin(); oy != rows.end(); ++oy)
+                        for (std::uint32_t ox = 0; ox < from.columns; ++ox) {
+                          const Pixel& p = old[std::size_t(oy) * oldColumns + ox];
+                          if (p.count == 0) continue;
+                          const bool hit = std::isfinite(p.depth);
+                          if (hit && !motions.known(p.object)) continue;
+                          glm::vec4 world = from.worldAt(ox, oy, p.depth);
+                          if (hit) world = motions.forward[p.object] * world;
+                          const glm::vec3 q(to.toCamera * world);
+                          if (!(q.z < 0.0f)) continue;
+                          const glm::vec2 at = to.pixelOf(q);
+                          if (!to.nearRegion(at)) continue;
+                          const int x = int(std::floor(at.x)), y = int(std::floor(at.y));
+                          if (!to.inside(x, y)) continue;
+                          const std::size_t i = std::size_t(y) * to.columns + std::uint32_t(x);
+                          if (!hit) {
+                            std::atomic_ref<std::uint8_t>(skyLanded[i]).store(1, std::memory_order_relaxed);
+                            continue;
+                          }
+                          const std::uint64_t key = std::uint64_t(std::bit_cast<std::uint32_t>(-q.z)) << 32 | p.object;
+                          std::atomic_ref<std::uint64_t> slot(nearest[i]);
+                          std::uint64_t held = slot.load(std::memory_order_relaxed);
+                          while (key < held && !slot.compare_exchange_weak(held, key, std::memory_order_relaxed)) {}
+                        }
+                    });
   Prediction splat{std::vector<float>(size, kInfinity), std::vector<std::uint32_t>(size, kNoObject),
                    std::move(skyLanded)};
   for (std::size_t i = 0; i < size; ++i)
