@@ -87,7 +87,7 @@ double meanFrom(const std::vector<double>& v, int first) {
   double s = 0;
   int n = 0;
   for (int i = first; i < int(v.size()); ++i) s += v[i], ++n;
-  return n ? s / n : 0;
+  return n ? s / n : std::nan("");  // no frames from `first` on: n/a, not 0
 }
 
 med::Parameters base(const Options& o) {
