@@ -61,7 +61,7 @@ void EmbreeViewport::writeFilterInputs(embree::Scene& scene, const embree::Camer
 
 // Resolved here unless the caller assembles the frame from regions (then
 // it resolves, and the inputs go to it).
-void EmbreeViewport::resolveLocally(const FilterSettings& filter, std::uint32_t spp, FrameBuffer& out,
+void EmbreeViewport::resolveLocally(const FilterSettings& filter, std::uint32_t spp, bool traced, FrameBuffer& out,
                                     const RenderControl& control) {
   if (!control.resolve) return;
   // Filter on the 4, 8, 16, ... schedule, and when the image is complete
@@ -74,13 +74,15 @@ void EmbreeViewport::resolveLocally(const FilterSettings& filter, std::uint32_t 
   // image in between (its guides need no fresh samples to be blended).
   // A reprojected history is filtered at each of its first new samples (the
   // view moves, a frame or two each): its inherited samples give the
-  // variance one traced sample lacks. Then the schedule takes over.
+  // variance one traced sample lacks. Then the schedule takes over. (The
+  // filters' own record of the count they last saw includes the inherited
+  // samples, so it cannot tell a call that traced nothing: `traced` does.)
   const std::uint32_t samples = accumulation_->tracedCount(0, 0);
   const std::uint64_t epoch = accumulation_->epoch();
   const auto last = filter.usesDenoiser() ? denoiser_.denoisedAt(epoch) : pixelFilter_.filteredAt(epoch);
   const bool complete = samples >= spp && (!last || samples >= 2 * *last);
   const bool scheduled = samples >= 2 && (embree::isFilterFrame(samples) || complete);
-  const bool due = (scheduled || (accumulation_->carriesHistory() && samples < 4)) && last != samples;
+  const bool due = (scheduled || (accumulation_->carriesHistory() && samples < 4 && traced)) && last != samples;
   if (filter.usesDenoiser()) {
     if (due || last) denoiser_.resolve(out, filter.denoise, due, epoch);
   } else if (due || last) {
@@ -186,6 +188,7 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
   // pass is one sample: its filter step works on one sample per pixel.
   const bool growPasses = !settings_.parameters.has("samplesPerPass");
   std::uint32_t passSize = settings.samplesPerPass;
+  bool passRan = false;  // in this call
   for (;;) {
     embree::FrameBuffer& fb = *accumulation_;
     const std::uint32_t done = fb.tracedCount(0, 0);
@@ -199,6 +202,7 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
     auto pass = radiance ? renderer_.renderRadiancePass(scene, camera, traced, fb, *radiance_, filter.radiance)
                          : renderer_.renderPass(scene, camera, traced, fb);
     stats.rays += pass.rays;
+    passRan = true;
     if (control.progress) control.progress(std::min(1.0, fb.tracedCount(0, 0) / double(spp)));
     if (!pass.completed) break;
   }
@@ -215,7 +219,7 @@ RenderStats EmbreeViewport::render(const sg::Replica& replica, const View& view,
   out =
       crop(std::move(full), region.x0 - traced.x0, region.y0 - traced.y0, region.regionWidth(), region.regionHeight());
   if ((filter.usesPixelFilter() || filter.usesDenoiser()) && stats.samples > 0)
-    resolveLocally(filter, spp, out, control);
+    resolveLocally(filter, spp, passRan, out, control);
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
 }

@@ -42,7 +42,9 @@ class EmbreeViewport final : public Viewport {
                          const FilterSettings& filter, FrameBuffer& full);
   void renderWhitted(const embree::Camera& camera, const embree::Region& region, FrameBuffer& out,
                      const RenderControl& control, std::chrono::steady_clock::time_point start, RenderStats& stats);
-  void resolveLocally(const FilterSettings& filter, std::uint32_t spp, FrameBuffer& out, const RenderControl& control);
+  // traced: whether this render call added samples.
+  void resolveLocally(const FilterSettings& filter, std::uint32_t spp, bool traced, FrameBuffer& out,
+                      const RenderControl& control);
 
   std::shared_ptr<EmbreeContext> context_;
   embree::Renderer renderer_;
