@@ -10,6 +10,8 @@
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
 
+#include "glfw_start.hpp"
+
 #include "anaglyph_options.hpp"
 #include "tsr/med/image_file.hpp"
 #include "tsr/sg/node_world.hpp"
@@ -66,15 +68,7 @@ struct Pointer {
 
 // GLFW is initialised once per process and ended when its last window goes.
 struct Glfw {
-  Glfw() {
-    if (!glfwInit()) {
-      const char* why = nullptr;
-      glfwGetError(&why);
-      throw std::runtime_error(std::string("cannot open a window: ") + (why ? why : "glfwInit failed") +
-                               " (no display? use --output FILE for a headless frame)");
-    }
-    if (!glfwVulkanSupported()) throw std::runtime_error("cannot open a window: GLFW finds no Vulkan loader");
-  }
+  Glfw() { app::startGlfw("no display? use --output FILE for a headless frame"); }
 };
 
 }  // namespace

@@ -6,7 +6,9 @@
 
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
+
 #include <spdlog/spdlog.h>
+#include "glfw_start.hpp"
 
 #include "tsr/vk/device.hpp"
 #include "tsr/vk/swapchain_target.hpp"
@@ -37,11 +39,7 @@ void WindowPresenter::present(std::uint64_t frame, const std::vector<cluster::Pr
 }
 
 bool WindowPresenter::run(const std::atomic<bool>& stop) {
-  if (!glfwInit()) {
-    const char* why = nullptr;
-    glfwGetError(&why);
-    throw std::runtime_error(std::string("--present window: cannot start GLFW: ") + (why ? why : "no display?"));
-  }
+  app::startGlfw("--present window needs a display: set DISPLAY, or present with --present none");
   struct Terminate {
     ~Terminate() { glfwTerminate(); }
   } terminate;

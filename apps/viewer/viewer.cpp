@@ -6,8 +6,10 @@
 
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
+
 #include <imgui.h>
 #include <spdlog/spdlog.h>
+#include "glfw_start.hpp"
 
 #include "backends.hpp"
 #include "cluster/cluster_connection.hpp"
@@ -137,13 +139,7 @@ void Viewer::frameScene() {
 }
 
 void Viewer::openWindow() {
-  if (!glfwInit()) {
-    const char* why = nullptr;
-    glfwGetError(&why);
-    throw std::runtime_error(std::string("cannot open a window: ") + (why ? why : "glfwInit failed") +
-                             " (is DISPLAY set? under no display, run through xvfb-run -a)");
-  }
-  if (!glfwVulkanSupported()) throw std::runtime_error("cannot open a window: GLFW finds no Vulkan loader");
+  app::startGlfw("is DISPLAY set? under no display, run through xvfb-run -a");
   glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
   glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
   window_ = glfwCreateWindow(int(options_.width), int(options_.height), "tessera-viewer", nullptr, nullptr);

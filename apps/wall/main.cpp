@@ -6,6 +6,7 @@
 // node that drops out has its tile marked and is taken back when it
 // returns; a late node is named with its phase and since when.
 // Errors: one "error:" line on stderr, exit status 2.
+#include <array>
 #include <atomic>
 #include <csignal>
 #include <iostream>
@@ -56,17 +57,10 @@ struct Options {
 };
 
 const char* stateName(NodeState s) {
-  switch (s) {
-    case NodeState::Offline:
-      return "OFFLINE";
-    case NodeState::Connecting:
-      return "connecting";
-    case NodeState::Joined:
-      return "joined";
-    case NodeState::Synced:
-      return "ok";
-  }
-  return "?";
+  // In NodeState's order; the assert stops an appended state without its name.
+  static constexpr std::array kNames{"OFFLINE", "connecting", "joined", "ok"};
+  static_assert(kNames.size() == std::size_t(NodeState::Synced) + 1);
+  return std::size_t(s) < kNames.size() ? kNames[std::size_t(s)] : "?";
 }
 
 std::string statusLine(const tsr::cluster::ClusterWindow& wall, std::uint64_t frame, double fps,

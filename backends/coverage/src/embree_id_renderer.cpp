@@ -1,4 +1,5 @@
 #include "tsr/cov/embree_id_renderer.hpp"
+#include "tsr/backend/embree_triangles.hpp"
 
 #include "tsr/backend/embree_device.hpp"
 #include "tsr/backend/validate.hpp"
@@ -19,20 +20,11 @@ namespace tsr::cov {
 
 namespace {
 
-struct MeshRecord {
+// Its scene and geometry (EmbreeTriangles) are released with it.
+struct MeshRecord : backend::EmbreeTriangles {
   MeshData data;
-  RTCScene scene = nullptr;
-  RTCGeometry geometry = nullptr;
   std::uint32_t users = 0;
   bool dirty = true;
-
-  MeshRecord() = default;
-  MeshRecord(const MeshRecord&) = delete;
-  MeshRecord& operator=(const MeshRecord&) = delete;
-  ~MeshRecord() {
-    if (geometry) rtcReleaseGeometry(geometry);
-    if (scene) rtcReleaseScene(scene);
-  }
 };
 
 struct InstanceRecord {
@@ -68,19 +60,9 @@ void validateObject(ObjectId object) {
 // (Re)creates the triangle geometry of a mesh from its data.
 void fillGeometry(MeshRecord& m, RTCDevice device) {
   const MeshData& d = m.data;
-  m.geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                        3 * sizeof(float), d.positions.size()));
-  auto* i = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(m.geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                3 * sizeof(std::uint32_t), d.indices.size() / 3));
-  if (!v || !i) throw Error("Embree could not allocate mesh buffers");
-  std::memcpy(v, d.positions.data(), d.positions.size() * sizeof(glm::vec3));
-  std::memcpy(i, d.indices.data(), d.indices.size() * sizeof(std::uint32_t));
-  const bool animated = d.usage == MeshUsage::Animated;
-  rtcSetGeometryBuildQuality(m.geometry, animated ? RTC_BUILD_QUALITY_REFIT : RTC_BUILD_QUALITY_HIGH);
-  rtcSetSceneFlags(m.scene, animated ? RTC_SCENE_FLAG_DYNAMIC : RTC_SCENE_FLAG_NONE);
-  rtcSetSceneBuildQuality(m.scene, animated ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_HIGH);
-  rtcAttachGeometryByID(m.scene, m.geometry, 0);
+  if (!m.fill(device, {reinterpret_cast<const float*>(d.positions.data()), 3 * d.positions.size()}, d.indices,
+              d.usage == MeshUsage::Animated))
+    throw Error("Embree could not allocate mesh buffers");
   m.dirty = true;
 }
 
@@ -148,7 +130,6 @@ MeshId EmbreeIdRenderer::addMesh(MeshData data) {
   data.validate();
   auto m = std::make_unique<MeshRecord>();
   m->data = std::move(data);
-  m->scene = rtcNewScene(state_->device.handle());
   fillGeometry(*m, state_->device.handle());
   state_->device.check("addMesh");
   state_->meshes.push_back(std::move(m));
@@ -158,9 +139,6 @@ MeshId EmbreeIdRenderer::addMesh(MeshData data) {
 void EmbreeIdRenderer::setMeshData(MeshId id, MeshData data) {
   auto& m = lookup(state_->meshes, id, "mesh");
   data.validate();
-  rtcDetachGeometry(m.scene, 0);
-  rtcReleaseGeometry(m.geometry);
-  m.geometry = nullptr;
   m.data = std::move(data);
   fillGeometry(m, state_->device.handle());
   state_->device.check("setMeshData");

@@ -1,6 +1,7 @@
 #include "tsr/cluster/cluster_window.hpp"
 
 #include <algorithm>
+#include <array>
 
 #include "client/cluster_window_impl.hpp"
 #include "tsr/sg/wire_codec.hpp"
@@ -8,19 +9,10 @@
 namespace tsr::cluster {
 
 const char* name(NodePhase phase) {
-  switch (phase) {
-    case NodePhase::Idle:
-      return "idle";
-    case NodePhase::Connect:
-      return "connect";
-    case NodePhase::Snapshot:
-      return "snapshot";
-    case NodePhase::Render:
-      return "render";
-    case NodePhase::Barrier:
-      return "barrier";
-  }
-  return "?";
+  // In NodePhase's order; the assert stops an appended phase without its name.
+  static constexpr std::array kNames{"idle", "connect", "snapshot", "render", "barrier"};
+  static_assert(kNames.size() == std::size_t(NodePhase::Barrier) + 1);
+  return std::size_t(phase) < kNames.size() ? kNames[std::size_t(phase)] : "?";
 }
 
 ClusterWindow::ClusterWindow(ClusterConfig config, ClientOptions options)

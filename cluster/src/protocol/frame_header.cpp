@@ -1,6 +1,7 @@
 #include "tsr/cluster/frame_header.hpp"
 
 #include <algorithm>
+#include <array>
 #include <string>
 
 #include "tsr/cluster/protocol_error.hpp"
@@ -42,29 +43,11 @@ void writeFrameHeader(std::vector<std::uint8_t>& out, const FrameHeader& header)
 }
 
 const char* name(ProtocolError::Kind kind) {
-  switch (kind) {
-    case Kind::BadMagic:
-      return "bad magic";
-    case Kind::VersionMismatch:
-      return "version mismatch";
-    case Kind::UnknownType:
-      return "unknown type";
-    case Kind::Oversized:
-      return "oversized";
-    case Kind::Unexpected:
-      return "unexpected";
-    case Kind::Malformed:
-      return "malformed";
-    case Kind::AuthFailed:
-      return "authentication failed";
-    case Kind::Rejected:
-      return "rejected";
-    case Kind::Timeout:
-      return "timeout";
-    case Kind::Closed:
-      return "closed";
-  }
-  return "unknown";
+  // In Kind's order; the assert stops an appended kind without its name.
+  static constexpr std::array kNames{"bad magic", "version mismatch",      "unknown type", "oversized", "unexpected",
+                                     "malformed", "authentication failed", "rejected",     "timeout",   "closed"};
+  static_assert(kNames.size() == std::size_t(Kind::Closed) + 1);
+  return std::size_t(kind) < kNames.size() ? kNames[std::size_t(kind)] : "unknown";
 }
 
 }  // namespace tsr::cluster

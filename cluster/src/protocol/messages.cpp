@@ -1,5 +1,6 @@
 #include "tsr/cluster/messages.hpp"
 
+#include <array>
 #include <exception>
 
 #include "tsr/cluster/protocol_error.hpp"
@@ -8,22 +9,11 @@
 namespace tsr::cluster {
 
 const char* name(ErrorReport::Kind kind) {
-  using Kind = ErrorReport::Kind;
-  switch (kind) {
-    case Kind::ProtocolViolation:
-      return "protocol violation";
-    case Kind::SceneRejected:
-      return "scene rejected";
-    case Kind::UnknownBackend:
-      return "unknown back-end";
-    case Kind::InvalidParameter:
-      return "invalid parameter";
-    case Kind::RenderFailed:
-      return "render failed";
-    case Kind::PrepareFailed:
-      return "prepare failed";
-  }
-  return "unknown";
+  // Indexed by the wire number; the assert stops an appended kind without its name.
+  static constexpr std::array kNames{"protocol violation", "scene rejected", "unknown back-end",
+                                     "invalid parameter",  "render failed",  "prepare failed"};
+  static_assert(kNames.size() == std::size_t(ErrorReport::Kind::PrepareFailed) + 1);
+  return std::size_t(kind) < kNames.size() ? kNames[std::size_t(kind)] : "unknown";
 }
 
 Frame frameFromPayload(MessageType type, std::span<const std::uint8_t> payload) {

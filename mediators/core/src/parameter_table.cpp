@@ -1,6 +1,7 @@
 #include "tsr/med/parameter_table.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -39,17 +40,10 @@ std::string number(double v) {
 }
 
 const char* typeName(ParameterType t) {
-  switch (t) {
-    case ParameterType::Flag:
-      return "flag";
-    case ParameterType::Integer:
-      return "integer";
-    case ParameterType::Real:
-      return "real";
-    case ParameterType::Choice:
-      return "choice";
-  }
-  return "?";
+  // In ParameterType's order; the assert stops an appended type without its name.
+  static constexpr std::array kNames{"flag", "integer", "real", "choice"};
+  static_assert(kNames.size() == std::size_t(ParameterType::Choice) + 1);
+  return std::size_t(t) < kNames.size() ? kNames[std::size_t(t)] : "?";
 }
 
 std::string rangeText(const ParameterSpec& s) {

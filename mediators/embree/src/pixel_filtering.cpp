@@ -22,12 +22,8 @@ std::uint32_t flashSamplesFor(std::uint32_t samples) {
 void writePixelFilterInputs(const embree::FrameBuffer& fb, PathClass pathClass, FrameBuffer& out,
                             const embree::RadianceAccumulator* hybrid) {
   const std::size_t n = std::size_t{fb.width()} * fb.height();
-  auto& low = out.outputs[kLowVarianceOutput];
-  auto& high = out.outputs[kHighVarianceOutput];
-  auto& var = out.outputs[kHighVarianceVarOutput];
-  auto& range = out.outputs[kRangeOutput];
-  auto& spread = out.outputs[kRangeGeometryOutput];
-  for (auto* image : {&low, &high, &var, &range, &spread}) image->assign(n, glm::vec4(0.0f));
+  const auto [low, high, var, range, spread] = zeroedOutputs(
+      out, {kLowVarianceOutput, kHighVarianceOutput, kHighVarianceVarOutput, kRangeOutput, kRangeGeometryOutput}, n);
   const embree::Channel hv = pathClass == PathClass::Indirect  ? embree::Channel::Indirect
                              : pathClass == PathClass::Caustic ? embree::Channel::Caustic
                                                                : embree::Channel::Colour;
@@ -43,11 +39,11 @@ void writePixelFilterInputs(const embree::FrameBuffer& fb, PathClass pathClass, 
                                                                                      : embree::Channel::Caustic;
       const glm::vec3 h = fb.mean(c, x, y);
       const glm::vec3 shown = hybrid ? glm::vec3(out.colour[i]) : fb.mean(embree::Channel::Colour, x, y);
-      high[i] = glm::vec4(h, 0.0f);
-      low[i] = glm::vec4(shown - h, 0.0f);
-      var[i] = glm::vec4(count > 0 ? fb.variance(c, x, y) / float(count) : glm::vec3(0.0f), 0.0f);
-      range[i] = glm::vec4(fb.rangeColour(x, y), float(count));
-      spread[i] = glm::vec4(fb.rangeSpread(x, y), fb.rangeDepth(x, y), 0.0f, 0.0f);
+      (*high)[i] = glm::vec4(h, 0.0f);
+      (*low)[i] = glm::vec4(shown - h, 0.0f);
+      (*var)[i] = glm::vec4(count > 0 ? fb.variance(c, x, y) / float(count) : glm::vec3(0.0f), 0.0f);
+      (*range)[i] = glm::vec4(fb.rangeColour(x, y), float(count));
+      (*spread)[i] = glm::vec4(fb.rangeSpread(x, y), fb.rangeDepth(x, y), 0.0f, 0.0f);
     }
 }
 
@@ -73,22 +69,15 @@ std::optional<std::uint32_t> PixelFilterResolver::filteredAt(std::uint64_t epoch
 void PixelFilterResolver::resolve(FrameBuffer& frame, const FilterSettings& settings, bool refilter, bool blendOutput,
                                   std::uint64_t epoch) {
   const std::size_t n = frame.colour.size();
-  std::vector<glm::vec3> low(n), high(n), var(n), range(n);
-  std::vector<float> spread(n), rangeDepth(n);
-  const std::vector<glm::vec4>* images[5] = {};
-  const char* names[5] = {kLowVarianceOutput, kHighVarianceOutput, kHighVarianceVarOutput, kRangeOutput,
-                          kRangeGeometryOutput};
-  for (int k = 0; k < 5; ++k) images[k] = &requiredOutput(frame, names[k], "pixel filtering");
+  const auto low = rgbOf(requiredOutput(frame, kLowVarianceOutput, "pixel filtering"));
+  const auto high = rgbOf(requiredOutput(frame, kHighVarianceOutput, "pixel filtering"));
+  const auto var = rgbOf(requiredOutput(frame, kHighVarianceVarOutput, "pixel filtering"));
+  const auto& rangeImage = requiredOutput(frame, kRangeOutput, "pixel filtering");  // samples in alpha
+  const auto range = rgbOf(rangeImage);
+  const auto& geometry = requiredOutput(frame, kRangeGeometryOutput, "pixel filtering");
+  const auto spread = channelOf(geometry, 0), rangeDepth = channelOf(geometry, 1);
   std::uint32_t samples = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    low[i] = glm::vec3((*images[0])[i]);
-    high[i] = glm::vec3((*images[1])[i]);
-    var[i] = glm::vec3((*images[2])[i]);
-    range[i] = glm::vec3((*images[3])[i]);
-    spread[i] = (*images[4])[i].r;
-    rangeDepth[i] = (*images[4])[i].g;
-    samples = std::max(samples, static_cast<std::uint32_t>((*images[3])[i].w));
-  }
+  for (const glm::vec4& v : rangeImage) samples = std::max(samples, static_cast<std::uint32_t>(v.w));
   embree::PixelFilterInput input;
   input.width = frame.width;
   input.height = frame.height;

@@ -1,4 +1,5 @@
 #include "tsr/embree/scene.hpp"
+#include "tsr/backend/embree_triangles.hpp"
 
 #include "limits.hpp"
 #include "scene/scene_levels.hpp"
@@ -87,21 +88,10 @@ auto& lookup(Vec& v, Id id, const char* what) {
 
 void fillGeometry(MeshRecord& m, RTCDevice device) {
   const MeshData& d = m.data;
-  m.geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                        3 * sizeof(float), d.positions.size()));
-  auto* i = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(m.geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                3 * sizeof(std::uint32_t), d.indices.size() / 3));
-  if (!v || !i) throw Error("Embree could not allocate mesh buffers");
-  std::memcpy(v, d.positions.data(), d.positions.size() * sizeof(glm::vec3));
-  std::memcpy(i, d.indices.data(), d.indices.size() * sizeof(std::uint32_t));
-  bool animated = d.usage == MeshUsage::Animated;
-  rtcSetGeometryBuildQuality(m.geometry, animated ? RTC_BUILD_QUALITY_REFIT : RTC_BUILD_QUALITY_HIGH);
   // Every scene a top-level ray enters allows the tracer's context filter (ghosts).
-  rtcSetSceneFlags(m.scene,
-                   RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION | (animated ? RTC_SCENE_FLAG_DYNAMIC : RTC_SCENE_FLAG_NONE));
-  rtcSetSceneBuildQuality(m.scene, animated ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_HIGH);
-  rtcAttachGeometryByID(m.scene, m.geometry, 0);
+  if (!m.fill(device, {reinterpret_cast<const float*>(d.positions.data()), 3 * d.positions.size()}, d.indices,
+              d.usage == MeshUsage::Animated, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION))
+    throw Error("Embree could not allocate mesh buffers");
   m.sceneStale = true;
 }
 
@@ -177,7 +167,6 @@ MeshId Scene::addMesh(MeshData data) {
   validateMesh(data);
   auto m = std::make_unique<MeshRecord>();
   m->data = std::move(data);
-  m->scene = rtcNewScene(state_->device->handle());
   fillGeometry(*m, state_->device->handle());
   state_->device->check("addMesh");
   state_->meshes.push_back(std::move(m));
@@ -211,9 +200,6 @@ void Scene::updateMeshVertices(MeshId id, std::uint32_t first, std::span<const g
 void Scene::setMeshData(MeshId id, MeshData data) {
   auto& m = *lookup(state_->meshes, id, "mesh");
   validateMesh(data);
-  rtcDetachGeometry(m.scene, 0);
-  rtcReleaseGeometry(m.geometry);
-  m.geometry = nullptr;
   m.data = std::move(data);
   fillGeometry(m, state_->device->handle());
   state_->device->check("setMeshData");

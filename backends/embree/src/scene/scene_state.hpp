@@ -3,6 +3,7 @@
 #include "scene/instance_motion.hpp"
 #include "scene/light_tree.hpp"
 #include "scene/volume_field.hpp"
+#include "tsr/backend/embree_triangles.hpp"
 #include "tsr/embree/distribution.hpp"
 #include "tsr/embree/scene.hpp"
 
@@ -20,10 +21,9 @@ namespace tsr::embree {
 // Internal representation shared by Scene (which edits it) and Renderer
 // (which reads it after commit()).
 
-struct MeshRecord {
+// Its scene and geometry (EmbreeTriangles) are released with it.
+struct MeshRecord : backend::EmbreeTriangles {
   MeshData data;
-  RTCScene scene = nullptr;
-  RTCGeometry geometry = nullptr;
   std::vector<std::uint32_t> users;  // ids of the instances referencing this mesh
   bool dirty = false;                // data changed since the last commit (listed in Pending)
   bool sceneStale = true;            // its own BVH not built for the current data
@@ -33,14 +33,6 @@ struct MeshRecord {
   // that BVH alone and touches no instance and no level.
   RTCBounds levelBounds{};
   bool shrunk = false;  // inside levelBounds but smaller: listed in SceneState::shrunkMeshes
-
-  MeshRecord() = default;
-  MeshRecord(const MeshRecord&) = delete;
-  MeshRecord& operator=(const MeshRecord&) = delete;
-  ~MeshRecord() {
-    if (geometry) rtcReleaseGeometry(geometry);
-    if (scene) rtcReleaseScene(scene);
-  }
 };
 
 // Where an instance's triangles are traced from.

@@ -248,28 +248,47 @@ constexpr std::uint64_t kFlashStream = 0x6A09E667F3BCC909ull;
 
 }  // namespace
 
+namespace {
+// A pass's camera samples: sample `first + s` of full-image pixel (px, py)
+// is the same sampler and ray in whatever pass, tile or node traces it.
+struct CameraSamples {
+  const Camera& camera;
+  const CameraPath path;
+  const Region& region;
+  std::uint64_t seed;
+  SamplerKind kind;
+
+  // trace(sampler, ray) for `count` samples from `first` on, the tracer's
+  // time set to each ray's (the shutter).
+  template <class Trace>
+  void each(Tracer& tracer, std::uint32_t px, std::uint32_t py, std::uint32_t first, std::uint32_t count,
+            Trace trace) const {
+    const std::uint64_t pixelKey = Rng::pixelKey(seed, px, py);
+    for (std::uint32_t s = 0; s < count; ++s) {
+      Sampler sampler(kind, pixelKey, first + s);
+      const CameraRay ray = cameraRay(camera, path, region, px, py, sampler);
+      tracer.time = ray.time;
+      trace(sampler, ray);
+    }
+  }
+};
+}  // namespace
+
 PassResult Renderer::renderPass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb) {
   return renderPaths(scene, camera, region, fb, nullptr);
 }
 
 PassResult Renderer::renderPaths(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
                                  const IrradianceField* field) {
-  const CameraPath path(camera);
-  const std::uint64_t seed = settings_.seed;
-  const SamplerKind kind = settings_.sampler;
-  const std::uint32_t samples = settings_.samplesPerPass;
+  const CameraSamples samples{camera, CameraPath(camera), region, settings_.seed, settings_.sampler};
+  const std::uint32_t count = settings_.samplesPerPass;
   const bool restarted = restartIfStale(scene, camera, region, fb, field ? splitmix64(field->uid()) : 0);
   PassResult result = runTiles(
       scene, region, [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
         tracer.irradiance = field;
-        const std::uint64_t pixelKey = Rng::pixelKey(seed, px, py);
-        const std::uint32_t firstSample = fb.sampleCount(x, y);
-        for (std::uint32_t s = 0; s < samples; ++s) {
-          Sampler sampler(kind, pixelKey, firstSample + s);
-          const CameraRay ray = cameraRay(camera, path, region, px, py, sampler);
-          tracer.time = ray.time;
+        samples.each(tracer, px, py, fb.sampleCount(x, y), count, [&](Sampler& sampler, const CameraRay& ray) {
           fb.accumulate(x, y, tracer.tracePath(sampler, ray.origin, ray.direction, ray.eyePosition, ray.forward));
-        }
+        });
       });
   result.restarted = restarted;
   return result;
@@ -291,9 +310,7 @@ PassResult Renderer::renderRadiancePass(Scene& scene, const Camera& camera, cons
                 " but the region is " + std::to_string(region.regionWidth()) + "x" +
                 std::to_string(region.regionHeight()));
   }
-  const CameraPath path(camera);
-  const std::uint64_t seed = settings_.seed;
-  const SamplerKind kind = settings_.sampler;
+  const CameraSamples samples{camera, CameraPath(camera), region, settings_.seed, settings_.sampler};
   // Angle of one pixel on the axis; off the axis it shrinks with cos^1.5.
   const float pixelAngle = std::sqrt((camera.right - camera.left) / float(region.width) * (camera.top - camera.bottom) /
                                      float(region.height)) /
@@ -301,17 +318,16 @@ PassResult Renderer::renderRadiancePass(Scene& scene, const Camera& camera, cons
   const bool restarted = restartIfStale(scene, camera, region, fb, kRadianceEstimator);
   PassResult result = runTiles(
       scene, region, [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
-        Sampler sampler(kind, Rng::pixelKey(seed, px, py), fb.sampleCount(x, y));
-        const CameraRay ray = cameraRay(camera, path, region, px, py, sampler);
-        RadianceSample& record = acc.samples_[acc.at(x, y)];
-        record = RadianceSample{};
-        tracer.time = ray.time;
-        PixelSample sample =
-            tracer.tracePath(sampler, ray.origin, ray.direction, ray.eyePosition, ray.forward, &record);
-        const float c = glm::dot(ray.direction, ray.forward);
-        record.pixelAngle = pixelAngle * c * std::sqrt(c);
-        record.unfiltered = sample.indirect - sample.caustic;
-        fb.accumulate(x, y, sample);
+        samples.each(tracer, px, py, fb.sampleCount(x, y), 1, [&](Sampler& sampler, const CameraRay& ray) {
+          RadianceSample& record = acc.samples_[acc.at(x, y)];
+          record = RadianceSample{};
+          PixelSample sample =
+              tracer.tracePath(sampler, ray.origin, ray.direction, ray.eyePosition, ray.forward, &record);
+          const float c = glm::dot(ray.direction, ray.forward);
+          record.pixelAngle = pixelAngle * c * std::sqrt(c);
+          record.unfiltered = sample.indirect - sample.caustic;
+          fb.accumulate(x, y, sample);
+        });
       });
   result.restarted = restarted;
   if (result.completed) arena_->arena.execute([&] { RadianceFilterStep::run(fb, acc, filter); });
@@ -345,22 +361,16 @@ PassResult Renderer::renderWhitted(Scene& scene, const Camera& camera, const Reg
 
 PassResult Renderer::renderFlashPass(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb,
                                      std::uint32_t samples) {
-  const CameraPath path(camera);
-  const std::uint64_t seed = settings_.seed ^ kFlashStream;
-  const SamplerKind kind = settings_.sampler;
+  const CameraSamples flashSamples{camera, CameraPath(camera), region, settings_.seed ^ kFlashStream,
+                                   settings_.sampler};
   const bool restarted = restartIfStale(scene, camera, region, fb, std::nullopt);
   PassResult result = runTiles(
       scene, region, [&](Tracer& tracer, std::uint32_t x, std::uint32_t y, std::uint32_t px, std::uint32_t py) {
-        const std::uint64_t pixelKey = Rng::pixelKey(seed, px, py);
-        const std::uint32_t first = fb.rangeSamples(x, y);
-        for (std::uint32_t s = 0; s < samples; ++s) {
-          Sampler sampler(kind, pixelKey, first + s);
-          const CameraRay ray = cameraRay(camera, path, region, px, py, sampler);
-          tracer.time = ray.time;
+        flashSamples.each(tracer, px, py, fb.rangeSamples(x, y), samples, [&](Sampler&, const CameraRay& ray) {
           float distance = kInf;
           const glm::vec3 flash = tracer.traceFlash(ray.origin, ray.direction, ray.eyePosition, distance);
           fb.accumulateRange(x, y, flash, distance * glm::dot(ray.direction, ray.forward));
-        }
+        });
       });
   result.restarted = restarted;
   return result;

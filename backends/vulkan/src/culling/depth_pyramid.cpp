@@ -1,4 +1,5 @@
 #include "culling/depth_pyramid.hpp"
+#include "resources/device_memory.hpp"
 
 #include "spirv.hpp"
 
@@ -109,13 +110,7 @@ void DepthPyramid::ensure(VkImageView depthView, std::uint32_t width, std::uint3
   ici.tiling = VK_IMAGE_TILING_OPTIMAL;
   ici.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
   check(vkCreateImage(dev, &ici, nullptr, &image_), "vkCreateImage (depth pyramid)");
-  VkMemoryRequirements req;
-  vkGetImageMemoryRequirements(dev, image_, &req);
-  VkMemoryAllocateInfo mai = vkStruct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
-  mai.allocationSize = req.size;
-  mai.memoryTypeIndex = device_.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  check(vkAllocateMemory(dev, &mai, nullptr, &memory_), "vkAllocateMemory (depth pyramid)");
-  check(vkBindImageMemory(dev, image_, memory_, 0), "vkBindImageMemory (depth pyramid)");
+  memory_ = bindNewMemory(device_, image_, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, "depth pyramid");
   VkImageViewCreateInfo vci = vkStruct<VkImageViewCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO);
   vci.image = image_;
   vci.viewType = VK_IMAGE_VIEW_TYPE_2D;

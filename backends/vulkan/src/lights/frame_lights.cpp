@@ -1,4 +1,5 @@
 #include "renderer_impl.hpp"
+#include "resources/rendering.hpp"
 
 namespace tsr::vk {
 
@@ -93,20 +94,11 @@ void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s,
       shadowViewProj.empty() ? VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT : VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT,
       shadowViewProj.empty() ? VK_ACCESS_SHADER_READ_BIT : VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, sm.layers());
   for (std::uint32_t layer = 0; layer < shadowViewProj.size(); ++layer) {
-    VkRenderingAttachmentInfo da = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
-    da.imageView = sm.image().layerView(layer);
-    da.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    da.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    da.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    da.clearValue.depthStencil = {1.0f, 0};
-    VkRenderingInfo ri = vkStruct<VkRenderingInfo>(VK_STRUCTURE_TYPE_RENDERING_INFO);
-    ri.renderArea = {{0, 0}, {sm.size(), sm.size()}};
-    ri.layerCount = 1;
-    ri.pDepthAttachment = &da;
-    vkCmdBeginRendering(cmd, &ri);
-    VkViewport vp{0.0f, 0.0f, float(sm.size()), float(sm.size()), 0.0f, 1.0f};
-    vkCmdSetViewport(cmd, 0, 1, &vp);
-    vkCmdSetScissor(cmd, 0, 1, &ri.renderArea);
+    VkClearValue depthClear{};
+    depthClear.depthStencil = {1.0f, 0};
+    const VkRenderingAttachmentInfo da =
+        renderingAttachment(sm.image().layerView(layer), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, false, depthClear);
+    beginRendering(cmd, sm.size(), sm.size(), nullptr, da);
     vkCmdSetDepthBias(cmd, 1.25f, 0.0f, 1.75f);
     PushConstants pc;
     pc.lightViewProj = shadowViewProj[layer];

@@ -1,4 +1,5 @@
 #include "passes/id_pass.hpp"
+#include "resources/rendering.hpp"
 
 #include "projection.hpp"
 #include "resources/readback.hpp"
@@ -130,28 +131,15 @@ std::uint32_t IdPass::render(SceneState& s, const Camera& camera, const Region& 
                VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, depthStages,
                VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
 
-  VkRenderingAttachmentInfo ca = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
-  ca.imageView = t.ids.view();
-  ca.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-  ca.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  ca.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  ca.clearValue.color.uint32[0] = kNoObject;
-  VkRenderingAttachmentInfo da = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
-  da.imageView = t.depth.view();
-  da.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-  da.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  da.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  da.clearValue.depthStencil = {0.0f, 0};  // reversed depth: 0 is the far plane
-  VkRenderingInfo ri = vkStruct<VkRenderingInfo>(VK_STRUCTURE_TYPE_RENDERING_INFO);
-  ri.renderArea = {{0, 0}, {w, h}};
-  ri.layerCount = 1;
-  ri.colorAttachmentCount = 1;
-  ri.pColorAttachments = &ca;
-  ri.pDepthAttachment = &da;
-  vkCmdBeginRendering(cmd, &ri);
-  VkViewport vp{0.0f, 0.0f, float(w), float(h), 0.0f, 1.0f};
-  vkCmdSetViewport(cmd, 0, 1, &vp);
-  vkCmdSetScissor(cmd, 0, 1, &ri.renderArea);
+  VkClearValue idClear{};
+  idClear.color.uint32[0] = kNoObject;
+  const VkRenderingAttachmentInfo ca =
+      renderingAttachment(t.ids.view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false, idClear);
+  VkClearValue depthClear{};
+  depthClear.depthStencil = {0.0f, 0};  // reversed depth: 0 is the far plane
+  const VkRenderingAttachmentInfo da =
+      renderingAttachment(t.depth.view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, false, depthClear);
+  beginRendering(cmd, w, h, &ca, da);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.handle());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
   std::uint32_t draws = 0;

@@ -1,4 +1,5 @@
 #include "renderer_impl.hpp"
+#include "resources/rendering.hpp"
 
 namespace tsr::vk {
 
@@ -37,18 +38,14 @@ void Renderer::Impl::prepareAttachments(VkCommandBuffer cmd) {
 void Renderer::Impl::beginMain(VkCommandBuffer cmd, bool load) {
   const RenderTarget& t = *target;
   const std::uint32_t w = t.width, h = t.height;
-  VkRenderingAttachmentInfo ca = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
-  ca.imageView = t.colour.view();
-  ca.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-  ca.loadOp = load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
-  ca.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  ca.clearValue.color = {{clearColour.r, clearColour.g, clearColour.b, clearColour.a}};
-  VkRenderingAttachmentInfo da = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
-  da.imageView = t.depth.view();
-  da.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-  da.loadOp = load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
-  da.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  da.clearValue.depthStencil = {0.0f, 0};  // reversed depth: 0 is the far plane
+  VkClearValue colourClear{};
+  colourClear.color = {{clearColour.r, clearColour.g, clearColour.b, clearColour.a}};
+  VkRenderingAttachmentInfo ca =
+      renderingAttachment(t.colour.view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, load, colourClear);
+  VkClearValue depthClear{};
+  depthClear.depthStencil = {0.0f, 0};  // reversed depth: 0 is the far plane
+  VkRenderingAttachmentInfo da =
+      renderingAttachment(t.depth.view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, load, depthClear);
   if (t.multisampled()) {
     ca.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
     ca.resolveImageView = t.colourResolve.view();
@@ -58,16 +55,7 @@ void Renderer::Impl::beginMain(VkCommandBuffer cmd, bool load) {
     da.resolveImageView = t.depthResolve.view();
     da.resolveImageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
   }
-  VkRenderingInfo ri = vkStruct<VkRenderingInfo>(VK_STRUCTURE_TYPE_RENDERING_INFO);
-  ri.renderArea = {{0, 0}, {w, h}};
-  ri.layerCount = 1;
-  ri.colorAttachmentCount = 1;
-  ri.pColorAttachments = &ca;
-  ri.pDepthAttachment = &da;
-  vkCmdBeginRendering(cmd, &ri);
-  VkViewport vp{0.0f, 0.0f, float(w), float(h), 0.0f, 1.0f};
-  vkCmdSetViewport(cmd, 0, 1, &vp);
-  vkCmdSetScissor(cmd, 0, 1, &ri.renderArea);
+  beginRendering(cmd, w, h, &ca, da);
   boundPipeline = VK_NULL_HANDLE;
   boundBlock = boundMaterial = ~0u;
 }
@@ -185,19 +173,9 @@ void Renderer::Impl::recordVolumeBacks(VkCommandBuffer cmd, const SceneState& s,
                VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                depthStages, depthAccess);
 
-  VkRenderingAttachmentInfo da = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
-  da.imageView = volumeBack->view();
-  da.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-  da.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
-  da.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  VkRenderingInfo ri = vkStruct<VkRenderingInfo>(VK_STRUCTURE_TYPE_RENDERING_INFO);
-  ri.renderArea = {{0, 0}, {t.width, t.height}};
-  ri.layerCount = 1;
-  ri.pDepthAttachment = &da;
-  vkCmdBeginRendering(cmd, &ri);
-  VkViewport vp{0.0f, 0.0f, float(t.width), float(t.height), 0.0f, 1.0f};
-  vkCmdSetViewport(cmd, 0, 1, &vp);
-  vkCmdSetScissor(cmd, 0, 1, &ri.renderArea);
+  const VkRenderingAttachmentInfo da =
+      renderingAttachment(volumeBack->view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, true, VkClearValue{});
+  beginRendering(cmd, t.width, t.height, nullptr, da);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, volumeBackPipeline.handle());
   PushConstants pc;
   pc.lightViewProj = viewProj;

@@ -9,6 +9,7 @@
 #include "projection.hpp"
 #include "reflections/probe_prefilter.hpp"
 #include "renderer_impl.hpp"
+#include "resources/rendering.hpp"
 
 #include <glm/gtc/constants.hpp>
 
@@ -181,29 +182,16 @@ void Renderer::Impl::updateProbe(const SceneState& s, const RenderSettings& sett
                    VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
                    VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &frameSet, 0, nullptr);
-      VkRenderingAttachmentInfo ca = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
-      ca.imageView = into.layerView(f);
-      ca.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-      ca.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-      ca.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
       // Alpha 0 marks the background for prefilterProbe().
-      ca.clearValue.color = {{clearColour.r, clearColour.g, clearColour.b, 0.0f}};
-      VkRenderingAttachmentInfo da = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
-      da.imageView = probeDepth.view();
-      da.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-      da.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-      da.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-      da.clearValue.depthStencil = {0.0f, 0};
-      VkRenderingInfo ri = vkStruct<VkRenderingInfo>(VK_STRUCTURE_TYPE_RENDERING_INFO);
-      ri.renderArea = {{0, 0}, {kProbeSize, kProbeSize}};
-      ri.layerCount = 1;
-      ri.colorAttachmentCount = 1;
-      ri.pColorAttachments = &ca;
-      ri.pDepthAttachment = &da;
-      vkCmdBeginRendering(cmd, &ri);
-      VkViewport vp{0.0f, 0.0f, float(kProbeSize), float(kProbeSize), 0.0f, 1.0f};
-      vkCmdSetViewport(cmd, 0, 1, &vp);
-      vkCmdSetScissor(cmd, 0, 1, &ri.renderArea);
+      VkClearValue colourClear{};
+      colourClear.color = {{clearColour.r, clearColour.g, clearColour.b, 0.0f}};
+      const VkRenderingAttachmentInfo ca =
+          renderingAttachment(into.layerView(f), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false, colourClear);
+      VkClearValue depthClear{};
+      depthClear.depthStencil = {0.0f, 0};
+      const VkRenderingAttachmentInfo da =
+          renderingAttachment(probeDepth.view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, false, depthClear, false);
+      beginRendering(cmd, kProbeSize, kProbeSize, &ca, da);
       boundPipeline = VK_NULL_HANDLE;
       boundBlock = boundMaterial = ~0u;
       RenderStats ignored;

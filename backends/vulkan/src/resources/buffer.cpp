@@ -1,4 +1,5 @@
 #include "resources/buffer.hpp"
+#include "resources/device_memory.hpp"
 
 #include "tsr/vk/error.hpp"
 #include "vk_struct.hpp"
@@ -17,13 +18,7 @@ Buffer::Buffer(const Device& device, VkDeviceSize size, VkBufferUsageFlags usage
   bci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   check(vkCreateBuffer(device_, &bci, nullptr, &buffer_), "vkCreateBuffer");
   try {
-    VkMemoryRequirements req;
-    vkGetBufferMemoryRequirements(device_, buffer_, &req);
-    VkMemoryAllocateInfo mai = vkStruct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
-    mai.allocationSize = req.size;
-    mai.memoryTypeIndex = device.memoryType(req.memoryTypeBits, memory);
-    check(vkAllocateMemory(device_, &mai, nullptr, &memory_), "vkAllocateMemory (buffer)");
-    check(vkBindBufferMemory(device_, buffer_, memory_, 0), "vkBindBufferMemory");
+    memory_ = bindNewMemory(device, buffer_, memory, "buffer");
     if (memory & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT)
       check(vkMapMemory(device_, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_), "vkMapMemory");
   } catch (...) {

@@ -1,4 +1,5 @@
 #include "resources/image.hpp"
+#include "resources/device_memory.hpp"
 
 #include "resources/buffer.hpp"
 
@@ -26,13 +27,7 @@ Image::Image(const Device& device, const ImageDesc& desc) : device_(device.handl
   ici.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   check(vkCreateImage(device_, &ici, nullptr, &image_), "vkCreateImage");
   try {
-    VkMemoryRequirements req;
-    vkGetImageMemoryRequirements(device_, image_, &req);
-    VkMemoryAllocateInfo mai = vkStruct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
-    mai.allocationSize = req.size;
-    mai.memoryTypeIndex = device.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    check(vkAllocateMemory(device_, &mai, nullptr, &memory_), "vkAllocateMemory (image)");
-    check(vkBindImageMemory(device_, image_, memory_, 0), "vkBindImageMemory");
+    memory_ = bindNewMemory(device, image_, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, "image");
 
     VkImageViewCreateInfo vci = vkStruct<VkImageViewCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO);
     vci.image = image_;

@@ -53,29 +53,25 @@ VkPipelineDepthStencilStateCreateInfo depthStencil(const PipelineDesc& d) {
 }
 
 // All four channels written; alpha blending, or dual-source blending (the
-// shader's second output weighs the destination).
+// shader's second output weighs the destination). Both add
+// source x srcColour + destination x dstColour, and for alpha
+// source + destination x dstAlpha.
 VkPipelineColorBlendAttachmentState colourBlend(const PipelineDesc& d) {
   VkPipelineColorBlendAttachmentState attachment{};
   attachment.colorWriteMask =
       VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-  if (d.blend) {
+  const auto blend = [&](VkBlendFactor srcColour, VkBlendFactor dstColour, VkBlendFactor dstAlpha) {
     attachment.blendEnable = VK_TRUE;
-    attachment.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
-    attachment.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+    attachment.srcColorBlendFactor = srcColour;
+    attachment.dstColorBlendFactor = dstColour;
     attachment.colorBlendOp = VK_BLEND_OP_ADD;
     attachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-    attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+    attachment.dstAlphaBlendFactor = dstAlpha;
     attachment.alphaBlendOp = VK_BLEND_OP_ADD;
-  }
-  if (d.dualSourceBlend) {
-    attachment.blendEnable = VK_TRUE;
-    attachment.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
-    attachment.dstColorBlendFactor = VK_BLEND_FACTOR_SRC1_COLOR;
-    attachment.colorBlendOp = VK_BLEND_OP_ADD;
-    attachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-    attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_SRC1_ALPHA;
-    attachment.alphaBlendOp = VK_BLEND_OP_ADD;
-  }
+  };
+  if (d.blend)
+    blend(VK_BLEND_FACTOR_SRC_ALPHA, VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA, VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA);
+  if (d.dualSourceBlend) blend(VK_BLEND_FACTOR_ONE, VK_BLEND_FACTOR_SRC1_COLOR, VK_BLEND_FACTOR_SRC1_ALPHA);
   return attachment;
 }
 
