@@ -13,6 +13,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 namespace tsr::embree {
 
@@ -98,41 +99,23 @@ struct Prediction {
   std::vector<std::uint8_t> sky;
 };
 
-}  // namespace
-
-void FrameBuffer::reproject(const Reprojection& r) {
-  // The old samples move to the spare buffer and the new ones fill the
-  // spare's memory: fresh 40 MB a frame (500x400) would cost more in page
-  // faults than the reprojection itself.
-  // Every new pixel is written below (the gather), so the spare's stale
-  // contents need no clearing first.
-  spare_.swap(pixels_);
-  pixels_.resize(std::size_t(width_) * height_);
-  const std::vector<Pixel>& old = spare_;
-  epoch_ = nextEpoch();
-  carriesHistory_ = false;
-  const Projection from(r.fromCamera, r.fromRegion), to(r.toCamera, r.toRegion);
-  const InstanceMotions motions(r.placedThen, r.placedNow);
-  const std::size_t size = pixels_.size();
-
-  // 1. Splat: every old pixel's nearest hit, moved with its instance, lands
-  // in the new view; the nearest landing per pixel is the prediction. Rows
-  // splat in parallel: a landing is kept by an atomic minimum of (depth,
-  // instance) packed in 64 bits (positive floats order as their bits), so
-  // the result does not depend on the order (equal depths: the lower id).
-  if (from.columns * from.rows != old.size() || to.columns * to.rows != size) {
-    pixels_.assign(size, emptyPixel());
-    return;  // sizes that do not match their regions: nothing to carry
-  }
+// 1. Splat: every old pixel's nearest hit, moved with its instance, lands
+// in the new view; the nearest landing per pixel is the prediction. Rows
+// splat in parallel: a landing is kept by an atomic minimum of (depth,
+// instance) packed in 64 bits (positive floats order as their bits), so
+// the result does not depend on the order (equal depths: the lower id).
+template <class Pixel>
+Prediction splatNearest(const std::vector<Pixel>& old, const Projection& from, const Projection& to,
+                        const InstanceMotions& motions) {
+  const std::size_t size = std::size_t(to.columns) * to.rows;
   constexpr std::uint64_t kNothing = ~std::uint64_t{0};
   std::vector<std::uint64_t> nearest(size, kNothing);
   std::vector<std::uint8_t> skyLanded(size, 0);
-  const auto oldColumns = from.columns;
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, from.rows),
                     [&](const tbb::blocked_range<std::uint32_t>& rows) {
                       for (std::uint32_t oy = rows.begin(); oy != rows.end(); ++oy)
                         for (std::uint32_t ox = 0; ox < from.columns; ++ox) {
-                          const Pixel& p = old[std::size_t(oy) * oldColumns + ox];
+                          const Pixel& p = old[std::size_t(oy) * from.columns + ox];
                           if (p.count == 0) continue;
                           const bool hit = std::isfinite(p.depth);
                           if (hit && !motions.known(p.object)) continue;
@@ -162,9 +145,12 @@ void FrameBuffer::reproject(const Reprojection& r) {
       splat.depth[i] = std::bit_cast<float>(std::uint32_t(nearest[i] >> 32));
       splat.object[i] = std::uint32_t(nearest[i]);
     }
+  return splat;
+}
 
-  // 2. Gaps one pixel wide (a surface seen larger than before) take their
-  // nearest neighbour's prediction; the first sample checks it.
+// 2. Gaps one pixel wide (a surface seen larger than before) take their
+// nearest neighbour's prediction; the first sample checks it.
+Prediction fillGaps(const Prediction& splat, const Projection& to) {
   Prediction predicted = splat;
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, to.rows), [&](const tbb::blocked_range<std::uint32_t>& rows) {
     for (std::uint32_t y = rows.begin(); y != rows.end(); ++y)
@@ -185,92 +171,135 @@ void FrameBuffer::reproject(const Reprojection& r) {
         if (!std::isfinite(predicted.depth[i])) predicted.sky[i] = sky;
       }
   });
+  return predicted;
+}
 
-  // 3. Gather: each pixel takes the old pixels around where its predicted
-  // surface was, bilinearly, those that saw the same instance at that depth.
+// The old pixels around where new pixel (x, y)'s predicted surface was, with
+// their bilinear weights: those that saw the same instance at that depth,
+// or the sky. A silhouette pixel's far side does not count: what it holds
+// is mostly the near side's.
+template <class Pixel>
+struct Taps {
+  const Pixel* pixel[4];
+  float weight[4];
+  float total = 0.0f;
+  int n = 0;
+};
+
+template <class Pixel>
+Taps<Pixel> historyTaps(const std::vector<Pixel>& old, const Projection& from, const Projection& to,
+                        const InstanceMotions& motions, const Prediction& predicted, std::uint32_t x, std::uint32_t y) {
+  Taps<Pixel> taps;
+  const std::size_t i = std::size_t(y) * to.columns + x;
+  const float d = predicted.depth[i];
+  const bool hit = std::isfinite(d);
+  if (!hit && !predicted.sky[i]) return taps;
+  const std::uint32_t object = predicted.object[i];
+  glm::vec4 world = to.worldAt(x, y, d);
+  if (hit) world = motions.backward[object] * world;
+  const glm::vec3 q(from.toCamera * world);
+  if (!(q.z < 0.0f)) return taps;
+  const glm::vec2 at = from.pixelOf(q) - glm::vec2(0.5f);
+  if (!from.nearRegion(at)) return taps;
+  const int bx = int(std::floor(at.x)), by = int(std::floor(at.y));
+  const float tx = at.x - float(bx), ty = at.y - float(by);
+  for (int k = 0; k < 4; ++k) {
+    const int ox = bx + (k & 1), oy = by + (k >> 1);
+    const float w = ((k & 1) ? tx : 1.0f - tx) * ((k >> 1) ? ty : 1.0f - ty);
+    if (w <= 0.0f || !from.inside(ox, oy)) continue;
+    const Pixel& p = old[std::size_t(oy) * from.columns + std::uint32_t(ox)];
+    if (p.count == 0) continue;
+    const float dq = -q.z;
+    const bool seen =
+        hit ? p.object == object && std::abs(p.depth - dq) <= kGatherDepthTolerance * dq : !std::isfinite(p.depth);
+    if (!seen) continue;
+    taps.pixel[taps.n] = &p;
+    taps.weight[taps.n++] = w;
+    taps.total += w;
+  }
+  return taps;
+}
+
+// 3. Gather: the taps blended into `out` (an empty pixel), counts capped at
+// `limit`, for a surface predicted at depth d (infinite: the sky). The
+// halves the denoiser compares (FrameBuffer's first half and prefix) are
+// blended like the rest: each of the old pixels' own. False: nothing carried.
+template <class Pixel>
+bool blendTaps(const Taps<Pixel>& taps, float d, std::uint32_t object, std::uint32_t limit, Pixel& out) {
+  constexpr int kChannels = int(std::extent_v<decltype(Pixel::mean)>);
+  const bool hit = std::isfinite(d);
+  float count = 0.0f, rangeCount = 0.0f, rangeHits = 0.0f, rangeWeight = 0.0f;
+  glm::vec3 variance[kChannels]{};
+  for (int k = 0; k < taps.n; ++k) {
+    const Pixel& p = *taps.pixel[k];
+    const float w = taps.weight[k] / taps.total;
+    count += w * float(p.count);
+    for (int c = 0; c < kChannels; ++c) {
+      out.mean[c] += w * p.mean[c];
+      if (p.count > 1) variance[c] += w * p.m2[c] / float(p.count - 1);
+    }
+    out.alpha += w * p.alpha;
+    out.albedo += w * p.albedo;
+    out.normal += w * p.normal;
+    out.emitted += w * p.emitted;
+    out.firstHalf += w * (p.count >= 2 ? p.firstHalf : p.mean[0] - p.emitted);
+    out.prefix += w * p.prefix;
+    if (p.rangeCount > 0) {
+      rangeWeight += w;
+      out.range += w * p.range;
+      out.rangeM2 += w * p.rangeM2 / float(p.rangeCount);
+      rangeCount += w * float(p.rangeCount);
+      rangeHits += w * float(p.rangeHits);
+    }
+  }
+  const std::uint32_t carried = std::min(std::uint32_t(count + 0.5f), limit);
+  if (carried == 0) return false;
+  out.count = out.inherited = carried;
+  for (int c = 0; c < kChannels; ++c) out.m2[c] = variance[c] * float(carried - 1);
+  out.depth = d;
+  out.object = hit ? object : kNoObject;
+  if (rangeWeight > 0.0f) {
+    out.range /= rangeWeight;
+    out.rangeCount = std::max<std::uint32_t>(1, std::uint32_t(rangeCount / rangeWeight + 0.5f));
+    out.rangeM2 = out.rangeM2 / rangeWeight * float(out.rangeCount);
+    out.rangeHits = hit ? std::min(out.rangeCount, std::uint32_t(rangeHits / rangeWeight + 0.5f)) : 0;
+    out.rangeDepth = d;
+  }
+  return true;
+}
+
+}  // namespace
+
+void FrameBuffer::reproject(const Reprojection& r) {
+  // The old samples move to the spare buffer and the new ones fill the
+  // spare's memory: fresh 40 MB a frame (500x400) would cost more in page
+  // faults than the reprojection itself.
+  // Every new pixel is written below (the gather), so the spare's stale
+  // contents need no clearing first.
+  spare_.swap(pixels_);
+  pixels_.resize(std::size_t(width_) * height_);
+  const std::vector<Pixel>& old = spare_;
+  epoch_ = nextEpoch();
+  carriesHistory_ = false;
+  const Projection from(r.fromCamera, r.fromRegion), to(r.toCamera, r.toRegion);
+  if (from.columns * from.rows != old.size() || to.columns * to.rows != pixels_.size()) {
+    pixels_.assign(pixels_.size(), emptyPixel());
+    return;  // sizes that do not match their regions: nothing to carry
+  }
+  const InstanceMotions motions(r.placedThen, r.placedNow);
+  const Prediction predicted = fillGaps(splatNearest(old, from, to, motions), to);
   const std::uint32_t limit = std::max<std::uint32_t>(r.historyLimit, 1);
-  auto gather = [&](std::uint32_t x, std::uint32_t y) {
-    const std::size_t i = std::size_t(y) * to.columns + x;
-    pixels_[i] = emptyPixel();  // unless the history holds something for it
-    const float d = predicted.depth[i];
-    const bool hit = std::isfinite(d);
-    if (!hit && !predicted.sky[i]) return;
-    const std::uint32_t object = predicted.object[i];
-    glm::vec4 world = to.worldAt(x, y, d);
-    if (hit) world = motions.backward[object] * world;
-    const glm::vec3 q(from.toCamera * world);
-    if (!(q.z < 0.0f)) return;
-    const glm::vec2 at = from.pixelOf(q) - glm::vec2(0.5f);
-    if (!from.nearRegion(at)) return;
-    const int bx = int(std::floor(at.x)), by = int(std::floor(at.y));
-    const float tx = at.x - float(bx), ty = at.y - float(by);
-    const Pixel* taps[4];
-    float weights[4];
-    float total = 0.0f;
-    int n = 0;
-    for (int k = 0; k < 4; ++k) {
-      const int ox = bx + (k & 1), oy = by + (k >> 1);
-      const float w = ((k & 1) ? tx : 1.0f - tx) * ((k >> 1) ? ty : 1.0f - ty);
-      if (w <= 0.0f || !from.inside(ox, oy)) continue;
-      const Pixel& p = old[std::size_t(oy) * oldColumns + std::uint32_t(ox)];
-      if (p.count == 0) continue;
-      // The old pixel saw the predicted surface: the same instance at that
-      // depth, or the sky. A silhouette pixel's far side does not count: what
-      // it holds is mostly the near side's.
-      const float dq = -q.z;
-      const bool seen =
-          hit ? p.object == object && std::abs(p.depth - dq) <= kGatherDepthTolerance * dq : !std::isfinite(p.depth);
-      if (!seen) continue;
-      taps[n] = &p;
-      weights[n++] = w;
-      total += w;
-    }
-    if (total < kLeastWeight) return;
-    Pixel out = emptyPixel();
-    float count = 0.0f, rangeCount = 0.0f, rangeHits = 0.0f, rangeWeight = 0.0f;
-    glm::vec3 variance[kChannels]{};
-    for (int k = 0; k < n; ++k) {
-      const Pixel& p = *taps[k];
-      const float w = weights[k] / total;
-      count += w * float(p.count);
-      for (int c = 0; c < kChannels; ++c) {
-        out.mean[c] += w * p.mean[c];
-        if (p.count > 1) variance[c] += w * p.m2[c] / float(p.count - 1);
-      }
-      out.alpha += w * p.alpha;
-      out.albedo += w * p.albedo;
-      out.normal += w * p.normal;
-      out.emitted += w * p.emitted;
-      out.firstHalf += w * (p.count >= 2 ? p.firstHalf : p.mean[0] - p.emitted);
-      out.prefix += w * p.prefix;
-      if (p.rangeCount > 0) {
-        rangeWeight += w;
-        out.range += w * p.range;
-        out.rangeM2 += w * p.rangeM2 / float(p.rangeCount);
-        rangeCount += w * float(p.rangeCount);
-        rangeHits += w * float(p.rangeHits);
-      }
-    }
-    // The halves the denoiser compares (FrameBuffer's first half and prefix)
-    // are blended like the rest: each of the old pixels' own.
-    const std::uint32_t carried = std::min(std::uint32_t(count + 0.5f), limit);
-    if (carried == 0) return;
-    out.count = out.inherited = carried;
-    for (int c = 0; c < kChannels; ++c) out.m2[c] = variance[c] * float(carried - 1);
-    out.depth = d;
-    out.object = hit ? object : kNoObject;
-    if (rangeWeight > 0.0f) {
-      out.range /= rangeWeight;
-      out.rangeCount = std::max<std::uint32_t>(1, std::uint32_t(rangeCount / rangeWeight + 0.5f));
-      out.rangeM2 = out.rangeM2 / rangeWeight * float(out.rangeCount);
-      out.rangeHits = hit ? std::min(out.rangeCount, std::uint32_t(rangeHits / rangeWeight + 0.5f)) : 0;
-      out.rangeDepth = d;
-    }
-    pixels_[i] = out;
-  };
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, to.rows), [&](const tbb::blocked_range<std::uint32_t>& rows) {
     for (std::uint32_t y = rows.begin(); y != rows.end(); ++y)
-      for (std::uint32_t x = 0; x < to.columns; ++x) gather(x, y);
+      for (std::uint32_t x = 0; x < to.columns; ++x) {
+        const std::size_t i = std::size_t(y) * to.columns + x;
+        Pixel out = emptyPixel();
+        const Taps<Pixel> taps = historyTaps(old, from, to, motions, predicted, x, y);
+        if (taps.total >= kLeastWeight && blendTaps(taps, predicted.depth[i], predicted.object[i], limit, out))
+          pixels_[i] = out;
+        else
+          pixels_[i] = emptyPixel();
+      }
   });
   carriesHistory_ = true;
 }

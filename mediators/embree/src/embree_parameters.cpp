@@ -11,33 +11,69 @@ namespace {
 constexpr double kUnbounded = std::numeric_limits<double>::infinity();
 constexpr std::int64_t kMaxSpp = 1 << 20;
 
+// embree::describeSettings as parameter specs, with RenderSettings' defaults.
+struct TracerSpecs {
+  std::vector<ParameterSpec> specs;
+  const embree::RenderSettings defaults;
+  template <class T>
+  void integer(const char* name, T embree::RenderSettings::*field, std::int64_t min, std::int64_t max,
+               const char* help) {
+    specs.push_back(integerParameter(name, static_cast<std::int64_t>(defaults.*field), min, max, help));
+  }
+  void flag(const char* name, bool embree::RenderSettings::*field, const char* help) {
+    specs.push_back(flagParameter(name, defaults.*field, help));
+  }
+  template <class E>
+  void choice(const char* name, E embree::RenderSettings::*field, std::initializer_list<embree::Named<E>> values,
+              const char* help) {
+    std::vector<std::string> names;
+    std::string fallback;
+    for (const auto& v : values) {
+      names.emplace_back(v.name);
+      if (v.value == defaults.*field) fallback = v.name;
+    }
+    specs.push_back(choiceParameter(name, fallback, std::move(names), help));
+  }
+};
+
+// And back: the parameters into the fields describeSettings names.
+struct TracerSettingsReader {
+  const ParameterTable& table;
+  const Parameters& parameters;
+  embree::RenderSettings& settings;
+  template <class T>
+  void integer(const char* name, T embree::RenderSettings::*field, std::int64_t, std::int64_t, const char*) {
+    settings.*field = static_cast<T>(table.integer(parameters, name));
+  }
+  void flag(const char* name, bool embree::RenderSettings::*field, const char*) {
+    settings.*field = table.flag(parameters, name);
+  }
+  template <class E>
+  void choice(const char* name, E embree::RenderSettings::*field, std::initializer_list<embree::Named<E>> values,
+              const char*) {
+    const std::string chosen = table.choice(parameters, name);
+    for (const auto& v : values)
+      if (chosen == v.name) settings.*field = v.value;
+  }
+};
+
 // Sampling, the filters (Schwenk, chapters 3 and 4) and the temporal
 // methods, in the order --list-params prints them.
 std::vector<ParameterSpec> specs() {
   const embree::PhotonSettings photons;
   const temporal::TruncationRule pca;
-  const embree::RenderSettings tracer;  // the path tracer's own defaults, said there once
-  return {
+  TracerSpecs tracer;  // the path tracer's own settings, said there once
+  embree::describeSettings(tracer);
+  std::vector<ParameterSpec> all = {
       // Figure 5.6's chain: the path tracer converges, and a Whitted-style
       // image (one sample: sharp reflections, refractions and hard shadows,
       // no indirect light, no filter) bridges the moment the camera rests.
       choiceParameter("mode", "path", {"path", "whitted"}, "renderer: progressive path tracer, or one Whitted sample"),
       integerParameter("spp", 16, 1, kMaxSpp, "samples per pixel the progressive image converges to"),
-      integerParameter("maxDepth", tracer.maxDepth, 0, 1024, "maximum path depth"),
-      integerParameter("seed", std::int64_t(tracer.seed), 0, INT64_MAX, "random seed"),
       flagParameter("seedPerFrame", false,
                     "each animation frame draws its own random numbers (seed + frame): noise moves with the "
                     "picture instead of sticking to the screen"),
-      choiceParameter("sampler", "sobol", {"sobol", "independent"},
-                      "path samples: Owen-scrambled Sobol (stratified), or independent white noise"),
-      choiceParameter("lightChoice", "tree", {"tree", "power"},
-                      "emitter picked for a shadow ray: by what it gives at the point (light tree), or by power"),
-      flagParameter("equiangular", tracer.equiangular,
-                    "light scattered in fog also sampled at distances towards the lights (equiangular, with MIS)"),
-      integerParameter("threads", tracer.threads, 0, 4096, "render threads (0: all)"),
       flagParameter("directOnly", false, "direct light only (maxDepth 1)"),
-      integerParameter("samplesPerPass", tracer.samplesPerPass, 1, 4096,
-                       "samples per pass (unset: passes grow 1, 2, 4, 8)"),
       choiceParameter("filter", "none", {"none", "pixel", "atrous", "radiance", "hybrid", "denoise"}, "preview filter"),
       choiceParameter("pathClass", "indirect", {"indirect", "caustic", "all"}, "paths the filter smooths"),
       choiceParameter("filterKernel", "separable", {"bilateral", "separable"}, "pixel filter kernel"),
@@ -101,9 +137,23 @@ std::vector<ParameterSpec> specs() {
                     "improvement by one more mode below which it is noise"),
       flagParameter("pcaPlainRule", false, "the paper's truncation rule, without the noise measure"),
   };
+  // The tracer's own after the renderer's choice and the sample count.
+  all.insert(all.begin() + 2, tracer.specs.begin(), tracer.specs.end());
+  return all;
 }
 
 }  // namespace
+
+embree::RenderSettings renderSettingsFrom(const Parameters& p, std::int64_t frame) {
+  embree::RenderSettings s;
+  const ParameterTable& t = embreeParameters();
+  TracerSettingsReader reader{t, p, s};
+  embree::describeSettings(reader);
+  if (t.flag(p, "seedPerFrame") && frame >= 0) s.seed += static_cast<std::uint64_t>(frame);
+  if (t.flag(p, "directOnly")) s.maxDepth = 1;
+  s.historyLimit = t.flag(p, "history") ? static_cast<std::uint32_t>(t.integer(p, "historyLimit")) : 0;
+  return s;
+}
 
 const BackendCapabilities& embreeCapabilities() {
   static const BackendCapabilities capabilities{ParameterTable("embree", specs()), true, true, true};

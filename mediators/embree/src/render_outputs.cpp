@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-#include "embree_parameters.hpp"
 
 namespace tsr::med::embree_mediator {
 
@@ -19,22 +18,6 @@ constexpr const char* kSamples = "samples";
 
 std::vector<std::string> accumulatedOutputNames() {
   return {kAlbedo, kNormal, kDirect, kIndirect, kVariance, kSamples};
-}
-
-embree::RenderSettings renderSettingsFrom(const Parameters& p, std::int64_t frame) {
-  embree::RenderSettings s;
-  const ParameterTable& t = embreeParameters();
-  s.seed = static_cast<std::uint64_t>(t.integer(p, "seed"));
-  if (t.flag(p, "seedPerFrame") && frame >= 0) s.seed += static_cast<std::uint64_t>(frame);
-  s.maxDepth = static_cast<std::uint32_t>(t.integer(p, "maxDepth"));
-  if (t.flag(p, "directOnly")) s.maxDepth = 1;
-  s.samplesPerPass = static_cast<std::uint32_t>(t.integer(p, "samplesPerPass"));
-  s.threads = static_cast<int>(t.integer(p, "threads"));
-  s.lightChoice = t.choice(p, "lightChoice") == "power" ? embree::LightChoice::Power : embree::LightChoice::Tree;
-  s.equiangular = t.flag(p, "equiangular");
-  s.sampler = t.choice(p, "sampler") == "independent" ? embree::SamplerKind::Independent : embree::SamplerKind::Sobol;
-  s.historyLimit = t.flag(p, "history") ? static_cast<std::uint32_t>(t.integer(p, "historyLimit")) : 0;
-  return s;
 }
 
 FrameBuffer accumulatedFrame(const embree::FrameBuffer& fb, const RenderControl& control) {

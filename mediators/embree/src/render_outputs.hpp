@@ -13,10 +13,6 @@ namespace tsr::med::embree_mediator {
 // The named outputs fill() offers besides colour and depth.
 std::vector<std::string> accumulatedOutputNames();
 
-// seed, maxDepth, directOnly, samplesPerPass, threads; with seedPerFrame,
-// the seed of animation frame `frame` (RenderControl::frame, -1: none).
-embree::RenderSettings renderSettingsFrom(const Parameters& parameters, std::int64_t frame = -1);
-
 // Colour and depth of `fb`, and the named outputs the caller reads
 // (control.wants): all five cost about a tenth of a 16-spp pass at 512².
 FrameBuffer accumulatedFrame(const embree::FrameBuffer& fb, const RenderControl& control);

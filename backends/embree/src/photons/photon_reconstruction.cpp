@@ -14,6 +14,7 @@
 #include <atomic>
 #include <cmath>
 #include <string>
+#include <tuple>
 
 namespace tsr::embree {
 
@@ -107,29 +108,18 @@ std::pair<std::size_t, std::size_t> fiveFrames(std::size_t k, std::size_t lo, st
   return {a, a + span - 1};
 }
 
-}  // namespace
-
-Reconstruction PhotonSequence::reconstruct(std::int64_t frame, PhotonHalf half) const {
-  const State& s = *s_;
-  const PhotonSettings& cfg = s.settings;
-  const State::Slot* centreSlot = &s.buffered(frame);
-  const ElementSet& set = *s.elements;
-  const std::size_t elements = set.elementCount();
-  const std::int64_t h = lookahead();
-
+// The window's counts and energies of the half-set's photons, oldest frame
+// first, with their prefix sums. A half-set's energy counts twice: it
+// stands for all photons.
+template <class Slot>
+Window windowOf(const std::vector<const Slot*>& slots, std::size_t centre, std::size_t elements, PhotonHalf half) {
   Window w;
   w.elements = elements;
-  std::vector<const State::Slot*> slots;
-  for (std::int64_t f = frame - h; f <= frame + h; ++f)
-    if (const State::Slot* sl = s.slot(f)) {
-      if (f == frame) w.centre = slots.size();
-      slots.push_back(sl);
-    }
+  w.centre = centre;
   w.frames = slots.size();
   w.count.resize(w.frames * elements);
   w.countPrefix.assign((w.frames + 1) * elements, 0);
   w.energyPrefix.assign((w.frames + 1) * elements, glm::vec3(0.0f));
-  // A half-set's energy counts twice: it stands for all photons.
   const float scale = half == PhotonHalf::All ? 1.0f : 2.0f;
   for (std::size_t k = 0; k < w.frames; ++k) {
     for (std::size_t e = 0; e < elements; ++e) {
@@ -142,103 +132,143 @@ Reconstruction PhotonSequence::reconstruct(std::int64_t frame, PhotonHalf half) 
       w.energyPrefix[(k + 1) * elements + e] = w.energyPrefix[k * elements + e] + energy;
     }
   }
+  return w;
+}
 
-  const ElementGeometry& geo = centreSlot->geometry;
-  // Eq. 5 over the whole window, the common case, computed once.
-  std::vector<glm::vec3> wholeWindow(w.frames * elements);
+// Weber eq. 5 over frames [a, b] for element e: its energy per frame and area.
+glm::vec3 irradianceOver(const Window& w, const ElementGeometry& geo, std::size_t a, std::size_t b, std::size_t e) {
+  const float area = geo.area[e];
+  return area > 0.0f ? w.energy(a, b, e) / (float(b - a + 1) * area) : glm::vec3(0.0f);
+}
+
+// Eq. 5 over the whole window, the common case, computed once.
+std::vector<glm::vec3> wholeWindowIrradiance(const Window& w, const ElementGeometry& geo) {
+  std::vector<glm::vec3> whole(w.frames * w.elements);
   for (std::size_t k = 0; k < w.frames; ++k)
-    for (std::size_t e = 0; e < elements; ++e) {
+    for (std::size_t e = 0; e < w.elements; ++e) {
       const auto [a, b] = fiveFrames(k, 0, w.frames - 1);
-      wholeWindow[k * elements + e] =
-          geo.area[e] > 0.0f ? w.energy(a, b, e) / (float(b - a + 1) * geo.area[e]) : glm::vec3(0.0f);
+      whole[k * w.elements + e] = irradianceOver(w, geo, a, b, e);
     }
-  // A light whose power steps between two frames (switched, dimmed at
-  // once) changes every element it reaches: the window of every element
-  // ends there. The emitted power is known exactly, so unlike the counts'
-  // test this needs no noise margin; gradual changes below the step pass.
-  auto emissionJump = [&](std::size_t a, std::size_t b) {
+  return whole;
+}
+
+// The frames around the centre between which no source's power steps. A
+// light whose power steps between two frames (switched, dimmed at once)
+// changes every element it reaches: the window of every element ends
+// there. The emitted power is known exactly, so unlike the counts' test
+// this needs no noise margin; gradual changes below `step` pass.
+template <class Slot>
+std::pair<std::size_t, std::size_t> steadyEmission(const std::vector<const Slot*>& slots, std::size_t centre,
+                                                   float step) {
+  auto jump = [&](std::size_t a, std::size_t b) {
     const auto& pa = slots[a]->sourcePower;
     const auto& pb = slots[b]->sourcePower;
     if (pa.size() != pb.size()) return true;
     for (std::size_t i = 0; i < pa.size(); ++i) {
       const float la = luminance(pa[i]), lb = luminance(pb[i]);
-      if (std::abs(la - lb) > cfg.emissionStep * std::max(la, lb)) return true;
+      if (std::abs(la - lb) > step * std::max(la, lb)) return true;
     }
     return false;
   };
-  std::pair<std::size_t, std::size_t> emission{w.centre, w.centre};
-  while (emission.first > 0 && !emissionJump(emission.first - 1, emission.first)) --emission.first;
-  while (emission.second + 1 < w.frames && !emissionJump(emission.second, emission.second + 1)) ++emission.second;
-  const float sigmaT = 0.5f * float(cfg.tMax);
-  const float cosCrease = std::cos(cfg.creaseAngle);
-  const float target = 1.0f / (cfg.accuracy * cfg.accuracy);  // eq. 4: photons in the support
-  const std::size_t minSide = (std::max(cfg.minFrames, 1u) - 1) / 2;
-  const float quantum = scale * s.photonEnergy;  // one photon's energy in this half-set
+  std::pair<std::size_t, std::size_t> steady{centre, centre};
+  while (steady.first > 0 && !jump(steady.first - 1, steady.first)) --steady.first;
+  while (steady.second + 1 < slots.size() && !jump(steady.second, steady.second + 1)) ++steady.second;
+  return steady;
+}
 
-  Reconstruction out;
-  out.backward.resize(elements);
-  out.forward.resize(elements);
-  out.rings.resize(elements);
-  std::vector<glm::vec3> filtered(elements, glm::vec3(0.0f));
-  std::vector<std::uint8_t> cut(elements, 0);
+// Ring neighbourhoods of an element: BFS layers over shared corners, not
+// across creases. One a thread: its visit stamps span every element.
+class RingSearch {
+ public:
+  std::vector<std::uint32_t> members;  // the element first, ring by ring
+  std::vector<std::uint32_t> ringEnd;  // members of rings [0, r] end at ringEnd[r]
 
-  // Per thread: visit stamps for the ring search.
-  struct Scratch {
-    std::vector<std::uint32_t> stamp;
-    std::uint32_t current = 0;
-    std::vector<std::uint32_t> members;
-    std::vector<std::uint32_t> ringEnd;
-    std::vector<float> supportCounts;  // photons per frame over the support
-  };
-  tbb::enumerable_thread_specific<Scratch> scratch;
-
-  auto element = [&](std::size_t q) {
-    Scratch& sc = scratch.local();
-    if (sc.stamp.size() != elements) sc.stamp.assign(elements, 0), sc.current = 0;
-    // Ring neighbourhoods (BFS layers over shared corners, not across
-    // creases) until the support holds `target` photons over frames
-    // [lo, hi], plus one ring. Returns the number of rings.
-    auto grow = [&](std::size_t lo, std::size_t hi, float want) {
-      if (++sc.current == 0) std::fill(sc.stamp.begin(), sc.stamp.end(), 0), sc.current = 1;
-      sc.members.assign(1, std::uint32_t(q));
-      sc.ringEnd.assign(1, 1);
-      sc.stamp[q] = sc.current;
-      float photons = float(w.photons(lo, hi, q));
-      std::size_t rings = 0, extra = 0;
-      while (rings < cfg.maxRings + 1) {
-        if (photons >= want || rings == cfg.maxRings) {
-          if (extra == 1) break;
-          extra = 1;
-        }
-        const std::size_t from = rings == 0 ? 0 : sc.ringEnd[rings - 1], to = sc.ringEnd[rings];
-        for (std::size_t m = from; m < to; ++m) {
-          const std::uint32_t* c = &set.corners[3 * std::size_t(sc.members[m])];
-          for (int k = 0; k < 3; ++k) {
-            for (std::uint32_t i = set.vertexStart[c[k]]; i < set.vertexStart[c[k] + 1]; ++i) {
-              const std::uint32_t p = set.vertexElements[i];
-              if (sc.stamp[p] == sc.current) continue;
-              sc.stamp[p] = sc.current;
-              if (glm::dot(geo.normal[p], geo.normal[q]) < cosCrease) continue;
-              sc.members.push_back(p);
-              photons += float(w.photons(lo, hi, p));
-            }
+  // Rings around q until they hold `want` photons over frames [lo, hi],
+  // plus one ring, at most maxRings + 1. Returns the number of rings.
+  std::size_t grow(const ElementSet& set, const ElementGeometry& geo, const Window& w, std::uint32_t maxRings,
+                   float cosCrease, std::size_t q, std::size_t lo, std::size_t hi, float want) {
+    if (stamp_.size() != w.elements) stamp_.assign(w.elements, 0), current_ = 0;
+    if (++current_ == 0) std::fill(stamp_.begin(), stamp_.end(), 0), current_ = 1;
+    members.assign(1, std::uint32_t(q));
+    ringEnd.assign(1, 1);
+    stamp_[q] = current_;
+    float photons = float(w.photons(lo, hi, q));
+    std::size_t rings = 0, extra = 0;
+    while (rings < maxRings + 1) {
+      if (photons >= want || rings == maxRings) {
+        if (extra == 1) break;
+        extra = 1;
+      }
+      const std::size_t from = rings == 0 ? 0 : ringEnd[rings - 1], to = ringEnd[rings];
+      for (std::size_t m = from; m < to; ++m) {
+        const std::uint32_t* c = &set.corners[3 * std::size_t(members[m])];
+        for (int k = 0; k < 3; ++k) {
+          for (std::uint32_t i = set.vertexStart[c[k]]; i < set.vertexStart[c[k] + 1]; ++i) {
+            const std::uint32_t p = set.vertexElements[i];
+            if (stamp_[p] == current_) continue;
+            stamp_[p] = current_;
+            if (glm::dot(geo.normal[p], geo.normal[q]) < cosCrease) continue;
+            members.push_back(p);
+            photons += float(w.photons(lo, hi, p));
           }
         }
-        if (sc.members.size() == to) break;  // nothing more to reach
-        sc.ringEnd.push_back(std::uint32_t(sc.members.size()));
-        ++rings;
-        if (extra == 1) break;
       }
-      return rings;
-    };
+      if (members.size() == to) break;  // nothing more to reach
+      ringEnd.push_back(std::uint32_t(members.size()));
+      ++rings;
+      if (extra == 1) break;
+    }
+    return rings;
+  }
 
-    // The validity test counts the photons of the support the whole window
-    // would use, not of q alone: one element sees a few photons a frame, and
-    // with sigma = sqrt(mu) a step of several times its level would pass
-    // (002 tests the energy of a region large enough to be stable).
-    const std::size_t wholeRings = grow(0, w.frames - 1, target);
+ private:
+  std::vector<std::uint32_t> stamp_;
+  std::uint32_t current_ = 0;
+};
+
+// What filtering one element needs, shared by all elements of a
+// reconstruction; run() writes the element's window, rings and value.
+struct ElementFilter {
+  const ElementSet& set;
+  const ElementGeometry& geo;
+  const Window& w;
+  const std::vector<glm::vec3>& wholeWindow;
+  const PhotonSettings& cfg;
+  std::pair<std::size_t, std::size_t> emission;
+  float cosCrease, target, quantum;
+  std::size_t minSide;
+  Reconstruction& out;
+  std::vector<glm::vec3>& filtered;
+  std::vector<std::uint8_t>& cut;
+
+  struct Scratch {
+    RingSearch rings;
+    std::vector<float> supportCounts;  // photons per frame over the support
+  };
+
+  void run(std::size_t q, Scratch& sc) const {
+    const auto [lo, hi, wholeRings] = temporalExtent(q, sc);
+    const std::size_t rings = (lo == 0 && hi + 1 == w.frames)
+                                  ? wholeRings
+                                  : sc.rings.grow(set, geo, w, cfg.maxRings, cosCrease, q, lo, hi, target);
+    out.rings[q] = std::uint8_t(rings);
+    float ringRadius = 0.0f;
+    if (rings > 0)
+      for (std::size_t m = sc.rings.ringEnd[rings - 1]; m < sc.rings.members.size(); ++m)
+        ringRadius = std::max(ringRadius, glm::length(geo.centroid[sc.rings.members[m]] - geo.centroid[q]));
+    filtered[q] = bilateral(q, lo, hi, 0.5f * ringRadius, sc.rings.members);
+  }
+
+ private:
+  // 002's validity test bounds q's window [lo, hi]. It counts the photons of
+  // the support the whole window would use, not of q alone: one element
+  // sees a few photons a frame, and with sigma = sqrt(mu) a step of several
+  // times its level would pass (002 tests the energy of a region large
+  // enough to be stable). Also returns the rings of that whole support.
+  std::tuple<std::size_t, std::size_t, std::size_t> temporalExtent(std::size_t q, Scratch& sc) const {
+    const std::size_t wholeRings = sc.rings.grow(set, geo, w, cfg.maxRings, cosCrease, q, 0, w.frames - 1, target);
     sc.supportCounts.assign(w.frames, 0.0f);
-    for (std::uint32_t p : sc.members)
+    for (std::uint32_t p : sc.rings.members)
       for (std::size_t k = 0; k < w.frames; ++k) sc.supportCounts[k] += float(w.n(k, p));
     auto [back, fwd] = validExtent(sc.supportCounts, w.centre, cfg.validityK, minSide);
     back = std::min(back, w.centre - emission.first);
@@ -247,20 +277,17 @@ Reconstruction PhotonSequence::reconstruct(std::int64_t frame, PhotonHalf half) 
     out.forward[q] = std::uint8_t(fwd);
     const std::size_t lo = w.centre - back, hi = w.centre + fwd;
     cut[q] = (lo > 0 || hi + 1 < w.frames) ? 1 : 0;
-    const std::size_t rings = (lo == 0 && hi + 1 == w.frames) ? wholeRings : grow(lo, hi, target);
-    out.rings[q] = std::uint8_t(rings);
-    float ringRadius = 0.0f;
-    if (rings > 0)
-      for (std::size_t m = sc.ringEnd[rings - 1]; m < sc.members.size(); ++m)
-        ringRadius = std::max(ringRadius, glm::length(geo.centroid[sc.members[m]] - geo.centroid[q]));
-    const float sigmaS = 0.5f * ringRadius;
+    return {lo, hi, wholeRings};
+  }
 
+  // Weber eq. 2 over the support `members` and frames [lo, hi].
+  glm::vec3 bilateral(std::size_t q, std::size_t lo, std::size_t hi, float sigmaS,
+                      const std::vector<std::uint32_t>& members) const {
     const bool whole = lo == 0 && hi + 1 == w.frames;
     auto irradiance = [&](std::size_t k, std::size_t p) {  // Weber eq. 5
-      if (whole) return wholeWindow[k * elements + p];
+      if (whole) return wholeWindow[k * w.elements + p];
       const auto [a, b] = fiveFrames(k, lo, hi);
-      const float area = geo.area[p];
-      return area > 0.0f ? w.energy(a, b, p) / (float(b - a + 1) * area) : glm::vec3(0.0f);
+      return irradianceOver(w, geo, a, b, p);
     };
     const auto [a0, b0] = fiveFrames(w.centre, lo, hi);
     const float ref = luminance(irradiance(w.centre, q));
@@ -269,6 +296,7 @@ Reconstruction PhotonSequence::reconstruct(std::int64_t frame, PhotonHalf half) 
     const float n5 = float(w.photons(a0, b0, q));
     const float floorI = geo.area[q] > 0.0f ? quantum / (float(b0 - a0 + 1) * geo.area[q]) : 0.0f;
     const float sigmaI = std::max(cfg.influence, 1.0f / std::sqrt(std::max(n5, 1.0f))) * std::max(ref, floorI);
+    const float sigmaT = 0.5f * float(cfg.tMax);
     const float invS = sigmaS > 0.0f ? 1.0f / (2.0f * sigmaS * sigmaS) : 0.0f;
     const float invI = sigmaI > 0.0f ? 1.0f / (2.0f * sigmaI * sigmaI) : 0.0f;
     const float invT = 1.0f / (2.0f * sigmaT * sigmaT);
@@ -279,7 +307,7 @@ Reconstruction PhotonSequence::reconstruct(std::int64_t frame, PhotonHalf half) 
     }
     glm::vec3 sum(0.0f);
     float weights = 0.0f;
-    for (std::uint32_t p : sc.members) {
+    for (std::uint32_t p : members) {
       const glm::vec3 d = geo.centroid[p] - geo.centroid[q];
       const float wS = std::exp(-glm::dot(d, d) * invS);
       for (std::size_t k = lo; k <= hi; ++k) {
@@ -290,27 +318,70 @@ Reconstruction PhotonSequence::reconstruct(std::int64_t frame, PhotonHalf half) 
         weights += wgt;
       }
     }
-    filtered[q] = weights > 0.0f ? sum / weights : glm::vec3(0.0f);
-  };
+    return weights > 0.0f ? sum / weights : glm::vec3(0.0f);
+  }
+};
 
-  s.arena->execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, elements, 256), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t q = r.begin(); q != r.end(); ++q) element(q);
-    });
-  });
-
-  std::vector<glm::vec3> corner = cornerValues(set, geo, filtered, cosCrease, *s.arena);
-
+// The share of lit elements whose window was cut short.
+float spatialFallback(const Window& w, const std::vector<std::uint8_t>& cut) {
   std::size_t lit = 0, cutLit = 0;
-  for (std::size_t e = 0; e < elements; ++e) {
+  for (std::size_t e = 0; e < w.elements; ++e) {
     if (w.photons(0, w.frames - 1, e) == 0) continue;
     ++lit;
     cutLit += cut[e];
   }
-  out.spatialFallback = lit ? float(cutLit) / float(lit) : 0.0f;
+  return lit ? float(cutLit) / float(lit) : 0.0f;
+}
+
+}  // namespace
+
+Reconstruction PhotonSequence::reconstruct(std::int64_t frame, PhotonHalf half) const {
+  const State& s = *s_;
+  const PhotonSettings& cfg = s.settings;
+  const ElementGeometry& geo = s.buffered(frame).geometry;
+  const std::size_t elements = s.elements->elementCount();
+
+  std::vector<const State::Slot*> slots;
+  std::size_t centre = 0;
+  for (std::int64_t f = frame - lookahead(); f <= frame + lookahead(); ++f)
+    if (const State::Slot* slot = s.slot(f)) {
+      if (f == frame) centre = slots.size();
+      slots.push_back(slot);
+    }
+  const Window w = windowOf(slots, centre, elements, half);
+  const std::vector<glm::vec3> wholeWindow = wholeWindowIrradiance(w, geo);
+
+  Reconstruction out;
+  out.backward.resize(elements);
+  out.forward.resize(elements);
+  out.rings.resize(elements);
+  std::vector<glm::vec3> filtered(elements, glm::vec3(0.0f));
+  std::vector<std::uint8_t> cut(elements, 0);
+  const float scale = half == PhotonHalf::All ? 1.0f : 2.0f;
+  const ElementFilter filter{*s.elements,
+                             geo,
+                             w,
+                             wholeWindow,
+                             cfg,
+                             steadyEmission(slots, centre, cfg.emissionStep),
+                             std::cos(cfg.creaseAngle),
+                             1.0f / (cfg.accuracy * cfg.accuracy),  // eq. 4: photons in the support
+                             scale * s.photonEnergy,                // one photon's energy in this half-set
+                             (std::max(cfg.minFrames, 1u) - 1) / 2,
+                             out,
+                             filtered,
+                             cut};
+  tbb::enumerable_thread_specific<ElementFilter::Scratch> scratch;
+  s.arena->execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, elements, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t q = r.begin(); q != r.end(); ++q) filter.run(q, scratch.local());
+    });
+  });
+
+  out.spatialFallback = spatialFallback(w, cut);
+  out.field.corner_ = cornerValues(*s.elements, geo, filtered, filter.cosCrease, *s.arena);
   out.field.elements_ = s.elements;
   out.field.element_ = std::move(filtered);
-  out.field.corner_ = std::move(corner);
   out.field.sceneUid_ = s.sceneUid;
   out.field.uid_ = nextFieldUid.fetch_add(1);
   return out;

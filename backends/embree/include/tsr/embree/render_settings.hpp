@@ -3,6 +3,7 @@
 #include "tsr/embree/sampler.hpp"
 
 #include <cstdint>
+#include <initializer_list>
 
 namespace tsr::embree {
 
@@ -31,6 +32,36 @@ struct RenderSettings {
   std::uint32_t historyLimit = 0;
   bool operator==(const RenderSettings&) const = default;
 };
+
+// One value of a choice and its name (describeSettings).
+template <class E>
+struct Named {
+  const char* name;
+  E value;
+};
+
+// The settings a user sets, each said once: its name, its field, its range
+// and what it does, the default being the field's. The Embree mediator makes
+// its parameters of this list and reads them back into RenderSettings
+// through it, so a new setting is its field above, its line here and the
+// code that reads it. `v` has integer(name, field, min, max, help),
+// flag(name, field, help) and choice(name, field, {Named...}, help).
+// What the mediator derives (seed per frame, direct only, the history
+// switch) and the work's cutting (tile size) are not listed.
+template <class Visitor>
+void describeSettings(Visitor& v) {
+  using S = RenderSettings;
+  v.integer("maxDepth", &S::maxDepth, 0, 1024, "maximum path depth");
+  v.integer("seed", &S::seed, 0, INT64_MAX, "random seed");
+  v.choice("sampler", &S::sampler, {{"sobol", SamplerKind::Sobol}, {"independent", SamplerKind::Independent}},
+           "path samples: Owen-scrambled Sobol (stratified), or independent white noise");
+  v.choice("lightChoice", &S::lightChoice, {{"tree", LightChoice::Tree}, {"power", LightChoice::Power}},
+           "emitter picked for a shadow ray: by what it gives at the point (light tree), or by power");
+  v.flag("equiangular", &S::equiangular,
+         "light scattered in fog also sampled at distances towards the lights (equiangular, with MIS)");
+  v.integer("threads", &S::threads, 0, 4096, "render threads (0: all)");
+  v.integer("samplesPerPass", &S::samplesPerPass, 1, 4096, "samples per pass (unset: passes grow 1, 2, 4, 8)");
+}
 
 // The settings with those that only cut and schedule the work (pass size,
 // tile size, threads) set to their defaults: what an accumulated image
