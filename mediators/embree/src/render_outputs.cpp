@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-
 namespace tsr::med::embree_mediator {
 
 namespace {
