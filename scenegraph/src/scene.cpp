@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <bit>
 
-#include "tsr/sg/change_applier.hpp"
+#include "tsr/sg/changes/change_applier.hpp"
 
 namespace tsr::sg {
 

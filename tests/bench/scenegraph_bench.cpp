@@ -3,7 +3,7 @@
 #include <benchmark/benchmark.h>
 
 #include "tsr/sg/scene.hpp"
-#include "tsr/sg/wire_codec.hpp"
+#include "tsr/sg/wire/wire_codec.hpp"
 
 using namespace tsr::sg;
 

@@ -3,12 +3,12 @@
 #include <gtest/gtest.h>
 
 #include "cluster_test_util.hpp"
-#include "loopback_proxy.hpp"
+#include "protocol/loopback_proxy.hpp"
 #include "tsr/cluster/cluster_window.hpp"
 #include "tsr/med/embree/register.hpp"
 #include "tsr/sg/geometry.hpp"
 #include "tsr/sg/replica.hpp"
-#include "tsr/sg/wire_codec.hpp"
+#include "tsr/sg/wire/wire_codec.hpp"
 
 namespace tsr::cluster::test {
 namespace {

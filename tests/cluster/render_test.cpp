@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "cluster_test_util.hpp"
-#include "raw_client.hpp"
+#include "protocol/raw_client.hpp"
 #include "tsr/cluster/cluster_viewport.hpp"
 #include "tsr/cluster/cluster_window.hpp"
 #include "tsr/cluster/handshake.hpp"
@@ -21,7 +21,7 @@
 #include "tsr/med/image_file.hpp"
 #include "tsr/med/viewport_registry.hpp"
 #include "tsr/sg/replica.hpp"
-#include "tsr/sg/wire_codec.hpp"
+#include "tsr/sg/wire/wire_codec.hpp"
 
 namespace tsr::cluster::test {
 namespace {

@@ -16,7 +16,7 @@
 #include "tsr/cluster/pixel_codec.hpp"
 #include "tsr/sg/import/importer.hpp"
 #include "tsr/sg/scene.hpp"
-#include "tsr/sg/wire_codec.hpp"
+#include "tsr/sg/wire/wire_codec.hpp"
 
 namespace {
 

@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "tsr/sg/scene.hpp"
-#include "tsr/sg/wire_codec.hpp"
+#include "tsr/sg/wire/wire_codec.hpp"
 
 using namespace tsr::sg;
 

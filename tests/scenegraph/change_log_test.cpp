@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "random_edits.hpp"
-#include "tsr/sg/change_log.hpp"
+#include "tsr/sg/changes/change_log.hpp"
 #include "tsr/sg/scene.hpp"
 
 using namespace tsr::sg;

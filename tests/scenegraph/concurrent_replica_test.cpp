@@ -9,7 +9,7 @@
 #include <thread>
 
 #include "random_edits.hpp"
-#include "tsr/sg/change_log.hpp"
+#include "tsr/sg/changes/change_log.hpp"
 #include "tsr/sg/scene.hpp"
 
 using namespace tsr::sg;

@@ -11,7 +11,7 @@
 #include "tsr/sg/container_factory.hpp"
 #include "tsr/sg/container_types.hpp"
 #include "tsr/sg/scene.hpp"
-#include "tsr/sg/wire_codec.hpp"
+#include "tsr/sg/wire/wire_codec.hpp"
 
 using namespace tsr::sg;
 

@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "random_edits.hpp"
-#include "tsr/sg/merged_changes.hpp"
+#include "tsr/sg/changes/merged_changes.hpp"
 #include "tsr/sg/replica.hpp"
 
 using namespace tsr::sg;

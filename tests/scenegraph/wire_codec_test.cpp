@@ -9,7 +9,7 @@
 #include "random_edits.hpp"
 #include "tsr/sg/coordinate_limit.hpp"
 #include "tsr/sg/scene.hpp"
-#include "tsr/sg/wire_codec.hpp"
+#include "tsr/sg/wire/wire_codec.hpp"
 
 using namespace tsr::sg;
 using tsr::sg::test::RandomEditor;

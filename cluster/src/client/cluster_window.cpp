@@ -4,7 +4,7 @@
 #include <array>
 
 #include "client/cluster_window_impl.hpp"
-#include "tsr/sg/wire_codec.hpp"
+#include "tsr/sg/wire/wire_codec.hpp"
 
 namespace tsr::cluster {
 

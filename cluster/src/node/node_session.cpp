@@ -11,7 +11,7 @@
 #include "tsr/med/parameters.hpp"
 #include "tsr/med/viewport_registry.hpp"
 #include "tsr/sg/errors.hpp"
-#include "tsr/sg/wire_codec.hpp"
+#include "tsr/sg/wire/wire_codec.hpp"
 
 namespace tsr::cluster {
 

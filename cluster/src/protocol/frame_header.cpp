@@ -5,8 +5,8 @@
 #include <string>
 
 #include "tsr/cluster/protocol_error.hpp"
-#include "tsr/sg/byte_reader.hpp"
-#include "tsr/sg/byte_writer.hpp"
+#include "tsr/sg/wire/byte_reader.hpp"
+#include "tsr/sg/wire/byte_writer.hpp"
 
 namespace tsr::cluster {
 

@@ -18,7 +18,7 @@
 #include "tsr/med/embree/register.hpp"
 #include "tsr/med/image_file.hpp"
 #include "tsr/sg/replica.hpp"
-#include "tsr/sg/wire_codec.hpp"
+#include "tsr/sg/wire/wire_codec.hpp"
 
 using namespace tsr;
 using namespace std::chrono_literals;

@@ -4,7 +4,7 @@
 #include "tsr/cluster/pixel_codec.hpp"
 #include "tsr/cluster/protocol_error.hpp"
 #include "tsr/sg/errors.hpp"
-#include "tsr/sg/wire_codec.hpp"
+#include "tsr/sg/wire/wire_codec.hpp"
 
 namespace tsr::cluster {
 namespace {

@@ -3,7 +3,7 @@
 #include "fuzz_targets.hpp"
 #include "tsr/sg/errors.hpp"
 #include "tsr/sg/replica.hpp"
-#include "tsr/sg/wire_codec.hpp"
+#include "tsr/sg/wire/wire_codec.hpp"
 
 namespace tsr::fuzz {
 

@@ -236,15 +236,18 @@ TEST_F(EmbreeMediator, DenoiserSettingsApplyToTheSamplesHeld) {
   expectSameBits(atrous, again, "as if set before rendering");
 }
 
-// The sampling parameters reach the path tracer: each restarts the samples
-// held and gives another image, and setting it back gives the first again.
+// The sampling parameters reach the path tracer (through
+// embree::describeSettings): each restarts the samples held and gives
+// another image, and setting it back gives the first again.
 TEST_F(EmbreeMediator, SamplingParametersRestartAndChangeTheImage) {
   auto viewport = rig.registry.create(rig.settings(2), contexts);
   const auto view = rig.view(replica.scene());
   med::FrameBuffer first;
   viewport->render(replica, view, first);
-  for (const auto& [name, value] : std::vector<std::pair<std::string, med::ParameterValue>>{
-           {"sampler", std::string("independent")}, {"lightChoice", std::string("power")}}) {
+  for (const auto& [name, value] :
+       std::vector<std::pair<std::string, med::ParameterValue>>{{"sampler", std::string("independent")},
+                                                                {"lightChoice", std::string("power")},
+                                                                {"rouletteDepth", std::int64_t{1}}}) {
     auto other = rig.registry.create(rig.settings(2), contexts);
     other->setParameter(name, value);
     med::FrameBuffer image;
@@ -256,6 +259,7 @@ TEST_F(EmbreeMediator, SamplingParametersRestartAndChangeTheImage) {
     expectSameBits(again, image, name.c_str());
     viewport->setParameter("sampler", std::string("sobol"));
     viewport->setParameter("lightChoice", std::string("tree"));
+    viewport->setParameter("rouletteDepth", std::int64_t{3});
     med::FrameBuffer back;
     viewport->render(replica, view, back);
     expectSameBits(back, first, "the defaults again");

@@ -20,8 +20,8 @@
 #include <tuple>
 #include <utility>
 
-#include "tsr/sg/byte_reader.hpp"
-#include "tsr/sg/byte_writer.hpp"
+#include "tsr/sg/wire/byte_reader.hpp"
+#include "tsr/sg/wire/byte_writer.hpp"
 
 namespace tsr::cluster {
 

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "tsr/sg/attachment.hpp"
-#include "tsr/sg/field_codec.hpp"
+#include "tsr/sg/wire/field_codec.hpp"
 #include "tsr/sg/types.hpp"
 
 namespace tsr::sg {

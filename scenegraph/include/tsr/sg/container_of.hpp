@@ -10,7 +10,7 @@
 
 #include "tsr/sg/coordinate_limit.hpp"
 #include "tsr/sg/errors.hpp"
-#include "tsr/sg/field_spec.hpp"
+#include "tsr/sg/wire/field_spec.hpp"
 
 namespace tsr::sg {
 

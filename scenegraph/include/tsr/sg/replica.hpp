@@ -2,7 +2,7 @@
 // A scene that follows a source, together with the log of the lists it
 // applied, so that consumers at different versions (viewports switched off
 // and on, adapters of several back-ends) can each catch up on their own.
-#include "tsr/sg/change_log.hpp"
+#include "tsr/sg/changes/change_log.hpp"
 #include "tsr/sg/scene.hpp"
 
 namespace tsr::sg {

@@ -10,7 +10,7 @@
 
 #include "tsr/sg/background.hpp"
 #include "tsr/sg/camera.hpp"
-#include "tsr/sg/change_list.hpp"
+#include "tsr/sg/changes/change_list.hpp"
 #include "tsr/sg/container.hpp"
 #include "tsr/sg/geometry.hpp"
 #include "tsr/sg/image.hpp"

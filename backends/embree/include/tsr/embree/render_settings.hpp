@@ -52,6 +52,8 @@ template <class Visitor>
 void describeSettings(Visitor& v) {
   using S = RenderSettings;
   v.integer("maxDepth", &S::maxDepth, 0, 1024, "maximum path depth");
+  v.integer("rouletteDepth", &S::rouletteDepth, 0, 1024,
+            "scattering events after which Russian roulette may end a path (unbiased: fewer means faster, noisier)");
   v.integer("seed", &S::seed, 0, INT64_MAX, "random seed");
   v.choice("sampler", &S::sampler, {{"sobol", SamplerKind::Sobol}, {"independent", SamplerKind::Independent}},
            "path samples: Owen-scrambled Sobol (stratified), or independent white noise");

@@ -4,7 +4,7 @@
 // a sync phase reads as "if (transformDirty(e)) move it". Entries of
 // containers created since the adapter's version answer false where their
 // conversion happens elsewhere (placement, or the first lookup).
-#include "tsr/sg/merged_changes.hpp"
+#include "tsr/sg/changes/merged_changes.hpp"
 #include "tsr/sg/scene.hpp"
 
 namespace tsr::med {

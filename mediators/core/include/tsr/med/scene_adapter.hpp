@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <optional>
 
-#include "tsr/sg/merged_changes.hpp"
+#include "tsr/sg/changes/merged_changes.hpp"
 #include "tsr/sg/replica.hpp"
 
 namespace tsr::med {

@@ -8,7 +8,7 @@
 #include <optional>
 #include <thread>
 
-#include "wall_test_util.hpp"
+#include "wall/wall_test_util.hpp"
 
 namespace tsr::cluster::test {
 namespace {

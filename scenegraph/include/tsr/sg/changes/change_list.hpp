@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "tsr/sg/array_range.hpp"
-#include "tsr/sg/decode_limits.hpp"
+#include "tsr/sg/wire/decode_limits.hpp"
 #include "tsr/sg/types.hpp"
 
 namespace tsr::sg {

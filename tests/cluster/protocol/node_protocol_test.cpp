@@ -8,7 +8,7 @@
 
 #include "../apps/command_runner.hpp"
 #include "cluster_test_util.hpp"
-#include "raw_client.hpp"
+#include "protocol/raw_client.hpp"
 #include "tsr/cluster/auth.hpp"
 #include "tsr/cluster/cluster_window.hpp"
 #include "tsr/cluster/handshake.hpp"

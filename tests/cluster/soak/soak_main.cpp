@@ -7,7 +7,7 @@
 
 #include <iostream>
 
-#include "soak_run.hpp"
+#include "soak/soak_run.hpp"
 
 int main(int argc, char** argv) {
   using namespace tsr::cluster;

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "../sanitizers/resident_scale.hpp"
-#include "soak_run.hpp"
+#include "soak/soak_run.hpp"
 
 namespace tsr::cluster::test {
 namespace {

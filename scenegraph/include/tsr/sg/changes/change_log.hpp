@@ -8,7 +8,7 @@
 #include <mutex>
 #include <vector>
 
-#include "tsr/sg/change_list.hpp"
+#include "tsr/sg/changes/change_list.hpp"
 
 namespace tsr::sg {
 

@@ -1,4 +1,4 @@
-#include "tsr/sg/merged_changes.hpp"
+#include "tsr/sg/changes/merged_changes.hpp"
 
 #include <algorithm>
 #include <bit>

@@ -1,4 +1,4 @@
-#include "tsr/sg/change_list.hpp"
+#include "tsr/sg/changes/change_list.hpp"
 
 #include <algorithm>
 #include <bit>

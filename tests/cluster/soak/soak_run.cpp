@@ -1,4 +1,4 @@
-#include "soak_run.hpp"
+#include "soak/soak_run.hpp"
 
 #include <dirent.h>
 #include <spawn.h>
@@ -14,11 +14,11 @@
 #include <thread>
 
 #include "cluster_test_util.hpp"
-#include "loopback_proxy.hpp"
-#include "raw_client.hpp"
+#include "protocol/loopback_proxy.hpp"
+#include "protocol/raw_client.hpp"
 #include "tsr/cluster/cluster_window.hpp"
 #include "tsr/cluster/handshake.hpp"
-#include "tsr/sg/wire_codec.hpp"
+#include "tsr/sg/wire/wire_codec.hpp"
 
 extern char** environ;
 

@@ -4,7 +4,7 @@
 
 #include "tsr/cluster/wall_layout.hpp"
 #include "tsr/cluster/workload.hpp"
-#include "workload_check.hpp"
+#include "wall/workload_check.hpp"
 
 namespace tsr::cluster::test {
 namespace {

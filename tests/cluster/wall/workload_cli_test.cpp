@@ -13,7 +13,7 @@
 
 #include "cluster_test_util.hpp"
 #include "tsr/med/image_file.hpp"
-#include "workload_check.hpp"
+#include "wall/workload_check.hpp"
 
 namespace tsr::cluster::test {
 namespace {

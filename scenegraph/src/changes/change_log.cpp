@@ -1,4 +1,4 @@
-#include "tsr/sg/change_log.hpp"
+#include "tsr/sg/changes/change_log.hpp"
 
 #include <stdexcept>
 #include <string>

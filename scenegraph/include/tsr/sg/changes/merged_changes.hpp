@@ -5,7 +5,7 @@
 // once, not once per missed frame.
 #include <map>
 
-#include "tsr/sg/change_list.hpp"
+#include "tsr/sg/changes/change_list.hpp"
 
 namespace tsr::sg {
 

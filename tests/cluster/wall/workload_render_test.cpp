@@ -10,7 +10,7 @@
 #include "tsr/med/embree/register.hpp"
 #include "tsr/med/viewport_registry.hpp"
 #include "tsr/sg/replica.hpp"
-#include "workload_check.hpp"
+#include "wall/workload_check.hpp"
 
 namespace tsr::cluster::test {
 namespace {

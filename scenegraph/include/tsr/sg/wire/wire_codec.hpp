@@ -17,8 +17,8 @@
 #include <span>
 #include <vector>
 
-#include "tsr/sg/change_list.hpp"
-#include "tsr/sg/decode_limits.hpp"
+#include "tsr/sg/changes/change_list.hpp"
+#include "tsr/sg/wire/decode_limits.hpp"
 
 namespace tsr::sg {
 

@@ -13,8 +13,8 @@
 
 #include "tsr/cluster/wall_layout.hpp"
 #include "tsr/med/image_file.hpp"
-#include "wall_test_util.hpp"
-#include "workload_check.hpp"
+#include "wall/wall_test_util.hpp"
+#include "wall/workload_check.hpp"
 
 namespace tsr::cluster::test {
 namespace {

@@ -1,4 +1,4 @@
-#include "tsr/sg/change_applier.hpp"
+#include "tsr/sg/changes/change_applier.hpp"
 
 #include <bit>
 

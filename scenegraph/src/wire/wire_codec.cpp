@@ -1,9 +1,9 @@
-#include "tsr/sg/wire_codec.hpp"
+#include "tsr/sg/wire/wire_codec.hpp"
 
 #include <cstring>
 
-#include "tsr/sg/byte_reader.hpp"
-#include "tsr/sg/byte_writer.hpp"
+#include "tsr/sg/wire/byte_reader.hpp"
+#include "tsr/sg/wire/byte_writer.hpp"
 
 namespace tsr::sg {
 

@@ -1,4 +1,4 @@
-#include "tsr/sg/field_codec.hpp"
+#include "tsr/sg/wire/field_codec.hpp"
 
 namespace tsr::sg::codec {
 
