@@ -36,9 +36,9 @@
 #include "tsr/cluster/message_fields.hpp"
 #include "tsr/med/parameters.hpp"
 #include "tsr/med/view.hpp"
+#include "tsr/sg/types.hpp"
 #include "tsr/sg/wire/byte_reader.hpp"
 #include "tsr/sg/wire/byte_writer.hpp"
-#include "tsr/sg/types.hpp"
 
 namespace tsr::cluster {
 

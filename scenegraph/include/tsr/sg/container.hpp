@@ -6,8 +6,8 @@
 #include <string>
 
 #include "tsr/sg/attachment.hpp"
-#include "tsr/sg/wire/field_codec.hpp"
 #include "tsr/sg/types.hpp"
+#include "tsr/sg/wire/field_codec.hpp"
 
 namespace tsr::sg {
 

@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "tsr/sg/array_range.hpp"
-#include "tsr/sg/wire/decode_limits.hpp"
 #include "tsr/sg/types.hpp"
+#include "tsr/sg/wire/decode_limits.hpp"
 
 namespace tsr::sg {
 

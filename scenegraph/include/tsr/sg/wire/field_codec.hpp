@@ -10,11 +10,11 @@
 
 #include "tsr/sg/array_range.hpp"
 #include "tsr/sg/attachment.hpp"
+#include "tsr/sg/coordinate_limit.hpp"
+#include "tsr/sg/types.hpp"
 #include "tsr/sg/wire/byte_reader.hpp"
 #include "tsr/sg/wire/byte_writer.hpp"
-#include "tsr/sg/coordinate_limit.hpp"
 #include "tsr/sg/wire/decode_limits.hpp"
-#include "tsr/sg/types.hpp"
 
 namespace tsr::sg {
 
