@@ -1,7 +1,8 @@
 #pragma once
 // GLFW started for a program's Vulkan windows, or an error a person can act
 // on: what GLFW says, and `withoutDisplay` (what to do when there is no
-// display). The caller ends GLFW (glfwTerminate) when its windows are gone.
+// display). Once it returns, the caller ends GLFW (glfwTerminate) when its
+// windows are gone.
 #include <stdexcept>
 #include <string>
 
@@ -17,7 +18,10 @@ inline void startGlfw(const std::string& withoutDisplay) {
     throw std::runtime_error(std::string("cannot open a window: ") + (why ? why : "glfwInit failed") + " (" +
                              withoutDisplay + ")");
   }
-  if (!glfwVulkanSupported()) throw std::runtime_error("cannot open a window: GLFW finds no Vulkan loader");
+  if (!glfwVulkanSupported()) {
+    glfwTerminate();
+    throw std::runtime_error("cannot open a window: GLFW finds no Vulkan loader");
+  }
 }
 
 }  // namespace tsr::app

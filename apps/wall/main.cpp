@@ -57,7 +57,9 @@ struct Options {
 };
 
 const char* stateName(NodeState s) {
-  // In NodeState's order; the assert stops an appended state without its name.
+  // In NodeState's order. The assert catches a table out of step with the
+  // enumerators up to the last one named there; a state appended after it
+  // needs its name here and the assert moved to it.
   static constexpr std::array kNames{"OFFLINE", "connecting", "joined", "ok"};
   static_assert(kNames.size() == std::size_t(NodeState::Synced) + 1);
   return std::size_t(s) < kNames.size() ? kNames[std::size_t(s)] : "?";

@@ -154,6 +154,7 @@ void EmbreeIdRenderer::updateMeshVertices(MeshId id, std::uint32_t first, std::s
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
       throw Error("vertex update contains NaN or infinity");
   std::copy(positions.begin(), positions.end(), m.data.positions.begin() + first);
+  if (!m.geometry) throw Error("mesh " + std::to_string(index(id)) + " has no geometry: its last setMeshData failed");
   auto* v = static_cast<glm::vec3*>(rtcGetGeometryBufferData(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0));
   std::memcpy(v + first, positions.data(), positions.size() * sizeof(glm::vec3));
   rtcUpdateGeometryBuffer(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0);

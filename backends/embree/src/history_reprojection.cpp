@@ -174,7 +174,7 @@ Prediction fillGaps(const Prediction& splat, const Projection& to) {
   return predicted;
 }
 
-// The old pixels around where new pixel (x, y)'s predicted surface was, with
+// 3. Gather: the old pixels around where new pixel (x, y)'s predicted surface was, with
 // their bilinear weights: those that saw the same instance at that depth,
 // or the sky. A silhouette pixel's far side does not count: what it holds
 // is mostly the near side's.
@@ -220,21 +220,21 @@ Taps<Pixel> historyTaps(const std::vector<Pixel>& old, const Projection& from, c
   return taps;
 }
 
-// 3. Gather: the taps blended into `out` (an empty pixel), counts capped at
+// 4. Blend: the taps blended into `out` (an empty pixel), counts capped at
 // `limit`, for a surface predicted at depth d (infinite: the sky). The
 // halves the denoiser compares (FrameBuffer's first half and prefix) are
 // blended like the rest: each of the old pixels' own. False: nothing carried.
 template <class Pixel>
 bool blendTaps(const Taps<Pixel>& taps, float d, std::uint32_t object, std::uint32_t limit, Pixel& out) {
-  constexpr int kChannels = int(std::extent_v<decltype(Pixel::mean)>);
+  constexpr int channels = int(std::extent_v<decltype(Pixel::mean)>);
   const bool hit = std::isfinite(d);
   float count = 0.0f, rangeCount = 0.0f, rangeHits = 0.0f, rangeWeight = 0.0f;
-  glm::vec3 variance[kChannels]{};
+  glm::vec3 variance[channels]{};
   for (int k = 0; k < taps.n; ++k) {
     const Pixel& p = *taps.pixel[k];
     const float w = taps.weight[k] / taps.total;
     count += w * float(p.count);
-    for (int c = 0; c < kChannels; ++c) {
+    for (int c = 0; c < channels; ++c) {
       out.mean[c] += w * p.mean[c];
       if (p.count > 1) variance[c] += w * p.m2[c] / float(p.count - 1);
     }
@@ -255,7 +255,7 @@ bool blendTaps(const Taps<Pixel>& taps, float d, std::uint32_t object, std::uint
   const std::uint32_t carried = std::min(std::uint32_t(count + 0.5f), limit);
   if (carried == 0) return false;
   out.count = out.inherited = carried;
-  for (int c = 0; c < kChannels; ++c) out.m2[c] = variance[c] * float(carried - 1);
+  for (int c = 0; c < channels; ++c) out.m2[c] = variance[c] * float(carried - 1);
   out.depth = d;
   out.object = hit ? object : kNoObject;
   if (rangeWeight > 0.0f) {

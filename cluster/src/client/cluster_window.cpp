@@ -9,7 +9,9 @@
 namespace tsr::cluster {
 
 const char* name(NodePhase phase) {
-  // In NodePhase's order; the assert stops an appended phase without its name.
+  // In NodePhase's order. The assert catches a table out of step with the
+  // enumerators up to the last one named there; a phase appended after it
+  // needs its name here and the assert moved to it.
   static constexpr std::array kNames{"idle", "connect", "snapshot", "render", "barrier"};
   static_assert(kNames.size() == std::size_t(NodePhase::Barrier) + 1);
   return std::size_t(phase) < kNames.size() ? kNames[std::size_t(phase)] : "?";

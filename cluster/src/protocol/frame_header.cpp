@@ -43,7 +43,9 @@ void writeFrameHeader(std::vector<std::uint8_t>& out, const FrameHeader& header)
 }
 
 const char* name(ProtocolError::Kind kind) {
-  // In Kind's order; the assert stops an appended kind without its name.
+  // In Kind's order. The assert catches a table out of step with the
+  // enumerators up to the last one named there; a kind appended after it
+  // needs its name here and the assert moved to it.
   static constexpr std::array kNames{"bad magic", "version mismatch",      "unknown type", "oversized", "unexpected",
                                      "malformed", "authentication failed", "rejected",     "timeout",   "closed"};
   static_assert(kNames.size() == std::size_t(Kind::Closed) + 1);

@@ -9,7 +9,9 @@
 namespace tsr::cluster {
 
 const char* name(ErrorReport::Kind kind) {
-  // Indexed by the wire number; the assert stops an appended kind without its name.
+  // Indexed by the wire number. The assert catches a table out of step with
+  // the kinds up to PrepareFailed; a kind appended after it needs its name
+  // here and the assert moved to it.
   static constexpr std::array kNames{"protocol violation", "scene rejected", "unknown back-end",
                                      "invalid parameter",  "render failed",  "prepare failed"};
   static_assert(kNames.size() == std::size_t(ErrorReport::Kind::PrepareFailed) + 1);

@@ -40,7 +40,9 @@ std::string number(double v) {
 }
 
 const char* typeName(ParameterType t) {
-  // In ParameterType's order; the assert stops an appended type without its name.
+  // In ParameterType's order. The assert catches a table out of step with the
+  // enumerators up to the last one named there; a type appended after it
+  // needs its name here and the assert moved to it.
   static constexpr std::array kNames{"flag", "integer", "real", "choice"};
   static_assert(kNames.size() == std::size_t(ParameterType::Choice) + 1);
   return std::size_t(t) < kNames.size() ? kNames[std::size_t(t)] : "?";

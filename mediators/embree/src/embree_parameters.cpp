@@ -1,5 +1,7 @@
 #include "embree_parameters.hpp"
 
+#include <algorithm>
+
 #include "tsr/embree/photon_sequence.hpp"
 #include "tsr/embree/render_settings.hpp"
 #include "tsr/temporal/truncation.hpp"
@@ -58,7 +60,8 @@ struct TracerSettingsReader {
 };
 
 // Sampling, the filters (Schwenk, chapters 3 and 4) and the temporal
-// methods, in the order --list-params prints them.
+// methods, in the order --list-params prints them (the tracer's own,
+// embree::describeSettings, come right after spp).
 std::vector<ParameterSpec> specs() {
   const embree::PhotonSettings photons;
   const temporal::TruncationRule pca;
@@ -137,8 +140,9 @@ std::vector<ParameterSpec> specs() {
                     "improvement by one more mode below which it is noise"),
       flagParameter("pcaPlainRule", false, "the paper's truncation rule, without the noise measure"),
   };
-  // The tracer's own after the renderer's choice and the sample count.
-  all.insert(all.begin() + 2, tracer.specs.begin(), tracer.specs.end());
+  // The tracer's own right after the sample count.
+  const auto spp = std::find_if(all.begin(), all.end(), [](const ParameterSpec& p) { return p.name == "spp"; });
+  all.insert(spp + 1, tracer.specs.begin(), tracer.specs.end());
   return all;
 }
 

@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "../apps/command_runner.hpp"
+#include "../../apps/command_runner.hpp"
 #include "cluster_test_util.hpp"
 #include "protocol/raw_client.hpp"
 #include "tsr/cluster/auth.hpp"

@@ -3,7 +3,7 @@
 // run with a frame-rate bound is scripts/soak.sh.
 #include <gtest/gtest.h>
 
-#include "../sanitizers/resident_scale.hpp"
+#include "../../sanitizers/resident_scale.hpp"
 #include "soak/soak_run.hpp"
 
 namespace tsr::cluster::test {

@@ -8,6 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "../viewport_rig.hpp"
+#include "tsr/embree/render_settings.hpp"
 #include "tsr/med/embree/register.hpp"
 #include "tsr/sg/import/importer.hpp"
 
@@ -259,7 +260,7 @@ TEST_F(EmbreeMediator, SamplingParametersRestartAndChangeTheImage) {
     expectSameBits(again, image, name.c_str());
     viewport->setParameter("sampler", std::string("sobol"));
     viewport->setParameter("lightChoice", std::string("tree"));
-    viewport->setParameter("rouletteDepth", std::int64_t{3});
+    viewport->setParameter("rouletteDepth", std::int64_t{tsr::embree::RenderSettings{}.rouletteDepth});
     med::FrameBuffer back;
     viewport->render(replica, view, back);
     expectSameBits(back, first, "the defaults again");

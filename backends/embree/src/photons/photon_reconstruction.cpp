@@ -227,7 +227,9 @@ class RingSearch {
 };
 
 // What filtering one element needs, shared by all elements of a
-// reconstruction; run() writes the element's window, rings and value.
+// reconstruction; run(q) writes element q's window, rings and value into
+// `out`, `filtered` and `cut`. Each q is one task's, so the tasks share the
+// filter without writing the same entry.
 struct ElementFilter {
   const ElementSet& set;
   const ElementGeometry& geo;

@@ -191,6 +191,7 @@ void Scene::updateMeshVertices(MeshId id, std::uint32_t first, std::span<const g
     if (!finite(v)) throw Error("normal update contains NaN or infinity");
   std::copy(positions.begin(), positions.end(), m.data.positions.begin() + first);
   std::copy(normals.begin(), normals.end(), m.data.normals.begin() + first);
+  if (!m.geometry) throw Error("mesh " + std::to_string(index(id)) + " has no geometry: its last setMeshData failed");
   auto* v = static_cast<glm::vec3*>(rtcGetGeometryBufferData(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0));
   std::memcpy(v + first, positions.data(), positions.size() * sizeof(glm::vec3));
   rtcUpdateGeometryBuffer(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0);

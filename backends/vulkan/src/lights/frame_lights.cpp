@@ -96,8 +96,8 @@ void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s,
   for (std::uint32_t layer = 0; layer < shadowViewProj.size(); ++layer) {
     VkClearValue depthClear{};
     depthClear.depthStencil = {1.0f, 0};
-    const VkRenderingAttachmentInfo da =
-        renderingAttachment(sm.image().layerView(layer), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, false, depthClear);
+    const VkRenderingAttachmentInfo da = renderingAttachment(
+        sm.image().layerView(layer), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, /*load=*/false, depthClear);
     beginRendering(cmd, sm.size(), sm.size(), nullptr, da);
     vkCmdSetDepthBias(cmd, 1.25f, 0.0f, 1.75f);
     PushConstants pc;

@@ -134,11 +134,11 @@ std::uint32_t IdPass::render(SceneState& s, const Camera& camera, const Region& 
   VkClearValue idClear{};
   idClear.color.uint32[0] = kNoObject;
   const VkRenderingAttachmentInfo ca =
-      renderingAttachment(t.ids.view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false, idClear);
+      renderingAttachment(t.ids.view(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, /*load=*/false, idClear);
   VkClearValue depthClear{};
   depthClear.depthStencil = {0.0f, 0};  // reversed depth: 0 is the far plane
   const VkRenderingAttachmentInfo da =
-      renderingAttachment(t.depth.view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, false, depthClear);
+      renderingAttachment(t.depth.view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, /*load=*/false, depthClear);
   beginRendering(cmd, w, h, &ca, da);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.handle());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);

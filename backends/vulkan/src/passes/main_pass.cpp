@@ -174,7 +174,7 @@ void Renderer::Impl::recordVolumeBacks(VkCommandBuffer cmd, const SceneState& s,
                depthStages, depthAccess);
 
   const VkRenderingAttachmentInfo da =
-      renderingAttachment(volumeBack->view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, true, VkClearValue{});
+      renderingAttachment(volumeBack->view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, /*load=*/true, VkClearValue{});
   beginRendering(cmd, t.width, t.height, nullptr, da);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, volumeBackPipeline.handle());
   PushConstants pc;

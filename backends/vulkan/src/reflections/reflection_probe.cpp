@@ -186,11 +186,12 @@ void Renderer::Impl::updateProbe(const SceneState& s, const RenderSettings& sett
       VkClearValue colourClear{};
       colourClear.color = {{clearColour.r, clearColour.g, clearColour.b, 0.0f}};
       const VkRenderingAttachmentInfo ca =
-          renderingAttachment(into.layerView(f), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, false, colourClear);
+          renderingAttachment(into.layerView(f), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, /*load=*/false, colourClear);
       VkClearValue depthClear{};
       depthClear.depthStencil = {0.0f, 0};
       const VkRenderingAttachmentInfo da =
-          renderingAttachment(probeDepth.view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, false, depthClear, false);
+          renderingAttachment(probeDepth.view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, /*load=*/false, depthClear,
+                              /*store=*/false);
       beginRendering(cmd, kProbeSize, kProbeSize, &ca, da);
       boundPipeline = VK_NULL_HANDLE;
       boundBlock = boundMaterial = ~0u;

@@ -11,7 +11,7 @@ namespace {
 
 template <class Bind>
 VkDeviceMemory allocateAndBind(const Device& device, const VkMemoryRequirements& req, VkMemoryPropertyFlags properties,
-                               const char* what, Bind bind) {
+                               const char* what, const char* bindName, Bind bind) {
   VkMemoryAllocateInfo mai = vkStruct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
   mai.allocationSize = req.size;
   mai.memoryTypeIndex = device.memoryType(req.memoryTypeBits, properties);
@@ -20,7 +20,7 @@ VkDeviceMemory allocateAndBind(const Device& device, const VkMemoryRequirements&
         ("vkAllocateMemory (" + std::string(what) + ")").c_str());
   const VkResult bound = bind(memory);
   if (bound != VK_SUCCESS) vkFreeMemory(device.handle(), memory, nullptr);
-  check(bound, ("binding memory (" + std::string(what) + ")").c_str());
+  check(bound, (std::string(bindName) + " (" + what + ")").c_str());
   return memory;
 }
 
@@ -29,7 +29,7 @@ VkDeviceMemory allocateAndBind(const Device& device, const VkMemoryRequirements&
 VkDeviceMemory bindNewMemory(const Device& device, VkImage image, VkMemoryPropertyFlags properties, const char* what) {
   VkMemoryRequirements req;
   vkGetImageMemoryRequirements(device.handle(), image, &req);
-  return allocateAndBind(device, req, properties, what,
+  return allocateAndBind(device, req, properties, what, "vkBindImageMemory",
                          [&](VkDeviceMemory m) { return vkBindImageMemory(device.handle(), image, m, 0); });
 }
 
@@ -37,7 +37,7 @@ VkDeviceMemory bindNewMemory(const Device& device, VkBuffer buffer, VkMemoryProp
                              const char* what) {
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(device.handle(), buffer, &req);
-  return allocateAndBind(device, req, properties, what,
+  return allocateAndBind(device, req, properties, what, "vkBindBufferMemory",
                          [&](VkDeviceMemory m) { return vkBindBufferMemory(device.handle(), buffer, m, 0); });
 }
 

@@ -47,12 +47,13 @@ struct Named {
 // code that reads it. `v` has integer(name, field, min, max, help),
 // flag(name, field, help) and choice(name, field, {Named...}, help).
 // What the mediator derives (seed per frame, direct only, the history
-// switch) and the work's cutting (tile size) are not listed.
+// switch), the work's cutting (tile size) and lightSampling (a way to
+// validate MIS, for tests) are not listed.
 template <class Visitor>
 void describeSettings(Visitor& v) {
   using S = RenderSettings;
   v.integer("maxDepth", &S::maxDepth, 0, 1024, "maximum path depth");
-  v.integer("rouletteDepth", &S::rouletteDepth, 0, 1024,
+  v.integer("rouletteDepth", &S::rouletteDepth, 1, 1024,
             "scattering events after which Russian roulette may end a path (unbiased: fewer means faster, noisier)");
   v.integer("seed", &S::seed, 0, INT64_MAX, "random seed");
   v.choice("sampler", &S::sampler, {{"sobol", SamplerKind::Sobol}, {"independent", SamplerKind::Independent}},
