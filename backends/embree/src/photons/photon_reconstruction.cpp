@@ -360,19 +360,19 @@ Reconstruction PhotonSequence::reconstruct(std::int64_t frame, PhotonHalf half) 
   std::vector<glm::vec3> filtered(elements, glm::vec3(0.0f));
   std::vector<std::uint8_t> cut(elements, 0);
   const float scale = half == PhotonHalf::All ? 1.0f : 2.0f;
-  const ElementFilter filter{*s.elements,
-                             geo,
-                             w,
-                             wholeWindow,
-                             cfg,
-                             steadyEmission(slots, centre, cfg.emissionStep),
-                             std::cos(cfg.creaseAngle),
-                             1.0f / (cfg.accuracy * cfg.accuracy),  // eq. 4: photons in the support
-                             scale * s.photonEnergy,                // one photon's energy in this half-set
-                             (std::max(cfg.minFrames, 1u) - 1) / 2,
-                             out,
-                             filtered,
-                             cut};
+  const ElementFilter filter{.set = *s.elements,
+                             .geo = geo,
+                             .w = w,
+                             .wholeWindow = wholeWindow,
+                             .cfg = cfg,
+                             .emission = steadyEmission(slots, centre, cfg.emissionStep),
+                             .cosCrease = std::cos(cfg.creaseAngle),
+                             .target = 1.0f / (cfg.accuracy * cfg.accuracy),  // eq. 4: photons in the support
+                             .quantum = scale * s.photonEnergy,               // one photon's energy in this half-set
+                             .minSide = (std::max(cfg.minFrames, 1u) - 1) / 2,
+                             .out = out,
+                             .filtered = filtered,
+                             .cut = cut};
   tbb::enumerable_thread_specific<ElementFilter::Scratch> scratch;
   s.arena->execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, elements, 256), [&](const tbb::blocked_range<std::size_t>& r) {

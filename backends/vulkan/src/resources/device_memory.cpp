@@ -16,11 +16,14 @@ VkDeviceMemory allocateAndBind(const Device& device, const VkMemoryRequirements&
   mai.allocationSize = req.size;
   mai.memoryTypeIndex = device.memoryType(req.memoryTypeBits, properties);
   VkDeviceMemory memory = VK_NULL_HANDLE;
-  check(vkAllocateMemory(device.handle(), &mai, nullptr, &memory),
-        ("vkAllocateMemory (" + std::string(what) + ")").c_str());
+  // The messages are only built when a call fails.
+  const VkResult allocated = vkAllocateMemory(device.handle(), &mai, nullptr, &memory);
+  if (allocated != VK_SUCCESS) check(allocated, ("vkAllocateMemory (" + std::string(what) + ")").c_str());
   const VkResult bound = bind(memory);
-  if (bound != VK_SUCCESS) vkFreeMemory(device.handle(), memory, nullptr);
-  check(bound, (std::string(bindName) + " (" + what + ")").c_str());
+  if (bound != VK_SUCCESS) {
+    vkFreeMemory(device.handle(), memory, nullptr);
+    check(bound, (std::string(bindName) + " (" + what + ")").c_str());
+  }
   return memory;
 }
 
