@@ -86,6 +86,11 @@ namespace {
 // transmissive dielectric and the metal, mixed by their weights.
 glm::vec3 reflectance(const Bsdf& b, float f0, float c) {
   const float m = b.metallic, t = b.transmission;
+  // The two common cases without the terms they multiply by zero: an
+  // opaque dielectric and a metal. Each term is finite and non-negative,
+  // so 1 x a + 0 x b is a to the bit and the sums below are unchanged.
+  if (t == 0.0f && m == 0.0f) return glm::vec3(schlickScalar(f0, b.specular, c));
+  if (t == 0.0f && m == 1.0f) return schlick(b.colour, c);
   const float fresnel = t != 0.0f ? fresnelDielectric(c, b.eta) : 0.0f;  // as in Bsdf::lobes
   return (1.0f - m) * ((1.0f - t) * schlickScalar(f0, b.specular, c) + t * b.specular * fresnel) +
          m * schlick(b.colour, c);

@@ -41,14 +41,14 @@ inline std::uint32_t reverseBits(std::uint32_t x) {
   x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
   x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
   x = ((x >> 4) & 0x0F0F0F0Fu) | ((x & 0x0F0F0F0Fu) << 4);
-  x = ((x >> 8) & 0x00FF00FFu) | ((x & 0x00FF00FFu) << 8);
-  return (x >> 16) | (x << 16);
+  return __builtin_bswap32(x);  // the bytes in reverse order: one instruction
 }
 
 // A random permutation of the bits' values in which each bit is flipped by
 // a function of the bits below it only (Laine-Karras style; the operations
 // and constants of Vegdahl's improved hash, as Cycles uses them). Applied
-// to bit-reversed numbers this is Owen scrambling.
+// to bit-reversed numbers this is Owen scrambling of a 32-bit fraction:
+// reverse(scramble(reverse(x))).
 inline std::uint32_t lowToHighScramble(std::uint32_t x, std::uint32_t seed) {
   x ^= x * 0x3d20adeau;
   x += seed;
@@ -58,21 +58,21 @@ inline std::uint32_t lowToHighScramble(std::uint32_t x, std::uint32_t seed) {
   return x;
 }
 
-// Owen scrambling of a 32-bit fraction (most significant bit first).
-inline std::uint32_t owenScramble(std::uint32_t x, std::uint32_t seed) {
-  return reverseBits(lowToHighScramble(reverseBits(x), seed));
-}
-
 // Shuffles sample indices so that every aligned block of 2^k indices maps
-// to an aligned block of 2^k (Burley's nested uniform scramble).
-inline std::uint32_t shuffleIndex(std::uint32_t i, std::uint32_t seed) { return owenScramble(i, seed); }
+// to an aligned block of 2^k (Burley's nested uniform scramble). Takes the
+// index already bit-reversed: a sample reverses it once for all its sets.
+inline std::uint32_t shuffleReversedIndex(std::uint32_t reversedIndex, std::uint32_t seed) {
+  return reverseBits(lowToHighScramble(reversedIndex, seed));
+}
 
 // Sobol's second dimension (direction numbers of the polynomial x + 1) is
 // linear over GF(2) in the index: the XOR of its direction numbers for the
-// index's set bits, looked up a byte at a time.
-struct SecondDimensionTable {
+// index's set bits, looked up a byte at a time. Bit reversal is linear too,
+// so the table holds the direction numbers reversed, which is the order
+// Owen scrambling wants them in: reverse(dimension(i)) without reversing.
+struct ReversedSecondDimensionTable {
   std::uint32_t byByte[4][256];
-  constexpr SecondDimensionTable() : byByte{} {
+  constexpr ReversedSecondDimensionTable() : byByte{} {
     std::uint32_t v[32] = {};
     v[0] = 1u << 31;
     for (int k = 1; k < 32; ++k) v[k] = v[k - 1] ^ (v[k - 1] >> 1);
@@ -81,14 +81,17 @@ struct SecondDimensionTable {
         std::uint32_t r = 0;
         for (int k = 0; k < 8; ++k)
           if (x & (1u << k)) r ^= v[8 * b + k];
-        byByte[b][x] = r;
+        std::uint32_t reversed = 0;
+        for (int bit = 0; bit < 32; ++bit)
+          if (r & (1u << bit)) reversed |= 1u << (31 - bit);
+        byByte[b][x] = reversed;
       }
   }
 };
-inline constexpr SecondDimensionTable kSecondDimension{};
+inline constexpr ReversedSecondDimensionTable kReversedSecondDimension{};
 
-inline std::uint32_t secondDimension(std::uint32_t i) {
-  const auto& t = kSecondDimension.byByte;
+inline std::uint32_t reversedSecondDimension(std::uint32_t i) {
+  const auto& t = kReversedSecondDimension.byByte;
   return t[0][i & 255u] ^ t[1][(i >> 8) & 255u] ^ t[2][(i >> 16) & 255u] ^ t[3][i >> 24];
 }
 
@@ -106,18 +109,20 @@ struct SetSeeds {
   }
 };
 
-// The scrambled Sobol point `index` of set `set` in the pixel `pixelKey`
-// names; 1-D draws use the first coordinate. Sobol's first dimension is the
-// bit-reversed index, so scrambling it is reverse(scramble(i)).
-inline glm::vec2 point2(std::uint64_t pixelKey, std::uint32_t set, std::uint32_t index) {
+// The scrambled Sobol point of set `set` in the pixel `pixelKey` names, at
+// the sample whose bit-reversed index is `reversedIndex`; 1-D draws use the
+// first coordinate. Sobol's first dimension is the bit-reversed index, so
+// scrambling it is reverse(scramble(i)).
+inline glm::vec2 point2(std::uint64_t pixelKey, std::uint32_t set, std::uint32_t reversedIndex) {
   const SetSeeds s(pixelKey, set);
-  const std::uint32_t i = shuffleIndex(index, s.shuffle);
-  return {toUnit(reverseBits(lowToHighScramble(i, s.first))), toUnit(owenScramble(secondDimension(i), s.second))};
+  const std::uint32_t i = shuffleReversedIndex(reversedIndex, s.shuffle);
+  return {toUnit(reverseBits(lowToHighScramble(i, s.first))),
+          toUnit(reverseBits(lowToHighScramble(reversedSecondDimension(i), s.second)))};
 }
 
-inline float point1(std::uint64_t pixelKey, std::uint32_t set, std::uint32_t index) {
+inline float point1(std::uint64_t pixelKey, std::uint32_t set, std::uint32_t reversedIndex) {
   const SetSeeds s(pixelKey, set);
-  return toUnit(reverseBits(lowToHighScramble(shuffleIndex(index, s.shuffle), s.first)));
+  return toUnit(reverseBits(lowToHighScramble(shuffleReversedIndex(reversedIndex, s.shuffle), s.first)));
 }
 
 }  // namespace sobol
@@ -126,23 +131,23 @@ class Sampler {
  public:
   // pixelKey: Rng::pixelKey(seed, x, y) of the full-image pixel.
   Sampler(SamplerKind kind, std::uint64_t pixelKey, std::uint32_t sample)
-      : kind_(kind), pixelKey_(pixelKey), sample_(sample), rng_(pixelKey, sample) {}
+      : kind_(kind), pixelKey_(pixelKey), reversedSample_(sobol::reverseBits(sample)), rng_(pixelKey, sample) {}
 
   SamplerKind kind() const { return kind_; }
 
   float uniform() {
     if (kind_ == SamplerKind::Independent) return rng_.uniform();
-    return sobol::point1(pixelKey_, set_++, sample_);
+    return sobol::point1(pixelKey_, set_++, reversedSample_);
   }
   glm::vec2 uniform2() {
     if (kind_ == SamplerKind::Independent) return rng_.uniform2();
-    return sobol::point2(pixelKey_, set_++, sample_);
+    return sobol::point2(pixelKey_, set_++, reversedSample_);
   }
 
  private:
   SamplerKind kind_;
   std::uint64_t pixelKey_;
-  std::uint32_t sample_;
+  std::uint32_t reversedSample_;  // the sample index, bit-reversed once for every set
   std::uint32_t set_ = 0;
   Rng rng_;
 };
