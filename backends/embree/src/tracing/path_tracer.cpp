@@ -144,7 +144,9 @@ class PathWalk {
   void addEmitted(const SurfaceHit& h, const ResolvedMaterial& mat, const glm::vec3& dir, float t, std::uint32_t depth);
   bool scatter(const ScatteringPoint& sp, const SurfaceHit& h, const RTCHit& hit, std::uint32_t depth, glm::vec3& org,
                glm::vec3& dir);
-  VertexSamples drawSamples(bool delta);
+  // lobe: whether the scattering picks a lobe (not Lambert, not a phase
+  // function); its number is skipped otherwise, not drawn.
+  VertexSamples drawSamples(bool delta, bool lobe);
   void recordRadiance(const ScatteringPoint& sp, const Continuation& next);
   void roulette(std::uint32_t depth, bool restart, Continuation& next);
   template <class Point>
@@ -358,7 +360,7 @@ void PathWalk::sampleEquiangular(const MediumSegment& s) {
 // function is its own density).
 bool PathWalk::scatterInMedium(const Medium& m, const glm::vec3& p, std::uint32_t depth, glm::vec3& org,
                                glm::vec3& dir) {
-  const VertexSamples u = drawSamples(false);
+  const VertexSamples u = drawSamples(false, false);
   MediumPoint point{p, dir, m.g};
   if (segmentActive_) point.segment = &segment_;
   Continuation next;
@@ -453,7 +455,7 @@ void PathWalk::addEmitted(const SurfaceHit& h, const ResolvedMaterial& mat, cons
 // mispredicted branches of a traversal into the code that follows the call).
 bool PathWalk::scatter(const ScatteringPoint& sp, const SurfaceHit& h, const RTCHit& hit, std::uint32_t depth,
                        glm::vec3& org, glm::vec3& dir) {
-  const VertexSamples u = drawSamples(sp.bsdf.isDelta());
+  const VertexSamples u = drawSamples(sp.bsdf.isDelta(), sp.bsdf.type != MaterialType::Diffuse);
   Continuation next;
   next.continues = sp.sample(u.bsdf, u.bsdfLobe, next.bs, next.dir);
   const bool nextEvent = !sp.bsdf.isDelta();
@@ -489,7 +491,7 @@ bool PathWalk::scatter(const ScatteringPoint& sp, const SurfaceHit& h, const RTC
   return true;
 }
 
-VertexSamples PathWalk::drawSamples(bool delta) {
+VertexSamples PathWalk::drawSamples(bool delta, bool lobe) {
   VertexSamples u;
   const bool sampleLights = !delta && mode_ != LightSampling::BsdfOnly;
   u.emitters = sampleLights && !scene_.emitters.empty();
@@ -500,7 +502,8 @@ VertexSamples PathWalk::drawSamples(bool delta) {
   }
   if (u.environment) u.environmentDir = sampler_.uniform2();
   u.bsdf = sampler_.uniform2();
-  u.bsdfLobe = sampler_.uniform();
+  if (lobe) u.bsdfLobe = sampler_.uniform();
+  else sampler_.skip(1);
   return u;
 }
 

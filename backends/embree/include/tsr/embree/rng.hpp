@@ -26,6 +26,8 @@ class Rng {
 
   std::uint64_t nextU64() { return splitmix64(key_ ^ (++counter_ * 0xD1B54A32D192ED03ull)); }
 
+  void skip(std::uint64_t numbers) { counter_ += numbers; }
+
   // Uniform in [0, 1): 24 random bits fit a float mantissa exactly.
   float uniform() { return float(nextU64() >> 40) * 0x1p-24f; }
   glm::vec2 uniform2() {

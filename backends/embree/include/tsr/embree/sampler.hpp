@@ -143,6 +143,12 @@ class Sampler {
     if (kind_ == SamplerKind::Independent) return rng_.uniform2();
     return sobol::point2(pixelKey_, set_++, reversedSample_);
   }
+  // A draw of `numbers` (1 or 2) whose value is not needed: nothing is
+  // computed, and every later draw gives what it would have given.
+  void skip(std::uint32_t numbers) {
+    if (kind_ == SamplerKind::Independent) rng_.skip(numbers);
+    else ++set_;
+  }
 
  private:
   SamplerKind kind_;
