@@ -502,8 +502,10 @@ VertexSamples PathWalk::drawSamples(bool delta, bool lobe) {
   }
   if (u.environment) u.environmentDir = sampler_.uniform2();
   u.bsdf = sampler_.uniform2();
-  if (lobe) u.bsdfLobe = sampler_.uniform();
-  else sampler_.skip(1);
+  if (lobe)
+    u.bsdfLobe = sampler_.uniform();
+  else
+    sampler_.skip(1);
   return u;
 }
 

@@ -229,12 +229,15 @@ CameraRay cameraRay(const Camera& camera, const CameraPath& path, const Region& 
   const glm::vec3 pinhole = windowPoint(camera, region, px, py, sampler.uniform2());
   const bool reserve = sampler.kind() == SamplerKind::Sobol;  // see above: Sobol keeps the sets unused
   glm::vec2 u(0.0f);
-  if (camera.apertureRadius > 0.0f) u = sampler.uniform2();
-  else if (reserve) sampler.skip(2);
+  if (camera.apertureRadius > 0.0f)
+    u = sampler.uniform2();
+  else if (reserve)
+    sampler.skip(2);
   float time = camera.shutterOpen;
   if (camera.shutterClose > camera.shutterOpen)
     time += (camera.shutterClose - camera.shutterOpen) * sampler.uniform();
-  else if (reserve) sampler.skip(1);
+  else if (reserve)
+    sampler.skip(1);
   const Eye eye = path.at(time);
   if (camera.apertureRadius <= 0.0f)
     return {eye.position, glm::normalize(eye.rotation * pinhole), time, eye.position, eye.forward};

@@ -146,8 +146,10 @@ class Sampler {
   // A draw of `numbers` (1 or 2) whose value is not needed: nothing is
   // computed, and every later draw gives what it would have given.
   void skip(std::uint32_t numbers) {
-    if (kind_ == SamplerKind::Independent) rng_.skip(numbers);
-    else ++set_;
+    if (kind_ == SamplerKind::Independent)
+      rng_.skip(numbers);
+    else
+      ++set_;
   }
 
  private:
