@@ -37,6 +37,26 @@ layout(location = 0) out vec4 outColour;
 
 const uint DIFFUSE = 0u, CONDUCTOR = 1u, DIELECTRIC = 2u, MIRROR = 3u, GLASS = 4u, METALLIC_ROUGHNESS = 5u;
 
+// The split-sum table at n.v = c (brdf_table.hpp): x, y = A, B of the
+// directional albedo F0 A + B; z = the albedo with F = 1 averaged over the
+// hemisphere (cosine-weighted), the same for every c of a roughness.
+vec3 brdfTableAt(float c, float roughness) {
+  vec2 st = clamp(vec2(c, roughness), vec2(1.0 / 64.0), vec2(63.0 / 64.0));  // texel centres of the 32x32 table
+  return texture(brdfTable, st).xyz;
+}
+
+// Kulla and Conty's multiple scattering of a metal, f_ms * cos(wi), as the
+// path tracer's BSDF adds it: the energy single-scattering GGX loses towards
+// wo and towards wi, tinted by the average Fresnel. At roughness 1 it is more
+// than half of what a white metal reflects of a light.
+vec3 metalMultipleScattering(vec3 colour, float roughness, float co, float ci) {
+  vec3 o = brdfTableAt(co, roughness), i = brdfTableAt(ci, roughness);
+  float eavg = o.z;
+  vec3 favg = colour + (vec3(1.0) - colour) / 21.0;
+  vec3 fms = favg * favg * eavg / (vec3(1.0) - favg * (1.0 - eavg));
+  return fms * ((1.0 - (o.x + o.y)) * (1.0 - (i.x + i.y)) * ci / (PI * max(1e-4, 1.0 - eavg)));
+}
+
 // f * |cos(wi)| for unit vectors; n is the shading normal on wo's side.
 // metallic is read by METALLIC_ROUGHNESS only. Without `specular`, the
 // glossy reflection is left out (the diffuse part and transmission stay).
@@ -54,6 +74,7 @@ vec3 evalBsdf(uint type, vec3 colour, float alpha, float metallic, float eta, ve
     float fc = (m * m) * (m * m) * m;
     vec3 f0 = mix(vec3(0.04), colour, metallic);
     vec3 glossy = (f0 + (1.0 - f0) * fc) * (ggxD(dot(n, h), alpha) * ggxG2(co, ci, alpha) / (4.0 * co));
+    if (metallic > 0.0) glossy += metallic * metalMultipleScattering(colour, sqrt(alpha), co, ci);
     float diffuseWeight = (1.0 - metallic) * (1.0 - (0.04 + 0.96 * fc));
     return (specular ? glossy : vec3(0.0)) + colour * (diffuseWeight * ci / PI);
   }
@@ -119,8 +140,7 @@ vec3 normalMapped(vec3 n, vec3 wo, float scale, vec3 row0, vec3 row1) {
 // specular leaves: a white material reflects all of a uniform environment.
 // The specular part is returned in `specular`, the diffuse part as result.
 vec3 metallicRoughnessAlbedo(vec3 colour, float metallic, float roughness, float c, out vec3 specular) {
-  vec2 st = clamp(vec2(c, roughness), vec2(1.0 / 64.0), vec2(63.0 / 64.0));  // texel centres of the 32x32 table
-  vec2 ab = texture(brdfTable, st).xy;
+  vec2 ab = brdfTableAt(c, roughness).xy;
   float single = ab.x + ab.y;
   vec3 f0 = mix(vec3(0.04), colour, metallic);
   specular = (f0 * ab.x + ab.y) * (1.0 + f0 * (1.0 - single) / single);

@@ -87,8 +87,10 @@ Renderer::Impl::Impl(const Device& d) : device(d) {
   check(vkCreateSampler(dev, &sci, nullptr, &tableSampler), "vkCreateSampler (BRDF table)");
   {
     constexpr std::uint32_t kTableSize = 32;
+    const std::vector<glm::vec2> table = splitSumTable(kTableSize);
+    const std::vector<float> average = averageAlbedoByRow(table, kTableSize);
     std::vector<glm::vec4> texels;
-    for (const glm::vec2& ab : splitSumTable(kTableSize)) texels.emplace_back(ab, 0.0f, 1.0f);
+    for (std::size_t k = 0; k < table.size(); ++k) texels.emplace_back(table[k], average[k / kTableSize], 1.0f);
     brdfTable = uploadImage(device, kTableSize, kTableSize, VK_FORMAT_R32G32B32A32_SFLOAT, texels.data(),
                             texels.size() * sizeof(glm::vec4));
   }

@@ -69,6 +69,19 @@ TEST(VulkanGltfMaterial, SplitSumTableMatchesQuadrature) {
   EXPECT_NEAR(ab.x + ab.y, 1.0f, 0.01f);
 }
 
+// E_avg of the multiple-scattering term: 1 for a table that loses nothing,
+// and less the rougher the row (rough GGX loses more to shadowing).
+TEST(VulkanGltfMaterial, AverageAlbedoFallsWithRoughness) {
+  constexpr std::uint32_t kSize = 16;
+  const std::vector<float> lossless = averageAlbedoByRow(std::vector<glm::vec2>(kSize * kSize, {1.0f, 0.0f}), kSize);
+  for (float e : lossless) EXPECT_NEAR(e, 1.0f, 1e-6f);
+  const std::vector<float> average = averageAlbedoByRow(splitSumTable(kSize, 1024), kSize);
+  EXPECT_GT(average.front(), 0.95f);
+  for (std::uint32_t j = 1; j < kSize; ++j) EXPECT_LT(average[j], average[j - 1] + 1e-3f) << "row " << j;
+  // The hemispherical quadrature of the same D and G2 at roughness ~1 gives about 0.41.
+  EXPECT_NEAR(average.back(), 0.41f, 0.04f);
+}
+
 // White furnace: white diffuse (metallic 0) and white metal spheres, rough
 // and smoother, under a uniform environment L and no lights reflect L
 // everywhere, within 5 % (the bound for the rasterizer).

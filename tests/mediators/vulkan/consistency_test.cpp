@@ -51,6 +51,13 @@ struct Rig {
                   diffuse("wall", {0.3f, 0.5f, 0.8f}));
     test::addSphere(source, root, "red sphere", {-0.9f, 0.7f, 0.0f}, 0.7f, 48, diffuse("red", {0.8f, 0.3f, 0.2f}));
     test::addSphere(source, root, "gold sphere", {0.9f, 0.7f, 0.0f}, 0.7f, 48, metal.id());
+    // glTF's default material, white metal at roughness 1: most of what it
+    // reflects of a light is multiple scattering.
+    auto& roughMetal = source.create<sg::SurfaceMaterial>("glTF default");
+    roughMetal.setBaseColor({1.0f, 1.0f, 1.0f});
+    roughMetal.setMetallic(1.0f);
+    roughMetal.setRoughness(1.0f);
+    test::addSphere(source, root, "rough white metal", {0.0f, 2.1f, -1.6f}, 0.6f, 48, roughMetal.id());
     auto& light = source.create<sg::Light>("eye light");
     light.setKind(sg::LightKind::Point);
     light.setPosition(kEye);

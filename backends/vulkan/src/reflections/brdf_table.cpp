@@ -52,4 +52,17 @@ std::vector<glm::vec2> splitSumTable(std::uint32_t size, std::uint32_t samples) 
   return table;
 }
 
+std::vector<float> averageAlbedoByRow(const std::vector<glm::vec2>& table, std::uint32_t size) {
+  std::vector<float> out(size, 0.0f);
+  for (std::uint32_t j = 0; j < size; ++j) {
+    double sum = 0.0;
+    for (std::uint32_t i = 0; i < size; ++i) {
+      const glm::vec2 ab = table[std::size_t(j) * size + i];
+      sum += double(ab.x + ab.y) * ((double(i) + 0.5) / size);
+    }
+    out[j] = float(2.0 * sum / size);
+  }
+  return out;
+}
+
 }  // namespace tsr::vk

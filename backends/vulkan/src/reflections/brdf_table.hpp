@@ -15,4 +15,9 @@ namespace tsr::vk {
 // distribution over a Hammersley set, so it is the same on every run.
 std::vector<glm::vec2> splitSumTable(std::uint32_t size, std::uint32_t samples = 512);
 
+// Per roughness row of such a table, the albedo with F = 1 (A + B)
+// averaged over the hemisphere, 2 int E(c) c dc by the midpoint rule: the
+// E_avg of Kulla and Conty's multiple-scattering term.
+std::vector<float> averageAlbedoByRow(const std::vector<glm::vec2>& table, std::uint32_t size);
+
 }  // namespace tsr::vk
