@@ -14,6 +14,7 @@ endif()
 
 if(NOT TSR_ONLY_SCENEGRAPH)
   find_package(TinyGLTF REQUIRED)
+  find_package(draco CONFIG REQUIRED)  # KHR_draco_mesh_compression on import
   find_package(nlohmann_json 3 REQUIRED)
   find_package(CLI11 REQUIRED)
   find_package(TBB REQUIRED COMPONENTS tbb)

@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "gltf/draco_primitive.hpp"
 #include "gltf/gltf_accessors.hpp"
 #include "gltf/gltf_loader.hpp"
 #include "gltf/normal_generation.hpp"
@@ -25,8 +26,13 @@ std::string number(double v) {
 
 class Converter {
  public:
-  Converter(const tinygltf::Model& model, std::string source, const ImportOptions& options, parsed::Scene& out)
-      : m_(model), source_(std::move(source)), options_(options), out_(out), reader_(model, source_, options) {}
+  Converter(const LoadedFile& file, std::string source, const ImportOptions& options, parsed::Scene& out)
+      : m_(file.model),
+        dracoIndices_(file.dracoIndices),
+        source_(std::move(source)),
+        options_(options),
+        out_(out),
+        reader_(m_, source_, options) {}
 
   void run() {
     textureImages();
@@ -344,10 +350,52 @@ class Converter {
       case TINYGLTF_MODE_LINE:
       case TINYGLTF_MODE_LINE_LOOP:
       case TINYGLTF_MODE_LINE_STRIP:
-        warn(what + ": points and lines are not supported; primitive skipped");
+        // Said at the default log level: a drawing's lines vanish otherwise in silence.
+        spdlog::warn("{}: {}: points and lines are not drawn by any back-end; primitive skipped", source_, what);
+        out_.warnings.push_back(what + ": points and lines are not drawn by any back-end; primitive skipped");
         return false;
       default:
         fail(what + " has unknown mode " + std::to_string(mode));
+    }
+  }
+
+  // A primitive's vertices and indices from its accessors.
+  void readAccessors(const tinygltf::Primitive& src, const std::string& what, parsed::Primitive& p) {
+    auto attr = [&](const char* name) {
+      auto it = src.attributes.find(name);
+      return it == src.attributes.end() ? -1 : it->second;
+    };
+    if (attr("POSITION") < 0) fail(what + " has no POSITION attribute");
+    p.positions = attribute<3>(attr("POSITION"), false, what + " POSITION");
+    const std::size_t n = p.positions.size();
+    auto sameCount = [&](std::size_t count, const char* name) {
+      if (count != n) fail(what + " " + name + " has " + str(count) + " elements but POSITION has " + str(n));
+    };
+    if (attr("NORMAL") >= 0) {
+      p.normals = attribute<3>(attr("NORMAL"), false, what + " NORMAL");
+      sameCount(p.normals.size(), "NORMAL");
+    }
+    if (attr("TEXCOORD_0") >= 0) {
+      p.uvs = attribute<2>(attr("TEXCOORD_0"), true, what + " TEXCOORD_0");
+      sameCount(p.uvs.size(), "TEXCOORD_0");
+    }
+    if (const int c = attr("COLOR_0"); c >= 0) {
+      const std::size_t comps = c < static_cast<int>(m_.accessors.size()) &&
+                                        m_.accessors[static_cast<std::size_t>(c)].type == TINYGLTF_TYPE_VEC3
+                                    ? 3
+                                    : 4;
+      if (comps == 3) {
+        for (const Vec3& rgb : attribute<3>(c, true, what + " COLOR_0")) p.colors.emplace_back(rgb, 1.0f);
+      } else {
+        p.colors = attribute<4>(c, true, what + " COLOR_0");
+      }
+      sameCount(p.colors.size(), "COLOR_0");
+    }
+    if (src.indices >= 0) {
+      p.indices = reader_.indices(src.indices, what + " indices");
+    } else {
+      p.indices.resize(n);
+      for (std::size_t i = 0; i < n; ++i) p.indices[i] = static_cast<std::uint32_t>(i);
     }
   }
 
@@ -360,44 +408,14 @@ class Converter {
         const std::string what = "mesh " + str(mi) + " primitive " + str(pi);
         parsed::Primitive p;
         if (src.material >= 0) p.material = checked(src.material, m_.materials.size(), what, "material");
-        auto attr = [&](const char* name) {
-          auto it = src.attributes.find(name);
-          return it == src.attributes.end() ? -1 : it->second;
-        };
-        if (attr("POSITION") < 0) fail(what + " has no POSITION attribute");
-        p.positions = attribute<3>(attr("POSITION"), false, what + " POSITION");
+        const auto draco = dracoIndices_.find({mi, pi});
+        if (draco != dracoIndices_.end())
+          decodeDracoPrimitive(m_, src, draco->second, options_.maxAccessorElements, source_, what, p);
+        else
+          readAccessors(src, what, p);
         const std::size_t n = p.positions.size();
         for (std::size_t v = 0; v < n; ++v)
           for (int c = 0; c < 3; ++c) coordinate(p.positions[v][c], what + " POSITION " + str(v) + " coordinate");
-        auto sameCount = [&](std::size_t count, const char* name) {
-          if (count != n) fail(what + " " + name + " has " + str(count) + " elements but POSITION has " + str(n));
-        };
-        if (attr("NORMAL") >= 0) {
-          p.normals = attribute<3>(attr("NORMAL"), false, what + " NORMAL");
-          sameCount(p.normals.size(), "NORMAL");
-        }
-        if (attr("TEXCOORD_0") >= 0) {
-          p.uvs = attribute<2>(attr("TEXCOORD_0"), true, what + " TEXCOORD_0");
-          sameCount(p.uvs.size(), "TEXCOORD_0");
-        }
-        if (const int c = attr("COLOR_0"); c >= 0) {
-          const std::size_t comps = c < static_cast<int>(m_.accessors.size()) &&
-                                            m_.accessors[static_cast<std::size_t>(c)].type == TINYGLTF_TYPE_VEC3
-                                        ? 3
-                                        : 4;
-          if (comps == 3) {
-            for (const Vec3& rgb : attribute<3>(c, true, what + " COLOR_0")) p.colors.emplace_back(rgb, 1.0f);
-          } else {
-            p.colors = attribute<4>(c, true, what + " COLOR_0");
-          }
-          sameCount(p.colors.size(), "COLOR_0");
-        }
-        if (src.indices >= 0) {
-          p.indices = reader_.indices(src.indices, what + " indices");
-        } else {
-          p.indices.resize(n);
-          for (std::size_t i = 0; i < n; ++i) p.indices[i] = static_cast<std::uint32_t>(i);
-        }
         for (std::size_t i = 0; i < p.indices.size(); ++i)
           if (p.indices[i] >= n)
             fail(what + " index " + str(i) + " is " + std::to_string(p.indices[i]) + ", but there are only " + str(n) +
@@ -608,6 +626,7 @@ class Converter {
   }
 
   const tinygltf::Model& m_;
+  const std::map<std::pair<std::size_t, std::size_t>, int>& dracoIndices_;
   std::string source_;
   const ImportOptions& options_;
   parsed::Scene& out_;
@@ -624,7 +643,7 @@ parsed::Scene converted(LoadedFile file, const std::string& source, const Import
   parsed::Scene scene;
   scene.warnings = std::move(file.warnings);
   scene.readOtherFiles = file.readOtherFiles;
-  Converter(file.model, source, options, scene).run();
+  Converter(file, source, options, scene).run();
   return scene;
 }
 }  // namespace

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -156,6 +157,48 @@ void scanJson(const char* first, const char* last, std::uint64_t limit, const st
   throw ImportError(source, "invalid JSON: " + counter.error());
 }
 
+using DracoIndices = std::map<std::pair<std::size_t, std::size_t>, int>;
+
+// Takes "indices" out of the primitives that carry KHR_draco_mesh_compression
+// (see LoadedFile::dracoIndices). The document's types were checked before.
+DracoIndices takeDracoIndices(nlohmann::json& doc) {
+  DracoIndices out;
+  if (!doc.contains("meshes")) return out;
+  nlohmann::json& meshes = doc["meshes"];
+  for (std::size_t mi = 0; mi < meshes.size(); ++mi) {
+    if (!meshes[mi].contains("primitives")) continue;
+    nlohmann::json& primitives = meshes[mi]["primitives"];
+    for (std::size_t pi = 0; pi < primitives.size(); ++pi) {
+      nlohmann::json& p = primitives[pi];
+      if (!p.contains("extensions") || !p["extensions"].is_object() ||
+          !p["extensions"].contains("KHR_draco_mesh_compression"))
+        continue;
+      out[{mi, pi}] = p.contains("indices") && p["indices"].is_number_integer() ? p["indices"].get<int>() : -1;
+      p.erase("indices");
+    }
+  }
+  return out;
+}
+
+// The GLB container again around another JSON chunk (padded with spaces to
+// four bytes, as the format asks); the chunks after it are copied as they
+// are. The header was checked by glbJson.
+std::vector<unsigned char> glbWithJson(std::span<const unsigned char> bytes, std::string json) {
+  while (json.size() % 4) json.push_back(' ');
+  const std::size_t rest = 20 + std::size_t{readU32(&bytes[12])}, length = readU32(&bytes[8]);
+  const std::size_t total = 20 + json.size() + (length - rest);
+  std::vector<unsigned char> out(total);
+  auto put = [&](std::size_t at, std::uint32_t v) { std::memcpy(&out[at], &v, 4); };
+  std::memcpy(out.data(), "glTF", 4);
+  put(4, 2);
+  put(8, static_cast<std::uint32_t>(total));
+  put(12, static_cast<std::uint32_t>(json.size()));
+  put(16, 0x4E4F534Au);
+  std::memcpy(&out[20], json.data(), json.size());
+  std::memcpy(&out[20 + json.size()], &bytes[rest], length - rest);
+  return out;
+}
+
 }  // namespace
 
 std::vector<unsigned char> readSource(const std::string& path, const ImportOptions& options) {
@@ -183,6 +226,9 @@ LoadedFile loadBytes(std::span<const unsigned char> bytes, const std::string& so
   const char* last = first + (binary ? glb.size() : bytes.size());
   scanJson(first, last, options.maxJsonValues, source);
 
+  DracoIndices dracoIndices;
+  std::string rewritten;  // the document without Draco primitives' indices, when it has any
+  std::vector<unsigned char> rewrittenGlb;
   {
     nlohmann::json doc;  // freed before tinygltf builds its own
     try {
@@ -193,7 +239,16 @@ LoadedFile loadBytes(std::span<const unsigned char> bytes, const std::string& so
     checkJsonTypes(doc, source);
     checkUris(doc, source);
     checkDeclaredSizes(doc, limit, source);
+    dracoIndices = takeDracoIndices(doc);
+    if (!dracoIndices.empty()) {
+      rewritten = doc.dump();
+      if (binary) rewrittenGlb = glbWithJson(bytes, std::move(rewritten));
+    }
   }
+  if (!rewrittenGlb.empty()) bytes = rewrittenGlb;
+  const std::string_view text = !rewritten.empty()
+                                    ? std::string_view(rewritten)
+                                    : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
 
   tinygltf::TinyGLTF loader;
   std::error_code ec;
@@ -205,11 +260,10 @@ LoadedFile loadBytes(std::span<const unsigned char> bytes, const std::string& so
 
   LoadedFile out;
   std::string err, warn;
-  const bool ok = binary
-                      ? loader.LoadBinaryFromMemory(&out.model, &err, &warn, bytes.data(),
-                                                    static_cast<unsigned>(bytes.size()), baseDir)
-                      : loader.LoadASCIIFromString(&out.model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
-                                                   static_cast<unsigned>(bytes.size()), baseDir);
+  const bool ok = binary ? loader.LoadBinaryFromMemory(&out.model, &err, &warn, bytes.data(),
+                                                       static_cast<unsigned>(bytes.size()), baseDir)
+                         : loader.LoadASCIIFromString(&out.model, &err, &warn, text.data(),
+                                                      static_cast<unsigned>(text.size()), baseDir);
   while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
   // Messages stay on one line: callers print them as one.
   for (std::size_t p = err.find('\n'); p != std::string::npos; p = err.find('\n', p)) err.replace(p, 1, "; ");
@@ -226,6 +280,7 @@ LoadedFile loadBytes(std::span<const unsigned char> bytes, const std::string& so
   checkRequiredExtensions(out.model, source);
   checkNodeGraph(out.model, source);
   out.readOtherFiles = ctx.readOther;
+  out.dracoIndices = std::move(dracoIndices);
   return out;
 }
 

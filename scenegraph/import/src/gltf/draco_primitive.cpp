@@ -1,0 +1,110 @@
+#include "gltf/draco_primitive.hpp"
+
+#include <draco/compression/decode.h>
+
+#include "tsr/sg/import/importer.hpp"
+
+namespace tsr::sg::gltf {
+namespace {
+
+std::string str(std::uint64_t v) { return std::to_string(v); }
+
+// A Draco attribute read as floats (integers as the stream declares them,
+// normalised or not): its own components a vertex, the rest of Vec as
+// (0, 0, 0, 1). False when a value cannot be converted.
+template <class Vec>
+bool attributeValues(const draco::Mesh& mesh, const draco::PointAttribute& a, std::vector<Vec>& out) {
+  const int components = a.num_components();
+  out.assign(mesh.num_points(), Vec(0.0f));
+  for (draco::PointIndex i(0); i < mesh.num_points(); ++i) {
+    float v[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+    if (!a.ConvertValue<float>(a.mapped_index(i), static_cast<std::int8_t>(components), v)) return false;
+    for (int c = 0; c < Vec::length(); ++c) out[i.value()][c] = v[c];
+  }
+  return true;
+}
+
+}  // namespace
+
+bool isDracoCompressed(const tinygltf::Primitive& p) { return p.extensions.count(kDracoExtension) > 0; }
+
+void decodeDracoPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive, int indicesAccessor,
+                          std::uint64_t maxElements, const std::string& source, const std::string& what,
+                          parsed::Primitive& out) {
+  const std::string where = what + " (" + kDracoExtension + ")";
+  auto fail = [&](const std::string& reason) { throw ImportError(source, where + ": " + reason); };
+  const tinygltf::Value& ext = primitive.extensions.at(kDracoExtension);
+  if (!ext.IsObject() || !ext.Get("bufferView").IsInt() || !ext.Get("attributes").IsObject())
+    fail("needs an integer bufferView and an attributes object");
+  const int viewIndex = ext.Get("bufferView").Get<int>();
+  if (viewIndex < 0 || static_cast<std::size_t>(viewIndex) >= model.bufferViews.size())
+    fail("bufferView " + std::to_string(viewIndex) + " does not exist (there are " + str(model.bufferViews.size()) +
+         ")");
+  const tinygltf::BufferView& view = model.bufferViews[static_cast<std::size_t>(viewIndex)];
+  if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model.buffers.size())
+    fail("bufferView " + std::to_string(viewIndex) + " names buffer " + std::to_string(view.buffer) +
+         ", which does not exist");
+  const std::vector<unsigned char>& buffer = model.buffers[static_cast<std::size_t>(view.buffer)].data;
+  if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset)
+    fail("bufferView " + std::to_string(viewIndex) + " (bytes " + str(view.byteOffset) + " to " +
+         str(view.byteOffset + view.byteLength) + ") runs past its buffer of " + str(buffer.size()) + " bytes");
+
+  // What the accessors declare, within the limits, before anything is decoded.
+  auto declared = [&](int accessor, const std::string& name) -> std::uint64_t {
+    if (accessor < 0 || static_cast<std::size_t>(accessor) >= model.accessors.size())
+      fail(name + " names accessor " + std::to_string(accessor) + ", which does not exist");
+    const std::uint64_t count = model.accessors[static_cast<std::size_t>(accessor)].count;
+    if (count > maxElements)
+      fail(name + " declares " + str(count) + " elements, more than the limit of " + str(maxElements));
+    return count;
+  };
+  const auto position = primitive.attributes.find("POSITION");
+  if (position == primitive.attributes.end()) fail("has no POSITION attribute");
+  const std::uint64_t points = declared(position->second, "POSITION");
+  const std::uint64_t indexCount = indicesAccessor >= 0 ? declared(indicesAccessor, "indices") : 0;
+
+  draco::DecoderBuffer stream;
+  stream.Init(reinterpret_cast<const char*>(buffer.data() + view.byteOffset), view.byteLength);
+  const auto type = draco::Decoder::GetEncodedGeometryType(&stream);
+  if (!type.ok() || type.value() != draco::TRIANGULAR_MESH)
+    fail("bufferView " + std::to_string(viewIndex) + " is not a Draco triangle mesh" +
+         (type.ok() ? std::string() : ": " + type.status().error_msg_string()));
+  draco::Decoder decoder;
+  auto decoded = decoder.DecodeMeshFromBuffer(&stream);
+  if (!decoded.ok()) fail("the Draco stream does not decode: " + decoded.status().error_msg_string());
+  const draco::Mesh& mesh = *decoded.value();
+  if (mesh.num_points() != points)
+    fail("the stream holds " + str(mesh.num_points()) + " vertices, POSITION declares " + str(points));
+  if (indicesAccessor >= 0 && std::uint64_t{mesh.num_faces()} * 3 != indexCount)
+    fail("the stream holds " + str(mesh.num_faces()) + " triangles (" + str(std::uint64_t{mesh.num_faces()} * 3) +
+         " indices), the indices accessor declares " + str(indexCount));
+
+  // The glTF attributes this importer reads, each from the Draco attribute
+  // the extension maps it to.
+  const tinygltf::Value& ids = ext.Get("attributes");
+  auto dracoAttribute = [&](const std::string& name, int minComponents,
+                            int maxComponents) -> const draco::PointAttribute* {
+    if (!ids.Has(name)) return nullptr;
+    if (!ids.Get(name).IsInt()) fail("attribute " + name + " must name a Draco attribute id (an integer)");
+    const int id = ids.Get(name).Get<int>();
+    const draco::PointAttribute* a = id < 0 ? nullptr : mesh.GetAttributeByUniqueId(static_cast<std::uint32_t>(id));
+    if (!a) fail("attribute " + name + " names Draco attribute " + std::to_string(id) + ", which the stream lacks");
+    if (a->num_components() < minComponents || a->num_components() > maxComponents)
+      fail("attribute " + name + " has " + std::to_string(a->num_components()) + " components");
+    return a;
+  };
+  auto read = [&](const std::string& name, const draco::PointAttribute* a, auto& values) {
+    if (a && !attributeValues(mesh, *a, values)) fail("attribute " + name + " cannot be read as numbers");
+  };
+  const draco::PointAttribute* positions = dracoAttribute("POSITION", 3, 3);
+  if (!positions) fail("attributes has no POSITION");
+  read("POSITION", positions, out.positions);
+  read("NORMAL", dracoAttribute("NORMAL", 3, 3), out.normals);
+  read("TEXCOORD_0", dracoAttribute("TEXCOORD_0", 2, 2), out.uvs);
+  read("COLOR_0", dracoAttribute("COLOR_0", 3, 4), out.colors);
+  out.indices.resize(std::size_t{mesh.num_faces()} * 3);
+  for (draco::FaceIndex f(0); f < mesh.num_faces(); ++f)
+    for (int c = 0; c < 3; ++c) out.indices[3 * std::size_t{f.value()} + c] = mesh.face(f)[c].value();
+}
+
+}  // namespace tsr::sg::gltf

@@ -1,0 +1,31 @@
+#pragma once
+// KHR_draco_mesh_compression: a primitive whose vertices and triangles are a
+// Draco stream in one buffer view, decoded with Debian's libdraco. The
+// stream is checked against the document before and after decoding: the
+// view lies inside its buffer, the declared accessor counts are within the
+// import limits, and what the stream holds matches what the accessors
+// declare (the extension requires it), so nothing larger than the document
+// says is ever handed on.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <tiny_gltf.h>
+
+#include "parsed_scene.hpp"
+
+namespace tsr::sg::gltf {
+
+inline constexpr const char* kDracoExtension = "KHR_draco_mesh_compression";
+
+bool isDracoCompressed(const tinygltf::Primitive& p);
+
+// Fills positions, normals, uvs (TEXCOORD_0), colours (COLOR_0) and indices
+// of `out` from the stream. indicesAccessor is the primitive's "indices"
+// (-1 when it has none), which the loader kept aside. Throws ImportError
+// naming `what` and the extension.
+void decodeDracoPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive, int indicesAccessor,
+                          std::uint64_t maxElements, const std::string& source, const std::string& what,
+                          parsed::Primitive& out);
+
+}  // namespace tsr::sg::gltf
