@@ -52,7 +52,7 @@ TEST_F(RichScene, CreatesOneContainerPerThingItUses) {
   ASSERT_NE(scene.find<Group>(result.root), nullptr);
   EXPECT_EQ(scene.find<Group>(result.root)->children().size(), 6u);
   EXPECT_NE(scene.find<Background>(result.background), nullptr);
-  EXPECT_THAT(result.warnings, ::testing::Contains(HasSubstr("points and lines are not supported")));
+  EXPECT_THAT(result.warnings, ::testing::Contains(HasSubstr("points and lines are not drawn by any back-end")));
 }
 
 TEST_F(RichScene, SharedMeshesShareGeometry) {

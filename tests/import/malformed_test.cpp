@@ -234,9 +234,9 @@ TEST_F(MalformedFiles, WrongJsonTypes) {
 
 TEST_F(MalformedFiles, UnsupportedRequiredExtensions) {
   test::GltfBuilder b = test::tinyScene();
-  b.doc["extensionsUsed"] = {"KHR_draco_mesh_compression"};
-  b.doc["extensionsRequired"] = {"KHR_draco_mesh_compression"};
-  expectRejected(b, "draco.gltf", "required extension KHR_draco_mesh_compression is not supported");
+  b.doc["extensionsUsed"] = {"EXT_meshopt_compression"};
+  b.doc["extensionsRequired"] = {"EXT_meshopt_compression"};
+  expectRejected(b, "meshopt.gltf", "required extension EXT_meshopt_compression is not supported");
 }
 
 TEST_F(MalformedFiles, InvalidIndices) {
