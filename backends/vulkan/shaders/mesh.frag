@@ -255,11 +255,17 @@ void main() {
     vec3 reflected = probeLit ? probePrefiltered(worldPos, mirrored, m.pbr.x) : prefilteredRadiance(mirrored, m.pbr.x);
     radiance += schlick(base, max(co, 0.0)) * reflected;
   } else {
-    // Glass and rough dielectrics: the reflected part; the transmitted part
-    // sees the average (no refraction here).
+    // Glass without a probe and rough dielectrics: the reflected and the
+    // transmitted part, each blurred by roughness, what is behind seen once
+    // refracted (the way out of the object is not traced), as the reflection
+    // sees the probe or the environment.
     float f = fresnelDielectric(max(co, 0.0), eta);
     vec3 reflected = probeLit ? probePrefiltered(worldPos, mirrored, m.pbr.x) : prefilteredRadiance(mirrored, m.pbr.x);
-    radiance += f * reflected + (1.0 - f) * base * ambient;
+    vec3 refracted = refract(-wo, n, 1.0 / eta);
+    vec3 behind = dot(refracted, refracted) <= 0.0 ? vec3(0.0)
+                  : probeLit                      ? probePrefiltered(worldPos, refracted, m.pbr.x)
+                                                  : prefilteredRadiance(refracted, m.pbr.x);
+    radiance += f * reflected + (1.0 - f) * base * behind;
   }
   // glTF's occlusion darkens this ambient and image-based part only.
   if (OCCLUSION_TEXTURE) {
