@@ -1,5 +1,7 @@
 #include "gltf/draco_primitive.hpp"
 
+#include <cmath>
+
 #include <draco/compression/decode.h>
 
 #include "tsr/sg/import/importer.hpp"
@@ -11,7 +13,8 @@ std::string str(std::uint64_t v) { return std::to_string(v); }
 
 // A Draco attribute read as floats (integers as the stream declares them,
 // normalised or not): its own components a vertex, the rest of Vec as
-// (0, 0, 0, 1). False when a value cannot be converted.
+// (0, 0, 0, 1). False when a value cannot be converted or is not finite
+// (NaN or infinity), as the accessors' reader refuses them.
 template <class Vec>
 bool attributeValues(const draco::Mesh& mesh, const draco::PointAttribute& a, std::vector<Vec>& out) {
   const int components = a.num_components();
@@ -19,7 +22,10 @@ bool attributeValues(const draco::Mesh& mesh, const draco::PointAttribute& a, st
   for (draco::PointIndex i(0); i < mesh.num_points(); ++i) {
     float v[4] = {0.0f, 0.0f, 0.0f, 1.0f};
     if (!a.ConvertValue<float>(a.mapped_index(i), static_cast<std::int8_t>(components), v)) return false;
-    for (int c = 0; c < Vec::length(); ++c) out[i.value()][c] = v[c];
+    for (int c = 0; c < Vec::length(); ++c) {
+      if (!std::isfinite(v[c])) return false;
+      out[i.value()][c] = v[c];
+    }
   }
   return true;
 }
@@ -94,7 +100,8 @@ void decodeDracoPrimitive(const tinygltf::Model& model, const tinygltf::Primitiv
     return a;
   };
   auto read = [&](const std::string& name, const draco::PointAttribute* a, auto& values) {
-    if (a && !attributeValues(mesh, *a, values)) fail("attribute " + name + " cannot be read as numbers");
+    if (a && !attributeValues(mesh, *a, values))
+      fail("attribute " + name + " holds values that are not finite numbers");
   };
   const draco::PointAttribute* positions = dracoAttribute("POSITION", 3, 3);
   if (!positions) fail("attributes has no POSITION");

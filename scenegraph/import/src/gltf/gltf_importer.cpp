@@ -359,6 +359,16 @@ class Converter {
     }
   }
 
+  // The scene graph holds no value beyond kMaxCoordinate in any vertex
+  // array: said here as an import error, not later as the scene's.
+  template <class Vec>
+  void withinLimit(const std::vector<Vec>& values, const std::string& what) const {
+    for (std::size_t v = 0; v < values.size(); ++v)
+      for (int c = 0; c < Vec::length(); ++c)
+        if (!withinCoordinateLimit(values[v][c]))
+          fail(what + " element " + str(v) + " is " + number(values[v][c]) + ", beyond +-" + number(kMaxCoordinate));
+  }
+
   // A primitive's vertices and indices from its accessors.
   void readAccessors(const tinygltf::Primitive& src, const std::string& what, parsed::Primitive& p) {
     auto attr = [&](const char* name) {
@@ -416,6 +426,9 @@ class Converter {
         const std::size_t n = p.positions.size();
         for (std::size_t v = 0; v < n; ++v)
           for (int c = 0; c < 3; ++c) coordinate(p.positions[v][c], what + " POSITION " + str(v) + " coordinate");
+        withinLimit(p.normals, what + " NORMAL");
+        withinLimit(p.uvs, what + " TEXCOORD_0");
+        withinLimit(p.colors, what + " COLOR_0");
         for (std::size_t i = 0; i < p.indices.size(); ++i)
           if (p.indices[i] >= n)
             fail(what + " index " + str(i) + " is " + std::to_string(p.indices[i]) + ", but there are only " + str(n) +
