@@ -15,6 +15,7 @@ endif()
 if(NOT TSR_ONLY_SCENEGRAPH)
   find_package(TinyGLTF REQUIRED)
   find_package(draco CONFIG REQUIRED)  # KHR_draco_mesh_compression on import
+  find_package(meshoptimizer CONFIG REQUIRED)  # EXT_meshopt_compression on import
   find_package(nlohmann_json 3 REQUIRED)
   find_package(CLI11 REQUIRED)
   find_package(TBB REQUIRED COMPONENTS tbb)

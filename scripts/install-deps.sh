@@ -8,7 +8,7 @@ packages=(
   libembree-dev embree-tools libtbb-dev
   libvulkan-dev mesa-vulkan-drivers vulkan-tools glslc vulkan-validationlayers
   libglfw3-dev xvfb xauth xdotool
-  libtinygltf-dev libdraco-dev nlohmann-json3-dev libstb-dev
+  libtinygltf-dev libdraco-dev libmeshoptimizer-dev gltfpack nlohmann-json3-dev libstb-dev
   libopenimageio-dev openimageio-tools
   libboost-dev liblz4-dev libzstd-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev

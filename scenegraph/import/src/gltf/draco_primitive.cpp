@@ -32,8 +32,6 @@ bool attributeValues(const draco::Mesh& mesh, const draco::PointAttribute& a, st
 
 }  // namespace
 
-bool isDracoCompressed(const tinygltf::Primitive& p) { return p.extensions.count(kDracoExtension) > 0; }
-
 void decodeDracoPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive, int indicesAccessor,
                           std::uint64_t maxElements, const std::string& source, const std::string& what,
                           parsed::Primitive& out) {

@@ -18,8 +18,6 @@ namespace tsr::sg::gltf {
 
 inline constexpr const char* kDracoExtension = "KHR_draco_mesh_compression";
 
-bool isDracoCompressed(const tinygltf::Primitive& p);
-
 // Fills positions, normals, uvs (TEXCOORD_0), colours (COLOR_0) and indices
 // of `out` from the stream. indicesAccessor is the primitive's "indices"
 // (-1 when it has none), which the loader kept aside. Throws ImportError

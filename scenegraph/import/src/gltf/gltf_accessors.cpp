@@ -172,7 +172,7 @@ std::vector<float> AccessorReader::floats(int index, int components, bool normal
   if (l.components != components)
     fail(name + " has " + std::to_string(l.components) + " components per element, expected " +
          std::to_string(components));
-  if (l.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !(normalizedInts && l.normalized))
+  if (l.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !(normalizedInts && l.normalized) && !quantized_)
     fail(name + " must hold floats" + std::string(normalizedInts ? " or normalized integers" : ""));
   if (l.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) fail(name + ": 32-bit integers cannot be normalized");
 

@@ -2,6 +2,7 @@
 // Reads glTF accessors into plain arrays, checking every byte range against
 // its buffer view and buffer, element counts against the import limits and
 // floats for NaN and infinity.
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -15,11 +16,17 @@ namespace tsr::sg::gltf {
 class AccessorReader {
  public:
   AccessorReader(const tinygltf::Model& model, std::string source, const ImportOptions& options)
-      : model_(model), source_(std::move(source)), options_(options) {}
+      : model_(model),
+        source_(std::move(source)),
+        options_(options),
+        quantized_(std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(), "KHR_mesh_quantization") !=
+                   model.extensionsUsed.end()) {}
 
   // Components as floats, `components` per element (1 to 4, or 16 for
   // MAT4). Integer components are accepted only when `normalizedInts` is
-  // set and the accessor is normalized; they are mapped as glTF says.
+  // set and the accessor is normalized, or in a file that uses
+  // KHR_mesh_quantization (8 and 16-bit, normalized or not); they are
+  // mapped as glTF says.
   std::vector<float> floats(int accessor, int components, bool normalizedInts, const std::string& what) const;
   // Unsigned 8, 16 or 32-bit scalars.
   std::vector<std::uint32_t> indices(int accessor, const std::string& what) const;
@@ -34,6 +41,7 @@ class AccessorReader {
   const tinygltf::Model& model_;
   std::string source_;
   const ImportOptions& options_;
+  bool quantized_;
 };
 
 }  // namespace tsr::sg::gltf

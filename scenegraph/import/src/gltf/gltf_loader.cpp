@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "gltf/gltf_validation.hpp"
+#include "gltf/meshopt_views.hpp"
 
 namespace tsr::sg::gltf {
 namespace {
@@ -227,6 +228,7 @@ LoadedFile loadBytes(std::span<const unsigned char> bytes, const std::string& so
   scanJson(first, last, options.maxJsonValues, source);
 
   DracoIndices dracoIndices;
+  std::vector<MeshoptView> meshoptViews;
   std::string rewritten;  // the document without Draco primitives' indices, when it has any
   std::vector<unsigned char> rewrittenGlb;
   {
@@ -240,7 +242,8 @@ LoadedFile loadBytes(std::span<const unsigned char> bytes, const std::string& so
     checkUris(doc, source);
     checkDeclaredSizes(doc, limit, source);
     dracoIndices = takeDracoIndices(doc);
-    if (!dracoIndices.empty()) {
+    meshoptViews = takeMeshoptViews(doc, source);
+    if (!dracoIndices.empty() || !meshoptViews.empty()) {
       rewritten = doc.dump();
       if (binary) rewrittenGlb = glbWithJson(bytes, std::move(rewritten));
     }
@@ -278,6 +281,7 @@ LoadedFile loadBytes(std::span<const unsigned char> bytes, const std::string& so
     start = end + 1;
   }
   checkRequiredExtensions(out.model, source);
+  decodeMeshoptViews(out.model, meshoptViews, limit, source);
   checkNodeGraph(out.model, source);
   out.readOtherFiles = ctx.readOther;
   out.dracoIndices = std::move(dracoIndices);

@@ -18,7 +18,7 @@ constexpr std::uint32_t kMaxNodeDepth = 4096;
 const char* const kSupportedExtensions[] = {
     "KHR_lights_punctual",  "KHR_materials_emissive_strength", "KHR_materials_transmission", "KHR_materials_ior",
     "KHR_materials_volume", "KHR_texture_transform",           "TSR_materials_volume",       "TSR_scene_medium",
-    "TSR_camera_lens",      "KHR_draco_mesh_compression"};
+    "TSR_camera_lens",      "KHR_draco_mesh_compression",      "EXT_meshopt_compression",    "KHR_mesh_quantization"};
 
 // A small schema language: each check looks at one value at a JSON path and
 // throws with that path in the message.
