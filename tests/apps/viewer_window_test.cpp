@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 
 #include <glm/trigonometric.hpp>
 #include <glm/vec3.hpp>
@@ -143,6 +144,31 @@ TEST_F(ViewerWindow, ScriptedBackendSwitchesMatchHeadlessRenders) {
   const auto window = image("window.png");
   EXPECT_EQ(window.width, 160u);
   EXPECT_GT(compare(window, image("vulkan-again.png")).meanAbs, 0.01) << "panels drawn over the image";
+}
+
+double meanLinear(const tsr::med::FrameBuffer& fb) {
+  double sum = 0;
+  for (const auto& p : fb.colour) sum += double(p.r) + p.g + p.b;
+  return sum / (3.0 * double(fb.colour.size()));
+}
+
+// Issue 46: switching a viewport from the path tracer to the rasteriser
+// keeps the look. glTF's default material (white metal, roughness 1) under
+// the default light rig was 41 % darker in the rasteriser; the two
+// screenshots' mean brightness now agrees within 10 %. The quad faces the
+// camera, so its depths have no extent: the viewer's pixel filter used to
+// refuse such a frame (sigmaD below its least), and the viewer exited.
+TEST_F(ViewerWindow, SwitchingFromThePathTracerToTheRasteriserKeepsTheBrightness) {
+  const std::string quad =
+      "/usr/share/assimp/models/glTF2/glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_04.gltf";
+  ASSERT_TRUE(std::filesystem::exists(quad)) << "scripts/install-deps.sh installs assimp-testmodels";
+  writeScript("look.txt", "backend 0 embree\nwait samples 16\nscreenshot traced.png\n"
+                          "backend 0 vulkan\nwait frames 2\nscreenshot raster.png\n");
+  const Outcome v = viewer("'" + quad + "' --size 96x96 --script look.txt --exit-after");
+  ASSERT_EQ(v.status, 0) << v.err;
+  const double traced = meanLinear(image("traced.png")), raster = meanLinear(image("raster.png"));
+  EXPECT_GT(traced, 0.3) << "the quad is lit";
+  EXPECT_NEAR(raster / traced, 1.0, 0.10) << "raster " << raster << ", path tracer " << traced;
 }
 
 // The panels leave the picture to the user: at the default size, with two

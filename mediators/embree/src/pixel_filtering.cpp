@@ -55,8 +55,10 @@ float depthSigma(const std::vector<float>& depth, float relative) {
   for (float d : depth)
     if (std::isfinite(d)) lo = std::min(lo, d), hi = std::max(hi, d);
   if (!(hi >= lo)) return 1.0f;  // nothing was hit: depth plays no part
-  const float extent = hi - lo > 0.0f ? hi - lo : std::max(hi, 1.0f);
-  return relative * extent;
+  // A frame of one plane facing the camera has no depth extent but the
+  // rounding of its depths: measured from the distance instead.
+  const float extent = hi - lo > 1e-4f * std::max(hi, 1.0f) ? hi - lo : std::max(hi, 1.0f);
+  return std::max(relative * extent, 1e-6f);  // the filter's least sigma
 }
 
 }  // namespace
