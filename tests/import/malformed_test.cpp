@@ -234,9 +234,9 @@ TEST_F(MalformedFiles, WrongJsonTypes) {
 
 TEST_F(MalformedFiles, UnsupportedRequiredExtensions) {
   test::GltfBuilder b = test::tinyScene();
-  b.doc["extensionsUsed"] = {"EXT_meshopt_compression"};
-  b.doc["extensionsRequired"] = {"EXT_meshopt_compression"};
-  expectRejected(b, "meshopt.gltf", "required extension EXT_meshopt_compression is not supported");
+  b.doc["extensionsUsed"] = {"EXT_mesh_gpu_instancing"};
+  b.doc["extensionsRequired"] = {"EXT_mesh_gpu_instancing"};
+  expectRejected(b, "instancing.gltf", "required extension EXT_mesh_gpu_instancing is not supported");
 }
 
 TEST_F(MalformedFiles, InvalidIndices) {
