@@ -11,6 +11,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "expect_refused.hpp"
 #include "gltf_writer.hpp"
 #include "tsr/sg/geometry.hpp"
 #include "tsr/sg/import/importer.hpp"
@@ -92,20 +93,6 @@ test::GltfBuilder packedBuilder(const test::TempDir& dir) {
   return b;
 }
 
-void expectRefused(const std::string& path, const std::string& problem) {
-  Scene scene;
-  scene.create<Group>("existing");
-  scene.commit();
-  const std::uint64_t hash = scene.contentHash();
-  try {
-    importScene(scene, path);
-    FAIL() << "imported " << path;
-  } catch (const ImportError& e) {
-    EXPECT_THAT(e.what(), HasSubstr(problem));
-  }
-  EXPECT_EQ(scene.contentHash(), hash) << "a refused file leaves the scene as it was";
-}
-
 TEST(MeshoptImport, BrokenCompressedViewsAreRefused) {
   test::TempDir dir;
   {
@@ -114,20 +101,22 @@ TEST(MeshoptImport, BrokenCompressedViewsAreRefused) {
     const std::size_t offset = e.value("byteOffset", 0), length = e["byteLength"];
     std::fill(b.bin.begin() + std::ptrdiff_t(offset), b.bin.begin() + std::ptrdiff_t(offset + length), 0xFF);
     b.writeGlb(dir.file("garbage.glb"));
-    expectRefused(dir.file("garbage.glb"), "EXT_meshopt_compression): the compressed bytes do not decode");
+    test::expectRefused(dir.file("garbage.glb"), "EXT_meshopt_compression): the compressed bytes do not decode",
+                        "EXT_meshopt_compression");
   }
   {
     test::GltfBuilder b = packedBuilder(dir);
     auto& e = b.doc["bufferViews"][0]["extensions"]["EXT_meshopt_compression"];
     e["count"] = e["count"].get<std::uint64_t>() * 1000;  // more than the view holds
     b.writeGlb(dir.file("count.glb"));
-    expectRefused(dir.file("count.glb"), "do not fit the view's");
+    test::expectRefused(dir.file("count.glb"), "do not fit the view's", "EXT_meshopt_compression");
   }
   {
     test::GltfBuilder b = packedBuilder(dir);
     b.doc["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["mode"] = "PACKED";
     b.writeGlb(dir.file("mode.glb"));
-    expectRefused(dir.file("mode.glb"), "mode 'PACKED' is none of ATTRIBUTES, TRIANGLES, INDICES");
+    test::expectRefused(dir.file("mode.glb"), "mode 'PACKED' is none of ATTRIBUTES, TRIANGLES, INDICES",
+                        "EXT_meshopt_compression");
   }
 }
 
