@@ -196,7 +196,7 @@ std::vector<unsigned char> glbWithJson(std::span<const unsigned char> bytes, std
   put(12, static_cast<std::uint32_t>(json.size()));
   put(16, 0x4E4F534Au);
   std::memcpy(&out[20], json.data(), json.size());
-  std::memcpy(&out[20 + json.size()], &bytes[rest], length - rest);
+  std::memcpy(out.data() + 20 + json.size(), bytes.data() + rest, length - rest);  // may be no bytes at all
   return out;
 }
 
