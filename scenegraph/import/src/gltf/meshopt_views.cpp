@@ -118,6 +118,7 @@ void decodeMeshoptViews(tinygltf::Model& model, const std::vector<MeshoptView>& 
         : triangles ? meshopt_decodeIndexBuffer(decoded.data(), m.count, m.stride, compressed, view.byteLength)
                     : meshopt_decodeIndexSequence(decoded.data(), m.count, m.stride, compressed, view.byteLength);
     if (rc != 0) fail("the compressed bytes do not decode (meshoptimizer error " + std::to_string(rc) + ")");
+    if (m.filter != "NONE" && !attributes) fail("filter " + m.filter + " applies to ATTRIBUTES only");
     if (m.filter == "OCTAHEDRAL") {
       if (m.stride != 4 && m.stride != 8) fail("OCTAHEDRAL needs byteStride 4 or 8");
       meshopt_decodeFilterOct(decoded.data(), m.count, m.stride);
