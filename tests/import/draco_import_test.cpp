@@ -107,5 +107,19 @@ TEST(DracoImport, AStreamOutsideItsBufferIsRefused) {
   test::expectRefused(dir.file("view.gltf"), "bufferView 999 does not exist", "KHR_draco_mesh_compression");
 }
 
+TEST(DracoImport, ExtensionValuesOfTheWrongKindAreRefused) {
+  test::TempDir dir;
+  test::GltfBuilder b = dracoBuilder();
+  b.doc["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"] = 1;
+  b.writeGltf(dir.file("number.gltf"));
+  test::expectRefused(dir.file("number.gltf"), "needs a bufferView and an attributes object",
+                      "KHR_draco_mesh_compression");
+  // tinygltf keeps indices as int: 2^32 would have named view 0.
+  b = dracoBuilder();
+  b.doc["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"]["bufferView"] = 4294967296ull;
+  b.writeGltf(dir.file("wide.gltf"));
+  test::expectRefused(dir.file("wide.gltf"), "bufferView must be an index from 0 to", "KHR_draco_mesh_compression");
+}
+
 }  // namespace
 }  // namespace tsr::sg

@@ -1,5 +1,6 @@
 #include "gltf/draco_primitive.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <draco/compression/decode.h>
@@ -15,13 +16,37 @@ std::string str(std::uint64_t v) { return std::to_string(v); }
 // normalised or not): its own components a vertex, the rest of Vec as
 // (0, 0, 0, 1). False when a value cannot be converted or is not finite
 // (NaN or infinity), as the accessors' reader refuses them.
+// An accessor that says `normalized` over integers the stream does not mark
+// normalized is scaled here, as glTF maps normalized integers.
 template <class Vec>
-bool attributeValues(const draco::Mesh& mesh, const draco::PointAttribute& a, std::vector<Vec>& out) {
+bool attributeValues(const draco::Mesh& mesh, const draco::PointAttribute& a, bool accessorNormalized,
+                     std::vector<Vec>& out) {
   const int components = a.num_components();
+  float scale = 1.0f;
+  if (accessorNormalized && !a.normalized()) {
+    switch (a.data_type()) {
+      case draco::DT_UINT8:
+        scale = 1.0f / 255.0f;
+        break;
+      case draco::DT_INT8:
+        scale = 1.0f / 127.0f;
+        break;
+      case draco::DT_UINT16:
+        scale = 1.0f / 65535.0f;
+        break;
+      case draco::DT_INT16:
+        scale = 1.0f / 32767.0f;
+        break;
+      default:
+        break;
+    }
+  }
   out.assign(mesh.num_points(), Vec(0.0f));
   for (draco::PointIndex i(0); i < mesh.num_points(); ++i) {
     float v[4] = {0.0f, 0.0f, 0.0f, 1.0f};
     if (!a.ConvertValue<float>(a.mapped_index(i), static_cast<std::int8_t>(components), v)) return false;
+    if (scale != 1.0f)
+      for (int c = 0; c < components; ++c) v[c] = std::max(v[c] * scale, -1.0f);  // glTF: signed ones stop at -1
     for (int c = 0; c < Vec::length(); ++c) {
       if (!std::isfinite(v[c])) return false;
       out[i.value()][c] = v[c];
@@ -33,11 +58,13 @@ bool attributeValues(const draco::Mesh& mesh, const draco::PointAttribute& a, st
 }  // namespace
 
 void decodeDracoPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive, int indicesAccessor,
-                          std::uint64_t maxElements, const std::string& source, const std::string& what,
-                          parsed::Primitive& out) {
+                          std::uint64_t maxElements, std::uint64_t& elementsLeft, const std::string& source,
+                          const std::string& what, parsed::Primitive& out) {
   const std::string where = what + " (" + kDracoExtension + ")";
   auto fail = [&](const std::string& reason) { throw ImportError(source, where + ": " + reason); };
-  const tinygltf::Value& ext = primitive.extensions.at(kDracoExtension);
+  const auto found = primitive.extensions.find(kDracoExtension);
+  if (found == primitive.extensions.end()) fail("is not an object");
+  const tinygltf::Value& ext = found->second;
   if (!ext.IsObject() || !ext.Get("bufferView").IsInt() || !ext.Get("attributes").IsObject())
     fail("needs an integer bufferView and an attributes object");
   const int viewIndex = ext.Get("bufferView").Get<int>();
@@ -66,6 +93,10 @@ void decodeDracoPrimitive(const tinygltf::Model& model, const tinygltf::Primitiv
   if (position == primitive.attributes.end()) fail("has no POSITION attribute");
   const std::uint64_t points = declared(position->second, "POSITION");
   const std::uint64_t indexCount = indicesAccessor >= 0 ? declared(indicesAccessor, "indices") : 0;
+  // Primitives may share a stream: all of them together within the limit.
+  if (points + indexCount > elementsLeft)
+    fail("the Draco streams hold more than " + str(maxElements) + " vertices and indices together");
+  elementsLeft -= points + indexCount;
 
   draco::DecoderBuffer stream;
   stream.Init(reinterpret_cast<const char*>(buffer.data() + view.byteOffset), view.byteLength);
@@ -98,7 +129,11 @@ void decodeDracoPrimitive(const tinygltf::Model& model, const tinygltf::Primitiv
     return a;
   };
   auto read = [&](const std::string& name, const draco::PointAttribute* a, auto& values) {
-    if (a && !attributeValues(mesh, *a, values))
+    const auto accessor = primitive.attributes.find(name);
+    const bool normalized = accessor != primitive.attributes.end() && accessor->second >= 0 &&
+                            static_cast<std::size_t>(accessor->second) < model.accessors.size() &&
+                            model.accessors[static_cast<std::size_t>(accessor->second)].normalized;
+    if (a && !attributeValues(mesh, *a, normalized, values))
       fail("attribute " + name + " holds values that are not finite numbers");
   };
   const draco::PointAttribute* positions = dracoAttribute("POSITION", 3, 3);

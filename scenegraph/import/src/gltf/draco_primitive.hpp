@@ -19,11 +19,14 @@ namespace tsr::sg::gltf {
 inline constexpr const char* kDracoExtension = "KHR_draco_mesh_compression";
 
 // Fills positions, normals, uvs (TEXCOORD_0), colours (COLOR_0) and indices
-// of `out` from the stream. indicesAccessor is the primitive's "indices"
-// (-1 when it has none), which the loader kept aside. Throws ImportError
-// naming `what` and the extension.
+// (a triangle list, whatever the primitive's mode) of `out` from the
+// stream. indicesAccessor is the primitive's "indices" (-1 when it has
+// none), which the loader kept aside. elementsLeft is what the file's
+// streams may still hold, vertices and indices, of maxElements; it is
+// charged before decoding. Throws ImportError naming `what` and the
+// extension.
 void decodeDracoPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive, int indicesAccessor,
-                          std::uint64_t maxElements, const std::string& source, const std::string& what,
-                          parsed::Primitive& out);
+                          std::uint64_t maxElements, std::uint64_t& elementsLeft, const std::string& source,
+                          const std::string& what, parsed::Primitive& out);
 
 }  // namespace tsr::sg::gltf

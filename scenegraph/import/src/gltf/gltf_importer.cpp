@@ -420,7 +420,8 @@ class Converter {
         if (src.material >= 0) p.material = checked(src.material, m_.materials.size(), what, "material");
         const auto draco = dracoIndices_.find({mi, pi});
         if (draco != dracoIndices_.end())
-          decodeDracoPrimitive(m_, src, draco->second, options_.maxAccessorElements, source_, what, p);
+          decodeDracoPrimitive(m_, src, draco->second, options_.maxAccessorElements, dracoElementsLeft_, source_, what,
+                               p);
         else
           readAccessors(src, what, p);
         const std::size_t n = p.positions.size();
@@ -433,7 +434,8 @@ class Converter {
           if (p.indices[i] >= n)
             fail(what + " index " + str(i) + " is " + std::to_string(p.indices[i]) + ", but there are only " + str(n) +
                  " vertices");
-        if (!triangles(src.mode, p.indices, what)) {
+        // A Draco stream is a triangle list whatever the mode says.
+        if (!triangles(draco != dracoIndices_.end() ? TINYGLTF_MODE_TRIANGLES : src.mode, p.indices, what)) {
           ++out_.skippedPrimitives;
           continue;
         }
@@ -642,6 +644,7 @@ class Converter {
   const std::map<std::pair<std::size_t, std::size_t>, int>& dracoIndices_;
   std::string source_;
   const ImportOptions& options_;
+  std::uint64_t dracoElementsLeft_ = options_.maxAccessorElements;  // what Draco streams may still hold
   parsed::Scene& out_;
   AccessorReader reader_;
   std::vector<int> textureImage_;

@@ -1,6 +1,7 @@
 #include "gltf/gltf_loader.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -109,6 +110,13 @@ std::string glbJson(std::span<const unsigned char> bytes, const std::string& sou
   const std::uint64_t jsonLength = readU32(&bytes[12]);
   if (readU32(&bytes[16]) != 0x4E4F534Au) throw ImportError(source, "GLB first chunk is not JSON");
   if (20 + jsonLength > length) throw ImportError(source, "GLB JSON chunk runs past the end of the file");
+  // tinygltf checks the binary chunk without its 8-byte header: checked here whole.
+  const std::uint64_t bin = 20 + jsonLength;
+  if (bin < length) {
+    if (bin + 8 > length) throw ImportError(source, "GLB second chunk's header runs past the end of the file");
+    if (bin + 8 + std::uint64_t{readU32(&bytes[bin])} > length)
+      throw ImportError(source, "GLB binary chunk runs past the end of the file");
+  }
   return std::string(reinterpret_cast<const char*>(&bytes[20]), static_cast<std::size_t>(jsonLength));
 }
 
@@ -162,9 +170,15 @@ using DracoIndices = std::map<std::pair<std::size_t, std::size_t>, int>;
 
 // Takes "indices" out of the primitives that carry KHR_draco_mesh_compression
 // (see LoadedFile::dracoIndices). The document's types were checked before.
-DracoIndices takeDracoIndices(nlohmann::json& doc) {
+DracoIndices takeDracoIndices(nlohmann::json& doc, const std::string& source) {
   DracoIndices out;
   if (!doc.contains("meshes")) return out;
+  // tinygltf keeps integers as int: larger ones would name another element.
+  auto index = [&](const nlohmann::json& v, const std::string& what) {
+    if (!v.is_number_unsigned() || v.get<std::uint64_t>() > std::uint64_t{INT_MAX})
+      throw ImportError(source, what + " must be an index from 0 to " + std::to_string(INT_MAX));
+    return v.get<int>();
+  };
   nlohmann::json& meshes = doc["meshes"];
   for (std::size_t mi = 0; mi < meshes.size(); ++mi) {
     if (!meshes[mi].contains("primitives")) continue;
@@ -174,7 +188,14 @@ DracoIndices takeDracoIndices(nlohmann::json& doc) {
       if (!p.contains("extensions") || !p["extensions"].is_object() ||
           !p["extensions"].contains("KHR_draco_mesh_compression"))
         continue;
-      out[{mi, pi}] = p.contains("indices") && p["indices"].is_number_integer() ? p["indices"].get<int>() : -1;
+      const std::string what =
+          "meshes[" + std::to_string(mi) + "].primitives[" + std::to_string(pi) + "].KHR_draco_mesh_compression";
+      const nlohmann::json& e = p["extensions"]["KHR_draco_mesh_compression"];
+      if (!e.is_object() || !e.contains("bufferView") || !e.contains("attributes") || !e["attributes"].is_object())
+        throw ImportError(source, what + " needs a bufferView and an attributes object");
+      index(e["bufferView"], what + ".bufferView");
+      for (const auto& [name, id] : e["attributes"].items()) index(id, what + ".attributes." + name);
+      out[{mi, pi}] = p.contains("indices") ? index(p["indices"], what + " primitive's indices") : -1;
       p.erase("indices");
     }
   }
@@ -241,7 +262,7 @@ LoadedFile loadBytes(std::span<const unsigned char> bytes, const std::string& so
     checkJsonTypes(doc, source);
     checkUris(doc, source);
     checkDeclaredSizes(doc, limit, source);
-    dracoIndices = takeDracoIndices(doc);
+    dracoIndices = takeDracoIndices(doc, source);
     meshoptViews = takeMeshoptViews(doc, source);
     if (!dracoIndices.empty() || !meshoptViews.empty()) {
       rewritten = doc.dump();

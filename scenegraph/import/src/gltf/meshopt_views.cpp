@@ -57,7 +57,6 @@ std::vector<MeshoptView> takeMeshoptViews(json& doc, const std::string& source) 
     m.stride = unsignedField(e, "byteStride", 0, what, source);
     m.mode = stringField(e, "mode", "", what, source);
     m.filter = stringField(e, "filter", "NONE", what, source);
-    m.keepsStride = view.contains("byteStride");
     m.declaredBytes = unsignedField(view, "byteLength", 0, "bufferViews[" + std::to_string(v) + "]", source);
     if (!e.contains("buffer") || !e.contains("byteLength"))
       throw ImportError(source, what + " needs buffer and byteLength");
@@ -92,6 +91,9 @@ std::vector<MeshoptView> takeMeshoptViews(json& doc, const std::string& source) 
 
 void decodeMeshoptViews(tinygltf::Model& model, const std::vector<MeshoptView>& views, std::uint64_t maxBytes,
                         const std::string& source) {
+  // Views may share compressed bytes, and one stream expands up to 64-fold:
+  // all of them together decode into at most four times the file limit.
+  std::uint64_t left = 4 * maxBytes;
   for (const MeshoptView& m : views) {
     const std::string what = "bufferViews[" + std::to_string(m.view) + "] (" + kMeshoptExtension + ")";
     auto fail = [&](const std::string& reason) { throw ImportError(source, what + ": " + reason); };
@@ -111,6 +113,10 @@ void decodeMeshoptViews(tinygltf::Model& model, const std::vector<MeshoptView>& 
     if (m.count > std::min(maxBytes, m.declaredBytes) / m.stride)
       fail(std::to_string(m.count) + " elements of " + std::to_string(m.stride) + " bytes do not fit the view's " +
            std::to_string(m.declaredBytes) + " bytes (at most " + std::to_string(maxBytes) + ")");
+    if (m.count * m.stride > left)
+      fail("the compressed views decode into more than " + std::to_string(4 * maxBytes) +
+           " bytes together (four times the file limit)");
+    left -= m.count * m.stride;
     std::vector<unsigned char> decoded(static_cast<std::size_t>(m.count * m.stride));
     const unsigned char* compressed = source_bytes.data() + view.byteOffset;
     const int rc =
@@ -136,7 +142,8 @@ void decodeMeshoptViews(tinygltf::Model& model, const std::vector<MeshoptView>& 
     view.buffer = static_cast<int>(model.buffers.size() - 1);
     view.byteOffset = 0;
     view.byteLength = static_cast<std::size_t>(m.count * m.stride);
-    view.byteStride = m.keepsStride ? static_cast<std::size_t>(m.stride) : 0;
+    // Decoded vertices lie `stride` apart; indices are packed.
+    view.byteStride = attributes ? static_cast<std::size_t>(m.stride) : 0;
   }
 }
 

@@ -23,7 +23,6 @@ struct MeshoptView {
   std::uint64_t count = 0;          // elements (vertices or indices)
   std::uint64_t stride = 0;         // bytes an element
   std::string mode, filter;         // ATTRIBUTES | TRIANGLES | INDICES; NONE | OCTAHEDRAL | QUATERNION | EXPONENTIAL
-  bool keepsStride = false;         // the uncompressed view declared a byteStride
   std::uint64_t declaredBytes = 0;  // the uncompressed view's byteLength
 };
 
@@ -32,7 +31,8 @@ struct MeshoptView {
 std::vector<MeshoptView> takeMeshoptViews(nlohmann::json& doc, const std::string& source);
 
 // Decodes each view into a new buffer of `model` and points the view at it.
-// A decoded view larger than maxBytes is refused.
+// A decoded view larger than maxBytes, or all of them together larger than
+// four times it, is refused.
 void decodeMeshoptViews(tinygltf::Model& model, const std::vector<MeshoptView>& views, std::uint64_t maxBytes,
                         const std::string& source);
 
