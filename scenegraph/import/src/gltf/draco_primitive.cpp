@@ -1,10 +1,11 @@
 #include "gltf/draco_primitive.hpp"
 
-#include <algorithm>
+#include <climits>
 #include <cmath>
 
 #include <draco/compression/decode.h>
 
+#include "gltf/gltf_accessors.hpp"
 #include "tsr/sg/import/importer.hpp"
 
 namespace tsr::sg::gltf {
@@ -12,41 +13,28 @@ namespace {
 
 std::string str(std::uint64_t v) { return std::to_string(v); }
 
-// A Draco attribute read as floats (integers as the stream declares them,
-// normalised or not): its own components a vertex, the rest of Vec as
-// (0, 0, 0, 1). False when a value cannot be converted or is not finite
-// (NaN or infinity), as the accessors' reader refuses them.
-// An accessor that says `normalized` over integers the stream does not mark
-// normalized is scaled here, as glTF maps normalized integers.
+// A Draco attribute read as floats (integers as the stream declares them):
+// its own components a vertex, the rest of Vec as (0, 0, 0, 1). An accessor
+// that says `normalized` over integers the stream does not mark normalized
+// gets glTF's mapping here. False when a value cannot be converted or is
+// not finite (NaN or infinity), as the accessors' reader refuses them.
 template <class Vec>
 bool attributeValues(const draco::Mesh& mesh, const draco::PointAttribute& a, bool accessorNormalized,
                      std::vector<Vec>& out) {
   const int components = a.num_components();
-  float scale = 1.0f;
-  if (accessorNormalized && !a.normalized()) {
-    switch (a.data_type()) {
-      case draco::DT_UINT8:
-        scale = 1.0f / 255.0f;
-        break;
-      case draco::DT_INT8:
-        scale = 1.0f / 127.0f;
-        break;
-      case draco::DT_UINT16:
-        scale = 1.0f / 65535.0f;
-        break;
-      case draco::DT_INT16:
-        scale = 1.0f / 32767.0f;
-        break;
-      default:
-        break;
-    }
-  }
+  // glTF's name for the stream's integer type (0: not one glTF normalizes).
+  const int componentType = !accessorNormalized || a.normalized() ? 0
+                            : a.data_type() == draco::DT_UINT8    ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE
+                            : a.data_type() == draco::DT_INT8     ? TINYGLTF_COMPONENT_TYPE_BYTE
+                            : a.data_type() == draco::DT_UINT16   ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT
+                            : a.data_type() == draco::DT_INT16    ? TINYGLTF_COMPONENT_TYPE_SHORT
+                                                                  : 0;
   out.assign(mesh.num_points(), Vec(0.0f));
   for (draco::PointIndex i(0); i < mesh.num_points(); ++i) {
     float v[4] = {0.0f, 0.0f, 0.0f, 1.0f};
     if (!a.ConvertValue<float>(a.mapped_index(i), static_cast<std::int8_t>(components), v)) return false;
-    if (scale != 1.0f)
-      for (int c = 0; c < components; ++c) v[c] = std::max(v[c] * scale, -1.0f);  // glTF: signed ones stop at -1
+    if (componentType)
+      for (int c = 0; c < components; ++c) v[c] = normalizedInteger(v[c], componentType);
     for (int c = 0; c < Vec::length(); ++c) {
       if (!std::isfinite(v[c])) return false;
       out[i.value()][c] = v[c];
@@ -57,16 +45,47 @@ bool attributeValues(const draco::Mesh& mesh, const draco::PointAttribute& a, bo
 
 }  // namespace
 
+DracoIndices takeDracoIndices(nlohmann::json& doc, const std::string& source) {
+  DracoIndices out;
+  if (!doc.contains("meshes")) return out;
+  // tinygltf keeps integers as int: larger ones would name another element.
+  auto index = [&](const nlohmann::json& v, const std::string& what) {
+    if (!v.is_number_unsigned() || v.get<std::uint64_t>() > std::uint64_t{INT_MAX})
+      throw ImportError(source, what + " must be an index from 0 to " + std::to_string(INT_MAX));
+    return v.get<int>();
+  };
+  nlohmann::json& meshes = doc["meshes"];
+  for (std::size_t mi = 0; mi < meshes.size(); ++mi) {
+    if (!meshes[mi].contains("primitives")) continue;
+    nlohmann::json& primitives = meshes[mi]["primitives"];
+    for (std::size_t pi = 0; pi < primitives.size(); ++pi) {
+      nlohmann::json& p = primitives[pi];
+      if (!p.contains("extensions") || !p["extensions"].is_object() ||
+          !p["extensions"].contains("KHR_draco_mesh_compression"))
+        continue;
+      const std::string what =
+          "meshes[" + std::to_string(mi) + "].primitives[" + std::to_string(pi) + "].KHR_draco_mesh_compression";
+      const nlohmann::json& e = p["extensions"]["KHR_draco_mesh_compression"];
+      if (!e.is_object() || !e.contains("bufferView") || !e.contains("attributes") || !e["attributes"].is_object())
+        throw ImportError(source, what + " needs a bufferView and an attributes object");
+      index(e["bufferView"], what + ".bufferView");
+      for (const auto& [name, id] : e["attributes"].items()) index(id, what + ".attributes." + name);
+      out[{mi, pi}] = p.contains("indices") ? index(p["indices"], what + " primitive's indices") : -1;
+      p.erase("indices");
+    }
+  }
+  return out;
+}
+
 void decodeDracoPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive, int indicesAccessor,
                           std::uint64_t maxElements, std::uint64_t& elementsLeft, const std::string& source,
                           const std::string& what, parsed::Primitive& out) {
   const std::string where = what + " (" + kDracoExtension + ")";
   auto fail = [&](const std::string& reason) { throw ImportError(source, where + ": " + reason); };
+  // takeDracoIndices checked the extension's kinds and kept its indices to int.
   const auto found = primitive.extensions.find(kDracoExtension);
-  if (found == primitive.extensions.end()) fail("is not an object");
+  if (found == primitive.extensions.end()) fail("is missing after loading");
   const tinygltf::Value& ext = found->second;
-  if (!ext.IsObject() || !ext.Get("bufferView").IsInt() || !ext.Get("attributes").IsObject())
-    fail("needs an integer bufferView and an attributes object");
   const int viewIndex = ext.Get("bufferView").Get<int>();
   if (viewIndex < 0 || static_cast<std::size_t>(viewIndex) >= model.bufferViews.size())
     fail("bufferView " + std::to_string(viewIndex) + " does not exist (there are " + str(model.bufferViews.size()) +
@@ -120,7 +139,6 @@ void decodeDracoPrimitive(const tinygltf::Model& model, const tinygltf::Primitiv
   auto dracoAttribute = [&](const std::string& name, int minComponents,
                             int maxComponents) -> const draco::PointAttribute* {
     if (!ids.Has(name)) return nullptr;
-    if (!ids.Get(name).IsInt()) fail("attribute " + name + " must name a Draco attribute id (an integer)");
     const int id = ids.Get(name).Get<int>();
     const draco::PointAttribute* a = id < 0 ? nullptr : mesh.GetAttributeByUniqueId(static_cast<std::uint32_t>(id));
     if (!a) fail("attribute " + name + " names Draco attribute " + std::to_string(id) + ", which the stream lacks");

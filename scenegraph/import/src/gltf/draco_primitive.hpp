@@ -7,8 +7,12 @@
 // declare (the extension requires it), so nothing larger than the document
 // says is ever handed on.
 #include <cstdint>
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include <tiny_gltf.h>
 
@@ -17,6 +21,17 @@
 namespace tsr::sg::gltf {
 
 inline constexpr const char* kDracoExtension = "KHR_draco_mesh_compression";
+
+// The "indices" accessor of each compressed primitive, (mesh, primitive) ->
+// accessor or -1. tinygltf as Debian builds it has no Draco and refuses an
+// index accessor without a buffer view, so the document it reads has these
+// taken out (takeDracoIndices) and the importer decodes the stream itself.
+using DracoIndices = std::map<std::pair<std::size_t, std::size_t>, int>;
+
+// Takes "indices" out of the compressed primitives of `doc`, after checking
+// the extension's kinds and that its indices fit tinygltf's int. Throws
+// ImportError naming the primitive.
+DracoIndices takeDracoIndices(nlohmann::json& doc, const std::string& source);
 
 // Fills positions, normals, uvs (TEXCOORD_0), colours (COLOR_0) and indices
 // (a triangle list, whatever the primitive's mode) of `out` from the

@@ -52,20 +52,26 @@ T load(const std::uint8_t* p) {
 
 // One component as a float; normalized integers as glTF's spec maps them.
 float decodeFloat(const std::uint8_t* p, int componentType, bool normalized) {
+  float v = 0.0f;
   switch (componentType) {
     case TINYGLTF_COMPONENT_TYPE_FLOAT:
       return load<float>(p);
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-      return normalized ? load<std::uint8_t>(p) / 255.0f : load<std::uint8_t>(p);
+      v = load<std::uint8_t>(p);
+      break;
     case TINYGLTF_COMPONENT_TYPE_BYTE:
-      return normalized ? std::max(load<std::int8_t>(p) / 127.0f, -1.0f) : load<std::int8_t>(p);
+      v = load<std::int8_t>(p);
+      break;
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-      return normalized ? load<std::uint16_t>(p) / 65535.0f : load<std::uint16_t>(p);
+      v = load<std::uint16_t>(p);
+      break;
     case TINYGLTF_COMPONENT_TYPE_SHORT:
-      return normalized ? std::max(load<std::int16_t>(p) / 32767.0f, -1.0f) : load<std::int16_t>(p);
+      v = load<std::int16_t>(p);
+      break;
     default:
       return static_cast<float>(load<std::uint32_t>(p));
   }
+  return normalized ? normalizedInteger(v, componentType) : v;
 }
 
 std::uint32_t decodeIndex(const std::uint8_t* p, int componentType) {
@@ -232,6 +238,21 @@ std::vector<std::uint32_t> AccessorReader::indices(int index, const std::string&
   std::vector<std::uint32_t> out(l.count);
   for (std::size_t i = 0; i < l.count; ++i) out[i] = decodeIndex(l.base + i * l.stride, l.componentType);
   return out;
+}
+
+float normalizedInteger(float value, int componentType) {
+  switch (componentType) {
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return value / 255.0f;
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+      return std::max(value / 127.0f, -1.0f);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return value / 65535.0f;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+      return std::max(value / 32767.0f, -1.0f);
+    default:
+      return value;
+  }
 }
 
 }  // namespace tsr::sg::gltf

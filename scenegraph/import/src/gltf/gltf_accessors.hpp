@@ -13,6 +13,10 @@
 
 namespace tsr::sg::gltf {
 
+// An integer component of a normalized accessor as glTF maps it to [0, 1]
+// or [-1, 1]; other component types are returned as they are.
+float normalizedInteger(float value, int componentType);
+
 class AccessorReader {
  public:
   AccessorReader(const tinygltf::Model& model, std::string source, const ImportOptions& options)

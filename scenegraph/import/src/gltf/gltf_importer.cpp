@@ -349,11 +349,14 @@ class Converter {
       case TINYGLTF_MODE_POINTS:
       case TINYGLTF_MODE_LINE:
       case TINYGLTF_MODE_LINE_LOOP:
-      case TINYGLTF_MODE_LINE_STRIP:
-        // Said at the default log level: a drawing's lines vanish otherwise in silence.
-        spdlog::warn("{}: {}: points and lines are not drawn by any back-end; primitive skipped", source_, what);
-        out_.warnings.push_back(what + ": points and lines are not drawn by any back-end; primitive skipped");
+      case TINYGLTF_MODE_LINE_STRIP: {
+        // Said at the default log level (warn() says it in verbose output
+        // only): a drawing's lines would otherwise vanish in silence.
+        std::string w = what + ": points and lines are not drawn by any back-end; primitive skipped";
+        spdlog::warn("{}: {}", source_, w);
+        out_.warnings.push_back(std::move(w));
         return false;
+      }
       default:
         fail(what + " has unknown mode " + std::to_string(mode));
     }
@@ -641,7 +644,7 @@ class Converter {
   }
 
   const tinygltf::Model& m_;
-  const std::map<std::pair<std::size_t, std::size_t>, int>& dracoIndices_;
+  const DracoIndices& dracoIndices_;
   std::string source_;
   const ImportOptions& options_;
   std::uint64_t dracoElementsLeft_ = options_.maxAccessorElements;  // what Draco streams may still hold

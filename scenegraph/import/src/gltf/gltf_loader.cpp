@@ -1,7 +1,6 @@
 #include "gltf/gltf_loader.hpp"
 
 #include <algorithm>
-#include <climits>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "gltf/draco_primitive.hpp"
 #include "gltf/gltf_validation.hpp"
 #include "gltf/meshopt_views.hpp"
 
@@ -164,42 +164,6 @@ void scanJson(const char* first, const char* last, std::uint64_t limit, const st
                                "refused before parsing",
                            ImportLimitError::Limit::JsonValues);
   throw ImportError(source, "invalid JSON: " + counter.error());
-}
-
-using DracoIndices = std::map<std::pair<std::size_t, std::size_t>, int>;
-
-// Takes "indices" out of the primitives that carry KHR_draco_mesh_compression
-// (see LoadedFile::dracoIndices). The document's types were checked before.
-DracoIndices takeDracoIndices(nlohmann::json& doc, const std::string& source) {
-  DracoIndices out;
-  if (!doc.contains("meshes")) return out;
-  // tinygltf keeps integers as int: larger ones would name another element.
-  auto index = [&](const nlohmann::json& v, const std::string& what) {
-    if (!v.is_number_unsigned() || v.get<std::uint64_t>() > std::uint64_t{INT_MAX})
-      throw ImportError(source, what + " must be an index from 0 to " + std::to_string(INT_MAX));
-    return v.get<int>();
-  };
-  nlohmann::json& meshes = doc["meshes"];
-  for (std::size_t mi = 0; mi < meshes.size(); ++mi) {
-    if (!meshes[mi].contains("primitives")) continue;
-    nlohmann::json& primitives = meshes[mi]["primitives"];
-    for (std::size_t pi = 0; pi < primitives.size(); ++pi) {
-      nlohmann::json& p = primitives[pi];
-      if (!p.contains("extensions") || !p["extensions"].is_object() ||
-          !p["extensions"].contains("KHR_draco_mesh_compression"))
-        continue;
-      const std::string what =
-          "meshes[" + std::to_string(mi) + "].primitives[" + std::to_string(pi) + "].KHR_draco_mesh_compression";
-      const nlohmann::json& e = p["extensions"]["KHR_draco_mesh_compression"];
-      if (!e.is_object() || !e.contains("bufferView") || !e.contains("attributes") || !e["attributes"].is_object())
-        throw ImportError(source, what + " needs a bufferView and an attributes object");
-      index(e["bufferView"], what + ".bufferView");
-      for (const auto& [name, id] : e["attributes"].items()) index(id, what + ".attributes." + name);
-      out[{mi, pi}] = p.contains("indices") ? index(p["indices"], what + " primitive's indices") : -1;
-      p.erase("indices");
-    }
-  }
-  return out;
 }
 
 // The GLB container again around another JSON chunk (padded with spaces to

@@ -3,25 +3,20 @@
 // passed the type checks of gltf_validation. Images are not decoded here:
 // the bytes of images given by uri are kept in tinygltf::Image::image,
 // those in buffer views are left for the importer to slice with checks.
-#include <map>
 #include <span>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include <tiny_gltf.h>
 
+#include "gltf/draco_primitive.hpp"
 #include "tsr/sg/import/importer.hpp"
 
 namespace tsr::sg::gltf {
 
 struct LoadedFile {
   tinygltf::Model model;
-  // KHR_draco_mesh_compression: the "indices" accessor of each compressed
-  // primitive (mesh, primitive) -> accessor, or -1. tinygltf as Debian
-  // builds it has no Draco and refuses an index accessor without a buffer
-  // view, so the document it reads leaves these out; the importer decodes.
-  std::map<std::pair<std::size_t, std::size_t>, int> dracoIndices;
+  DracoIndices dracoIndices;  // KHR_draco_mesh_compression (draco_primitive.hpp)
   std::vector<std::string> warnings;
   bool readOtherFiles = false;  // external buffers or images were read
 };

@@ -40,7 +40,8 @@ std::vector<MeshoptView> takeMeshoptViews(json& doc, const std::string& source) 
   json& views = doc["bufferViews"];
   if (!doc.contains("buffers")) doc["buffers"] = json::array();
   json& buffers = doc["buffers"];
-  // Fallback buffers: placeholders for the uncompressed bytes, never read.
+  // Fallback buffers: where the extension says the uncompressed bytes would
+  // be, for readers without it; a GLB gives them no bytes, and none are read.
   std::vector<bool> fallback(buffers.size(), false);
   for (std::size_t b = 0; b < buffers.size(); ++b)
     if (const json* e = extensionOf(buffers[b]))

@@ -37,7 +37,7 @@ enum class SamplerKind : std::uint8_t { Sobol, Independent };
 
 namespace sobol {
 
-inline std::uint32_t reverseBits(std::uint32_t x) {
+constexpr std::uint32_t reverseBits(std::uint32_t x) {
   x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
   x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
   x = ((x >> 4) & 0x0F0F0F0Fu) | ((x & 0x0F0F0F0Fu) << 4);
@@ -81,10 +81,7 @@ struct ReversedSecondDimensionTable {
         std::uint32_t r = 0;
         for (int k = 0; k < 8; ++k)
           if (x & (1u << k)) r ^= v[8 * b + k];
-        std::uint32_t reversed = 0;
-        for (int bit = 0; bit < 32; ++bit)
-          if (r & (1u << bit)) reversed |= 1u << (31 - bit);
-        byByte[b][x] = reversed;
+        byByte[b][x] = reverseBits(r);
       }
   }
 };
