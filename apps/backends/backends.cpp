@@ -6,11 +6,9 @@
 namespace tsr::app {
 
 const med::ViewportRegistry& backendRegistry() {
-  static const med::ViewportRegistry registry = [] {
-    med::ViewportRegistry r;
-    registerBackends(r);
-    return r;
-  }();
+  // Filled in place: factories may refer to the registry they are in.
+  static med::ViewportRegistry registry;
+  [[maybe_unused]] static const bool filled = (registerBackends(registry), true);
   return registry;
 }
 

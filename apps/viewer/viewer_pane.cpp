@@ -89,6 +89,7 @@ void ViewerPane::render(const med::ViewportRegistry& registry, med::ContextPool&
   med::Viewport& vp = viewport(backend, registry, contexts);
 
   med::RenderControl control;
+  control.interactive = true;
   control.outputs = std::vector<std::string>{};
   // The ranked list and picking read object ids, where the back-end offers them.
   if (const auto offered = vp.outputNames(); std::find(offered.begin(), offered.end(), med::kIdOutput) != offered.end())

@@ -39,6 +39,9 @@ layout(set = 0, binding = 0) uniform Frame {
   vec4 probeCentre;
   vec4 sceneMin;
   vec4 sceneMax;
+  vec4 volumeMin;
+  vec4 volumeMax;
+  uvec4 volumeCounts;
 } frame;
 
 layout(std430, set = 0, binding = 1) readonly buffer Instances { Instance instances[]; };
@@ -65,6 +68,8 @@ layout(set = 0, binding = 8) uniform sampler2D environmentMap;
 layout(set = 0, binding = 9) uniform sampler2DArray reflectionProbe;
 // The probe prefiltered by roughness (src/reflections/probe_prefilter.hpp).
 layout(set = 0, binding = 10) uniform sampler2D probeLevels;
+// The irradiance volume (tsr/backend/irradiance_volume.hpp, probe_volume.glsl).
+layout(std430, set = 0, binding = 11) readonly buffer IrradianceVolume { vec4 volumeData[]; };
 
 layout(push_constant) uniform Push {
   mat4 lightViewProj;

@@ -4,6 +4,7 @@
 #include "lights.glsl"
 #include "environment.glsl"
 #include "probe.glsl"
+#include "probe_volume.glsl"
 
 // Direct light from point, spot and directional lights and from emissive
 // geometry's patches (area-like lights) with the Embree back-end's BSDFs
@@ -232,7 +233,11 @@ void main() {
   // lit ceilings from too near and without shadows, and on the quality
   // suite its irradiance, even rescaled to the ambient's level, made 10 of
   // 14 scenes worse.)
+  // With the irradiance volume, diffuse reflection reads its light instead:
+  // bounced light and the environment, occluded, E / pi for Lambert.
   vec3 ambient = frame.ambient.rgb;
+  vec3 irradiance;
+  if (hasVolume() && volumeIrradiance(worldPos, n, wo, irradiance)) ambient = irradiance / PI;
   vec3 mirrored = reflect(-wo, n);
   const vec3 direct = radiance;
   if (type == METALLIC_ROUGHNESS) {

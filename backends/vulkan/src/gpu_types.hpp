@@ -57,6 +57,9 @@ struct GpuFrame {
   glm::vec4 probeCentre;     // the reflection probe's centre, w: 0 none, 1 for mirrors, 2 also rough reflections
   glm::vec4 sceneMin;        // the scene's bounds, which probe lookups are projected onto
   glm::vec4 sceneMax;
+  glm::vec4 volumeMin;  // the irradiance volume's box, w: 1 when there is one
+  glm::vec4 volumeMax;
+  glm::uvec4 volumeCounts;  // probes per axis, probe count
 };
 
 struct PushConstants {

@@ -24,15 +24,16 @@ void ensureHost(const Device& device, Buffer& buffer, VkDeviceSize needed, VkBuf
 
 Renderer::Impl::Impl(const Device& d) : device(d) {
   VkDevice dev = device.handle();
-  VkDescriptorSetLayoutBinding b[11]{};
-  const VkDescriptorType types[11] = {
+  constexpr std::uint32_t kFrameBindings = 12;
+  VkDescriptorSetLayoutBinding b[kFrameBindings]{};
+  const VkDescriptorType types[kFrameBindings] = {
       VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,         VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,         VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,         VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
       VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
       VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
-  for (std::uint32_t i = 0; i < 11; ++i) {
+      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+  for (std::uint32_t i = 0; i < kFrameBindings; ++i) {
     b[i].binding = i;
     b[i].descriptorType = types[i];
     b[i].descriptorCount = 1;
@@ -40,7 +41,7 @@ Renderer::Impl::Impl(const Device& d) : device(d) {
   }
   VkDescriptorSetLayoutCreateInfo lci =
       vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
-  lci.bindingCount = 11;
+  lci.bindingCount = kFrameBindings;
   lci.pBindings = b;
   check(vkCreateDescriptorSetLayout(dev, &lci, nullptr, &frameLayout), "vkCreateDescriptorSetLayout (frame)");
   materialLayout = createMaterialSetLayout(dev);
@@ -55,7 +56,7 @@ Renderer::Impl::Impl(const Device& d) : device(d) {
   check(vkCreatePipelineLayout(dev, &pci, nullptr, &layout), "vkCreatePipelineLayout");
 
   const VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
+                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5},
                                          {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 6}};
   frameDescriptors.emplace(device, sizes, frameLayout, "frame");
   frameSet = frameDescriptors->set();
@@ -283,6 +284,12 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
   frame.emitterAmbient = glm::vec4(ambientFromEmitters, 0.0f);
   frame.sceneMin = glm::vec4(s.sceneMin, 0.0f);
   frame.sceneMax = glm::vec4(s.sceneMax, 0.0f);
+  if (irradianceVolume) {
+    const backend::IrradianceVolume& v = *irradianceVolume;
+    frame.volumeMin = glm::vec4(v.min, 1.0f);
+    frame.volumeMax = glm::vec4(v.max, 0.0f);
+    frame.volumeCounts = glm::uvec4(v.counts, std::uint32_t(v.probeCount()));
+  }
   clearColour = settings.background;
   fog = s.environment.fog().has_value();
   if (fog) {
@@ -332,7 +339,16 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
     VkDescriptorImageInfo volumeInfo{depthSampler, volumeBack->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkDescriptorImageInfo tableInfo{tableSampler, brdfTable.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkDescriptorImageInfo environmentInfo{s.sampler, s.environmentMap.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkWriteDescriptorSet writes[9]{};
+    // Without a volume the shader reads none; any storage buffer fills the slot.
+    const VkDescriptorBufferInfo irradianceInfo{irradianceVolume ? irradianceBuffer.handle() : drawOrderBuffer.handle(),
+                                                0, VK_WHOLE_SIZE};
+    VkWriteDescriptorSet writes[10]{};
+    writes[9] = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+    writes[9].dstSet = frameSet;
+    writes[9].dstBinding = 11;
+    writes[9].descriptorCount = 1;
+    writes[9].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[9].pBufferInfo = &irradianceInfo;
     for (std::uint32_t i = 0; i < 9; ++i) {
       writes[i] = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
       writes[i].dstSet = frameSet;
@@ -350,7 +366,7 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
         writes[i].pImageInfo = images[i - 5];
       }
     }
-    vkUpdateDescriptorSets(device.handle(), 9, writes, 0, nullptr);
+    vkUpdateDescriptorSets(device.handle(), 10, writes, 0, nullptr);
   }
 }
 

@@ -72,6 +72,7 @@ struct Renderer::Impl {
   struct ProbeKey {
     const SceneState* scene = nullptr;
     std::uint64_t version = 0;
+    std::uint64_t irradianceVersion = 0;  // the faces' diffuse light reads the irradiance volume
     bool operator==(const ProbeKey&) const = default;
   };
   std::optional<ProbeKey> probeHeld;
@@ -129,6 +130,11 @@ struct Renderer::Impl {
   std::vector<std::uint32_t> drawOrder;
   std::vector<GpuLight> gpuLights;
   glm::vec3 ambientFromEmitters{0.0f};  // emitterAmbient() of this frame
+  // setIrradianceVolume's volume and its upload: kCoefficients vec4 per
+  // probe, then the distance maps, two texels to a vec4 (probe_volume.glsl).
+  std::shared_ptr<const backend::IrradianceVolume> irradianceVolume;
+  Buffer irradianceBuffer;
+  std::uint64_t irradianceVersion = 0;  // bumped by every upload: what was drawn with the old one is stale
   std::vector<std::uint32_t> transparentSorted;
 
   explicit Impl(const Device& d);

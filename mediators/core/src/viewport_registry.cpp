@@ -60,6 +60,16 @@ void ViewportRegistry::requireDeclared(const Parameters& given, const std::vecto
   }
 }
 
+void ViewportRegistry::addBouncedLight(const std::string& backend, BouncedLightFactory factory) {
+  bouncedLights_[backend] = std::move(factory);
+}
+
+std::shared_ptr<BouncedLight> ViewportRegistry::bouncedLight(sg::ContainerId root, sg::ContainerId background,
+                                                             ContextPool& contexts) const {
+  if (bouncedLights_.empty()) return nullptr;
+  return bouncedLights_.begin()->second(root, background, contexts);
+}
+
 std::vector<std::string> ViewportRegistry::backends() const {
   std::vector<std::string> names;
   for (const auto& [name, e] : entries_) names.push_back(name);

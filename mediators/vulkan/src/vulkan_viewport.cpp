@@ -17,6 +17,13 @@ const BackendCapabilities& vulkanCapabilities() {
                                 flagParameter("reflectionProbe", true,
                                               "mirrors, glass and glossy surfaces reflect the scene, not only "
                                               "the environment"),
+                                choiceParameter("bouncedLight", "auto", {"auto", "probes", "ambient"},
+                                                "diffuse light that bounced: probes: an irradiance volume the "
+                                                "path tracer traces; ambient: one constant term; auto: probes "
+                                                "up to 256 MB of geometry"),
+                                integerParameter("probesPerFrame", 64, 1, 4096,
+                                                 "probes traced again per frame after the scene changed, in "
+                                                 "an interactive session (the viewer; elsewhere all at once)"),
                                 choiceParameter("visibility", "all", {"all", "guided"},
                                                 "all: draw every object; guided: draw what was visible last frame, "
                                                 "then what a depth-pyramid test finds newly visible")}),
@@ -24,8 +31,29 @@ const BackendCapabilities& vulkanCapabilities() {
   return capabilities;
 }
 
-VulkanViewport::VulkanViewport(ViewportSettings settings, std::shared_ptr<VulkanContext> context)
-    : Viewport(std::move(settings)), context_(std::move(context)) {}
+VulkanViewport::VulkanViewport(ViewportSettings settings, std::shared_ptr<VulkanContext> context,
+                               std::shared_ptr<BouncedLight> bouncedLight)
+    : Viewport(std::move(settings)), context_(std::move(context)), bouncedLight_(std::move(bouncedLight)) {}
+
+// The irradiance volume this frame reads, brought up to date; null for the
+// constant ambient term.
+std::shared_ptr<const backend::IrradianceVolume> VulkanViewport::bouncedLight(const sg::Replica& replica,
+                                                                              const RenderControl& control,
+                                                                              RenderStats& stats) {
+  constexpr std::uint64_t kAutoGeometryBytes = 256ull << 20;
+  const Parameters& p = settings_.parameters;
+  const ParameterTable& t = vulkanCapabilities().parameters;
+  const std::string mode = t.choice(p, "bouncedLight");
+  if (!bouncedLight_ || mode == "ambient" ||
+      (mode == "auto" && context_->adapter.scene().geometryBytesHeld() > kAutoGeometryBytes))
+    return nullptr;
+  // Only an interactive frame may show the probes half traced again.
+  const BouncedLightState state = bouncedLight_->update(
+      replica, control.interactive ? static_cast<std::uint32_t>(t.integer(p, "probesPerFrame")) : 0u);
+  stats.rays += state.rays;
+  staleProbes_ = state.staleProbes;
+  return state.volume;
+}
 
 vk::RenderSettings VulkanViewport::renderSettings() const {
   const Parameters& p = settings_.parameters;
@@ -69,6 +97,7 @@ RenderStats VulkanViewport::render(const sg::Replica& replica, const View& view,
   const vk::Camera camera = cameraOf(view);
   const vk::Region region = regionOf(view);
   vk::FrameBuffer fb(region.regionWidth(), region.regionHeight());
+  renderer_->setIrradianceVolume(bouncedLight(replica, control, stats));
   renderer_->render(context_->adapter.scene(), camera, region, fb);
 
   out = FrameBuffer(fb.width(), fb.height());

@@ -11,6 +11,9 @@
 #include "tsr/cluster/wall_layout.hpp"
 #include "tsr/med/viewport_registry.hpp"
 #include "tsr/med/vulkan/register.hpp"
+#if TSR_GUIDED_BOUNCED_LIGHT
+#include "tsr/med/embree/register.hpp"
+#endif
 #include "tsr/sg/replica.hpp"
 
 namespace tsr::cluster::test {
@@ -35,6 +38,11 @@ struct GuidedCluster {
     ClusterConfig c = configFor(mode, nodes, guided);
     for (auto& n : c.nodes) n.backend = "vulkan";
     med::registerVulkan(registry);
+#if TSR_GUIDED_BOUNCED_LIGHT
+    // Nodes light the rasterizer with the path tracer's probes, each tracing
+    // its own: the local draw traces them too, and must come out the same.
+    med::registerEmbree(registry);
+#endif
     window = std::make_unique<ClusterWindow>(std::move(c));
     window->setContent(s.imported.root, s.imported.background);
     if (eyeSeparation > 0.0f) window->setEyes(eyeSeparation, 5.0f);

@@ -82,6 +82,7 @@ struct Rig {
       s.parameters.set("msaa", std::int64_t{4});
       s.parameters.set("shadows", false);
       s.parameters.set("reflectionProbe", false);  // direct light only, as the path tracer's
+      s.parameters.set("bouncedLight", std::string("ambient"));
     }
     med::FrameBuffer image;
     registry.create(s, contexts)

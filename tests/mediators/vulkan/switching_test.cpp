@@ -37,6 +37,9 @@ struct Rig {
     s.background = imported.background;
     s.parameters.set("spp", std::int64_t{1});
     s.parameters.set("maxDepth", std::int64_t{2});
+    // The rasterizer's own light: its bounced light would convert the path
+    // tracer's scene before the path tracer's first use (bounced_light_test).
+    s.parameters.set("bouncedLight", std::string("ambient"));
     s.parameters = registry.parametersFor(backend, s.parameters);  // the path tracer's, not the rasterizer's
     return registry.create(s, pool);
   }

@@ -8,12 +8,14 @@
 #include "tsr/embree/sampling.hpp"
 
 #include <spdlog/spdlog.h>
+#include <glm/common.hpp>
 #include <glm/matrix.hpp>
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <string>
 
 namespace tsr::embree {
@@ -524,6 +526,20 @@ std::size_t Scene::instanceCount() const {
   std::size_t n = 0;
   for (const auto& i : state_->instances) n += i ? 1 : 0;
   return n;
+}
+
+bool Scene::bounds(glm::vec3& lo, glm::vec3& hi) const {
+  lo = glm::vec3(std::numeric_limits<float>::max());
+  hi = -lo;
+  for (RTCScene level : {state_->traversable, state_->movingTraversable}) {
+    if (!level) continue;
+    RTCBounds b;
+    rtcGetSceneBounds(level, &b);
+    if (!(b.lower_x <= b.upper_x && b.lower_y <= b.upper_y && b.lower_z <= b.upper_z)) continue;  // empty level
+    lo = glm::min(lo, glm::vec3(b.lower_x, b.lower_y, b.lower_z));
+    hi = glm::max(hi, glm::vec3(b.upper_x, b.upper_y, b.upper_z));
+  }
+  return lo.x <= hi.x;
 }
 
 std::size_t Scene::meshCount() const {

@@ -142,7 +142,7 @@ void Renderer::Impl::prefilterProbeLevels(const SceneState& s) {
 void Renderer::Impl::updateProbe(const SceneState& s, const RenderSettings& settings, GpuFrame& frame,
                                  RenderStats& stats) {
   ensureProbeImages();
-  const ProbeKey key{&s, s.version};
+  const ProbeKey key{&s, s.version, irradianceVersion};
   // Bounds of every instance: once per scene version, not every frame.
   if (probeWantedFor != key) {
     probeWanted = wantsProbe(s);

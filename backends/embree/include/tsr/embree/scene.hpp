@@ -74,6 +74,9 @@ class Scene {
   std::uint64_t uid() const;  // distinguishes scenes for the accumulation key
   std::size_t instanceCount() const;
   std::size_t meshCount() const;
+  // The box around every instance as last committed; false when the scene
+  // is empty.
+  bool bounds(glm::vec3& lo, glm::vec3& hi) const;
 
   // For benchmarks that trace raw rays; valid after commit(). Instances whose
   // transform or mesh was edited are in a second level the renderer traces

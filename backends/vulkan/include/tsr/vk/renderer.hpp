@@ -1,5 +1,6 @@
 #pragma once
 
+#include "tsr/backend/irradiance_volume.hpp"
 #include "tsr/vk/device.hpp"
 #include "tsr/vk/framebuffer.hpp"
 #include "tsr/vk/id_buffer.hpp"
@@ -63,6 +64,12 @@ class Renderer {
 
   const RenderSettings& settings() const { return settings_; }
   void setSettings(const RenderSettings& settings);  // throws on unsupported sample counts
+  // Light bounced off the scene, computed elsewhere (a path tracer's
+  // probes): diffuse surfaces read it instead of the constant ambient term
+  // of the environment's average and the emitters' interreflection. Null:
+  // that ambient term. Uploaded when the volume or its version changes;
+  // throws for a volume whose arrays do not match its probes.
+  void setIrradianceVolume(std::shared_ptr<const backend::IrradianceVolume> volume);
 
   // fb must be region-sized. Same scene and inputs give identical pixels.
   void render(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb);

@@ -37,6 +37,12 @@ struct RenderControl {
   bool resolve = true;
   // The animation frame shown; viewports with a lookahead() need it. -1: none.
   std::int64_t frame = -1;
+  // A frame of an interactive session that is drawn again and again (the
+  // viewer): a back-end may show work still in progress rather than wait
+  // for it (the rasterizer's bounced light traced again in turns after an
+  // edit). False: the frame is finished when render returns, and the same
+  // scene gives the same picture whatever came before (files, walls, eyes).
+  bool interactive = false;
 
   bool wants(const std::string& output) const {
     return !outputs || std::find(outputs->begin(), outputs->end(), output) != outputs->end();

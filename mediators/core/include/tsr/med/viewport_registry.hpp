@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "tsr/med/bounced_light.hpp"
 #include "tsr/med/context_pool.hpp"
 #include "tsr/med/viewport.hpp"
 
@@ -19,8 +20,14 @@ class UnknownBackend : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
+// Not copied or moved: factories may refer to the registry they are in
+// (the rasterizer's asks it for bounced light).
 class ViewportRegistry {
  public:
+  ViewportRegistry() = default;
+  ViewportRegistry(const ViewportRegistry&) = delete;
+  ViewportRegistry& operator=(const ViewportRegistry&) = delete;
+
   using Factory = std::function<std::unique_ptr<Viewport>(ViewportSettings, ContextPool&)>;
 
   // `capabilities` must outlive the registry (a back-end's static table).
@@ -39,6 +46,17 @@ class ViewportRegistry {
   void requireDeclared(const Parameters& given, const std::vector<std::string>& backends) const;
   bool has(const std::string& backend) const { return entries_.count(backend) != 0; }
 
+  // Bounced light (bounced_light.hpp) for viewports of back-ends that do
+  // not trace it: offered by a back-end that does, made once per root and
+  // background in `contexts`.
+  using BouncedLightFactory =
+      std::function<std::shared_ptr<BouncedLight>(sg::ContainerId root, sg::ContainerId background, ContextPool&)>;
+  void addBouncedLight(const std::string& backend, BouncedLightFactory factory);
+  // The bounced light of the first back-end (by name) that offers one; null
+  // when none does (a build without a ray tracer).
+  std::shared_ptr<BouncedLight> bouncedLight(sg::ContainerId root, sg::ContainerId background,
+                                             ContextPool& contexts) const;
+
  private:
   struct Entry {
     const BackendCapabilities* capabilities;
@@ -47,6 +65,7 @@ class ViewportRegistry {
   const Entry& entry(const std::string& backend) const;
 
   std::map<std::string, Entry> entries_;
+  std::map<std::string, BouncedLightFactory> bouncedLights_;
 };
 
 }  // namespace tsr::med
