@@ -48,22 +48,10 @@ glm::vec3 IrradianceVolume::irradianceAt(std::size_t probe, const glm::vec3& n) 
 }
 
 std::array<float, IrradianceVolume::kCoefficients> shBasis(const glm::vec3& d) {
-  return {0.282095f,
-          0.488603f * d.y,
-          0.488603f * d.z,
-          0.488603f * d.x,
-          1.092548f * d.x * d.y,
-          1.092548f * d.y * d.z,
-          0.315392f * (3.0f * d.z * d.z - 1.0f),
-          1.092548f * d.x * d.z,
-          0.546274f * (d.x * d.x - d.y * d.y)};
+  return {0.282095f, 0.488603f * d.y, 0.488603f * d.z, 0.488603f * d.x};
 }
 
-float shCosineFactor(std::uint32_t coefficient) {
-  if (coefficient == 0) return kPi;
-  if (coefficient < 4) return 2.0f * kPi / 3.0f;
-  return kPi / 4.0f;
-}
+float shCosineFactor(std::uint32_t coefficient) { return coefficient == 0 ? kPi : 2.0f * kPi / 3.0f; }
 
 glm::vec3 equalAreaSquareToSphere(const glm::vec2& p) {
   const float u = 2.0f * p.x - 1.0f, v = 2.0f * p.y - 1.0f;

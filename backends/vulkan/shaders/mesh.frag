@@ -235,9 +235,12 @@ void main() {
   // 14 scenes worse.)
   // With the irradiance volume, diffuse reflection reads its light instead:
   // bounced light and the environment, occluded, E / pi for Lambert.
+  // (Only the material classes that reflect diffusely read it: the others
+  // compile it out.)
   vec3 ambient = frame.ambient.rgb;
   vec3 irradiance;
-  if (hasVolume() && volumeIrradiance(worldPos, n, wo, irradiance)) ambient = irradiance / PI;
+  if ((type == METALLIC_ROUGHNESS || type == DIFFUSE) && hasVolume() && volumeIrradiance(worldPos, n, wo, irradiance))
+    ambient = irradiance / PI;
   vec3 mirrored = reflect(-wo, n);
   const vec3 direct = radiance;
   if (type == METALLIC_ROUGHNESS) {

@@ -5,7 +5,7 @@
 // saw in its direction (Majercik et al. 2019), so light does not leak
 // through walls. Needs common.glsl and brdf.glsl (PI).
 
-const uint VOLUME_COEFFICIENTS = 9u;   // IrradianceVolume::kCoefficients
+const uint VOLUME_COEFFICIENTS = 4u;   // IrradianceVolume::kCoefficients
 const uint VOLUME_DISTANCE_SIDE = 8u;  // IrradianceVolume::kDistanceSide
 
 bool hasVolume() { return frame.volumeMin.w > 0.5; }
@@ -29,33 +29,21 @@ vec2 equalAreaSphereToSquare(vec3 d) {
 }
 
 // Mean distance and mean squared distance a probe saw towards dir (unit),
-// bilinear between its map's texels.
+// from the texel dir falls in (bilinear filtering took the frame from 1.44
+// to 1.59 times the ambient term's on lavapipe; it smooths the arcs where
+// the test's verdict changes from texel to texel).
 vec2 volumeDistance(uint probe, vec3 dir) {
-  vec2 st = equalAreaSphereToSquare(dir) * float(VOLUME_DISTANCE_SIDE) - 0.5;
-  ivec2 i0 = ivec2(floor(st));
-  vec2 f = st - vec2(i0);
-  uint base = frame.volumeCounts.w * VOLUME_COEFFICIENTS;
-  vec2 sum = vec2(0.0);
-  for (int k = 0; k < 4; ++k) {
-    ivec2 o = ivec2(k & 1, k >> 1);
-    ivec2 t = clamp(i0 + o, ivec2(0), ivec2(int(VOLUME_DISTANCE_SIDE) - 1));
-    float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
-    uint texel = probe * VOLUME_DISTANCE_SIDE * VOLUME_DISTANCE_SIDE + uint(t.y) * VOLUME_DISTANCE_SIDE + uint(t.x);
-    vec4 pair = volumeData[base + texel / 2u];
-    sum += w * ((texel & 1u) == 0u ? pair.xy : pair.zw);
-  }
-  return sum;
+  uvec2 t = min(uvec2(equalAreaSphereToSquare(dir) * float(VOLUME_DISTANCE_SIDE)), uvec2(VOLUME_DISTANCE_SIDE - 1u));
+  uint texel = probe * VOLUME_DISTANCE_SIDE * VOLUME_DISTANCE_SIDE + t.y * VOLUME_DISTANCE_SIDE + t.x;
+  vec4 pair = volumeData[frame.volumeCounts.w * VOLUME_COEFFICIENTS + texel / 2u];
+  return (texel & 1u) == 0u ? pair.xy : pair.zw;
 }
 
 // A probe's irradiance on a surface facing n (backend::IrradianceVolume::irradianceAt).
 vec3 volumeProbeIrradiance(uint probe, vec3 n) {
   uint b = probe * VOLUME_COEFFICIENTS;
-  vec3 e = volumeData[b].rgb * 0.282095 +
-           0.488603 * (volumeData[b + 1u].rgb * n.y + volumeData[b + 2u].rgb * n.z + volumeData[b + 3u].rgb * n.x) +
-           1.092548 * (volumeData[b + 4u].rgb * n.x * n.y + volumeData[b + 5u].rgb * n.y * n.z +
-                       volumeData[b + 7u].rgb * n.x * n.z) +
-           0.315392 * volumeData[b + 6u].rgb * (3.0 * n.z * n.z - 1.0) +
-           0.546274 * volumeData[b + 8u].rgb * (n.x * n.x - n.y * n.y);
+  vec3 e = volumeData[b].rgb * 0.282095 + 0.488603 * (volumeData[b + 1u].rgb * n.y + volumeData[b + 2u].rgb * n.z +
+                                                      volumeData[b + 3u].rgb * n.x);
   return max(e, vec3(0.0));
 }
 

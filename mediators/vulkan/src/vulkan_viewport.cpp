@@ -2,6 +2,8 @@
 
 #include <chrono>
 
+#include <spdlog/spdlog.h>
+
 #include "translation.hpp"
 #include "tsr/med/view_translation.hpp"
 
@@ -21,7 +23,7 @@ const BackendCapabilities& vulkanCapabilities() {
                                                 "diffuse light that bounced: probes: an irradiance volume the "
                                                 "path tracer traces; ambient: one constant term; auto: probes "
                                                 "up to 256 MB of geometry"),
-                                integerParameter("probesPerFrame", 64, 1, 4096,
+                                integerParameter("probesPerFrame", 128, 1, 4096,
                                                  "probes traced again per frame after the scene changed, in "
                                                  "an interactive session (the viewer; elsewhere all at once)"),
                                 choiceParameter("visibility", "all", {"all", "guided"},
@@ -44,6 +46,11 @@ std::shared_ptr<const backend::IrradianceVolume> VulkanViewport::bouncedLight(co
   const Parameters& p = settings_.parameters;
   const ParameterTable& t = vulkanCapabilities().parameters;
   const std::string mode = t.choice(p, "bouncedLight");
+  if (!bouncedLight_ && mode == "probes" && !warnedNoBouncedLight_) {
+    spdlog::warn("vulkan: bouncedLight=probes, but no back-end of this build traces bounced light (the path "
+                 "tracer is not built in): the ambient term lights diffuse surfaces");
+    warnedNoBouncedLight_ = true;
+  }
   if (!bouncedLight_ || mode == "ambient" ||
       (mode == "auto" && context_->adapter.scene().geometryBytesHeld() > kAutoGeometryBytes))
     return nullptr;

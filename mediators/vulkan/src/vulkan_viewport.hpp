@@ -48,6 +48,7 @@ class VulkanViewport final : public Viewport {
   std::shared_ptr<VulkanContext> context_;
   std::shared_ptr<BouncedLight> bouncedLight_;
   std::size_t staleProbes_ = 0;
+  bool warnedNoBouncedLight_ = false;
   std::unique_ptr<vk::Renderer> renderer_;  // made on first render, like the scene
 };
 

@@ -64,7 +64,7 @@ for scene in "${scenes[@]}"; do
   fi
 done
 if [[ -n "$sheet" ]]; then
-  montage -pointsize 10 "${labels[@]}" -tile 6x -geometry 256x256+3+3 -background white -depth 8 "$sheet"
+  montage -pointsize 9 "${labels[@]}" -tile 6x -geometry +2+2 -background white -depth 8 "$sheet"
   echo "wrote $sheet"
 fi
 echo "images in $work"

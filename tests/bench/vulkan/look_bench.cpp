@@ -44,7 +44,13 @@ void BM_VulkanFrame(benchmark::State& state, const char* name, const char* mode)
   const tsr::med::View view = scene.view(replica.scene(), 1280, 720);
   tsr::med::FrameBuffer image;
   viewport->render(replica, view, image);  // converts, and traces every probe
-  for (auto _ : state) viewport->render(replica, view, image);
+  auto& vulkan = dynamic_cast<tsr::med::vulkan_mediator::VulkanViewport&>(*viewport);
+  double redrawn = 0;  // reflection probes drawn again: none once the scene rests
+  for (auto _ : state) {
+    viewport->render(replica, view, image);
+    redrawn += vulkan.lastFrame().probes;
+  }
+  state.counters["reflectionProbes"] = benchmark::Counter(redrawn, benchmark::Counter::kAvgIterations);
 }
 
 #if TSR_LOOK_BENCH_EMBREE

@@ -16,11 +16,12 @@ namespace tsr::backend {
 // that traces rays (the path tracer) for one that cannot (the rasterizer),
 // after Majercik et al. 2019, "Dynamic Diffuse Global Illumination with
 // Ray-Traced Irradiance Fields". Per probe:
-//  - the irradiance arriving there as order-2 spherical harmonics, already
+//  - the irradiance arriving there as order-1 spherical harmonics, already
 //    convolved with the clamped cosine: E(n) = sum_i c_i Y_i(n) (W/m^2 per
-//    channel). It holds everything a rasterizer does not light directly:
-//    light bounced off surfaces and the environment, occluded; emitters seen
-//    straight from the probe are left out (the rasterizer lights with them);
+//    channel; order 2 looked a little better and cost the rasterizer's
+//    frame half as much again as order 1 on lavapipe, docs/raster-look.md). It holds everything a rasterizer does not
+//    light directly: light bounced off surfaces and the environment, occluded; emitters seen straight from the probe
+//    are left out (the rasterizer lights with them);
 //  - per texel of an equal-area octahedral map of directions, the mean
 //    distance to the first surface and its mean square, for Chebyshev's
 //    visibility test (light does not leak through walls);
@@ -28,7 +29,7 @@ namespace tsr::backend {
 // Probes stand at the centres of the cells of the box [min, max] divided
 // counts times per axis, x fastest.
 struct IrradianceVolume {
-  static constexpr std::uint32_t kCoefficients = 9;
+  static constexpr std::uint32_t kCoefficients = 4;
   static constexpr std::uint32_t kDistanceSide = 8;  // texels per side of a probe's distance map
   static constexpr std::uint32_t kDistanceTexels = kDistanceSide * kDistanceSide;
 
@@ -57,12 +58,12 @@ struct IrradianceVolume {
   glm::vec3 irradianceAt(std::size_t probe, const glm::vec3& n) const;
 };
 
-// The order-2 real spherical harmonics at a unit direction (Sloan's
-// "Stupid spherical harmonics tricks" ordering: l = 0; l = 1, m = -1..1;
-// l = 2, m = -2..2).
+// The real spherical harmonics of orders 0 and 1 at a unit direction
+// (Sloan's "Stupid spherical harmonics tricks" ordering: l = 0; l = 1,
+// m = -1..1).
 std::array<float, IrradianceVolume::kCoefficients> shBasis(const glm::vec3& d);
 // The clamped cosine's convolution factor per coefficient (Ramamoorthi and
-// Hanrahan 2001): pi for l = 0, 2 pi / 3 for l = 1, pi / 4 for l = 2.
+// Hanrahan 2001): pi for l = 0, 2 pi / 3 for l = 1.
 float shCosineFactor(std::uint32_t coefficient);
 
 // Clarberg's equal-area mapping between the unit square and the sphere
