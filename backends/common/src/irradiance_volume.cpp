@@ -28,8 +28,8 @@ IrradianceVolume IrradianceVolume::over(const glm::vec3& lo, const glm::vec3& hi
     if (v.probeCount() <= maxProbes) break;
     cell *= 1.05f;
   }
-  v.irradiance.assign(v.probeCount() * kCoefficients, glm::vec4(0.0f));
-  for (std::size_t p = 0; p < v.probeCount(); ++p) v.irradiance[p * kCoefficients].w = 1.0f;
+  v.irradiance.assign(v.probeCount() * kFaces, glm::vec4(0.0f));
+  for (std::size_t p = 0; p < v.probeCount(); ++p) v.irradiance[p * kFaces].w = 1.0f;
   v.distance.assign(v.probeCount() * kDistanceTexels, glm::vec2(0.0f));
   return v;
 }
@@ -41,17 +41,16 @@ glm::vec3 IrradianceVolume::probePosition(std::size_t probe) const {
 }
 
 glm::vec3 IrradianceVolume::irradianceAt(std::size_t probe, const glm::vec3& n) const {
-  const auto y = shBasis(n);
-  glm::vec3 e(0.0f);
-  for (std::uint32_t i = 0; i < kCoefficients; ++i) e += glm::vec3(irradiance[probe * kCoefficients + i]) * y[i];
-  return glm::max(e, glm::vec3(0.0f));
+  const glm::vec4* face = &irradiance[probe * kFaces];
+  const glm::vec3 n2 = n * n;
+  return n2.x * glm::vec3(face[n.x < 0.0f ? 1 : 0]) + n2.y * glm::vec3(face[n.y < 0.0f ? 3 : 2]) +
+         n2.z * glm::vec3(face[n.z < 0.0f ? 5 : 4]);
 }
 
-std::array<float, IrradianceVolume::kCoefficients> shBasis(const glm::vec3& d) {
-  return {0.282095f, 0.488603f * d.y, 0.488603f * d.z, 0.488603f * d.x};
+std::array<float, IrradianceVolume::kFaces> faceCosines(const glm::vec3& d) {
+  return {std::max(d.x, 0.0f),  std::max(-d.x, 0.0f), std::max(d.y, 0.0f),
+          std::max(-d.y, 0.0f), std::max(d.z, 0.0f),  std::max(-d.z, 0.0f)};
 }
-
-float shCosineFactor(std::uint32_t coefficient) { return coefficient == 0 ? kPi : 2.0f * kPi / 3.0f; }
 
 glm::vec3 equalAreaSquareToSphere(const glm::vec2& p) {
   const float u = 2.0f * p.x - 1.0f, v = 2.0f * p.y - 1.0f;

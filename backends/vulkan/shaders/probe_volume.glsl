@@ -5,7 +5,7 @@
 // saw in its direction (Majercik et al. 2019), so light does not leak
 // through walls. Needs common.glsl and brdf.glsl (PI).
 
-const uint VOLUME_COEFFICIENTS = 4u;   // IrradianceVolume::kCoefficients
+const uint VOLUME_FACES = 6u;          // IrradianceVolume::kFaces
 const uint VOLUME_DISTANCE_SIDE = 8u;  // IrradianceVolume::kDistanceSide
 
 bool hasVolume() { return frame.volumeMin.w > 0.5; }
@@ -35,16 +35,17 @@ vec2 equalAreaSphereToSquare(vec3 d) {
 vec2 volumeDistance(uint probe, vec3 dir) {
   uvec2 t = min(uvec2(equalAreaSphereToSquare(dir) * float(VOLUME_DISTANCE_SIDE)), uvec2(VOLUME_DISTANCE_SIDE - 1u));
   uint texel = probe * VOLUME_DISTANCE_SIDE * VOLUME_DISTANCE_SIDE + t.y * VOLUME_DISTANCE_SIDE + t.x;
-  vec4 pair = volumeData[frame.volumeCounts.w * VOLUME_COEFFICIENTS + texel / 2u];
+  vec4 pair = volumeData[frame.volumeCounts.w * VOLUME_FACES + texel / 2u];
   return (texel & 1u) == 0u ? pair.xy : pair.zw;
 }
 
-// A probe's irradiance on a surface facing n (backend::IrradianceVolume::irradianceAt).
+// A probe's irradiance on a surface facing n (backend::IrradianceVolume::irradianceAt):
+// the three faces n points to, by the squares of n's components.
 vec3 volumeProbeIrradiance(uint probe, vec3 n) {
-  uint b = probe * VOLUME_COEFFICIENTS;
-  vec3 e = volumeData[b].rgb * 0.282095 + 0.488603 * (volumeData[b + 1u].rgb * n.y + volumeData[b + 2u].rgb * n.z +
-                                                      volumeData[b + 3u].rgb * n.x);
-  return max(e, vec3(0.0));
+  uint b = probe * VOLUME_FACES;
+  vec3 n2 = n * n;
+  return n2.x * volumeData[b + (n.x < 0.0 ? 1u : 0u)].rgb + n2.y * volumeData[b + (n.y < 0.0 ? 3u : 2u)].rgb +
+         n2.z * volumeData[b + (n.z < 0.0 ? 5u : 4u)].rgb;
 }
 
 // Irradiance at p on a surface facing n, seen from wo; false where no probe
@@ -67,7 +68,7 @@ bool volumeIrradiance(vec3 p, vec3 n, vec3 wo, out vec3 irradiance) {
     ivec3 o = ivec3(k & 1, (k >> 1) & 1, k >> 2);
     ivec3 c = min(base + o, last);
     uint probe = uint(c.x) + counts.x * (uint(c.y) + counts.y * uint(c.z));
-    if (volumeData[probe * VOLUME_COEFFICIENTS].w <= 0.0) continue;  // inside geometry
+    if (volumeData[probe * VOLUME_FACES].w <= 0.0) continue;  // inside geometry
     vec3 at = lo + (vec3(c) + 0.5) * cell;
     // Probes behind the surface count less (not nothing: a thin room may have only those).
     float facing = 0.5 * (dot(normalize(at - p), n) + 1.0);

@@ -130,7 +130,7 @@ struct Renderer::Impl {
   std::vector<std::uint32_t> drawOrder;
   std::vector<GpuLight> gpuLights;
   glm::vec3 ambientFromEmitters{0.0f};  // emitterAmbient() of this frame
-  // setIrradianceVolume's volume and its upload: kCoefficients vec4 per
+  // setIrradianceVolume's volume and its upload: kFaces vec4 per
   // probe, then the distance maps, two texels to a vec4 (probe_volume.glsl).
   std::shared_ptr<const backend::IrradianceVolume> irradianceVolume;
   Buffer irradianceBuffer;

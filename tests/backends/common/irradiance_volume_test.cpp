@@ -34,22 +34,32 @@ TEST(IrradianceVolume, EqualAreaTexelsSeeEqualShares) {
 }
 
 TEST(IrradianceVolume, ConstantRadianceGivesPiTimesItOnEveryNormal) {
-  // Projecting a constant L by the basis and convolving with the clamped
-  // cosine gives E(n) = pi L whatever n faces.
+  // Each face gathers pi L from a constant L, and a normal's squared
+  // components add up to one: E(n) = pi L whatever n faces.
   IrradianceVolume v = IrradianceVolume::over({0, 0, 0}, {1, 1, 1}, 8);
   ASSERT_EQ(v.probeCount(), 8u);
   const float radiance = 0.5f;
   constexpr int n = 128;
-  std::array<float, IrradianceVolume::kCoefficients> sums{};
+  std::array<float, IrradianceVolume::kFaces> sums{};
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
-      const auto y = shBasis(equalAreaSquareToSphere({(float(i) + 0.5f) / n, (float(j) + 0.5f) / n}));
-      for (std::uint32_t c = 0; c < IrradianceVolume::kCoefficients; ++c) sums[c] += radiance * y[c];
+      const auto c = faceCosines(equalAreaSquareToSphere({(float(i) + 0.5f) / n, (float(j) + 0.5f) / n}));
+      for (std::uint32_t f = 0; f < IrradianceVolume::kFaces; ++f) sums[f] += radiance * c[f];
     }
-  for (std::uint32_t c = 0; c < IrradianceVolume::kCoefficients; ++c)
-    v.irradiance[c] = glm::vec4(glm::vec3(sums[c] * 4.0f * 3.14159265f / (n * n) * shCosineFactor(c)), c == 0);
+  for (std::uint32_t f = 0; f < IrradianceVolume::kFaces; ++f)
+    v.irradiance[f] = glm::vec4(glm::vec3(sums[f] * 4.0f * 3.14159265f / (n * n)), f == 0);
   for (const glm::vec3 normal : {glm::vec3(0, 0, 1), glm::vec3(0, -1, 0), glm::normalize(glm::vec3(1, 2, -3))})
-    EXPECT_NEAR(v.irradianceAt(0, normal).x, 3.14159265f * radiance, 1e-3f);
+    EXPECT_NEAR(v.irradianceAt(0, normal).x, 3.14159265f * radiance, 2e-3f);
+}
+
+TEST(IrradianceVolume, LightFromOneSideIsReadInFullFacingIt) {
+  // A lit floor below a ceiling: what faces it gets all of it, what faces
+  // away nothing (order-1 harmonics read 3/4 and 1/4).
+  IrradianceVolume v = IrradianceVolume::over({0, 0, 0}, {1, 1, 1}, 8);
+  v.irradiance[3] = glm::vec4(2.0f);  // -y: light arriving from below
+  EXPECT_FLOAT_EQ(v.irradianceAt(0, {0, -1, 0}).x, 2.0f);
+  EXPECT_FLOAT_EQ(v.irradianceAt(0, {0, 1, 0}).x, 0.0f);
+  EXPECT_FLOAT_EQ(v.irradianceAt(0, glm::normalize(glm::vec3(1, -1, 0))).x, 1.0f);
 }
 
 TEST(IrradianceVolume, GridKeepsWithinItsProbesAndOffFlatPlanes) {

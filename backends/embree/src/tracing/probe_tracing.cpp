@@ -49,8 +49,8 @@ void traceProbe(Tracer& tracer, const RenderSettings& settings, const Irradiance
       if (s.hit) radiance -= s.emitted;  // emitters seen straight: the reader's lights
       if (!finite(radiance)) continue;
       radiance = glm::max(radiance, glm::vec3(0.0f));
-      const auto y = backend::shBasis(dir);
-      for (std::uint32_t i = 0; i < IrradianceVolume::kCoefficients; ++i) sums.sh[i] += radiance * y[i];
+      const auto cosines = backend::faceCosines(dir);
+      for (std::uint32_t i = 0; i < IrradianceVolume::kFaces; ++i) sums.faces[i] += radiance * cosines[i];
     }
   }
   sums.paths += perTexel * IrradianceVolume::kDistanceTexels;
@@ -62,9 +62,9 @@ void writeProbe(const ProbeSums& sums, std::size_t probe, IrradianceVolume& volu
   // Uniform directions: each path stands for 4 pi / paths of solid angle.
   const float perPath = 4.0f * kPi / float(sums.paths);
   const float weight = sums.backFaces * 4 > sums.paths ? 0.0f : 1.0f;
-  for (std::uint32_t i = 0; i < IrradianceVolume::kCoefficients; ++i)
-    volume.irradiance[probe * IrradianceVolume::kCoefficients + i] =
-        glm::vec4(sums.sh[i] * (perPath * backend::shCosineFactor(i)), i == 0 ? weight : 0.0f);
+  for (std::uint32_t i = 0; i < IrradianceVolume::kFaces; ++i)
+    volume.irradiance[probe * IrradianceVolume::kFaces + i] =
+        glm::vec4(sums.faces[i] * perPath, i == 0 ? weight : 0.0f);
   const float perTexel = float(sums.paths / IrradianceVolume::kDistanceTexels);
   for (std::uint32_t t = 0; t < IrradianceVolume::kDistanceTexels; ++t)
     volume.distance[probe * IrradianceVolume::kDistanceTexels + t] = sums.distance[t] / perTexel;
@@ -76,7 +76,7 @@ std::uint64_t traceProbes(Scene& scene, const RenderSettings& settings, Irradian
                           std::vector<ProbeSums>& sums, std::size_t first, std::size_t count, std::uint32_t paths) {
   const std::size_t probes = volume.probeCount();
   if (probes == 0 || count == 0) return 0;
-  if (volume.irradiance.size() != probes * IrradianceVolume::kCoefficients ||
+  if (volume.irradiance.size() != probes * IrradianceVolume::kFaces ||
       volume.distance.size() != probes * IrradianceVolume::kDistanceTexels || sums.size() != probes)
     throw Error("irradiance volume's arrays or sums do not match its " + std::to_string(probes) + " probes");
   count = std::min(count, probes);

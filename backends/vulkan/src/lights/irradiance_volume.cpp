@@ -15,11 +15,11 @@ void Renderer::setIrradianceVolume(std::shared_ptr<const backend::IrradianceVolu
   }
   if (volume == r.irradianceVolume) return;  // held volumes are immutable
   const std::size_t probes = volume->probeCount();
-  if (volume->irradiance.size() != probes * IrradianceVolume::kCoefficients ||
+  if (volume->irradiance.size() != probes * IrradianceVolume::kFaces ||
       volume->distance.size() != probes * IrradianceVolume::kDistanceTexels)
     throw Error("irradiance volume of " + std::to_string(probes) + " probes holds " +
-                std::to_string(volume->irradiance.size()) + " coefficients and " +
-                std::to_string(volume->distance.size()) + " distance texels");
+                std::to_string(volume->irradiance.size()) + " faces and " + std::to_string(volume->distance.size()) +
+                " distance texels");
   const VkDeviceSize irradianceBytes = volume->irradiance.size() * sizeof(glm::vec4);
   const VkDeviceSize bytes = irradianceBytes + volume->distance.size() * sizeof(glm::vec2);
   ensureHost(r.device, r.irradianceBuffer, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);

@@ -16,12 +16,16 @@ namespace tsr::backend {
 // that traces rays (the path tracer) for one that cannot (the rasterizer),
 // after Majercik et al. 2019, "Dynamic Diffuse Global Illumination with
 // Ray-Traced Irradiance Fields". Per probe:
-//  - the irradiance arriving there as order-1 spherical harmonics, already
-//    convolved with the clamped cosine: E(n) = sum_i c_i Y_i(n) (W/m^2 per
-//    channel; order 2 looked a little better and cost the rasterizer's
-//    frame half as much again as order 1 on lavapipe, docs/raster-look.md). It holds everything a rasterizer does not
-//    light directly: light bounced off surfaces and the environment, occluded; emitters seen straight from the probe
-//    are left out (the rasterizer lights with them);
+//  - the irradiance on surfaces facing each of the six axis directions
+//    (+x, -x, +y, -y, +z, -z: an "ambient cube"), W/m^2 per channel; a
+//    surface facing n reads E(n) = sum_i n_i^2 E(the face n_i points to).
+//    It holds everything a rasterizer does not light directly: light
+//    bounced off surfaces and the environment, occluded; emitters seen
+//    straight from the probe are left out (the rasterizer lights with
+//    them). (Order-1 spherical harmonics, tried first, read a quarter too
+//    little where light comes from one side, as a lit floor lights a
+//    ceiling; order 2 cost the rasterizer's frame too much on lavapipe;
+//    docs/raster-look.md.)
 //  - per texel of an equal-area octahedral map of directions, the mean
 //    distance to the first surface and its mean square, for Chebyshev's
 //    visibility test (light does not leak through walls);
@@ -29,13 +33,13 @@ namespace tsr::backend {
 // Probes stand at the centres of the cells of the box [min, max] divided
 // counts times per axis, x fastest.
 struct IrradianceVolume {
-  static constexpr std::uint32_t kCoefficients = 4;
+  static constexpr std::uint32_t kFaces = 6;
   static constexpr std::uint32_t kDistanceSide = 8;  // texels per side of a probe's distance map
   static constexpr std::uint32_t kDistanceTexels = kDistanceSide * kDistanceSide;
 
   glm::vec3 min{0.0f}, max{0.0f};
   glm::uvec3 counts{0u};
-  // kCoefficients per probe; rgb, and w of a probe's first one is its weight.
+  // kFaces per probe; rgb, and w of a probe's first face is its weight.
   std::vector<glm::vec4> irradiance;
   // kDistanceTexels per probe: mean distance and mean squared distance.
   std::vector<glm::vec2> distance;
@@ -53,18 +57,15 @@ struct IrradianceVolume {
   bool empty() const { return probeCount() == 0; }
   glm::vec3 cellSize() const { return (max - min) / glm::vec3(glm::max(counts, glm::uvec3(1u))); }
   glm::vec3 probePosition(std::size_t probe) const;
-  float weight(std::size_t probe) const { return irradiance[probe * kCoefficients].w; }
+  float weight(std::size_t probe) const { return irradiance[probe * kFaces].w; }
   // The irradiance probe `probe` holds for surfaces facing n (unit).
   glm::vec3 irradianceAt(std::size_t probe, const glm::vec3& n) const;
 };
 
-// The real spherical harmonics of orders 0 and 1 at a unit direction
-// (Sloan's "Stupid spherical harmonics tricks" ordering: l = 0; l = 1,
-// m = -1..1).
-std::array<float, IrradianceVolume::kCoefficients> shBasis(const glm::vec3& d);
-// The clamped cosine's convolution factor per coefficient (Ramamoorthi and
-// Hanrahan 2001): pi for l = 0, 2 pi / 3 for l = 1.
-float shCosineFactor(std::uint32_t coefficient);
+// The cosine between d and each face's direction (faces in the volume's
+// order), 0 for faces d is behind: how much a ray from d adds to each
+// face's irradiance.
+std::array<float, IrradianceVolume::kFaces> faceCosines(const glm::vec3& d);
 
 // Clarberg's equal-area mapping between the unit square and the sphere
 // (as pbrt-v4 has it): uniform points of the square are uniform

@@ -24,7 +24,7 @@ namespace tsr::embree {
 //
 // What a probe's paths added up to so far (traceProbes continues them).
 struct ProbeSums {
-  std::array<glm::vec3, backend::IrradianceVolume::kCoefficients> sh{};  // radiance x basis
+  std::array<glm::vec3, backend::IrradianceVolume::kFaces> faces{};  // radiance x cosine to each face
   std::array<glm::vec2, backend::IrradianceVolume::kDistanceTexels> distance{};
   std::uint32_t backFaces = 0;
   std::uint32_t paths = 0;
