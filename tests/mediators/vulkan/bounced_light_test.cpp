@@ -148,3 +148,24 @@ TEST(BouncedLight, ThePathTracersSceneIsConvertedOnceForItsViewportsAndTheRaster
   EXPECT_EQ(traced->synchronize(follower.replica), med::SceneAdapter::Update::None)
       << "the rasterizer's bounced light converted the scene the path tracer's viewport shares";
 }
+
+TEST(BouncedLight, ABuildWithoutThePathTracerKeepsTheAmbientTerm) {
+  // Only the rasterizer registered: asking for probes warns and lights as
+  // the ambient term does, pixel for pixel.
+  test::ViewportRig rig("vulkan", med::registerVulkan, "builtin:cornell", kSize);
+  rig.source.commit();
+  const auto render = [&](const std::string& mode) {
+    test::Follower f;
+    f.replica.apply(rig.source.snapshot());
+    med::ViewportSettings s = rig.settings();
+    s.parameters = withBouncedLight(mode);
+    f.viewport = rig.registry.create(s, f.contexts);
+    f.viewport->render(f.replica, rig.view(f.replica.scene()), f.image);
+    return f.image;
+  };
+  const med::FrameBuffer asked = render("probes");
+  EXPECT_EQ(test::differingPixels(asked, render("ambient")), 0u);
+  CornellRig both;
+  EXPECT_GT(test::differingPixels(asked, both.render("vulkan", withBouncedLight("probes"))), 0u)
+      << "with the path tracer registered, probes change the picture";
+}
