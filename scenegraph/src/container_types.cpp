@@ -10,10 +10,11 @@
 namespace tsr::sg {
 
 std::optional<std::string> Geometry::invalidReason() const {
-  if (indices_.size() % 3 != 0) return "index count " + std::to_string(indices_.size()) + " is not a multiple of 3";
-  for (std::size_t i = 0; i < indices_.size(); ++i)
-    if (indices_[i] >= positions_.size())
-      return "index " + std::to_string(indices_[i]) + " at " + std::to_string(i) + " exceeds " +
+  const auto& indices = indices_.get();
+  if (indices.size() % 3 != 0) return "index count " + std::to_string(indices.size()) + " is not a multiple of 3";
+  for (std::size_t i = 0; i < indices.size(); ++i)
+    if (indices[i] >= positions_.size())
+      return "index " + std::to_string(indices[i]) + " at " + std::to_string(i) + " exceeds " +
              std::to_string(positions_.size()) + " vertices";
   auto attribute = [&](std::size_t n, const char* what) -> std::optional<std::string> {
     if (n != 0 && n != positions_.size())

@@ -74,10 +74,21 @@ V sampleValue(Scene& scene, TypeSet allowed) {
     return {0, 1, 2};
   } else if constexpr (std::is_same_v<V, std::vector<std::uint8_t>>) {
     return {1, 2, 3};
+  } else if constexpr (requires { typename V::Elements; }) {  // a SharedArray
+    return V(sampleValue<typename V::Elements>(scene, allowed));
   } else {
     using E = typename V::value_type;
     return V(3, sampleValue<E>(scene, allowed));
   }
+}
+
+// What a setter takes for a member's value: a shared array's elements.
+template <class V>
+const auto& setterArgument(const V& v) {
+  if constexpr (requires { typename V::Elements; })
+    return v.get();
+  else
+    return v;
 }
 
 std::vector<std::uint8_t> fieldBytes(const Container& c, FieldIndex f) {
@@ -156,7 +167,7 @@ TEST(FieldDeclarations, EverySetterReachesAReplicaThroughTheWire) {
                 shipFrame(source, replica, c.id());
                 using V = std::decay_t<decltype(c.*spec.member)>;
                 V value = sampleValue<V>(source, spec.allowedTargets);
-                std::invoke(spec.setter, c, value);
+                std::invoke(spec.setter, c, setterArgument(value));
                 EXPECT_EQ(c.*spec.member, value) << what << ": the setter did not store the value";
                 ChangeEntry entry = shipFrame(source, replica, c.id());
                 EXPECT_TRUE(entry.changed(spec.number)) << what << ": the setter did not mark its field";

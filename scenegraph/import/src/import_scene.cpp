@@ -91,7 +91,7 @@ ImportResult parsedAndBuilt(Scene& scene, const std::string& source, Parse parse
     throw ImportError(source, e.what());
   }
   // Everything is checked: from here on only containers are created.
-  ImportResult result = buildScene(scene, data);
+  ImportResult result = buildScene(scene, std::move(data));
   spdlog::debug("imported {}: {} nodes, {} geometries, {} triangles, {} warnings", source, result.counts.nodes,
                 result.counts.geometries, result.counts.uniqueTriangles, result.warnings.size());
   return result;

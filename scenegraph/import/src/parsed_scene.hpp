@@ -155,6 +155,7 @@ struct Scene {
 namespace tsr::sg {
 class Scene;
 struct ImportResult;
-// Creates the containers of a checked parsed scene.
-ImportResult buildScene(Scene& scene, const parsed::Scene& data);
+// Creates the containers of a checked parsed scene, taking its vertex
+// arrays and pixels (so the bulk is held once while it is built).
+ImportResult buildScene(Scene& scene, parsed::Scene&& data);
 }  // namespace tsr::sg

@@ -11,7 +11,7 @@ namespace {
 // reach (unused materials, images, nodes outside the scene) is created.
 class Builder {
  public:
-  Builder(Scene& scene, const parsed::Scene& data, ImportResult& result) : scene_(scene), data_(data), result_(result) {
+  Builder(Scene& scene, parsed::Scene& data, ImportResult& result) : scene_(scene), data_(data), result_(result) {
     images_.assign(data.images.size(), kNoContainer);
     materials_.assign(data.materials.size(), kNoContainer);
     volumes_.assign(data.materials.size(), kNoContainer);
@@ -58,13 +58,14 @@ class Builder {
   ContainerId geometry(int index) {
     ContainerId& id = geometries_[static_cast<std::size_t>(index)];
     if (id != kNoContainer) return id;
-    const parsed::Primitive& p = data_.primitives[static_cast<std::size_t>(index)];
+    // Each primitive becomes one geometry (once, above), which takes its arrays.
+    parsed::Primitive& p = data_.primitives[static_cast<std::size_t>(index)];
     Geometry& g = scene_.create<Geometry>();
-    g.setPositions(p.positions);
-    g.setNormals(p.normals);
-    g.setUvs(p.uvs);
-    g.setColors(p.colors);
-    g.setIndices(p.indices);
+    g.setPositions(std::move(p.positions));
+    g.setNormals(std::move(p.normals));
+    g.setUvs(std::move(p.uvs));
+    g.setColors(std::move(p.colors));
+    g.setIndices(std::move(p.indices));
     g.setMaterial(material(p.material));
     if (p.material != parsed::kNone) {
       const auto m = static_cast<std::size_t>(p.material);
@@ -135,9 +136,9 @@ class Builder {
   ContainerId image(int index) {
     ContainerId& id = images_[static_cast<std::size_t>(index)];
     if (id != kNoContainer) return id;
-    const parsed::Image& src = data_.images[static_cast<std::size_t>(index)];
+    parsed::Image& src = data_.images[static_cast<std::size_t>(index)];
     Image& img = scene_.create<Image>(src.name);
-    img.setPixels(src.width, src.height, src.channels, PixelFormat::UInt8, src.pixels);
+    img.setPixels(src.width, src.height, src.channels, PixelFormat::UInt8, std::move(src.pixels));
     img.setColorSpace(src.colorSpace);
     if (!src.uri.empty()) img.setUri(src.uri);
     ++result_.counts.images;
@@ -190,7 +191,7 @@ class Builder {
   }
 
   Scene& scene_;
-  const parsed::Scene& data_;
+  parsed::Scene& data_;
   ImportResult& result_;
   std::vector<ContainerId> images_, materials_, volumes_, geometries_, lights_, transforms_;
   ContainerId defaultMaterial_ = kNoContainer;
@@ -198,7 +199,7 @@ class Builder {
 
 }  // namespace
 
-ImportResult buildScene(Scene& scene, const parsed::Scene& data) {
+ImportResult buildScene(Scene& scene, parsed::Scene&& data) {
   ImportResult result;
   result.metresPerUnit = data.metresPerUnit;
   Builder(scene, data, result).build();

@@ -143,6 +143,7 @@ void ChangeApplier::checkNoCycles() const {
 void ChangeApplier::read(Container& c, const ChangeEntry& e, bool creation) {
   DecodeLimits unlimited{SIZE_MAX, SIZE_MAX, SIZE_MAX, SIZE_MAX, SIZE_MAX, SIZE_MAX};
   FieldReadContext ctx{unlimited, /*scan=*/false};
+  ctx.slices = &list_.slices();
   ByteReader r(list_.values(e), e.valueOffset);
   FieldMask refs = e.mask & c.referenceFields();
   if (!creation) {

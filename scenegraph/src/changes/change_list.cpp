@@ -60,7 +60,7 @@ void ChangeList::Builder::addChange(const Container& c, FieldMask mask, const st
 void ChangeList::Builder::addEntry(bool creation, const Container& c, FieldMask mask,
                                    const std::vector<RangedEdit>& edits) {
   ChangeEntry& e = begin(creation, c.id(), c.type(), mask);
-  ByteWriter w(list_->values_);
+  ByteWriter w(list_->values_, &list_->slices_);
   for (FieldMask m = mask; m; m &= m - 1) {
     auto f = static_cast<FieldIndex>(std::countr_zero(m));
     auto edit = std::find_if(edits.begin(), edits.end(), [&](const RangedEdit& r) { return r.field == f; });
@@ -101,6 +101,8 @@ void ChangeList::Builder::addEncoded(bool creation, ContainerId id, std::uint64_
   ChangeEntry& e = begin(creation, id, type, mask);
   ByteReader r(values, baseOffset);
   FieldReadContext ctx{limits, /*scan=*/true};
+  SharedSlices collected;
+  ctx.collected = &collected;
   for (FieldMask m = mask; m; m &= m - 1) {
     auto f = static_cast<FieldIndex>(std::countr_zero(m));
     ctx.sawRanges = false;
@@ -112,8 +114,19 @@ void ChangeList::Builder::addEncoded(bool creation, ContainerId id, std::uint64_
   }
   if (!r.atEnd()) r.fail(std::to_string(r.remaining()) + " bytes left over after the fields");
   collectReferences(*scratch, mask, e.references);
-  list_->values_.insert(list_->values_.end(), values.begin(), values.end());
-  e.valueSize = values.size();
+  // The bytes without the collected arrays' elements, which the list holds
+  // as slices at the places they leave.
+  std::size_t from = 0;
+  for (SharedSlice& slice : collected) {
+    std::size_t at = slice.offset - baseOffset;
+    list_->values_.insert(list_->values_.end(), values.begin() + static_cast<std::ptrdiff_t>(from),
+                          values.begin() + static_cast<std::ptrdiff_t>(at));
+    from = at + slice.size;
+    slice.offset = list_->values_.size();
+    list_->slices_.push_back(std::move(slice));
+  }
+  list_->values_.insert(list_->values_.end(), values.begin() + static_cast<std::ptrdiff_t>(from), values.end());
+  e.valueSize = list_->values_.size() - e.valueOffset;
 }
 
 }  // namespace tsr::sg

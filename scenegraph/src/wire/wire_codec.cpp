@@ -1,5 +1,6 @@
 #include "tsr/sg/wire/wire_codec.hpp"
 
+#include <algorithm>
 #include <cstring>
 
 #include "tsr/sg/wire/byte_reader.hpp"
@@ -9,6 +10,29 @@ namespace tsr::sg {
 
 namespace {
 constexpr std::uint8_t kMagic[4] = {'T', 'S', 'R', 'C'};
+
+// An entry's values with its shared arrays' elements written where they
+// belong, so the bytes are the same whether a list held slices or not.
+void writeValues(ByteWriter& w, const ChangeList& list, const ChangeEntry& e) {
+  const auto& slices = list.slices();
+  // A slice follows at least its encoding byte and count, so it belongs to
+  // the entry whose values it ends or lies inside: (start, end].
+  auto first = std::upper_bound(slices.begin(), slices.end(), e.valueOffset,
+                                [](std::uint64_t at, const SharedSlice& s) { return at < s.offset; });
+  auto last = std::upper_bound(first, slices.end(), e.valueOffset + e.valueSize,
+                               [](std::uint64_t at, const SharedSlice& s) { return at < s.offset; });
+  std::size_t size = e.valueSize;
+  for (auto it = first; it != last; ++it) size += it->size;
+  w.varint(size);
+  const std::uint8_t* values = list.values().data();
+  std::uint64_t from = e.valueOffset;
+  for (auto it = first; it != last; ++it) {
+    w.raw(values + from, it->offset - from);
+    w.raw(it->bytes, it->size);
+    from = it->offset;
+  }
+  w.raw(values + from, e.valueOffset + e.valueSize - from);
+}
 }
 
 void encodeAppend(const ChangeList& list, std::vector<std::uint8_t>& out) {
@@ -27,9 +51,7 @@ void encodeAppend(const ChangeList& list, std::vector<std::uint8_t>& out) {
       w.varint(e.id);
       w.u8(static_cast<std::uint8_t>(e.type));
       w.varint(e.mask);
-      auto values = list.values(e);
-      w.varint(values.size());
-      w.raw(values.data(), values.size());
+      writeValues(w, list, e);
     }
   }
   for (const auto& d : list.destructions()) {

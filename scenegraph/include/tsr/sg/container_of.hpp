@@ -48,6 +48,10 @@ bool acceptable(const std::vector<E>& v) {
   }
 }
 template <class E>
+bool acceptable(const SharedArray<E>& v) {
+  return acceptable(v.get());
+}
+template <class E>
 bool acceptableElement(const E& e) {
   if constexpr (requires { traceable(e); })
     return traceable(e);
@@ -205,14 +209,26 @@ class ContainerOf : public Container {
   // Overwrites elements [begin, begin + values.size()) of an array field.
   template <class E>
   void assignRange(FieldIndex f, std::vector<E>& member, std::size_t begin, std::span<const E> values) {
-    if (begin > member.size() || values.size() > member.size() - begin)
-      throw SceneError(std::string(typeName(Type)) + "." + std::string(fieldInfo(f).name) + ": range [" +
-                       std::to_string(begin) + ", +" + std::to_string(values.size()) + ") outside " +
-                       std::to_string(member.size()) + " elements");
-    for (const E& v : values)
-      if (!detail::acceptableElement(v)) throw SceneError(invalidValue(f));
+    checkRange(f, member.size(), begin, values);
     std::copy(values.begin(), values.end(), member.begin() + static_cast<std::ptrdiff_t>(begin));
     touchRange(f, begin, begin + values.size());
+  }
+  template <class E>
+  void assignRange(FieldIndex f, SharedArray<E>& member, std::size_t begin, std::span<const E> values) {
+    checkRange(f, member.size(), begin, values);
+    if (values.empty()) return touchRange(f, begin, begin);
+    std::vector<E>& elements = member.writable();  // a copy when a list or replica holds them
+    std::copy(values.begin(), values.end(), elements.begin() + static_cast<std::ptrdiff_t>(begin));
+    touchRange(f, begin, begin + values.size());
+  }
+  template <class E>
+  void checkRange(FieldIndex f, std::size_t size, std::size_t begin, std::span<const E> values) const {
+    if (begin > size || values.size() > size - begin)
+      throw SceneError(std::string(typeName(Type)) + "." + std::string(fieldInfo(f).name) + ": range [" +
+                       std::to_string(begin) + ", +" + std::to_string(values.size()) + ") outside " +
+                       std::to_string(size) + " elements");
+    for (const E& v : values)
+      if (!detail::acceptableElement(v)) throw SceneError(invalidValue(f));
   }
 
   // A function, not a constant, because Derived is incomplete while this

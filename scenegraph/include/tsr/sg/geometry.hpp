@@ -1,6 +1,8 @@
 #pragma once
 // Indexed triangles with optional per-vertex normals, uvs and colours. Every
 // array can be replaced whole or edited by range; only edited ranges travel.
+// The arrays are shared with the change lists and replicas that carry them
+// (SharedArray): a process holds one copy of a mesh until someone edits it.
 #include <optional>
 #include <span>
 #include <string>
@@ -18,11 +20,11 @@ class Geometry final : public ContainerOf<Geometry, ContainerType::Geometry> {
  public:
   enum Field : FieldIndex { Positions = kFirstOwnField, Normals, Uvs, Colors, Indices, Material, Motion, Volume };
 
-  const std::vector<Vec3>& positions() const { return positions_; }
-  const std::vector<Vec3>& normals() const { return normals_; }
-  const std::vector<Vec2>& uvs() const { return uvs_; }
-  const std::vector<Vec4>& colors() const { return colors_; }
-  const std::vector<std::uint32_t>& indices() const { return indices_; }
+  const std::vector<Vec3>& positions() const { return positions_.get(); }
+  const std::vector<Vec3>& normals() const { return normals_.get(); }
+  const std::vector<Vec2>& uvs() const { return uvs_.get(); }
+  const std::vector<Vec4>& colors() const { return colors_.get(); }
+  const std::vector<std::uint32_t>& indices() const { return indices_.get(); }
   ContainerId material() const { return material_; }
   GeometryMotion motion() const { return motion_; }
   // The medium inside the (closed) mesh, beside its surface material.
@@ -65,11 +67,11 @@ class Geometry final : public ContainerOf<Geometry, ContainerType::Geometry> {
   }
 
  private:
-  std::vector<Vec3> positions_;
-  std::vector<Vec3> normals_;
-  std::vector<Vec2> uvs_;
-  std::vector<Vec4> colors_;
-  std::vector<std::uint32_t> indices_;
+  SharedArray<Vec3> positions_;
+  SharedArray<Vec3> normals_;
+  SharedArray<Vec2> uvs_;
+  SharedArray<Vec4> colors_;
+  SharedArray<std::uint32_t> indices_;
   ContainerId material_ = kNoContainer;
   GeometryMotion motion_ = GeometryMotion::Static;
   ContainerId volume_ = kNoContainer;

@@ -21,6 +21,7 @@
 #include "tsr/sg/array_range.hpp"
 #include "tsr/sg/types.hpp"
 #include "tsr/sg/wire/decode_limits.hpp"
+#include "tsr/sg/wire/shared_slices.hpp"
 
 namespace tsr::sg {
 
@@ -73,6 +74,9 @@ class ChangeList {
   const std::vector<Destruction>& destructions() const { return destructions_; }
   std::span<const std::uint8_t> values(const ChangeEntry& e) const;
   const std::vector<std::uint8_t>& values() const { return values_; }
+  // Whole arrays held by reference, by their place in values(): a list
+  // carries a mesh without copying it (see SharedSlice).
+  const SharedSlices& slices() const { return slices_; }
 
   bool empty() const { return creations_.empty() && changes_.empty() && destructions_.empty(); }
   // Field changes carried by change entries (creations count each field).
@@ -90,7 +94,8 @@ class ChangeList {
     void addChange(const Container& c, FieldMask mask, const std::vector<RangedEdit>& edits);
     void addDestruction(ContainerId id, ContainerType type);
     // Adds an entry from untrusted serialised values; throws DecodeError
-    // (offsets relative to `baseOffset`) when they are malformed.
+    // (offsets relative to `baseOffset`) when they are malformed. Whole
+    // arrays are kept as shared arrays, ready for a replica to take.
     void addEncoded(bool creation, ContainerId id, std::uint64_t rawType, FieldMask mask,
                     std::span<const std::uint8_t> values, const DecodeLimits& limits, std::size_t baseOffset);
     std::shared_ptr<const ChangeList> finish();
@@ -110,6 +115,7 @@ class ChangeList {
   std::vector<ChangeEntry> changes_;
   std::vector<Destruction> destructions_;
   std::vector<std::uint8_t> values_;
+  SharedSlices slices_;
 };
 
 using ChangeListPtr = std::shared_ptr<const ChangeList>;

@@ -7,6 +7,8 @@
 #include <string_view>
 #include <vector>
 
+#include "tsr/sg/wire/shared_slices.hpp"
+
 namespace tsr::sg {
 
 static_assert(std::endian::native == std::endian::little,
@@ -15,6 +17,9 @@ static_assert(std::endian::native == std::endian::little,
 class ByteWriter {
  public:
   explicit ByteWriter(std::vector<std::uint8_t>& out) : out_(out) {}
+  // A writer with a slice table writes shared arrays by reference into it
+  // (a change list built in this process); without one, every byte.
+  ByteWriter(std::vector<std::uint8_t>& out, SharedSlices* slices) : out_(out), slices_(slices) {}
 
   void u8(std::uint8_t v) { out_.push_back(v); }
   void u32(std::uint32_t v) { raw(&v, sizeof v); }
@@ -40,12 +45,14 @@ class ByteWriter {
   }
   std::size_t size() const { return out_.size(); }
   std::vector<std::uint8_t>& buffer() { return out_; }
+  SharedSlices* slices() const { return slices_; }
 
   // Writes a 32-bit little-endian value over bytes already written.
   void patchU32(std::size_t at, std::uint32_t v) { std::memcpy(out_.data() + at, &v, sizeof v); }
 
  private:
   std::vector<std::uint8_t>& out_;
+  SharedSlices* slices_ = nullptr;
 };
 
 }  // namespace tsr::sg

@@ -2,8 +2,10 @@
 // How each kind of field value is written to and read from bytes. One path
 // serves commits, snapshots, the wire and the content hash (as Collage's
 // serialisable does): a value written here reads back bit for bit.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -11,10 +13,12 @@
 #include "tsr/sg/array_range.hpp"
 #include "tsr/sg/attachment.hpp"
 #include "tsr/sg/coordinate_limit.hpp"
+#include "tsr/sg/shared_array.hpp"
 #include "tsr/sg/types.hpp"
 #include "tsr/sg/wire/byte_reader.hpp"
 #include "tsr/sg/wire/byte_writer.hpp"
 #include "tsr/sg/wire/decode_limits.hpp"
+#include "tsr/sg/wire/shared_slices.hpp"
 
 namespace tsr::sg {
 
@@ -30,6 +34,11 @@ struct FieldReadContext {
   bool sawRanges = false;
   std::uint64_t rangedTotal = 0;
   std::vector<ArrayRange> ranges;
+  // Applying a list built in this process: its shared arrays, by offset.
+  const SharedSlices* slices = nullptr;
+  // Reading bytes into a list: whole arrays read into shared arrays are
+  // recorded here, so the list holds them by reference.
+  SharedSlices* collected = nullptr;
 };
 
 namespace codec {
@@ -147,25 +156,17 @@ void writeArray(ByteWriter& w, const std::vector<E>& a, const std::vector<ArrayR
   }
 }
 
+namespace detail {
+// The runs of a ranged edit, after the encoding byte; stores them into
+// `target` (of `size` elements) unless scanning.
 template <ArrayElement E>
-void readArray(ByteReader& r, std::vector<E>& a, FieldReadContext& ctx) {
-  std::uint8_t encoding = r.u8();
-  if (encoding == static_cast<std::uint8_t>(ArrayEncoding::Whole)) {
-    std::size_t n = r.count(ctx.limits.maxArrayElements, sizeof(E), "array element");
-    std::size_t at = r.offset();
-    a.resize(n);
-    r.copy(a.data(), n * sizeof(E), "array data");
-    if (!allWithinLimit(a.data(), n)) throw DecodeError(at, "array holds a float that is not finite or beyond 1e12");
-    return;
-  }
-  if (encoding != static_cast<std::uint8_t>(ArrayEncoding::Ranges))
-    r.fail("unknown array encoding " + std::to_string(encoding));
+void readRanges(ByteReader& r, E* target, std::size_t size, FieldReadContext& ctx) {
   std::size_t totalAt = r.offset();
   std::uint64_t total = r.varint();
   if (total > ctx.limits.maxArrayElements) throw DecodeError(totalAt, "array length exceeds limit");
-  if (!ctx.scanOnly && total != a.size())
-    throw DecodeError(
-        totalAt, "ranged edit expects " + std::to_string(total) + " elements, array has " + std::to_string(a.size()));
+  if (!ctx.scanOnly && total != size)
+    throw DecodeError(totalAt,
+                      "ranged edit expects " + std::to_string(total) + " elements, array has " + std::to_string(size));
   ctx.sawRanges = true;
   ctx.rangedTotal = total;
   ctx.ranges.clear();
@@ -174,24 +175,96 @@ void readArray(ByteReader& r, std::vector<E>& a, FieldReadContext& ctx) {
   for (std::size_t i = 0; i < nRanges; ++i) {
     std::size_t at = r.offset();
     std::uint64_t begin = r.varint();
-    std::uint64_t size = r.varint();
-    if (size == 0 || begin < previousEnd || begin > total || size > total - begin)
-      throw DecodeError(at, "range [" + std::to_string(begin) + ", +" + std::to_string(size) +
+    std::uint64_t n = r.varint();
+    if (n == 0 || begin < previousEnd || begin > total || n > total - begin)
+      throw DecodeError(at, "range [" + std::to_string(begin) + ", +" + std::to_string(n) +
                                 ") is empty, out of order or outside the array of " + std::to_string(total));
-    previousEnd = begin + size;
-    ctx.ranges.push_back({begin, begin + size});
-    auto bytes = r.take(size * sizeof(E), "range data");  // size <= total <= limit, so no overflow
-    const E* src = reinterpret_cast<const E*>(bytes.data());
+    previousEnd = begin + n;
+    ctx.ranges.push_back({begin, begin + n});
+    auto bytes = r.take(n * sizeof(E), "range data");  // n <= total <= limit, so no overflow
     if constexpr (!std::is_integral_v<E>) {
       std::vector<E> check(bytes.size() / sizeof(E));
       std::memcpy(static_cast<void*>(check.data()), bytes.data(), bytes.size());
       if (!allWithinLimit(check.data(), check.size()))
         throw DecodeError(at, "range holds a float that is not finite or beyond 1e12");
-      if (!ctx.scanOnly) std::copy(check.begin(), check.end(), a.begin() + static_cast<std::ptrdiff_t>(begin));
+      if (!ctx.scanOnly) std::copy(check.begin(), check.end(), target + begin);
     } else if (!ctx.scanOnly) {
-      std::memcpy(a.data() + begin, src, bytes.size());
+      std::memcpy(target + begin, bytes.data(), bytes.size());
     }
   }
+}
+
+// The elements of a whole array, after its encoding byte and its count
+// (read at `countAt`).
+template <ArrayElement E>
+void readElements(ByteReader& r, std::vector<E>& a, std::size_t n, std::size_t countAt) {
+  std::size_t at = r.offset();
+  if (n > r.remaining() / sizeof(E))
+    throw DecodeError(countAt, "array element count " + std::to_string(n) + " exceeds the bytes that remain");
+  a.resize(n);
+  r.copy(a.data(), n * sizeof(E), "array data");
+  if (!allWithinLimit(a.data(), n)) throw DecodeError(at, "array holds a float that is not finite or beyond 1e12");
+}
+
+inline const SharedSlice* sliceAt(const SharedSlices* slices, std::uint64_t offset) {
+  if (!slices) return nullptr;
+  auto it = std::lower_bound(slices->begin(), slices->end(), offset,
+                             [](const SharedSlice& s, std::uint64_t at) { return s.offset < at; });
+  return it != slices->end() && it->offset == offset ? &*it : nullptr;
+}
+}  // namespace detail
+
+template <ArrayElement E>
+void readArray(ByteReader& r, std::vector<E>& a, FieldReadContext& ctx) {
+  std::uint8_t encoding = r.u8();
+  if (encoding == static_cast<std::uint8_t>(ArrayEncoding::Whole)) {
+    std::size_t countAt = r.offset();
+    std::size_t n = r.count(ctx.limits.maxArrayElements, 0, "array element");
+    detail::readElements(r, a, n, countAt);
+    return;
+  }
+  if (encoding != static_cast<std::uint8_t>(ArrayEncoding::Ranges))
+    r.fail("unknown array encoding " + std::to_string(encoding));
+  detail::readRanges(r, a.data(), a.size(), ctx);
+}
+
+// Shared arrays go by reference into a writer with a slice table.
+template <ArrayElement E>
+void writeArray(ByteWriter& w, const SharedArray<E>& a, const std::vector<ArrayRange>* edited) {
+  if (edited || !w.slices() || a.empty()) return writeArray(w, a.get(), edited);
+  w.u8(static_cast<std::uint8_t>(ArrayEncoding::Whole));
+  w.varint(a.size());
+  w.slices()->push_back({w.size(), a.shared(), &typeid(E), reinterpret_cast<const std::uint8_t*>(a.data()),
+                         a.size() * sizeof(E)});
+}
+
+template <ArrayElement E>
+void readArray(ByteReader& r, SharedArray<E>& a, FieldReadContext& ctx) {
+  std::uint8_t encoding = r.u8();
+  if (encoding == static_cast<std::uint8_t>(ArrayEncoding::Whole)) {
+    std::size_t countAt = r.offset();
+    std::size_t n = r.count(ctx.limits.maxArrayElements, 0, "array element");
+    if (const SharedSlice* slice = detail::sliceAt(ctx.slices, r.offset())) {
+      // A list of this process: its elements were checked when the scene took them.
+      if (*slice->element != typeid(E) || slice->size != n * sizeof(E))
+        r.fail("shared array does not match its field");
+      a = SharedArray<E>(std::static_pointer_cast<const std::vector<E>>(slice->owner));
+      return;
+    }
+    std::size_t at = r.offset();
+    auto elements = std::make_shared<std::vector<E>>();
+    detail::readElements(r, *elements, n, countAt);
+    if (ctx.collected && n)
+      ctx.collected->push_back({at, elements, &typeid(E), reinterpret_cast<const std::uint8_t*>(elements->data()),
+                                n * sizeof(E)});
+    a = SharedArray<E>(std::shared_ptr<const std::vector<E>>(std::move(elements)));
+    return;
+  }
+  if (encoding != static_cast<std::uint8_t>(ArrayEncoding::Ranges))
+    r.fail("unknown array encoding " + std::to_string(encoding));
+  if (ctx.scanOnly) return detail::readRanges<E>(r, nullptr, 0, ctx);
+  std::size_t size = a.size();
+  detail::readRanges(r, size ? a.writable().data() : nullptr, size, ctx);
 }
 
 }  // namespace codec

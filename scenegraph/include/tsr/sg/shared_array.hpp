@@ -1,0 +1,76 @@
+#pragma once
+// An array field's elements, immutable once shared: the scene, the change
+// lists it commits and the replicas that apply them hold one copy of bulk
+// geometry between them. The first edit after the elements were handed out
+// copies them (copy on write), so the scene's own later edits never reach a
+// list already built or a replica on another thread. Whether they were
+// handed out is this owner's flag, not the pointer's use count: the count
+// would need an acquire fence against the other thread's release, and no
+// edit would save more than the one copy either way.
+#include <atomic>
+#include <cstddef>
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace tsr::sg {
+
+template <class E>
+class SharedArray {
+ public:
+  using Elements = std::vector<E>;
+
+  SharedArray() = default;
+  explicit SharedArray(Elements elements) {
+    if (!elements.empty()) elements_ = std::make_shared<Elements>(std::move(elements));
+  }
+  // Elements another owner holds.
+  explicit SharedArray(std::shared_ptr<const Elements> elements) : elements_(std::move(elements)), handedOut_(true) {
+    if (elements_ && elements_->empty()) elements_.reset();
+  }
+  SharedArray(SharedArray&& o) noexcept : elements_(std::move(o.elements_)), handedOut_(o.handedOut_.load()) {}
+  SharedArray& operator=(SharedArray&& o) noexcept {
+    elements_ = std::move(o.elements_);
+    handedOut_ = o.handedOut_.load();
+    return *this;
+  }
+  SharedArray(const SharedArray&) = delete;
+  SharedArray& operator=(const SharedArray&) = delete;
+
+  const Elements& get() const { return elements_ ? *elements_ : none(); }
+  std::size_t size() const { return elements_ ? elements_->size() : 0; }
+  bool empty() const { return size() == 0; }
+  const E* data() const { return get().data(); }
+
+  // The elements, to be held by another owner too (null when empty).
+  const std::shared_ptr<const Elements>& shared() const {
+    handedOut_.store(true, std::memory_order_relaxed);  // const readers may share at once (snapshots)
+    return elements_;
+  }
+
+  // The elements to edit in place: a copy of them first when they were
+  // handed out.
+  Elements& writable() {
+    if (!elements_ || handedOut_.load(std::memory_order_relaxed)) {
+      elements_ = elements_ ? std::make_shared<Elements>(*elements_) : std::make_shared<Elements>();
+      handedOut_.store(false, std::memory_order_relaxed);
+    }
+    // Made non-const just above or by the constructor from a vector, and
+    // never handed out since: editing it is defined and seen by no one else.
+    return const_cast<Elements&>(*elements_);
+  }
+
+  friend bool operator==(const SharedArray& a, const SharedArray& b) { return a.get() == b.get(); }
+
+ private:
+  static const Elements& none() {
+    static const Elements nothing;
+    return nothing;
+  }
+  std::shared_ptr<const Elements> elements_;
+  // Written by const sharers, read by the owner's edits; the owner's thread
+  // orders its own edits after its own sharing, so relaxed is enough.
+  mutable std::atomic<bool> handedOut_{false};
+};
+
+}  // namespace tsr::sg
