@@ -63,5 +63,45 @@ TEST(VulkanGeometryArena, ManyMeshesRemovalsAndAdditionsDrawAsAFreshScene) {
   EXPECT_EQ(render(edited, Visibility::Guided).colourImage(), expected.colourImage());
 }
 
+TEST(VulkanGeometryArena, SmallMeshesHold16BitIndicesLargeOnes32BitAndDrawTogether) {
+  Scene scene(device());
+  Material m;
+  m.baseColor = {0.7f, 0.6f, 0.3f};
+  const MaterialId mat = scene.addMaterial(m);
+  scene.addLight(DirectionalLight{{0.3f, -1, -0.2f}, glm::vec3(2.0f)});
+  // A first block holds 65,536 vertices (32 bytes each: position, normal,
+  // uv) and three indices a vertex, of 2 bytes for meshes that fit.
+  scene.addInstance(scene.addMesh(sphere(0)), mat, cell(0));
+  EXPECT_EQ(scene.geometryBytesHeld(), 65536u * 32u + 3u * 65536u * 2u);
+  // 301 x 251 = 75,551 vertices: a block of its size, of 32-bit indices.
+  const MeshData big = test::uvSphere(300, 250, 1.2f);
+  ASSERT_GT(big.positions.size(), 65536u);
+  scene.addInstance(scene.addMesh(big), mat, cell(20));
+  EXPECT_EQ(scene.geometryBytesHeld(),
+            65536u * 32u + 3u * 65536u * 2u + big.positions.size() * 32u + big.indices.size() * 4u);
+  scene.addInstance(scene.addMesh(sphere(1)), mat, cell(7));
+
+  const FrameBuffer all = render(scene, Visibility::All);
+  EXPECT_EQ(render(scene, Visibility::Guided).colourImage(), all.colourImage());
+  // The large sphere is drawn whole: the pixel at its centre is lit, as
+  // in a scene of it alone.
+  Scene alone(device());
+  const MaterialId aloneMat = alone.addMaterial(m);
+  alone.addLight(DirectionalLight{{0.3f, -1, -0.2f}, glm::vec3(2.0f)});
+  alone.addInstance(alone.addMesh(big), aloneMat, cell(20));
+  const FrameBuffer only = render(alone, Visibility::All);
+  EXPECT_GT(test::maxAbsDiff(only, FrameBuffer(80, 80)), 0.1f);
+  const auto background = FrameBuffer(80, 80).colourImage(), alonePixels = only.colourImage(),
+             together = all.colourImage();
+  int sameLit = 0, lit = 0;
+  for (std::size_t i = 0; i < alonePixels.size(); ++i) {
+    if (alonePixels[i] == background[i]) continue;
+    ++lit;
+    sameLit += alonePixels[i] == together[i];
+  }
+  EXPECT_GT(lit, 200);
+  EXPECT_GT(sameLit, lit * 9 / 10) << "the large sphere's pixels differ from it drawn alone";
+}
+
 }  // namespace
 }  // namespace tsr::vk

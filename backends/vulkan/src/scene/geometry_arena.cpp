@@ -22,13 +22,15 @@ constexpr VkBufferUsageFlags kIndexUsage = VK_BUFFER_USAGE_INDEX_BUFFER_BIT | kT
 
 GeometryArena::GeometryArena(const Device& device) : device_(device) {}
 
-std::uint32_t GeometryArena::blockFor(std::uint32_t vertices, std::uint32_t indices) {
-  if (!blocks_.empty()) {
-    const Block& b = blocks_[current_];
-    if (b.vertexCapacity - b.vertices >= vertices && b.indexCapacity - b.indexCount >= indices) return current_;
+std::uint32_t GeometryArena::blockFor(std::uint32_t vertices, std::uint32_t indices, bool wide) {
+  std::uint32_t& current = current_[wide ? 1 : 0];
+  if (current != kNoBlock) {
+    const Block& b = blocks_[current];
+    if (b.vertexCapacity - b.vertices >= vertices && b.indexCapacity - b.indexCount >= indices) return current;
   }
-  // A new block, twice the last one's size (capped), or the mesh's own size.
-  std::uint32_t capacity = blocks_.empty() ? kFirstVertices : std::min(2 * blocks_.back().vertexCapacity, kMaxVertices);
+  // A new block, twice the last one of its kind's size (capped), or the mesh's own size.
+  std::uint32_t capacity =
+      current == kNoBlock ? kFirstVertices : std::min(2 * blocks_[current].vertexCapacity, kMaxVertices);
   capacity = std::max(capacity, vertices);
   const std::uint32_t indexCapacity = std::max<std::uint32_t>(3 * capacity, indices);
   Block b;
@@ -46,17 +48,18 @@ std::uint32_t GeometryArena::blockFor(std::uint32_t vertices, std::uint32_t indi
   b.positions = make(VkDeviceSize(capacity) * sizeof(glm::vec3), kVertexUsage);
   b.normals = make(VkDeviceSize(capacity) * sizeof(glm::vec3), kVertexUsage);
   b.uvs = make(VkDeviceSize(capacity) * sizeof(glm::vec2), kVertexUsage);
-  b.indices = make(VkDeviceSize(indexCapacity) * sizeof(std::uint32_t), kIndexUsage);
+  b.wide = wide;
+  b.indices = make(VkDeviceSize(indexCapacity) * b.indexBytes(), kIndexUsage);
   b.vertexCapacity = capacity;
   b.indexCapacity = indexCapacity;
   // Reuse an emptied slot, so removing and adding meshes does not grow the list.
   for (std::uint32_t i = 0; i < blocks_.size(); ++i)
     if (!blocks_[i].positions) {
       blocks_[i] = std::move(b);
-      return current_ = i;
+      return current = i;
     }
   blocks_.push_back(std::move(b));
-  return current_ = std::uint32_t(blocks_.size() - 1);
+  return current = std::uint32_t(blocks_.size() - 1);
 }
 
 void GeometryArena::write(const Buffer& dst, VkDeviceSize offset, const void* bytes, VkDeviceSize size) {
@@ -83,16 +86,23 @@ std::vector<glm::vec3> GeometryArena::positions(const GeometrySpan& span, std::u
 }
 
 std::vector<std::uint32_t> GeometryArena::indices(const GeometrySpan& span, std::uint32_t count) const {
+  const Block& b = blocks_[span.block];
   std::vector<std::uint32_t> out(count);
-  read(blocks_[span.block].indices, VkDeviceSize(span.firstIndex) * sizeof(std::uint32_t), out.data(),
-       VkDeviceSize(count) * sizeof(std::uint32_t));
+  if (b.wide) {
+    read(b.indices, VkDeviceSize(span.firstIndex) * 4, out.data(), VkDeviceSize(count) * 4);
+  } else {
+    std::vector<std::uint16_t> narrow(count);
+    read(b.indices, VkDeviceSize(span.firstIndex) * 2, narrow.data(), VkDeviceSize(count) * 2);
+    std::copy(narrow.begin(), narrow.end(), out.begin());
+  }
   return out;
 }
 
 GeometrySpan GeometryArena::add(const MeshData& data) {
   const auto n = std::uint32_t(data.positions.size());
   const auto ni = std::uint32_t(data.indices.size());
-  const std::uint32_t index = blockFor(n, ni);
+  const bool wide = n > (1u << 16);
+  const std::uint32_t index = blockFor(n, ni, wide);
   Block& b = blocks_[index];
   const GeometrySpan span{index, b.vertices, b.indexCount};
   write(b.positions, VkDeviceSize(span.baseVertex) * sizeof(glm::vec3), data.positions.data(),
@@ -104,8 +114,12 @@ GeometrySpan GeometryArena::add(const MeshData& data) {
         data.normals.empty() ? noNormals.data() : data.normals.data(), VkDeviceSize(n) * sizeof(glm::vec3));
   write(b.uvs, VkDeviceSize(span.baseVertex) * sizeof(glm::vec2), data.uvs.empty() ? noUvs.data() : data.uvs.data(),
         VkDeviceSize(n) * sizeof(glm::vec2));
-  write(b.indices, VkDeviceSize(span.firstIndex) * sizeof(std::uint32_t), data.indices.data(),
-        VkDeviceSize(ni) * sizeof(std::uint32_t));
+  if (wide) {
+    write(b.indices, VkDeviceSize(span.firstIndex) * 4, data.indices.data(), VkDeviceSize(ni) * 4);
+  } else {
+    const std::vector<std::uint16_t> narrow(data.indices.begin(), data.indices.end());  // each below 65536
+    write(b.indices, VkDeviceSize(span.firstIndex) * 2, narrow.data(), VkDeviceSize(ni) * 2);
+  }
   b.vertices += n;
   b.indexCount += ni;
   ++b.live;
@@ -123,7 +137,7 @@ void GeometryArena::updateVertices(const GeometrySpan& span, std::uint32_t first
 void GeometryArena::release(const GeometrySpan& span) {
   Block& b = blocks_[span.block];
   if (--b.live > 0) return;
-  if (span.block == current_) {
+  if (span.block == current_[b.wide ? 1 : 0]) {
     b.vertices = b.indexCount = 0;  // empty: fill it again from the front
     return;
   }
@@ -136,7 +150,7 @@ void GeometryArena::bind(VkCommandBuffer cmd, std::uint32_t block, std::uint32_t
   const VkBuffer buffers[3] = {b.positions.handle(), b.normals.handle(), b.uvs.handle()};
   const VkDeviceSize offsets[3] = {0, 0, 0};
   vkCmdBindVertexBuffers(cmd, 0, streams, buffers, offsets);
-  vkCmdBindIndexBuffer(cmd, b.indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+  vkCmdBindIndexBuffer(cmd, b.indices.handle(), 0, b.wide ? VK_INDEX_TYPE_UINT32 : VK_INDEX_TYPE_UINT16);
 }
 
 }  // namespace tsr::vk

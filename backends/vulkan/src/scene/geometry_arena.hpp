@@ -22,8 +22,11 @@ struct GeometrySpan {
 
 // The geometry of many meshes in few large buffers (the seed's static
 // geometry chunk): each block holds four streams (positions, normals, uvs,
-// 32-bit mesh-local indices) filled front to back, so consecutive draws of
-// different meshes bind nothing new and can share one indirect call. Blocks
+// mesh-local indices) filled front to back, so consecutive draws of
+// different meshes bind nothing new and can share one indirect call. A mesh
+// of at most 65536 vertices goes to a block of 16-bit indices, others to
+// one of 32-bit indices (half the index memory of a CAD model's parts, and
+// the same triangles). Blocks
 // double in size up to a cap; a mesh larger than the cap gets a block of
 // its own. Space of removed meshes is reused only when its whole block
 // empties. Memory that is device-local and host-visible (lavapipe, BAR) is
@@ -54,14 +57,17 @@ class GeometryArena {
     std::uint32_t vertexCapacity = 0, indexCapacity = 0;
     std::uint32_t vertices = 0, indexCount = 0;
     std::uint32_t live = 0;  // meshes in it
+    bool wide = true;        // 32-bit indices, else 16-bit
+    VkDeviceSize indexBytes() const { return wide ? 4 : 2; }
   };
-  std::uint32_t blockFor(std::uint32_t vertices, std::uint32_t indices);
+  std::uint32_t blockFor(std::uint32_t vertices, std::uint32_t indices, bool wide);
   void write(const Buffer& dst, VkDeviceSize offset, const void* bytes, VkDeviceSize size);
   void read(const Buffer& src, VkDeviceSize offset, void* bytes, VkDeviceSize size) const;
 
   const Device& device_;
   std::vector<Block> blocks_;
-  std::uint32_t current_ = 0;  // the block being filled
+  std::uint32_t current_[2] = {kNoBlock, kNoBlock};  // the blocks being filled: 16-bit, 32-bit indices
+  static constexpr std::uint32_t kNoBlock = UINT32_MAX;
   std::uint64_t allocated_ = 0;
   bool hostVisible_ = true;
 };
