@@ -59,18 +59,21 @@ void ClusterWindow::publish(const sg::Scene& scene, const sg::ChangeListPtr& del
   Impl& s = *impl_;
   s.drain();
   s.retryOffline();
-  Frame changes, snapshot;
+  Frame changes;
+  std::vector<Frame> snapshot;
   for (auto& n : s.nodes) {
     bool follows = n.state == NodeState::Synced && delta && n.sentVersion == delta->baseVersion();
     if (n.state == NodeState::Synced && !delta && n.sentVersion == scene.version()) continue;
     if (n.applied >= n.sentVersion) n.listSentAt = Clock::now();  // it was caught up: a new wait begins
     if (follows) {
-      if (!changes) changes = frameFromPayload(Changes::kType, sg::encode(*delta));
+      if (!changes) changes = changeListFrame(Changes::kType, *delta);
       n.link->send(changes);
     } else if (n.state == NodeState::Synced || n.state == NodeState::Joined) {
       // A new node, or one that missed a list: it starts over from the whole scene.
-      if (!snapshot) snapshot = frameFromPayload(Snapshot::kType, sg::encode(*scene.snapshot()));
-      n.link->send(snapshot);
+      if (snapshot.empty())
+        for (const auto& part : sg::splitSnapshot(scene.snapshot(), s.snapshotPartBytes(Snapshot::kSpec)))
+          snapshot.push_back(changeListFrame(Snapshot::kType, *part));
+      for (const Frame& part : snapshot) n.link->send(part);
       if (!n.viewportsSent) n.link->send(s.viewportsFor(n));
       n.viewportsSent = true;
       s.setState(n, NodeState::Synced);
@@ -84,7 +87,8 @@ void ClusterWindow::publish(const sg::Scene& scene, const sg::ChangeListPtr& del
 void ClusterWindow::prepare(const sg::Scene& ahead, const sg::ChangeListPtr& delta, std::int64_t frame) {
   Impl& s = *impl_;
   s.drain();
-  Frame changes, snapshot;
+  Frame changes;
+  std::vector<Frame> snapshot;
   for (auto& n : s.nodes) {
     if (n.state != NodeState::Synced && n.state != NodeState::Joined) {
       n.aheadVersion.reset();  // when it is back, it starts over from the whole scene ahead
@@ -100,8 +104,10 @@ void ClusterWindow::prepare(const sg::Scene& ahead, const sg::ChangeListPtr& del
       if (!changes) changes = makeFrame(Prepare{frame, sg::encode(*delta)});
       n.link->send(changes);
     } else {
-      if (!snapshot) snapshot = makeFrame(Prepare{frame, sg::encode(*ahead.snapshot())});
-      n.link->send(snapshot);
+      if (snapshot.empty())
+        for (const auto& part : sg::splitSnapshot(ahead.snapshot(), s.snapshotPartBytes(Prepare::kSpec)))
+          snapshot.push_back(makeFrame(Prepare{frame, sg::encode(*part)}));
+      for (const Frame& part : snapshot) n.link->send(part);
     }
     n.aheadVersion = ahead.version();
   }

@@ -58,6 +58,12 @@ struct ClusterWindow::Impl {
   // frame; what it places nowhere shows the offline fill.
   void takeOver(FrameRound& round, std::size_t lost);
   Frame viewportsFor(const ClusterNode& n) const;
+  // The largest change list a message of this kind carries (its limit, less
+  // room for its other fields, or the options' smaller part size).
+  std::size_t snapshotPartBytes(const MessageSpec& message) const {
+    const std::size_t limit = message.maxPayload - 64;
+    return options.snapshotPartBytes ? std::min(options.snapshotPartBytes, limit) : limit;
+  }
 
   // The steps of one frame (cluster_window.cpp): send the requests (giving
   // up the items of nodes not in sync), wait for the tiles (saying who is

@@ -147,14 +147,17 @@ void NodeSession::onReplicaBytes(Message& m, bool snapshot) {
     if (st.cancelled) return;
     try {
       sg::ChangeListPtr list = sg::decode(bytes);
-      if (list->isSnapshot() != snapshot) throw sg::ApplyError("message kind and change list kind differ");
-      if (snapshot && st.replica->version() != 0) {
+      if ((list->isSnapshot() || list->isSnapshotPart()) != snapshot)
+        throw sg::ApplyError("message kind and change list kind differ");
+      // A snapshot's first part (or the whole) to a replica that holds a scene.
+      if (snapshot && !st.replica->awaitingSnapshot() && st.replica->version() != 0) {
         // A client that resynchronises starts us over.
         st.viewports.clear();
         st.sequences.clear();
         st.replica = std::make_unique<sg::Replica>();
       }
       st.replica->apply(list);
+      if (st.replica->awaitingSnapshot()) return;  // more parts follow
       self->conn_->post(makeFrame(Applied{st.replica->version()}));
     } catch (const sg::DecodeError& e) {
       self->failFromWorker(ErrorReport::Kind::SceneRejected, std::string("change list does not decode: ") + e.what());
@@ -211,12 +214,13 @@ void NodeSession::on<Prepare>(Message& m) {
     if (st.cancelled) return;
     try {
       sg::ChangeListPtr list = sg::decode(prepare.changes);
-      if (list->isSnapshot()) {
+      if ((list->isSnapshot() || list->isSnapshotPart()) && !st.ahead->awaitingSnapshot()) {
         // The sequence starts over (a node that joins late): its viewports too.
         st.ahead = std::make_unique<sg::Replica>();
         st.sequences.clear();
       }
       st.ahead->apply(list);
+      if (st.ahead->awaitingSnapshot()) return;  // the frame's scene is not whole yet
       for (const auto& [id, settings] : st.settings) {
         auto& vp = st.sequences[id];
         if (!vp) vp = self->ctx_.registry.create(settings, st.contexts);

@@ -1,10 +1,12 @@
 #include "tsr/cluster/messages.hpp"
 
+#include <algorithm>
 #include <array>
 #include <exception>
 
 #include "tsr/cluster/protocol_error.hpp"
 #include "tsr/sg/errors.hpp"
+#include "tsr/sg/wire/wire_codec.hpp"
 
 namespace tsr::cluster {
 
@@ -27,6 +29,20 @@ Frame frameFromPayload(MessageType type, std::span<const std::uint8_t> payload) 
   bytes->reserve(kFrameHeaderBytes + payload.size());
   writeFrameHeader(*bytes, {kProtocolVersion, type, static_cast<std::uint32_t>(payload.size())});
   bytes->insert(bytes->end(), payload.begin(), payload.end());
+  return bytes;
+}
+
+Frame changeListFrame(MessageType type, const sg::ChangeList& list) {
+  auto bytes = std::make_shared<std::vector<std::uint8_t>>();
+  writeFrameHeader(*bytes, {kProtocolVersion, type, 0});
+  sg::encodeAppend(list, *bytes);
+  const std::size_t payload = bytes->size() - kFrameHeaderBytes;
+  if (payload > spec(type).maxPayload)
+    throw ProtocolError(ProtocolError::Kind::Oversized,
+                        std::string(name(type)) + " of " + std::to_string(payload) + " bytes exceeds its maximum");
+  std::vector<std::uint8_t> header;
+  writeFrameHeader(header, {kProtocolVersion, type, static_cast<std::uint32_t>(payload)});
+  std::copy(header.begin(), header.end(), bytes->begin());
   return bytes;
 }
 

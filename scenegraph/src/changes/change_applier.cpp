@@ -17,6 +17,7 @@ void ChangeApplier::run() {
 
 void ChangeApplier::validate() {
   if (scene_.hasPendingChanges()) fail("the replica has local edits that were never committed");
+  if (list_.isSnapshotPart()) fail("a part of a snapshot applies with the others (sg::Replica, sg::joinSnapshot)");
   if (list_.isSnapshot()) {
     if (scene_.size() != 0) fail("a snapshot applies only to an empty replica");
   } else if (list_.baseVersion() != scene_.version()) {

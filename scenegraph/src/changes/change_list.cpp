@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <bit>
+#include <stdexcept>
+#include <string>
 
 #include "tsr/sg/container.hpp"
 #include "tsr/sg/container_factory.hpp"
@@ -16,6 +18,15 @@ const RangedEdit* ChangeEntry::rangedEdit(FieldIndex f) const {
 
 std::span<const std::uint8_t> ChangeList::values(const ChangeEntry& e) const {
   return std::span<const std::uint8_t>(values_).subspan(e.valueOffset, e.valueSize);
+}
+
+std::span<const SharedSlice> ChangeList::slices(const ChangeEntry& e) const {
+  // A slice follows at least its encoding byte and count, so it belongs to
+  // the entry whose values it ends or lies inside: (start, end].
+  auto after = [](std::uint64_t at, const SharedSlice& s) { return at < s.offset; };
+  auto first = std::upper_bound(slices_.begin(), slices_.end(), e.valueOffset, after);
+  auto last = std::upper_bound(first, slices_.end(), e.valueOffset + e.valueSize, after);
+  return {first, last};
 }
 
 std::uint64_t ChangeList::fieldChangeCount() const {
@@ -76,6 +87,84 @@ void ChangeList::Builder::addEntry(bool creation, const Container& c, FieldMask 
 }
 
 std::shared_ptr<const ChangeList> ChangeList::Builder::finish() { return std::move(list_); }
+
+void ChangeList::Builder::addCopy(const ChangeList& from, const ChangeEntry& e, bool creation) {
+  ChangeEntry& copy = begin(creation, e.id, e.type, e.mask);
+  const std::uint64_t shift = copy.valueOffset - e.valueOffset;  // unsigned wrap-around cancels in the sum
+  auto values = from.values(e);
+  list_->values_.insert(list_->values_.end(), values.begin(), values.end());
+  copy.valueSize = e.valueSize;
+  copy.rangedEdits = e.rangedEdits;
+  copy.references = e.references;
+  for (const SharedSlice& slice : from.slices(e)) {
+    list_->slices_.push_back(slice);
+    list_->slices_.back().offset += shift;
+  }
+}
+
+namespace {
+// What an entry takes on the wire, within a few bytes (id, type, mask and
+// size varints at most 30).
+std::size_t encodedBytes(const ChangeList& list, const ChangeEntry& e) {
+  std::size_t n = e.valueSize + 30;
+  for (const SharedSlice& slice : list.slices(e)) n += slice.size;
+  return n;
+}
+}  // namespace
+
+std::vector<ChangeListPtr> splitSnapshot(const ChangeListPtr& whole, std::size_t maxBytes) {
+  const ChangeList& snapshot = *whole;
+  if (!snapshot.isSnapshot()) throw std::invalid_argument("splitSnapshot: not a snapshot");
+  constexpr std::size_t kListOverhead = 64;  // header, version and counts
+  std::size_t total = kListOverhead;
+  for (const auto& e : snapshot.creations()) total += encodedBytes(snapshot, e);
+  if (total <= maxBytes) return {whole};
+
+  std::vector<std::vector<const ChangeEntry*>> groups(1);
+  std::size_t bytes = kListOverhead;
+  for (const auto& e : snapshot.creations()) {
+    std::size_t n = encodedBytes(snapshot, e);
+    if (n + kListOverhead > maxBytes)
+      throw std::length_error("container " + std::to_string(e.id) + " takes " + std::to_string(n) +
+                              " bytes, more than a part of " + std::to_string(maxBytes));
+    if (bytes + n > maxBytes) {
+      groups.emplace_back();
+      bytes = kListOverhead;
+    }
+    groups.back().push_back(&e);
+    bytes += n;
+  }
+  std::vector<ChangeListPtr> parts;
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    ChangeList::Builder b(g + 1 == groups.size() ? ChangeList::Kind::Snapshot : ChangeList::Kind::SnapshotPart,
+                          snapshot.version());
+    for (const ChangeEntry* e : groups[g]) b.addCopy(snapshot, *e, true);
+    parts.push_back(b.finish());
+  }
+  return parts;
+}
+
+ChangeListPtr joinSnapshot(std::span<const ChangeListPtr> parts) {
+  if (parts.empty()) throw ApplyError("no snapshot parts to join");
+  const std::uint64_t version = parts.back()->version();
+  ContainerId previous = kNoContainer;
+  ChangeList::Builder b(ChangeList::Kind::Snapshot, version);
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const ChangeList& part = *parts[i];
+    const bool last = i + 1 == parts.size();
+    if (last ? !part.isSnapshot() : !part.isSnapshotPart())
+      throw ApplyError("snapshot parts must end with the snapshot and hold no other list");
+    if (part.version() != version)
+      throw ApplyError("snapshot part of version " + std::to_string(part.version()) + " among parts of version " +
+                       std::to_string(version));
+    for (const auto& e : part.creations()) {
+      if (e.id <= previous) throw ApplyError("snapshot parts repeat or reorder container " + std::to_string(e.id));
+      previous = e.id;
+      b.addCopy(part, e, true);
+    }
+  }
+  return b.finish();
+}
 
 void ChangeList::Builder::addDestruction(ContainerId id, ContainerType type) {
   list_->destructions_.push_back({id, type});

@@ -14,22 +14,16 @@ constexpr std::uint8_t kMagic[4] = {'T', 'S', 'R', 'C'};
 // An entry's values with its shared arrays' elements written where they
 // belong, so the bytes are the same whether a list held slices or not.
 void writeValues(ByteWriter& w, const ChangeList& list, const ChangeEntry& e) {
-  const auto& slices = list.slices();
-  // A slice follows at least its encoding byte and count, so it belongs to
-  // the entry whose values it ends or lies inside: (start, end].
-  auto first = std::upper_bound(slices.begin(), slices.end(), e.valueOffset,
-                                [](std::uint64_t at, const SharedSlice& s) { return at < s.offset; });
-  auto last = std::upper_bound(first, slices.end(), e.valueOffset + e.valueSize,
-                               [](std::uint64_t at, const SharedSlice& s) { return at < s.offset; });
+  const auto slices = list.slices(e);
   std::size_t size = e.valueSize;
-  for (auto it = first; it != last; ++it) size += it->size;
+  for (const SharedSlice& slice : slices) size += slice.size;
   w.varint(size);
   const std::uint8_t* values = list.values().data();
   std::uint64_t from = e.valueOffset;
-  for (auto it = first; it != last; ++it) {
-    w.raw(values + from, it->offset - from);
-    w.raw(it->bytes, it->size);
-    from = it->offset;
+  for (const SharedSlice& slice : slices) {
+    w.raw(values + from, slice.offset - from);
+    w.raw(slice.bytes, slice.size);
+    from = slice.offset;
   }
   w.raw(values + from, e.valueOffset + e.valueSize - from);
 }
@@ -79,7 +73,7 @@ std::size_t decodeHeader(std::span<const std::uint8_t> header, const DecodeLimit
     throw DecodeError(4, "protocol version " + std::to_string(protocol) + ", this build speaks " +
                              std::to_string(kWireFormatVersion));
   std::uint8_t kind = r.u8();
-  if (kind > 1) throw DecodeError(5, "unknown change list kind " + std::to_string(kind));
+  if (kind > 2) throw DecodeError(5, "unknown change list kind " + std::to_string(kind));
   std::uint32_t length = r.u32();
   if (length > limits.maxMessageBytes)
     throw DecodeError(6, "payload of " + std::to_string(length) + " bytes exceeds the limit of " +
@@ -103,7 +97,7 @@ ChangeListPtr decode(std::span<const std::uint8_t> bytes, const DecodeLimits& li
   std::size_t nCreations = r.count(limits.maxEntries, 4, "creation");
   std::size_t nChanges = r.count(limits.maxEntries, 4, "change");
   std::size_t nDestructions = r.count(limits.maxEntries, 2, "destruction");
-  if (kind == ChangeList::Kind::Snapshot && (nChanges || nDestructions)) r.fail("a snapshot holds creations only");
+  if (kind != ChangeList::Kind::Delta && (nChanges || nDestructions)) r.fail("a snapshot holds creations only");
 
   ChangeList::Builder builder(kind, version);
   ContainerId previous = 0;

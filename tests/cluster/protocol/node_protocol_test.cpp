@@ -12,6 +12,7 @@
 #include "tsr/cluster/auth.hpp"
 #include "tsr/cluster/cluster_window.hpp"
 #include "tsr/cluster/handshake.hpp"
+#include "tsr/sg/wire/wire_codec.hpp"
 
 namespace tsr::cluster::test {
 namespace {
@@ -232,6 +233,31 @@ TEST(Replication, LateJoinerCatchesUpFromASnapshot) {
     std::this_thread::sleep_for(20ms);
   }
   for (int f = 40; f < 45; ++f) step(w, s, f);
+  expectReplicasMatch(w, s.scene, 3);
+}
+
+// A scene whose snapshot exceeds a message goes to each node in parts (here
+// parts of 64 KiB instead of 1 GiB): nodes at the start and one that joins
+// late hold the client's scene.
+TEST(Replication, ASnapshotLargerThanAMessageArrivesInParts) {
+  auto nodes = startNodes(2);
+  ClientOptions options;
+  options.snapshotPartBytes = 64 * 1024;
+  ClusterWindow w(configFor(ClusterMode::Cooperative, nodes), options);
+  ASSERT_EQ(w.connect(5s), 2u);
+  AnimatedScene s("builtin:plant:20000");
+  s.scene.commit();
+  ASSERT_GT(sg::encode(*s.scene.snapshot()).size(), 5u * 64 * 1024) << "the test wants many parts";
+  for (int f = 0; f < 3; ++f) step(w, s, f);
+  expectReplicasMatch(w, s.scene, 2);
+
+  NodeProcess late;
+  w.addNode({late.address(), "embree", {}});
+  for (int f = 3; f < 40 && w.onlineNodes() < 3; ++f) {
+    step(w, s, f);
+    std::this_thread::sleep_for(20ms);
+  }
+  step(w, s, 40);
   expectReplicasMatch(w, s.scene, 3);
 }
 

@@ -36,6 +36,7 @@
 #include "tsr/cluster/message_fields.hpp"
 #include "tsr/med/parameters.hpp"
 #include "tsr/med/view.hpp"
+#include "tsr/sg/changes/change_list.hpp"
 #include "tsr/sg/types.hpp"
 #include "tsr/sg/wire/byte_reader.hpp"
 #include "tsr/sg/wire/byte_writer.hpp"
@@ -426,6 +427,9 @@ using Messages =
 
 // Header + payload of a message struct.
 Frame frameFromPayload(MessageType type, std::span<const std::uint8_t> payload);
+// A Snapshot or Changes message, the list encoded straight into the frame
+// (no second copy of a scene's bytes).
+Frame changeListFrame(MessageType type, const sg::ChangeList& list);
 template <class T>
 Frame makeFrame(const T& message) {
   std::vector<std::uint8_t> payload;

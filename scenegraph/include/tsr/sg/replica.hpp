@@ -5,6 +5,8 @@
 #include "tsr/sg/changes/change_log.hpp"
 #include "tsr/sg/scene.hpp"
 
+#include <vector>
+
 namespace tsr::sg {
 
 class Replica {
@@ -12,8 +14,12 @@ class Replica {
   explicit Replica(std::size_t logCapacity = 256) : log_(logCapacity) {}
 
   // Applies a delta (logged) or, to an empty replica, a snapshot (which
-  // starts a fresh log). Throws ApplyError, leaving everything unchanged.
+  // starts a fresh log). Parts of a snapshot (splitSnapshot) are held until
+  // its last part arrives, then applied as one. Throws ApplyError, leaving
+  // the scene unchanged (and the parts held so far dropped).
   void apply(const ChangeListPtr& list);
+  // Parts of a snapshot have arrived, and its last has not.
+  bool awaitingSnapshot() const { return !parts_.empty(); }
 
   const Scene& scene() const { return scene_; }
   std::uint64_t version() const { return scene_.version(); }
@@ -22,6 +28,7 @@ class Replica {
  private:
   Scene scene_;
   ChangeLog log_;
+  std::vector<ChangeListPtr> parts_;
 };
 
 }  // namespace tsr::sg

@@ -12,7 +12,10 @@
 //                 was changed in the same list to refer to it no more.
 // Entries come creations first, then changes, then destructions, each in
 // ascending id order. A snapshot is a list of creations only, describing a
-// whole scene at its version, for replicas that start empty.
+// whole scene at its version, for replicas that start empty. A snapshot too
+// large for one message goes as parts (splitSnapshot): creations in id
+// order, each part but the last of kind SnapshotPart, the last a Snapshot;
+// a replica applies them together when the last arrives.
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -61,13 +64,15 @@ struct Destruction {
 
 class ChangeList {
  public:
-  enum class Kind : std::uint8_t { Delta = 0, Snapshot = 1 };
+  enum class Kind : std::uint8_t { Delta = 0, Snapshot = 1, SnapshotPart = 2 };
 
   Kind kind() const { return kind_; }
   bool isSnapshot() const { return kind_ == Kind::Snapshot; }
+  // A part of a snapshot that more parts follow.
+  bool isSnapshotPart() const { return kind_ == Kind::SnapshotPart; }
   // The scene version after this list; a delta applies to baseVersion().
   std::uint64_t version() const { return version_; }
-  std::uint64_t baseVersion() const { return kind_ == Kind::Snapshot ? 0 : version_ - 1; }
+  std::uint64_t baseVersion() const { return kind_ == Kind::Delta ? version_ - 1 : 0; }
 
   const std::vector<ChangeEntry>& creations() const { return creations_; }
   const std::vector<ChangeEntry>& changes() const { return changes_; }
@@ -77,6 +82,8 @@ class ChangeList {
   // Whole arrays held by reference, by their place in values(): a list
   // carries a mesh without copying it (see SharedSlice).
   const SharedSlices& slices() const { return slices_; }
+  // The slices of one entry's values.
+  std::span<const SharedSlice> slices(const ChangeEntry& e) const;
 
   bool empty() const { return creations_.empty() && changes_.empty() && destructions_.empty(); }
   // Field changes carried by change entries (creations count each field).
@@ -93,6 +100,9 @@ class ChangeList {
     void addCreation(const Container& c);
     void addChange(const Container& c, FieldMask mask, const std::vector<RangedEdit>& edits);
     void addDestruction(ContainerId id, ContainerType type);
+    // Adds a creation or change of another list as it stands there (its
+    // values and the arrays it shares).
+    void addCopy(const ChangeList& from, const ChangeEntry& e, bool creation);
     // Adds an entry from untrusted serialised values; throws DecodeError
     // (offsets relative to `baseOffset`) when they are malformed. Whole
     // arrays are kept as shared arrays, ready for a replica to take.
@@ -119,5 +129,13 @@ class ChangeList {
 };
 
 using ChangeListPtr = std::shared_ptr<const ChangeList>;
+
+// A snapshot as parts whose encoding (sg::encode) takes at most `maxBytes`
+// each: the snapshot itself when it fits. Throws std::length_error when one
+// container alone does not fit.
+std::vector<ChangeListPtr> splitSnapshot(const ChangeListPtr& snapshot, std::size_t maxBytes);
+// The parts of one snapshot, in order, as the one snapshot they came from.
+// Throws ApplyError when they are not the parts of one snapshot.
+ChangeListPtr joinSnapshot(std::span<const ChangeListPtr> parts);
 
 }  // namespace tsr::sg
