@@ -27,7 +27,7 @@ void writeValues(ByteWriter& w, const ChangeList& list, const ChangeEntry& e) {
   }
   w.raw(values + from, e.valueOffset + e.valueSize - from);
 }
-}
+}  // namespace
 
 void encodeAppend(const ChangeList& list, std::vector<std::uint8_t>& out) {
   ByteWriter w(out);

@@ -29,12 +29,17 @@ FrameBuffer render(Scene& scene, Visibility visibility) {
   return fb;
 }
 
-TEST(VulkanGeometryArena, ManyMeshesRemovalsAndAdditionsDrawAsAFreshScene) {
-  Scene edited(device());
+// The tests' one material and light, added to a scene; returns the material.
+MaterialId ochreUnderTheSun(Scene& scene) {
   Material m;
   m.baseColor = {0.7f, 0.6f, 0.3f};
-  const MaterialId mat = edited.addMaterial(m);
-  edited.addLight(DirectionalLight{{0.3f, -1, -0.2f}, glm::vec3(2.0f)});
+  scene.addLight(DirectionalLight{{0.3f, -1, -0.2f}, glm::vec3(2.0f)});
+  return scene.addMaterial(m);
+}
+
+TEST(VulkanGeometryArena, ManyMeshesRemovalsAndAdditionsDrawAsAFreshScene) {
+  Scene edited(device());
+  const MaterialId mat = ochreUnderTheSun(edited);
   std::vector<MeshId> meshes;
   std::vector<InstanceId> instances;
   for (int i = 0; i < 40; ++i) {
@@ -50,8 +55,7 @@ TEST(VulkanGeometryArena, ManyMeshesRemovalsAndAdditionsDrawAsAFreshScene) {
   }
 
   Scene fresh(device());
-  const MaterialId freshMat = fresh.addMaterial(m);
-  fresh.addLight(DirectionalLight{{0.3f, -1, -0.2f}, glm::vec3(2.0f)});
+  const MaterialId freshMat = ochreUnderTheSun(fresh);
   for (int i = 0; i < 40; ++i)
     if (i % 3 != 0) fresh.addInstance(fresh.addMesh(sphere(i)), freshMat, cell(i));
   for (int i = 0; i < 40; i += 3) fresh.addInstance(fresh.addMesh(test::uvSphere(6, 8, 0.45f)), freshMat, cell(i));
@@ -65,10 +69,7 @@ TEST(VulkanGeometryArena, ManyMeshesRemovalsAndAdditionsDrawAsAFreshScene) {
 
 TEST(VulkanGeometryArena, SmallMeshesHold16BitIndicesLargeOnes32BitAndDrawTogether) {
   Scene scene(device());
-  Material m;
-  m.baseColor = {0.7f, 0.6f, 0.3f};
-  const MaterialId mat = scene.addMaterial(m);
-  scene.addLight(DirectionalLight{{0.3f, -1, -0.2f}, glm::vec3(2.0f)});
+  const MaterialId mat = ochreUnderTheSun(scene);
   // A first block holds 65,536 vertices (32 bytes each: position, normal,
   // uv) and three indices a vertex, of 2 bytes for meshes that fit.
   scene.addInstance(scene.addMesh(sphere(0)), mat, cell(0));
@@ -86,8 +87,7 @@ TEST(VulkanGeometryArena, SmallMeshesHold16BitIndicesLargeOnes32BitAndDrawTogeth
   // The large sphere is drawn whole: the pixel at its centre is lit, as
   // in a scene of it alone.
   Scene alone(device());
-  const MaterialId aloneMat = alone.addMaterial(m);
-  alone.addLight(DirectionalLight{{0.3f, -1, -0.2f}, glm::vec3(2.0f)});
+  const MaterialId aloneMat = ochreUnderTheSun(alone);
   alone.addInstance(alone.addMesh(big), aloneMat, cell(20));
   const FrameBuffer only = render(alone, Visibility::All);
   EXPECT_GT(test::maxAbsDiff(only, FrameBuffer(80, 80)), 0.1f);

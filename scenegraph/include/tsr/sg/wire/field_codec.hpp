@@ -234,8 +234,8 @@ void writeArray(ByteWriter& w, const SharedArray<E>& a, const std::vector<ArrayR
   if (edited || !w.slices() || a.empty()) return writeArray(w, a.get(), edited);
   w.u8(static_cast<std::uint8_t>(ArrayEncoding::Whole));
   w.varint(a.size());
-  w.slices()->push_back({w.size(), a.shared(), &typeid(E), reinterpret_cast<const std::uint8_t*>(a.data()),
-                         a.size() * sizeof(E)});
+  w.slices()->push_back(
+      {w.size(), a.shared(), &typeid(E), reinterpret_cast<const std::uint8_t*>(a.data()), a.size() * sizeof(E)});
 }
 
 template <ArrayElement E>
@@ -246,8 +246,7 @@ void readArray(ByteReader& r, SharedArray<E>& a, FieldReadContext& ctx) {
     std::size_t n = r.count(ctx.limits.maxArrayElements, 0, "array element");
     if (const SharedSlice* slice = detail::sliceAt(ctx.slices, r.offset())) {
       // A list of this process: its elements were checked when the scene took them.
-      if (*slice->element != typeid(E) || slice->size != n * sizeof(E))
-        r.fail("shared array does not match its field");
+      if (*slice->element != typeid(E) || slice->size != n * sizeof(E)) r.fail("shared array does not match its field");
       a = SharedArray<E>(std::static_pointer_cast<const std::vector<E>>(slice->owner));
       return;
     }
@@ -255,8 +254,8 @@ void readArray(ByteReader& r, SharedArray<E>& a, FieldReadContext& ctx) {
     auto elements = std::make_shared<std::vector<E>>();
     detail::readElements(r, *elements, n, countAt);
     if (ctx.collected && n)
-      ctx.collected->push_back({at, elements, &typeid(E), reinterpret_cast<const std::uint8_t*>(elements->data()),
-                                n * sizeof(E)});
+      ctx.collected->push_back(
+          {at, elements, &typeid(E), reinterpret_cast<const std::uint8_t*>(elements->data()), n * sizeof(E)});
     a = SharedArray<E>(std::shared_ptr<const std::vector<E>>(std::move(elements)));
     return;
   }

@@ -13,11 +13,11 @@
 namespace tsr::sg {
 
 struct SharedSlice {
-  std::uint64_t offset = 0;            // where the elements' bytes would stand in the list's values
-  std::shared_ptr<const void> owner;   // a std::vector of the element type
+  std::uint64_t offset = 0;           // where the elements' bytes would stand in the list's values
+  std::shared_ptr<const void> owner;  // a std::vector of the element type
   const std::type_info* element = nullptr;
   const std::uint8_t* bytes = nullptr;
-  std::size_t size = 0;                // in bytes
+  std::size_t size = 0;  // in bytes
 };
 
 // In ascending offset order, as written.
