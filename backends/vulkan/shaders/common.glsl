@@ -3,7 +3,25 @@
 struct Instance {
   mat4 model;
   mat4 normal;
+  vec4 positionOffset;  // the mesh's box: positions are 16-bit fractions of it
+  vec4 positionScale;
+  vec4 uvBox;  // the mesh's uv box (lo, hi - lo), as positionOffset and positionScale
 };
+
+// Compact vertex streams (src/scene/vertex_encoding.hpp).
+vec4 modelPosition(Instance inst, vec3 fraction) {
+  return inst.model * vec4(inst.positionOffset.xyz + fraction * inst.positionScale.xyz, 1.0);
+}
+
+vec2 meshUv(Instance inst, vec2 fraction) { return inst.uvBox.xy + fraction * inst.uvBox.zw; }
+
+// Octahedral coordinates to a unit normal; the corner (-1, -1) is no normal (zero).
+vec3 octNormal(vec2 e) {
+  if (e.x <= -1.0 && e.y <= -1.0) return vec3(0.0);
+  vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+  if (n.z < 0.0) n.xy = (1.0 - abs(e.yx)) * vec2(e.x >= 0.0 ? 1.0 : -1.0, e.y >= 0.0 ? 1.0 : -1.0);
+  return normalize(n);
+}
 
 struct Material {
   vec4 baseColor;

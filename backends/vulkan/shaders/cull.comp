@@ -11,6 +11,9 @@ layout(local_size_x = 64) in;
 struct Instance {
   mat4 model;
   mat4 normal;
+  vec4 positionOffset;  // the mesh's box: positions are 16-bit fractions of it
+  vec4 positionScale;
+  vec4 uvBox;  // the mesh's uv box (lo, hi - lo), as positionOffset and positionScale
 };
 
 struct Record {

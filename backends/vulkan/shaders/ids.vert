@@ -5,6 +5,9 @@
 struct Instance {
   mat4 model;
   mat4 normal;
+  vec4 positionOffset;  // the mesh's box: positions are 16-bit fractions of it
+  vec4 positionScale;
+  vec4 uvBox;  // the mesh's uv box (lo, hi - lo), as positionOffset and positionScale
 };
 
 layout(set = 0, binding = 0) uniform Frame { mat4 viewProj; } frame;
@@ -18,5 +21,7 @@ layout(location = 0) flat out uint objectId;
 void main() {
   uint slot = drawOrder[gl_InstanceIndex];
   objectId = objects[slot];
-  gl_Position = frame.viewProj * (instances[slot].model * vec4(inPosition, 1.0));
+  Instance inst = instances[slot];
+  // As common.glsl's modelPosition: positions are 16-bit fractions of the mesh's box.
+  gl_Position = frame.viewProj * (inst.model * vec4(inst.positionOffset.xyz + inPosition * inst.positionScale.xyz, 1.0));
 }

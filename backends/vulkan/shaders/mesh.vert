@@ -2,7 +2,7 @@
 #include "common.glsl"
 
 layout(location = 0) in vec3 inPosition;
-layout(location = 1) in vec3 inNormal;
+layout(location = 1) in vec2 inNormal;  // octahedral
 layout(location = 2) in vec2 inUv;
 
 layout(location = 0) out vec3 worldPos;
@@ -11,11 +11,11 @@ layout(location = 2) out vec2 uv;
 
 void main() {
   Instance inst = instances[drawOrder[gl_InstanceIndex]];
-  vec4 p = inst.model * vec4(inPosition, 1.0);
+  vec4 p = modelPosition(inst, inPosition);
   worldPos = p.xyz;
   // A zero normal (mesh without normals) stays zero: the fragment shader
   // then uses the flat face normal.
-  worldNormal = mat3(inst.normal) * inNormal;
-  uv = inUv;
+  worldNormal = mat3(inst.normal) * octNormal(inNormal);
+  uv = meshUv(inst, inUv);
   gl_Position = frame.viewProj * p;
 }

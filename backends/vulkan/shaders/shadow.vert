@@ -5,5 +5,5 @@ layout(location = 0) in vec3 inPosition;
 
 void main() {
   Instance inst = instances[drawOrder[gl_InstanceIndex]];
-  gl_Position = pc.lightViewProj * (inst.model * vec4(inPosition, 1.0));
+  gl_Position = pc.lightViewProj * modelPosition(inst, inPosition);
 }

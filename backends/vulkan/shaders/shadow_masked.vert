@@ -10,6 +10,6 @@ layout(location = 0) out vec2 uv;
 
 void main() {
   Instance inst = instances[drawOrder[gl_InstanceIndex]];
-  uv = inUv;
-  gl_Position = pc.lightViewProj * (inst.model * vec4(inPosition, 1.0));
+  uv = meshUv(inst, inUv);
+  gl_Position = pc.lightViewProj * modelPosition(inst, inPosition);
 }

@@ -153,6 +153,9 @@ std::shared_ptr<Device> Device::create(const DeviceOptions& options) {
   d->queueFamily_ = chosen.queueFamily;
   d->properties_ = chosen.properties;
   vkGetPhysicalDeviceMemoryProperties(d->physical_, &d->memory_);
+  VkFormatProperties threeHalves{};
+  vkGetPhysicalDeviceFormatProperties(d->physical_, VK_FORMAT_R16G16B16_UNORM, &threeHalves);
+  if (threeHalves.bufferFeatures & VK_FORMAT_FEATURE_VERTEX_BUFFER_BIT) d->positionFormat_ = VK_FORMAT_R16G16B16_UNORM;
 
   VkPhysicalDeviceVulkan13Features f13 =
       vkStruct<VkPhysicalDeviceVulkan13Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES);

@@ -14,7 +14,10 @@ namespace tsr::vk {
 
 struct GpuInstance {
   glm::mat4 model;
-  glm::mat4 normal;  // inverse transpose of model's 3x3, padded
+  glm::mat4 normal;          // inverse transpose of model's 3x3, padded
+  glm::vec4 positionOffset;  // the mesh's box (vertex_encoding.hpp): xyz lo
+  glm::vec4 positionScale;   // xyz hi - lo
+  glm::vec4 uvBox;           // the mesh's uv box: lo, hi - lo
 };
 
 // Type and textures select a specialised pipeline instead (see mesh.frag).

@@ -70,16 +70,18 @@ TEST(VulkanGeometryArena, ManyMeshesRemovalsAndAdditionsDrawAsAFreshScene) {
 TEST(VulkanGeometryArena, SmallMeshesHold16BitIndicesLargeOnes32BitAndDrawTogether) {
   Scene scene(device());
   const MaterialId mat = ochreUnderTheSun(scene);
-  // A first block holds 65,536 vertices (32 bytes each: position, normal,
-  // uv) and three indices a vertex, of 2 bytes for meshes that fit.
+  // A first block holds 65,536 vertices (14 or 16 bytes each: a position
+  // and a uv as 16-bit fractions of their boxes, an octahedral normal) and
+  // three indices a vertex, of 2 bytes for meshes that fit.
+  const std::uint64_t vertex = device()->positionBytes() + 4u + 4u;
   scene.addInstance(scene.addMesh(sphere(0)), mat, cell(0));
-  EXPECT_EQ(scene.geometryBytesHeld(), 65536u * 32u + 3u * 65536u * 2u);
+  EXPECT_EQ(scene.geometryBytesHeld(), 65536u * vertex + 3u * 65536u * 2u);
   // 301 x 251 = 75,551 vertices: a block of its size, of 32-bit indices.
   const MeshData big = test::uvSphere(300, 250, 1.2f);
   ASSERT_GT(big.positions.size(), 65536u);
   scene.addInstance(scene.addMesh(big), mat, cell(20));
   EXPECT_EQ(scene.geometryBytesHeld(),
-            65536u * 32u + 3u * 65536u * 2u + big.positions.size() * 32u + big.indices.size() * 4u);
+            65536u * vertex + 3u * 65536u * 2u + big.positions.size() * vertex + big.indices.size() * 4u);
   scene.addInstance(scene.addMesh(sphere(1)), mat, cell(7));
 
   const FrameBuffer all = render(scene, Visibility::All);

@@ -3,9 +3,7 @@
 #include "tsr/vk/error.hpp"
 #include "vk_struct.hpp"
 
-#include <glm/vec2.hpp>
-#include <glm/vec3.hpp>
-
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -107,16 +105,17 @@ Pipeline::Pipeline(const Device& device, const PipelineDesc& d) : device_(device
                                       d.fragmentConstants.size() * sizeof(std::uint32_t), d.fragmentConstants.data()};
   if (!entries.empty()) stages[1].pSpecializationInfo = &specialization;
 
-  // Separate streams, so a vertex range edit touches one contiguous range per attribute.
+  // Separate streams, so a vertex range edit touches one contiguous range per
+  // attribute; all three compact (src/scene/vertex_encoding.hpp).
   const VkVertexInputBindingDescription allBindings[3] = {
-      {0, sizeof(glm::vec3), VK_VERTEX_INPUT_RATE_VERTEX},
-      {1, sizeof(glm::vec3), VK_VERTEX_INPUT_RATE_VERTEX},
-      {2, sizeof(glm::vec2), VK_VERTEX_INPUT_RATE_VERTEX},
+      {0, device.positionBytes(), VK_VERTEX_INPUT_RATE_VERTEX},
+      {1, 2 * sizeof(std::int16_t), VK_VERTEX_INPUT_RATE_VERTEX},
+      {2, 2 * sizeof(std::uint16_t), VK_VERTEX_INPUT_RATE_VERTEX},
   };
   const VkVertexInputAttributeDescription allAttributes[3] = {
-      {0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
-      {1, 1, VK_FORMAT_R32G32B32_SFLOAT, 0},
-      {2, 2, VK_FORMAT_R32G32_SFLOAT, 0},
+      {0, 0, device.positionFormat(), 0},
+      {1, 1, VK_FORMAT_R16G16_SNORM, 0},
+      {2, 2, VK_FORMAT_R16G16_UNORM, 0},
   };
   VkPipelineVertexInputStateCreateInfo vi =
       vkStruct<VkPipelineVertexInputStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO);

@@ -13,14 +13,14 @@ namespace tsr::vk {
 namespace {
 
 constexpr std::uint32_t kFirstVertices = 1u << 16;
-constexpr std::uint32_t kMaxVertices = 1u << 23;  // 8 Mi vertices, 256 MiB of streams
+constexpr std::uint32_t kMaxVertices = 1u << 23;  // 8 Mi vertices, 160 MiB of streams
 constexpr VkBufferUsageFlags kTransfer = VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
 constexpr VkBufferUsageFlags kVertexUsage = VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | kTransfer;
 constexpr VkBufferUsageFlags kIndexUsage = VK_BUFFER_USAGE_INDEX_BUFFER_BIT | kTransfer;
 
 }  // namespace
 
-GeometryArena::GeometryArena(const Device& device) : device_(device) {}
+GeometryArena::GeometryArena(const Device& device) : device_(device), positionBytes_(device.positionBytes()) {}
 
 std::uint32_t GeometryArena::blockFor(std::uint32_t vertices, std::uint32_t indices, bool wide) {
   std::uint32_t& current = current_[wide ? 1 : 0];
@@ -45,9 +45,9 @@ std::uint32_t GeometryArena::blockFor(std::uint32_t vertices, std::uint32_t indi
     }
     return Buffer(device_, bytes, usage, Buffer::kDevice);
   };
-  b.positions = make(VkDeviceSize(capacity) * sizeof(glm::vec3), kVertexUsage);
-  b.normals = make(VkDeviceSize(capacity) * sizeof(glm::vec3), kVertexUsage);
-  b.uvs = make(VkDeviceSize(capacity) * sizeof(glm::vec2), kVertexUsage);
+  b.positions = make(VkDeviceSize(capacity) * positionBytes_, kVertexUsage);
+  b.normals = make(VkDeviceSize(capacity) * sizeof(OctNormal), kVertexUsage);
+  b.uvs = make(VkDeviceSize(capacity) * sizeof(QuantizedUv), kVertexUsage);
   b.wide = wide;
   b.indices = make(VkDeviceSize(indexCapacity) * b.indexBytes(), kIndexUsage);
   b.vertexCapacity = capacity;
@@ -79,10 +79,37 @@ void GeometryArena::read(const Buffer& src, VkDeviceSize offset, void* bytes, Vk
 }
 
 std::vector<glm::vec3> GeometryArena::positions(const GeometrySpan& span, std::uint32_t count) const {
+  const std::uint32_t components = positionBytes_ / 2;
+  std::vector<std::uint16_t> stored(std::size_t(count) * components);
+  read(blocks_[span.block].positions, VkDeviceSize(span.baseVertex) * positionBytes_, stored.data(),
+       VkDeviceSize(count) * positionBytes_);
   std::vector<glm::vec3> out(count);
-  read(blocks_[span.block].positions, VkDeviceSize(span.baseVertex) * sizeof(glm::vec3), out.data(),
-       VkDeviceSize(count) * sizeof(glm::vec3));
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const std::uint16_t* v = &stored[std::size_t(i) * components];
+    out[i] = dequantize(span.quantization, QuantizedPosition{v[0], v[1], v[2], 0});
+  }
   return out;
+}
+
+void GeometryArena::writePositions(const GeometrySpan& span, std::uint32_t first,
+                                   std::span<const glm::vec3> positions) {
+  const std::uint32_t components = positionBytes_ / 2;
+  std::vector<std::uint16_t> stored(positions.size() * components, 0);
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    const QuantizedPosition q = quantize(span.quantization, positions[i]);
+    std::copy_n(q.begin(), 3, &stored[i * components]);
+  }
+  write(blocks_[span.block].positions, VkDeviceSize(span.baseVertex + first) * positionBytes_, stored.data(),
+        VkDeviceSize(positions.size()) * positionBytes_);
+}
+
+// Missing normals (empty) are written as count zero normals.
+void GeometryArena::writeNormals(const GeometrySpan& span, std::uint32_t first, std::span<const glm::vec3> normals,
+                                 std::uint32_t count) {
+  std::vector<OctNormal> stored(count, kNoNormal);
+  for (std::size_t i = 0; i < normals.size(); ++i) stored[i] = octEncode(normals[i]);
+  write(blocks_[span.block].normals, VkDeviceSize(span.baseVertex + first) * sizeof(OctNormal), stored.data(),
+        VkDeviceSize(count) * sizeof(OctNormal));
 }
 
 std::vector<std::uint32_t> GeometryArena::indices(const GeometrySpan& span, std::uint32_t count) const {
@@ -104,16 +131,14 @@ GeometrySpan GeometryArena::add(const MeshData& data) {
   const bool wide = n > (1u << 16);
   const std::uint32_t index = blockFor(n, ni, wide);
   Block& b = blocks_[index];
-  const GeometrySpan span{index, b.vertices, b.indexCount};
-  write(b.positions, VkDeviceSize(span.baseVertex) * sizeof(glm::vec3), data.positions.data(),
-        VkDeviceSize(n) * sizeof(glm::vec3));
+  const GeometrySpan span{index, b.vertices, b.indexCount, PositionQuantization::of(data.positions),
+                          UvQuantization::of(data.uvs)};
+  writePositions(span, 0, data.positions);
   // Blocks may hold a removed mesh's data here: zero what the mesh lacks.
-  const std::vector<glm::vec3> noNormals(data.normals.empty() ? n : 0, glm::vec3(0.0f));
-  const std::vector<glm::vec2> noUvs(data.uvs.empty() ? n : 0, glm::vec2(0.0f));
-  write(b.normals, VkDeviceSize(span.baseVertex) * sizeof(glm::vec3),
-        data.normals.empty() ? noNormals.data() : data.normals.data(), VkDeviceSize(n) * sizeof(glm::vec3));
-  write(b.uvs, VkDeviceSize(span.baseVertex) * sizeof(glm::vec2), data.uvs.empty() ? noUvs.data() : data.uvs.data(),
-        VkDeviceSize(n) * sizeof(glm::vec2));
+  writeNormals(span, 0, data.normals, n);
+  std::vector<QuantizedUv> uvs(n, QuantizedUv{0, 0});  // no uvs: the box is the point (0, 0)
+  for (std::size_t i = 0; i < data.uvs.size(); ++i) uvs[i] = quantize(span.uvQuantization, data.uvs[i]);
+  write(b.uvs, VkDeviceSize(span.baseVertex) * sizeof(QuantizedUv), uvs.data(), VkDeviceSize(n) * sizeof(QuantizedUv));
   if (wide) {
     write(b.indices, VkDeviceSize(span.firstIndex) * 4, data.indices.data(), VkDeviceSize(ni) * 4);
   } else {
@@ -126,12 +151,24 @@ GeometrySpan GeometryArena::add(const MeshData& data) {
   return span;
 }
 
-void GeometryArena::updateVertices(const GeometrySpan& span, std::uint32_t first, std::span<const glm::vec3> positions,
-                                   std::span<const glm::vec3> normals) {
-  const Block& b = blocks_[span.block];
-  const VkDeviceSize at = VkDeviceSize(span.baseVertex + first) * sizeof(glm::vec3);
-  write(b.positions, at, positions.data(), positions.size_bytes());
-  write(b.normals, at, normals.data(), normals.size_bytes());
+bool GeometryArena::updateVertices(GeometrySpan& span, std::uint32_t vertexCount, std::uint32_t first,
+                                   std::span<const glm::vec3> positions, std::span<const glm::vec3> normals) {
+  const bool inside = std::all_of(positions.begin(), positions.end(),
+                                  [&](const glm::vec3& p) { return span.quantization.contains(p); });
+  if (inside) {
+    writePositions(span, first, positions);
+  } else {
+    // The box grows to hold the new positions (the union: the box a fresh
+    // mesh would get, unless the edit also took in an old extreme), and
+    // every position is stored again as a fraction of it.
+    std::vector<glm::vec3> all = this->positions(span, vertexCount);
+    std::copy(positions.begin(), positions.end(), all.begin() + first);
+    const PositionQuantization added = PositionQuantization::of(positions);
+    span.quantization = {glm::min(span.quantization.lo, added.lo), glm::max(span.quantization.hi, added.hi)};
+    writePositions(span, 0, all);
+  }
+  if (!normals.empty()) writeNormals(span, first, normals, std::uint32_t(normals.size()));
+  return !inside;
 }
 
 void GeometryArena::release(const GeometrySpan& span) {

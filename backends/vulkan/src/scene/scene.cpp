@@ -35,7 +35,7 @@ Record& lookup(std::vector<Record>& records, std::uint32_t i, const char* what) 
   return records[i];
 }
 
-GpuInstance makeInstance(const glm::mat4& m) {
+GpuInstance makeInstance(const glm::mat4& m, const GeometrySpan& mesh) {
   // Cofactor matrix = det * inverse transpose: well defined even for a
   // degenerate scale; the sign of det keeps the inverse transpose's direction.
   const glm::vec3 c0(m[0]), c1(m[1]), c2(m[2]);
@@ -43,6 +43,9 @@ GpuInstance makeInstance(const glm::mat4& m) {
   const float s = det < 0.0f ? -1.0f : 1.0f;
   GpuInstance g;
   g.model = m;
+  g.positionOffset = glm::vec4(mesh.quantization.lo, 0.0f);
+  g.positionScale = glm::vec4(mesh.quantization.scale(), 0.0f);
+  g.uvBox = glm::vec4(mesh.uvQuantization.lo, mesh.uvQuantization.scale());
   g.normal = glm::mat4(glm::vec4(s * glm::cross(c1, c2), 0.0f), glm::vec4(s * glm::cross(c2, c0), 0.0f),
                        glm::vec4(s * glm::cross(c0, c1), 0.0f), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
   return g;
@@ -293,7 +296,7 @@ MeshId Scene::addMesh(const MeshData& data) {
   m.vertexCount = std::uint32_t(n);
   m.indexCount = std::uint32_t(data.indices.size());
   m.span = s.geometry->add(data);
-  s.geometryBytes += n * (2 * sizeof(glm::vec3) + sizeof(glm::vec2)) + data.indices.size() * sizeof(std::uint32_t);
+  s.geometryBytes += n * s.geometry->vertexBytes() + data.indices.size() * (n > (1u << 16) ? 4 : 2);
   m.area = meshArea(data.positions, data.indices);
   m.boundsMin = m.boundsMax = data.positions[0];
   for (const auto& p : data.positions) {
@@ -321,8 +324,18 @@ void Scene::updateMeshVertices(MeshId mesh, std::uint32_t first, std::span<const
   for (const auto& v : normals)
     if (!finite(v)) throw Error("updated normals contain NaN or infinity");
 
-  s.geometry->updateVertices(m.span, first, positions, normals);
-  s.geometryBytes += positions.size_bytes() + normals.size_bytes();
+  const bool regrown = s.geometry->updateVertices(m.span, m.vertexCount, first, positions, normals);
+  s.geometryBytes +=
+      (regrown ? m.vertexCount : positions.size()) * s.geometry->positionBytes() + normals.size() * sizeof(OctNormal);
+  if (regrown) {
+    // The mesh's box grew: its instances decode positions by the new one.
+    auto* gpu = static_cast<GpuInstance*>(s.instanceBuffer.mapped());
+    for (std::uint32_t slot = 0; slot < s.instances.size(); ++slot)
+      if (s.instances[slot].alive && s.instances[slot].mesh == index(mesh)) {
+        gpu[slot] = makeInstance(s.instances[slot].transform, m.span);
+        s.instanceBytes += sizeof(GpuInstance);
+      }
+  }
   m.patchesDirty = true;
   // Bounds and area of the whole mesh again, from the arena: the scene keeps no CPU copy.
   const std::vector<glm::vec3> all = s.geometry->positions(m.span, m.vertexCount);
@@ -354,7 +367,7 @@ InstanceId Scene::addInstance(MeshId mesh, MaterialId material, const glm::mat4&
   ensureHostCapacity(*s.device, s.instanceBuffer, (slot + 1) * sizeof(GpuInstance), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   ensureHostCapacity(*s.device, s.objectBuffer, (slot + 1) * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   s.instances.push_back({index(mesh), index(material), transform, true, slot + 1});
-  static_cast<GpuInstance*>(s.instanceBuffer.mapped())[slot] = makeInstance(transform);
+  static_cast<GpuInstance*>(s.instanceBuffer.mapped())[slot] = makeInstance(transform, m.span);
   static_cast<std::uint32_t*>(s.objectBuffer.mapped())[slot] = slot + 1;
   s.instanceBytes += sizeof(GpuInstance);
   ++m.users;
@@ -369,7 +382,8 @@ void Scene::setInstanceTransform(InstanceId instance, const glm::mat4& transform
   InstanceRecord& r = lookup(s.instances, index(instance), "instance");
   if (!finite(transform)) throw Error("instance transform contains NaN or infinity");
   r.transform = transform;
-  static_cast<GpuInstance*>(s.instanceBuffer.mapped())[index(instance)] = makeInstance(transform);
+  static_cast<GpuInstance*>(s.instanceBuffer.mapped())[index(instance)] =
+      makeInstance(transform, s.meshes[r.mesh].span);
   s.instanceBytes += sizeof(GpuInstance);
   s.boundsDirty = true;
   ++s.version;

@@ -55,6 +55,11 @@ class Device {
   bool multiDrawIndirect() const { return multiDrawIndirect_; }
   // Needed to draw see-through volumes (they are skipped without it).
   bool dualSourceBlend() const { return dualSourceBlend_; }
+  // The vertex format of compact positions: three 16-bit fractions where
+  // the device reads that from vertex buffers (6 bytes), else four, the
+  // fourth unused (8 bytes).
+  VkFormat positionFormat() const { return positionFormat_; }
+  std::uint32_t positionBytes() const { return positionFormat_ == VK_FORMAT_R16G16B16_UNORM ? 6 : 8; }
 
   // Memory type index with all `required` flags among `typeBits`; throws if none.
   std::uint32_t memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required) const;
@@ -85,6 +90,7 @@ class Device {
   bool presentation_ = false;
   bool multiDrawIndirect_ = false;
   bool dualSourceBlend_ = false;
+  VkFormat positionFormat_ = VK_FORMAT_R16G16B16A16_UNORM;
   std::atomic<std::uint64_t> errors_{0};
   std::atomic<std::uint64_t> warnings_{0};
   mutable std::mutex messagesMutex_;

@@ -1,0 +1,126 @@
+// Compact vertex streams: the stated tolerance holds for positions and
+// normals over many values, zero normals survive, and a mesh's box grows
+// when a vertex edit leaves it (white box: src/scene/vertex_encoding.hpp).
+#include "scene/vertex_encoding.hpp"
+#include "test_util.hpp"
+
+#include "tsr/vk/renderer.hpp"
+#include "tsr/vk/scene.hpp"
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace tsr::vk {
+namespace {
+
+TEST(VertexEncoding, PositionsMoveByAtMostHalfAStepOfTheirBox) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  // A long thin mesh far from the origin: each axis has its own step.
+  std::vector<glm::vec3> positions(20000);
+  for (auto& p : positions) p = glm::vec3(1000.0f + 200.0f * u(rng), 0.05f * u(rng), -30.0f + 3.0f * u(rng));
+  const PositionQuantization q = PositionQuantization::of(positions);
+  const glm::vec3 halfStep = q.scale() / 131070.0f;
+  // Half a step, plus the float rounding of the decoding (a few ulp of the box's corners).
+  glm::vec3 bound;
+  for (int a = 0; a < 3; ++a) {
+    const float m = std::max(std::abs(q.lo[a]), std::abs(q.hi[a]));
+    bound[a] = halfStep[a] + 4.0f * (std::nextafter(m, INFINITY) - m);
+  }
+  for (const auto& p : positions) {
+    const glm::vec3 back = dequantize(q, quantize(q, p));
+    for (int a = 0; a < 3; ++a) ASSERT_LE(std::abs(back[a] - p[a]), bound[a]) << a;
+  }
+  // The box's corners are exact, and a flat axis is its one value.
+  const glm::vec3 flat[2] = {{1, 2, 3}, {4, 2, 6}};
+  const PositionQuantization f = PositionQuantization::of(flat);
+  EXPECT_EQ(dequantize(f, quantize(f, flat[0])), flat[0]);
+  EXPECT_EQ(dequantize(f, quantize(f, flat[1])), flat[1]);
+}
+
+TEST(VertexEncoding, UvsMoveByAtMostHalfAStepOfTheirBox) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  // A texture repeated 16 times one way, once the other.
+  std::vector<glm::vec2> uvs(20000);
+  for (auto& uv : uvs) uv = glm::vec2(-8.0f + 16.0f * u(rng), u(rng));
+  const UvQuantization q = UvQuantization::of(uvs);
+  for (const auto& uv : uvs) {
+    const glm::vec2 back = dequantize(q, quantize(q, uv));
+    ASSERT_LE(std::abs(back.x - uv.x), 16.0f / 131070.0f + 4e-6f);
+    ASSERT_LE(std::abs(back.y - uv.y), 1.0f / 131070.0f + 4e-7f);
+  }
+}
+
+TEST(VertexEncoding, NormalsTurnByAtMostAHundredthOfADegreeAndZeroStaysZero) {
+  std::mt19937 rng(11);
+  std::normal_distribution<float> g;
+  float worst = 0.0f;
+  for (int i = 0; i < 100000; ++i) {
+    const glm::vec3 n = glm::normalize(glm::vec3(g(rng), g(rng), g(rng)));
+    const glm::vec3 back = octDecode(octEncode(n));
+    // The angle from the cross product: acos near 1 is too coarse in float.
+    worst = std::max(worst, std::atan2(glm::length(glm::cross(n, back)), glm::dot(n, back)));
+  }
+  EXPECT_LT(worst * 180.0f / 3.14159265f, 0.01f);
+  // The poles and axes, and the direction whose code is next to the reserved corner.
+  for (const glm::vec3 n : {glm::vec3(0, 0, -1), glm::vec3(0, 0, 1), glm::vec3(1, 0, 0), glm::vec3(0, -1, 0),
+                            glm::normalize(glm::vec3(-1e-6f, -1e-6f, -1))}) {
+    EXPECT_NE(octEncode(n), kNoNormal);
+    EXPECT_GT(glm::dot(octDecode(octEncode(n)), n), 0.99999f);
+  }
+  EXPECT_EQ(octEncode(glm::vec3(0.0f)), kNoNormal);
+  EXPECT_EQ(octDecode(kNoNormal), glm::vec3(0.0f));
+  // Length does not matter: a normal is a direction.
+  EXPECT_EQ(octEncode(glm::vec3(0, 3, 4)), octEncode(glm::vec3(0, 0.6f, 0.8f)));
+}
+
+// A vertex edit beyond the mesh's box grows the box: the mesh drawn after
+// the edit is the mesh drawn fresh with the edited positions.
+TEST(VertexEncoding, AnEditBeyondTheBoxDrawsAsAFreshMesh) {
+  const Camera cam = Camera::lookAt({0, 3, 6}, {0, 0, 0}, {0, 1, 0}, 0.9f, 1.0f);
+  auto render = [&](Scene& scene) {
+    Renderer r(test::device(), RenderSettings{});
+    FrameBuffer fb(64, 64);
+    r.render(scene, cam, Region::full(64, 64), fb);
+    return fb;
+  };
+  const MeshData sphere = test::uvSphere(16, 24, 0.8f);
+  auto build = [&](Scene& scene, const MeshData& mesh) {
+    scene.addLight(DirectionalLight{{0.3f, -1, -0.2f}, glm::vec3(2.0f)});
+    const MeshId m = scene.addMesh(mesh);
+    scene.addInstance(m, scene.addMaterial({}), glm::mat4(1.0f));
+    return m;
+  };
+  Scene edited(test::device());
+  const MeshId m = build(edited, sphere);
+  // Pull a band of vertices out to twice the radius: beyond the box.
+  const std::uint32_t first = 100, count = 40;
+  MeshData pulled = sphere;
+  for (std::uint32_t i = first; i < first + count; ++i) pulled.positions[i] *= 2.0f;
+  const FrameBuffer before = render(edited);
+  edited.updateMeshVertices(m, first, std::span(pulled.positions).subspan(first, count), {});
+  Scene fresh(test::device());
+  build(fresh, pulled);
+  const FrameBuffer after = render(edited);
+  EXPECT_GT(test::maxAbsDiff(before, after), 0.1f) << "the edit shows";
+  // Other vertices are stored again from their decoded positions, so a
+  // pixel may differ where one lands on the other side of a rounding step.
+  const FrameBuffer expected = render(fresh);
+  int differing = 0;
+  for (std::size_t i = 0; i < after.colourImage().size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      if (std::abs(after.colourImage()[i][c] - expected.colourImage()[i][c]) > 0.02f) {
+        ++differing;
+        break;
+      }
+  EXPECT_LE(differing, 20) << "of 4096 pixels";
+}
+
+}  // namespace
+}  // namespace tsr::vk
