@@ -22,6 +22,10 @@ class SharedArray {
 
   SharedArray() = default;
   explicit SharedArray(Elements elements) {
+    // Held for the scene's life, so no room to grow: an array built by
+    // appending carries up to twice its size (a third of a generated plant's
+    // scene memory was this slack).
+    elements.shrink_to_fit();
     if (!elements.empty()) elements_ = std::make_shared<Elements>(std::move(elements));
   }
   // Elements another owner holds.
