@@ -78,6 +78,23 @@ TEST(SceneCache, DamagedOrTruncatedEntryIsRefusedAndRebuilt) {
   writeBytes(c.entry().string(), {1, 2, 3});
   EXPECT_NE(c.import().first.find("rebuilt (the entry is shorter than its header"), std::string::npos);
   EXPECT_EQ(c.import().first, "hit");
+  // Entries and sources are mapped, not read: an empty one maps nothing.
+  writeBytes(c.entry().string(), {});
+  EXPECT_NE(c.import().first.find("rebuilt (the entry is shorter than its header"), std::string::npos);
+  EXPECT_EQ(c.import().first, "hit");
+}
+
+TEST(SceneCache, AnEmptySourceIsRefusedByName) {
+  Cached c;
+  writeBytes(c.file, {});
+  sg::Scene scene;
+  try {
+    sg::importScene(scene, c.file, c.options);
+    FAIL() << "an empty file imported";
+  } catch (const sg::ImportError& e) {
+    EXPECT_NE(std::string(e.what()).find("scene.glb"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(scene.ids().empty());
 }
 
 // An entry whose header and hash are right but whose scene is not: validated like any input.

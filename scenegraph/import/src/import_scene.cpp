@@ -53,8 +53,9 @@ parsed::Scene parseBuiltin(const std::string& source) {
 // A file through the converted-scene cache (ImportOptions::cacheDir): the
 // kept conversion when its entry checks out, else the file parsed and kept.
 parsed::Scene parseCached(const std::string& source, const ImportOptions& options, std::string& note) {
-  const std::vector<unsigned char> bytes = gltf::readSource(source, options);
-  const std::string key = cache::key(bytes, options);
+  // The file's bytes are mapped while they are hashed (and parsed on a
+  // miss), not while the kept conversion is read: a hit holds one of them.
+  const std::string key = cache::key(gltf::mapSource(source, options).bytes(), options);
   const std::filesystem::path entry = cache::entryPath(options.cacheDir, key);
   std::string why;
   if (std::optional<parsed::Scene> kept = cache::load(entry, key, why)) {
@@ -65,7 +66,9 @@ parsed::Scene parseCached(const std::string& source, const ImportOptions& option
   const bool refused = why != "no entry";
   if (refused)
     spdlog::warn("{}: the converted scene in {} is refused ({}); converting again", source, entry.string(), why);
-  parsed::Scene scene = gltf::parseBytes(bytes, source, std::filesystem::path(source).parent_path().string(), options);
+  const MappedFile file = gltf::mapSource(source, options);
+  parsed::Scene scene =
+      gltf::parseBytes(file.bytes(), source, std::filesystem::path(source).parent_path().string(), options);
   std::string failed;
   if (scene.readOtherFiles)
     note = "not stored (the file names external buffers or images)";

@@ -5,8 +5,10 @@
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
+#include <system_error>
 
 #include "cache/parsed_scene_codec.hpp"
+#include "files/mapped_file.hpp"
 
 namespace tsr::sg::cache {
 namespace {
@@ -76,17 +78,22 @@ std::optional<parsed::Scene> load(const fs::path& entry, const std::string& key,
     why = "no entry";
     return std::nullopt;
   }
-  const std::uint64_t size = fs::file_size(entry, ec);
-  if (ec || size < sizeof(Header)) {
+  // Mapped: the payload is decoded from the page cache, not from a copy.
+  MappedFile file;
+  try {
+    file = MappedFile(entry);
+  } catch (const std::system_error& e) {
+    why = std::string("the entry cannot be read: ") + e.what();
+    return std::nullopt;
+  }
+  const std::span<const std::uint8_t> bytes = file.bytes();
+  const std::uint64_t size = bytes.size();
+  if (size < sizeof(Header)) {
     why = "the entry is shorter than its header";
     return std::nullopt;
   }
-  std::ifstream in(entry, std::ios::binary);
   Header h;
-  if (!in.read(reinterpret_cast<char*>(&h), sizeof h)) {
-    why = "the entry cannot be read";
-    return std::nullopt;
-  }
+  std::memcpy(&h, bytes.data(), sizeof h);
   if (std::memcmp(h.magic, kMagic, 8) != 0 || h.format != kFormat) {
     why = "not a converted scene of this format";
     return std::nullopt;
@@ -103,11 +110,7 @@ std::optional<parsed::Scene> load(const fs::path& entry, const std::string& key,
     why = "the entry is truncated or too long";
     return std::nullopt;
   }
-  std::vector<std::uint8_t> payload(h.payloadBytes);
-  if (!in.read(reinterpret_cast<char*>(payload.data()), static_cast<std::streamsize>(payload.size()))) {
-    why = "the entry cannot be read";
-    return std::nullopt;
-  }
+  const std::span<const std::uint8_t> payload = bytes.subspan(sizeof(Header));
   if (std::memcmp(h.payloadHash, hashOf(payload).data(), sizeof h.payloadHash) != 0) {
     why = "the entry is damaged (its hash does not match)";
     return std::nullopt;

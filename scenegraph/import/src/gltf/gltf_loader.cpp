@@ -6,6 +6,7 @@
 #include <fstream>
 #include <optional>
 #include <string_view>
+#include <system_error>
 
 #include <nlohmann/json.hpp>
 
@@ -18,7 +19,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<unsigned char> readWholeFile(const std::string& path, std::uint64_t limit, const std::string& source) {
+// The size of a regular file within `limit`, or an ImportError that says why not.
+std::uint64_t checkedSize(const std::string& path, std::uint64_t limit, const std::string& source) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec))
     throw ImportError(source, "cannot open '" + path + "': " +
@@ -32,6 +34,11 @@ std::vector<unsigned char> readWholeFile(const std::string& path, std::uint64_t 
                            "'" + path + "' is " + std::to_string(size) + " bytes, more than the limit of " +
                                std::to_string(limit) + " bytes (" + std::to_string(limit >> 20) + " MiB)",
                            ImportLimitError::Limit::FileBytes);
+  return size;
+}
+
+std::vector<unsigned char> readWholeFile(const std::string& path, std::uint64_t limit, const std::string& source) {
+  const std::uint64_t size = checkedSize(path, limit, source);
   std::ifstream in(path, std::ios::binary);
   std::vector<unsigned char> bytes(static_cast<std::size_t>(size));
   if (!in || !in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size)))
@@ -187,14 +194,18 @@ std::vector<unsigned char> glbWithJson(std::span<const unsigned char> bytes, std
 
 }  // namespace
 
-std::vector<unsigned char> readSource(const std::string& path, const ImportOptions& options) {
-  return readWholeFile(path, std::min<std::uint64_t>(options.maxFileBytes, 0xFFFFFFFFu), path);
+MappedFile mapSource(const std::string& path, const ImportOptions& options) {
+  checkedSize(path, std::min<std::uint64_t>(options.maxFileBytes, 0xFFFFFFFFu), path);
+  try {
+    return MappedFile(path);
+  } catch (const std::system_error& e) {
+    throw ImportError(path, e.what());
+  }
 }
 
 LoadedFile loadFile(const std::string& path, const ImportOptions& options) {
-  const std::uint64_t limit = std::min<std::uint64_t>(options.maxFileBytes, 0xFFFFFFFFu);
-  const std::vector<unsigned char> bytes = readWholeFile(path, limit, path);
-  return loadBytes(bytes, path, fs::path(path).parent_path().string(), options);
+  const MappedFile file = mapSource(path, options);
+  return loadBytes(file.bytes(), path, fs::path(path).parent_path().string(), options);
 }
 
 LoadedFile loadBytes(std::span<const unsigned char> bytes, const std::string& source, const std::string& baseDir,

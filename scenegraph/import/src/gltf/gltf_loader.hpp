@@ -9,6 +9,7 @@
 
 #include <tiny_gltf.h>
 
+#include "files/mapped_file.hpp"
 #include "gltf/draco_primitive.hpp"
 #include "tsr/sg/import/importer.hpp"
 
@@ -21,8 +22,8 @@ struct LoadedFile {
   bool readOtherFiles = false;  // external buffers or images were read
 };
 
-// The whole source file, within options.maxFileBytes.
-std::vector<unsigned char> readSource(const std::string& path, const ImportOptions& options);
+// The whole source file mapped, within options.maxFileBytes.
+MappedFile mapSource(const std::string& path, const ImportOptions& options);
 
 LoadedFile loadFile(const std::string& path, const ImportOptions& options);
 // The same for a file's bytes; external buffers and images resolve inside
