@@ -14,6 +14,7 @@
 #include <glm/common.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vector_relational.hpp>
 
 #include <algorithm>
 #include <array>
@@ -23,68 +24,52 @@
 
 namespace tsr::vk {
 
-// A mesh's box: position = lo + fraction * (hi - lo).
-struct PositionQuantization {
-  glm::vec3 lo{0.0f};
-  glm::vec3 hi{0.0f};
+// A mesh's box of positions or of uvs: value = lo + fraction * (hi - lo).
+template <class V>
+struct BoxQuantization {
+  V lo{0.0f};
+  V hi{0.0f};
 
-  static PositionQuantization of(std::span<const glm::vec3> positions) {
-    if (positions.empty()) return {};
-    PositionQuantization q{positions[0], positions[0]};
-    for (const glm::vec3& p : positions) {
-      q.lo = glm::min(q.lo, p);
-      q.hi = glm::max(q.hi, p);
+  static BoxQuantization of(std::span<const V> values) {
+    if (values.empty()) return {};
+    BoxQuantization q{values[0], values[0]};
+    for (const V& v : values) {
+      q.lo = glm::min(q.lo, v);
+      q.hi = glm::max(q.hi, v);
     }
     return q;
   }
-  glm::vec3 scale() const { return hi - lo; }
-  bool contains(const glm::vec3& p) const {
-    return p.x >= lo.x && p.y >= lo.y && p.z >= lo.z && p.x <= hi.x && p.y <= hi.y && p.z <= hi.z;
-  }
+  V scale() const { return hi - lo; }
+  bool contains(const V& v) const { return glm::all(glm::lessThanEqual(lo, v)) && glm::all(glm::lessThanEqual(v, hi)); }
 };
-
-// A mesh's uv box, as PositionQuantization.
-struct UvQuantization {
-  glm::vec2 lo{0.0f};
-  glm::vec2 hi{0.0f};
-
-  static UvQuantization of(std::span<const glm::vec2> uvs) {
-    if (uvs.empty()) return {};
-    UvQuantization q{uvs[0], uvs[0]};
-    for (const glm::vec2& uv : uvs) {
-      q.lo = glm::min(q.lo, uv);
-      q.hi = glm::max(q.hi, uv);
-    }
-    return q;
-  }
-  glm::vec2 scale() const { return hi - lo; }
-};
+using PositionQuantization = BoxQuantization<glm::vec3>;
+using UvQuantization = BoxQuantization<glm::vec2>;
 
 using QuantizedPosition = std::array<std::uint16_t, 4>;  // x, y, z, padding (stored or not: Device::positionBytes)
 using QuantizedUv = std::array<std::uint16_t, 2>;
 using OctNormal = std::array<std::int16_t, 2>;
 
-inline QuantizedPosition quantize(const PositionQuantization& q, const glm::vec3& p) {
-  QuantizedPosition out{0, 0, 0, 0};
-  const glm::vec3 scale = q.scale();
-  for (int a = 0; a < 3; ++a) {
+// The value's 16-bit fraction of the box on each of its axes (the first of N).
+template <class V, std::size_t N>
+std::array<std::uint16_t, N> quantize(const BoxQuantization<V>& q, const V& v) {
+  std::array<std::uint16_t, N> out{};
+  const V scale = q.scale();
+  for (int a = 0; a < V::length(); ++a) {
     if (!(scale[a] > 0.0f)) continue;  // a flat axis is its lo
-    const float f = std::clamp((p[a] - q.lo[a]) / scale[a], 0.0f, 1.0f);
+    const float f = std::clamp((v[a] - q.lo[a]) / scale[a], 0.0f, 1.0f);
     out[a] = std::uint16_t(std::lround(f * 65535.0f));
   }
   return out;
 }
 
+inline QuantizedPosition quantize(const PositionQuantization& q, const glm::vec3& p) {
+  return quantize<glm::vec3, 4>(q, p);
+}
+inline QuantizedUv quantize(const UvQuantization& q, const glm::vec2& uv) { return quantize<glm::vec2, 2>(q, uv); }
+
 inline glm::vec3 dequantize(const PositionQuantization& q, const QuantizedPosition& v) {
   return q.lo + glm::vec3(v[0], v[1], v[2]) / 65535.0f * q.scale();
 }
-
-inline QuantizedUv quantize(const UvQuantization& q, const glm::vec2& uv) {
-  const PositionQuantization box{glm::vec3(q.lo, 0.0f), glm::vec3(q.hi, 0.0f)};
-  const QuantizedPosition v = quantize(box, glm::vec3(uv, 0.0f));
-  return {v[0], v[1]};
-}
-
 inline glm::vec2 dequantize(const UvQuantization& q, const QuantizedUv& v) {
   return q.lo + glm::vec2(v[0], v[1]) / 65535.0f * q.scale();
 }
