@@ -99,6 +99,12 @@ TEST(ClusterConfig, RejectsWhatCannotWork) {
   }
   EXPECT_THROW(parseClusterConfig(R"({"nodes": [{"adress": "127.0.0.1:1"}]})"), ConfigError);
   EXPECT_THROW(parseClusterConfig(R"({"nodes": [{}], "bogus": 1})"), ConfigError);
+  // A scene's part size: KiB, 0 (the default) for a message's limit; beyond 1 GiB or negative refused.
+  EXPECT_EQ(parseClusterConfig(R"({"nodes": [{}]})").snapshotPartBytes, 0u);
+  EXPECT_EQ(parseClusterConfig(R"({"nodes": [{}], "snapshotPartKiB": 64})").snapshotPartBytes, 64u * 1024);
+  EXPECT_THROW(parseClusterConfig(R"({"nodes": [{}], "snapshotPartKiB": -1})"), ConfigError);
+  EXPECT_THROW(parseClusterConfig(R"({"nodes": [{}], "snapshotPartKiB": 1048577})"), ConfigError);
+  EXPECT_THROW(parseClusterConfig(R"({"nodes": [{}], "snapshotPartKiB": "big"})"), ConfigError);
   // Screens: a count that differs from the nodes', no frame, a screen wholly outside, eyes on some only.
   const std::string two = R"({"mode": "tiled", "nodes": [{}, {}], "wall": )";
   EXPECT_THROW(parseClusterConfig(two + R"({"frame": [10, 10], "screens": [{"rect": [0, 0, 5, 5]}]}})"), ConfigError);

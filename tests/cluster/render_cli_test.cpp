@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 
 #include <sys/wait.h>
 
@@ -10,6 +11,8 @@
 
 #include "cluster_test_util.hpp"
 #include "tsr/med/image_file.hpp"
+#include "tsr/sg/changes/change_list.hpp"
+#include "tsr/sg/wire/wire_codec.hpp"
 #include "two_root_scene.hpp"
 
 namespace tsr::cluster::test {
@@ -131,18 +134,42 @@ TEST(RenderCli, AnimatedFramesThroughAWallEqualLocalFrames) {
                             med::readImage((dir.path / "local.0002.exr").string())));
 }
 
+// The size of a part that splits the scene's snapshot in two or more
+// (every part still holding its largest container), in KiB.
+std::size_t partKiBSplitting(const std::string& source) {
+  sg::Scene scene;
+  sg::importScene(scene, source);
+  scene.commit();
+  const sg::ChangeListPtr snapshot = scene.snapshot();
+  const std::size_t total = sg::encode(*snapshot).size();
+  for (std::size_t parts : {8, 4, 3, 2}) {
+    const std::size_t kib = total / parts / 1024;
+    if (kib == 0) continue;
+    try {
+      if (sg::splitSnapshot(snapshot, kib * 1024).size() >= 2) return kib;
+    } catch (const std::length_error&) {  // a container larger than the part: larger parts
+    }
+  }
+  ADD_FAILURE() << source << ": no part size splits its " << total << "-byte snapshot";
+  return 0;
+}
+
 // --temporal photons and object-space pca with --cluster: each node traces
 // the photons of every frame ahead of the one shown (Prepare messages feed
 // its second replica), and renders its tiles from one viewport per
 // sequence; the frames and their direct/indirect parts equal a local
 // render's bit for bit, in the cooperative mode whose tiles move between
-// nodes as well as on a wall.
+// nodes as well as on a wall. The cooperative config sends the scene in
+// parts ("snapshotPartKiB"), to the nodes' replicas and to the replicas
+// ahead that Prepare messages feed.
 TEST(RenderCli, TemporalFramesThroughTheClusterEqualLocalFrames) {
   TempDir dir;
   TokenFile token("temporal token");
   auto nodes = startNodes(2, {"--token-file", token.path()});
-  const std::string cooperative =
-      writeConfig(dir.path, "cooperative", 2, R"(, "cooperative": {"tileSize": 16, "maxMovesPerFrame": 4})");
+  const std::size_t partKiB = partKiBSplitting("builtin:animated");
+  const std::string cooperative = writeConfig(
+      dir.path, "cooperative", 2,
+      R"(, "cooperative": {"tileSize": 16, "maxMovesPerFrame": 4}, "snapshotPartKiB": )" + std::to_string(partKiB));
   const std::string wall = writeConfig(dir.path, "tiled", 2, R"(, "wall": {"columns": 2, "rows": 1})");
   const std::string animation = "builtin:animated --frames 4 --fps 4 --aov direct --aov indirect ";
   const std::vector<std::pair<std::string, std::string>> methods = {

@@ -265,6 +265,13 @@ void readStereo(const Reader& r, const json& j, ClusterConfig& c) {
   if (c.stereo.zeroParallax && !(*c.stereo.zeroParallax > 0)) r.fail("'zeroParallax' must be positive");
 }
 
+// "snapshotPartKiB": the part size of a scene larger than it.
+void readSnapshotParts(const Reader& r, const json& j, ClusterConfig& c) {
+  const std::int64_t kib = r.get<std::int64_t>(j, "snapshotPartKiB", 0);
+  if (kib < 0 || kib > (std::int64_t{1} << 20)) r.fail("'snapshotPartKiB' must be 0..1048576 (0: 1 GiB)");
+  c.snapshotPartBytes = static_cast<std::size_t>(kib) * 1024;
+}
+
 // "timeouts", in milliseconds.
 void readTimeouts(const Reader& r, const json& j, ClusterConfig& c) {
   const json& t = r.object(j, "timeouts");
@@ -290,7 +297,9 @@ ClusterConfig parseClusterConfig(const std::string& text, const std::string& sou
     r.fail(std::string("not valid JSON: ") + e.what());
   }
   if (!j.is_object()) r.fail("the top level must be an object");
-  r.only(j, {"mode", "compression", "backend", "parameters", "nodes", "cooperative", "wall", "stereo", "timeouts"},
+  r.only(j,
+         {"mode", "compression", "backend", "parameters", "nodes", "cooperative", "wall", "stereo", "timeouts",
+          "snapshotPartKiB"},
          "the config");
   ClusterConfig c;
   readMode(r, j, c);
@@ -300,6 +309,7 @@ ClusterConfig parseClusterConfig(const std::string& text, const std::string& sou
   readWall(r, j, c);
   readStereo(r, j, c);
   readTimeouts(r, j, c);
+  readSnapshotParts(r, j, c);
   try {
     c.validate();
   } catch (const ConfigError& e) {

@@ -62,7 +62,7 @@ struct ClusterWindow::Impl {
   // room for its other fields, or the options' smaller part size).
   std::size_t snapshotPartBytes(const MessageSpec& message) const {
     const std::size_t limit = message.maxPayload - 64;
-    return options.snapshotPartBytes ? std::min(options.snapshotPartBytes, limit) : limit;
+    return config.snapshotPartBytes ? std::min(config.snapshotPartBytes, limit) : limit;
   }
 
   // The steps of one frame (cluster_window.cpp): send the requests (giving

@@ -241,9 +241,9 @@ TEST(Replication, LateJoinerCatchesUpFromASnapshot) {
 // late hold the client's scene.
 TEST(Replication, ASnapshotLargerThanAMessageArrivesInParts) {
   auto nodes = startNodes(2);
-  ClientOptions options;
-  options.snapshotPartBytes = 64 * 1024;
-  ClusterWindow w(configFor(ClusterMode::Cooperative, nodes), options);
+  ClusterConfig config = configFor(ClusterMode::Cooperative, nodes);
+  config.snapshotPartBytes = 64 * 1024;
+  ClusterWindow w(config);
   ASSERT_EQ(w.connect(5s), 2u);
   AnimatedScene s("builtin:plant:20000");
   s.scene.commit();

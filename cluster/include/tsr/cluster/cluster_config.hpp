@@ -95,6 +95,10 @@ struct ClusterConfig {
   WallConfig wall;
   StereoConfig stereo;
   Timeouts timeouts;
+  // "snapshotPartKiB": the largest change list one Snapshot or Prepare
+  // message carries; a larger scene goes to a node in parts
+  // (sg::splitSnapshot). 0: the messages' limit, 1 GiB.
+  std::size_t snapshotPartBytes = 0;
 
   // Replaces the node addresses in order (tessera-render --nodes); more
   // addresses than nodes add nodes with the defaults of the first.

@@ -40,10 +40,6 @@ struct ClientOptions {
   // a viewport of it made from this registry resolves the assembled frame
   // here, so tiles show no seams. Null: every node resolves its own tiles.
   const med::ViewportRegistry* registry = nullptr;
-  // The largest change list one Snapshot or Prepare message carries; a
-  // larger scene goes to a node as parts (sg::splitSnapshot). 0: the
-  // messages' limit, 1 GiB.
-  std::size_t snapshotPartBytes = 0;
 };
 
 enum class NodeState { Offline, Connecting, Joined, Synced };
