@@ -74,7 +74,7 @@ std::size_t triangles(const Shape& s) {
   return 0;
 }
 
-parsed::Primitive mesh(const Shape& s) {
+parsed::Primitive shaped(const Shape& s) {
   switch (s.kind) {
     case Shape::Kind::Box:
       return shapes::box(s.half);
@@ -84,6 +84,14 @@ parsed::Primitive mesh(const Shape& s) {
       return shapes::torus(s.major, s.minor, s.bendSegments, s.segments, glm::half_pi<float>());
   }
   return {};
+}
+
+// Nothing in the plant is textured, so its meshes carry no uvs, as a CAD
+// tessellation has none: a quarter of their vertex bytes.
+parsed::Primitive mesh(const Shape& s) {
+  parsed::Primitive p = shaped(s);
+  std::vector<Vec2>().swap(p.uvs);  // its memory too, not only its elements
+  return p;
 }
 
 Shape box(const Vec3& half) {
