@@ -21,7 +21,7 @@ parsed::Scene animated();
 
 // The triangle budgets plant() accepts.
 inline constexpr std::uint64_t kPlantMinTriangles = 1'000;
-inline constexpr std::uint64_t kPlantMaxTriangles = 1'000'000'000;  // about 72 GB with the rasterizer
+inline constexpr std::uint64_t kPlantMaxTriangles = 1'000'000'000;  // about 64 GB with the rasterizer
 // A CAD-like industrial plant of about `triangles` triangles (within 10 % from
 // 10,000 up): bays of tanks, pumps and motors in closed housings, pipe runs
 // with elbows, flanges and valves, columns and walkways on floor slabs, on
