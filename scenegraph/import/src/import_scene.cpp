@@ -72,6 +72,10 @@ parsed::Scene parseCached(const std::string& source, const ImportOptions& option
   std::string failed;
   if (scene.readOtherFiles)
     note = "not stored (the file names external buffers or images)";
+  else if (cache::key(file.bytes(), options) != key)
+    // Replaced between the two mappings: its conversion must not be kept
+    // under the key of the bytes hashed first.
+    note = "not stored (the file changed while it was read)";
   else if (!cache::store(entry, key, scene, failed))
     note = "not stored (" + failed + ")";
   else

@@ -13,7 +13,8 @@ namespace tsr::sg {
 namespace {
 
 [[noreturn]] void fail(const std::filesystem::path& path, const char* what) {
-  throw std::system_error(errno, std::generic_category(), std::string(what) + " '" + path.string() + "'");
+  const int error = errno;  // before anything below may change it
+  throw std::system_error(error, std::generic_category(), std::string(what) + " '" + path.string() + "'");
 }
 
 }  // namespace

@@ -195,12 +195,20 @@ std::vector<unsigned char> glbWithJson(std::span<const unsigned char> bytes, std
 }  // namespace
 
 MappedFile mapSource(const std::string& path, const ImportOptions& options) {
-  checkedSize(path, std::min<std::uint64_t>(options.maxFileBytes, 0xFFFFFFFFu), path);
+  const std::uint64_t limit = std::min<std::uint64_t>(options.maxFileBytes, 0xFFFFFFFFu);
+  checkedSize(path, limit, path);
+  MappedFile file;
   try {
-    return MappedFile(path);
+    file = MappedFile(path);
   } catch (const std::system_error& e) {
     throw ImportError(path, e.what());
   }
+  // The file may have grown since it was sized: the limit holds for what was mapped.
+  if (file.bytes().size() > limit)
+    throw ImportLimitError(
+        path, "'" + path + "' grew past the limit of " + std::to_string(limit) + " bytes while it was read",
+        ImportLimitError::Limit::FileBytes);
+  return file;
 }
 
 LoadedFile loadFile(const std::string& path, const ImportOptions& options) {
