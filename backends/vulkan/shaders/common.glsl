@@ -17,7 +17,8 @@ vec2 meshUv(Instance inst, vec2 fraction) { return inst.uvBox.xy + fraction * in
 
 // Octahedral coordinates to a unit normal; the corner (-1, -1) is no normal (zero).
 vec3 octNormal(vec2 e) {
-  if (e.x <= -1.0 && e.y <= -1.0) return vec3(0.0);
+  // Below the nearest real code (-32766: -0.99997), whatever the driver's SNORM rounding.
+  if (all(lessThan(e, vec2(-0.99998)))) return vec3(0.0);
   vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
   if (n.z < 0.0) n.xy = (1.0 - abs(e.yx)) * vec2(e.x >= 0.0 ? 1.0 : -1.0, e.y >= 0.0 ? 1.0 : -1.0);
   return normalize(n);

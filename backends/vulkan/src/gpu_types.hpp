@@ -19,6 +19,7 @@ struct GpuInstance {
   glm::vec4 positionScale;   // xyz hi - lo
   glm::vec4 uvBox;           // the mesh's uv box: lo, hi - lo
 };
+static_assert(sizeof(GpuInstance) == 176, "shaders/common.glsl, ids.vert and cull.comp read 176-byte records");
 
 // Type and textures select a specialised pipeline instead (see mesh.frag).
 struct GpuMaterial {

@@ -13,7 +13,7 @@ namespace tsr::vk {
 namespace {
 
 constexpr std::uint32_t kFirstVertices = 1u << 16;
-constexpr std::uint32_t kMaxVertices = 1u << 23;  // 8 Mi vertices, 160 MiB of streams
+constexpr std::uint32_t kMaxVertices = 1u << 23;  // 8 Mi vertices, 112 MiB of streams (128 with 8-byte positions)
 constexpr VkBufferUsageFlags kTransfer = VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
 constexpr VkBufferUsageFlags kVertexUsage = VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | kTransfer;
 constexpr VkBufferUsageFlags kIndexUsage = VK_BUFFER_USAGE_INDEX_BUFFER_BIT | kTransfer;
