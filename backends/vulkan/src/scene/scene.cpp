@@ -298,11 +298,9 @@ MeshId Scene::addMesh(const MeshData& data) {
   m.span = s.geometry->add(data);
   s.geometryBytes += n * s.geometry->vertexBytes() + data.indices.size() * (n > (1u << 16) ? 4 : 2);
   m.area = meshArea(data.positions, data.indices);
-  m.boundsMin = m.boundsMax = data.positions[0];
-  for (const auto& p : data.positions) {
-    m.boundsMin = glm::min(m.boundsMin, p);
-    m.boundsMax = glm::max(m.boundsMax, p);
-  }
+  // The arena's quantization box is the positions' bounds: not walked twice.
+  m.boundsMin = m.span.quantization.lo;
+  m.boundsMax = m.span.quantization.hi;
   m.alive = true;
   s.meshes.push_back(std::move(m));
   ++s.version;
