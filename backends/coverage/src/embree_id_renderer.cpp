@@ -144,19 +144,17 @@ void EmbreeIdRenderer::setMeshData(MeshId id, MeshData data) {
   state_->device.check("setMeshData");
 }
 
-void EmbreeIdRenderer::updateMeshVertices(MeshId id, std::uint32_t first, std::span<const glm::vec3> positions) {
+void EmbreeIdRenderer::updateMeshVertices(MeshId id, const VertexEdit& edit) {
   auto& m = lookup(state_->meshes, id, "mesh");
-  const std::size_t n = m.data.positions.size();
-  if (std::size_t{first} + positions.size() > n)
-    throw Error("vertex range [" + std::to_string(first) + ", " + std::to_string(first + positions.size()) +
-                ") exceeds the mesh's " + std::to_string(n) + " vertices");
+  backend::validate<Error>(edit, m.data.positions.size());
+  const auto positions = edit.changedPositions();
   for (const auto& p : positions)
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
       throw Error("vertex update contains NaN or infinity");
-  std::copy(positions.begin(), positions.end(), m.data.positions.begin() + first);
   if (!m.geometry) throw Error("mesh " + std::to_string(index(id)) + " has no geometry: its last setMeshData failed");
+  std::copy(positions.begin(), positions.end(), m.data.positions.begin() + edit.first);
   auto* v = static_cast<glm::vec3*>(rtcGetGeometryBufferData(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0));
-  std::memcpy(v + first, positions.data(), positions.size() * sizeof(glm::vec3));
+  std::memcpy(v + edit.first, positions.data(), positions.size() * sizeof(glm::vec3));
   rtcUpdateGeometryBuffer(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0);
   m.dirty = true;
 }

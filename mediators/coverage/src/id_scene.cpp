@@ -11,11 +11,6 @@ IdScene::IdScene(const std::shared_ptr<IdRendererSource>& source) {
   renderer_ = source->make();
 }
 
-void IdScene::updateMeshVertices(cov::MeshId mesh, std::uint32_t first, std::span<const glm::vec3> positions,
-                                 std::span<const glm::vec3>) {
-  renderer_->updateMeshVertices(mesh, first, positions);
-}
-
 IdScene::Material& IdScene::material(MaterialId id) {
   const auto i = static_cast<std::uint32_t>(id);
   if (i >= materials_.size() || !materials_[i]) throw cov::Error("unknown material id " + std::to_string(i));

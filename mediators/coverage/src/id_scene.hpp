@@ -41,9 +41,7 @@ class IdScene {
 
   cov::MeshId addMesh(cov::MeshData data) { return renderer_->addMesh(std::move(data)); }
   void setMeshData(cov::MeshId mesh, cov::MeshData data) { renderer_->setMeshData(mesh, std::move(data)); }
-  // The id pass has no normals: only positions travel.
-  void updateMeshVertices(cov::MeshId mesh, std::uint32_t first, std::span<const glm::vec3> positions,
-                          std::span<const glm::vec3> normals);
+  void updateMeshVertices(cov::MeshId mesh, const cov::VertexEdit& edit) { renderer_->updateMeshVertices(mesh, edit); }
   void removeMesh(cov::MeshId mesh) { renderer_->removeMesh(mesh); }
 
   MaterialId addMaterial(Transparency material);

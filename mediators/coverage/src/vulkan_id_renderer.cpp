@@ -112,11 +112,13 @@ void VulkanIdRenderer::setMeshData(cov::MeshId mesh, cov::MeshData data) {
   });
 }
 
-void VulkanIdRenderer::updateMeshVertices(cov::MeshId mesh, std::uint32_t first, std::span<const glm::vec3> positions) {
+void VulkanIdRenderer::updateMeshVertices(cov::MeshId mesh, const cov::VertexEdit& edit) {
   State& s = *state_;
   std::lock_guard lock(s.shared->mutex);
   translated([&] {
-    s.scene.updateMeshVertices(s.mesh(mesh), first, positions);
+    cov::VertexEdit positionsOnly = edit;  // the id pass has no normals
+    positionsOnly.normals = {};
+    s.scene.updateMeshVertices(s.mesh(mesh), positionsOnly);
     return 0;
   });
 }

@@ -22,7 +22,7 @@ class VulkanIdRenderer final : public cov::IdRenderer {
 
   cov::MeshId addMesh(cov::MeshData data) override;
   void setMeshData(cov::MeshId mesh, cov::MeshData data) override;
-  void updateMeshVertices(cov::MeshId mesh, std::uint32_t first, std::span<const glm::vec3> positions) override;
+  void updateMeshVertices(cov::MeshId mesh, const cov::VertexEdit& edit) override;
   void removeMesh(cov::MeshId mesh) override;
 
   cov::InstanceId addInstance(const cov::Instance& instance) override;

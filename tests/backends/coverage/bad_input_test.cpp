@@ -26,7 +26,7 @@ TEST(BadInput, IsRejectedWithoutHarm) {
   InstanceId i = r.addInstance({m, glm::mat4(1.0f), 1, false});
   EXPECT_THROW(r.removeMesh(m), Error) << "still used";
   EXPECT_THROW(r.setInstanceObject(i, kBackground), Error);
-  EXPECT_THROW(r.updateMeshVertices(m, 3, std::vector<glm::vec3>(2)), Error);
+  EXPECT_THROW(r.updateMeshVertices(m, {.positions = std::vector<glm::vec3>(4), .first = 3, .count = 2}), Error);
   EXPECT_THROW(r.setSettings({0, 6}), Error);
   EXPECT_THROW(r.setSettings({-1, 32}), Error);
 

@@ -76,7 +76,7 @@ TEST_F(Incremental, MeshEdits) {
   // Vertex range update of the soup (mesh 2), whole replacement of the quad.
   auto& soup = scene.meshes[2];
   for (std::size_t v = 0; v < 30; ++v) soup.positions[v] *= 1.8f;
-  renderer.updateMeshVertices(MeshId(2), 0, std::span<const glm::vec3>(soup.positions.data(), 30));
+  renderer.updateMeshVertices(MeshId(2), {.positions = soup.positions, .count = 30});
   scene.meshes[0] = test::quad(-0.9f, 0.9f, -0.2f, 0.2f, 0.0f);
   renderer.setMeshData(MeshId(0), scene.meshes[0]);
   check("meshes");

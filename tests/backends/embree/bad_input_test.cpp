@@ -55,8 +55,11 @@ TEST(EmbreeBadInput, IdsTransformsAndEdits) {
   InstanceId inst = scene.addInstance(mesh, mat, glm::mat4(1.0f));
   EXPECT_THAT(errorOf([&] { scene.setInstanceTransform(inst, bad); }), HasSubstr("NaN"));
   EXPECT_THAT(errorOf([&] { scene.removeMesh(mesh); }), HasSubstr("still used by 1 instance"));
-  std::vector<glm::vec3> v(3, glm::vec3(0.0f));
-  EXPECT_THAT(errorOf([&] { scene.updateMeshVertices(mesh, 2, v); }), HasSubstr("exceeds the mesh's 4 vertices"));
+  const std::vector<glm::vec3> v(4, glm::vec3(0.0f));
+  EXPECT_THAT(errorOf([&] { scene.updateMeshVertices(mesh, {.positions = v, .first = 2, .count = 3}); }),
+              HasSubstr("exceeds the mesh's 4 vertices"));
+  EXPECT_THAT(errorOf([&] { scene.updateMeshVertices(mesh, {.positions = std::span(v).first(3), .count = 1}); }),
+              HasSubstr("3 positions for a mesh of 4 vertices"));
   scene.removeInstance(inst);
   EXPECT_THAT(errorOf([&] { scene.removeInstance(inst); }), HasSubstr("unknown instance id"));
   scene.removeMesh(mesh);
@@ -122,8 +125,10 @@ TEST(EmbreeBadInput, CoordinatesBeyondWhatEmbreeTraces) {
   MeshData m = quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0});
   m.positions[1].x = 5e12f;
   EXPECT_THAT(errorOf([&] { scene.addMesh(m); }), HasSubstr("beyond 1e12"));
-  std::vector<glm::vec3> v(1, glm::vec3(0, 0, -1e20f));
-  EXPECT_THAT(errorOf([&] { scene.updateMeshVertices(mesh, 0, v); }), HasSubstr("beyond 1e12"));
+  std::vector<glm::vec3> v = m.positions;
+  v[0] = glm::vec3(0, 0, -1e20f);
+  EXPECT_THAT(errorOf([&] { scene.updateMeshVertices(mesh, {.positions = v, .count = 1}); }),
+              HasSubstr("beyond 1e12"));
   glm::mat4 far(1.0f);
   far[3][0] = 1e20f;
   EXPECT_THAT(errorOf([&] { scene.addInstance(mesh, scene.addMaterial({}), far); }), HasSubstr("beyond 1e12"));

@@ -34,10 +34,12 @@ TEST(VulkanErrors, BadMeshDataIsRejected) {
   EXPECT_EQ(scene.geometryBytesUploaded(), 0u);
 
   MeshId ok = scene.addMesh(m);
-  const std::vector<glm::vec3> two = {{0, 0, 0}, {1, 1, 1}};
-  EXPECT_THROW(scene.updateMeshVertices(ok, 3, two), Error);  // 3 + 2 > 4 vertices
-  EXPECT_THROW(scene.updateMeshVertices(ok, 0, two, std::vector<glm::vec3>{{0, 0, 1}}), Error);
-  EXPECT_THROW(scene.updateMeshVertices(MeshId(99), 0, two), Error);
+  const std::vector<glm::vec3> four(4, glm::vec3(0.5f));
+  EXPECT_THROW(scene.updateMeshVertices(ok, {.positions = four, .first = 3, .count = 2}), Error);  // 3 + 2 > 4 vertices
+  EXPECT_THROW(scene.updateMeshVertices(ok, {.positions = std::span(four).first(2), .count = 2}), Error);  // 2 of 4
+  EXPECT_THROW(scene.updateMeshVertices(ok, {.positions = four, .normals = std::span(four).first(1), .count = 1}),
+               Error);
+  EXPECT_THROW(scene.updateMeshVertices(MeshId(99), {.positions = four, .count = 2}), Error);
 }
 
 TEST(VulkanErrors, BadInstancesMaterialsAndLightsAreRejected) {

@@ -69,11 +69,13 @@ TEST(VulkanSceneUpdate, VertexRangeUpdateUploadsOnlyThatRange) {
   FrameBuffer first = render(scene);
 
   // Lift the two far corners of the ground: a slope.
-  const std::vector<glm::vec3> positions = {{3, 0.5f, -3}, {-3, 0.5f, -3}};
   const glm::vec3 n = glm::normalize(glm::vec3(0, 6, 1.1f));
-  const std::vector<glm::vec3> normals = {n, n};
+  MeshData slope = ground;
+  slope.positions[2] = {3, 0.5f, -3};
+  slope.positions[3] = {-3, 0.5f, -3};
+  slope.normals[2] = slope.normals[3] = n;
   const std::uint64_t geometry = scene.geometryBytesUploaded();
-  scene.updateMeshVertices(b.ground, 2, positions, normals);
+  scene.updateMeshVertices(b.ground, {.positions = slope.positions, .normals = slope.normals, .first = 2, .count = 2});
   // The flat ground's box has no height: lifting corners grows it, so its
   // four positions are stored again (6 or 8 bytes each), and two normals (4 bytes).
   EXPECT_EQ(scene.geometryBytesUploaded(), geometry + 4 * device()->positionBytes() + 2 * 4);
@@ -81,10 +83,6 @@ TEST(VulkanSceneUpdate, VertexRangeUpdateUploadsOnlyThatRange) {
   EXPECT_GT(test::maxAbsDiff(first, edited), 0.05f);
 
   // The same edit made before upload, in a scene built from scratch.
-  MeshData slope = ground;
-  slope.positions[2] = positions[0];
-  slope.positions[3] = positions[1];
-  slope.normals[2] = slope.normals[3] = n;
   Scene rebuilt(device());
   MeshId sphere = rebuilt.addMesh(test::uvSphere(12, 16, 0.6f));
   MeshId g = rebuilt.addMesh(slope);

@@ -40,7 +40,8 @@ TEST(VulkanValidation, EveryFeatureRendersWithoutValidationMessages) {
     MaterialId metalId = scene.addMaterial(metal);
 
     MeshId sphere = scene.addMesh(test::uvSphere(10, 14, 0.5f));
-    MeshId ground = scene.addMesh(test::groundQuad(0, 0, 3, -0.5f));
+    const MeshData groundMesh = test::groundQuad(0, 0, 3, -0.5f);
+    MeshId ground = scene.addMesh(groundMesh);
     MeshId flat = scene.addMesh(test::quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, false));
     scene.addInstance(ground, texturedId, glm::mat4(1.0f));
     InstanceId moving = scene.addInstance(sphere, metalId, glm::translate(glm::mat4(1.0f), {-0.8f, 0, 0}));
@@ -65,7 +66,9 @@ TEST(VulkanValidation, EveryFeatureRendersWithoutValidationMessages) {
     EXPECT_EQ(renderer.lastStats().shadowMaps, 8u);
 
     scene.setInstanceTransform(moving, glm::translate(glm::mat4(1.0f), {-0.8f, 0.3f, 0}));
-    scene.updateMeshVertices(ground, 0, std::vector<glm::vec3>{{-3, -0.6f, 3}});
+    std::vector<glm::vec3> groundPositions = groundMesh.positions;
+    groundPositions[0] = {-3, -0.6f, 3};
+    scene.updateMeshVertices(ground, {.positions = groundPositions, .count = 1});
     scene.setInstanceMaterial(moving, texturedId);
     scene.removeMaterial(metalId);
     FrameBuffer part(40, 30);

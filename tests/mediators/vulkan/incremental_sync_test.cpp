@@ -59,22 +59,14 @@ class IncrementalSync : public ::testing::Test {
   // Publishes the edit, renders incrementally, compares with a fresh conversion.
   // The edit's image against a fresh conversion's: bitwise, or within
   // `tolerance` in every channel.
-  void check(const char* what, float tolerance = 0.0f) {
+  void check(const char* what) {
     follower.replica.apply(rig.source.commit());
     auto stats = follower.render(rig);
     EXPECT_EQ(stats.update, med::SceneAdapter::Update::Synced) << what;
     const med::FrameBuffer reference = fresh(rig);
     test::keepImage(std::string("vulkan_incremental_") + what, follower.image);
-    if (tolerance == 0.0f) {
-      EXPECT_EQ(test::differingPixels(follower.image, reference), 0u)
-          << what << ": pixels that differ from a fresh conversion";
-    } else {
-      float worst = 0.0f;
-      for (std::size_t i = 0; i < reference.colour.size(); ++i)
-        for (int c = 0; c < 4; ++c)
-          worst = std::max(worst, std::abs(reference.colour[i][c] - follower.image.colour[i][c]));
-      EXPECT_LE(worst, tolerance) << what << ": the largest difference from a fresh conversion";
-    }
+    EXPECT_EQ(test::differingPixels(follower.image, reference), 0u)
+        << what << ": pixels that differ from a fresh conversion";
     EXPECT_EQ(follower.image.depth, reference.depth) << what;
     EXPECT_GT(test::differingPixels(before, follower.image), 0u) << what << ": the edit is visible";
   }
@@ -174,10 +166,9 @@ TEST_F(IncrementalSync, GeometryRangeEditUploadsOnlyTheRange) {
   before = follower.image;
   for (auto& p : moved) p += sg::Vec3(0, 0, -40);
   g->updatePositions(4, moved);
-  // Positions are now fractions of the same box a fresh conversion makes,
-  // but the others were decoded and stored again: float-level differences
-  // (bounds, areas) remain, no pixel moves (the depth is checked bitwise).
-  check("geometry_range_beyond_the_box", 1e-4f);
+  // Every position is stored again from the replica's exact ones in the
+  // box a fresh conversion makes: the same image, bit for bit.
+  check("geometry_range_beyond_the_box");
   EXPECT_EQ(follower.context().adapter.counters().meshRangeUpdates, 2u);
   EXPECT_EQ(geometryUploaded() - inside, g->positions().size() * position);
 }

@@ -1,5 +1,6 @@
 #include "tsr/embree/scene.hpp"
 #include "tsr/backend/embree_triangles.hpp"
+#include "tsr/backend/validate.hpp"
 
 #include "limits.hpp"
 #include "scene/scene_levels.hpp"
@@ -176,26 +177,21 @@ MeshId Scene::addMesh(MeshData data) {
   return MeshId(state_->meshes.size() - 1);
 }
 
-void Scene::updateMeshVertices(MeshId id, std::uint32_t first, std::span<const glm::vec3> positions,
-                               std::span<const glm::vec3> normals) {
+void Scene::updateMeshVertices(MeshId id, const VertexEdit& edit) {
   auto& m = *lookup(state_->meshes, id, "mesh");
-  std::size_t n = m.data.positions.size();
-  if (std::size_t(first) + positions.size() > n) {
-    throw Error("vertex range [" + std::to_string(first) + ", " + std::to_string(first + positions.size()) +
-                ") exceeds the mesh's " + std::to_string(n) + " vertices");
-  }
-  if (!normals.empty() && normals.size() != positions.size())
-    throw Error("normal range size differs from position range");
-  if (!normals.empty() && m.data.normals.empty()) throw Error("mesh has no normals to update");
+  backend::validate<Error>(edit, m.data.positions.size());
+  if (!edit.normals.empty() && m.data.normals.empty()) throw Error("mesh has no normals to update");
+  const auto positions = edit.changedPositions();
+  const auto normals = edit.changedNormals();
   for (const auto& p : positions)
     if (!traceable(p)) throw Error("vertex update contains NaN, infinity or a value beyond 1e12 (kMaxCoordinate)");
   for (const auto& v : normals)
     if (!finite(v)) throw Error("normal update contains NaN or infinity");
-  std::copy(positions.begin(), positions.end(), m.data.positions.begin() + first);
-  std::copy(normals.begin(), normals.end(), m.data.normals.begin() + first);
   if (!m.geometry) throw Error("mesh " + std::to_string(index(id)) + " has no geometry: its last setMeshData failed");
+  std::copy(positions.begin(), positions.end(), m.data.positions.begin() + edit.first);
+  std::copy(normals.begin(), normals.end(), m.data.normals.begin() + edit.first);
   auto* v = static_cast<glm::vec3*>(rtcGetGeometryBufferData(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0));
-  std::memcpy(v + first, positions.data(), positions.size() * sizeof(glm::vec3));
+  std::memcpy(v + edit.first, positions.data(), positions.size() * sizeof(glm::vec3));
   rtcUpdateGeometryBuffer(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0);
   state_->edit({.mesh = index(id)});
 }

@@ -151,24 +151,17 @@ GeometrySpan GeometryArena::add(const MeshData& data) {
   return span;
 }
 
-bool GeometryArena::updateVertices(GeometrySpan& span, std::uint32_t vertexCount, std::uint32_t first,
-                                   std::span<const glm::vec3> positions, std::span<const glm::vec3> normals) {
-  const bool inside = std::all_of(positions.begin(), positions.end(),
-                                  [&](const glm::vec3& p) { return span.quantization.contains(p); });
-  if (inside) {
-    writePositions(span, first, positions);
+bool GeometryArena::updateVertices(GeometrySpan& span, const VertexEdit& edit) {
+  const PositionQuantization box = PositionQuantization::of(edit.positions);
+  const bool requantize = box.lo != span.quantization.lo || box.hi != span.quantization.hi;
+  if (requantize) {
+    span.quantization = box;
+    writePositions(span, 0, edit.positions);
   } else {
-    // The box grows to hold the new positions (the union: the box a fresh
-    // mesh would get, unless the edit also took in an old extreme), and
-    // every position is stored again as a fraction of it.
-    std::vector<glm::vec3> all = this->positions(span, vertexCount);
-    std::copy(positions.begin(), positions.end(), all.begin() + first);
-    const PositionQuantization added = PositionQuantization::of(positions);
-    span.quantization = {glm::min(span.quantization.lo, added.lo), glm::max(span.quantization.hi, added.hi)};
-    writePositions(span, 0, all);
+    writePositions(span, edit.first, edit.changedPositions());
   }
-  if (!normals.empty()) writeNormals(span, first, normals, std::uint32_t(normals.size()));
-  return !inside;
+  if (!edit.normals.empty()) writeNormals(span, edit.first, edit.changedNormals(), edit.count);
+  return requantize;
 }
 
 void GeometryArena::release(const GeometrySpan& span) {

@@ -5,6 +5,7 @@
 
 #include "tsr/vk/device.hpp"
 #include "tsr/vk/mesh.hpp"
+#include "tsr/vk/vocabulary.hpp"
 
 #include <vulkan/vulkan.h>
 
@@ -42,12 +43,12 @@ class GeometryArena {
 
   // Copies the mesh in; missing normals and uvs are zero. Returns where it is.
   GeometrySpan add(const MeshData& data);
-  // Replaces positions (and normals when given) [first, first + n) of a
-  // mesh. A position outside the mesh's box grows the box, and the mesh's
-  // other positions are stored again as fractions of it: then the span's
-  // quantization changed and true is returned (instances must follow).
-  bool updateVertices(GeometrySpan& span, std::uint32_t vertexCount, std::uint32_t first,
-                      std::span<const glm::vec3> positions, std::span<const glm::vec3> normals);
+  // Stores the edit's range of positions (and normals when it carries
+  // them). When the bounds of all the edit's positions differ from the
+  // mesh's box, the box becomes those bounds and every position is stored
+  // again from the edit's exact ones — what add() would store for them, so
+  // no edit history shows — and true is returned (instances must follow).
+  bool updateVertices(GeometrySpan& span, const VertexEdit& edit);
   void release(const GeometrySpan& span);
   // A mesh's positions (as drawn: decoded) and indices read back, for the
   // rare uses that need them on the CPU (emitter patches, bounds after a

@@ -2,6 +2,7 @@
 
 #include "scene/scene_state.hpp"
 
+#include "tsr/backend/validate.hpp"
 #include "tsr/vk/error.hpp"
 #include "vk_struct.hpp"
 
@@ -307,26 +308,21 @@ MeshId Scene::addMesh(const MeshData& data) {
   return MeshId(std::uint32_t(s.meshes.size() - 1));
 }
 
-void Scene::updateMeshVertices(MeshId mesh, std::uint32_t first, std::span<const glm::vec3> positions,
-                               std::span<const glm::vec3> normals) {
+void Scene::updateMeshVertices(MeshId mesh, const VertexEdit& edit) {
   SceneState& s = *state_;
   MeshRecord& m = lookup(s.meshes, index(mesh), "mesh");
-  if (positions.empty()) return;
-  if (std::uint64_t(first) + positions.size() > m.vertexCount)
-    throw Error("vertex range [" + std::to_string(first) + ", " + std::to_string(first + positions.size()) +
-                ") exceeds the mesh's " + std::to_string(m.vertexCount) + " vertices");
-  if (!normals.empty() && normals.size() != positions.size())
-    throw Error("updateMeshVertices: normals must be empty or match the positions' count");
-  for (const auto& p : positions)
+  backend::validate<Error>(edit, m.vertexCount);
+  if (edit.count == 0) return;
+  for (const auto& p : edit.changedPositions())
     if (!finite(p)) throw Error("updated positions contain NaN or infinity");
-  for (const auto& v : normals)
+  for (const auto& v : edit.changedNormals())
     if (!finite(v)) throw Error("updated normals contain NaN or infinity");
 
-  const bool regrown = s.geometry->updateVertices(m.span, m.vertexCount, first, positions, normals);
-  s.geometryBytes +=
-      (regrown ? m.vertexCount : positions.size()) * s.geometry->positionBytes() + normals.size() * sizeof(OctNormal);
-  if (regrown) {
-    // The mesh's box grew: its instances decode positions by the new one.
+  const bool requantized = s.geometry->updateVertices(m.span, edit);
+  s.geometryBytes += (requantized ? m.vertexCount : edit.count) * s.geometry->positionBytes() +
+                     edit.changedNormals().size() * sizeof(OctNormal);
+  if (requantized) {
+    // The mesh's box changed: its instances decode positions by the new one.
     auto* gpu = static_cast<GpuInstance*>(s.instanceBuffer.mapped());
     for (std::uint32_t slot = 0; slot < s.instances.size(); ++slot)
       if (s.instances[slot].alive && s.instances[slot].mesh == index(mesh)) {
@@ -335,14 +331,11 @@ void Scene::updateMeshVertices(MeshId mesh, std::uint32_t first, std::span<const
       }
   }
   m.patchesDirty = true;
-  // Bounds and area of the whole mesh again, from the arena: the scene keeps no CPU copy.
-  const std::vector<glm::vec3> all = s.geometry->positions(m.span, m.vertexCount);
-  m.area = meshArea(all, s.geometry->indices(m.span, m.indexCount));
-  m.boundsMin = m.boundsMax = all[0];
-  for (const auto& p : all) {
-    m.boundsMin = glm::min(m.boundsMin, p);
-    m.boundsMax = glm::max(m.boundsMax, p);
-  }
+  // Bounds are the box (the exact bounds of the edit's positions); the area
+  // is taken from those exact positions and the arena's indices.
+  m.area = meshArea(edit.positions, s.geometry->indices(m.span, m.indexCount));
+  m.boundsMin = m.span.quantization.lo;
+  m.boundsMax = m.span.quantization.hi;
   s.boundsDirty = true;
   ++s.version;
 }

@@ -40,7 +40,6 @@ struct BoxQuantization {
     return q;
   }
   V scale() const { return hi - lo; }
-  bool contains(const V& v) const { return glm::all(glm::lessThanEqual(lo, v)) && glm::all(glm::lessThanEqual(v, hi)); }
 };
 using PositionQuantization = BoxQuantization<glm::vec3>;
 using UvQuantization = BoxQuantization<glm::vec2>;

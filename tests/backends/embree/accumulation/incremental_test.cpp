@@ -212,9 +212,9 @@ TEST(EmbreeIncremental, VertexRangeRefit) {
   expectEditEqualsFresh(s, [&](Scene& scene, const Built& b) {
     MeshData target = sheet(s.waveHeight);
     // Two ranges, to exercise partial updates.
-    std::span<const glm::vec3> all(target.positions);
-    scene.updateMeshVertices(b.sheet, 0, all.first(40));
-    scene.updateMeshVertices(b.sheet, 40, all.subspan(40));
+    const auto n = std::uint32_t(target.positions.size());
+    scene.updateMeshVertices(b.sheet, {.positions = target.positions, .count = 40});
+    scene.updateMeshVertices(b.sheet, {.positions = target.positions, .first = 40, .count = n - 40});
   });
 }
 
@@ -335,14 +335,16 @@ TEST(EmbreeIncremental, ManyMovesEqualAFreshScene) {
   expectFresh("moved again, in the moving level");
   state.blobScale = 1.6f;
   MeshData b = blob(state.blobScale);
-  scene.updateMeshVertices(ids.blob, 0, b.positions);  // 61 is a ghost of the blob: it leaves the top level
+  scene.updateMeshVertices(ids.blob, {.positions = b.positions, .count = std::uint32_t(b.positions.size())});  // 61 is a ghost of the blob: it leaves the top level
   move(63, {0.1f, 0.0f, 0.1f});
   state.present[62] = false;  // a ghost goes
   scene.removeInstance(ids.instances[62]);
   expectFresh("a vertex edit under ghosts, a ghost removed");
   auto reshapeBlob = [&](float scale) {
     state.blobScale = scale;
-    scene.updateMeshVertices(ids.blob, 0, blob(scale).positions);
+    const MeshData reshaped = blob(scale);
+    scene.updateMeshVertices(ids.blob,
+                             {.positions = reshaped.positions, .count = std::uint32_t(reshaped.positions.size())});
     renderCrowd(scene, commits);
   };
   reshapeBlob(0.8f);  // inside the bounds its instances' levels hold: only the blob's own BVH rebuilds

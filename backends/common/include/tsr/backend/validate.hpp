@@ -4,10 +4,10 @@
 // still catch one type for every invalid argument.
 namespace tsr::backend {
 
-// Throws Error(reason) when value.invalidReason() names one.
-template <class Error, class Value>
-void validate(const Value& value) {
-  if (auto why = value.invalidReason()) throw Error(*why);
+// Throws Error(reason) when value.invalidReason(context...) names one.
+template <class Error, class Value, class... Context>
+void validate(const Value& value, const Context&... context) {
+  if (auto why = value.invalidReason(context...)) throw Error(*why);
 }
 
 }  // namespace tsr::backend

@@ -6,3 +6,4 @@
 #include "tsr/backend/ids.hpp"
 #include "tsr/backend/light.hpp"
 #include "tsr/backend/region.hpp"
+#include "tsr/backend/vertex_edit.hpp"

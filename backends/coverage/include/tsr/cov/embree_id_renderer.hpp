@@ -28,7 +28,7 @@ class EmbreeIdRenderer final : public IdRenderer {
 
   MeshId addMesh(MeshData data) override;
   void setMeshData(MeshId mesh, MeshData data) override;
-  void updateMeshVertices(MeshId mesh, std::uint32_t first, std::span<const glm::vec3> positions) override;
+  void updateMeshVertices(MeshId mesh, const VertexEdit& edit) override;
   void removeMesh(MeshId mesh) override;
 
   InstanceId addInstance(const Instance& instance) override;

@@ -35,8 +35,9 @@ class IdRenderer {
   virtual MeshId addMesh(MeshData data) = 0;
   // Replaces everything, topology included.
   virtual void setMeshData(MeshId mesh, MeshData data) = 0;
-  // Replaces positions [first, first + positions.size()); topology unchanged.
-  virtual void updateMeshVertices(MeshId mesh, std::uint32_t first, std::span<const glm::vec3> positions) = 0;
+  // Takes the edit's range of positions (the id pass has no normals);
+  // topology unchanged.
+  virtual void updateMeshVertices(MeshId mesh, const VertexEdit& edit) = 0;
   // Throws Error while an instance still uses the mesh.
   virtual void removeMesh(MeshId mesh) = 0;
 

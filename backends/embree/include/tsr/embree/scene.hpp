@@ -30,10 +30,9 @@ class Scene {
   Scene& operator=(const Scene&) = delete;
 
   MeshId addMesh(MeshData data);
-  // Replaces positions [first, first + positions.size()) and, if given, the
-  // normals of the same range. Topology is unchanged, so animated meshes refit.
-  void updateMeshVertices(MeshId mesh, std::uint32_t first, std::span<const glm::vec3> positions,
-                          std::span<const glm::vec3> normals = {});
+  // Takes the edit's range of positions (and normals, when it carries them).
+  // Topology is unchanged, so animated meshes refit.
+  void updateMeshVertices(MeshId mesh, const VertexEdit& edit);
   // Replaces everything, topology included (rebuilds that mesh's BVH).
   void setMeshData(MeshId mesh, MeshData data);
   // Throws if an instance still uses the mesh.

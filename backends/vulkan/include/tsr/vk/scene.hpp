@@ -30,10 +30,11 @@ class Scene {
   Scene& operator=(const Scene&) = delete;
 
   MeshId addMesh(const MeshData& data);
-  // Replaces positions [first, first + positions.size()) and, if given, the
-  // normals of the same range, uploading only that range.
-  void updateMeshVertices(MeshId mesh, std::uint32_t first, std::span<const glm::vec3> positions,
-                          std::span<const glm::vec3> normals = {});
+  // Takes the edit's range of positions (and normals, when it carries them),
+  // uploading only that range, unless the bounds of the edit's positions
+  // (all of them, exact) differ from the box the mesh is quantized in: then
+  // every position is stored again from them, as a new mesh of them would be.
+  void updateMeshVertices(MeshId mesh, const VertexEdit& edit);
   void removeMesh(MeshId mesh);  // throws if an instance still uses it
 
   InstanceId addInstance(MeshId mesh, MaterialId material, const glm::mat4& transform);

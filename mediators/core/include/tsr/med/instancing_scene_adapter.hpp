@@ -199,11 +199,12 @@ class InstancingSceneAdapter final : public SceneAdapter {
       if (edit)
         for (const auto& r : edit->ranges) runs.add(r);
     for (const auto& r : runs.ranges()) {
-      std::span<const glm::vec3> p(g.positions().data() + r.begin, r.size());
-      std::span<const glm::vec3> n;
+      backend::VertexEdit edit{.positions = g.positions(),
+                               .first = static_cast<std::uint32_t>(r.begin),
+                               .count = static_cast<std::uint32_t>(r.size())};
       // Normals travel only when they were edited; the back-end keeps the rest.
-      if (nrm && !g.normals().empty()) n = std::span<const glm::vec3>(g.normals().data() + r.begin, r.size());
-      scene_->updateMeshVertices(mesh, static_cast<std::uint32_t>(r.begin), p, n);
+      if (nrm && !g.normals().empty()) edit.normals = g.normals();
+      scene_->updateMeshVertices(mesh, edit);
       ++counters_.meshRangeUpdates;
     }
   }
