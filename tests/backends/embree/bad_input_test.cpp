@@ -127,8 +127,7 @@ TEST(EmbreeBadInput, CoordinatesBeyondWhatEmbreeTraces) {
   EXPECT_THAT(errorOf([&] { scene.addMesh(m); }), HasSubstr("beyond 1e12"));
   std::vector<glm::vec3> v = m.positions;
   v[0] = glm::vec3(0, 0, -1e20f);
-  EXPECT_THAT(errorOf([&] { scene.updateMeshVertices(mesh, {.positions = v, .count = 1}); }),
-              HasSubstr("beyond 1e12"));
+  EXPECT_THAT(errorOf([&] { scene.updateMeshVertices(mesh, {.positions = v, .count = 1}); }), HasSubstr("beyond 1e12"));
   glm::mat4 far(1.0f);
   far[3][0] = 1e20f;
   EXPECT_THAT(errorOf([&] { scene.addInstance(mesh, scene.addMaterial({}), far); }), HasSubstr("beyond 1e12"));

@@ -335,7 +335,9 @@ TEST(EmbreeIncremental, ManyMovesEqualAFreshScene) {
   expectFresh("moved again, in the moving level");
   state.blobScale = 1.6f;
   MeshData b = blob(state.blobScale);
-  scene.updateMeshVertices(ids.blob, {.positions = b.positions, .count = std::uint32_t(b.positions.size())});  // 61 is a ghost of the blob: it leaves the top level
+  scene.updateMeshVertices(
+      ids.blob, {.positions = b.positions,
+                 .count = std::uint32_t(b.positions.size())});  // 61 is a ghost of the blob: it leaves the top level
   move(63, {0.1f, 0.0f, 0.1f});
   state.present[62] = false;  // a ghost goes
   scene.removeInstance(ids.instances[62]);

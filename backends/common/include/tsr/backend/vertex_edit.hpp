@@ -17,7 +17,7 @@ namespace tsr::backend {
 struct VertexEdit {
   std::span<const glm::vec3> positions = {};  // all of the mesh's positions
   std::span<const glm::vec3> normals = {};    // all of its normals when they changed too, else empty
-  std::uint32_t first = 0;               // the changed range [first, first + count)
+  std::uint32_t first = 0;                    // the changed range [first, first + count)
   std::uint32_t count = 0;
 
   std::span<const glm::vec3> changedPositions() const { return positions.subspan(first, count); }
