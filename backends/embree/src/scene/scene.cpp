@@ -89,15 +89,6 @@ auto& lookup(Vec& v, Id id, const char* what) {
   return v[i];
 }
 
-void fillGeometry(MeshRecord& m, RTCDevice device) {
-  const MeshData& d = m.data;
-  // Every scene a top-level ray enters allows the tracer's context filter (ghosts).
-  if (!m.fill(device, {reinterpret_cast<const float*>(d.positions.data()), 3 * d.positions.size()}, d.indices,
-              d.usage == MeshUsage::Animated, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION))
-    throw Error("Embree could not allocate mesh buffers");
-  m.sceneStale = true;
-}
-
 // The instances of a mesh whose user count crossed one: the merged copy is
 // only for meshes used once.
 void replaceUsers(SceneState& s, const MeshRecord& m) {
@@ -106,6 +97,15 @@ void replaceUsers(SceneState& s, const MeshRecord& m) {
 }
 
 }  // namespace
+
+void MeshRecord::fill(RTCDevice device) {
+  const MeshData& d = data;
+  // Every scene a top-level ray enters allows the tracer's context filter (ghosts).
+  if (!EmbreeTriangles::fill(device, {reinterpret_cast<const float*>(d.positions.data()), 3 * d.positions.size()},
+                             d.indices, d.usage == MeshUsage::Animated, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION))
+    throw Error("Embree could not allocate mesh buffers");
+  sceneStale = true;
+}
 
 void SceneState::mark(std::uint32_t id, bool placed) {
   if (!instances[id]) {
@@ -169,9 +169,10 @@ Scene::~Scene() {
 MeshId Scene::addMesh(MeshData data) {
   validateMesh(data);
   auto m = std::make_unique<MeshRecord>();
-  m->data = std::move(data);
-  fillGeometry(*m, state_->device->handle());
+  m->scene = rtcNewScene(state_->device->handle());  // filled when an instance traverses it
   state_->device->check("addMesh");
+  if (!m->scene) throw Error("Embree could not make a mesh scene");
+  m->data = std::move(data);
   state_->meshes.push_back(std::move(m));
   state_->edit({});
   return MeshId(state_->meshes.size() - 1);
@@ -187,12 +188,13 @@ void Scene::updateMeshVertices(MeshId id, const VertexEdit& edit) {
     if (!traceable(p)) throw Error("vertex update contains NaN, infinity or a value beyond 1e12 (kMaxCoordinate)");
   for (const auto& v : normals)
     if (!finite(v)) throw Error("normal update contains NaN or infinity");
-  if (!m.geometry) throw Error("mesh " + std::to_string(index(id)) + " has no geometry: its last setMeshData failed");
   std::copy(positions.begin(), positions.end(), m.data.positions.begin() + edit.first);
   std::copy(normals.begin(), normals.end(), m.data.normals.begin() + edit.first);
-  auto* v = static_cast<glm::vec3*>(rtcGetGeometryBufferData(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0));
-  std::memcpy(v + edit.first, positions.data(), positions.size() * sizeof(glm::vec3));
-  rtcUpdateGeometryBuffer(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0);
+  if (m.filled()) {
+    auto* v = static_cast<glm::vec3*>(rtcGetGeometryBufferData(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0));
+    std::memcpy(v + edit.first, positions.data(), positions.size() * sizeof(glm::vec3));
+    rtcUpdateGeometryBuffer(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0);
+  }
   state_->edit({.mesh = index(id)});
 }
 
@@ -200,8 +202,11 @@ void Scene::setMeshData(MeshId id, MeshData data) {
   auto& m = *lookup(state_->meshes, id, "mesh");
   validateMesh(data);
   m.data = std::move(data);
-  fillGeometry(m, state_->device->handle());
-  state_->device->check("setMeshData");
+  m.sceneStale = true;
+  if (m.filled()) {
+    m.fill(state_->device->handle());
+    state_->device->check("setMeshData");
+  }
   state_->edit({.mesh = index(id)});
 }
 

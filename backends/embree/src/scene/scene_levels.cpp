@@ -126,6 +126,11 @@ void spreadMeshEdits(SceneState& s) {
     m.dirty = false;
     m.sceneStale = true;
     if (m.users.empty()) continue;  // built when an instance needs it
+    if (!m.filled()) {
+      // Its one user is merged (or not placed yet): it is copied again.
+      for (std::uint32_t u : m.users) s.mark(u, true);
+      continue;
+    }
     rtcCommitGeometry(m.geometry);
     rtcCommitScene(m.scene);
     m.sceneStale = false;
@@ -263,11 +268,29 @@ void foldGhosts(SceneState& s) {
   s.topDirty = true;
 }
 
+// A merged scene this large is built compact (Embree's indexed triangles,
+// no spatial splits): its BVH takes about half the memory (a 5 M-triangle
+// plant: 227 MB less) and builds faster, for some 10 % slower tracing.
+// Below it, memory is not what binds and the faster BVH is kept. The hits
+// are the same but for rays through a shared edge or vertex, which may take
+// the neighbour (a 2 M-triangle plant at 256x256, 16 spp: one pixel in
+// 65,536 differed, by 0.011).
+constexpr std::uint64_t kCompactMergedTriangles = 1u << 20;
+
+RTCSceneFlags mergedSceneFlags(const SceneState& s) {
+  std::uint64_t triangles = 0;
+  for (const auto& inst : s.instances)
+    if (inst && inst->level == Level::Merged) triangles += s.meshes[index(inst->mesh)]->data.indices.size() / 3;
+  return triangles >= kCompactMergedTriangles ? RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION | RTC_SCENE_FLAG_COMPACT
+                                              : RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION;
+}
+
 // Commit step 3b: the BVH of each mesh an instance traverses, then the
 // instances (whose bounds come from it), then the levels over them.
 void buildLevels(SceneState& s, const std::vector<std::uint32_t>& instanced) {
   for (std::uint32_t id : instanced) {
     MeshRecord& m = *s.meshes[index(s.instances[id]->mesh)];
+    if (!m.filled()) m.fill(s.device->handle());
     if (!m.sceneStale) continue;
     rtcCommitGeometry(m.geometry);
     rtcCommitScene(m.scene);
@@ -279,6 +302,7 @@ void buildLevels(SceneState& s, const std::vector<std::uint32_t>& instanced) {
     rtcCommitGeometry(inst.level == Level::Top ? inst.geometry : inst.movingGeometry);
   }
   if (s.mergedDirty) {
+    rtcSetSceneFlags(s.merged, mergedSceneFlags(s));
     rtcCommitScene(s.merged);
     rtcCommitGeometry(s.mergedInstance);
     s.mergedDirty = false;

@@ -21,7 +21,12 @@ namespace tsr::embree {
 // Internal representation shared by Scene (which edits it) and Renderer
 // (which reads it after commit()).
 
-// Its scene and geometry (EmbreeTriangles) are released with it.
+// Its scene and geometry (EmbreeTriangles) are released with it. The scene
+// exists from the start (instances point at it); its geometry, Embree's
+// copy of the triangles, and its BVH are made only when an instance
+// traverses the mesh through the top or moving level (fill): a mesh whose
+// one instance is copied into the merged scene never holds them (every leaf
+// of a generated plant; 26 bytes a triangle).
 struct MeshRecord : backend::EmbreeTriangles {
   MeshData data;
   std::vector<std::uint32_t> users;  // ids of the instances referencing this mesh
@@ -33,6 +38,10 @@ struct MeshRecord : backend::EmbreeTriangles {
   // that BVH alone and touches no instance and no level.
   RTCBounds levelBounds{};
   bool shrunk = false;  // inside levelBounds but smaller: listed in SceneState::shrunkMeshes
+
+  bool filled() const { return geometry != nullptr; }
+  // Embree's copy of `data` (again); throws Error when Embree cannot allocate it.
+  void fill(RTCDevice device);
 };
 
 // Where an instance's triangles are traced from.
