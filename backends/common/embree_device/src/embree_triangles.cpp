@@ -20,15 +20,14 @@ bool EmbreeTriangles::fill(RTCDevice device, std::span<const float> positions, s
   if (!scene || !geometry) return false;
   auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                         3 * sizeof(float), positions.size() / 3));
-  auto* i = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                3 * sizeof(std::uint32_t), indices.size() / 3));
-  if (!v || !i) {
+  if (!v) {
     rtcReleaseGeometry(geometry);
     geometry = nullptr;
     return false;
   }
   std::copy(positions.begin(), positions.end(), v);
-  std::copy(indices.begin(), indices.end(), i);
+  rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices.data(), 0,
+                             3 * sizeof(std::uint32_t), indices.size() / 3);
   rtcSetGeometryBuildQuality(geometry, animated ? RTC_BUILD_QUALITY_REFIT : RTC_BUILD_QUALITY_HIGH);
   rtcSetSceneFlags(scene, extraFlags | (animated ? RTC_SCENE_FLAG_DYNAMIC : RTC_SCENE_FLAG_NONE));
   rtcSetSceneBuildQuality(scene, animated ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_HIGH);

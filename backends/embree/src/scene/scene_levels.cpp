@@ -79,19 +79,21 @@ void unplace(SceneState& s, InstanceRecord& inst, std::uint32_t id) {
 
 namespace {
 
-// World-space copy of an instance's triangles for the merged scene.
+// World-space copy of an instance's positions for the merged scene. The
+// indices are the mesh's own, shared rather than copied: a mesh's data is
+// replaced only by setMeshData, whose commit places this instance again
+// before the merged scene is built.
 RTCGeometry worldGeometry(RTCDevice device, const MeshData& d, const glm::mat4& transform) {
   RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* v = static_cast<glm::vec3*>(
       rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(glm::vec3), d.positions.size()));
-  auto* i = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                3 * sizeof(std::uint32_t), d.indices.size() / 3));
-  if (!v || !i) {
+  if (!v) {
     rtcReleaseGeometry(g);
     throw Error("Embree could not allocate merged mesh buffers");
   }
+  rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, d.indices.data(), 0,
+                             3 * sizeof(std::uint32_t), d.indices.size() / 3);
   for (std::size_t k = 0; k < d.positions.size(); ++k) v[k] = glm::vec3(transform * glm::vec4(d.positions[k], 1.0f));
-  std::memcpy(i, d.indices.data(), d.indices.size() * sizeof(std::uint32_t));
   rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);
   rtcCommitGeometry(g);
   return g;

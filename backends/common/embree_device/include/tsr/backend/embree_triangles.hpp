@@ -1,8 +1,9 @@
 #pragma once
 // A triangle mesh as the back-ends that trace with Embree hold it: its own
-// Embree scene with one geometry (id 0) that has its own copies of the
-// positions and indices, built for quality when static and for refits when
-// animated. Instances of the mesh in a top level point at `scene`.
+// Embree scene with one geometry (id 0) that has its own copy of the
+// positions (Embree's vertex buffers must be padded for 16-byte loads) and
+// shares the caller's indices, built for quality when static and for
+// refits when animated. Instances of the mesh in a top level point at `scene`.
 #include <embree3/rtcore.h>
 
 #include <cstdint>
@@ -20,7 +21,8 @@ struct EmbreeTriangles {
   ~EmbreeTriangles();
 
   // Makes the scene (once) and replaces its geometry with these triangles:
-  // `positions` holds x, y, z per vertex, `indices` three per triangle.
+  // `positions` holds x, y, z per vertex (copied), `indices` three per
+  // triangle (shared: they must stay valid until the next fill or the end).
   // `extraFlags` are added to the scene's own. Returns false when Embree
   // cannot allocate the buffers (the scene then holds no geometry).
   bool fill(RTCDevice device, std::span<const float> positions, std::span<const std::uint32_t> indices, bool animated,
