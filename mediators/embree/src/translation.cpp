@@ -135,11 +135,12 @@ embree::Environment translateSky(const sg::Scene& scene, const sg::Background& b
 }
 
 embree::MeshData translateMesh(const sg::Geometry& geometry) {
+  // The replica's arrays themselves: the path tracer holds no copy of them.
   embree::MeshData data;
-  data.positions = geometry.positions();
-  data.normals = geometry.normals();
-  data.uvs = geometry.uvs();
-  data.indices = geometry.indices();
+  data.positions = backend::SharedElements<glm::vec3>(geometry.sharedPositions());
+  data.normals = backend::SharedElements<glm::vec3>(geometry.sharedNormals());
+  data.uvs = backend::SharedElements<glm::vec2>(geometry.sharedUvs());
+  data.indices = backend::SharedElements<std::uint32_t>(geometry.sharedIndices());
   data.usage =
       geometry.motion() == sg::GeometryMotion::Animated ? embree::MeshUsage::Animated : embree::MeshUsage::Static;
   return data;

@@ -27,16 +27,16 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 TEST(EmbreeBadInput, MeshData) {
   Scene scene(sharedDevice());
   MeshData m = quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0});
-  m.indices[4] = 9;
+  m.indices.writable()[4] = 9;
   EXPECT_THAT(errorOf([&] { scene.addMesh(m); }), HasSubstr("index 4 = 9 is out of range"));
   m = quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0});
-  m.indices.pop_back();
+  m.indices = std::vector<std::uint32_t>(m.indices.begin(), m.indices.end() - 1);
   EXPECT_THAT(errorOf([&] { scene.addMesh(m); }), HasSubstr("not a positive multiple of 3"));
   m = quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0});
-  m.positions[2].y = kNaN;
+  m.positions.writable()[2].y = kNaN;
   EXPECT_THAT(errorOf([&] { scene.addMesh(m); }), HasSubstr("NaN"));
   m = quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0});
-  m.normals.resize(2);
+  m.normals = std::vector<glm::vec3>(2, glm::vec3(0, 0, 1));
   EXPECT_THAT(errorOf([&] { scene.addMesh(m); }), HasSubstr("2 normals for 4 positions"));
   EXPECT_EQ(scene.meshCount(), 0u);
 }
@@ -123,9 +123,9 @@ TEST(EmbreeBadInput, CoordinatesBeyondWhatEmbreeTraces) {
 
   MeshId mesh = scene.addMesh(quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}));
   MeshData m = quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0});
-  m.positions[1].x = 5e12f;
+  m.positions.writable()[1].x = 5e12f;
   EXPECT_THAT(errorOf([&] { scene.addMesh(m); }), HasSubstr("beyond 1e12"));
-  std::vector<glm::vec3> v = m.positions;
+  std::vector<glm::vec3> v(m.positions.begin(), m.positions.end());
   v[0] = glm::vec3(0, 0, -1e20f);
   EXPECT_THAT(errorOf([&] { scene.updateMeshVertices(mesh, {.positions = v, .count = 1}); }), HasSubstr("beyond 1e12"));
   glm::mat4 far(1.0f);

@@ -14,7 +14,8 @@ std::shared_ptr<Device> sharedDevice() {
 }
 
 MeshData uvSphere(const glm::vec3& c, float r, int tris, bool normals) {
-  MeshData m;
+  std::vector<glm::vec3> positions, normalsOut;
+  std::vector<std::uint32_t> indices;
   int rings = std::max(4, int(std::sqrt(float(tris) / 4.0f)));
   int segs = 2 * rings;
   for (int i = 0; i <= rings; ++i) {
@@ -22,17 +23,21 @@ MeshData uvSphere(const glm::vec3& c, float r, int tris, bool normals) {
     for (int j = 0; j < segs; ++j) {
       float ph = 2.0f * kPi * float(j) / float(segs);
       glm::vec3 n(std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph));
-      m.positions.push_back(c + r * n);
-      if (normals) m.normals.push_back(n);
+      positions.push_back(c + r * n);
+      if (normals) normalsOut.push_back(n);
     }
   }
   for (int i = 0; i < rings; ++i) {
     for (int j = 0; j < segs; ++j) {
       std::uint32_t a = i * segs + j, b = i * segs + (j + 1) % segs, cc = a + segs, d = b + segs;
-      if (i > 0) m.indices.insert(m.indices.end(), {a, b, d});
-      if (i < rings - 1) m.indices.insert(m.indices.end(), {a, d, cc});
+      if (i > 0) indices.insert(indices.end(), {a, b, d});
+      if (i < rings - 1) indices.insert(indices.end(), {a, d, cc});
     }
   }
+  MeshData m;
+  m.positions = std::move(positions);
+  m.normals = std::move(normalsOut);
+  m.indices = std::move(indices);
   return m;
 }
 
@@ -57,12 +62,16 @@ void floorUnderLamp(Scene& scene) {
 }
 
 MeshData box(const glm::vec3& lo, const glm::vec3& hi) {
-  MeshData m;
+  std::vector<glm::vec3> positions;
+  std::vector<std::uint32_t> indices;
   for (int i = 0; i < 8; ++i)
-    m.positions.push_back({(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
+    positions.push_back({(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
   const std::uint32_t faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
                                      {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  for (const auto& f : faces) m.indices.insert(m.indices.end(), {f[0], f[1], f[2], f[0], f[2], f[3]});
+  for (const auto& f : faces) indices.insert(indices.end(), {f[0], f[1], f[2], f[0], f[2], f[3]});
+  MeshData m;
+  m.positions = std::move(positions);
+  m.indices = std::move(indices);
   return m;
 }
 
@@ -106,17 +115,20 @@ Camera cornellBox(Scene& scene, int sphereTris, float aspect) {
       {0, {{265, 0, 296}, {265, 330, 296}, {423, 330, 247}, {423, 0, 247}}},
   };
   const glm::vec3 colours[] = {{1, 1, 1}, {1, 0, 0}, {0, 1, 0}};
-  MeshData groups[3];
+  std::vector<glm::vec3> positions[3];
+  std::vector<std::uint32_t> indices[3];
   for (const Q& q : quads) {
-    MeshData& g = groups[q.colour];
-    auto base = std::uint32_t(g.positions.size());
-    g.positions.insert(g.positions.end(), q.v, q.v + 4);
-    g.indices.insert(g.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+    auto base = std::uint32_t(positions[q.colour].size());
+    positions[q.colour].insert(positions[q.colour].end(), q.v, q.v + 4);
+    indices[q.colour].insert(indices[q.colour].end(), {base, base + 1, base + 2, base, base + 2, base + 3});
   }
   for (int c = 0; c < 3; ++c) {
     Material m;
     m.baseColor = colours[c];
-    scene.addInstance(scene.addMesh(std::move(groups[c])), scene.addMaterial(m), glm::mat4(1.0f));
+    MeshData group;
+    group.positions = std::move(positions[c]);
+    group.indices = std::move(indices[c]);
+    scene.addInstance(scene.addMesh(std::move(group)), scene.addMaterial(m), glm::mat4(1.0f));
   }
   if (sphereTris > 0) {
     Material m;

@@ -188,8 +188,9 @@ void Scene::updateMeshVertices(MeshId id, const VertexEdit& edit) {
     if (!traceable(p)) throw Error("vertex update contains NaN, infinity or a value beyond 1e12 (kMaxCoordinate)");
   for (const auto& v : normals)
     if (!finite(v)) throw Error("normal update contains NaN or infinity");
-  std::copy(positions.begin(), positions.end(), m.data.positions.begin() + edit.first);
-  std::copy(normals.begin(), normals.end(), m.data.normals.begin() + edit.first);
+  // Shared arrays (a replica's) are copied before the first edit: the giver applies its edits itself.
+  std::copy(positions.begin(), positions.end(), m.data.positions.writable().begin() + edit.first);
+  if (!normals.empty()) std::copy(normals.begin(), normals.end(), m.data.normals.writable().begin() + edit.first);
   if (m.filled()) {
     auto* v = static_cast<glm::vec3*>(rtcGetGeometryBufferData(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0));
     std::memcpy(v + edit.first, positions.data(), positions.size() * sizeof(glm::vec3));

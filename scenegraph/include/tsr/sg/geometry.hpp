@@ -3,6 +3,7 @@
 // array can be replaced whole or edited by range; only edited ranges travel.
 // The arrays are shared with the change lists and replicas that carry them
 // (SharedArray): a process holds one copy of a mesh until someone edits it.
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -25,6 +26,12 @@ class Geometry final : public ContainerOf<Geometry, ContainerType::Geometry> {
   const std::vector<Vec2>& uvs() const { return uvs_.get(); }
   const std::vector<Vec4>& colors() const { return colors_.get(); }
   const std::vector<std::uint32_t>& indices() const { return indices_.get(); }
+  // The arrays themselves, for a back-end to hold too without a copy (null
+  // when empty); the scene copies an array before its next edit.
+  std::shared_ptr<const std::vector<Vec3>> sharedPositions() const { return positions_.shared(); }
+  std::shared_ptr<const std::vector<Vec3>> sharedNormals() const { return normals_.shared(); }
+  std::shared_ptr<const std::vector<Vec2>> sharedUvs() const { return uvs_.shared(); }
+  std::shared_ptr<const std::vector<std::uint32_t>> sharedIndices() const { return indices_.shared(); }
   ContainerId material() const { return material_; }
   GeometryMotion motion() const { return motion_; }
   // The medium inside the (closed) mesh, beside its surface material.

@@ -18,18 +18,25 @@ struct State {
 };
 
 MeshData sheet(float wave) {
-  MeshData m;
+  std::vector<glm::vec3> positions;
+  std::vector<std::uint32_t> indices;
   const int n = 8;
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) {
       float x = -2.0f + 4.0f * float(i) / n, z = -2.0f + 4.0f * float(j) / n;
-      m.positions.emplace_back(x, wave * std::sin(2.0f * x) * std::cos(1.5f * z), z);
+      positions.emplace_back(x, wave * std::sin(2.0f * x) * std::cos(1.5f * z), z);
     }
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
       std::uint32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
-      m.indices.insert(m.indices.end(), {a, c, d, a, d, b});
+      indices.insert(indices.end(), {a, c, d, a, d, b});
     }
+  // Held as a scene replica's arrays are: shared, never written by the back-end.
+  MeshData m;
+  m.positions =
+      backend::SharedElements<glm::vec3>(std::make_shared<const std::vector<glm::vec3>>(std::move(positions)));
+  m.indices =
+      backend::SharedElements<std::uint32_t>(std::make_shared<const std::vector<std::uint32_t>>(std::move(indices)));
   m.usage = MeshUsage::Animated;
   return m;
 }
@@ -218,6 +225,19 @@ TEST(EmbreeIncremental, VertexRangeRefit) {
   });
 }
 
+// The back-end holds a mesh's shared arrays without a copy; an edit copies
+// them first and never writes into the giver's.
+TEST(EmbreeIncremental, AVertexEditLeavesSharedArraysAlone) {
+  Scene scene(sharedDevice());
+  const MeshData flat = sheet(0.0f);
+  ASSERT_TRUE(flat.positions.shared());
+  const std::vector<glm::vec3> before(flat.positions.begin(), flat.positions.end());
+  const MeshId id = scene.addMesh(flat);
+  const MeshData wavy = sheet(0.3f);
+  scene.updateMeshVertices(id, {.positions = wavy.positions, .count = std::uint32_t(wavy.positions.size())});
+  EXPECT_TRUE(std::equal(before.begin(), before.end(), flat.positions.begin()));
+}
+
 TEST(EmbreeIncremental, AddInstance) {
   State s;
   s.withExtraBall = true;
@@ -255,7 +275,7 @@ Crowd crowd() {
 
 MeshData blob(float scale) {
   MeshData m = uvSphere({0, 0, 0}, 0.12f, 80, true);
-  for (auto& p : m.positions) p = glm::vec3(p.x * scale, p.y, p.z);
+  for (auto& p : m.positions.writable()) p = glm::vec3(p.x * scale, p.y, p.z);
   m.usage = MeshUsage::Animated;
   return m;
 }

@@ -1,10 +1,11 @@
 #pragma once
 
+#include "tsr/backend/shared_elements.hpp"
+
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <cstdint>
-#include <vector>
 
 namespace tsr::embree {
 
@@ -12,11 +13,13 @@ namespace tsr::embree {
 // vertex update with unchanged topology only refits.
 enum class MeshUsage { Static, Animated };
 
+// A mesh's arrays, the caller's own or shared with it (a scene replica's,
+// held without a copy; an edit by range copies them first).
 struct MeshData {
-  std::vector<glm::vec3> positions;
-  std::vector<glm::vec3> normals;      // empty, or one per position
-  std::vector<glm::vec2> uvs;          // empty, or one per position
-  std::vector<std::uint32_t> indices;  // three per triangle
+  backend::SharedElements<glm::vec3> positions;
+  backend::SharedElements<glm::vec3> normals;      // empty, or one per position
+  backend::SharedElements<glm::vec2> uvs;          // empty, or one per position
+  backend::SharedElements<std::uint32_t> indices;  // three per triangle
   MeshUsage usage = MeshUsage::Static;
 };
 
