@@ -90,9 +90,27 @@ TEST(SnapshotParts, PartsOutOfPlaceAreRefusedAndLeaveTheReplicaAsItWas) {
   EXPECT_THROW(direct.apply(*parts[0]), ApplyError);
 }
 
-TEST(SnapshotParts, AContainerLargerThanAPartIsRefusedByName) {
+// A part size below the largest container still works: that container goes
+// alone in a part as large as it needs, within the message's bound.
+TEST(SnapshotParts, AContainerLargerThanAPartGoesAlone) {
+  Scene source;
+  build(source);
+  ChangeListPtr whole = source.snapshot();
+  auto parts = splitSnapshot(whole, 4 * 1024, 1 << 20);
+  ASSERT_GE(parts.size(), 10u);  // each mesh (about 24 kB) in a part of its own
+  for (const auto& part : parts) {
+    EXPECT_LE(encode(*part).size(), std::size_t{1} << 20);
+    if (encode(*part).size() > 4 * 1024) {
+      EXPECT_EQ(part->creations().size(), 1u);
+    }
+  }
+  EXPECT_EQ(encode(*joinSnapshot(parts)), encode(*whole));
+}
+
+TEST(SnapshotParts, AContainerLargerThanAMessageIsRefusedByName) {
   Scene source;
   build(source);
   EXPECT_THROW(splitSnapshot(source.snapshot(), 4 * 1024), std::length_error);
+  EXPECT_THROW(splitSnapshot(source.snapshot(), 4 * 1024, 8 * 1024), std::length_error);
   EXPECT_THROW(splitSnapshot(source.commit(), 1 << 20), std::invalid_argument);  // a delta
 }

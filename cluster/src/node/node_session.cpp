@@ -147,7 +147,7 @@ void NodeSession::onReplicaBytes(Message& m, bool snapshot) {
     if (st.cancelled) return;
     try {
       sg::ChangeListPtr list = sg::decode(bytes);
-      if ((list->isSnapshot() || list->isSnapshotPart()) != snapshot)
+      if (list->carriesSnapshot() != snapshot)
         throw sg::ApplyError("message kind and change list kind differ");
       // A snapshot's first part (or the whole) to a replica that holds a scene.
       if (snapshot && !st.replica->awaitingSnapshot() && st.replica->version() != 0) {
@@ -214,7 +214,7 @@ void NodeSession::on<Prepare>(Message& m) {
     if (st.cancelled) return;
     try {
       sg::ChangeListPtr list = sg::decode(prepare.changes);
-      if ((list->isSnapshot() || list->isSnapshotPart()) && !st.ahead->awaitingSnapshot()) {
+      if (list->carriesSnapshot() && !st.ahead->awaitingSnapshot()) {
         // The sequence starts over (a node that joins late): its viewports too.
         st.ahead = std::make_unique<sg::Replica>();
         st.sequences.clear();

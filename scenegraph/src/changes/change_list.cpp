@@ -112,13 +112,15 @@ std::size_t encodedBytes(const ChangeList& list, const ChangeEntry& e) {
 }
 }  // namespace
 
-std::vector<ChangeListPtr> splitSnapshot(const ChangeListPtr& whole, std::size_t maxBytes) {
+std::vector<ChangeListPtr> splitSnapshot(const ChangeListPtr& whole, std::size_t partBytes, std::size_t maxBytes) {
   const ChangeList& snapshot = *whole;
   if (!snapshot.isSnapshot()) throw std::invalid_argument("splitSnapshot: not a snapshot");
+  if (maxBytes == 0) maxBytes = partBytes;
+  partBytes = std::min(partBytes, maxBytes);
   constexpr std::size_t kListOverhead = 64;  // header, version and counts
   std::size_t total = kListOverhead;
   for (const auto& e : snapshot.creations()) total += encodedBytes(snapshot, e);
-  if (total <= maxBytes) return {whole};
+  if (total <= partBytes) return {whole};
 
   std::vector<std::vector<const ChangeEntry*>> groups(1);
   std::size_t bytes = kListOverhead;
@@ -126,8 +128,8 @@ std::vector<ChangeListPtr> splitSnapshot(const ChangeListPtr& whole, std::size_t
     std::size_t n = encodedBytes(snapshot, e);
     if (n + kListOverhead > maxBytes)
       throw std::length_error("container " + std::to_string(e.id) + " takes " + std::to_string(n) +
-                              " bytes, more than a part of " + std::to_string(maxBytes));
-    if (bytes + n > maxBytes) {
+                              " bytes, more than a message of " + std::to_string(maxBytes) + " can carry");
+    if (bytes + n > partBytes && !groups.back().empty()) {  // a larger container goes alone
       groups.emplace_back();
       bytes = kListOverhead;
     }

@@ -70,6 +70,8 @@ class ChangeList {
   bool isSnapshot() const { return kind_ == Kind::Snapshot; }
   // A part of a snapshot that more parts follow.
   bool isSnapshotPart() const { return kind_ == Kind::SnapshotPart; }
+  // A whole scene or a part of one, rather than a delta.
+  bool carriesSnapshot() const { return kind_ != Kind::Delta; }
   // The scene version after this list; a delta applies to baseVersion().
   std::uint64_t version() const { return version_; }
   std::uint64_t baseVersion() const { return kind_ == Kind::Delta ? version_ - 1 : 0; }
@@ -130,10 +132,12 @@ class ChangeList {
 
 using ChangeListPtr = std::shared_ptr<const ChangeList>;
 
-// A snapshot as parts whose encoding (sg::encode) takes at most `maxBytes`
-// each: the snapshot itself when it fits. Throws std::length_error when one
-// container alone does not fit.
-std::vector<ChangeListPtr> splitSnapshot(const ChangeListPtr& snapshot, std::size_t maxBytes);
+// A snapshot as parts whose encoding (sg::encode) takes about `partBytes`
+// each: the snapshot itself when it fits. A container larger than a part
+// goes in a part of its own, which must still fit `maxBytes` (a message's
+// bound; by default the part size): otherwise std::length_error names it.
+std::vector<ChangeListPtr> splitSnapshot(const ChangeListPtr& snapshot, std::size_t partBytes,
+                                         std::size_t maxBytes = 0);
 // The parts of one snapshot, in order, as the one snapshot they came from.
 // Throws ApplyError when they are not the parts of one snapshot.
 ChangeListPtr joinSnapshot(std::span<const ChangeListPtr> parts);
