@@ -10,6 +10,7 @@
 #include "gpu_types.hpp"
 #include "lights/emitter_lights.hpp"
 #include "lights/shadow_map.hpp"
+#include "lights/shadow_update.hpp"
 #include "passes/id_pass.hpp"
 #include "reflections/brdf_table.hpp"
 #include "resources/buffer.hpp"
@@ -110,15 +111,10 @@ struct Renderer::Impl {
   std::optional<ShadowMap> shadowMap;
   // What the shadow maps hold. They do not depend on the camera, so they are
   // drawn again only when the scene (any edit bumps its version) or the
-  // lights' projections change.
-  struct ShadowKey {
-    const SceneState* scene = nullptr;
-    std::uint64_t version = 0;
-    std::vector<glm::mat4> viewProj;
-    bool operator==(const ShadowKey&) const = default;
-  };
-  std::optional<ShadowKey> shadowsHeld;     // after a completed frame
-  std::optional<ShadowKey> shadowsPending;  // recorded this frame
+  // lights' projections change, and after edits of single instances only
+  // where those instances were and are (lights/shadow_update.hpp).
+  std::optional<ShadowContents> shadowsHeld;     // after a completed frame
+  std::optional<ShadowContents> shadowsPending;  // recorded this frame
   std::unique_ptr<IdPass> idPass;           // made on first renderIds
   std::unique_ptr<OcclusionCuller> culler;  // made on the first guided frame
   std::unique_ptr<DepthPyramid> pyramid;

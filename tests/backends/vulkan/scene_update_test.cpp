@@ -118,3 +118,42 @@ TEST(VulkanSceneUpdate, RemovedInstanceDisappearsAndMaterialSwapRecolours) {
 
 }  // namespace
 }  // namespace tsr::vk
+
+namespace tsr::vk {
+namespace {
+
+// An instance moved within the scene's bounds, removed or added redraws the
+// shadow maps only where it was and is: fewer triangles, and the image a
+// renderer that draws the maps whole makes of the same scene.
+TEST(VulkanSceneUpdate, InstanceEditsRedrawOnlyTheirShadowFootprints) {
+  Scene scene(device());
+  Built b = build(scene, glm::translate(glm::mat4(1.0f), {1.0f, 0, 0}));
+  Renderer renderer(device());
+  FrameBuffer fb(64, 64);
+  renderer.render(scene, kCam, Region::full(64, 64), fb);
+  const std::uint64_t whole = renderer.lastStats().shadowTriangles;
+  ASSERT_GT(whole, 0u);
+  auto expectAsDrawnWhole = [&](const char* what) {
+    renderer.render(scene, kCam, Region::full(64, 64), fb);
+    const std::uint64_t drawn = renderer.lastStats().shadowTriangles;
+    EXPECT_GT(drawn, 0u) << what;
+    EXPECT_LT(drawn, whole) << what;
+    const FrameBuffer expected = render(scene);  // a new renderer: the maps drawn whole
+    EXPECT_EQ(fb.colourImage(), expected.colourImage()) << what;
+    EXPECT_EQ(fb.depthImage(), expected.depthImage()) << what;
+  };
+  // Away from the other sphere, inside the ground: the scene's bounds stay.
+  scene.setInstanceTransform(b.moving, glm::translate(glm::mat4(1.0f), {2.0f, 0, 1.5f}));
+  expectAsDrawnWhole("moved");
+  const InstanceId added =
+      scene.addInstance(b.sphere, scene.addMaterial({}), glm::translate(glm::mat4(1.0f), {1.5f, 0, -1.8f}));
+  expectAsDrawnWhole("added");
+  scene.removeInstance(b.moving);
+  expectAsDrawnWhole("removed");
+  scene.setInstanceObject(added, 7);  // no caster changed: nothing drawn again
+  renderer.render(scene, kCam, Region::full(64, 64), fb);
+  EXPECT_EQ(renderer.lastStats().shadowTriangles, 0u);
+}
+
+}  // namespace
+}  // namespace tsr::vk

@@ -79,26 +79,45 @@ void Renderer::Impl::addEmitterLights(SceneState& s, const RenderSettings& setti
   }
 }
 
-// Shadow passes: opaque instances only, positions only.
+// Shadow passes: opaque instances only, positions only. After edits of
+// single instances, only the rectangles they were and are in are drawn again
+// (lights/shadow_update.hpp), from the casters over them.
 void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s,
                                    const std::vector<glm::mat4>& shadowViewProj, RenderStats& stats) {
-  ShadowKey key{&s, s.version, shadowViewProj};
-  if (shadowsHeld == key) return;  // still in SHADER_READ_ONLY_OPTIMAL from that frame
-  shadowsHeld.reset();
-  shadowsPending = std::move(key);
+  if (shadowsHeld && shadowsHeld->scene == &s && shadowsHeld->version == s.version &&
+      shadowsHeld->viewProj == shadowViewProj)
+    return;  // still in SHADER_READ_ONLY_OPTIMAL from that frame
+  ShadowContents now{&s, s.version, s.casterEdits, shadowViewProj, shadowCasters(s)};
   const ShadowMap& sm = *shadowMap;
+  std::optional<std::vector<VkRect2D>> redraw;
+  if (shadowsHeld && !shadowViewProj.empty()) redraw = shadowRedraw(*shadowsHeld, now, s, sm.size());
+  shadowsHeld.reset();
+  shadowsPending = std::move(now);
+  // A whole redraw starts from nothing; a partial one keeps the rest.
+  const VkImageLayout from = redraw ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED;
   imageBarrier(
-      cmd, sm.image().handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+      cmd, sm.image().handle(), VK_IMAGE_ASPECT_DEPTH_BIT, from,
       shadowViewProj.empty() ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
       VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
       shadowViewProj.empty() ? VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT : VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT,
-      shadowViewProj.empty() ? VK_ACCESS_SHADER_READ_BIT : VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, sm.layers());
+      shadowViewProj.empty()
+          ? VK_ACCESS_SHADER_READ_BIT
+          : VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+      sm.layers());
   for (std::uint32_t layer = 0; layer < shadowViewProj.size(); ++layer) {
+    const VkRect2D area = redraw ? (*redraw)[layer] : VkRect2D{{0, 0}, {sm.size(), sm.size()}};
+    if (area.extent.width == 0 || area.extent.height == 0) continue;  // nothing there changed
     VkClearValue depthClear{};
     depthClear.depthStencil = {1.0f, 0};
     const VkRenderingAttachmentInfo da = renderingAttachment(
-        sm.image().layerView(layer), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, /*load=*/false, depthClear);
+        sm.image().layerView(layer), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, /*load=*/bool(redraw), depthClear);
     beginRendering(cmd, sm.size(), sm.size(), nullptr, da);
+    if (redraw) {
+      vkCmdSetScissor(cmd, 0, 1, &area);
+      const VkClearAttachment clear{VK_IMAGE_ASPECT_DEPTH_BIT, 0, depthClear};
+      const VkClearRect rect{area, 0, 1};
+      vkCmdClearAttachments(cmd, 1, &clear, 1, &rect);
+    }
     vkCmdSetDepthBias(cmd, 1.25f, 0.0f, 1.75f);
     PushConstants pc;
     pc.lightViewProj = shadowViewProj[layer];
@@ -110,21 +129,43 @@ void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s,
       for (const DrawGroup& g : s.opaqueGroups) {
         const Material& material = s.materials[g.material].material;
         if ((material.alphaCutoff > 0.0f) != maskedPass) continue;
-        if (!pipelineBound) {
-          vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                            (maskedPass ? maskedShadowPipeline : shadowPipeline).handle());
-          pipelineBound = true;
-        }
-        if (maskedPass) {
-          vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &s.materials[g.material].set, 0,
-                                  nullptr);
-          pc.material = g.material;
-        }
-        vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
         const MeshRecord& m = s.meshes[g.mesh];
-        if (m.span.block != bound) s.geometry->bind(cmd, bound = m.span.block, maskedPass ? 3 : 1);
-        vkCmdDrawIndexed(cmd, m.indexCount, g.count, firstIndexOf(m), vertexOffsetOf(m), g.first);
-        stats.shadowTriangles += std::uint64_t(m.indexCount / 3) * g.count;
+        // The group's instances to draw: all of them, or the runs over the area.
+        auto drawRun = [&](std::uint32_t first, std::uint32_t count) {
+          if (!pipelineBound) {
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                              (maskedPass ? maskedShadowPipeline : shadowPipeline).handle());
+            pipelineBound = true;
+          }
+          if (maskedPass) {
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &s.materials[g.material].set,
+                                    0, nullptr);
+            pc.material = g.material;
+          }
+          vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc),
+                             &pc);
+          if (m.span.block != bound) s.geometry->bind(cmd, bound = m.span.block, maskedPass ? 3 : 1);
+          vkCmdDrawIndexed(cmd, m.indexCount, count, firstIndexOf(m), vertexOffsetOf(m), first);
+          stats.shadowTriangles += std::uint64_t(m.indexCount / 3) * count;
+        };
+        if (!redraw) {
+          drawRun(g.first, g.count);
+          continue;
+        }
+        std::uint32_t run = 0;
+        for (std::uint32_t i = 0; i <= g.count; ++i) {
+          bool over = false;
+          if (i < g.count) {
+            const InstanceRecord& inst = s.instances[drawOrder[g.first + i]];
+            over = overlaps(area, shadowFootprint(s, inst.mesh, inst.transform, shadowViewProj[layer], sm.size()));
+          }
+          if (over) {
+            ++run;
+          } else if (run > 0) {
+            drawRun(g.first + i - run, run);
+            run = 0;
+          }
+        }
       }
     }
     vkCmdEndRendering(cmd);

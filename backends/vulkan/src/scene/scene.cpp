@@ -337,6 +337,7 @@ void Scene::updateMeshVertices(MeshId mesh, const VertexEdit& edit) {
   m.boundsMin = m.span.quantization.lo;
   m.boundsMax = m.span.quantization.hi;
   s.boundsDirty = true;
+  ++s.casterEdits;
   ++s.version;
 }
 
@@ -346,6 +347,7 @@ void Scene::removeMesh(MeshId mesh) {
   if (m.users > 0) throw Error("mesh " + std::to_string(index(mesh)) + " is still used by instances");
   s.geometry->release(m.span);
   m = MeshRecord{};
+  ++s.casterEdits;
   ++s.version;
 }
 
@@ -494,6 +496,7 @@ void Scene::setMaterial(MaterialId id, const Material& material) {
   r.material = material;
   writeMaterialSet(s, r);
   s.materialsDirty = true;
+  ++s.casterEdits;
   ++s.version;
 }
 

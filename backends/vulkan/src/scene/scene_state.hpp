@@ -86,6 +86,10 @@ VkDescriptorSetLayout createMaterialSetLayout(VkDevice device);
 struct SceneState {
   std::shared_ptr<Device> device;
   std::uint64_t version = 0;
+  // Edits that change what casts shadows beyond single instances (a mesh's
+  // vertices or removal, a material): the shadow maps are drawn whole
+  // after one (lights/shadow_update.hpp).
+  std::uint64_t casterEdits = 0;
 
   std::optional<GeometryArena> geometry;  // made with the scene
   std::vector<MeshRecord> meshes;
