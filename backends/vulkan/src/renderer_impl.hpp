@@ -115,8 +115,8 @@ struct Renderer::Impl {
   // where those instances were and are (lights/shadow_update.hpp).
   std::optional<ShadowContents> shadowsHeld;     // after a completed frame
   std::optional<ShadowContents> shadowsPending;  // recorded this frame
-  std::unique_ptr<IdPass> idPass;           // made on first renderIds
-  std::unique_ptr<OcclusionCuller> culler;  // made on the first guided frame
+  std::unique_ptr<IdPass> idPass;                // made on first renderIds
+  std::unique_ptr<OcclusionCuller> culler;       // made on the first guided frame
   std::unique_ptr<DepthPyramid> pyramid;
   glm::mat4 viewProj{1.0f};                   // this frame's
   VkPipeline boundPipeline = VK_NULL_HANDLE;  // in the current main pass

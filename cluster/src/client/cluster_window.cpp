@@ -71,7 +71,8 @@ void ClusterWindow::publish(const sg::Scene& scene, const sg::ChangeListPtr& del
     } else if (n.state == NodeState::Synced || n.state == NodeState::Joined) {
       // A new node, or one that missed a list: it starts over from the whole scene.
       if (snapshot.empty())
-        for (const auto& part : sg::splitSnapshot(scene.snapshot(), s.snapshotPartBytes(Snapshot::kSpec), s.messageBytes(Snapshot::kSpec)))
+        for (const auto& part :
+             sg::splitSnapshot(scene.snapshot(), s.snapshotPartBytes(Snapshot::kSpec), s.messageBytes(Snapshot::kSpec)))
           snapshot.push_back(changeListFrame(Snapshot::kType, *part));
       for (const Frame& part : snapshot) n.link->send(part);
       if (!n.viewportsSent) n.link->send(s.viewportsFor(n));
@@ -105,7 +106,8 @@ void ClusterWindow::prepare(const sg::Scene& ahead, const sg::ChangeListPtr& del
       n.link->send(changes);
     } else {
       if (snapshot.empty())
-        for (const auto& part : sg::splitSnapshot(ahead.snapshot(), s.snapshotPartBytes(Prepare::kSpec), s.messageBytes(Prepare::kSpec)))
+        for (const auto& part :
+             sg::splitSnapshot(ahead.snapshot(), s.snapshotPartBytes(Prepare::kSpec), s.messageBytes(Prepare::kSpec)))
           snapshot.push_back(makeFrame(Prepare{frame, sg::encode(*part)}));
       for (const Frame& part : snapshot) n.link->send(part);
     }

@@ -147,8 +147,7 @@ void NodeSession::onReplicaBytes(Message& m, bool snapshot) {
     if (st.cancelled) return;
     try {
       sg::ChangeListPtr list = sg::decode(bytes);
-      if (list->carriesSnapshot() != snapshot)
-        throw sg::ApplyError("message kind and change list kind differ");
+      if (list->carriesSnapshot() != snapshot) throw sg::ApplyError("message kind and change list kind differ");
       // A snapshot's first part (or the whole) to a replica that holds a scene.
       if (snapshot && !st.replica->awaitingSnapshot() && st.replica->version() != 0) {
         // A client that resynchronises starts us over.

@@ -138,8 +138,8 @@ void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s,
             pipelineBound = true;
           }
           if (maskedPass) {
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &s.materials[g.material].set,
-                                    0, nullptr);
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &s.materials[g.material].set, 0,
+                                    nullptr);
             pc.material = g.material;
           }
           vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc),

@@ -24,7 +24,8 @@ VkRect2D unite(const VkRect2D& a, const VkRect2D& b) {
   if (empty(a)) return b;
   if (empty(b)) return a;
   const std::int32_t x0 = std::min(a.offset.x, b.offset.x), y0 = std::min(a.offset.y, b.offset.y);
-  const std::int32_t x1 = std::max(a.offset.x + std::int32_t(a.extent.width), b.offset.x + std::int32_t(b.extent.width));
+  const std::int32_t x1 =
+      std::max(a.offset.x + std::int32_t(a.extent.width), b.offset.x + std::int32_t(b.extent.width));
   const std::int32_t y1 =
       std::max(a.offset.y + std::int32_t(a.extent.height), b.offset.y + std::int32_t(b.extent.height));
   return {{x0, y0}, {std::uint32_t(x1 - x0), std::uint32_t(y1 - y0)}};
@@ -78,7 +79,8 @@ std::optional<std::vector<VkRect2D>> shadowRedraw(const ShadowContents& held, co
     if (was == is) continue;
     for (std::size_t layer = 0; layer < rects.size(); ++layer)
       for (const ShadowCaster* c : {&was, &is})
-        if (c->alive) rects[layer] = unite(rects[layer], shadowFootprint(s, c->mesh, c->transform, now.viewProj[layer], size));
+        if (c->alive)
+          rects[layer] = unite(rects[layer], shadowFootprint(s, c->mesh, c->transform, now.viewProj[layer], size));
   }
   // A redraw of half the map or more costs about what a whole one does.
   for (const VkRect2D& r : rects)
