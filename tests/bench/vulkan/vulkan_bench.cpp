@@ -10,6 +10,7 @@
 #include "tsr/vk/scene.hpp"
 
 #include <benchmark/benchmark.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <cstdio>
 #include <map>
@@ -86,6 +87,46 @@ BENCHMARK(BM_TesseraVulkan)
     ->Args({1, 0})
     ->Args({1, 1})
     ->Args({4, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+
+// A frame after one edit, with shadows: one instance in the middle of the
+// grid moved back and forth (its shadow footprint drawn again) against a
+// material edit (every caster drawn again). Shadow triangles a frame are the
+// counter to compare.
+void BM_FrameAfterAnEdit(benchmark::State& state) {
+  Fixture& f = fixture();
+  RenderSettings settings;
+  settings.shadowMapSize = 2048;
+  Renderer renderer(f.device, settings);
+  FrameBuffer fb(kWidth, kHeight);
+  renderer.render(f.scene, f.content.camera, Region::full(kWidth, kHeight), fb);
+  const auto middle = InstanceId(kInstances / 2 + 50);
+  const glm::mat4 at = f.content.instanceTransform[index(middle)];
+  const bool materialEdit = state.range(0) != 0;
+  double shadowTriangles = 0;
+  float step = 0.2f;
+  for (auto _ : state) {
+    if (materialEdit) {
+      Material m;
+      m.baseColor = glm::vec3(0.8f, 0.3f, 0.2f);
+      f.scene.setMaterial(MaterialId(0), m);
+    } else {
+      f.scene.setInstanceTransform(middle, glm::translate(at, glm::vec3(step, 0.0f, 0.0f)));
+      step = -step;
+    }
+    renderer.render(f.scene, f.content.camera, Region::full(kWidth, kHeight), fb);
+    shadowTriangles += double(renderer.lastStats().shadowTriangles);
+  }
+  f.scene.setInstanceTransform(middle, at);
+  state.counters["shadowTriangles"] = benchmark::Counter(shadowTriangles, benchmark::Counter::kAvgIterations);
+}
+
+BENCHMARK(BM_FrameAfterAnEdit)
+    ->ArgNames({"materialEdit"})
+    ->Arg(0)
+    ->Arg(1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);
