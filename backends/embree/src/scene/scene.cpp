@@ -189,7 +189,8 @@ void Scene::updateMeshVertices(MeshId id, const VertexEdit& edit) {
   for (const auto& v : normals)
     if (!finite(v)) throw Error("normal update contains NaN or infinity");
   // Shared arrays (a replica's) are copied before the first edit: the giver applies its edits itself.
-  std::copy(positions.begin(), positions.end(), m.data.positions.writable().begin() + edit.first);
+  const std::span<glm::vec3> heldPositions = m.data.positions.writable();
+  std::copy(positions.begin(), positions.end(), heldPositions.begin() + edit.first);
   if (!normals.empty()) std::copy(normals.begin(), normals.end(), m.data.normals.writable().begin() + edit.first);
   if (m.filled()) {
     auto* v = static_cast<glm::vec3*>(rtcGetGeometryBufferData(m.geometry, RTC_BUFFER_TYPE_VERTEX, 0));
@@ -204,11 +205,13 @@ void Scene::setMeshData(MeshId id, MeshData data) {
   validateMesh(data);
   m.data = std::move(data);
   m.sceneStale = true;
+  // Recorded first: the merged copy of a user shares the old indices, and
+  // the next commit must place it again even when the fill below throws.
+  state_->edit({.mesh = index(id)});
   if (m.filled()) {
     m.fill(state_->device->handle());
     state_->device->check("setMeshData");
   }
-  state_->edit({.mesh = index(id)});
 }
 
 void Scene::removeMesh(MeshId id) {

@@ -84,15 +84,17 @@ void Renderer::Impl::addEmitterLights(SceneState& s, const RenderSettings& setti
 // (lights/shadow_update.hpp), from the casters over them.
 void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s,
                                    const std::vector<glm::mat4>& shadowViewProj, RenderStats& stats) {
-  if (shadowsHeld && shadowsHeld->scene == &s && shadowsHeld->version == s.version &&
+  if (shadowsHeld && shadowsHeld->scene == s.uid && shadowsHeld->version == s.version &&
       shadowsHeld->viewProj == shadowViewProj)
     return;  // still in SHADER_READ_ONLY_OPTIMAL from that frame
-  ShadowContents now{&s, s.version, s.casterEdits, shadowViewProj, shadowCasters(s)};
+  ShadowContents now{s.uid, s.version, s.casterEdits, shadowViewProj, shadowCasters(s)};
   const ShadowMap& sm = *shadowMap;
   std::optional<std::vector<VkRect2D>> redraw;
   if (shadowsHeld && !shadowViewProj.empty()) redraw = shadowRedraw(*shadowsHeld, now, s, sm.size());
   shadowsHeld.reset();
   shadowsPending = std::move(now);
+  if (redraw && std::all_of(redraw->begin(), redraw->end(), [](const VkRect2D& r) { return r.extent.width == 0; }))
+    return;  // no caster changed (the edit was another kind): the maps stay as they are
   // A whole redraw starts from nothing; a partial one keeps the rest.
   const VkImageLayout from = redraw ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED;
   imageBarrier(

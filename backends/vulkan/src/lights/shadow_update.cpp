@@ -57,6 +57,7 @@ VkRect2D shadowFootprint(const SceneState& s, std::uint32_t mesh, const glm::mat
   }
   // Clip space [-1, 1] to texels, a texel of margin for rasterisation rules.
   auto texel = [&](float ndc) { return (ndc * 0.5f + 0.5f) * float(size); };
+  if (!std::isfinite(x0) || !std::isfinite(x1) || !std::isfinite(y0) || !std::isfinite(y1)) return whole(size);
   const float fx0 = std::floor(texel(x0)) - 1.0f, fy0 = std::floor(texel(y0)) - 1.0f;
   const float fx1 = std::ceil(texel(x1)) + 1.0f, fy1 = std::ceil(texel(y1)) + 1.0f;
   const float lim = float(size);

@@ -31,7 +31,7 @@ struct ShadowCaster {
 // instances' (mesh vertices, materials), the lights' projections and the
 // instances.
 struct ShadowContents {
-  const SceneState* scene = nullptr;
+  std::uint64_t scene = 0;    // SceneState::uid
   std::uint64_t version = 0;  // every edit
   std::uint64_t casterEdits = 0;
   std::vector<glm::mat4> viewProj;

@@ -14,6 +14,7 @@
 
 #include <glm/vec3.hpp>
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -85,6 +86,9 @@ VkDescriptorSetLayout createMaterialSetLayout(VkDevice device);
 
 struct SceneState {
   std::shared_ptr<Device> device;
+  // Unique in the process: a renderer tells a scene made at a freed one's
+  // address from that one (what its shadow maps hold).
+  const std::uint64_t uid = nextUid();
   std::uint64_t version = 0;
   // Edits that change what casts shadows beyond single instances (a mesh's
   // vertices or removal, a material): the shadow maps are drawn whole
@@ -127,6 +131,12 @@ struct SceneState {
   void prepare();
   // World-space bounds of one instance.
   void instanceBounds(std::uint32_t slot, glm::vec3& lo, glm::vec3& hi) const;
+
+ private:
+  static std::uint64_t nextUid() {
+    static std::atomic<std::uint64_t> next{1};
+    return next.fetch_add(1, std::memory_order_relaxed);
+  }
 };
 
 }  // namespace tsr::vk
