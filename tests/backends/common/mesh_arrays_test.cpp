@@ -55,6 +55,10 @@ TEST(BackendSharedElements, OwnedElementsAreValues) {
   EXPECT_EQ(a[0], 1);
   SharedElements<int> moved = std::move(b);
   EXPECT_EQ(moved[0], 10);
+  EXPECT_TRUE(b.empty()) << "moved from: empty, not dangling";  // NOLINT(bugprone-use-after-move)
+  SharedElements<int>& same = moved;
+  moved = same;  // self-assignment keeps the elements
+  EXPECT_EQ(moved[0], 10);
   EXPECT_TRUE(SharedElements<int>(nullptr).empty());
 }
 

@@ -15,6 +15,8 @@ struct State {
   bool withExtraBall = false;
   bool withBox = true;
   float lampEmission = 6.0f;
+  float ballRadius = 0.5f;  // the ball mesh, used once (merged) unless withExtraBall
+  int ballTriangles = 600;
 };
 
 MeshData sheet(float wave) {
@@ -57,7 +59,7 @@ Built build(Scene& scene, const State& s) {
   ball.type = MaterialType::Dielectric;
   ball.roughness = 0.2f;
   b.ballMaterial = scene.addMaterial(ball);
-  b.ball = scene.addMesh(uvSphere({0, 0, 0}, 0.5f, 600, true));
+  b.ball = scene.addMesh(uvSphere({0, 0, 0}, s.ballRadius, s.ballTriangles, true));
   b.ball1 = scene.addInstance(b.ball, b.ballMaterial,
                               glm::translate(glm::mat4(1.0f), glm::vec3(-0.6f, 0.6f, 0) + s.ballOffset));
   Material box;
@@ -236,6 +238,23 @@ TEST(EmbreeIncremental, AVertexEditLeavesSharedArraysAlone) {
   const MeshData wavy = sheet(0.3f);
   scene.updateMeshVertices(id, {.positions = wavy.positions, .count = std::uint32_t(wavy.positions.size())});
   EXPECT_TRUE(std::equal(before.begin(), before.end(), flat.positions.begin()));
+}
+
+// New data (another topology) for a mesh whose one instance is merged:
+// its world-space copy shared the old indices and is made again; then the
+// same with a second instance added after, which needs the mesh's own BVH.
+TEST(EmbreeIncremental, NewDataForAMergedMesh) {
+  State s;
+  s.ballRadius = 0.35f;
+  s.ballTriangles = 200;
+  expectEditEqualsFresh(s, [&](Scene& scene, const Built& b) {
+    scene.setMeshData(b.ball, uvSphere({0, 0, 0}, s.ballRadius, s.ballTriangles, true));
+  });
+  s.withExtraBall = true;
+  expectEditEqualsFresh(s, [&](Scene& scene, const Built& b) {
+    scene.setMeshData(b.ball, uvSphere({0, 0, 0}, s.ballRadius, s.ballTriangles, true));
+    scene.addInstance(b.ball, b.boxMaterial, glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, 0.5f, -1.0f)));
+  });
 }
 
 TEST(EmbreeIncremental, AddInstance) {
