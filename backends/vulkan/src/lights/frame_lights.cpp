@@ -87,7 +87,9 @@ void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s,
   if (shadowsHeld && shadowsHeld->scene == s.uid && shadowsHeld->version == s.version &&
       shadowsHeld->viewProj == shadowViewProj)
     return;  // still in SHADER_READ_ONLY_OPTIMAL from that frame
-  ShadowContents now{s.uid, s.version, s.casterEdits, shadowViewProj, shadowCasters(s)};
+  // The casters are kept only when there are maps to update partially later.
+  ShadowContents now{s.uid, s.version, s.casterEdits, shadowViewProj,
+                     shadowViewProj.empty() ? std::vector<ShadowCaster>{} : shadowCasters(s)};
   const ShadowMap& sm = *shadowMap;
   std::optional<std::vector<VkRect2D>> redraw;
   if (shadowsHeld && !shadowViewProj.empty()) redraw = shadowRedraw(*shadowsHeld, now, s, sm.size());
