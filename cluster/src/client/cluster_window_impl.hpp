@@ -59,13 +59,12 @@ struct ClusterWindow::Impl {
   void takeOver(FrameRound& round, std::size_t lost);
   Frame viewportsFor(const ClusterNode& n) const;
   // The largest change list a message of this kind carries (its limit, less
-  // room for its other fields, or the options' smaller part size).
-  // What a part of a snapshot may take in the message: all of it, and the
-  // size the config asks parts to have (a container larger than that goes
-  // alone in a part, up to the message's bound).
+  // room for its other fields), and the size the config asks a snapshot's
+  // parts to have (a container larger than that goes alone in a part, up to
+  // the message's bound).
   static std::size_t messageBytes(const MessageSpec& message) { return message.maxPayload - 64; }
   std::size_t snapshotPartBytes(const MessageSpec& message) const {
-    return config.snapshotPartBytes ? std::min(config.snapshotPartBytes, messageBytes(message)) : messageBytes(message);
+    return config.snapshotPartBytes ? config.snapshotPartBytes : messageBytes(message);  // splitSnapshot bounds it
   }
 
   // The steps of one frame (cluster_window.cpp): send the requests (giving

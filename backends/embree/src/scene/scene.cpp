@@ -144,8 +144,7 @@ Scene::Scene(std::shared_ptr<Device> device) : state_(std::make_unique<SceneStat
   state_->moving = rtcNewScene(state_->device->handle());
   rtcSetSceneFlags(state_->moving, RTC_SCENE_FLAG_DYNAMIC | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
   rtcSetSceneBuildQuality(state_->moving, RTC_BUILD_QUALITY_LOW);
-  state_->merged = rtcNewScene(state_->device->handle());
-  rtcSetSceneFlags(state_->merged, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
+  state_->merged = rtcNewScene(state_->device->handle());  // its flags are set at each build (mergedSceneFlags)
   rtcSetSceneBuildQuality(state_->merged, RTC_BUILD_QUALITY_HIGH);
   state_->mergedInstance = rtcNewGeometry(state_->device->handle(), RTC_GEOMETRY_TYPE_INSTANCE);
   rtcSetGeometryInstancedScene(state_->mergedInstance, state_->merged);
