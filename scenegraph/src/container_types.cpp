@@ -11,7 +11,9 @@ namespace tsr::sg {
 
 std::optional<std::string> Geometry::invalidReason() const {
   const auto& indices = indices_.get();
-  if (indices.size() % 3 != 0) return "index count " + std::to_string(indices.size()) + " is not a multiple of 3";
+  const std::size_t per = indicesPerPrimitive(primitive_);
+  if (indices.size() % per != 0)
+    return "index count " + std::to_string(indices.size()) + " is not a multiple of " + std::to_string(per);
   for (std::size_t i = 0; i < indices.size(); ++i)
     if (indices[i] >= positions_.size())
       return "index " + std::to_string(indices[i]) + " at " + std::to_string(i) + " exceeds " +

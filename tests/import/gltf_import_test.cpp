@@ -38,21 +38,20 @@ class RichScene : public ::testing::Test {
 TEST_F(RichScene, CreatesOneContainerPerThingItUses) {
   EXPECT_EQ(scene.count(ContainerType::Group), 1u);
   EXPECT_EQ(scene.count(ContainerType::Transform), 9u);
-  // quad (shared), triangle, strip, fan, loose triangle; points skipped.
-  EXPECT_EQ(scene.count(ContainerType::Geometry), 5u);
+  // quad (shared), triangle, strip, fan, points, loose triangle.
+  EXPECT_EQ(scene.count(ContainerType::Geometry), 6u);
   EXPECT_EQ(scene.count(ContainerType::SurfaceMaterial), 3u);  // two + glTF's default
   EXPECT_EQ(scene.count(ContainerType::Image), 2u);
   EXPECT_EQ(scene.count(ContainerType::Light), 3u);
   EXPECT_EQ(scene.count(ContainerType::Camera), 1u);
   EXPECT_EQ(scene.count(ContainerType::Background), 1u);
   EXPECT_EQ(result.counts.nodes, 9u);
-  EXPECT_EQ(result.counts.skippedPrimitives, 1u);
+  EXPECT_EQ(result.counts.skippedPrimitives, 0u);
   EXPECT_EQ(result.cameras.size(), 1u);
   EXPECT_EQ(result.lights.size(), 3u);
   ASSERT_NE(scene.find<Group>(result.root), nullptr);
   EXPECT_EQ(scene.find<Group>(result.root)->children().size(), 6u);
   EXPECT_NE(scene.find<Background>(result.background), nullptr);
-  EXPECT_THAT(result.warnings, ::testing::Contains(HasSubstr("points and lines are not drawn by any back-end")));
 }
 
 TEST_F(RichScene, SharedMeshesShareGeometry) {
@@ -62,8 +61,8 @@ TEST_F(RichScene, SharedMeshesShareGeometry) {
   ASSERT_EQ(a->children().size(), 1u);
   EXPECT_EQ(a->children(), b->children());
   const SceneStats stats = computeSceneStats(scene, result.root);
-  EXPECT_EQ(stats.geometryInstances, 6u);
-  EXPECT_EQ(stats.uniqueTriangles, 2u + 1u + 3u + 3u + 1u);
+  EXPECT_EQ(stats.geometryInstances, 7u);
+  EXPECT_EQ(stats.uniqueTriangles, 2u + 1u + 3u + 3u + 1u);  // the points are no triangles
   EXPECT_EQ(stats.triangles, stats.uniqueTriangles + 2u);
 }
 
@@ -106,13 +105,21 @@ TEST_F(RichScene, ReadsAttributesOfEveryLayout) {
   EXPECT_EQ(tri->uvs()[1], Vec2(1, 0));  // 65535 normalized
 
   auto* s = byName<Transform>(scene, "strips");
-  ASSERT_EQ(s->children().size(), 3u);
+  ASSERT_EQ(s->children().size(), 4u);
   const Geometry* strip = scene.find<Geometry>(s->children()[0]);
   const Geometry* fan = scene.find<Geometry>(s->children()[1]);
-  const Geometry* loose = scene.find<Geometry>(s->children()[2]);
+  const Geometry* points = scene.find<Geometry>(s->children()[2]);
+  const Geometry* loose = scene.find<Geometry>(s->children()[3]);
   // Strips alternate winding so every triangle keeps the first one's.
   EXPECT_EQ(strip->indices(), (std::vector<std::uint32_t>{0, 1, 2, 2, 1, 3, 2, 3, 4}));
   EXPECT_EQ(fan->indices(), (std::vector<std::uint32_t>{0, 1, 3, 0, 3, 4, 0, 4, 2}));
+  // Points without indices: every vertex once, no normals made for them.
+  EXPECT_EQ(points->primitive(), GeometryPrimitive::Points);
+  EXPECT_EQ(points->indices(), (std::vector<std::uint32_t>{0, 1, 2, 3, 4}));
+  EXPECT_EQ(points->primitiveCount(), 5u);
+  EXPECT_EQ(points->triangleCount(), 0u);
+  EXPECT_TRUE(points->normals().empty());
+  EXPECT_EQ(strip->primitive(), GeometryPrimitive::Triangles);
   EXPECT_EQ(loose->indices(), (std::vector<std::uint32_t>{0, 1, 2}));
   ASSERT_EQ(loose->colors().size(), 3u);
   EXPECT_EQ(loose->colors()[1], Vec4(0, 1, 0, 1));
@@ -287,6 +294,69 @@ TEST(GltfImport, MissingNormalsStayFlatUnlessSmoothingIsAsked) {
   expectNear(gs->normals()[2], Vec3(0, 0, 1));
   expectNear(gs->normals()[3], Vec3(0, 1, 0));
   EXPECT_EQ(rs.counts.uniqueTriangles, rf.counts.uniqueTriangles);
+}
+
+// glTF modes 1-3 become segment lists (a loop closed back to its start), a
+// stray last index of a list is dropped with a warning; the conversion's
+// cache gives the same primitives back.
+TEST(GltfImport, LineStripsAndLoopsBecomeSegmentLists) {
+  test::TempDir dir;
+  test::GltfBuilder b;
+  const int pos = b.addFloats({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, "VEC3");
+  const int four = b.addIndices(std::vector<std::uint16_t>{0, 1, 2, 3});
+  const int three = b.addIndices(std::vector<std::uint16_t>{0, 1, 2});
+  auto prim = [&](int mode, int indices) {
+    return nlohmann::json{{"attributes", {{"POSITION", pos}}}, {"indices", indices}, {"mode", mode}};
+  };
+  b.doc["meshes"] = {{{"name", "lines"}, {"primitives", {prim(3, four), prim(2, four), prim(1, three)}}}};
+  b.doc["nodes"] = {{{"mesh", 0}, {"name", "drawing"}}};
+  b.writeGlb(dir.file("lines.glb"));  // a .gltf naming a .bin is not cached
+  const ImportOptions options{.smoothNormals = true, .cacheDir = dir.file("cache")};
+  for (const char* pass : {"stored", "hit"}) {
+    SCOPED_TRACE(pass);
+    Scene scene;
+    const ImportResult r = importScene(scene, dir.file("lines.glb"), options);
+    EXPECT_EQ(r.cache, pass);
+    const auto* node = byName<Transform>(scene, "drawing");
+    ASSERT_TRUE(node);
+    ASSERT_EQ(node->children().size(), 3u);
+    const Geometry* strip = scene.find<Geometry>(node->children()[0]);
+    const Geometry* loop = scene.find<Geometry>(node->children()[1]);
+    const Geometry* list = scene.find<Geometry>(node->children()[2]);
+    for (const Geometry* g : {strip, loop, list}) {
+      EXPECT_EQ(g->primitive(), GeometryPrimitive::Lines);
+      EXPECT_TRUE(g->normals().empty());  // smoothing is for surfaces
+      EXPECT_FALSE(g->invalidReason());
+    }
+    EXPECT_EQ(strip->indices(), (std::vector<std::uint32_t>{0, 1, 1, 2, 2, 3}));
+    EXPECT_EQ(loop->indices(), (std::vector<std::uint32_t>{0, 1, 1, 2, 2, 3, 3, 0}));
+    EXPECT_EQ(list->indices(), (std::vector<std::uint32_t>{0, 1}));
+    EXPECT_EQ(loop->primitiveCount(), 4u);
+    EXPECT_EQ(r.counts.uniqueTriangles, 0u);
+    if (std::string(pass) == "stored") {
+      EXPECT_THAT(r.warnings, ::testing::Contains(HasSubstr("3 indices is not a multiple of 2")));
+    }
+  }
+}
+
+// A geometry's index count must fit its primitive.
+TEST(GeometryPrimitive, IndexCountsFollowThePrimitive) {
+  Scene scene;
+  Geometry& g = scene.create<Geometry>();
+  g.setPositions({Vec3(0), Vec3(1, 0, 0), Vec3(0, 1, 0)});
+  g.setIndices({0, 1, 2});
+  EXPECT_FALSE(g.invalidReason());
+  EXPECT_EQ(g.triangleCount(), 1u);
+  g.setPrimitive(GeometryPrimitive::Lines);
+  ASSERT_TRUE(g.invalidReason());
+  EXPECT_THAT(*g.invalidReason(), HasSubstr("not a multiple of 2"));
+  EXPECT_EQ(g.triangleCount(), 0u);
+  g.setIndices({0, 1, 1, 2});
+  EXPECT_FALSE(g.invalidReason());
+  EXPECT_EQ(g.primitiveCount(), 2u);
+  g.setPrimitive(GeometryPrimitive::Points);
+  EXPECT_FALSE(g.invalidReason());
+  EXPECT_EQ(g.primitiveCount(), 4u);
 }
 
 }  // namespace

@@ -114,7 +114,9 @@ void addInstance(tinygltf::Model& m, const sg::Scene& scene, const med::FlatNode
       lo[c] = std::min(lo[c], double(positions[i][c])), hi[c] = std::max(hi[c], double(positions[i][c]));
   }
   tinygltf::Primitive primitive;
-  primitive.mode = TINYGLTF_MODE_TRIANGLES;
+  primitive.mode = g->primitive() == sg::GeometryPrimitive::Lines    ? TINYGLTF_MODE_LINE
+                   : g->primitive() == sg::GeometryPrimitive::Points ? TINYGLTF_MODE_POINTS
+                                                                     : TINYGLTF_MODE_TRIANGLES;
   const int pv = addView(m, positions.data(), positions.size() * sizeof(glm::vec3), kArrayBuffer);
   primitive.attributes["POSITION"] =
       addAccessor(m, pv, TINYGLTF_COMPONENT_TYPE_FLOAT, positions.size(), TINYGLTF_TYPE_VEC3);

@@ -126,8 +126,17 @@ void EmbreeIdRenderer::setSettings(const EmbreeIdSettings& settings) {
 
 const EmbreeIdSettings& EmbreeIdRenderer::settings() const { return state_->settings; }
 
-MeshId EmbreeIdRenderer::addMesh(MeshData data) {
+namespace {
+// Rays hit surfaces: a line or point of one pixel's width has none.
+void traceable(const MeshData& data) {
   data.validate();
+  if (data.primitive != Primitive::Triangles)
+    throw Error("the Embree id pass draws no lines or points (the Vulkan one does: engine=vulkan)");
+}
+}  // namespace
+
+MeshId EmbreeIdRenderer::addMesh(MeshData data) {
+  traceable(data);
   auto m = std::make_unique<MeshRecord>();
   m->data = std::move(data);
   fillGeometry(*m, state_->device.handle());
@@ -138,7 +147,7 @@ MeshId EmbreeIdRenderer::addMesh(MeshData data) {
 
 void EmbreeIdRenderer::setMeshData(MeshId id, MeshData data) {
   auto& m = lookup(state_->meshes, id, "mesh");
-  data.validate();
+  traceable(data);
   m.data = std::move(data);
   fillGeometry(m, state_->device.handle());
   state_->device.check("setMeshData");

@@ -8,9 +8,10 @@
 namespace tsr::cov {
 
 void MeshData::validate() const {
-  if (indices.empty()) throw Error("mesh has no triangles");
-  if (indices.size() % 3 != 0)
-    throw Error("mesh index count " + std::to_string(indices.size()) + " is not a multiple of 3");
+  if (indices.empty()) throw Error("mesh has nothing to draw");
+  const std::size_t per = indicesPer(primitive);
+  if (indices.size() % per != 0)
+    throw Error("mesh index count " + std::to_string(indices.size()) + " is not a multiple of " + std::to_string(per));
   for (std::uint32_t i : indices)
     if (i >= positions.size())
       throw Error("mesh index " + std::to_string(i) + " exceeds its " + std::to_string(positions.size()) + " vertices");

@@ -24,4 +24,5 @@ void main() {
   Instance inst = instances[slot];
   // As common.glsl's modelPosition: positions are 16-bit fractions of the mesh's box.
   gl_Position = frame.viewProj * (inst.model * vec4(inst.positionOffset.xyz + inPosition * inst.positionScale.xyz, 1.0));
+  gl_PointSize = 1.0;  // points cover one pixel, as the colour pass draws them
 }

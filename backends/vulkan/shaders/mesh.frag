@@ -21,6 +21,7 @@ layout(constant_id = 4) const bool FOG = false;  // the environment has a medium
 layout(constant_id = 5) const bool NORMAL_TEXTURE = false;
 layout(constant_id = 6) const bool METALLIC_ROUGHNESS_TEXTURE = false;
 layout(constant_id = 7) const bool OCCLUSION_TEXTURE = false;
+layout(constant_id = 8) const bool UNLIT = false;  // lines and points: no surface to light
 
 #include "medium.glsl"
 
@@ -181,6 +182,12 @@ void main() {
   if (m.pbr.w > 0.0) {  // glTF MASK: cut away below the cut-off, opaque above
     if (opacity < m.pbr.w) discard;
     opacity = 1.0;
+  }
+  if (UNLIT) {  // their colour as it is, as glTF viewers draw lines and points
+    vec3 e = m.emission.rgb;
+    if (EMISSION_TEXTURE) e *= texture(emissionTex, slotUv(pc.material, EMISSION_SLOT, uv)).rgb;
+    outColour = vec4(FOG ? fogged(base + e, worldPos) : base + e, opacity);
+    return;
   }
 
   vec3 wo = normalize(frame.cameraPos.xyz - worldPos);

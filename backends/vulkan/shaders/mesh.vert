@@ -18,4 +18,5 @@ void main() {
   worldNormal = mat3(inst.normal) * octNormal(inNormal);
   uv = meshUv(inst, inUv);
   gl_Position = frame.viewProj * p;
+  gl_PointSize = 1.0;  // read only when drawing points: one pixel, as glTF viewers draw them
 }

@@ -121,7 +121,8 @@ VkFormat Renderer::Impl::colourFormat(std::uint32_t samples) {
 // Pipelines are specialised by what changes the fragment shader's code path:
 // material type, which textures exist, shadows, fog; plus blending and
 // samples. See-through volumes have a shader of their own (volume.frag).
-VkPipeline Renderer::Impl::mainPipeline(std::uint32_t samples, const Material& material, bool shadows) {
+VkPipeline Renderer::Impl::mainPipeline(std::uint32_t samples, const Material& material, bool shadows,
+                                        Primitive primitive) {
   const bool volume = material.isVolume();
   const std::uint32_t type = volume ? 0u : static_cast<std::uint32_t>(material.type);
   const bool baseTex = !volume && material.baseColorTexture.has_value();
@@ -135,7 +136,7 @@ VkPipeline Renderer::Impl::mainPipeline(std::uint32_t samples, const Material& m
                             std::uint64_t(emissionTex) << 17 | std::uint64_t(shadows) << 18 |
                             std::uint64_t(blend) << 19 | std::uint64_t(volume) << 20 | std::uint64_t(fog) << 21 |
                             std::uint64_t(normalTex) << 22 | std::uint64_t(mrTex) << 23 |
-                            std::uint64_t(occlusionTex) << 24;
+                            std::uint64_t(occlusionTex) << 24 | std::uint64_t(primitive) << 25;
   auto it = mainPipelines.find(key);
   if (it != mainPipelines.end()) return it->second.handle();
   PipelineDesc d;
@@ -150,7 +151,11 @@ VkPipeline Renderer::Impl::mainPipeline(std::uint32_t samples, const Material& m
   d.dualSourceBlend = volume;
   d.cull = volume ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE;  // a volume's front faces only
   d.depthWrite = !blend;
-  d.fragmentConstants = {type, baseTex, emissionTex, shadows, fog, normalTex, mrTex, occlusionTex};
+  const bool unlit = primitive != Primitive::Triangles;
+  d.topology = primitive == Primitive::Lines    ? VK_PRIMITIVE_TOPOLOGY_LINE_LIST
+               : primitive == Primitive::Points ? VK_PRIMITIVE_TOPOLOGY_POINT_LIST
+                                                : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  d.fragmentConstants = {type, baseTex, emissionTex, shadows, fog, normalTex, mrTex, occlusionTex, unlit};
   return mainPipelines.emplace(key, Pipeline(device, d)).first->second.handle();
 }
 
@@ -260,6 +265,7 @@ std::uint32_t Renderer::Impl::sortDrawOrder(const SceneState& s, const Camera& c
   }
   const std::uint32_t transparentBase = std::uint32_t(drawOrder.size());
   drawOrder.insert(drawOrder.end(), transparentSorted.begin(), transparentSorted.end());
+  drawOrder.insert(drawOrder.end(), s.lineOrder.begin(), s.lineOrder.end());
   ensureHost(device, drawOrderBuffer, std::max<std::size_t>(drawOrder.size(), 1) * 4,
              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   if (!drawOrder.empty()) std::memcpy(drawOrderBuffer.mapped(), drawOrder.data(), drawOrder.size() * 4);

@@ -136,12 +136,13 @@ struct Renderer::Impl {
   explicit Impl(const Device& d);
   ~Impl();
   VkFormat colourFormat(std::uint32_t samples);
-  VkPipeline mainPipeline(std::uint32_t samples, const Material& material, bool shadows);
+  VkPipeline mainPipeline(std::uint32_t samples, const Material& material, bool shadows,
+                          Primitive primitive = Primitive::Triangles);
   // Whether see-through volumes are drawn in this frame.
   bool drawsVolumes() const;
 
   // The passes of one frame, in order. Returns where transparent instances
-  // start in the draw order.
+  // start in the draw order (lines and points follow them).
   std::uint32_t sortDrawOrder(const SceneState& s, const Camera& camera);
   // Fills the light buffer; returns the shadowed lights' view-projections.
   std::vector<glm::mat4> gatherLights(SceneState& s, const RenderSettings& settings);
@@ -167,6 +168,9 @@ struct Renderer::Impl {
                   VkBuffer indirect, RenderStats& stats);
   void drawTransparent(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
                        std::uint32_t transparentBase, RenderStats& stats);
+  // Lines and points, unlit, never culled; their draw order follows the transparent instances'.
+  void drawLines(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings,
+                 std::uint32_t transparentBase, RenderStats& stats);
   // Ends the main pass, draws the volumes' back faces over a copy of the
   // opaque depth into volumeBack, and resumes the main pass.
   void recordVolumeBacks(VkCommandBuffer cmd, const SceneState& s, std::uint32_t transparentBase);

@@ -22,8 +22,11 @@ struct CoverageTypes {
   using Error = cov::Error;
   static constexpr const char* kName = "coverage";
   static constexpr sg::FieldMask kMeshFields =
-      sg::fieldBit(sg::Geometry::Positions) | sg::fieldBit(sg::Geometry::Indices) | sg::fieldBit(sg::Geometry::Motion);
+      sg::fieldBit(sg::Geometry::Positions) | sg::fieldBit(sg::Geometry::Indices) | sg::fieldBit(sg::Geometry::Motion) |
+      sg::fieldBit(sg::Geometry::Primitive);
   static constexpr bool kResizableMeshes = true;
+  // Which id renderer draws them is chosen at run time: one that cannot refuses the mesh.
+  static constexpr bool kLinesAndPoints = true;
   static cov::MeshData mesh(const sg::Geometry& g) { return translateMesh(g); }
   // A medium-only object (a volume with no surface) is as transparent as glass.
   template <class Textures>

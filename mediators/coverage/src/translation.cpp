@@ -6,6 +6,7 @@ cov::MeshData translateMesh(const sg::Geometry& geometry) {
   cov::MeshData data;
   data.positions = geometry.positions();
   data.indices = geometry.indices();
+  data.primitive = primitiveOf(geometry);
   data.usage = geometry.motion() == sg::GeometryMotion::Animated ? cov::MeshUsage::Animated : cov::MeshUsage::Static;
   return data;
 }

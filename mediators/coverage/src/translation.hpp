@@ -4,6 +4,7 @@
 // when to call them.
 #include "tsr/cov/mesh.hpp"
 #include "tsr/med/coverage/ranking.hpp"
+#include "tsr/med/primitive_of.hpp"
 #include "tsr/med/scene_flattening.hpp"
 #include "tsr/sg/scene.hpp"
 

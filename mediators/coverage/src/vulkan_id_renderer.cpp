@@ -35,6 +35,7 @@ vk::MeshData meshData(const cov::MeshData& data) {
   vk::MeshData m;
   m.positions = data.positions;
   m.indices = data.indices;
+  m.primitive = data.primitive;
   return m;
 }
 }  // namespace

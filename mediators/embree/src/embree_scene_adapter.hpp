@@ -19,6 +19,7 @@ struct EmbreeTypes {
   static constexpr const char* kName = "embree";
   static constexpr sg::FieldMask kMeshFields = kAllMeshFields;
   static constexpr bool kResizableMeshes = true;
+  static constexpr bool kLinesAndPoints = false;  // left out, said at the default log level
   static embree::MeshData mesh(const sg::Geometry& g) { return translateMesh(g); }
   static embree::Material material(const sg::Container* m, const sg::VolumeMaterial* v, const TextureLookup& t) {
     return translateMaterial(m, v, t);

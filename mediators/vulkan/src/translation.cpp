@@ -167,6 +167,7 @@ vk::MeshData translateMesh(const sg::Geometry& geometry) {
   data.normals = geometry.normals();
   data.uvs = geometry.uvs();
   data.indices = geometry.indices();
+  data.primitive = primitiveOf(geometry);
   return data;
 }
 

@@ -9,6 +9,7 @@
 
 #include <glm/vec4.hpp>
 
+#include "tsr/med/primitive_of.hpp"
 #include "tsr/sg/scene.hpp"
 #include "tsr/vk/environment.hpp"
 #include "tsr/vk/material.hpp"

@@ -18,6 +18,7 @@ struct VulkanTypes {
   static constexpr const char* kName = "vulkan";
   static constexpr sg::FieldMask kMeshFields = kAllMeshFields;
   static constexpr bool kResizableMeshes = false;
+  static constexpr bool kLinesAndPoints = true;
   static vk::MeshData mesh(const sg::Geometry& g) { return translateMesh(g); }
   static vk::Material material(const sg::Container* m, const sg::VolumeMaterial* v, const TextureLookup& t) {
     return translateMaterial(m, v, t);

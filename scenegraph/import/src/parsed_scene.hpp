@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "tsr/sg/geometry.hpp"
 #include "tsr/sg/image.hpp"
 #include "tsr/sg/import/animation.hpp"
 #include "tsr/sg/light.hpp"
@@ -73,7 +74,8 @@ struct Primitive {
   std::vector<Vec3> normals;
   std::vector<Vec2> uvs;
   std::vector<Vec4> colors;
-  std::vector<std::uint32_t> indices;
+  std::vector<std::uint32_t> indices;  // a list of primitive's
+  GeometryPrimitive primitive = GeometryPrimitive::Triangles;
   int material = kNone;  // kNone: the default material
   bool animated = false;
 };

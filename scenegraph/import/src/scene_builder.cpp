@@ -66,6 +66,7 @@ class Builder {
     g.setUvs(std::move(p.uvs));
     g.setColors(std::move(p.colors));
     g.setIndices(std::move(p.indices));
+    g.setPrimitive(p.primitive);
     g.setMaterial(material(p.material));
     if (p.material != parsed::kNone) {
       const auto m = static_cast<std::size_t>(p.material);

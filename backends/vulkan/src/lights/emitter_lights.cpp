@@ -167,6 +167,7 @@ std::vector<EmitterLight> emitterLights(SceneState& s, std::uint32_t budget) {
     const Material& material = s.materials[inst.material].material;
     if (!material.isEmissive()) continue;
     MeshRecord& mesh = s.meshes[inst.mesh];
+    if (mesh.primitive != Primitive::Triangles) continue;  // a line or point lights nothing
     if (mesh.patchesDirty) {
       mesh.patches = meshEmitterPatches(s.geometry->positions(mesh.span, mesh.vertexCount),
                                         s.geometry->indices(mesh.span, mesh.indexCount));

@@ -52,6 +52,10 @@ IdPass::IdPass(const Device& device) : device_(device) {
   d.depthFormat = kIdDepthFormat;
   d.depthCompare = VK_COMPARE_OP_GREATER;  // reversed depth, as in the colour pass
   pipeline_ = Pipeline(device, d);
+  d.topology = VK_PRIMITIVE_TOPOLOGY_LINE_LIST;
+  linePipeline_ = Pipeline(device, d);
+  d.topology = VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
+  pointPipeline_ = Pipeline(device, d);
   frame_ = Buffer(device, sizeof(glm::mat4), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, Buffer::kHost);
 }
 
@@ -70,11 +74,16 @@ std::uint32_t IdPass::render(SceneState& s, const Camera& camera, const Region& 
   s.prepare();
 
   // Opaque instances only: transparent ones neither occlude nor count.
-  const std::size_t drawn = std::max<std::size_t>(s.opaqueOrder.size(), 1);
+  // Lines and points follow the triangles in the draw order.
+  const std::size_t lineBase = s.opaqueOrder.size();
+  const std::size_t drawn = std::max<std::size_t>(lineBase + s.lineOrder.size(), 1);
   if (!drawOrder_ || drawOrder_.size() < drawn * 4)
     drawOrder_ =
         Buffer(device_, std::max<VkDeviceSize>(drawn * 4, 1024), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, Buffer::kHost);
-  if (!s.opaqueOrder.empty()) std::memcpy(drawOrder_.mapped(), s.opaqueOrder.data(), s.opaqueOrder.size() * 4);
+  if (!s.opaqueOrder.empty()) std::memcpy(drawOrder_.mapped(), s.opaqueOrder.data(), lineBase * 4);
+  if (!s.lineOrder.empty())
+    std::memcpy(static_cast<std::uint32_t*>(drawOrder_.mapped()) + lineBase, s.lineOrder.data(),
+                s.lineOrder.size() * 4);
   const glm::mat4 viewProj = projection(camera, region) * camera.worldToCamera();
   std::memcpy(frame_.mapped(), &viewProj, sizeof viewProj);
   if (!s.objectBuffer)  // a scene that never had an instance
@@ -148,6 +157,15 @@ std::uint32_t IdPass::render(SceneState& s, const Camera& camera, const Region& 
     const MeshRecord& m = s.meshes[g.mesh];
     if (m.span.block != bound) s.geometry->bind(cmd, bound = m.span.block, 1);
     vkCmdDrawIndexed(cmd, m.indexCount, g.count, firstIndexOf(m), vertexOffsetOf(m), g.first);
+    ++draws;
+  }
+  for (const DrawGroup& g : s.lineGroups) {
+    if (s.materials[g.material].material.isTransparent()) continue;
+    const MeshRecord& m = s.meshes[g.mesh];
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                      (m.primitive == Primitive::Lines ? linePipeline_ : pointPipeline_).handle());
+    if (m.span.block != bound) s.geometry->bind(cmd, bound = m.span.block, 1);
+    vkCmdDrawIndexed(cmd, m.indexCount, g.count, firstIndexOf(m), vertexOffsetOf(m), std::uint32_t(lineBase) + g.first);
     ++draws;
   }
   vkCmdEndRendering(cmd);

@@ -42,8 +42,9 @@ class IdPass {
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   std::optional<CommandSlot> commands_;
   Pipeline pipeline_;
-  Buffer frame_;      // viewProj
-  Buffer drawOrder_;  // opaque instance slots, in draw-group order
+  Pipeline linePipeline_, pointPipeline_;  // the same, for lines and points
+  Buffer frame_;                           // viewProj
+  Buffer drawOrder_;                       // opaque instance slots, in draw-group order
   std::optional<Target> target_;
 };
 

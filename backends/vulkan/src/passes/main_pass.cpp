@@ -64,7 +64,8 @@ void Renderer::Impl::beginMain(VkCommandBuffer cmd, bool load) {
 // each only when it differs from what the pass has bound.
 void Renderer::Impl::bindDraw(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings, bool shadows,
                               std::uint32_t meshIndex, std::uint32_t material) {
-  VkPipeline p = mainPipeline(settings.msaaSamples, s.materials[material].material, shadows);
+  VkPipeline p =
+      mainPipeline(settings.msaaSamples, s.materials[material].material, shadows, s.meshes[meshIndex].primitive);
   if (p != boundPipeline) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
     boundPipeline = p;
@@ -140,6 +141,19 @@ void Renderer::Impl::drawTransparent(VkCommandBuffer cmd, const SceneState& s, c
   }
 }
 
+void Renderer::Impl::drawLines(VkCommandBuffer cmd, const SceneState& s, const RenderSettings& settings,
+                               std::uint32_t transparentBase, RenderStats& stats) {
+  const std::uint32_t base = transparentBase + std::uint32_t(transparentSorted.size());
+  for (const DrawGroup& g : s.lineGroups) {
+    if (s.materials[g.material].material.isVolume()) continue;  // a medium needs a closed surface
+    bindDraw(cmd, s, settings, false, g.mesh, g.material);
+    const MeshRecord& m = s.meshes[g.mesh];
+    vkCmdDrawIndexed(cmd, m.indexCount, g.count, firstIndexOf(m), vertexOffsetOf(m), base + g.first);
+    ++stats.drawCalls;
+    stats.objects += g.count;
+  }
+}
+
 void Renderer::Impl::recordVolumeBacks(VkCommandBuffer cmd, const SceneState& s, std::uint32_t transparentBase) {
   std::vector<std::uint32_t> volumes;  // positions in transparentSorted
   for (std::uint32_t i = 0; i < transparentSorted.size(); ++i)
@@ -207,6 +221,7 @@ void Renderer::Impl::recordMain(VkCommandBuffer cmd, const SceneState& s, const 
   prepareAttachments(cmd);
   beginMain(cmd, false);
   drawOpaque(cmd, s, settings, shadows, VK_NULL_HANDLE, stats);
+  drawLines(cmd, s, settings, transparentBase, stats);
   recordVolumeBacks(cmd, s, transparentBase);
   drawTransparent(cmd, s, settings, shadows, transparentBase, stats);
   vkCmdEndRendering(cmd);
@@ -241,6 +256,7 @@ void Renderer::Impl::recordGuided(VkCommandBuffer cmd, const SceneState& s, cons
 
   beginMain(cmd, true);
   drawOpaque(cmd, s, settings, shadows, culler->lateCommands(), stats);
+  drawLines(cmd, s, settings, transparentBase, stats);
   recordVolumeBacks(cmd, s, transparentBase);
   drawTransparent(cmd, s, settings, shadows, transparentBase, stats);
   vkCmdEndRendering(cmd);

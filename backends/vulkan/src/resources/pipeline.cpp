@@ -129,7 +129,7 @@ Pipeline::Pipeline(const Device& device, const PipelineDesc& d) : device_(device
 
   VkPipelineInputAssemblyStateCreateInfo ia =
       vkStruct<VkPipelineInputAssemblyStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO);
-  ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  ia.topology = d.topology;
 
   VkPipelineViewportStateCreateInfo vp =
       vkStruct<VkPipelineViewportStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO);

@@ -27,7 +27,8 @@ struct PipelineDesc {
   bool dualSourceBlend = false;
   bool depthBias = false;  // shadow maps
   VkCullModeFlags cull = VK_CULL_MODE_NONE;
-  std::vector<std::uint32_t> fragmentConstants;  // specialisation constant i = value i
+  VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;  // lists only (indexed, one pixel wide)
+  std::vector<std::uint32_t> fragmentConstants;                        // specialisation constant i = value i
 };
 
 // A graphics pipeline for dynamic rendering with dynamic viewport/scissor

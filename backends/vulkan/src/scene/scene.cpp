@@ -187,28 +187,35 @@ void SceneState::prepare() {
     materialsDirty = false;
   }
   if (drawListDirty) {
-    std::vector<std::uint32_t> opaque;
+    std::vector<std::uint32_t> opaque, lines;
     transparent.clear();
     for (std::uint32_t i = 0; i < instances.size(); ++i) {
       if (!instances[i].alive) continue;
-      (materials[instances[i].material].material.isTransparent() ? transparent : opaque).push_back(i);
+      if (meshes[instances[i].mesh].primitive != Primitive::Triangles)
+        lines.push_back(i);
+      else
+        (materials[instances[i].material].material.isTransparent() ? transparent : opaque).push_back(i);
     }
-    std::sort(opaque.begin(), opaque.end(), [this](std::uint32_t a, std::uint32_t b) {
-      const InstanceRecord& x = instances[a];
-      const InstanceRecord& y = instances[b];
-      // Material first: runs of one material over one geometry block draw without new bindings.
-      if (x.material != y.material) return x.material < y.material;
-      if (x.mesh != y.mesh) return x.mesh < y.mesh;
-      return a < b;
-    });
-    opaqueGroups.clear();
-    for (std::uint32_t i = 0; i < opaque.size(); ++i) {
-      const InstanceRecord& r = instances[opaque[i]];
-      if (opaqueGroups.empty() || opaqueGroups.back().mesh != r.mesh || opaqueGroups.back().material != r.material)
-        opaqueGroups.push_back({r.mesh, r.material, i, 0});
-      ++opaqueGroups.back().count;
-    }
-    opaqueOrder = std::move(opaque);
+    // Material first: runs of one material over one geometry block draw without new bindings.
+    auto grouped = [this](std::vector<std::uint32_t> order, std::vector<DrawGroup>& groups) {
+      std::sort(order.begin(), order.end(), [this](std::uint32_t a, std::uint32_t b) {
+        const InstanceRecord& x = instances[a];
+        const InstanceRecord& y = instances[b];
+        if (x.material != y.material) return x.material < y.material;
+        if (x.mesh != y.mesh) return x.mesh < y.mesh;
+        return a < b;
+      });
+      groups.clear();
+      for (std::uint32_t i = 0; i < order.size(); ++i) {
+        const InstanceRecord& r = instances[order[i]];
+        if (groups.empty() || groups.back().mesh != r.mesh || groups.back().material != r.material)
+          groups.push_back({r.mesh, r.material, i, 0});
+        ++groups.back().count;
+      }
+      return order;
+    };
+    opaqueOrder = grouped(std::move(opaque), opaqueGroups);
+    lineOrder = grouped(std::move(lines), lineGroups);
     drawListDirty = false;
   }
   if (boundsDirty) {
@@ -276,8 +283,10 @@ MeshId Scene::addMesh(const MeshData& data) {
   const std::size_t n = data.positions.size();
   if (n == 0) throw Error("mesh has no positions");
   if (n > std::numeric_limits<std::uint32_t>::max()) throw Error("mesh has too many vertices");
-  if (data.indices.empty() || data.indices.size() % 3 != 0)
-    throw Error("mesh index count must be a non-zero multiple of 3, got " + std::to_string(data.indices.size()));
+  const std::size_t per = indicesPer(data.primitive);
+  if (per == 0 || data.indices.empty() || data.indices.size() % per != 0)
+    throw Error("mesh index count must be a non-zero multiple of " + std::to_string(per) + ", got " +
+                std::to_string(data.indices.size()));
   if (!data.normals.empty() && data.normals.size() != n)
     throw Error("mesh has " + std::to_string(data.normals.size()) + " normals for " + std::to_string(n) + " positions");
   if (!data.uvs.empty() && data.uvs.size() != n)
@@ -296,9 +305,10 @@ MeshId Scene::addMesh(const MeshData& data) {
   MeshRecord m;
   m.vertexCount = std::uint32_t(n);
   m.indexCount = std::uint32_t(data.indices.size());
+  m.primitive = data.primitive;
   m.span = s.geometry->add(data);
   s.geometryBytes += n * s.geometry->vertexBytes() + data.indices.size() * (n > (1u << 16) ? 4 : 2);
-  m.area = meshArea(data.positions, data.indices);
+  if (m.primitive == Primitive::Triangles) m.area = meshArea(data.positions, data.indices);
   // The arena's quantization box is the positions' bounds: not walked twice.
   m.boundsMin = m.span.quantization.lo;
   m.boundsMax = m.span.quantization.hi;
@@ -333,7 +343,7 @@ void Scene::updateMeshVertices(MeshId mesh, const VertexEdit& edit) {
   m.patchesDirty = true;
   // Bounds are the box (the exact bounds of the edit's positions); the area
   // is taken from those exact positions and the arena's indices.
-  m.area = meshArea(edit.positions, s.geometry->indices(m.span, m.indexCount));
+  if (m.primitive == Primitive::Triangles) m.area = meshArea(edit.positions, s.geometry->indices(m.span, m.indexCount));
   m.boundsMin = m.span.quantization.lo;
   m.boundsMax = m.span.quantization.hi;
   s.boundsDirty = true;

@@ -27,9 +27,10 @@ struct MeshRecord {
   GeometrySpan span;
   std::uint32_t vertexCount = 0;
   std::uint32_t indexCount = 0;
+  Primitive primitive = Primitive::Triangles;
   std::vector<EmitterPatch> patches;  // made when an emissive instance first uses the mesh
   bool patchesDirty = true;
-  float area = 0.0f;  // surface area, for the emitters' ambient term
+  float area = 0.0f;  // surface area, for the emitters' ambient term (none for lines and points)
   glm::vec3 boundsMin{0.0f};
   glm::vec3 boundsMax{0.0f};
   std::uint32_t users = 0;
@@ -119,6 +120,10 @@ struct SceneState {
   std::vector<DrawGroup> opaqueGroups;
   std::vector<std::uint32_t> opaqueOrder;
   std::vector<std::uint32_t> transparent;  // instance slots, unsorted
+  // Instances of line and point meshes, grouped like the opaque ones: drawn
+  // unlit after them, never culled, casting no shadow.
+  std::vector<DrawGroup> lineGroups;
+  std::vector<std::uint32_t> lineOrder;
   bool boundsDirty = true;
   glm::vec3 sceneMin{0.0f};
   glm::vec3 sceneMax{0.0f};

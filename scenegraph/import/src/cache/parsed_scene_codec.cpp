@@ -202,6 +202,7 @@ std::vector<std::uint8_t> encodeScene(const Scene& s) {
     w.array(p.indices);
     w.pod(p.material);
     w.pod(std::uint8_t(p.animated));
+    w.pod(std::uint8_t(p.primitive));
   }
   w.pod(std::uint64_t(s.meshes.size()));
   for (const Mesh& m : s.meshes) {
@@ -274,6 +275,8 @@ Scene decodeScene(std::span<const std::uint8_t> bytes) {
     p.indices = r.array<std::uint32_t>();
     p.material = r.pod<int>();
     p.animated = r.enumeration<std::uint8_t>(1, "an animated flag") != 0;
+    p.primitive =
+        GeometryPrimitive(r.enumeration<std::uint8_t>(std::uint8_t(GeometryPrimitive::Count) - 1, "a primitive kind"));
   }
   s.meshes.resize(r.count(16));
   for (Mesh& m : s.meshes) {

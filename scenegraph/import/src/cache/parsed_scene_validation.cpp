@@ -40,7 +40,9 @@ void reference(int index, std::size_t count, bool optional, const std::string& w
 
 void checkPrimitive(const Scene& s, const Primitive& p, const std::string& what) {
   const std::size_t n = p.positions.size();
-  if (n == 0 || p.indices.empty() || p.indices.size() % 3 != 0) fail(what + " is not a triangle list");
+  if (p.primitive >= GeometryPrimitive::Count) fail(what + " has an unknown primitive");
+  if (n == 0 || p.indices.empty() || p.indices.size() % indicesPerPrimitive(p.primitive) != 0)
+    fail(what + " is not a list of its primitives");
   if ((!p.normals.empty() && p.normals.size() != n) || (!p.uvs.empty() && p.uvs.size() != n) ||
       (!p.colors.empty() && p.colors.size() != n))
     fail(what + " has attributes of different lengths");

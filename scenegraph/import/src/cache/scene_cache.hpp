@@ -19,7 +19,8 @@ namespace tsr::sg::cache {
 // Bump whenever the conversion of a file would give a different parsed::Scene.
 // 2: materials and the scene carry volumes (KHR_materials_volume, TSR_*).
 // 4: cameras carry a thin lens (TSR_camera_lens).
-inline constexpr std::uint32_t kImporterVersion = 5;
+// 6: primitives may be lines or points (glTF modes 0-3).
+inline constexpr std::uint32_t kImporterVersion = 6;
 // An entry's header; the encoded scene follows.
 inline constexpr std::size_t kHeaderBytes = 120;
 

@@ -319,15 +319,21 @@ class Converter {
     return out;
   }
 
-  // Triangle lists, strips and fans become lists; others are skipped (false).
-  bool triangles(int mode, std::vector<std::uint32_t>& idx, const std::string& what) {
+  // Every mode becomes a list: triangle strips and fans a triangle list,
+  // line strips and loops a list of segments; points stay points.
+  void primitiveList(int mode, parsed::Primitive& p, const std::string& what) {
+    std::vector<std::uint32_t>& idx = p.indices;
+    auto whole = [&](std::size_t per, const char* of) {
+      if (idx.size() % per) {
+        warn(what + ": " + str(idx.size()) + " indices is not a multiple of " + str(per) + " (" + of +
+             "); the rest is dropped");
+        idx.resize(idx.size() - idx.size() % per);
+      }
+    };
     switch (mode) {
       case TINYGLTF_MODE_TRIANGLES:
-        if (idx.size() % 3) {
-          warn(what + ": " + str(idx.size()) + " indices is not a multiple of 3; the rest is dropped");
-          idx.resize(idx.size() - idx.size() % 3);
-        }
-        return true;
+        whole(3, "triangles");
+        return;
       case TINYGLTF_MODE_TRIANGLE_STRIP: {
         std::vector<std::uint32_t> list;
         for (std::size_t i = 0; i + 2 < idx.size(); ++i) {
@@ -338,24 +344,30 @@ class Converter {
             list.insert(list.end(), {idx[i + 1], idx[i], idx[i + 2]});
         }
         idx = std::move(list);
-        return true;
+        return;
       }
       case TINYGLTF_MODE_TRIANGLE_FAN: {
         std::vector<std::uint32_t> list;
         for (std::size_t i = 1; i + 1 < idx.size(); ++i) list.insert(list.end(), {idx[0], idx[i], idx[i + 1]});
         idx = std::move(list);
-        return true;
+        return;
       }
       case TINYGLTF_MODE_POINTS:
+        p.primitive = GeometryPrimitive::Points;
+        return;
       case TINYGLTF_MODE_LINE:
+        p.primitive = GeometryPrimitive::Lines;
+        whole(2, "line segments");
+        return;
       case TINYGLTF_MODE_LINE_LOOP:
       case TINYGLTF_MODE_LINE_STRIP: {
-        // Said at the default log level (warn() says it in verbose output
-        // only): a drawing's lines would otherwise vanish in silence.
-        std::string w = what + ": points and lines are not drawn by any back-end; primitive skipped";
-        spdlog::warn("{}: {}", source_, w);
-        out_.warnings.push_back(std::move(w));
-        return false;
+        p.primitive = GeometryPrimitive::Lines;
+        std::vector<std::uint32_t> list;
+        for (std::size_t i = 0; i + 1 < idx.size(); ++i) list.insert(list.end(), {idx[i], idx[i + 1]});
+        // A loop closes back to its first vertex (one of a single vertex draws nothing).
+        if (mode == TINYGLTF_MODE_LINE_LOOP && idx.size() > 2) list.insert(list.end(), {idx.back(), idx.front()});
+        idx = std::move(list);
+        return;
       }
       default:
         fail(what + " has unknown mode " + std::to_string(mode));
@@ -438,11 +450,15 @@ class Converter {
             fail(what + " index " + str(i) + " is " + std::to_string(p.indices[i]) + ", but there are only " + str(n) +
                  " vertices");
         // A Draco stream is a triangle list whatever the mode says.
-        if (!triangles(draco != dracoIndices_.end() ? TINYGLTF_MODE_TRIANGLES : src.mode, p.indices, what)) {
+        primitiveList(draco != dracoIndices_.end() ? TINYGLTF_MODE_TRIANGLES : src.mode, p, what);
+        if (p.indices.empty()) {
+          warn(what + " has nothing to draw; skipped");
           ++out_.skippedPrimitives;
           continue;
         }
-        if (p.normals.empty() && options_.smoothNormals) generateSmoothNormals(p);
+        // Lines and points have no surface: they are drawn unlit, without normals.
+        if (p.normals.empty() && options_.smoothNormals && p.primitive == GeometryPrimitive::Triangles)
+          generateSmoothNormals(p);
         out_.primitives.push_back(std::move(p));
         mesh.primitives.push_back(static_cast<int>(out_.primitives.size()) - 1);
       }

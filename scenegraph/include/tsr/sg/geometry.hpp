@@ -1,5 +1,6 @@
 #pragma once
-// Indexed triangles with optional per-vertex normals, uvs and colours. Every
+// Indexed triangles (or lines, or points: GeometryPrimitive) with optional
+// per-vertex normals, uvs and colours. Every
 // array can be replaced whole or edited by range; only edited ranges travel.
 // The arrays are shared with the change lists and replicas that carry them
 // (SharedArray): a process holds one copy of a mesh until someone edits it.
@@ -17,9 +18,29 @@ namespace tsr::sg {
 // acceleration structure; animated geometry a refit-friendly one.
 enum class GeometryMotion : std::uint8_t { Static, Animated, Count };
 
+// What the indices draw: three a triangle, two a line segment, one a point
+// (glTF's modes 4, 1 and 0; strips, loops and fans are made lists on
+// import). Lines and points are one pixel wide, as glTF viewers draw them,
+// and unlit: they have no surface to light.
+enum class GeometryPrimitive : std::uint8_t { Triangles, Lines, Points, Count };
+
+constexpr std::size_t indicesPerPrimitive(GeometryPrimitive p) {
+  return p == GeometryPrimitive::Lines ? 2 : p == GeometryPrimitive::Points ? 1 : 3;
+}
+
 class Geometry final : public ContainerOf<Geometry, ContainerType::Geometry> {
  public:
-  enum Field : FieldIndex { Positions = kFirstOwnField, Normals, Uvs, Colors, Indices, Material, Motion, Volume };
+  enum Field : FieldIndex {
+    Positions = kFirstOwnField,
+    Normals,
+    Uvs,
+    Colors,
+    Indices,
+    Material,
+    Motion,
+    Volume,
+    Primitive
+  };
 
   const std::vector<Vec3>& positions() const { return positions_.get(); }
   const std::vector<Vec3>& normals() const { return normals_.get(); }
@@ -36,7 +57,10 @@ class Geometry final : public ContainerOf<Geometry, ContainerType::Geometry> {
   GeometryMotion motion() const { return motion_; }
   // The medium inside the (closed) mesh, beside its surface material.
   ContainerId volume() const { return volume_; }
-  std::size_t triangleCount() const { return indices_.size() / 3; }
+  GeometryPrimitive primitive() const { return primitive_; }
+  // Triangles, segments or points, as primitive() says.
+  std::size_t primitiveCount() const { return indices_.size() / indicesPerPrimitive(primitive_); }
+  std::size_t triangleCount() const { return primitive_ == GeometryPrimitive::Triangles ? primitiveCount() : 0; }
 
   void setPositions(std::vector<Vec3> v) { set<&Geometry::positions_>(std::move(v)); }
   void setNormals(std::vector<Vec3> v) { set<&Geometry::normals_>(std::move(v)); }
@@ -46,6 +70,7 @@ class Geometry final : public ContainerOf<Geometry, ContainerType::Geometry> {
   void setMaterial(ContainerId m) { set<&Geometry::material_>(m); }
   void setMotion(GeometryMotion m) { set<&Geometry::motion_>(m); }
   void setVolume(ContainerId v) { set<&Geometry::volume_>(v); }
+  void setPrimitive(GeometryPrimitive p) { set<&Geometry::primitive_>(p); }
 
   // Range edits: overwrite elements starting at `begin`; lengths do not change.
   void updatePositions(std::size_t begin, std::span<const Vec3> v) { setElements<&Geometry::positions_>(begin, v); }
@@ -70,7 +95,8 @@ class Geometry final : public ContainerOf<Geometry, ContainerType::Geometry> {
                       arrayField(Indices, "indices", &M::indices_, &M::setIndices),
                       referenceField(Material, "material", &M::material_, kMaterialTypes, &M::setMaterial),
                       valueField(Motion, "motion", &M::motion_, &M::setMotion),
-                      referenceField(Volume, "volume", &M::volume_, kVolumeTypes, &M::setVolume)};
+                      referenceField(Volume, "volume", &M::volume_, kVolumeTypes, &M::setVolume),
+                      valueField(Primitive, "primitive", &M::primitive_, &M::setPrimitive)};
   }
 
  private:
@@ -82,6 +108,7 @@ class Geometry final : public ContainerOf<Geometry, ContainerType::Geometry> {
   ContainerId material_ = kNoContainer;
   GeometryMotion motion_ = GeometryMotion::Static;
   ContainerId volume_ = kNoContainer;
+  GeometryPrimitive primitive_ = GeometryPrimitive::Triangles;
 };
 
 }  // namespace tsr::sg

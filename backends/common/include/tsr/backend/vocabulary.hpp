@@ -5,5 +5,6 @@
 #include "tsr/backend/camera.hpp"
 #include "tsr/backend/ids.hpp"
 #include "tsr/backend/light.hpp"
+#include "tsr/backend/primitive.hpp"
 #include "tsr/backend/region.hpp"
 #include "tsr/backend/vertex_edit.hpp"

@@ -14,7 +14,8 @@ using ChangeEntry = sg::MergedChanges::Entry;
 // Every geometry field a shaded mesh holds (all but the material binding).
 inline constexpr sg::FieldMask kAllMeshFields =
     sg::fieldBit(sg::Geometry::Positions) | sg::fieldBit(sg::Geometry::Normals) | sg::fieldBit(sg::Geometry::Uvs) |
-    sg::fieldBit(sg::Geometry::Colors) | sg::fieldBit(sg::Geometry::Indices) | sg::fieldBit(sg::Geometry::Motion);
+    sg::fieldBit(sg::Geometry::Colors) | sg::fieldBit(sg::Geometry::Indices) | sg::fieldBit(sg::Geometry::Motion) |
+    sg::fieldBit(sg::Geometry::Primitive);
 
 inline bool isNode(const ChangeEntry& e) { return (sg::typeBit(e.type) & sg::kNodeTypes) != 0; }
 // Surface and volume materials alike: what a geometry's shading is made of.

@@ -17,6 +17,7 @@
 //     static constexpr const char* kName;            // logs; attachment "<kName>.hidden" hides geometry
 //     static constexpr bool kResizableMeshes;        // setMeshData may change a mesh's size
 //     static constexpr sg::FieldMask kMeshFields;    // the geometry fields its meshes hold
+//     static constexpr bool kLinesAndPoints;         // it draws them too (else they are skipped, said once)
 //     static auto mesh(const sg::Geometry&);         // the back-end's MeshData
 //     // A geometry's surface material and the volume inside it (either may be null):
 //     static auto material(const sg::Container* surface, const sg::VolumeMaterial* volume,
@@ -209,7 +210,10 @@ class InstancingSceneAdapter final : public SceneAdapter {
     }
   }
 
-  static bool renderable(const sg::Geometry& g) { return !g.invalidReason() && g.triangleCount() > 0; }
+  static bool drawn(sg::GeometryPrimitive p) { return Types::kLinesAndPoints || p == sg::GeometryPrimitive::Triangles; }
+  static bool renderable(const sg::Geometry& g) {
+    return !g.invalidReason() && g.primitiveCount() > 0 && drawn(g.primitive());
+  }
 
   bool backgroundDirty(const sg::Scene& scene, const sg::MergedChanges& changes) const {
     if (background_ == sg::kNoContainer) return false;
@@ -277,7 +281,14 @@ class InstancingSceneAdapter final : public SceneAdapter {
       unrenderable_.insert(id);
       return std::nullopt;
     }
-    if (g->triangleCount() == 0) {
+    if (!drawn(g->primitive())) {
+      // Said at the default level: a drawing's lines must not vanish in silence.
+      spdlog::warn("{}: geometry {} '{}' skipped: {} draws no {}", Types::kName, id, g->name(), Types::kName,
+                   g->primitive() == sg::GeometryPrimitive::Lines ? "lines" : "points");
+      unrenderable_.insert(id);
+      return std::nullopt;
+    }
+    if (g->primitiveCount() == 0) {
       unrenderable_.insert(id);
       return std::nullopt;
     }
