@@ -131,7 +131,7 @@ TEST(FieldDeclarations, NumbersArePinned) {
             "Group: 2=children/reference\n"
             "Transform: 2=children/reference 3=matrix/value 4=frameMotion/value\n"
             "Geometry: 2=positions/array 3=normals/array 4=uvs/array 5=colors/array 6=indices/array "
-            "7=material/reference 8=motion/value 9=volume/reference\n"
+            "7=material/reference 8=motion/value 9=volume/reference 10=primitive/value\n"
             "Image: 2=width/value 3=height/value 4=channels/value 5=format/value 6=colorSpace/value "
             "7=pixels/array 8=uri/value\n"
             "SimpleMaterial: 2=diffuse/value 3=diffuseTexture/reference 4=specular/value 5=shininess/value "
@@ -184,7 +184,7 @@ TEST(FieldDeclarations, EverySetterReachesAReplicaThroughTheWire) {
         },
         T::fieldSpecs());
   });
-  EXPECT_EQ(setters, 78);  // the own fields of all ten types, as pinned above
+  EXPECT_EQ(setters, 79);  // the own fields of all ten types, as pinned above
 }
 
 TEST(FieldDeclarations, NamesAndAttachmentsOfEveryTypeReachAReplica) {

@@ -1,5 +1,6 @@
 #include "tsr/vk/renderer.hpp"
 
+#include "post/depth_of_field.hpp"
 #include "projection.hpp"
 #include "renderer_impl.hpp"
 #include "tsr/backend/validate.hpp"
@@ -189,7 +190,31 @@ void Renderer::render(Scene& scene, const Camera& camera, const Region& region, 
                 " but the region is " + std::to_string(region.regionWidth()) + "x" +
                 std::to_string(region.regionHeight()));
   if (&scene.device() != device_.get()) throw Error("scene and renderer use different devices");
+  if (!settings_.depthOfField || !(camera.apertureRadius > 0.0f)) return renderSharp(scene, camera, region, fb);
 
+  if (region == Region::full(region.width, region.height)) {
+    renderSharp(scene, camera, region, fb);
+    return applyDepthOfField(camera, region, fb.colour_, fb.depth_);
+  }
+  // A crop gathers from beyond its edges as the whole image would.
+  const std::uint32_t margin = kBlurMargin;
+  Region grown = region;
+  grown.x0 = region.x0 > margin ? region.x0 - margin : 0;
+  grown.y0 = region.y0 > margin ? region.y0 - margin : 0;
+  grown.x1 = std::min(region.width, region.x1 + margin);
+  grown.y1 = std::min(region.height, region.y1 + margin);
+  FrameBuffer drawn(grown.regionWidth(), grown.regionHeight());
+  renderSharp(scene, camera, grown, drawn);
+  applyDepthOfField(camera, grown, drawn.colour_, drawn.depth_);
+  for (std::uint32_t y = 0; y < fb.height_; ++y)
+    for (std::uint32_t x = 0; x < fb.width_; ++x) {
+      const std::size_t from = drawn.at(x + region.x0 - grown.x0, y + region.y0 - grown.y0);
+      fb.colour_[fb.at(x, y)] = drawn.colour_[from];
+      fb.depth_[fb.at(x, y)] = drawn.depth_[from];
+    }
+}
+
+void Renderer::renderSharp(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb) {
   Impl& r = *impl_;
   SceneState& s = scene.state();
   s.prepare();

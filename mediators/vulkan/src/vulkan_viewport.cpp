@@ -11,25 +11,30 @@ namespace tsr::med::vulkan_mediator {
 
 const BackendCapabilities& vulkanCapabilities() {
   static const BackendCapabilities capabilities{
-      ParameterTable("vulkan", {integerParameter("msaa", 1, 1, 4, "samples per pixel of multisampling: 1 or 4"),
-                                flagParameter("shadows", true, "shadow maps for spot and directional lights"),
-                                integerParameter("shadowMapSize", 1024, 16, 8192, "shadow map side, texels"),
-                                integerParameter("emitterLights", 32, 0, 256, "emissive triangles lit as point lights"),
-                                flagParameter("emitterAmbient", true, "emitters' remaining light as ambient"),
-                                flagParameter("reflectionProbe", true,
-                                              "mirrors, glass and glossy surfaces reflect the scene, not only "
-                                              "the environment"),
-                                choiceParameter("bouncedLight", "auto", {"auto", "probes", "ambient"},
-                                                "diffuse light that bounced: probes: an irradiance volume the "
-                                                "path tracer traces; ambient: one constant term; auto: probes "
-                                                "up to 256 MB of geometry"),
-                                integerParameter("probesPerFrame", 128, 1, 4096,
-                                                 "probes traced again per frame after the scene changed, in "
-                                                 "an interactive session (the viewer; elsewhere all at once)"),
-                                choiceParameter("visibility", "all", {"all", "guided"},
-                                                "all: draw every object; guided: draw what was visible last frame, "
-                                                "then what a depth-pyramid test finds newly visible")}),
-      false};
+      .parameters = ParameterTable(
+          "vulkan", {integerParameter("msaa", 1, 1, 4, "samples per pixel of multisampling: 1 or 4"),
+                     flagParameter("shadows", true, "shadow maps for spot and directional lights"),
+                     integerParameter("shadowMapSize", 1024, 16, 8192, "shadow map side, texels"),
+                     integerParameter("emitterLights", 32, 0, 256, "emissive triangles lit as point lights"),
+                     flagParameter("emitterAmbient", true, "emitters' remaining light as ambient"),
+                     flagParameter("reflectionProbe", true,
+                                   "mirrors, glass and glossy surfaces reflect the scene, not only "
+                                   "the environment"),
+                     choiceParameter("bouncedLight", "auto", {"auto", "probes", "ambient"},
+                                     "diffuse light that bounced: probes: an irradiance volume the "
+                                     "path tracer traces; ambient: one constant term; auto: probes "
+                                     "up to 256 MB of geometry"),
+                     integerParameter("probesPerFrame", 128, 1, 4096,
+                                      "probes traced again per frame after the scene changed, in "
+                                      "an interactive session (the viewer; elsewhere all at once)"),
+                     choiceParameter("visibility", "all", {"all", "guided"},
+                                     "all: draw every object; guided: draw what was visible last frame, "
+                                     "then what a depth-pyramid test finds newly visible"),
+                     flagParameter("depthOfField", true,
+                                   "the camera's lens blurs what is out of focus, from the depth "
+                                   "after the frame")}),
+      .progressive = false,
+      .depthOfField = true};
   return capabilities;
 }
 
@@ -74,6 +79,7 @@ vk::RenderSettings VulkanViewport::renderSettings() const {
   s.emitterLights = static_cast<std::uint32_t>(t.integer(p, "emitterLights"));
   s.emitterAmbient = t.flag(p, "emitterAmbient");
   s.reflectionProbe = t.flag(p, "reflectionProbe");
+  s.depthOfField = t.flag(p, "depthOfField");
   s.visibility = t.choice(p, "visibility") == "guided" ? vk::Visibility::Guided : vk::Visibility::All;
   s.background = backgroundColour(context_->adapter.environment());
   return s;

@@ -36,6 +36,9 @@ struct RenderSettings {
   // scene (light that has bounced once); false: they reflect the
   // environment only, as with direct light alone.
   bool reflectionProbe = true;
+  // The camera's thin lens blurs what is out of focus, as in the path
+  // tracer (src/post/depth_of_field.hpp); false: a pinhole image.
+  bool depthOfField = true;
   glm::vec4 background{0.0f};  // colour and alpha where nothing is drawn
 };
 
@@ -72,6 +75,8 @@ class Renderer {
   void setIrradianceVolume(std::shared_ptr<const backend::IrradianceVolume> volume);
 
   // fb must be region-sized. Same scene and inputs give identical pixels.
+  // With a lens, a crop of the image is drawn with a margin its blur
+  // gathers from, so tiles of one image join without seams.
   void render(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb);
 
   // The id pass for coverage: each opaque instance's object id
@@ -85,6 +90,7 @@ class Renderer {
 
  private:
   struct Impl;
+  void renderSharp(Scene& scene, const Camera& camera, const Region& region, FrameBuffer& fb);
   std::shared_ptr<Device> device_;
   RenderSettings settings_;
   RenderStats stats_;
