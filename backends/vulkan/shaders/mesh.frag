@@ -34,6 +34,7 @@ layout(set = 1, binding = 4) uniform sampler2D occlusionTex;
 layout(location = 0) in vec3 worldPos;
 layout(location = 1) in vec3 worldNormal;
 layout(location = 2) in vec2 uv;
+layout(location = 3) flat in uint instanceSlot;
 
 layout(location = 0) out vec4 outColour;
 
@@ -169,6 +170,34 @@ float visibility(uint i, vec3 p, vec3 ng) {
   return sum / 9.0;
 }
 
+// Where light refracted into a closed glass object at p, along dir, leaves
+// it and which way it goes on: through the ellipsoid inscribed in the
+// mesh's box (exact for a ball), refracted out at the far side, or
+// reflected back in where it cannot leave (total internal reflection; no
+// further bounce is followed). False for a flat mesh (a pane has no far
+// side) or a ray that misses the ellipsoid: then the light goes on as it
+// entered.
+bool throughGlass(vec3 p, vec3 dir, float ior, inout vec3 from, inout vec3 along) {
+  Instance inst = instances[instanceSlot];
+  vec3 semi = 0.5 * inst.positionScale.xyz;
+  if (min(semi.x, min(semi.y, semi.z)) <= 1e-4 * max(semi.x, max(semi.y, semi.z))) return false;
+  mat3 toObject = inverse(mat3(inst.model));
+  vec3 centre = inst.positionOffset.xyz + semi;
+  vec3 q = (toObject * (p - inst.model[3].xyz) - centre) / semi;
+  vec3 d = (toObject * dir) / semi;
+  float a = dot(d, d), b = dot(q, d), c = dot(q, q) - 1.0;
+  float disc = b * b - a * c;
+  if (!(a > 0.0) || disc < 0.0) return false;
+  float t = (-b + sqrt(disc)) / a;
+  if (!(t > 0.0)) return false;
+  vec3 e = q + t * d;
+  vec3 outward = normalize(transpose(toObject) * (e / semi));
+  vec3 leaving = refract(dir, -outward, ior);
+  from = (inst.model * vec4(centre + e * semi, 1.0)).xyz;
+  along = dot(leaving, leaving) > 0.0 ? leaving : reflect(dir, -outward);
+  return true;
+}
+
 void main() {
   Material m = materials[pc.material];
   const uint type = MATERIAL_TYPE;
@@ -264,7 +293,9 @@ void main() {
     // refraction: the way out of the object is not traced), by Fresnel.
     float f = fresnelDielectric(max(co, 0.0), eta);
     vec3 refracted = refract(-wo, n, 1.0 / eta);
-    vec3 through = dot(refracted, refracted) > 0.0 ? probeRadiance(worldPos, refracted) : vec3(0.0);
+    vec3 from = worldPos, along = refracted;
+    if (gl_FrontFacing && dot(refracted, refracted) > 0.0) throughGlass(worldPos, refracted, m.params.y, from, along);
+    vec3 through = dot(refracted, refracted) > 0.0 ? probeRadiance(from, along) : vec3(0.0);
     radiance += f * probeRadiance(worldPos, mirrored) + (1.0 - f) * base * through;
   } else if (type == CONDUCTOR) {
     vec3 reflected = probeLit ? probePrefiltered(worldPos, mirrored, m.pbr.x) : prefilteredRadiance(mirrored, m.pbr.x);
@@ -277,9 +308,11 @@ void main() {
     float f = fresnelDielectric(max(co, 0.0), eta);
     vec3 reflected = probeLit ? probePrefiltered(worldPos, mirrored, m.pbr.x) : prefilteredRadiance(mirrored, m.pbr.x);
     vec3 refracted = refract(-wo, n, 1.0 / eta);
+    vec3 from = worldPos, along = refracted;
+    if (gl_FrontFacing && dot(refracted, refracted) > 0.0) throughGlass(worldPos, refracted, m.params.y, from, along);
     vec3 behind = dot(refracted, refracted) <= 0.0 ? vec3(0.0)
-                  : probeLit                      ? probePrefiltered(worldPos, refracted, m.pbr.x)
-                                                  : prefilteredRadiance(refracted, m.pbr.x);
+                  : probeLit                      ? probePrefiltered(from, along, m.pbr.x)
+                                                  : prefilteredRadiance(along, m.pbr.x);
     radiance += f * reflected + (1.0 - f) * base * behind;
   }
   // glTF's occlusion darkens this ambient and image-based part only.

@@ -8,9 +8,11 @@ layout(location = 2) in vec2 inUv;
 layout(location = 0) out vec3 worldPos;
 layout(location = 1) out vec3 worldNormal;
 layout(location = 2) out vec2 uv;
+layout(location = 3) flat out uint instanceSlot;
 
 void main() {
-  Instance inst = instances[drawOrder[gl_InstanceIndex]];
+  instanceSlot = drawOrder[gl_InstanceIndex];
+  Instance inst = instances[instanceSlot];
   vec4 p = modelPosition(inst, inPosition);
   worldPos = p.xyz;
   // A zero normal (mesh without normals) stays zero: the fragment shader

@@ -120,5 +120,32 @@ TEST(VulkanReflectionProbe, RoughMetalShowsTheWallItFacesBlurred) {
   }
 }
 
+// A glass ball is a lens: light refracted in at its left side leaves its
+// far side bent farther right and finds the green wall, where refraction at
+// the near side alone would still go on to the blue wall behind (worked
+// out in the room's geometry for index 2: a ray meeting the ball 50 degrees
+// left of its front leaves it heading (0.87, 0, -0.49)). Straight through
+// the middle, the blue wall.
+TEST(VulkanReflectionProbe, GlassBallRefractsInAndOut) {
+  Material glass;
+  glass.type = MaterialType::Glass;
+  glass.baseColor = glm::vec3(1.0f);
+  glass.ior = 2.0f;
+  Room room(glass);
+  const Camera cam = Camera::lookAt({0.8f, 0, 1.8f}, {0.8f, 0, 0}, {0, 1, 0}, 0.9f, 1.0f);
+  const Region full = Region::full(96, 96);
+  Renderer renderer(device(), {.emitterLights = 0, .emitterAmbient = false});
+  FrameBuffer fb(96, 96);
+  renderer.render(room.scene, cam, full, fb);
+  test::writePng("/tmp/tsr_vk_probe_glass.png", fb);
+  const float a = glm::radians(50.0f);
+  const glm::vec2 side = test::project(cam, full, {0.8f - 0.5f * std::sin(a), 0, 0.5f * std::cos(a)});
+  const glm::vec4 s = fb.colour(int(side.x), int(side.y));
+  EXPECT_GT(s.g, 2.0f * std::max(s.r, s.b)) << "the green wall, through both sides";
+  const glm::vec2 centre = test::project(cam, full, {0.8f, 0, 0.5f});
+  const glm::vec4 c = fb.colour(int(centre.x), int(centre.y));
+  EXPECT_GT(c.b, 2.0f * std::max(c.r, c.g)) << "the blue wall, straight through";
+}
+
 }  // namespace
 }  // namespace tsr::vk

@@ -48,8 +48,10 @@ Renderer::Impl::ProbeUse Renderer::Impl::wantsProbe(const SceneState& s) const {
 bool Renderer::Impl::hiddenFromProbe(const SceneState& s, std::uint32_t slot) {
   glm::vec3 lo, hi;
   s.instanceBounds(slot, lo, hi);
-  const glm::vec3 margin = 1e-3f * (s.sceneMax - s.sceneMin);
-  return glm::all(glm::greaterThan(lo, s.sceneMin + margin)) && glm::all(glm::lessThan(hi, s.sceneMax - margin));
+  // A wall, floor or ceiling spans the scene along two axes at least; an
+  // object standing on the floor touches the bounds too, but is an object.
+  const glm::bvec3 spans = glm::greaterThanEqual(hi - lo, 0.99f * (s.sceneMax - s.sceneMin));
+  return int(spans.x) + int(spans.y) + int(spans.z) < 2;
 }
 
 void Renderer::Impl::ensureProbeImages() {
