@@ -35,8 +35,9 @@ Material glowing(glm::vec3 emission) {
 struct Planes {
   Scene scene{device()};
   Planes() {
-    scene.addInstance(scene.addMesh(test::quad({-1.6f, -0.5f, 0}, {-0.6f, -0.5f, 0}, {-0.6f, 0.5f, 0}, {-1.6f, 0.5f, 0})),
-                      scene.addMaterial(glowing({1, 0, 0})), glm::mat4(1.0f));
+    scene.addInstance(
+        scene.addMesh(test::quad({-1.6f, -0.5f, 0}, {-0.6f, -0.5f, 0}, {-0.6f, 0.5f, 0}, {-1.6f, 0.5f, 0})),
+        scene.addMaterial(glowing({1, 0, 0})), glm::mat4(1.0f));
     scene.addInstance(scene.addMesh(test::quad({2, -3, -20}, {8, -3, -20}, {8, 3, -20}, {2, 3, -20})),
                       scene.addMaterial(glowing({0, 1, 0})), glm::mat4(1.0f));
   }

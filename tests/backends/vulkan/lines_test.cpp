@@ -38,8 +38,8 @@ struct Drawing {
   // A horizontal line across the middle, a vertical one, three points; lit by
   // a light that would shade a surface.
   Drawing() {
-    scene.addInstance(scene.addMesh(segments({{-1, 0.05f, 0}, {1, 0.05f, 0}, {0.6f, -1, 0}, {0.6f, 1, 0}},
-                                             {0, 1, 2, 3}, Primitive::Lines)),
+    scene.addInstance(scene.addMesh(segments({{-1, 0.05f, 0}, {1, 0.05f, 0}, {0.6f, -1, 0}, {0.6f, 1, 0}}, {0, 1, 2, 3},
+                                             Primitive::Lines)),
                       ink, glm::mat4(1.0f));
     scene.addInstance(
         scene.addMesh(segments({{-0.6f, 0.6f, 0}, {-0.6f, -0.6f, 0}, {0.07f, -0.6f, 0}}, {0, 1, 2}, Primitive::Points)),

@@ -48,14 +48,16 @@ void applyDepthOfField(const Camera& camera, const Region& drawn, std::span<glm:
   const std::size_t pixels = std::size_t(width) * height;
   std::vector<float> radius(pixels);
   float largest = 0.0f;
-  for (std::size_t i = 0; i < pixels; ++i) largest = std::max(largest, radius[i] = blurRadius(camera, pixelsPerUnit, depth[i]));
+  for (std::size_t i = 0; i < pixels; ++i)
+    largest = std::max(largest, radius[i] = blurRadius(camera, pixelsPerUnit, depth[i]));
   if (largest < 0.5f) return;  // nothing blurs by as much as half a pixel
 
   // How far a pixel gathers from: the largest disk among the tiles that a
   // disk of kMaxBlurPixels could reach it from. Tiles are aligned to the
   // whole image, so a crop decides as the whole image does.
   const std::uint32_t tx0 = drawn.x0 / kBlurTile, ty0 = drawn.y0 / kBlurTile;
-  const std::uint32_t tx = (drawn.x1 + kBlurTile - 1) / kBlurTile - tx0, ty = (drawn.y1 + kBlurTile - 1) / kBlurTile - ty0;
+  const std::uint32_t tx = (drawn.x1 + kBlurTile - 1) / kBlurTile - tx0,
+                      ty = (drawn.y1 + kBlurTile - 1) / kBlurTile - ty0;
   std::vector<float> tileMax(std::size_t(tx) * ty, 0.0f);
   for (std::uint32_t y = 0; y < height; ++y)
     for (std::uint32_t x = 0; x < width; ++x) {

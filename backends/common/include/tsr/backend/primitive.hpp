@@ -9,8 +9,6 @@ namespace tsr::backend {
 
 enum class Primitive : std::uint8_t { Triangles, Lines, Points };
 
-constexpr std::size_t indicesPer(Primitive p) {
-  return p == Primitive::Lines ? 2 : p == Primitive::Points ? 1 : 3;
-}
+constexpr std::size_t indicesPer(Primitive p) { return p == Primitive::Lines ? 2 : p == Primitive::Points ? 1 : 3; }
 
 }  // namespace tsr::backend
