@@ -208,5 +208,32 @@ TEST(VulkanVolume, RefusesInvalidMedia) {
   EXPECT_THROW(Environment().withFog(Medium{glm::vec3(NAN), glm::vec3(0.0f), glm::vec3(0.0f), 0.0f}), Error);
 }
 
+// A medium thick enough to hide what is behind it (optical depth 1 or
+// more across its thinnest side) shadows the floor under a light as a
+// solid would; a thin one casts no shadow. Seen from the side, the floor
+// under the hovering box against the floor beside it.
+TEST(VulkanVolume, DenseMediaCastShadowsThinOnesNone) {
+  const Camera slant = Camera::lookAt({2.5f, 1.0f, 0}, {0, 0, 0}, {0, 1, 0}, 0.8f, 1.0f);
+  auto shadowed = [&](float extinction) {
+    Scene scene(device());
+    Material floor;
+    floor.baseColor = glm::vec3(0.8f);
+    scene.addInstance(scene.addMesh(test::groundQuad(0, 0, 2.0f)), scene.addMaterial(floor), glm::mat4(1.0f));
+    scene.addInstance(scene.addMesh(box({-0.25f, 0.5f, -0.25f}, {0.25f, 1.0f, 0.25f})),
+                      scene.addMaterial(medium(glm::vec3(extinction))), glm::mat4(1.0f));
+    scene.addLight(DirectionalLight{{0, -1, 0}, glm::vec3(3.0f)});
+    Renderer renderer(device(), {.emitterAmbient = false});
+    FrameBuffer fb(64, 64);
+    renderer.render(scene, slant, kFull, fb);
+    // The floor under the box (its shadow, seen below the box from the
+    // side) against the floor at the same depth beside it.
+    const glm::vec2 under = test::project(slant, kFull, {0.0f, 0.0f, 0.0f});
+    const glm::vec2 beside = test::project(slant, kFull, {0.0f, 0.0f, 1.0f});
+    return fb.colour(int(under.x), int(under.y)).g / fb.colour(int(beside.x), int(beside.y)).g;
+  };
+  EXPECT_LT(shadowed(8.0f), 0.5f) << "optical depth 4: a shadow";
+  EXPECT_NEAR(shadowed(0.5f), 1.0f, 1e-3f) << "optical depth 0.25: none";
+}
+
 }  // namespace
 }  // namespace tsr::vk

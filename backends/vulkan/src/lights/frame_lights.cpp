@@ -82,6 +82,21 @@ void Renderer::Impl::addEmitterLights(SceneState& s, const RenderSettings& setti
 // Shadow passes: opaque instances only, positions only. After edits of
 // single instances, only the rectangles they were and are in are drawn again
 // (lights/shadow_update.hpp), from the casters over them.
+namespace {
+
+// A medium whose light is mostly gone (optical depth 1 or more, 63 %)
+// across the instance's thinnest extent.
+bool castsShadowAsSolid(const SceneState& s, const InstanceRecord& inst) {
+  const Material& m = s.materials[inst.material].material;
+  if (!m.isVolume()) return false;
+  glm::vec3 lo, hi;
+  s.instanceBounds(std::uint32_t(&inst - s.instances.data()), lo, hi);
+  const glm::vec3 extent = hi - lo, sigma = m.interior->extinction();
+  return std::min(sigma.r, std::min(sigma.g, sigma.b)) * std::min(extent.x, std::min(extent.y, extent.z)) >= 1.0f;
+}
+
+}  // namespace
+
 void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s,
                                    const std::vector<glm::mat4>& shadowViewProj, RenderStats& stats) {
   if (shadowsHeld && shadowsHeld->scene == s.uid && shadowsHeld->version == s.version &&
@@ -171,6 +186,26 @@ void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s,
           }
         }
       }
+    }
+    // Media dense enough to hide what is behind them shadow as solids do
+    // (a milky glass ball); thinner ones cast none. Their draw-order
+    // positions follow the opaque instances'.
+    const std::uint32_t transparentBase = std::uint32_t(s.opaqueOrder.size());
+    bool volumeBound = false;
+    for (std::uint32_t i = 0; i < transparentSorted.size(); ++i) {
+      const InstanceRecord& inst = s.instances[transparentSorted[i]];
+      if (!castsShadowAsSolid(s, inst)) continue;
+      if (redraw && !overlaps(area, shadowFootprint(s, inst.mesh, inst.transform, shadowViewProj[layer], sm.size())))
+        continue;
+      if (!volumeBound) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadowPipeline.handle());
+        vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
+        volumeBound = true;
+      }
+      const MeshRecord& m = s.meshes[inst.mesh];
+      s.geometry->bind(cmd, m.span.block, 1);
+      vkCmdDrawIndexed(cmd, m.indexCount, 1, firstIndexOf(m), vertexOffsetOf(m), transparentBase + i);
+      stats.shadowTriangles += m.indexCount / 3;
     }
     vkCmdEndRendering(cmd);
     ++stats.shadowMaps;
