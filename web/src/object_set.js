@@ -63,7 +63,7 @@ export class ObjectSet {
   drop(object) {
     object.root.removeFromParent();
     object.root.traverse((node) => {
-      if (!node.isMesh) return;
+      if (!node.isMesh && !node.isLine && !node.isPoints) return;
       node.geometry.dispose();
       for (const material of [].concat(node.material)) {
         for (const value of Object.values(material)) if (value?.isTexture) value.dispose();

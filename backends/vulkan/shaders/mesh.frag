@@ -181,7 +181,10 @@ bool throughGlass(vec3 p, vec3 dir, float ior, inout vec3 from, inout vec3 along
   Instance inst = instances[instanceSlot];
   vec3 semi = 0.5 * inst.positionScale.xyz;
   if (min(semi.x, min(semi.y, semi.z)) <= 1e-4 * max(semi.x, max(semi.y, semi.z))) return false;
-  mat3 toObject = inverse(mat3(inst.model));
+  mat3 model = mat3(inst.model);
+  // A transform flat along some axis (a scale of 0) has no inside to cross.
+  if (!(abs(determinant(model)) > 1e-6 * length(model[0]) * length(model[1]) * length(model[2]))) return false;
+  mat3 toObject = inverse(model);
   vec3 centre = inst.positionOffset.xyz + semi;
   vec3 q = (toObject * (p - inst.model[3].xyz) - centre) / semi;
   vec3 d = (toObject * dir) / semi;

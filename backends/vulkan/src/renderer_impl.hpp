@@ -94,9 +94,10 @@ struct Renderer::Impl {
            (m.type == MaterialType::MetallicRoughness &&
             (m.metallic > 0.0f || m.roughness < 0.9f || m.metallicRoughnessTexture));
   }
-  // A glossy instance that is not a wall of the scene (one spanning it
-  // along two axes) is left out of the probe, as mirrors are: it would
-  // reflect itself, or be seen dark through itself.
+  // A glossy instance inside the scene (not a wall of it) is left out of
+  // the probe, as mirrors are: it would reflect itself. Rough glass is left
+  // out also where it touches the scene's bounds (a ball on the floor): it
+  // would be seen, dark, through itself.
   static bool hiddenFromProbe(const SceneState& s,
                               std::uint32_t slot);  // this frame's uniform, as prepareFrame wrote it
   // Reversed depth of the nearer of opaque geometry and see-through volumes'

@@ -131,6 +131,39 @@ TEST(VulkanLines, TheIdPassCountsThem) {
   EXPECT_LE(covered, 16u);
 }
 
+// Lines follow the opaque and the transparent instances in the draw order
+// (the id pass: the opaque ones): each is drawn with its own transform and
+// object id, whatever comes before it.
+TEST(VulkanLines, DrawnWithTheirOwnPlaceAfterOpaqueAndTransparentInstances) {
+  Scene scene(device());
+  Material grey, glass, ink;
+  glass.opacity = 0.5f;
+  ink.baseColor = kInk;
+  const MaterialId greyId = scene.addMaterial(grey), glassId = scene.addMaterial(glass), inkId = scene.addMaterial(ink);
+  const MeshId square =
+      scene.addMesh(test::quad({-0.3f, -0.3f, 0}, {0.3f, -0.3f, 0}, {0.3f, 0.3f, 0}, {-0.3f, 0.3f, 0}));
+  for (float x : {-1.5f, -0.8f}) scene.addInstance(square, greyId, glm::translate(glm::mat4(1.0f), {x, 1.2f, 0}));
+  scene.addInstance(square, glassId, glm::translate(glm::mat4(1.0f), {1.2f, 1.2f, 0}));
+  // A short horizontal line drawn 1.1 below the centre by its transform.
+  const InstanceId line =
+      scene.addInstance(scene.addMesh(segments({{-0.5f, 0.05f, 0}, {0.5f, 0.05f, 0}}, {0, 1}, Primitive::Lines)), inkId,
+                        glm::translate(glm::mat4(1.0f), {0, -1.1f, 0}));
+  scene.setInstanceObject(line, 77);
+  Renderer renderer(device());
+  FrameBuffer fb(kSize, kSize);
+  renderer.render(scene, kCam, Region::full(kSize, kSize), fb);
+  IdBuffer ids(kSize, kSize);
+  renderer.renderIds(scene, kCam, Region::full(kSize, kSize), ids);
+  const glm::vec2 at = test::project(kCam, Region::full(kSize, kSize), {0, -1.05f, 0});
+  int inked = 0, counted = 0;
+  for (std::uint32_t y = std::uint32_t(at.y) - 2; y <= std::uint32_t(at.y) + 2; ++y) {
+    inked += std::abs(fb.colour(std::uint32_t(at.x), y).r - kInk.r) < 1e-3f && fb.colour(std::uint32_t(at.x), y).a > 0;
+    counted += ids.ids[ids.index(std::uint32_t(at.x), y)] == 77u;
+  }
+  EXPECT_EQ(inked, 1) << "the line where its transform puts it";
+  EXPECT_EQ(counted, 1);
+}
+
 TEST(VulkanLines, IndexCountsMustFitThePrimitive) {
   Scene scene(device());
   EXPECT_THROW(scene.addMesh(segments({{0, 0, 0}, {1, 0, 0}}, {0, 1, 0}, Primitive::Lines)), Error);

@@ -387,10 +387,10 @@ TEST(MessageList, EveryTypesDeclaredLimitsAreEnforced) {
 
 // Protocol 2 changed the Error message on purpose (a kind byte before the
 // reason); these are its bytes, so a change to them is never an accident.
-// (Protocols 3, 4 and 5 added volumes, a lens and a shutter: only the version byte moved.)
+// (Protocols 3 to 6 added volumes, a lens, a shutter and the geometry's primitive: only the version byte moved.)
 TEST(MessageCodec, ErrorReportBytesArePinned) {
   const Frame f = makeFrame(ErrorReport{ErrorReport::Kind::InvalidParameter, "spp"});
-  const std::vector<std::uint8_t> want{'T', 'S', 'R', 'N', 5, 18, 5, 0, 0, 0, 3, 3, 's', 'p', 'p'};
+  const std::vector<std::uint8_t> want{'T', 'S', 'R', 'N', 6, 18, 5, 0, 0, 0, 3, 3, 's', 'p', 'p'};
   EXPECT_EQ(*f, want);
   ErrorReport back = parse<ErrorReport>(unframe(f));
   EXPECT_EQ(back.kind, ErrorReport::Kind::InvalidParameter);

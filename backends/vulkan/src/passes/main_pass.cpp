@@ -98,7 +98,7 @@ void Renderer::Impl::drawOpaque(VkCommandBuffer cmd, const SceneState& s, const 
     if (drawingProbe && glossy(material)) {  // instance by instance, leaving out what would reflect itself
       const MeshRecord& m = s.meshes[g.mesh];
       for (std::uint32_t k = g.first; k < g.first + g.count; ++k) {
-        if (hiddenFromProbe(s, s.opaqueOrder[k])) continue;
+        if (hiddenFromProbe(s, drawOrder[k])) continue;  // draw position k shows drawOrder[k]
         bindDraw(cmd, s, settings, shadows, g.mesh, g.material);
         vkCmdDrawIndexed(cmd, m.indexCount, 1, firstIndexOf(m), vertexOffsetOf(m), k);
         ++stats.drawCalls;

@@ -24,6 +24,7 @@ namespace {
 
 constexpr int kSamples = 128;  // over the disk a pixel gathers from, besides itself
 constexpr float kGoldenAngle = 2.39996323f;
+constexpr float kPi = 3.14159265f;
 
 // Where the samples lie in the unit disk: a golden-angle spiral, even in
 // area, made once.
@@ -87,14 +88,16 @@ void applyDepthOfField(const Camera& camera, const Region& drawn, std::span<glm:
       if (reachOf < 0.5f) continue;
       const float own = std::max(radius[p], 0.5f);
       // Weights are a sample's share of the image's area over its disk's
-      // area (pi cancels): the pixel itself one pixel, each disk sample an
-      // equal part of the gathered disk.
+      // area: each disk sample an equal part, pi reach^2 / N, of the
+      // gathered disk (pi cancels there), the pixel itself one pixel.
       const float share = reachOf * reachOf / float(kSamples);
-      glm::vec4 sum = sharp[p] / (own * own);
-      float weights = 1.0f / (own * own);
+      const float self = 1.0f / (kPi * own * own);  // one pixel's area, not a disk sample's pi reach^2 / N
+      glm::vec4 sum = sharp[p] * self;
+      float weights = self;
       for (const glm::vec2& u : unitDisk) {
-        const int qx = std::clamp(int(std::floor(float(x) + reachOf * u.x + 0.5f)), 0, int(width) - 1);
-        const int qy = std::clamp(int(std::floor(float(y) + reachOf * u.y + 0.5f)), 0, int(height) - 1);
+        // The offset is rounded on its own, so a crop lands on the pixels the whole image does.
+        const int qx = std::clamp(int(x) + int(std::floor(reachOf * u.x + 0.5f)), 0, int(width) - 1);
+        const int qy = std::clamp(int(y) + int(std::floor(reachOf * u.y + 0.5f)), 0, int(height) - 1);
         const std::size_t q = std::size_t(qy) * width + std::size_t(qx);
         float spread = radius[q];
         if (depth[q] > depth[p]) spread = std::min(spread, radius[p]);  // behind: no farther than this one's disk

@@ -48,10 +48,14 @@ Renderer::Impl::ProbeUse Renderer::Impl::wantsProbe(const SceneState& s) const {
 bool Renderer::Impl::hiddenFromProbe(const SceneState& s, std::uint32_t slot) {
   glm::vec3 lo, hi;
   s.instanceBounds(slot, lo, hi);
-  // A wall, floor or ceiling spans the scene along two axes at least; an
-  // object standing on the floor touches the bounds too, but is an object.
-  const glm::bvec3 spans = glm::greaterThanEqual(hi - lo, 0.99f * (s.sceneMax - s.sceneMin));
-  return int(spans.x) + int(spans.y) + int(spans.z) < 2;
+  if (s.materials[s.instances[slot].material].material.type == MaterialType::Dielectric) {
+    // Rough glass is seen through, itself included: every one but a wall
+    // (spanning the scene along two axes), also one standing on the floor.
+    const glm::bvec3 spans = glm::greaterThanEqual(hi - lo, 0.99f * (s.sceneMax - s.sceneMin));
+    return int(spans.x) + int(spans.y) + int(spans.z) < 2;
+  }
+  const glm::vec3 margin = 1e-3f * (s.sceneMax - s.sceneMin);
+  return glm::all(glm::greaterThan(lo, s.sceneMin + margin)) && glm::all(glm::lessThan(hi, s.sceneMax - margin));
 }
 
 void Renderer::Impl::ensureProbeImages() {

@@ -21,7 +21,8 @@ namespace tsr::cluster {
 // views carry a thin lens (aperture radius, focus distance).
 // 5: views carry a shutter (open, close) and the camera's pose at the end
 // of the frame interval; Transforms carry frameMotion.
-inline constexpr std::uint8_t kProtocolVersion = 5;
+// 6: Geometry carries its primitive (triangles, lines or points).
+inline constexpr std::uint8_t kProtocolVersion = 6;
 inline constexpr std::size_t kFrameHeaderBytes = 10;
 inline constexpr std::array<std::uint8_t, 4> kFrameMagic{'T', 'S', 'R', 'N'};
 

@@ -65,7 +65,8 @@ SceneStats computeSceneStats(const Scene& scene, ContainerId root, std::uint64_t
     const auto* m = scene.find<SurfaceMaterial>(g.material());
     const auto* simple = scene.find<SimpleMaterial>(g.material());
     const Vec3 emitted = m ? m->emittedRadiance() : simple ? simple->emission() : Vec3(0.0f);
-    if (emitted.x > 0.0f || emitted.y > 0.0f || emitted.z > 0.0f) ++s.emissiveGeometries;
+    // Lines and points light nothing, in either back-end.
+    if (g.triangleCount() > 0 && (emitted.x > 0.0f || emitted.y > 0.0f || emitted.z > 0.0f)) ++s.emissiveGeometries;
   });
 
   const bool exact = instancedVertices <= exactVertexLimit;

@@ -161,7 +161,8 @@ class InstancingSceneAdapter final : public SceneAdapter {
       auto held = meshes_.find(id);
       if (held == meshes_.end() && !unrenderable_.count(id)) continue;  // not (yet) instanced here
       const auto* g = scene.find<G>(id);
-      if (held == meshes_.end() || !renderable(*g)) {  // flips between skipped and rendered
+      if (held == meshes_.end() && g && !renderable(*g)) continue;  // skipped, and still skipped: said once
+      if (held == meshes_.end() || !renderable(*g)) {               // flips between skipped and rendered
         rebuild.insert(id);
         continue;
       }
