@@ -14,6 +14,7 @@ namespace tsr::vk {
 namespace {
 
 using test::device;
+using test::glowing;
 
 constexpr std::uint32_t kSize = 64;
 
@@ -22,13 +23,6 @@ Camera lensCamera(float aperture, float aspect = 1.0f) {
   c.apertureRadius = aperture;
   c.focusDistance = 5.0f;  // the plane z = 0
   return c;
-}
-
-Material glowing(glm::vec3 emission) {
-  Material m;
-  m.baseColor = glm::vec3(0.0f);
-  m.emission = emission;
-  return m;
 }
 
 // A red square in focus on the left, a green one far behind on the right.

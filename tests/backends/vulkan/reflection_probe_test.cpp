@@ -12,13 +12,7 @@ namespace tsr::vk {
 namespace {
 
 using test::device;
-
-Material glowing(glm::vec3 e) {
-  Material m;
-  m.baseColor = glm::vec3(0.0f);
-  m.emission = e;
-  return m;
-}
+using test::glowing;
 
 // A room [-2, 2]^3 open towards +z: red wall at x = -2, green at x = +2,
 // blue at the back, grey floor and ceiling; a mirror sphere (or the given
@@ -33,7 +27,7 @@ Material mirrorMaterial() {
 struct Room {
   Scene scene{device()};
   MaterialId red, green;
-  explicit Room(const Material& sphere = mirrorMaterial()) {
+  explicit Room(const Material& sphere = mirrorMaterial(), glm::vec3 at = {0.8f, 0.0f, 0.0f}, float radius = 0.5f) {
     red = scene.addMaterial(glowing({1, 0, 0}));
     green = scene.addMaterial(glowing({0, 1, 0}));
     const MaterialId blue = scene.addMaterial(glowing({0, 0, 1})), grey = scene.addMaterial(glowing(glm::vec3(0.3f)));
@@ -45,8 +39,8 @@ struct Room {
     wall({-2, -2, -2}, {2, -2, -2}, {2, 2, -2}, {-2, 2, -2}, blue);  // faces +z
     wall({-2, -2, 2}, {2, -2, 2}, {2, -2, -2}, {-2, -2, -2}, grey);  // floor, faces +y
     wall({-2, 2, -2}, {2, 2, -2}, {2, 2, 2}, {-2, 2, 2}, grey);      // ceiling, faces -y
-    scene.addInstance(scene.addMesh(test::uvSphere(32, 64, 0.5f)), scene.addMaterial(sphere),
-                      glm::translate(glm::mat4(1.0f), {0.8f, 0.0f, 0.0f}));
+    scene.addInstance(scene.addMesh(test::uvSphere(32, 64, radius)), scene.addMaterial(sphere),
+                      glm::translate(glm::mat4(1.0f), at));
   }
 };
 
@@ -145,6 +139,28 @@ TEST(VulkanReflectionProbe, GlassBallRefractsInAndOut) {
   const glm::vec2 centre = test::project(cam, full, {0.8f, 0, 0.5f});
   const glm::vec4 c = fb.colour(int(centre.x), int(centre.y));
   EXPECT_GT(c.b, 2.0f * std::max(c.r, c.g)) << "the blue wall, straight through";
+}
+
+// Rough glass resting on the floor touches the scene's bounds; it is still
+// left out of the probe, or it would be drawn there (unlit by the probe it
+// is drawing) and then seen, dark, through itself: from the probe's centre
+// (the room's) the ball covers the blue wall behind it.
+TEST(VulkanReflectionProbe, RoughGlassOnTheFloorIsNotSeenThroughItself) {
+  Material frosted;
+  frosted.type = MaterialType::Dielectric;
+  frosted.baseColor = glm::vec3(1.0f);
+  frosted.roughness = 0.2f;
+  frosted.ior = 1.5f;
+  Room room(frosted, {0.0f, -1.2f, -0.6f}, 0.8f);
+  const Camera cam = Camera::lookAt({0.0f, -1.2f, 1.8f}, {0.0f, -1.2f, -0.6f}, {0, 1, 0}, 0.9f, 1.0f);
+  const Region full = Region::full(96, 96);
+  Renderer renderer(device(), {.emitterLights = 0, .emitterAmbient = false});
+  FrameBuffer fb(96, 96);
+  renderer.render(room.scene, cam, full, fb);
+  const glm::vec2 centre = test::project(cam, full, {0.0f, -1.2f, 0.2f});
+  const glm::vec4 c = fb.colour(int(centre.x), int(centre.y));
+  EXPECT_GT(c.b, 0.4f) << "the blue wall behind, through the ball";
+  EXPECT_GT(c.b, std::max(c.r, c.g));
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include "tsr/vk/device.hpp"
 #include "tsr/vk/error.hpp"
 #include "tsr/vk/framebuffer.hpp"
+#include "tsr/vk/material.hpp"
 #include "tsr/vk/mesh.hpp"
 #include "tsr/vk/vocabulary.hpp"
 
@@ -20,6 +21,15 @@ namespace tsr::vk::test {
 inline std::shared_ptr<Device> device() {
   static std::shared_ptr<Device> d = Device::create();
   return d;
+}
+
+// A black surface giving off `emission` from its front: its colour is that,
+// whatever the lights.
+inline Material glowing(glm::vec3 emission) {
+  Material m;
+  m.baseColor = glm::vec3(0.0f);
+  m.emission = emission;
+  return m;
 }
 
 // A quad with corners a, b, c, d counter-clockwise as seen from the front

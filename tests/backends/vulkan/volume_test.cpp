@@ -11,6 +11,7 @@ namespace tsr::vk {
 namespace {
 
 using test::device;
+using test::glowing;
 
 // A closed axis-aligned box, faces wound counter-clockwise seen from outside.
 MeshData box(glm::vec3 lo, glm::vec3 hi) {
@@ -30,13 +31,6 @@ MeshData box(glm::vec3 lo, glm::vec3 hi) {
   face({x0, y0, z0}, {x0, y0, z1}, {x0, y1, z1}, {x0, y1, z0});  // -x
   face({x0, y1, z1}, {x1, y1, z1}, {x1, y1, z0}, {x0, y1, z0});  // +y
   face({x0, y0, z0}, {x1, y0, z0}, {x1, y0, z1}, {x0, y0, z1});  // -y
-  return m;
-}
-
-Material glowing(glm::vec3 e) {
-  Material m;
-  m.baseColor = glm::vec3(0.0f);
-  m.emission = e;
   return m;
 }
 
