@@ -283,9 +283,16 @@ class InstancingSceneAdapter final : public SceneAdapter {
       return std::nullopt;
     }
     if (!drawn(g->primitive())) {
-      // Said at the default level: a drawing's lines must not vanish in silence.
-      spdlog::warn("{}: geometry {} '{}' skipped: {} draws no {}", Types::kName, id, g->name(), Types::kName,
-                   g->primitive() == sg::GeometryPrimitive::Lines ? "lines" : "points");
+      // Said at the default level: a drawing's lines must not vanish in
+      // silence. Once: a CAD file may hold thousands of them.
+      const char* what = g->primitive() == sg::GeometryPrimitive::Lines ? "lines" : "points";
+      if (!linesSaid_)
+        spdlog::warn("{}: geometry {} '{}' skipped: {} draws no lines or points (the others skipped as well are "
+                     "named at debug level)",
+                     Types::kName, id, g->name(), Types::kName);
+      else
+        spdlog::debug("{}: geometry {} '{}' of {} skipped", Types::kName, id, g->name(), what);
+      linesSaid_ = true;
       unrenderable_.insert(id);
       return std::nullopt;
     }
@@ -351,6 +358,7 @@ class InstancingSceneAdapter final : public SceneAdapter {
   InstancePlacement<Types> placement_;
   std::unordered_map<sg::ContainerId, backend::MeshId> meshes_;
   std::unordered_set<sg::ContainerId> unrenderable_;      // invalid or empty geometry, skipped
+  bool linesSaid_ = false;                                 // lines or points were skipped with a warning
   std::map<MaterialKey, backend::MaterialId> materials_;  // kNoContainer: the default, or no volume
   std::unordered_map<sg::ContainerId, backend::TextureId> textures_;
   Counters counters_;
