@@ -223,7 +223,9 @@ void SceneState::prepare() {
     sceneMax = -sceneMin;
     sceneEmpty = true;
     for (std::uint32_t i = 0; i < instances.size(); ++i) {
-      if (!instances[i].alive) continue;
+      // Surfaces only: the bounds fit the shadow maps and the probe, which
+      // lines and points take no part in (a large grid would blur them).
+      if (!instances[i].alive || meshes[instances[i].mesh].primitive != Primitive::Triangles) continue;
       glm::vec3 lo, hi;
       instanceBounds(i, lo, hi);
       sceneMin = glm::min(sceneMin, lo);
@@ -284,7 +286,7 @@ MeshId Scene::addMesh(const MeshData& data) {
   if (n == 0) throw Error("mesh has no positions");
   if (n > std::numeric_limits<std::uint32_t>::max()) throw Error("mesh has too many vertices");
   const std::size_t per = indicesPer(data.primitive);
-  if (per == 0 || data.indices.empty() || data.indices.size() % per != 0)
+  if (data.indices.empty() || data.indices.size() % per != 0)
     throw Error("mesh index count must be a non-zero multiple of " + std::to_string(per) + ", got " +
                 std::to_string(data.indices.size()));
   if (!data.normals.empty() && data.normals.size() != n)

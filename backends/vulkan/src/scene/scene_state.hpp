@@ -125,6 +125,7 @@ struct SceneState {
   std::vector<DrawGroup> lineGroups;
   std::vector<std::uint32_t> lineOrder;
   bool boundsDirty = true;
+  // Bounds of the surfaces (lines and points left out), and whether any.
   glm::vec3 sceneMin{0.0f};
   glm::vec3 sceneMax{0.0f};
   bool sceneEmpty = true;
