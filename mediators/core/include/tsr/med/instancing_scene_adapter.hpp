@@ -358,7 +358,7 @@ class InstancingSceneAdapter final : public SceneAdapter {
   InstancePlacement<Types> placement_;
   std::unordered_map<sg::ContainerId, backend::MeshId> meshes_;
   std::unordered_set<sg::ContainerId> unrenderable_;      // invalid or empty geometry, skipped
-  bool linesSaid_ = false;                                 // lines or points were skipped with a warning
+  bool linesSaid_ = false;                                // lines or points were skipped with a warning
   std::map<MaterialKey, backend::MaterialId> materials_;  // kNoContainer: the default, or no volume
   std::unordered_map<sg::ContainerId, backend::TextureId> textures_;
   Counters counters_;
