@@ -44,6 +44,14 @@ struct Room {
   }
 };
 
+// The room from `cam` at 96x96, lit by its glowing walls alone.
+FrameBuffer look(Room& room, const Camera& cam) {
+  Renderer renderer(device(), {.emitterLights = 0, .emitterAmbient = false});
+  FrameBuffer fb(96, 96);
+  renderer.render(room.scene, cam, Region::full(96, 96), fb);
+  return fb;
+}
+
 TEST(VulkanReflectionProbe, MirrorShowsTheWallItFaces) {
   Room room;
   const Camera cam = Camera::lookAt({0.8f, 0, 1.8f}, {0.8f, 0, 0}, {0, 1, 0}, 0.9f, 1.0f);
@@ -128,9 +136,7 @@ TEST(VulkanReflectionProbe, GlassBallRefractsInAndOut) {
   Room room(glass);
   const Camera cam = Camera::lookAt({0.8f, 0, 1.8f}, {0.8f, 0, 0}, {0, 1, 0}, 0.9f, 1.0f);
   const Region full = Region::full(96, 96);
-  Renderer renderer(device(), {.emitterLights = 0, .emitterAmbient = false});
-  FrameBuffer fb(96, 96);
-  renderer.render(room.scene, cam, full, fb);
+  const FrameBuffer fb = look(room, cam);
   test::writePng("/tmp/tsr_vk_probe_glass.png", fb);
   const float a = glm::radians(50.0f);
   const glm::vec2 side = test::project(cam, full, {0.8f - 0.5f * std::sin(a), 0, 0.5f * std::cos(a)});
@@ -154,9 +160,7 @@ TEST(VulkanReflectionProbe, RoughGlassOnTheFloorIsNotSeenThroughItself) {
   Room room(frosted, {0.0f, -1.2f, -0.6f}, 0.8f);
   const Camera cam = Camera::lookAt({0.0f, -1.2f, 1.8f}, {0.0f, -1.2f, -0.6f}, {0, 1, 0}, 0.9f, 1.0f);
   const Region full = Region::full(96, 96);
-  Renderer renderer(device(), {.emitterLights = 0, .emitterAmbient = false});
-  FrameBuffer fb(96, 96);
-  renderer.render(room.scene, cam, full, fb);
+  const FrameBuffer fb = look(room, cam);
   const glm::vec2 centre = test::project(cam, full, {0.0f, -1.2f, 0.2f});
   const glm::vec4 c = fb.colour(int(centre.x), int(centre.y));
   EXPECT_GT(c.b, 0.4f) << "the blue wall behind, through the ball";

@@ -79,24 +79,25 @@ void Renderer::Impl::addEmitterLights(SceneState& s, const RenderSettings& setti
   }
 }
 
-// Shadow passes: opaque instances only, positions only. After edits of
-// single instances, only the rectangles they were and are in are drawn again
-// (lights/shadow_update.hpp), from the casters over them.
 namespace {
 
 // A medium whose light is mostly gone (optical depth 1 or more, 63 %)
 // across the instance's thinnest extent.
-bool castsShadowAsSolid(const SceneState& s, const InstanceRecord& inst) {
-  const Material& m = s.materials[inst.material].material;
+bool castsShadowAsSolid(const SceneState& s, std::uint32_t slot) {
+  const Material& m = s.materials[s.instances[slot].material].material;
   if (!m.isVolume()) return false;
   glm::vec3 lo, hi;
-  s.instanceBounds(std::uint32_t(&inst - s.instances.data()), lo, hi);
+  s.instanceBounds(slot, lo, hi);
   const glm::vec3 extent = hi - lo, sigma = m.interior->extinction();
   return std::min(sigma.r, std::min(sigma.g, sigma.b)) * std::min(extent.x, std::min(extent.y, extent.z)) >= 1.0f;
 }
 
 }  // namespace
 
+// Shadow passes: opaque instances only, positions only, and media dense
+// enough to hide what is behind them. After edits of single instances, only
+// the rectangles they were and are in are drawn again
+// (lights/shadow_update.hpp), from the casters over them.
 void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s,
                                    const std::vector<glm::mat4>& shadowViewProj, RenderStats& stats) {
   if (shadowsHeld && shadowsHeld->scene == s.uid && shadowsHeld->version == s.version &&
@@ -123,6 +124,11 @@ void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s,
           ? VK_ACCESS_SHADER_READ_BIT
           : VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
       sm.layers());
+  // Dense media shadow as solids do (a milky glass ball); thinner ones cast
+  // none. Their draw-order positions follow the opaque instances'.
+  std::vector<std::uint32_t> denseMedia;
+  for (std::uint32_t i = 0; i < transparentSorted.size() && !shadowViewProj.empty(); ++i)
+    if (castsShadowAsSolid(s, transparentSorted[i])) denseMedia.push_back(std::uint32_t(s.opaqueOrder.size()) + i);
   for (std::uint32_t layer = 0; layer < shadowViewProj.size(); ++layer) {
     const VkRect2D area = redraw ? (*redraw)[layer] : VkRect2D{{0, 0}, {sm.size(), sm.size()}};
     if (area.extent.width == 0 || area.extent.height == 0) continue;  // nothing there changed
@@ -187,14 +193,9 @@ void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s,
         }
       }
     }
-    // Media dense enough to hide what is behind them shadow as solids do
-    // (a milky glass ball); thinner ones cast none. Their draw-order
-    // positions follow the opaque instances'.
-    const std::uint32_t transparentBase = std::uint32_t(s.opaqueOrder.size());
     bool volumeBound = false;
-    for (std::uint32_t i = 0; i < transparentSorted.size(); ++i) {
-      const InstanceRecord& inst = s.instances[transparentSorted[i]];
-      if (!castsShadowAsSolid(s, inst)) continue;
+    for (std::uint32_t position : denseMedia) {
+      const InstanceRecord& inst = s.instances[drawOrder[position]];
       if (redraw && !overlaps(area, shadowFootprint(s, inst.mesh, inst.transform, shadowViewProj[layer], sm.size())))
         continue;
       if (!volumeBound) {
@@ -204,7 +205,7 @@ void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s,
       }
       const MeshRecord& m = s.meshes[inst.mesh];
       s.geometry->bind(cmd, m.span.block, 1);
-      vkCmdDrawIndexed(cmd, m.indexCount, 1, firstIndexOf(m), vertexOffsetOf(m), transparentBase + i);
+      vkCmdDrawIndexed(cmd, m.indexCount, 1, firstIndexOf(m), vertexOffsetOf(m), position);
       stats.shadowTriangles += m.indexCount / 3;
     }
     vkCmdEndRendering(cmd);
