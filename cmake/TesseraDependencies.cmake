@@ -17,6 +17,8 @@ if(NOT TSR_ONLY_SCENEGRAPH)
   find_package(draco CONFIG REQUIRED)  # KHR_draco_mesh_compression on import
   find_package(meshoptimizer CONFIG REQUIRED)  # EXT_meshopt_compression on import
   find_package(nlohmann_json 3 REQUIRED)
+  find_package(PkgConfig REQUIRED)
+  pkg_check_modules(XXHASH REQUIRED IMPORTED_TARGET libxxhash)  # the import cache's hashes; no CMake package in Debian
   find_package(CLI11 REQUIRED)
   find_package(TBB REQUIRED COMPONENTS tbb)
   find_package(embree 3 REQUIRED)

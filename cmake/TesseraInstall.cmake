@@ -119,7 +119,7 @@ set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_DEPENDS
-    "libglm-dev, libspdlog-dev, libfmt-dev, libembree-dev, libtbb-dev, libvulkan-dev, libglfw3-dev, libtinygltf-dev, libdraco-dev, libmeshoptimizer-dev, \
+    "libglm-dev, libspdlog-dev, libfmt-dev, libembree-dev, libtbb-dev, libvulkan-dev, libglfw3-dev, libtinygltf-dev, libdraco-dev, libmeshoptimizer-dev, libxxhash-dev, \
 nlohmann-json3-dev, libopenimageio-dev, libeigen3-dev, libboost-dev, libssl-dev, liblz4-dev, libzstd-dev, pkg-config")
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_STRIP_FILES ON)  # debug information would make the package several times larger

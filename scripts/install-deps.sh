@@ -9,6 +9,7 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-tools glslc vulkan-validationlayers
   libglfw3-dev xvfb xauth xdotool
   libtinygltf-dev libdraco-dev libmeshoptimizer-dev gltfpack nlohmann-json3-dev libstb-dev
+  libxxhash-dev       # the converted-scene cache's keys and checksums (XXH3)
   libopenimageio-dev openimageio-tools
   libboost-dev liblz4-dev libzstd-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev

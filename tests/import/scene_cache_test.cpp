@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <memory>
 
 #include "cache/parsed_scene_codec.hpp"
 #include "cache/scene_cache.hpp"
@@ -31,7 +32,7 @@ struct Cached {
     sg::Scene scene;
     const sg::ImportResult r = sg::importScene(scene, file, options);
     for (auto id : scene.ids())
-      if (const auto* g = scene.find<sg::Geometry>(id)) return {r.cache, g->positions()};
+      if (const auto* g = scene.find<sg::Geometry>(id)) return {r.cache, g->positions().toVector()};
     return {r.cache, {}};
   }
   fs::path entry() const {
@@ -48,6 +49,49 @@ TEST(SceneCache, StoredThenReadBackTheSame) {
   EXPECT_EQ(second.first, "hit");
   EXPECT_EQ(second.second, first.second);
   EXPECT_EQ(second.second.size(), 3u);
+}
+
+// A hit's meshes are the mapped entry's bytes, not copies; an edit copies
+// the edited array first, so the entry (and every other scene that mapped
+// it) never changes.
+TEST(SceneCache, AHitUsesTheEntrysArraysInPlaceAndCopiesThemBeforeAnEdit) {
+  Cached c;
+  c.import();
+  const std::vector<std::uint8_t> entryBefore = readBytes(c.entry().string());
+  sg::Scene scene;
+  ASSERT_EQ(sg::importScene(scene, c.file, c.options).cache, "hit");
+  sg::Geometry* g = nullptr;
+  for (auto id : scene.ids())
+    if (auto* found = scene.find<sg::Geometry>(id)) g = found;
+  ASSERT_NE(g, nullptr);
+  EXPECT_FALSE(g->positions().owned()) << "the positions were copied out of the entry";
+  EXPECT_FALSE(g->indices().owned());
+  const sg::Vec3 first = g->positions()[0], second = g->positions()[1];
+  ASSERT_NE(first, sg::Vec3(0.5f));
+  g->updatePositions(0, std::vector<sg::Vec3>{sg::Vec3(0.5f)});
+  EXPECT_TRUE(g->positions().owned()) << "edited in the mapped entry";
+  EXPECT_EQ(g->positions()[0], sg::Vec3(0.5f));
+  EXPECT_EQ(g->positions()[1], second);
+  EXPECT_EQ(readBytes(c.entry().string()), entryBefore);
+  EXPECT_EQ(c.import().second[0], first) << "another scene from the same entry saw the edit";
+}
+
+// Arrays are aligned in the payload, so in place they are read as elements.
+TEST(SceneCache, DecodedInPlaceEqualsDecodedByCopy) {
+  Cached c;
+  c.import();
+  std::vector<std::uint8_t> payload = readBytes(c.entry().string());
+  payload.erase(payload.begin(), payload.begin() + sg::cache::kHeaderBytes);
+  const auto keeper = std::make_shared<const std::vector<std::uint8_t>>(payload);
+  const sg::parsed::Scene copied = sg::parsed::decodeScene(payload);
+  const sg::parsed::Scene held = sg::parsed::decodeScene(*keeper, keeper);
+  ASSERT_EQ(held.primitives.size(), copied.primitives.size());
+  ASSERT_TRUE(held.primitives[0].held.has_value());
+  EXPECT_FALSE(copied.primitives[0].held.has_value());
+  const auto at = reinterpret_cast<const std::uint8_t*>(held.primitives[0].arrays().positions.data());
+  EXPECT_TRUE(at >= keeper->data() && at < keeper->data() + keeper->size()) << "not in the payload";
+  EXPECT_EQ(sg::parsed::encodeScene(held), payload);
+  EXPECT_EQ(sg::parsed::encodeScene(copied), payload);
 }
 
 TEST(SceneCache, ChangedFileIsConvertedAgain) {

@@ -84,11 +84,11 @@ V sampleValue(Scene& scene, TypeSet allowed) {
 
 // What a setter takes for a member's value: a shared array's elements.
 template <class V>
-const auto& setterArgument(const V& v) {
+decltype(auto) setterArgument(const V& v) {
   if constexpr (requires { typename V::Elements; })
-    return v.get();
+    return v.get().toVector();
   else
-    return v;
+    return (v);
 }
 
 std::vector<std::uint8_t> fieldBytes(const Container& c, FieldIndex f) {

@@ -4,8 +4,8 @@ namespace tsr::med::coverage_mediator {
 
 cov::MeshData translateMesh(const sg::Geometry& geometry) {
   cov::MeshData data;
-  data.positions = geometry.positions();
-  data.indices = geometry.indices();
+  data.positions = geometry.positions().toVector();
+  data.indices = geometry.indices().toVector();
   data.primitive = primitiveOf(geometry);
   data.usage = geometry.motion() == sg::GeometryMotion::Animated ? cov::MeshUsage::Animated : cov::MeshUsage::Static;
   return data;

@@ -134,13 +134,21 @@ embree::Environment translateSky(const sg::Scene& scene, const sg::Background& b
   }
 }
 
+namespace {
+template <class T>
+backend::SharedElements<T> held(std::shared_ptr<const sg::ArrayElements<T>> elements) {
+  const std::span<const T> view = elements ? std::span<const T>(*elements) : std::span<const T>();
+  return backend::SharedElements<T>(view, std::move(elements));
+}
+}  // namespace
+
 embree::MeshData translateMesh(const sg::Geometry& geometry) {
   // The replica's arrays themselves: the path tracer holds no copy of them.
   embree::MeshData data;
-  data.positions = backend::SharedElements<glm::vec3>(geometry.sharedPositions());
-  data.normals = backend::SharedElements<glm::vec3>(geometry.sharedNormals());
-  data.uvs = backend::SharedElements<glm::vec2>(geometry.sharedUvs());
-  data.indices = backend::SharedElements<std::uint32_t>(geometry.sharedIndices());
+  data.positions = held(geometry.sharedPositions());
+  data.normals = held(geometry.sharedNormals());
+  data.uvs = held(geometry.sharedUvs());
+  data.indices = held(geometry.sharedIndices());
   data.usage =
       geometry.motion() == sg::GeometryMotion::Animated ? embree::MeshUsage::Animated : embree::MeshUsage::Static;
   return data;

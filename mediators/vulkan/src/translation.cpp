@@ -163,10 +163,10 @@ glm::vec4 backgroundColour(const vk::Environment& environment) {
 
 vk::MeshData translateMesh(const sg::Geometry& geometry) {
   vk::MeshData data;
-  data.positions = geometry.positions();
-  data.normals = geometry.normals();
-  data.uvs = geometry.uvs();
-  data.indices = geometry.indices();
+  data.positions = geometry.positions().toVector();
+  data.normals = geometry.normals().toVector();
+  data.uvs = geometry.uvs().toVector();
+  data.indices = geometry.indices().toVector();
   data.primitive = primitiveOf(geometry);
   return data;
 }

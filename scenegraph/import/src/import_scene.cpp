@@ -1,4 +1,5 @@
 #include <charconv>
+#include <chrono>
 #include <filesystem>
 #include <optional>
 
@@ -87,6 +88,7 @@ parsed::Scene parseCached(const std::string& source, const ImportOptions& option
 // Runs a parser with every failure turned into an ImportError, then builds.
 template <class Parse>
 ImportResult parsedAndBuilt(Scene& scene, const std::string& source, Parse parse) {
+  const auto start = std::chrono::steady_clock::now();
   parsed::Scene data;
   try {
     data = parse();
@@ -99,8 +101,9 @@ ImportResult parsedAndBuilt(Scene& scene, const std::string& source, Parse parse
   }
   // Everything is checked: from here on only containers are created.
   ImportResult result = buildScene(scene, std::move(data));
-  spdlog::debug("imported {}: {} nodes, {} geometries, {} triangles, {} warnings", source, result.counts.nodes,
-                result.counts.geometries, result.counts.uniqueTriangles, result.warnings.size());
+  const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
+  spdlog::debug("imported {} in {:.2f} s: {} nodes, {} geometries, {} triangles, {} warnings", source, took.count(),
+                result.counts.nodes, result.counts.geometries, result.counts.uniqueTriangles, result.warnings.size());
   return result;
 }
 

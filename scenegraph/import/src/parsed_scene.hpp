@@ -2,10 +2,13 @@
 // A scene as plain data, checked and complete, before any container exists.
 // Importers and built-in scenes fill one; buildScene turns it into
 // containers in one step that cannot fail on the data.
+#include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "tsr/sg/array_elements.hpp"
 #include "tsr/sg/geometry.hpp"
 #include "tsr/sg/image.hpp"
 #include "tsr/sg/import/animation.hpp"
@@ -68,6 +71,25 @@ struct Material {
   std::optional<Volume> volume;  // what fills a closed mesh of this material
 };
 
+// A mesh's arrays in place where a converted-scene cache entry was mapped
+// (each holds the mapping): a cached load copies no bulk geometry.
+struct HeldArrays {
+  std::shared_ptr<const ArrayElements<Vec3>> positions;
+  std::shared_ptr<const ArrayElements<Vec3>> normals;
+  std::shared_ptr<const ArrayElements<Vec2>> uvs;
+  std::shared_ptr<const ArrayElements<Vec4>> colors;
+  std::shared_ptr<const ArrayElements<std::uint32_t>> indices;
+};
+
+// A mesh's arrays to read, wherever they are.
+struct ArrayViews {
+  std::span<const Vec3> positions;
+  std::span<const Vec3> normals;
+  std::span<const Vec2> uvs;
+  std::span<const Vec4> colors;
+  std::span<const std::uint32_t> indices;
+};
+
 // One triangle mesh: what a Geometry container holds.
 struct Primitive {
   std::vector<Vec3> positions;
@@ -75,9 +97,19 @@ struct Primitive {
   std::vector<Vec2> uvs;
   std::vector<Vec4> colors;
   std::vector<std::uint32_t> indices;  // a list of primitive's
+  // Set by a cache hit instead of the vectors above, which then stay empty.
+  std::optional<HeldArrays> held;
   GeometryPrimitive primitive = GeometryPrimitive::Triangles;
   int material = kNone;  // kNone: the default material
   bool animated = false;
+
+  ArrayViews arrays() const {
+    if (!held) return {positions, normals, uvs, colors, indices};
+    const auto view = []<class E>(const std::shared_ptr<const ArrayElements<E>>& a) {
+      return a ? std::span<const E>(*a) : std::span<const E>();
+    };
+    return {view(held->positions), view(held->normals), view(held->uvs), view(held->colors), view(held->indices)};
+  }
 };
 
 struct Mesh {

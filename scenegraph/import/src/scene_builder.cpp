@@ -61,11 +61,19 @@ class Builder {
     // Each primitive becomes one geometry (once, above), which takes its arrays.
     parsed::Primitive& p = data_.primitives[static_cast<std::size_t>(index)];
     Geometry& g = scene_.create<Geometry>();
-    g.setPositions(std::move(p.positions));
-    g.setNormals(std::move(p.normals));
-    g.setUvs(std::move(p.uvs));
-    g.setColors(std::move(p.colors));
-    g.setIndices(std::move(p.indices));
+    if (p.held) {
+      g.setSharedPositions(SharedArray<Vec3>(std::move(p.held->positions)));
+      g.setSharedNormals(SharedArray<Vec3>(std::move(p.held->normals)));
+      g.setSharedUvs(SharedArray<Vec2>(std::move(p.held->uvs)));
+      g.setSharedColors(SharedArray<Vec4>(std::move(p.held->colors)));
+      g.setSharedIndices(SharedArray<std::uint32_t>(std::move(p.held->indices)));
+    } else {
+      g.setPositions(std::move(p.positions));
+      g.setNormals(std::move(p.normals));
+      g.setUvs(std::move(p.uvs));
+      g.setColors(std::move(p.colors));
+      g.setIndices(std::move(p.indices));
+    }
     g.setPrimitive(p.primitive);
     g.setMaterial(material(p.material));
     if (p.material != parsed::kNone) {

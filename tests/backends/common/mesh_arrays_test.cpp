@@ -31,7 +31,7 @@ TEST(BackendVertexEdit, RangesAndSizesAreChecked) {
 
 TEST(BackendSharedElements, SharedElementsAreHeldWithoutACopyAndCopiedBeforeAnEdit) {
   auto giver = std::make_shared<const std::vector<int>>(std::vector<int>{1, 2, 3});
-  SharedElements<int> held(giver);
+  SharedElements<int> held(*giver, giver);
   EXPECT_TRUE(held.shared());
   EXPECT_EQ(held.data(), giver->data()) << "no copy";
   SharedElements<int> copy = held;
@@ -59,7 +59,7 @@ TEST(BackendSharedElements, OwnedElementsAreValues) {
   SharedElements<int>& same = moved;
   moved = same;  // self-assignment keeps the elements
   EXPECT_EQ(moved[0], 10);
-  EXPECT_TRUE(SharedElements<int>(nullptr).empty());
+  EXPECT_TRUE(SharedElements<int>({}, nullptr).empty());
 }
 
 }  // namespace

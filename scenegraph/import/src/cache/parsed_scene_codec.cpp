@@ -1,6 +1,8 @@
 #include "cache/parsed_scene_codec.hpp"
 
+#include <cstdint>
 #include <cstring>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -9,6 +11,8 @@
 
 namespace tsr::sg::parsed {
 namespace {
+
+constexpr std::size_t kArrayAlignment = 8;
 
 class Writer {
  public:
@@ -19,12 +23,20 @@ class Writer {
     const auto* p = reinterpret_cast<const std::uint8_t*>(&v);
     out.insert(out.end(), p, p + sizeof(T));
   }
+  // Elements start on a multiple of kArrayAlignment, so a mapped entry's
+  // arrays can be used in place.
   template <class T>
-  void array(const std::vector<T>& v) {
+  void array(std::span<const T> v) {
+    static_assert(kArrayAlignment % alignof(T) == 0);
     pod(std::uint64_t(v.size()));
+    out.resize((out.size() + kArrayAlignment - 1) / kArrayAlignment * kArrayAlignment, 0);
     if (v.empty()) return;
     const auto* p = reinterpret_cast<const std::uint8_t*>(v.data());
     out.insert(out.end(), p, p + v.size() * sizeof(T));
+  }
+  template <class T>
+  void array(const std::vector<T>& v) {
+    array(std::span<const T>(v));
   }
   void text(const std::string& s) {
     pod(std::uint64_t(s.size()));
@@ -46,11 +58,24 @@ class Reader {
   }
   template <class T>
   std::vector<T> array() {
-    const std::uint64_t n = count(sizeof(T));
-    std::vector<T> v(n);
-    if (n > 0) std::memcpy(v.data(), in_.data() + at_, n * sizeof(T));
-    at_ += n * sizeof(T);
+    const std::span<const std::uint8_t> bytes = arrayBytes(sizeof(T));
+    std::vector<T> v(bytes.size() / sizeof(T));
+    if (!v.empty()) std::memcpy(v.data(), bytes.data(), bytes.size());
     return v;
+  }
+  // An array left where it is, held with `keeper` (which keeps the bytes
+  // alive), or copied when the bytes are not aligned for T in memory.
+  template <class T>
+  std::shared_ptr<const ArrayElements<T>> held(const std::shared_ptr<const void>& keeper) {
+    const std::span<const std::uint8_t> bytes = arrayBytes(sizeof(T));
+    if (bytes.empty()) return nullptr;
+    if (reinterpret_cast<std::uintptr_t>(bytes.data()) % alignof(T) != 0) {
+      std::vector<T> v(bytes.size() / sizeof(T));
+      std::memcpy(v.data(), bytes.data(), bytes.size());
+      return std::make_shared<const ArrayElements<T>>(std::move(v));
+    }
+    const std::span<const T> view(reinterpret_cast<const T*>(bytes.data()), bytes.size() / sizeof(T));
+    return std::make_shared<const ArrayElements<T>>(view, keeper);
   }
   std::string text() {
     const std::uint64_t n = count(1);
@@ -65,6 +90,20 @@ class Reader {
     if (n > (in_.size() - at_) / std::max<std::size_t>(size, 1))
       throw std::runtime_error("an array of " + std::to_string(n) + " elements runs past the end");
     return n;
+  }
+  // An array's count, its zero padding and its elements' bytes.
+  std::span<const std::uint8_t> arrayBytes(std::size_t elementSize) {
+    const std::uint64_t n = pod<std::uint64_t>();
+    const std::size_t padding = (kArrayAlignment - at_ % kArrayAlignment) % kArrayAlignment;
+    need(padding, "an array's padding");
+    for (std::size_t i = 0; i < padding; ++i)
+      if (in_[at_ + i] != 0) throw std::runtime_error("an array's padding is not zero");
+    at_ += padding;
+    if (n > (in_.size() - at_) / elementSize)
+      throw std::runtime_error("an array of " + std::to_string(n) + " elements runs past the end");
+    const std::span<const std::uint8_t> bytes = in_.subspan(at_, n * elementSize);
+    at_ += bytes.size();
+    return bytes;
   }
   template <class E>
   E enumeration(std::uint8_t last, const char* what) {
@@ -195,11 +234,12 @@ std::vector<std::uint8_t> encodeScene(const Scene& s) {
   for (const Material& m : s.materials) put(w, m);
   w.pod(std::uint64_t(s.primitives.size()));
   for (const Primitive& p : s.primitives) {
-    w.array(p.positions);
-    w.array(p.normals);
-    w.array(p.uvs);
-    w.array(p.colors);
-    w.array(p.indices);
+    const ArrayViews a = p.arrays();
+    w.array(a.positions);
+    w.array(a.normals);
+    w.array(a.uvs);
+    w.array(a.colors);
+    w.array(a.indices);
     w.pod(p.material);
     w.pod(std::uint8_t(p.animated));
     w.pod(std::uint8_t(p.primitive));
@@ -251,7 +291,7 @@ std::vector<std::uint8_t> encodeScene(const Scene& s) {
   return std::move(w.out);
 }
 
-Scene decodeScene(std::span<const std::uint8_t> bytes) {
+Scene decodeScene(std::span<const std::uint8_t> bytes, const std::shared_ptr<const void>& keeper) {
   Reader r(bytes);
   Scene s;
   s.images.resize(r.count(37));
@@ -268,11 +308,16 @@ Scene decodeScene(std::span<const std::uint8_t> bytes) {
   for (Material& m : s.materials) m = getMaterial(r);
   s.primitives.resize(r.count(45));
   for (Primitive& p : s.primitives) {
-    p.positions = r.array<Vec3>();
-    p.normals = r.array<Vec3>();
-    p.uvs = r.array<Vec2>();
-    p.colors = r.array<Vec4>();
-    p.indices = r.array<std::uint32_t>();
+    if (keeper) {
+      p.held = HeldArrays{r.held<Vec3>(keeper), r.held<Vec3>(keeper), r.held<Vec2>(keeper), r.held<Vec4>(keeper),
+                          r.held<std::uint32_t>(keeper)};
+    } else {
+      p.positions = r.array<Vec3>();
+      p.normals = r.array<Vec3>();
+      p.uvs = r.array<Vec2>();
+      p.colors = r.array<Vec4>();
+      p.indices = r.array<std::uint32_t>();
+    }
     p.material = r.pod<int>();
     p.animated = r.enumeration<std::uint8_t>(1, "an animated flag") != 0;
     p.primitive =

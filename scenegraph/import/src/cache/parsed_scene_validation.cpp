@@ -20,7 +20,7 @@ bool finite(const V& v) {
 
 // Positions and matrices within kMaxCoordinate, as the glTF importer requires.
 template <class V>
-void inRange(const std::vector<V>& values, const std::string& what) {
+void inRange(std::span<const V> values, const std::string& what) {
   for (const V& v : values)
     for (int i = 0; i < V::length(); ++i)
       if (!(std::abs(v[i]) <= kMaxCoordinate))
@@ -28,7 +28,7 @@ void inRange(const std::vector<V>& values, const std::string& what) {
 }
 
 template <class V>
-void allFinite(const std::vector<V>& values, const std::string& what) {
+void allFinite(std::span<const V> values, const std::string& what) {
   for (const V& v : values)
     if (!finite(v)) fail(what + " holds NaN or infinity");
 }
@@ -39,19 +39,20 @@ void reference(int index, std::size_t count, bool optional, const std::string& w
 }
 
 void checkPrimitive(const Scene& s, const Primitive& p, const std::string& what) {
-  const std::size_t n = p.positions.size();
+  const ArrayViews a = p.arrays();
+  const std::size_t n = a.positions.size();
   if (p.primitive >= GeometryPrimitive::Count) fail(what + " has an unknown primitive");
-  if (n == 0 || p.indices.empty() || p.indices.size() % indicesPerPrimitive(p.primitive) != 0)
+  if (n == 0 || a.indices.empty() || a.indices.size() % indicesPerPrimitive(p.primitive) != 0)
     fail(what + " is not a list of its primitives");
-  if ((!p.normals.empty() && p.normals.size() != n) || (!p.uvs.empty() && p.uvs.size() != n) ||
-      (!p.colors.empty() && p.colors.size() != n))
+  if ((!a.normals.empty() && a.normals.size() != n) || (!a.uvs.empty() && a.uvs.size() != n) ||
+      (!a.colors.empty() && a.colors.size() != n))
     fail(what + " has attributes of different lengths");
-  for (std::uint32_t i : p.indices)
+  for (std::uint32_t i : a.indices)
     if (i >= n) fail(what + " has an index out of range");
-  inRange(p.positions, what + "'s positions");
-  allFinite(p.normals, what + "'s normals");
-  allFinite(p.uvs, what + "'s uvs");
-  allFinite(p.colors, what + "'s colours");
+  inRange(a.positions, what + "'s positions");
+  allFinite(a.normals, what + "'s normals");
+  allFinite(a.uvs, what + "'s uvs");
+  allFinite(a.colors, what + "'s colours");
   reference(p.material, s.materials.size(), true, what + ": material");
 }
 
@@ -129,7 +130,7 @@ void checkAnimations(const Scene& s) {
     for (const AnimationChannel& c : clip.channels) {
       const std::string what = "animation '" + clip.name + "'";
       reference(c.node, s.nodes.size(), false, what + ": node");
-      allFinite(c.values, what + "'s values");
+      allFinite(std::span<const Vec4>(c.values), what + "'s values");
       try {
         Animation check;
         check.addChannel({0, c.path, c.interpolation, c.times, c.values});

@@ -1,9 +1,12 @@
 #include "cache/scene_cache.hpp"
 
 #include <unistd.h>
+#include <xxhash.h>
 
+#include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <stdexcept>
 #include <system_error>
 
@@ -15,41 +18,17 @@ namespace {
 
 namespace fs = std::filesystem;
 constexpr char kMagic[8] = {'T', 'S', 'R', 'S', 'C', 'E', 'N', 'E'};
-constexpr std::uint32_t kFormat = 1;
+// 2: arrays 8-byte aligned in the payload (used in place), XXH3 checksums.
+constexpr std::uint32_t kFormat = 2;
 
-// Two 64-bit lanes over 8-byte words (multiply, rotate, xor): not
-// cryptographic, but 128 bits make accidental collisions negligible, and a
-// matching entry is still validated like any outside input.
-struct Hash128 {
-  std::uint64_t a = 0x9E3779B97F4A7C15ull, b = 0xC2B2AE3D27D4EB4Full;
-  void add(std::span<const std::uint8_t> bytes) {
-    std::size_t i = 0;
-    for (; i + 8 <= bytes.size(); i += 8) {
-      std::uint64_t w;
-      std::memcpy(&w, bytes.data() + i, 8);
-      mix(w);
-    }
-    std::uint64_t tail = 0;
-    if (i < bytes.size()) std::memcpy(&tail, bytes.data() + i, bytes.size() - i);
-    mix(tail ^ (std::uint64_t(bytes.size()) << 56));
-  }
-  void mix(std::uint64_t w) {
-    a = rotl((a ^ w) * 0x87C37B91114253D5ull, 31) + b;
-    b = rotl((b + w) * 0x4CF5AD432745937Full, 33) ^ a;
-  }
-  static std::uint64_t rotl(std::uint64_t x, int r) { return (x << r) | (x >> (64 - r)); }
-  std::string hex() const {
-    char out[33];
-    std::snprintf(out, sizeof out, "%016llx%016llx", static_cast<unsigned long long>(a),
-                  static_cast<unsigned long long>(b));
-    return out;
-  }
-};
-
+// XXH3's 128 bits: not cryptographic, but accidental collisions are
+// negligible, and a matching entry is still validated like any outside input.
 std::string hashOf(std::span<const std::uint8_t> bytes) {
-  Hash128 h;
-  h.add(bytes);
-  return h.hex();
+  const XXH128_hash_t h = XXH3_128bits(bytes.data(), bytes.size());
+  char out[33];
+  std::snprintf(out, sizeof out, "%016llx%016llx", static_cast<unsigned long long>(h.high64),
+                static_cast<unsigned long long>(h.low64));
+  return out;
 }
 
 struct Header {
@@ -61,6 +40,7 @@ struct Header {
   char payloadHash[32];
 };
 static_assert(sizeof(Header) == kHeaderBytes);
+static_assert(kHeaderBytes % 8 == 0, "the payload's arrays are aligned within a page-aligned mapping");
 
 }  // namespace
 
@@ -78,15 +58,16 @@ std::optional<parsed::Scene> load(const fs::path& entry, const std::string& key,
     why = "no entry";
     return std::nullopt;
   }
-  // Mapped: the payload is decoded from the page cache, not from a copy.
-  MappedFile file;
+  // Mapped: the payload is decoded from the page cache, not from a copy, and
+  // the meshes' arrays stay there, held by the scene built from them.
+  std::shared_ptr<const MappedFile> file;
   try {
-    file = MappedFile(entry);
+    file = std::make_shared<const MappedFile>(entry);
   } catch (const std::system_error& e) {
     why = std::string("the entry cannot be read: ") + e.what();
     return std::nullopt;
   }
-  const std::span<const std::uint8_t> bytes = file.bytes();
+  const std::span<const std::uint8_t> bytes = file->bytes();
   const std::uint64_t size = bytes.size();
   if (size < sizeof(Header)) {
     why = "the entry is shorter than its header";
@@ -116,7 +97,7 @@ std::optional<parsed::Scene> load(const fs::path& entry, const std::string& key,
     return std::nullopt;
   }
   try {
-    return parsed::decodeScene(payload);
+    return parsed::decodeScene(payload, file);
   } catch (const std::exception& e) {
     why = std::string("the entry is invalid: ") + e.what();
     return std::nullopt;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <span>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -40,7 +41,7 @@ bool acceptable(const T&) {
   return true;
 }
 template <class E>
-bool acceptable(const std::vector<E>& v) {
+bool acceptableElements(std::span<const E> v) {
   if constexpr (requires(const E& e) { traceable(e); }) {
     return std::all_of(v.begin(), v.end(), [](const E& e) { return traceable(e); });
   } else {
@@ -48,8 +49,12 @@ bool acceptable(const std::vector<E>& v) {
   }
 }
 template <class E>
+bool acceptable(const std::vector<E>& v) {
+  return acceptableElements(std::span<const E>(v));
+}
+template <class E>
 bool acceptable(const SharedArray<E>& v) {
-  return acceptable(v.get());
+  return acceptableElements(std::span<const E>(v.get()));
 }
 template <class E>
 bool acceptableElement(const E& e) {
@@ -217,7 +222,7 @@ class ContainerOf : public Container {
   void assignRange(FieldIndex f, SharedArray<E>& member, std::size_t begin, std::span<const E> values) {
     checkRange(f, member.size(), begin, values);
     if (values.empty()) return touchRange(f, begin, begin);
-    std::vector<E>& elements = member.writable();  // a copy when a list or replica holds them
+    const std::span<E> elements = member.writable();  // a copy when a list or replica holds them
     std::copy(values.begin(), values.end(), elements.begin() + static_cast<std::ptrdiff_t>(begin));
     touchRange(f, begin, begin + values.size());
   }

@@ -42,17 +42,17 @@ class Geometry final : public ContainerOf<Geometry, ContainerType::Geometry> {
     Primitive
   };
 
-  const std::vector<Vec3>& positions() const { return positions_.get(); }
-  const std::vector<Vec3>& normals() const { return normals_.get(); }
-  const std::vector<Vec2>& uvs() const { return uvs_.get(); }
-  const std::vector<Vec4>& colors() const { return colors_.get(); }
-  const std::vector<std::uint32_t>& indices() const { return indices_.get(); }
+  const ArrayElements<Vec3>& positions() const { return positions_.get(); }
+  const ArrayElements<Vec3>& normals() const { return normals_.get(); }
+  const ArrayElements<Vec2>& uvs() const { return uvs_.get(); }
+  const ArrayElements<Vec4>& colors() const { return colors_.get(); }
+  const ArrayElements<std::uint32_t>& indices() const { return indices_.get(); }
   // The arrays themselves, for a back-end to hold too without a copy (null
   // when empty); the scene copies an array before its next edit.
-  std::shared_ptr<const std::vector<Vec3>> sharedPositions() const { return positions_.shared(); }
-  std::shared_ptr<const std::vector<Vec3>> sharedNormals() const { return normals_.shared(); }
-  std::shared_ptr<const std::vector<Vec2>> sharedUvs() const { return uvs_.shared(); }
-  std::shared_ptr<const std::vector<std::uint32_t>> sharedIndices() const { return indices_.shared(); }
+  std::shared_ptr<const ArrayElements<Vec3>> sharedPositions() const { return positions_.shared(); }
+  std::shared_ptr<const ArrayElements<Vec3>> sharedNormals() const { return normals_.shared(); }
+  std::shared_ptr<const ArrayElements<Vec2>> sharedUvs() const { return uvs_.shared(); }
+  std::shared_ptr<const ArrayElements<std::uint32_t>> sharedIndices() const { return indices_.shared(); }
   ContainerId material() const { return material_; }
   GeometryMotion motion() const { return motion_; }
   // The medium inside the (closed) mesh, beside its surface material.
@@ -71,6 +71,13 @@ class Geometry final : public ContainerOf<Geometry, ContainerType::Geometry> {
   void setMotion(GeometryMotion m) { set<&Geometry::motion_>(m); }
   void setVolume(ContainerId v) { set<&Geometry::volume_>(v); }
   void setPrimitive(GeometryPrimitive p) { set<&Geometry::primitive_>(p); }
+  // Arrays another owner holds (a mapped cache entry's), taken without a
+  // copy: checked like any set value, copied before their first edit.
+  void setSharedPositions(SharedArray<Vec3> a) { set<&Geometry::positions_>(std::move(a)); }
+  void setSharedNormals(SharedArray<Vec3> a) { set<&Geometry::normals_>(std::move(a)); }
+  void setSharedUvs(SharedArray<Vec2> a) { set<&Geometry::uvs_>(std::move(a)); }
+  void setSharedColors(SharedArray<Vec4> a) { set<&Geometry::colors_>(std::move(a)); }
+  void setSharedIndices(SharedArray<std::uint32_t> a) { set<&Geometry::indices_>(std::move(a)); }
 
   // Range edits: overwrite elements starting at `begin`; lengths do not change.
   void updatePositions(std::size_t begin, std::span<const Vec3> v) { setElements<&Geometry::positions_>(begin, v); }

@@ -35,10 +35,10 @@ MeshData sheet(float wave) {
     }
   // Held as a scene replica's arrays are: shared, never written by the back-end.
   MeshData m;
-  m.positions =
-      backend::SharedElements<glm::vec3>(std::make_shared<const std::vector<glm::vec3>>(std::move(positions)));
-  m.indices =
-      backend::SharedElements<std::uint32_t>(std::make_shared<const std::vector<std::uint32_t>>(std::move(indices)));
+  const auto heldPositions = std::make_shared<const std::vector<glm::vec3>>(std::move(positions));
+  const auto heldIndices = std::make_shared<const std::vector<std::uint32_t>>(std::move(indices));
+  m.positions = backend::SharedElements<glm::vec3>(*heldPositions, heldPositions);
+  m.indices = backend::SharedElements<std::uint32_t>(*heldIndices, heldIndices);
   m.usage = MeshUsage::Animated;
   return m;
 }

@@ -23,9 +23,10 @@ class SharedElements {
   SharedElements() = default;
   SharedElements(Elements elements) { own(std::move(elements)); }
   SharedElements(std::initializer_list<T> elements) { own(Elements(elements)); }
-  // Someone else's elements (null: none), held without a copy.
-  explicit SharedElements(std::shared_ptr<const Elements> shared) : elements_(std::move(shared)) {
-    if (elements_) view_ = *elements_;
+  // Someone else's elements, held without a copy: `view` stays valid while
+  // `keeper` is held (null keeper: no elements).
+  SharedElements(std::span<const T> view, std::shared_ptr<const void> keeper) : elements_(std::move(keeper)) {
+    if (elements_) view_ = view;
   }
 
   SharedElements(const SharedElements& o) {
@@ -75,7 +76,7 @@ class SharedElements {
     owned_ = true;
   }
 
-  std::shared_ptr<const Elements> elements_;
+  std::shared_ptr<const void> elements_;  // keeps view_'s elements
   std::span<const T> view_;
   bool owned_ = false;  // made here (edited in place) or someone else's (copied before an edit)
 };

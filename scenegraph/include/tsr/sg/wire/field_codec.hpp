@@ -139,7 +139,7 @@ bool allWithinLimit(const E* data, std::size_t n) {
 // An array goes whole, or, when only parts of it were edited this frame,
 // as its total length plus the edited runs.
 template <ArrayElement E>
-void writeArray(ByteWriter& w, const std::vector<E>& a, const std::vector<ArrayRange>* edited) {
+void writeArray(ByteWriter& w, std::span<const E> a, const std::vector<ArrayRange>* edited) {
   if (!edited) {
     w.u8(static_cast<std::uint8_t>(ArrayEncoding::Whole));
     w.varint(a.size());
@@ -154,6 +154,10 @@ void writeArray(ByteWriter& w, const std::vector<E>& a, const std::vector<ArrayR
     w.varint(range.size());
     w.raw(a.data() + range.begin, range.size() * sizeof(E));
   }
+}
+template <ArrayElement E>
+void writeArray(ByteWriter& w, const std::vector<E>& a, const std::vector<ArrayRange>* edited) {
+  writeArray(w, std::span<const E>(a), edited);
 }
 
 namespace detail {
@@ -231,7 +235,7 @@ void readArray(ByteReader& r, std::vector<E>& a, FieldReadContext& ctx) {
 // Shared arrays go by reference into a writer with a slice table.
 template <ArrayElement E>
 void writeArray(ByteWriter& w, const SharedArray<E>& a, const std::vector<ArrayRange>* edited) {
-  if (edited || !w.slices() || a.empty()) return writeArray(w, a.get(), edited);
+  if (edited || !w.slices() || a.empty()) return writeArray(w, std::span<const E>(a.get()), edited);
   w.u8(static_cast<std::uint8_t>(ArrayEncoding::Whole));
   w.varint(a.size());
   w.slices()->push_back(
@@ -247,16 +251,17 @@ void readArray(ByteReader& r, SharedArray<E>& a, FieldReadContext& ctx) {
     if (const SharedSlice* slice = detail::sliceAt(ctx.slices, r.offset())) {
       // A list of this process: its elements were checked when the scene took them.
       if (*slice->element != typeid(E) || slice->size != n * sizeof(E)) r.fail("shared array does not match its field");
-      a = SharedArray<E>(std::static_pointer_cast<const std::vector<E>>(slice->owner));
+      a = SharedArray<E>(std::static_pointer_cast<const ArrayElements<E>>(slice->owner));
       return;
     }
     std::size_t at = r.offset();
-    auto elements = std::make_shared<std::vector<E>>();
-    detail::readElements(r, *elements, n, countAt);
+    std::vector<E> read;
+    detail::readElements(r, read, n, countAt);
+    auto elements = std::make_shared<const ArrayElements<E>>(std::move(read));
     if (ctx.collected && n)
       ctx.collected->push_back(
           {at, elements, &typeid(E), reinterpret_cast<const std::uint8_t*>(elements->data()), n * sizeof(E)});
-    a = SharedArray<E>(std::shared_ptr<const std::vector<E>>(std::move(elements)));
+    a = SharedArray<E>(std::move(elements));
     return;
   }
   if (encoding != static_cast<std::uint8_t>(ArrayEncoding::Ranges))

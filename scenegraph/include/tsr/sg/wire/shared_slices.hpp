@@ -14,7 +14,7 @@ namespace tsr::sg {
 
 struct SharedSlice {
   std::uint64_t offset = 0;           // where the elements' bytes would stand in the list's values
-  std::shared_ptr<const void> owner;  // a std::vector of the element type
+  std::shared_ptr<const void> owner;  // an ArrayElements of the element type
   const std::type_info* element = nullptr;
   const std::uint8_t* bytes = nullptr;
   std::size_t size = 0;  // in bytes
