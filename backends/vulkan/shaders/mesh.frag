@@ -1,5 +1,6 @@
 #version 450
 #include "common.glsl"
+#include "slot_texture.glsl"
 #include "brdf.glsl"
 #include "lights.glsl"
 #include "environment.glsl"
@@ -116,11 +117,10 @@ vec3 evalBsdf(uint type, vec3 colour, float alpha, float metallic, float eta, ve
 // The uv derivatives are taken before the texture transform (rows) and
 // mapped through it: lavapipe gives values loaded from a buffer no
 // derivatives.
-vec3 normalMapped(vec3 n, vec3 wo, float scale, vec3 row0, vec3 row1) {
+vec3 normalMapped(vec3 n, vec3 wo, float scale, vec3 row0, vec3 row1, float footprint) {
   vec3 dp1 = dFdx(worldPos), dp2 = dFdy(worldPos);
   mat2 linear = mat2(row0.x, row1.x, row0.y, row1.y);
   vec2 duv1 = linear * dFdx(uv), duv2 = linear * dFdy(uv);
-  vec2 st = vec2(dot(row0, vec3(uv, 1.0)), dot(row1, vec3(uv, 1.0)));
   vec3 dp2perp = cross(dp2, n), dp1perp = cross(n, dp1);
   vec3 t = dp2perp * duv1.x + dp1perp * duv2.x;
   vec3 b = dp2perp * duv1.y + dp1perp * duv2.y;
@@ -129,7 +129,7 @@ vec3 normalMapped(vec3 n, vec3 wo, float scale, vec3 row0, vec3 row1) {
   // The derivation assumes (dp1, dp2, n) right-handed; Vulkan's y-down
   // framebuffer makes it left-handed for faces seen from the front.
   float inv = inversesqrt(len2) * (dot(cross(dp1, dp2), n) < 0.0 ? -1.0 : 1.0);
-  vec3 ts = texture(normalTex, st).xyz * 2.0 - 1.0;
+  vec3 ts = slotTexture(normalTex, pc.material, NORMAL_SLOT, uv, footprint).xyz * 2.0 - 1.0;
   ts.xy *= scale;
   vec3 bent = normalize(t * (inv * ts.x) - b * (inv * ts.y) + n * ts.z);
   float c = dot(bent, wo);
@@ -206,8 +206,17 @@ void main() {
   const uint type = MATERIAL_TYPE;
   vec3 base = m.baseColor.rgb;
   float opacity = m.baseColor.a;
+  // The faces' own normal (its direction is all that is used) for the
+  // footprint; the interpolated one where the mesh has normals.
+  const bool textured = BASE_TEXTURE || EMISSION_TEXTURE || METALLIC_ROUGHNESS_TEXTURE || NORMAL_TEXTURE ||
+                        OCCLUSION_TEXTURE;
+  float footprint = 0.0;
+  if (textured)
+    footprint = uvFootprint(instances[instanceSlot], worldPos,
+                            length(worldNormal) > 1e-8 ? normalize(worldNormal)
+                                                       : normalize(cross(dFdx(worldPos), dFdy(worldPos))));
   if (BASE_TEXTURE) {
-    vec4 t = texture(baseColorTex, slotUv(pc.material, BASE_COLOR_SLOT, uv));
+    vec4 t = slotTexture(baseColorTex, pc.material, BASE_COLOR_SLOT, uv, footprint);
     base *= t.rgb;
     opacity *= t.a;
   }
@@ -217,7 +226,7 @@ void main() {
   }
   if (UNLIT) {  // their colour as it is, as glTF viewers draw lines and points
     vec3 e = m.emission.rgb;
-    if (EMISSION_TEXTURE) e *= texture(emissionTex, slotUv(pc.material, EMISSION_SLOT, uv)).rgb;
+    if (EMISSION_TEXTURE) e *= slotTexture(emissionTex, pc.material, EMISSION_SLOT, uv, footprint).rgb;
     outColour = vec4(FOG ? fogged(base + e, worldPos) : base + e, opacity);
     return;
   }
@@ -230,13 +239,14 @@ void main() {
   // face (by winding) that the viewer sees.
   float len = length(worldNormal);
   vec3 n = len > 1e-8 ? (gl_FrontFacing ? worldNormal : -worldNormal) / len : ng;
-  if (NORMAL_TEXTURE) n = normalMapped(n, wo, m.pbr.z, m.uv[2 * NORMAL_SLOT].xyz, m.uv[2 * NORMAL_SLOT + 1].xyz);
+  if (NORMAL_TEXTURE)
+    n = normalMapped(n, wo, m.pbr.z, m.uv[2 * NORMAL_SLOT].xyz, m.uv[2 * NORMAL_SLOT + 1].xyz, footprint);
   float eta = gl_FrontFacing ? m.params.y : 1.0 / m.params.y;
   float alpha = m.params.x;
   float roughness = m.pbr.x;
   float metallic = m.pbr.y;
   if (METALLIC_ROUGHNESS_TEXTURE) {
-    vec4 t = texture(metallicRoughnessTex, slotUv(pc.material, METALLIC_ROUGHNESS_SLOT, uv));
+    vec4 t = slotTexture(metallicRoughnessTex, pc.material, METALLIC_ROUGHNESS_SLOT, uv, footprint);
     roughness *= t.g;
     metallic *= t.b;
     alpha = max(1e-3, roughness * roughness);
@@ -320,13 +330,13 @@ void main() {
   }
   // glTF's occlusion darkens this ambient and image-based part only.
   if (OCCLUSION_TEXTURE) {
-    float occluded = texture(occlusionTex, slotUv(pc.material, OCCLUSION_SLOT, uv)).r;
+    float occluded = slotTexture(occlusionTex, pc.material, OCCLUSION_SLOT, uv, footprint).r;
     radiance = direct + (1.0 + m.params.z * (occluded - 1.0)) * (radiance - direct);
   }
 
   if (gl_FrontFacing) {
     vec3 e = m.emission.rgb;
-    if (EMISSION_TEXTURE) e *= texture(emissionTex, slotUv(pc.material, EMISSION_SLOT, uv)).rgb;
+    if (EMISSION_TEXTURE) e *= slotTexture(emissionTex, pc.material, EMISSION_SLOT, uv, footprint).rgb;
     radiance += e;
   }
   if (FOG) radiance = fogged(radiance, worldPos);

@@ -8,5 +8,5 @@ layout(location = 0) in vec2 uv;
 
 void main() {
   Material m = materials[pc.material];
-  if (m.baseColor.a * texture(baseColorTex, slotUv(pc.material, BASE_COLOR_SLOT, uv)).a < m.pbr.w) discard;
+  if (m.baseColor.a * textureLod(baseColorTex, slotUv(pc.material, BASE_COLOR_SLOT, uv), 0.0).a < m.pbr.w) discard;
 }

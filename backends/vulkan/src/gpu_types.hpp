@@ -16,7 +16,7 @@ struct GpuInstance {
   glm::mat4 model;
   glm::mat4 normal;          // inverse transpose of model's 3x3, padded
   glm::vec4 positionOffset;  // the mesh's box (vertex_encoding.hpp): xyz lo
-  glm::vec4 positionScale;   // xyz hi - lo
+  glm::vec4 positionScale;   // xyz hi - lo; w uv units a world unit (uv_density.hpp)
   glm::vec4 uvBox;           // the mesh's uv box: lo, hi - lo
 };
 static_assert(sizeof(GpuInstance) == 176, "shaders/common.glsl, ids.vert and cull.comp read 176-byte records");

@@ -74,7 +74,9 @@ TEST(VulkanMaterial, TransparentLayersSortedBackToFront) {
 }
 
 // A 4x4 sRGB texture with one colour per 2x2 quadrant; uv (0, 0) is the
-// top-left texel, mapped to the quad's top-left corner.
+// top-left texel, mapped to the quad's top-left corner. Two of the points
+// looked at lie on the quad's diagonal, where lavapipe's derivatives gave a
+// level of detail of 1.6 instead of -3 (the quadrants blurred together).
 TEST(VulkanMaterial, BaseColourTextureLookupAtKnownUv) {
   const std::uint8_t q[4][4] = {{255, 0, 0, 255}, {0, 255, 0, 255}, {0, 0, 255, 255}, {128, 128, 128, 255}};
   std::vector<std::uint8_t> texels;
@@ -108,6 +110,37 @@ TEST(VulkanMaterial, BaseColourTextureLookupAtKnownUv) {
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[k], expected[i][k], 0.01f) << "quadrant " << i << " channel " << k;
   }
   EXPECT_THROW(scene.removeTexture(tex), Error);  // still used by the material
+}
+
+// A 256x256 checkerboard of single black and white texels on a quad about
+// 30 pixels wide: without mip levels each pixel picks up one or two texels
+// (black, white or anything between: moire); with them every pixel is the
+// checkerboard's mean, 0.5 in linear light (averaging the sRGB-encoded
+// bytes instead would give 0.21).
+TEST(VulkanMaterial, AMinifiedTextureAveragesInsteadOfAliasing) {
+  constexpr int kSide = 256;
+  std::vector<std::uint8_t> texels;
+  for (int y = 0; y < kSide; ++y)
+    for (int x = 0; x < kSide; ++x) {
+      const std::uint8_t v = (x + y) % 2 ? 255 : 0;
+      texels.insert(texels.end(), {v, v, v, 255});
+    }
+  Scene scene(device());
+  Material m = emissive({1, 1, 1});
+  m.emissionTexture = scene.addTexture(Texture::fromRgba8(kSide, kSide, texels));
+  scene.addInstance(scene.addMesh(test::quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0})), scene.addMaterial(m),
+                    glm::mat4(1.0f));
+  Renderer renderer(device(), {.background = {0, 0, 0, 0}});
+  FrameBuffer fb(64, 64);
+  renderer.render(scene, kCam, kFull, fb);
+  test::writePng("/tmp/tsr_vk_minified.png", fb);
+  const glm::vec2 lo = test::project(kCam, kFull, {-0.8f, 0.8f, 0.0f});
+  const glm::vec2 hi = test::project(kCam, kFull, {0.8f, -0.8f, 0.0f});
+  int pixels = 0;
+  for (int y = int(lo.y); y <= int(hi.y); ++y)
+    for (int x = int(lo.x); x <= int(hi.x); ++x, ++pixels)
+      ASSERT_NEAR(fb.colour(x, y).r, 0.5f, 0.03f) << "pixel " << x << "," << y;
+  EXPECT_GT(pixels, 400);
 }
 
 // glTF's MASK: a red quad whose texture is opaque on its left half and

@@ -2,6 +2,7 @@
 // normals over many values, zero normals survive, and a mesh's box grows
 // when a vertex edit leaves it (white box: src/scene/vertex_encoding.hpp).
 #include "scene/vertex_encoding.hpp"
+#include "scene/uv_density.hpp"
 #include "test_util.hpp"
 
 #include "tsr/vk/renderer.hpp"
@@ -126,6 +127,21 @@ TEST(VertexEncoding, EditsThatMoveTheBoxDrawAsAFreshMesh) {
   // And all the way back: the first image again.
   edited.updateMeshVertices(m, {.positions = sphere.positions, .first = first, .count = count});
   EXPECT_EQ(render(edited).colourImage(), before.colourImage());
+}
+
+// The level of detail's density: a 2x2 square mapped to the unit uv square
+// holds half a uv unit a length unit; scaled uvs scale it, uvs stretched
+// unevenly give the mean, and a mesh without uvs or area has none.
+TEST(VulkanUvDensity, MeanUvUnitsALengthUnit) {
+  const std::vector<glm::vec3> square{{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}};
+  const std::vector<std::uint32_t> two{0, 1, 2, 0, 2, 3};
+  EXPECT_FLOAT_EQ(uvDensity(square, std::vector<glm::vec2>{{0, 0}, {1, 0}, {1, 1}, {0, 1}}, two), 0.5f);
+  EXPECT_FLOAT_EQ(uvDensity(square, std::vector<glm::vec2>{{0, 0}, {4, 0}, {4, 4}, {0, 4}}, two), 2.0f);
+  // uv areas 2 and 1 over areas 2 and 2.
+  EXPECT_FLOAT_EQ(uvDensity(square, std::vector<glm::vec2>{{0, 0}, {2, 0}, {2, 2}, {0, 1}}, two),
+                  std::sqrt(3.0f / 4.0f));
+  EXPECT_EQ(uvDensity(square, {}, two), 0.0f);
+  EXPECT_EQ(uvDensity(std::vector<glm::vec3>(4, glm::vec3(1)), std::vector<glm::vec2>(4), two), 0.0f);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@ struct ImageDesc {
   std::uint32_t width = 1;
   std::uint32_t height = 1;
   std::uint32_t layers = 1;
+  std::uint32_t mipLevels = 1;  // view() sees them all, layerView() the first
   VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
   VkImageUsageFlags usage = 0;
@@ -51,9 +52,15 @@ class Image {
 
 // A sampled image filled from host memory (its layout then
 // SHADER_READ_ONLY_OPTIMAL); waits for the copy. Throws when the format
-// cannot be sampled with linear filtering.
+// cannot be sampled with linear filtering. `mipmapped`: the full chain of
+// mip levels, each a linear (for sRGB formats, linear-light) 2x2 reduction
+// of the one above, made by the device's blits where it can blit the format
+// (else one level), so a minified texture averages instead of aliasing.
 Image uploadImage(const Device& device, std::uint32_t width, std::uint32_t height, VkFormat format, const void* bytes,
-                  VkDeviceSize size);
+                  VkDeviceSize size, bool mipmapped = false);
+
+// How many levels a full mip chain of a width x height image has.
+std::uint32_t mipLevelCount(std::uint32_t width, std::uint32_t height);
 
 // One image memory barrier over all mips and the given layers.
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,

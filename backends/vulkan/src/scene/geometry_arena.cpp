@@ -1,4 +1,5 @@
 #include "scene/geometry_arena.hpp"
+#include "scene/uv_density.hpp"
 
 #include "tsr/vk/error.hpp"
 
@@ -131,8 +132,13 @@ GeometrySpan GeometryArena::add(const MeshData& data) {
   const bool wide = n > (1u << 16);
   const std::uint32_t index = blockFor(n, ni, wide);
   Block& b = blocks_[index];
-  const GeometrySpan span{index, b.vertices, b.indexCount, PositionQuantization::of(data.positions),
-                          UvQuantization::of(data.uvs)};
+  const GeometrySpan span{
+      index,
+      b.vertices,
+      b.indexCount,
+      PositionQuantization::of(data.positions),
+      UvQuantization::of(data.uvs),
+      data.primitive == Primitive::Triangles ? uvDensity(data.positions, data.uvs, data.indices) : 0.0f};
   writePositions(span, 0, data.positions);
   // Blocks may hold a removed mesh's data here: zero what the mesh lacks.
   writeNormals(span, 0, data.normals, n);

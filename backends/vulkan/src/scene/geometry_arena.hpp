@@ -23,6 +23,7 @@ struct GeometrySpan {
   std::uint32_t firstIndex = 0;
   PositionQuantization quantization;
   UvQuantization uvQuantization;
+  float uvDensity = 0.0f;  // uv_density.hpp
 };
 
 // The geometry of many meshes in few large buffers (the seed's static

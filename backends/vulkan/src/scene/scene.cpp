@@ -45,7 +45,9 @@ GpuInstance makeInstance(const glm::mat4& m, const GeometrySpan& mesh) {
   GpuInstance g;
   g.model = m;
   g.positionOffset = glm::vec4(mesh.quantization.lo, 0.0f);
-  g.positionScale = glm::vec4(mesh.quantization.scale(), 0.0f);
+  // w: the mesh's uv units a world unit, its uv density over the transform's mean scale.
+  const float scale = std::cbrt(std::abs(det));
+  g.positionScale = glm::vec4(mesh.quantization.scale(), scale > 0.0f ? mesh.uvDensity / scale : 0.0f);
   g.uvBox = glm::vec4(mesh.uvQuantization.lo, mesh.uvQuantization.scale());
   g.normal = glm::mat4(glm::vec4(s * glm::cross(c1, c2), 0.0f), glm::vec4(s * glm::cross(c2, c0), 0.0f),
                        glm::vec4(s * glm::cross(c0, c1), 0.0f), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
@@ -247,9 +249,10 @@ Scene::Scene(std::shared_ptr<Device> device) : state_(std::make_unique<SceneStat
   VkSamplerCreateInfo sci = vkStruct<VkSamplerCreateInfo>(VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO);
   sci.magFilter = VK_FILTER_LINEAR;
   sci.minFilter = VK_FILTER_LINEAR;
-  sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  // Trilinear over the textures' mip chains (images of one level sample it alone).
+  sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
   sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-  sci.maxLod = 0.0f;
+  sci.maxLod = VK_LOD_CLAMP_NONE;
   check(vkCreateSampler(dev, &sci, nullptr, &s.sampler), "vkCreateSampler");
 
   const std::uint8_t white[4] = {255, 255, 255, 255};
@@ -528,7 +531,7 @@ TextureId Scene::addTexture(const Texture& texture) {
   SceneState& s = *state_;
   TextureRecord r;
   r.image = uploadImage(*s.device, texture.width(), texture.height(), textureFormat(texture.format()),
-                        texture.bytes().data(), texture.bytes().size());
+                        texture.bytes().data(), texture.bytes().size(), /*mipmapped=*/true);
   r.alive = true;
   s.textures.push_back(std::move(r));
   ++s.version;
