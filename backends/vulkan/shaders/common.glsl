@@ -50,7 +50,7 @@ layout(set = 0, binding = 0) uniform Frame {
   vec4 ambient;
   uvec4 counts;
   mat4 invViewProj;
-  vec4 viewport;
+  vec4 viewport;  // pixels across and down, a pixel's camera-space size at unit depth across and down
   vec4 fogAbsorption;
   vec4 fogScattering;
   vec4 fogEmission;

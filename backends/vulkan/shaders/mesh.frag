@@ -206,19 +206,21 @@ void main() {
   const uint type = MATERIAL_TYPE;
   vec3 base = m.baseColor.rgb;
   float opacity = m.baseColor.a;
-  // The faces' own normal (its direction is all that is used) for the
-  // footprint; the interpolated one where the mesh has normals.
+  // The face's normal (unnormalised), taken where every pixel of the quad
+  // still runs (before any discard).
+  vec3 faceCross = cross(dFdx(worldPos), dFdy(worldPos));
   const bool textured = BASE_TEXTURE || EMISSION_TEXTURE || METALLIC_ROUGHNESS_TEXTURE || NORMAL_TEXTURE ||
                         OCCLUSION_TEXTURE;
   float footprint = 0.0;
   if (textured)
-    footprint = uvFootprint(instances[instanceSlot], worldPos,
-                            length(worldNormal) > 1e-8 ? normalize(worldNormal)
-                                                       : normalize(cross(dFdx(worldPos), dFdy(worldPos))));
+    footprint = uvFootprint(instances[instanceSlot], worldPos, length(worldNormal) > 1e-8 ? worldNormal : faceCross,
+                            worldNormal);
   if (BASE_TEXTURE) {
     vec4 t = slotTexture(baseColorTex, pc.material, BASE_COLOR_SLOT, uv, footprint);
     base *= t.rgb;
-    opacity *= t.a;
+    // MASK cuts at the first level's alpha, as the shadow pass does: alpha
+    // averaged down the chain would thin foliage away in the distance.
+    opacity *= m.pbr.w > 0.0 ? textureLod(baseColorTex, slotUv(pc.material, BASE_COLOR_SLOT, uv), 0.0).a : t.a;
   }
   if (m.pbr.w > 0.0) {  // glTF MASK: cut away below the cut-off, opaque above
     if (opacity < m.pbr.w) discard;
@@ -233,7 +235,7 @@ void main() {
 
   vec3 wo = normalize(frame.cameraPos.xyz - worldPos);
   // Flat face normal, turned towards the viewer.
-  vec3 ng = normalize(cross(dFdx(worldPos), dFdy(worldPos)));
+  vec3 ng = normalize(faceCross);
   if (dot(ng, wo) < 0.0) ng = -ng;
   // As in the path tracer, the shading normal is flipped to the side of the
   // face (by winding) that the viewer sees.

@@ -16,7 +16,7 @@ struct GpuInstance {
   glm::mat4 model;
   glm::mat4 normal;          // inverse transpose of model's 3x3, padded
   glm::vec4 positionOffset;  // the mesh's box (vertex_encoding.hpp): xyz lo
-  glm::vec4 positionScale;   // xyz hi - lo; w uv units a world unit (uv_density.hpp)
+  glm::vec4 positionScale;   // xyz hi - lo; w the mesh's uv units a length unit (uv_density.hpp)
   glm::vec4 uvBox;           // the mesh's uv box: lo, hi - lo
 };
 static_assert(sizeof(GpuInstance) == 176, "shaders/common.glsl, ids.vert and cull.comp read 176-byte records");
@@ -53,7 +53,7 @@ struct GpuFrame {
   glm::vec4 ambient;  // average environment radiance
   glm::uvec4 counts;  // light count, unused...
   glm::mat4 invViewProj;
-  glm::vec4 viewport;        // width, height of the region in pixels, unused, unused
+  glm::vec4 viewport;        // width, height of the region in pixels; a pixel's size at unit depth (viewportOf)
   glm::vec4 fogAbsorption;   // the environment's fog (zero without): rgb, g
   glm::vec4 fogScattering;   // rgb, unused
   glm::vec4 fogEmission;     // rgb, unused

@@ -1,5 +1,6 @@
 #include "projection.hpp"
 
+#include <cmath>
 #include <limits>
 
 namespace tsr::vk {
@@ -29,6 +30,15 @@ float linearDepth(const Camera& camera, float stored) {
   if (!(stored > 0.0f)) return std::numeric_limits<float>::infinity();
   const double n = camera.near, f = camera.far;
   return float(n * f / (double(stored) * (f - n) + n));
+}
+
+glm::vec4 viewportOf(const glm::mat4& projection, std::uint32_t w, std::uint32_t h) {
+  // Clip x is projection[0][0] * camera x (plus a shift for off-axis
+  // regions), and a pixel is 2 / w of clip x over clip w (the depth).
+  const auto spread = [](float scale, std::uint32_t pixels) {
+    return scale != 0.0f && pixels > 0 ? float(2.0 / (std::abs(double(scale)) * pixels)) : 0.0f;
+  };
+  return {float(w), float(h), spread(projection[0][0], w), spread(projection[1][1], h)};
 }
 
 }  // namespace tsr::vk

@@ -305,13 +305,14 @@ void Renderer::Impl::prepareFrame(const SceneState& s, const Camera& camera, con
   const VkSampleCountFlagBits samples = sampleBits(settings.msaaSamples);
   const glm::vec3 camPos(camera.cameraToWorld[3]);
   GpuFrame frame{};
-  viewProj = projection(camera, region) * camera.worldToCamera();
+  const glm::mat4 proj = projection(camera, region);
+  viewProj = proj * camera.worldToCamera();
   frame.viewProj = viewProj;
   frame.cameraPos = glm::vec4(camPos, 1.0f);
   frame.ambient = glm::vec4(s.environment.averageRadiance() + ambientFromEmitters, 0.0f);
   frame.counts = glm::uvec4(std::uint32_t(gpuLights.size()), 0u, 0u, 0u);
   frame.invViewProj = glm::inverse(viewProj);
-  frame.viewport = glm::vec4(float(w), float(h), 0.0f, 0.0f);
+  frame.viewport = viewportOf(proj, w, h);
   frame.emitterAmbient = glm::vec4(ambientFromEmitters, 0.0f);
   frame.sceneMin = glm::vec4(s.sceneMin, 0.0f);
   frame.sceneMax = glm::vec4(s.sceneMax, 0.0f);

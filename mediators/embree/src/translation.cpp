@@ -137,7 +137,7 @@ embree::Environment translateSky(const sg::Scene& scene, const sg::Background& b
 namespace {
 template <class T>
 backend::SharedElements<T> held(std::shared_ptr<const sg::ArrayElements<T>> elements) {
-  const std::span<const T> view = elements ? std::span<const T>(*elements) : std::span<const T>();
+  const std::span<const T> view = sg::elementsOf(elements);  // before the pointer moves
   return backend::SharedElements<T>(view, std::move(elements));
 }
 }  // namespace

@@ -55,7 +55,8 @@ parsed::Scene parseBuiltin(const std::string& source) {
 // kept conversion when its entry checks out, else the file parsed and kept.
 parsed::Scene parseCached(const std::string& source, const ImportOptions& options, std::string& note) {
   // The file's bytes are mapped while they are hashed (and parsed on a
-  // miss), not while the kept conversion is read: a hit holds one of them.
+  // miss), not while the kept conversion is read: a hit keeps the entry
+  // mapped as long as the scene's arrays live in it, never the source.
   const std::string key = cache::key(gltf::mapSource(source, options).bytes(), options);
   const std::filesystem::path entry = cache::entryPath(options.cacheDir, key);
   std::string why;

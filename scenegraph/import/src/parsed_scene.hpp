@@ -105,10 +105,8 @@ struct Primitive {
 
   ArrayViews arrays() const {
     if (!held) return {positions, normals, uvs, colors, indices};
-    const auto view = []<class E>(const std::shared_ptr<const ArrayElements<E>>& a) {
-      return a ? std::span<const E>(*a) : std::span<const E>();
-    };
-    return {view(held->positions), view(held->normals), view(held->uvs), view(held->colors), view(held->indices)};
+    return {elementsOf(held->positions), elementsOf(held->normals), elementsOf(held->uvs), elementsOf(held->colors),
+            elementsOf(held->indices)};
   }
 };
 

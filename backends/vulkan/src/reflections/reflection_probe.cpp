@@ -170,10 +170,11 @@ void Renderer::Impl::updateProbe(const SceneState& s, const RenderSettings& sett
                                            glm::half_pi<float>(), 1.0f, 1e-3f * size, 4.0f * size);
       const Region region = Region::full(kProbeSize, kProbeSize);
       GpuFrame face = frame;
-      face.viewProj = projection(camera, region) * camera.worldToCamera();
+      const glm::mat4 proj = projection(camera, region);
+      face.viewProj = proj * camera.worldToCamera();
       face.invViewProj = glm::inverse(face.viewProj);
       face.cameraPos = glm::vec4(centre, 1.0f);
-      face.viewport = glm::vec4(float(kProbeSize), float(kProbeSize), 0.0f, 0.0f);
+      face.viewport = viewportOf(proj, kProbeSize, kProbeSize);
       face.probeCentre = glm::vec4(0.0f);
       std::memcpy(frameBuffer.mapped(), &face, sizeof(face));
 

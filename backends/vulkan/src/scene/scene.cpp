@@ -45,9 +45,7 @@ GpuInstance makeInstance(const glm::mat4& m, const GeometrySpan& mesh) {
   GpuInstance g;
   g.model = m;
   g.positionOffset = glm::vec4(mesh.quantization.lo, 0.0f);
-  // w: the mesh's uv units a world unit, its uv density over the transform's mean scale.
-  const float scale = std::cbrt(std::abs(det));
-  g.positionScale = glm::vec4(mesh.quantization.scale(), scale > 0.0f ? mesh.uvDensity / scale : 0.0f);
+  g.positionScale = glm::vec4(mesh.quantization.scale(), mesh.uvDensity);
   g.uvBox = glm::vec4(mesh.uvQuantization.lo, mesh.uvQuantization.scale());
   g.normal = glm::mat4(glm::vec4(s * glm::cross(c1, c2), 0.0f), glm::vec4(s * glm::cross(c2, c0), 0.0f),
                        glm::vec4(s * glm::cross(c0, c1), 0.0f), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));

@@ -58,10 +58,7 @@ class Reader {
   }
   template <class T>
   std::vector<T> array() {
-    const std::span<const std::uint8_t> bytes = arrayBytes(sizeof(T));
-    std::vector<T> v(bytes.size() / sizeof(T));
-    if (!v.empty()) std::memcpy(v.data(), bytes.data(), bytes.size());
-    return v;
+    return copied<T>(arrayBytes(sizeof(T)));
   }
   // An array left where it is, held with `keeper` (which keeps the bytes
   // alive), or copied when the bytes are not aligned for T in memory.
@@ -69,11 +66,8 @@ class Reader {
   std::shared_ptr<const ArrayElements<T>> held(const std::shared_ptr<const void>& keeper) {
     const std::span<const std::uint8_t> bytes = arrayBytes(sizeof(T));
     if (bytes.empty()) return nullptr;
-    if (reinterpret_cast<std::uintptr_t>(bytes.data()) % alignof(T) != 0) {
-      std::vector<T> v(bytes.size() / sizeof(T));
-      std::memcpy(v.data(), bytes.data(), bytes.size());
-      return std::make_shared<const ArrayElements<T>>(std::move(v));
-    }
+    if (reinterpret_cast<std::uintptr_t>(bytes.data()) % alignof(T) != 0)
+      return std::make_shared<const ArrayElements<T>>(copied<T>(bytes));
     const std::span<const T> view(reinterpret_cast<const T*>(bytes.data()), bytes.size() / sizeof(T));
     return std::make_shared<const ArrayElements<T>>(view, keeper);
   }
@@ -90,6 +84,12 @@ class Reader {
     if (n > (in_.size() - at_) / std::max<std::size_t>(size, 1))
       throw std::runtime_error("an array of " + std::to_string(n) + " elements runs past the end");
     return n;
+  }
+  template <class T>
+  static std::vector<T> copied(std::span<const std::uint8_t> bytes) {
+    std::vector<T> v(bytes.size() / sizeof(T));
+    if (!v.empty()) std::memcpy(v.data(), bytes.data(), bytes.size());
+    return v;
   }
   // An array's count, its zero padding and its elements' bytes.
   std::span<const std::uint8_t> arrayBytes(std::size_t elementSize) {
@@ -306,7 +306,7 @@ Scene decodeScene(std::span<const std::uint8_t> bytes, const std::shared_ptr<con
   }
   s.materials.resize(r.count(81));
   for (Material& m : s.materials) m = getMaterial(r);
-  s.primitives.resize(r.count(45));
+  s.primitives.resize(r.count(46));
   for (Primitive& p : s.primitives) {
     if (keeper) {
       p.held = HeldArrays{r.held<Vec3>(keeper), r.held<Vec3>(keeper), r.held<Vec2>(keeper), r.held<Vec4>(keeper),

@@ -59,7 +59,9 @@ std::optional<parsed::Scene> load(const fs::path& entry, const std::string& key,
     return std::nullopt;
   }
   // Mapped: the payload is decoded from the page cache, not from a copy, and
-  // the meshes' arrays stay there, held by the scene built from them.
+  // the meshes' arrays stay there, held by the scene built from them, when
+  // the entry is stable (MappedFile::stable: only this user can change what
+  // was validated); else they are copied out.
   std::shared_ptr<const MappedFile> file;
   try {
     file = std::make_shared<const MappedFile>(entry);
@@ -97,7 +99,7 @@ std::optional<parsed::Scene> load(const fs::path& entry, const std::string& key,
     return std::nullopt;
   }
   try {
-    return parsed::decodeScene(payload, file);
+    return parsed::decodeScene(payload, file->stable() ? file : nullptr);
   } catch (const std::exception& e) {
     why = std::string("the entry is invalid: ") + e.what();
     return std::nullopt;
@@ -128,6 +130,10 @@ bool store(const fs::path& entry, const std::string& key, const parsed::Scene& s
       return false;
     }
   }
+  // The owner's alone to rewrite, whatever the umask: a load uses such an
+  // entry's arrays in place (MappedFile::stable).
+  fs::permissions(temporary,
+                  fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read | fs::perms::others_read, ec);
   fs::rename(temporary, entry, ec);
   if (ec) {
     why = "cannot rename into '" + entry.string() + "': " + ec.message();

@@ -27,7 +27,8 @@ inline constexpr std::size_t kHeaderBytes = 120;
 std::string key(std::span<const std::uint8_t> source, const ImportOptions& options);
 std::filesystem::path entryPath(const std::filesystem::path& dir, const std::string& key);
 
-// The scene, or nothing with `why` set.
+// The scene, or nothing with `why` set. Its meshes' arrays may be the mapped
+// entry's bytes, which stay mapped as long as any scene array holds them.
 std::optional<parsed::Scene> load(const std::filesystem::path& entry, const std::string& key, std::string& why);
 // Written to a temporary file and renamed into place; false with `why` set on failure.
 bool store(const std::filesystem::path& entry, const std::string& key, const parsed::Scene& scene, std::string& why);

@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
+#include <sys/vfs.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -15,6 +16,24 @@ namespace {
 [[noreturn]] void fail(const std::filesystem::path& path, const char* what) {
   const int error = errno;  // before anything below may change it
   throw std::system_error(error, std::generic_category(), std::string(what) + " '" + path.string() + "'");
+}
+
+// Local file systems, whose pages no other machine rewrites (network and
+// FUSE file systems are left out: their files can change, or vanish, under
+// a mapping).
+bool localFileSystem(int fd) {
+  struct statfs fs {};
+  if (::fstatfs(fd, &fs) != 0) return false;
+  constexpr long kLocal[] = {0xEF53 /* ext2-4 */,
+                             0x58465342 /* xfs */,
+                             0x9123683E /* btrfs */,
+                             0x01021994 /* tmpfs */,
+                             0x794C7630 /* overlay */,
+                             0x2FC12FC1 /* zfs */,
+                             0xF2F52010 /* f2fs */};
+  for (long magic : kLocal)
+    if (static_cast<long>(fs.f_type) == magic) return true;
+  return false;
 }
 
 }  // namespace
@@ -30,6 +49,7 @@ MappedFile::MappedFile(const std::filesystem::path& path) {
     fail(path, "cannot read the size of");
   }
   size_ = static_cast<std::size_t>(st.st_size);
+  stable_ = st.st_uid == ::geteuid() && (st.st_mode & (S_IWGRP | S_IWOTH)) == 0 && localFileSystem(fd);
   if (size_ > 0) {
     // Populated up front: one pass of the kernel instead of a fault a page.
     data_ = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
@@ -50,13 +70,16 @@ MappedFile::~MappedFile() {
 }
 
 MappedFile::MappedFile(MappedFile&& o) noexcept
-    : data_(std::exchange(o.data_, nullptr)), size_(std::exchange(o.size_, 0)) {}
+    : data_(std::exchange(o.data_, nullptr)),
+      size_(std::exchange(o.size_, 0)),
+      stable_(std::exchange(o.stable_, false)) {}
 
 MappedFile& MappedFile::operator=(MappedFile&& o) noexcept {
   if (this != &o) {
     if (data_) ::munmap(data_, size_);
     data_ = std::exchange(o.data_, nullptr);
     size_ = std::exchange(o.size_, 0);
+    stable_ = std::exchange(o.stable_, false);
   }
   return *this;
 }

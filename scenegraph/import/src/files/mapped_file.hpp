@@ -22,10 +22,16 @@ class MappedFile {
   MappedFile& operator=(const MappedFile&) = delete;
 
   std::span<const std::uint8_t> bytes() const { return {static_cast<const std::uint8_t*>(data_), size_}; }
+  // Whether only this user can rewrite the file, on a local file system:
+  // then its pages change under a reader only by the user's own hand.
+  // (Pages of a private mapping that were never written show later writes
+  // to the file, so what was validated in another's file could change.)
+  bool stable() const { return stable_; }
 
  private:
   void* data_ = nullptr;
   std::size_t size_ = 0;
+  bool stable_ = false;
 };
 
 }  // namespace tsr::sg

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <memory>
 #include <span>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -17,9 +18,10 @@ class ArrayElements {
  public:
   ArrayElements() = default;
   explicit ArrayElements(std::vector<E> own) : owned_(std::move(own)), view_(owned_) {}
-  // `view` stays valid as long as `keeper` is held.
-  ArrayElements(std::span<const E> view, std::shared_ptr<const void> keeper)
-      : view_(view), keeper_(std::move(keeper)) {}
+  // `view` stays valid as long as `keeper` is held (which must not be null).
+  ArrayElements(std::span<const E> view, std::shared_ptr<const void> keeper) : view_(view), keeper_(std::move(keeper)) {
+    if (!keeper_) throw std::invalid_argument("ArrayElements: a view needs the owner that keeps it");
+  }
   // Held by shared pointer: a copy is made on purpose (toVector), never by accident.
   ArrayElements(const ArrayElements&) = delete;
   ArrayElements& operator=(const ArrayElements&) = delete;
@@ -35,7 +37,7 @@ class ArrayElements {
   operator std::span<const E>() const { return view_; }
   std::vector<E> toVector() const { return {begin(), end()}; }
   // Whether the elements are this object's own (else another owner's memory).
-  bool owned() const { return !keeper_; }
+  bool owned() const { return view_.data() == owned_.data(); }
 
   friend bool operator==(const ArrayElements& a, const ArrayElements& b) { return std::ranges::equal(a, b); }
   friend bool operator==(const ArrayElements& a, const std::vector<E>& b) { return std::ranges::equal(a, b); }
@@ -50,5 +52,11 @@ class ArrayElements {
   std::span<const E> view_;
   std::shared_ptr<const void> keeper_;
 };
+
+// The elements a shared pointer holds, or none.
+template <class E>
+std::span<const E> elementsOf(const std::shared_ptr<const ArrayElements<E>>& elements) {
+  return elements ? std::span<const E>(*elements) : std::span<const E>();
+}
 
 }  // namespace tsr::sg

@@ -222,7 +222,8 @@ class ContainerOf : public Container {
   void assignRange(FieldIndex f, SharedArray<E>& member, std::size_t begin, std::span<const E> values) {
     checkRange(f, member.size(), begin, values);
     if (values.empty()) return touchRange(f, begin, begin);
-    const std::span<E> elements = member.writable();  // a copy when a list or replica holds them
+    // A copy when a list or replica holds them, or they are another owner's memory (a mapped entry).
+    const std::span<E> elements = member.writable();
     std::copy(values.begin(), values.end(), elements.begin() + static_cast<std::ptrdiff_t>(begin));
     touchRange(f, begin, begin + values.size());
   }
