@@ -62,9 +62,10 @@ Image uploadImage(const Device& device, std::uint32_t width, std::uint32_t heigh
 // How many levels a full mip chain of a width x height image has.
 std::uint32_t mipLevelCount(std::uint32_t width, std::uint32_t height);
 
-// One image memory barrier over all mips and the given layers.
+// One image memory barrier over the given layers and mip levels (all by default).
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,
                   VkPipelineStageFlags srcStage, VkAccessFlags srcAccess, VkPipelineStageFlags dstStage,
-                  VkAccessFlags dstAccess, std::uint32_t layers = 1);
+                  VkAccessFlags dstAccess, std::uint32_t layers = 1, std::uint32_t firstLevel = 0,
+                  std::uint32_t levels = VK_REMAINING_MIP_LEVELS);
 
 }  // namespace tsr::vk
