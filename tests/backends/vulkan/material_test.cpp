@@ -181,6 +181,34 @@ TEST(VulkanMaterial, MaskedAlphaCutsTheClearHalfAway) {
   }
 }
 
+// MASK over a minified texture: one texel in four opaque (alpha 255), cut
+// at 0.5. Alpha averaged down the mip chain is 0.25 everywhere, which would
+// cut the whole quad away (foliage thinning out with distance); the cut
+// reads the first level, so about a quarter of the quad stays.
+TEST(VulkanMaterial, MaskedCutOffReadsTheFirstLevelWhenMinified) {
+  constexpr int kSide = 256;
+  std::vector<std::uint8_t> texels;
+  for (int y = 0; y < kSide; ++y)
+    for (int x = 0; x < kSide; ++x)
+      texels.insert(texels.end(), {255, 255, 255, std::uint8_t(x % 2 || y % 2 ? 0 : 255)});
+  Scene scene(device());
+  Material red = emissive({1, 0, 0});
+  red.baseColorTexture = scene.addTexture(Texture::fromRgba8(kSide, kSide, texels));
+  red.alphaCutoff = 0.5f;
+  scene.addInstance(scene.addMesh(test::quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0})), scene.addMaterial(red),
+                    glm::mat4(1.0f));
+  Renderer renderer(device(), {.background = {0, 0, 0, 0}});
+  FrameBuffer fb(64, 64);
+  renderer.render(scene, kCam, kFull, fb);
+  const glm::vec2 lo = test::project(kCam, kFull, {-0.8f, 0.8f, 0.0f});
+  const glm::vec2 hi = test::project(kCam, kFull, {0.8f, -0.8f, 0.0f});
+  int kept = 0, pixels = 0;
+  for (int y = int(lo.y); y <= int(hi.y); ++y)
+    for (int x = int(lo.x); x <= int(hi.x); ++x, ++pixels) kept += fb.colour(x, y).r > 0.5f;
+  EXPECT_GT(kept, pixels / 10) << kept << " of " << pixels << " pixels kept";
+  EXPECT_LT(kept, pixels * 6 / 10) << kept << " of " << pixels << " pixels kept";
+}
+
 // A masked quad between a directional light and a white floor: the floor
 // is in shadow under the kept half and lit under the cut half (the shadow
 // pass cuts the quad as the main pass does); without a cut-off the whole
