@@ -5,6 +5,7 @@
 #include "limits.hpp"
 #include "scene/scene_levels.hpp"
 #include "scene/scene_state.hpp"
+#include "scene/streamed_geometry.hpp"
 #include "tsr/embree/error.hpp"
 #include "tsr/embree/sampling.hpp"
 
@@ -159,6 +160,8 @@ Scene::~Scene() {
   // Geometries must go before the scenes they belong to.
   state_->instances.clear();
   state_->meshes.clear();
+  if (state_->streamed) state_->streamed->detach(state_->merged);
+  state_->streamed.reset();
   rtcReleaseGeometry(state_->mergedInstance);
   rtcReleaseScene(state_->merged);
   rtcReleaseScene(state_->moving);
@@ -520,6 +523,20 @@ void Scene::commit() {
   refreshViews(s, allViews);
   if (s.pending.emitters) rebuildEmitters(s);
   s.pending = {};
+}
+
+void Scene::setTraceMemory(const TraceMemory& budget) {
+  if (budget.bytes == 0 || budget.clusterTriangles == 0)
+    throw Error("trace memory needs a budget and a cluster size above zero");
+  if (budget == state_->traceMemory) return;
+  state_->traceMemory = budget;
+  state_->traceMemoryChanged = true;
+}
+
+TraceMemoryUse Scene::traceMemoryUse() const {
+  TraceMemoryUse u = state_->streamed ? state_->streamed->use() : TraceMemoryUse{};
+  u.wholeBytes = state_->mergedEstimate;
+  return u;
 }
 
 std::uint64_t Scene::version() const { return state_->version; }

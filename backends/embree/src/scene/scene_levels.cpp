@@ -1,7 +1,10 @@
 #include "scene/scene_levels.hpp"
 
+#include "scene/streamed_geometry.hpp"
+
 #include "tsr/embree/error.hpp"
 
+#include <spdlog/spdlog.h>
 #include <glm/mat4x4.hpp>
 
 #include <algorithm>
@@ -58,9 +61,11 @@ void unplace(SceneState& s, InstanceRecord& inst, std::uint32_t id) {
     case Level::None:
       break;
     case Level::Merged:
-      rtcDetachGeometry(s.merged, id);
-      rtcReleaseGeometry(inst.flatGeometry);
-      inst.flatGeometry = nullptr;
+      if (inst.flatGeometry) {  // streamed, it is in a cluster, which the next partition leaves out
+        rtcDetachGeometry(s.merged, id);
+        rtcReleaseGeometry(inst.flatGeometry);
+        inst.flatGeometry = nullptr;
+      }
       s.mergedDirty = true;
       break;
     case Level::Top:
@@ -77,12 +82,9 @@ void unplace(SceneState& s, InstanceRecord& inst, std::uint32_t id) {
   inst.level = Level::None;
 }
 
-namespace {
-
-// World-space copy of an instance's positions for the merged scene. The
-// indices are the mesh's own, shared rather than copied: a mesh's data is
-// replaced only by setMeshData, whose commit places this instance again
-// before the merged scene is built.
+// The indices are the mesh's own, shared rather than copied: a mesh's data
+// is replaced only by setMeshData, whose commit places this instance again
+// before the merged scene (or a cluster of it) is built.
 RTCGeometry worldGeometry(RTCDevice device, const MeshData& d, const glm::mat4& transform) {
   RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* v = static_cast<glm::vec3*>(
@@ -98,6 +100,8 @@ RTCGeometry worldGeometry(RTCDevice device, const MeshData& d, const glm::mat4& 
   rtcCommitGeometry(g);
   return g;
 }
+
+namespace {
 
 bool inside(const RTCBounds& a, const RTCBounds& b) {
   return a.lower_x >= b.lower_x && a.lower_y >= b.lower_y && a.lower_z >= b.lower_z && a.upper_x <= b.upper_x &&
@@ -197,8 +201,10 @@ std::vector<std::uint32_t> placeInstances(SceneState& s) {
       case Level::Merged:
         // A merged copy is in world space: any change rebuilds it.
         unplace(s, inst, id);
-        inst.flatGeometry = worldGeometry(s.device->handle(), m.data, inst.transform);
-        rtcAttachGeometryByID(s.merged, inst.flatGeometry, id);
+        if (!s.streamed) {  // streamed, the partition puts it in a cluster
+          inst.flatGeometry = worldGeometry(s.device->handle(), m.data, inst.transform);
+          rtcAttachGeometryByID(s.merged, inst.flatGeometry, id);
+        }
         s.mergedDirty = true;
         break;
       case Level::Top:
@@ -304,7 +310,8 @@ void buildLevels(SceneState& s, const std::vector<std::uint32_t>& instanced) {
     rtcCommitGeometry(inst.level == Level::Top ? inst.geometry : inst.movingGeometry);
   }
   if (s.mergedDirty) {
-    rtcSetSceneFlags(s.merged, mergedSceneFlags(s));
+    if (s.streamed) s.streamed->partition(s.merged);
+    rtcSetSceneFlags(s.merged, s.streamed ? RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION : mergedSceneFlags(s));
     rtcCommitScene(s.merged);
     rtcCommitGeometry(s.mergedInstance);
     s.mergedDirty = false;
@@ -334,9 +341,58 @@ void buildLevels(SceneState& s, const std::vector<std::uint32_t>& instanced) {
   s.device->check("commit");
 }
 
+// Whether an instance belongs in the merged scene (placeInstances' rule).
+bool mergeable(const SceneState& s, const InstanceRecord& inst) {
+  const MeshRecord& m = *s.meshes[index(inst.mesh)];
+  return !inst.motion && m.data.usage == MeshUsage::Static && m.users.size() == 1;
+}
+
+// Whether this commit may change what the merged scene holds (then it is
+// rebuilt anyway, at a cost of all its triangles, beside which counting
+// its instances is small).
+bool mergedMayChange(const SceneState& s) {
+  if (s.traceMemoryChanged || !s.pending.meshes.empty()) return true;
+  for (std::uint32_t id : s.pending.instances)
+    if (!s.instances[id] || s.instances[id]->level == Level::Merged || mergeable(s, *s.instances[id])) return true;
+  return false;
+}
+
+// Commit step 0: the merged scene built whole, or streamed by clusters when
+// its estimated size passes the trace memory budget. A change of form
+// places every merged instance again.
+void chooseMergedForm(SceneState& s) {
+  if (!mergedMayChange(s)) return;
+  s.traceMemoryChanged = false;
+  std::uint64_t bytes = 0, triangles = 0;
+  for (const auto& inst : s.instances) {
+    if (!inst || !mergeable(s, *inst)) continue;
+    const MeshData& d = s.meshes[index(inst->mesh)]->data;
+    bytes += mergedBytes(d.positions.size(), d.indices.size() / 3);
+    triangles += d.indices.size() / 3;
+  }
+  s.mergedEstimate = bytes;
+  const bool streamed = bytes > s.traceMemory.bytes;
+  if (streamed ? s.streamed && s.streamed->budget() == s.traceMemory : !s.streamed) return;
+  for (std::uint32_t id = 0; id < s.instances.size(); ++id) {
+    if (!s.instances[id] || s.instances[id]->level != Level::Merged) continue;
+    unplace(s, *s.instances[id], id);
+    s.mark(id, true);
+  }
+  if (s.streamed) s.streamed->detach(s.merged);
+  s.streamed = streamed ? std::make_unique<StreamedGeometry>(s, s.traceMemory) : nullptr;
+  s.mergedDirty = true;
+  if (streamed) {
+    spdlog::info(
+        "tsr::embree: the merged scene ({} triangles, about {:.1f} GB) is over the trace memory ({:.1f} GB): it is "
+        "built in clusters of about {} triangles as rays reach them, the least recently used dropped",
+        triangles, double(bytes) * 1e-9, double(s.traceMemory.bytes) * 1e-9, s.traceMemory.clusterTriangles);
+  }
+}
+
 }  // namespace
 
 void commitLevels(SceneState& s) {
+  chooseMergedForm(s);
   spreadMeshEdits(s);
   buildLevels(s, placeInstances(s));
 }

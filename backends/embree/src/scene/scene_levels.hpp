@@ -6,9 +6,15 @@
 
 #include "scene/scene_state.hpp"
 
+#include <glm/mat4x4.hpp>
+
 #include <cstdint>
 
 namespace tsr::embree {
+
+// A mesh's triangles in world space (positions copied, indices shared), as
+// the merged scene holds them.
+RTCGeometry worldGeometry(RTCDevice device, const MeshData& d, const glm::mat4& transform);
 
 // Takes the instance out of whatever level holds it.
 void unplace(SceneState& s, InstanceRecord& inst, std::uint32_t id);

@@ -18,6 +18,8 @@
 
 namespace tsr::embree {
 
+class StreamedGeometry;
+
 // Internal representation shared by Scene (which edits it) and Renderer
 // (which reads it after commit()).
 
@@ -174,6 +176,12 @@ struct SceneState {
   RTCScene merged = nullptr;
   RTCGeometry mergedInstance = nullptr;
   bool mergedDirty = true;
+  // Over this budget the merged scene holds clusters built as rays reach
+  // them (streamed, non-null) instead of every copy.
+  TraceMemory traceMemory;
+  bool traceMemoryChanged = true;    // the merged level's form is chosen again at commit
+  std::uint64_t mergedEstimate = 0;  // its estimated size built whole, as of the last choice
+  std::unique_ptr<StreamedGeometry> streamed;
   // What rays traverse, set at commit: the merged scene itself when nothing
   // is instanced (no top level to cross), else the top level.
   RTCScene traversable = nullptr;

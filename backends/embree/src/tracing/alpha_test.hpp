@@ -44,4 +44,16 @@ inline bool passesThrough(const InstanceView& v, std::uint32_t prim, float b1, f
   return m.alphaMode == AlphaMode::Mask ? alpha < m.alphaCutoff : key >= alpha;
 }
 
+// True when a context filter drops candidate i of its call, a hit on
+// instance `inst`: the material's alpha cuts the hit away or lets it pass.
+inline bool alphaRejects(const SceneState& s, std::uint32_t inst, const RTCFilterFunctionNArguments* args, unsigned i) {
+  if (inst >= s.views.size() || !s.views[inst].material || !s.views[inst].material->alphaTested) return false;
+  const unsigned n = args->N;
+  const float ray[6] = {RTCRayN_org_x(args->ray, n, i), RTCRayN_org_y(args->ray, n, i), RTCRayN_org_z(args->ray, n, i),
+                        RTCRayN_dir_x(args->ray, n, i), RTCRayN_dir_y(args->ray, n, i), RTCRayN_dir_z(args->ray, n, i)};
+  const std::uint32_t prim = RTCHitN_primID(args->hit, n, i);
+  return passesThrough(s.views[inst], prim, RTCHitN_u(args->hit, n, i), RTCHitN_v(args->hit, n, i),
+                       hitKey(ray, inst, prim));
+}
+
 }  // namespace tsr::embree

@@ -2,6 +2,7 @@
 
 #include "filters/radiance_filter_step.hpp"
 #include "scene/instance_motion.hpp"
+#include "scene/streamed_geometry.hpp"
 #include "tracing/tracer.hpp"
 #include "tsr/backend/validate.hpp"
 #include "tsr/embree/error.hpp"
@@ -166,6 +167,11 @@ PassResult Renderer::runTiles(Scene& scene, const Region& region, PerPixel&& per
   if (result.refusedRays)
     spdlog::warn("tsr::embree: {} rays could not be traced (coordinates beyond {} or NaN) and were dropped",
                  result.refusedRays, kMaxRayComponent);
+  if (state.streamed) {
+    const TraceMemoryUse u = state.streamed->use();
+    spdlog::debug("tsr::embree: {} of {} clusters of the merged scene held ({:.0f} MB), {} built, {} dropped so far",
+                  u.built, u.clusters, double(u.heldBytes) * 1e-6, u.builds, u.evictions);
+  }
   totalRays_ += result.rays;
   result.completed = !cancelled.load();
   if (!result.completed) cancel_.store(false, std::memory_order_relaxed);

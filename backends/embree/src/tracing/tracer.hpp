@@ -117,14 +117,7 @@ struct TopLevelContext {
         inst = top < self.movingIds->size() ? (*self.movingIds)[top] : kNoId;
       else
         inst = (top == RTC_INVALID_GEOMETRY_ID || top == kMergedTopId) ? RTCHitN_geomID(args->hit, n, i) : top - 1;
-      if (inst >= s.views.size() || !s.views[inst].material || !s.views[inst].material->alphaTested) continue;
-      const float ray[6] = {RTCRayN_org_x(args->ray, n, i), RTCRayN_org_y(args->ray, n, i),
-                            RTCRayN_org_z(args->ray, n, i), RTCRayN_dir_x(args->ray, n, i),
-                            RTCRayN_dir_y(args->ray, n, i), RTCRayN_dir_z(args->ray, n, i)};
-      const std::uint32_t prim = RTCHitN_primID(args->hit, n, i);
-      if (passesThrough(s.views[inst], prim, RTCHitN_u(args->hit, n, i), RTCHitN_v(args->hit, n, i),
-                        hitKey(ray, inst, prim)))
-        args->valid[i] = 0;
+      if (alphaRejects(s, inst, args, i)) args->valid[i] = 0;
     }
   }
 };

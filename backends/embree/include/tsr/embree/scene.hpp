@@ -17,6 +17,32 @@ namespace tsr::embree {
 
 struct SceneState;
 
+// How much memory the path tracer's copy of the scene's single-use static
+// meshes (their world-space positions and BVH, the merged level) may take.
+// Within it they are built whole at commit; over it they are grouped in
+// clusters of about `clusterTriangles`, each built when a ray first reaches
+// it and dropped, least recently used first, once the built ones pass
+// `bytes` (src/scene/streamed_geometry.hpp). The default is a sixth of the
+// machine's memory: the 50 M-triangle plant (about 2.6 GB) is built whole
+// on a 24 GB machine, the 300 M one streamed.
+struct TraceMemory {
+  std::uint64_t bytes = defaultBytes();
+  std::uint32_t clusterTriangles = 1u << 19;
+  static std::uint64_t defaultBytes();
+  bool operator==(const TraceMemory&) const = default;
+};
+
+// What the merged level holds, as of now.
+struct TraceMemoryUse {
+  std::uint64_t wholeBytes = 0;  // estimated size of the merged level built whole
+  bool streamed = false;         // built by clusters as rays reach them
+  std::uint32_t clusters = 0;    // in the current partition
+  std::uint32_t built = 0;       // clusters built and not dropped
+  std::uint64_t heldBytes = 0;
+  std::uint64_t builds = 0;     // since the scene was made
+  std::uint64_t evictions = 0;  // built clusters dropped for the budget
+};
+
 // The back-end's own scene: meshes (one Embree scene each) instanced into a
 // top-level Embree scene. Every edit bumps version(), which is what the
 // renderer compares to decide whether accumulation must restart. Edits are
@@ -65,6 +91,12 @@ class Scene {
   // Commits pending edits to Embree and refreshes the derived data of what
   // they touched (views, emitters only if an emitter changed); idempotent.
   void commit();
+
+  // Takes effect at the next commit (the merged level is placed again if
+  // it changes form); the budget is not an edit: images stay the same but
+  // for rays through shared edges, and accumulation goes on.
+  void setTraceMemory(const TraceMemory& budget);
+  TraceMemoryUse traceMemoryUse() const;
 
   std::uint64_t version() const;
   // Bumped by every edit but setInstanceTransform: equal, the scene differs
