@@ -29,9 +29,9 @@ struct Crowd {
     const MaterialId id = scene.addMaterial(m);
     for (int i = 0; i < 40; ++i)
       for (int j = 0; j < 40; ++j)
-        scene.addInstance(scene.addMesh(test::uvSphere({0, 0, 0}, 0.2f, 2000, true)), id,
-                          glm::translate(glm::mat4(1.0f), glm::vec3(-10.0f + 0.5f * float(j), 0.2f,
-                                                                    -10.0f + 0.5f * float(i))));
+        scene.addInstance(
+            scene.addMesh(test::uvSphere({0, 0, 0}, 0.2f, 2000, true)), id,
+            glm::translate(glm::mat4(1.0f), glm::vec3(-10.0f + 0.5f * float(j), 0.2f, -10.0f + 0.5f * float(i))));
     scene.commit();
   }
 };

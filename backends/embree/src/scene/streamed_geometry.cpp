@@ -39,8 +39,8 @@ struct StreamedGeometry::Cluster {
   StreamedGeometry* owner = nullptr;
   std::vector<std::uint32_t> instances;  // geometry id in the built scene -> instance id
   RTCBounds bounds{};
-  std::uint64_t bytes = 0;  // estimated, mergedBytes
-  std::mutex building;      // one thread makes the copies; every thread that needs them joins the commit
+  std::uint64_t bytes = 0;         // estimated, mergedBytes
+  std::mutex building;             // one thread makes the copies; every thread that needs them joins the commit
   std::shared_ptr<Built> pending;  // made and maybe being committed (under `building`)
   // Committed and held: read by every ray that reaches the box, set under
   // `building` and the owner's cache_. A tracer's copy keeps it alive when
@@ -176,7 +176,8 @@ std::uint64_t spread(std::uint64_t x) {
 StreamedGeometry::StreamedGeometry(const SceneState& scene, TraceMemory budget)
     : scene_(scene),
       budget_(budget),
-      parallelCommit_(rtcGetDeviceProperty(scene.device->handle(), RTC_DEVICE_PROPERTY_PARALLEL_COMMIT_SUPPORTED) != 0) {}
+      parallelCommit_(rtcGetDeviceProperty(scene.device->handle(), RTC_DEVICE_PROPERTY_PARALLEL_COMMIT_SUPPORTED) !=
+                      0) {}
 
 StreamedGeometry::~StreamedGeometry() {
   for (RTCGeometry g : geometries_) rtcReleaseGeometry(g);
@@ -209,15 +210,17 @@ void StreamedGeometry::partition(RTCScene merged) {
     grow(centres, 0.5f * glm::vec3(b.lower_x + b.upper_x, b.lower_y + b.upper_y, b.lower_z + b.upper_z));
   }
   const glm::vec3 lo(centres.lower_x, centres.lower_y, centres.lower_z);
-  const glm::vec3 extent = glm::max(glm::vec3(centres.upper_x, centres.upper_y, centres.upper_z) - lo, glm::vec3(1e-30f));
+  const glm::vec3 extent =
+      glm::max(glm::vec3(centres.upper_x, centres.upper_y, centres.upper_z) - lo, glm::vec3(1e-30f));
   for (Entry& e : entries) {
     const glm::vec3 c = 0.5f * glm::vec3(e.bounds.lower_x + e.bounds.upper_x, e.bounds.lower_y + e.bounds.upper_y,
                                          e.bounds.lower_z + e.bounds.upper_z);
     const glm::vec3 q = glm::clamp((c - lo) / extent, 0.0f, 1.0f) * float(0x1fffff);
     e.code = spread(std::uint64_t(q.x)) | spread(std::uint64_t(q.y)) << 1 | spread(std::uint64_t(q.z)) << 2;
   }
-  std::sort(entries.begin(), entries.end(),
-            [](const Entry& a, const Entry& b) { return a.code != b.code ? a.code < b.code : a.instance < b.instance; });
+  std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
+    return a.code != b.code ? a.code < b.code : a.instance < b.instance;
+  });
   std::uint64_t triangles = 0;
   for (const Entry& e : entries) {
     if (clusters_.empty() || triangles >= budget_.clusterTriangles) {
