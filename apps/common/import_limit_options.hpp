@@ -30,8 +30,9 @@ class ImportLimitOptions {
     app.add_option("--max-elements", import.maxJsonValues,
                    "most values a glTF's JSON may hold; larger files are refused before parsing")
         ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40));
-    app.add_option("--import-cache", import.cacheDir,
-                   "folder for converted scenes: a file's second load reads its conversion from there");
+    app.add_option(
+        "--import-cache", import.cacheDir,
+        "folder for converted scenes: a file's (or built-in scene's) second load reads its conversion from there");
   }
   void apply(sg::ImportOptions& import) const { import.maxFileBytes = maxFileMb_ << 20; }
 

@@ -5,6 +5,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "builtin/builtin_scenes.hpp"
+#include "cache/parsed_scene_codec.hpp"
+#include "cache/scene_cache.hpp"
 #include "import_test_util.hpp"
 #include "tsr/sg/import/importer.hpp"
 #include "tsr/sg/import/scene_stats.hpp"
@@ -288,6 +291,25 @@ TEST(BuiltinScenes, BadNamesAndCountsAreImportErrors) {
   }
   EXPECT_EQ(scene.contentHash(), hash);
   EXPECT_FALSE(scene.hasPendingChanges());
+}
+
+// With --import-cache a built-in scene's conversion is kept under its name
+// (import_scene.cpp), so what a name makes may change only with the
+// importer version, which every cache entry carries: else a cache would
+// hand out the scene the generator made before.
+TEST(BuiltinScenes, ImporterVersionPinsWhatTheyMake) {
+  std::vector<std::uint8_t> made;
+  for (const parsed::Scene& s : {builtin::cornell(), builtin::cornellFog(), builtin::animated(), builtin::instances(50),
+                                 builtin::plant(20'000)}) {
+    const std::vector<std::uint8_t> bytes = parsed::encodeScene(s);
+    made.insert(made.end(), bytes.begin(), bytes.end());
+  }
+  const std::string digest = cache::key(made, ImportOptions{}).substr(0, 32);
+  constexpr std::uint32_t kPinnedVersion = 6;
+  const std::string pinned = "2e0aefdeabb5af4e030117543a613fe6";
+  EXPECT_EQ(cache::kImporterVersion, kPinnedVersion) << "the importer version changed: pin its built-in scenes' digest";
+  EXPECT_EQ(digest, pinned) << "a built-in scene changed: raise cache::kImporterVersion, then pin the new version and "
+                               "digest here";
 }
 
 }  // namespace

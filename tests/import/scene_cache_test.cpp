@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "builtin/builtin_scenes.hpp"
 #include "cache/parsed_scene_codec.hpp"
 #include "cache/scene_cache.hpp"
 #include "test_scenes.hpp"
@@ -121,6 +122,38 @@ TEST(SceneCache, FuzzSeedsAreEntriesOfTodaysFormat) {
     ++seeds;
   }
   EXPECT_GE(seeds, 4);
+}
+
+// A built-in scene is kept under its name; another name (another budget)
+// is another entry. The entry is the same bytes as the scene encoded whole
+// (the store streams the encoding to the file).
+TEST(SceneCache, ABuiltInSceneIsKeptUnderItsName) {
+  TempDir dir;
+  sg::ImportOptions options;
+  options.cacheDir = dir.file("cache");
+  const auto import = [&](const std::string& source) {
+    sg::Scene scene;
+    const sg::ImportResult r = sg::importScene(scene, source, options);
+    return std::pair{r.cache, r.counts.uniqueTriangles};
+  };
+  const auto first = import("builtin:plant:20000");
+  EXPECT_EQ(first.first, "stored");
+  const auto second = import("builtin:plant:20000");
+  EXPECT_EQ(second.first, "hit");
+  EXPECT_EQ(second.second, first.second);
+  EXPECT_EQ(import("builtin:plant:30000").first, "stored");
+  EXPECT_EQ(import("builtin:cornell").first, "stored");
+
+  std::size_t entries = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(options.cacheDir)) ++entries;
+  EXPECT_EQ(entries, 3u);
+  const std::string name = "tessera built-in scene builtin:cornell";
+  const fs::path entry = sg::cache::entryPath(
+      options.cacheDir, sg::cache::key({reinterpret_cast<const std::uint8_t*>(name.data()), name.size()}, options));
+  const std::vector<std::uint8_t> bytes = readBytes(entry.string());
+  const std::vector<std::uint8_t> whole = sg::parsed::encodeScene(sg::builtin::cornell());
+  ASSERT_EQ(bytes.size(), sg::cache::kHeaderBytes + whole.size());
+  EXPECT_TRUE(std::equal(whole.begin(), whole.end(), bytes.begin() + sg::cache::kHeaderBytes));
 }
 
 TEST(SceneCache, ChangedFileIsConvertedAgain) {

@@ -53,11 +53,19 @@ parsed::Scene parseBuiltin(const std::string& source) {
 
 // A file through the converted-scene cache (ImportOptions::cacheDir): the
 // kept conversion when its entry checks out, else the file parsed and kept.
+// A built-in scene is kept too (the 300 M-triangle plant takes minutes to
+// make and seconds to read back), keyed by its name: what the generators
+// make for a name is pinned to the importer version by a test
+// (BuiltinScenes.ImporterVersionPinsWhatTheyMake).
 parsed::Scene parseCached(const std::string& source, const ImportOptions& options, std::string& note) {
+  const bool builtin = source.starts_with(kBuiltinPrefix);
+  const std::string name = "tessera built-in scene " + source;
   // The file's bytes are mapped while they are hashed (and parsed on a
   // miss), not while the kept conversion is read: a hit keeps the entry
   // mapped as long as the scene's arrays live in it, never the source.
-  const std::string key = cache::key(gltf::mapSource(source, options).bytes(), options);
+  const std::string key = builtin
+                              ? cache::key({reinterpret_cast<const std::uint8_t*>(name.data()), name.size()}, options)
+                              : cache::key(gltf::mapSource(source, options).bytes(), options);
   const std::filesystem::path entry = cache::entryPath(options.cacheDir, key);
   std::string why;
   if (std::optional<parsed::Scene> kept = cache::load(entry, key, why)) {
@@ -68,13 +76,14 @@ parsed::Scene parseCached(const std::string& source, const ImportOptions& option
   const bool refused = why != "no entry";
   if (refused)
     spdlog::warn("{}: the converted scene in {} is refused ({}); converting again", source, entry.string(), why);
-  const MappedFile file = gltf::mapSource(source, options);
+  const MappedFile file = builtin ? MappedFile() : gltf::mapSource(source, options);
   parsed::Scene scene =
-      gltf::parseBytes(file.bytes(), source, std::filesystem::path(source).parent_path().string(), options);
+      builtin ? parseBuiltin(source)
+              : gltf::parseBytes(file.bytes(), source, std::filesystem::path(source).parent_path().string(), options);
   std::string failed;
   if (scene.readOtherFiles)
     note = "not stored (the file names external buffers or images)";
-  else if (cache::key(file.bytes(), options) != key)
+  else if (!builtin && cache::key(file.bytes(), options) != key)
     // Replaced between the two mappings: its conversion must not be kept
     // under the key of the bytes hashed first.
     note = "not stored (the file changed while it was read)";
@@ -115,7 +124,7 @@ std::vector<std::string> builtinSceneNames() {
 }
 
 ImportResult importScene(Scene& scene, const std::string& source, const ImportOptions& options) {
-  const bool cached = !options.cacheDir.empty() && !source.starts_with(kBuiltinPrefix);
+  const bool cached = !options.cacheDir.empty();
   std::string note;
   ImportResult result = parsedAndBuilt(scene, source, [&] {
     if (cached) return parseCached(source, options, note);

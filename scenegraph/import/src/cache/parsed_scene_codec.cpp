@@ -14,14 +14,16 @@ namespace {
 
 constexpr std::size_t kArrayAlignment = 8;
 
+// Writes through a sink in pieces: a large array goes straight from the
+// scene's memory, small values are gathered first, so the whole encoding
+// (as large as the scene's arrays) is never held.
 class Writer {
  public:
-  std::vector<std::uint8_t> out;
+  explicit Writer(const ByteSink& sink) : sink_(sink) {}
   template <class T>
   void pod(const T& v) {
     static_assert(std::is_trivially_copyable_v<T>);
-    const auto* p = reinterpret_cast<const std::uint8_t*>(&v);
-    out.insert(out.end(), p, p + sizeof(T));
+    bytes(&v, sizeof(T));
   }
   // Elements start on a multiple of kArrayAlignment, so a mapped entry's
   // arrays can be used in place.
@@ -29,10 +31,9 @@ class Writer {
   void array(std::span<const T> v) {
     static_assert(kArrayAlignment % alignof(T) == 0);
     pod(std::uint64_t(v.size()));
-    out.resize((out.size() + kArrayAlignment - 1) / kArrayAlignment * kArrayAlignment, 0);
-    if (v.empty()) return;
-    const auto* p = reinterpret_cast<const std::uint8_t*>(v.data());
-    out.insert(out.end(), p, p + v.size() * sizeof(T));
+    static constexpr std::uint8_t kZeros[kArrayAlignment] = {};
+    bytes(kZeros, (kArrayAlignment - size_ % kArrayAlignment) % kArrayAlignment);
+    bytes(v.data(), v.size_bytes());
   }
   template <class T>
   void array(const std::vector<T>& v) {
@@ -40,8 +41,31 @@ class Writer {
   }
   void text(const std::string& s) {
     pod(std::uint64_t(s.size()));
-    out.insert(out.end(), s.begin(), s.end());
+    bytes(s.data(), s.size());
   }
+  void finish() { flush(); }
+
+ private:
+  static constexpr std::size_t kGathered = std::size_t(1) << 20;
+  void bytes(const void* data, std::size_t n) {
+    if (n == 0) return;
+    size_ += n;
+    const auto* p = static_cast<const std::uint8_t*>(data);
+    if (n >= kGathered / 4) {
+      flush();
+      sink_({p, n});
+      return;
+    }
+    gathered_.insert(gathered_.end(), p, p + n);
+    if (gathered_.size() >= kGathered) flush();
+  }
+  void flush() {
+    if (!gathered_.empty()) sink_(gathered_);
+    gathered_.clear();
+  }
+  const ByteSink& sink_;
+  std::vector<std::uint8_t> gathered_;
+  std::uint64_t size_ = 0;  // bytes written so far: where the next array's padding ends
 };
 
 class Reader {
@@ -219,7 +243,13 @@ Node getNode(Reader& r) {
 }  // namespace
 
 std::vector<std::uint8_t> encodeScene(const Scene& s) {
-  Writer w;
+  std::vector<std::uint8_t> out;
+  encodeScene(s, [&](std::span<const std::uint8_t> piece) { out.insert(out.end(), piece.begin(), piece.end()); });
+  return out;
+}
+
+void encodeScene(const Scene& s, const ByteSink& sink) {
+  Writer w(sink);
   w.pod(std::uint64_t(s.images.size()));
   for (const Image& i : s.images) {
     w.text(i.name);
@@ -288,7 +318,7 @@ std::vector<std::uint8_t> encodeScene(const Scene& s) {
   w.pod(std::uint64_t(s.warnings.size()));
   for (const std::string& warning : s.warnings) w.text(warning);
   w.pod(std::uint64_t(s.skippedPrimitives));
-  return std::move(w.out);
+  w.finish();
 }
 
 Scene decodeScene(std::span<const std::uint8_t> bytes, const std::shared_ptr<const void>& keeper) {

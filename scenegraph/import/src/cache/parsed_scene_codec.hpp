@@ -6,6 +6,7 @@
 // left before anything is allocated, enums against their range, and the
 // result is validated (parsed_scene_validation.hpp) before it is returned.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -15,6 +16,10 @@
 namespace tsr::sg::parsed {
 
 std::vector<std::uint8_t> encodeScene(const Scene& scene);
+// The same bytes handed to `sink` in order, in pieces: the 300 M-triangle
+// plant's 12 GB are written to a file without a second copy in memory.
+using ByteSink = std::function<void(std::span<const std::uint8_t>)>;
+void encodeScene(const Scene& scene, const ByteSink& sink);
 // Throws std::runtime_error naming what is wrong. With a `keeper` (of
 // `bytes`' memory) the meshes' arrays are used in place (Primitive::held),
 // else copied.

@@ -23,13 +23,14 @@ constexpr std::uint32_t kFormat = 2;
 
 // XXH3's 128 bits: not cryptographic, but accidental collisions are
 // negligible, and a matching entry is still validated like any outside input.
-std::string hashOf(std::span<const std::uint8_t> bytes) {
-  const XXH128_hash_t h = XXH3_128bits(bytes.data(), bytes.size());
+std::string hex(const XXH128_hash_t& h) {
   char out[33];
   std::snprintf(out, sizeof out, "%016llx%016llx", static_cast<unsigned long long>(h.high64),
                 static_cast<unsigned long long>(h.low64));
   return out;
 }
+
+std::string hashOf(std::span<const std::uint8_t> bytes) { return hex(XXH3_128bits(bytes.data(), bytes.size())); }
 
 struct Header {
   char magic[8];
@@ -107,23 +108,31 @@ std::optional<parsed::Scene> load(const fs::path& entry, const std::string& key,
 }
 
 bool store(const fs::path& entry, const std::string& key, const parsed::Scene& scene, std::string& why) {
-  const std::vector<std::uint8_t> payload = parsed::encodeScene(scene);
   Header h{};
   std::memcpy(h.magic, kMagic, 8);
   h.format = kFormat;
   h.importerVersion = kImporterVersion;
   if (key.size() != sizeof h.key) throw std::logic_error("cache keys are 64 characters");
   std::memcpy(h.key, key.data(), sizeof h.key);
-  h.payloadBytes = payload.size();
-  std::memcpy(h.payloadHash, hashOf(payload).data(), sizeof h.payloadHash);
   std::error_code ec;
   fs::create_directories(entry.parent_path(), ec);
   // Another process may write the same entry: each writes its own file, the rename is atomic.
   const fs::path temporary = entry.string() + ".tmp" + std::to_string(::getpid());
   {
+    // The payload is hashed as it is written; the header, written last,
+    // carries its size and hash.
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     out.write(reinterpret_cast<const char*>(&h), sizeof h);
-    out.write(reinterpret_cast<const char*>(payload.data()), static_cast<std::streamsize>(payload.size()));
+    const std::unique_ptr<XXH3_state_t, decltype(&XXH3_freeState)> hash(XXH3_createState(), XXH3_freeState);
+    if (!hash || XXH3_128bits_reset(hash.get()) != XXH_OK) throw std::bad_alloc();
+    parsed::encodeScene(scene, [&](std::span<const std::uint8_t> piece) {
+      XXH3_128bits_update(hash.get(), piece.data(), piece.size());
+      out.write(reinterpret_cast<const char*>(piece.data()), static_cast<std::streamsize>(piece.size()));
+      h.payloadBytes += piece.size();
+    });
+    std::memcpy(h.payloadHash, hex(XXH3_128bits_digest(hash.get())).data(), sizeof h.payloadHash);
+    out.seekp(0);
+    out.write(reinterpret_cast<const char*>(&h), sizeof h);
     if (!out.flush()) {
       why = "cannot write '" + temporary.string() + "'";
       fs::remove(temporary, ec);
