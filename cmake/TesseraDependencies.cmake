@@ -18,7 +18,7 @@ if(NOT TSR_ONLY_SCENEGRAPH)
   find_package(meshoptimizer CONFIG REQUIRED)  # EXT_meshopt_compression on import
   find_package(nlohmann_json 3 REQUIRED)
   find_package(PkgConfig REQUIRED)
-  pkg_check_modules(XXHASH REQUIRED IMPORTED_TARGET libxxhash)  # the import cache's hashes; no CMake package in Debian
+  pkg_check_modules(XXHASH REQUIRED IMPORTED_TARGET libxxhash>=0.8)  # the import cache's hashes; no CMake package in Debian
   find_package(CLI11 REQUIRED)
   find_package(TBB REQUIRED COMPONENTS tbb)
   find_package(embree 3 REQUIRED)

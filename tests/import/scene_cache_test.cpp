@@ -118,7 +118,8 @@ TEST(SceneCache, FuzzSeedsAreEntriesOfTodaysFormat) {
   int seeds = 0;
   for (const auto& e : fs::directory_iterator(TSR_IMPORT_CACHE_SEEDS)) {
     SCOPED_TRACE(e.path().string());
-    EXPECT_NO_THROW(sg::parsed::decodeScene(readBytes(e.path().string())));
+    const std::vector<std::uint8_t> seed = readBytes(e.path().string());
+    EXPECT_NO_THROW(EXPECT_EQ(sg::parsed::encodeScene(sg::parsed::decodeScene(seed)), seed));
     ++seeds;
   }
   EXPECT_GE(seeds, 4);
@@ -133,27 +134,42 @@ TEST(SceneCache, ABuiltInSceneIsKeptUnderItsName) {
   options.cacheDir = dir.file("cache");
   const auto import = [&](const std::string& source) {
     sg::Scene scene;
-    const sg::ImportResult r = sg::importScene(scene, source, options);
-    return std::pair{r.cache, r.counts.uniqueTriangles};
+    return sg::importScene(scene, source, options);
   };
-  const auto first = import("builtin:plant:20000");
-  EXPECT_EQ(first.first, "stored");
-  const auto second = import("builtin:plant:20000");
-  EXPECT_EQ(second.first, "hit");
-  EXPECT_EQ(second.second, first.second);
-  EXPECT_EQ(import("builtin:plant:30000").first, "stored");
-  EXPECT_EQ(import("builtin:cornell").first, "stored");
+  const sg::ImportResult first = import("builtin:plant:20000");
+  EXPECT_EQ(first.cache, "stored");
+  const sg::ImportResult second = import("builtin:plant:020000");  // the same scene, the same entry
+  EXPECT_EQ(second.cache, "hit");
+  EXPECT_EQ(second.counts.uniqueTriangles, first.counts.uniqueTriangles);
+  EXPECT_EQ(import("builtin:plant:30000").cache, "stored");
+  EXPECT_EQ(import("builtin:cornell").cache, "stored");
+  // The Cornell box's unit (millimetres) survives the cache.
+  const sg::ImportResult cornell = import("builtin:cornell");
+  EXPECT_EQ(cornell.cache, "hit");
+  EXPECT_FLOAT_EQ(cornell.metresPerUnit, 0.001f);
 
   std::size_t entries = 0;
   for ([[maybe_unused]] const auto& e : fs::directory_iterator(options.cacheDir)) ++entries;
   EXPECT_EQ(entries, 3u);
-  const std::string name = "tessera built-in scene builtin:cornell";
-  const fs::path entry = sg::cache::entryPath(
-      options.cacheDir, sg::cache::key({reinterpret_cast<const std::uint8_t*>(name.data()), name.size()}, options));
+  const fs::path entry = sg::cache::entryPath(options.cacheDir, sg::cache::builtinKey("builtin:cornell"));
   const std::vector<std::uint8_t> bytes = readBytes(entry.string());
   const std::vector<std::uint8_t> whole = sg::parsed::encodeScene(sg::builtin::cornell());
   ASSERT_EQ(bytes.size(), sg::cache::kHeaderBytes + whole.size());
   EXPECT_TRUE(std::equal(whole.begin(), whole.end(), bytes.begin() + sg::cache::kHeaderBytes));
+}
+
+// A cache folder that cannot be made (a file stands where it should be):
+// the import succeeds, the scene is not kept, and no temporary file stays.
+TEST(SceneCache, AnEntryThatCannotBeWrittenLeavesTheImportWhole) {
+  Cached c;
+  writeBytes(c.dir.file("blocked"), {1});
+  c.options.cacheDir = c.dir.file("blocked") + "/cache";
+  const auto first = c.import();
+  EXPECT_NE(first.first.find("not stored (cannot write"), std::string::npos) << first.first;
+  EXPECT_EQ(first.second.size(), 3u);
+  std::size_t files = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(c.dir.path())) ++files;
+  EXPECT_EQ(files, 2u) << "the scene and the blocking file, nothing else";
 }
 
 TEST(SceneCache, ChangedFileIsConvertedAgain) {

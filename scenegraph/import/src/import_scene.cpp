@@ -36,6 +36,21 @@ std::uint64_t count(const std::string& source, std::string_view digits, std::uin
   return n;
 }
 
+// The name as the cache keys it: counts without leading zeros or signs
+// ("plant:020000" is "plant:20000"); throws the parser's ImportError.
+std::string canonicalBuiltin(const std::string& source) {
+  const std::string_view name = std::string_view(source).substr(kBuiltinPrefix.size());
+  constexpr std::string_view instances = "instances:", plant = "plant:";
+  if (name.starts_with(instances))
+    return std::string(kBuiltinPrefix) + std::string(instances) +
+           std::to_string(count(source, name.substr(instances.size()), 1, kMaxInstances, "the instance count"));
+  if (name.starts_with(plant))
+    return std::string(kBuiltinPrefix) + std::string(plant) +
+           std::to_string(count(source, name.substr(plant.size()), builtin::kPlantMinTriangles,
+                                builtin::kPlantMaxTriangles, "the triangle budget"));
+  return source;
+}
+
 parsed::Scene parseBuiltin(const std::string& source) {
   const std::string_view name = std::string_view(source).substr(kBuiltinPrefix.size());
   if (name == "cornell") return builtin::cornell();
@@ -59,13 +74,11 @@ parsed::Scene parseBuiltin(const std::string& source) {
 // (BuiltinScenes.ImporterVersionPinsWhatTheyMake).
 parsed::Scene parseCached(const std::string& source, const ImportOptions& options, std::string& note) {
   const bool builtin = source.starts_with(kBuiltinPrefix);
-  const std::string name = "tessera built-in scene " + source;
   // The file's bytes are mapped while they are hashed (and parsed on a
   // miss), not while the kept conversion is read: a hit keeps the entry
   // mapped as long as the scene's arrays live in it, never the source.
-  const std::string key = builtin
-                              ? cache::key({reinterpret_cast<const std::uint8_t*>(name.data()), name.size()}, options)
-                              : cache::key(gltf::mapSource(source, options).bytes(), options);
+  const std::string key = builtin ? cache::builtinKey(canonicalBuiltin(source))
+                                  : cache::key(gltf::mapSource(source, options).bytes(), options);
   const std::filesystem::path entry = cache::entryPath(options.cacheDir, key);
   std::string why;
   if (std::optional<parsed::Scene> kept = cache::load(entry, key, why)) {

@@ -1,5 +1,6 @@
 #include "cache/parsed_scene_codec.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <memory>
@@ -318,6 +319,7 @@ void encodeScene(const Scene& s, const ByteSink& sink) {
   w.pod(std::uint64_t(s.warnings.size()));
   for (const std::string& warning : s.warnings) w.text(warning);
   w.pod(std::uint64_t(s.skippedPrimitives));
+  w.pod(s.metresPerUnit);
   w.finish();
 }
 
@@ -398,6 +400,9 @@ Scene decodeScene(std::span<const std::uint8_t> bytes, const std::shared_ptr<con
   s.warnings.resize(r.count(8));
   for (std::string& warning : s.warnings) warning = r.text();
   s.skippedPrimitives = r.pod<std::uint64_t>();
+  s.metresPerUnit = r.pod<float>();
+  if (!(s.metresPerUnit > 0.0f && std::isfinite(s.metresPerUnit)))
+    throw std::runtime_error("a scene unit of " + std::to_string(s.metresPerUnit) + " m: expected a length above 0");
   if (!r.done()) throw std::runtime_error("bytes follow the scene");
   validateScene(s);
   return s;

@@ -19,7 +19,8 @@ namespace {
 namespace fs = std::filesystem;
 constexpr char kMagic[8] = {'T', 'S', 'R', 'S', 'C', 'E', 'N', 'E'};
 // 2: arrays 8-byte aligned in the payload (used in place), XXH3 checksums.
-constexpr std::uint32_t kFormat = 2;
+// 3: the scene unit (metresPerUnit) after the rest.
+constexpr std::uint32_t kFormat = 3;
 
 // XXH3's 128 bits: not cryptographic, but accidental collisions are
 // negligible, and a matching entry is still validated like any outside input.
@@ -46,9 +47,18 @@ static_assert(kHeaderBytes % 8 == 0, "the payload's arrays are aligned within a 
 }  // namespace
 
 std::string key(std::span<const std::uint8_t> source, const ImportOptions& o) {
-  const std::uint64_t settings[] = {kImporterVersion, o.smoothNormals,       o.maxFileBytes,
-                                    o.maxJsonValues,  o.maxAccessorElements, o.maxImagePixels};
+  constexpr std::uint64_t kFile = 0;
+  const std::uint64_t settings[] = {kImporterVersion, kFile,           o.smoothNormals,
+                                    o.maxFileBytes,   o.maxJsonValues, o.maxAccessorElements,
+                                    o.maxImagePixels};
   return hashOf(source) + hashOf({reinterpret_cast<const std::uint8_t*>(settings), sizeof settings});
+}
+
+std::string builtinKey(const std::string& canonicalName) {
+  constexpr std::uint64_t kBuiltin = 1;
+  const std::uint64_t settings[] = {kImporterVersion, kBuiltin};
+  return hashOf({reinterpret_cast<const std::uint8_t*>(canonicalName.data()), canonicalName.size()}) +
+         hashOf({reinterpret_cast<const std::uint8_t*>(settings), sizeof settings});
 }
 
 fs::path entryPath(const fs::path& dir, const std::string& key) { return dir / (key + ".tsrscene"); }
@@ -118,26 +128,35 @@ bool store(const fs::path& entry, const std::string& key, const parsed::Scene& s
   fs::create_directories(entry.parent_path(), ec);
   // Another process may write the same entry: each writes its own file, the rename is atomic.
   const fs::path temporary = entry.string() + ".tmp" + std::to_string(::getpid());
-  {
-    // The payload is hashed as it is written; the header, written last,
-    // carries its size and hash.
+  // The payload is hashed as it is written; the header, written last,
+  // carries its size and hash. A failure at any point (the disk full, no
+  // memory) removes the temporary file and only leaves the scene unkept.
+  struct WriteFailed {};
+  try {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) throw WriteFailed{};
     out.write(reinterpret_cast<const char*>(&h), sizeof h);
     const std::unique_ptr<XXH3_state_t, decltype(&XXH3_freeState)> hash(XXH3_createState(), XXH3_freeState);
     if (!hash || XXH3_128bits_reset(hash.get()) != XXH_OK) throw std::bad_alloc();
     parsed::encodeScene(scene, [&](std::span<const std::uint8_t> piece) {
       XXH3_128bits_update(hash.get(), piece.data(), piece.size());
       out.write(reinterpret_cast<const char*>(piece.data()), static_cast<std::streamsize>(piece.size()));
+      if (!out) throw WriteFailed{};  // stop encoding gigabytes nobody can keep
       h.payloadBytes += piece.size();
     });
     std::memcpy(h.payloadHash, hex(XXH3_128bits_digest(hash.get())).data(), sizeof h.payloadHash);
     out.seekp(0);
     out.write(reinterpret_cast<const char*>(&h), sizeof h);
-    if (!out.flush()) {
-      why = "cannot write '" + temporary.string() + "'";
-      fs::remove(temporary, ec);
-      return false;
-    }
+    out.close();
+    if (!out) throw WriteFailed{};
+  } catch (const WriteFailed&) {
+    why = "cannot write '" + temporary.string() + "'";
+    fs::remove(temporary, ec);
+    return false;
+  } catch (const std::bad_alloc&) {
+    why = "out of memory while writing '" + temporary.string() + "'";
+    fs::remove(temporary, ec);
+    return false;
   }
   // The owner's alone to rewrite, whatever the umask: a load uses such an
   // entry's arrays in place (MappedFile::stable).

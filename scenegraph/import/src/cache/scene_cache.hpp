@@ -16,15 +16,22 @@
 
 namespace tsr::sg::cache {
 
-// Bump whenever the conversion of a file would give a different parsed::Scene.
+// Bump whenever the conversion of a file, or what a built-in scene's
+// generator makes, would give a different parsed::Scene (a test pins the
+// built-in scenes to it: BuiltinScenes.ImporterVersionPinsWhatTheyMake).
 // 2: materials and the scene carry volumes (KHR_materials_volume, TSR_*).
 // 4: cameras carry a thin lens (TSR_camera_lens).
 // 6: primitives may be lines or points (glTF modes 0-3).
-inline constexpr std::uint32_t kImporterVersion = 6;
+// 7: built-in scenes are kept too; entries carry the scene unit.
+inline constexpr std::uint32_t kImporterVersion = 7;
 // An entry's header; the encoded scene follows.
 inline constexpr std::size_t kHeaderBytes = 120;
 
+// A file's key: its bytes and the options. A built-in scene's: its
+// canonical name alone (the options do not change what it makes), never
+// equal to a file's of the same bytes.
 std::string key(std::span<const std::uint8_t> source, const ImportOptions& options);
+std::string builtinKey(const std::string& canonicalName);
 std::filesystem::path entryPath(const std::filesystem::path& dir, const std::string& key);
 
 // The scene, or nothing with `why` set. Its meshes' arrays may be the mapped

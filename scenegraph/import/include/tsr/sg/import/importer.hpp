@@ -41,7 +41,8 @@ struct ImportOptions {
   // hash, the importer's version and these options, and read back instead
   // of parsing the file again; an entry that does not check out (wrong key
   // or version, damaged, truncated, invalid) is refused and rebuilt. Files
-  // that name external buffers or images are not kept.
+  // that name external buffers or images are not kept. A built-in scene is
+  // kept under its name (and the importer's version).
   std::string cacheDir = {};
 };
 
