@@ -9,14 +9,29 @@
 
 #include <algorithm>
 #include <cstring>
+#include <fstream>
 #include <limits>
+#include <optional>
 
 namespace tsr::embree {
 
+namespace {
+
+// A container's memory limit (cgroup v2's memory.max), when one is set.
+std::optional<std::uint64_t> cgroupLimit() {
+  std::ifstream in("/sys/fs/cgroup/memory.max");
+  std::uint64_t bytes = 0;
+  if (in >> bytes) return bytes;  // "max" (no limit) does not parse
+  return std::nullopt;
+}
+
+}  // namespace
+
 std::uint64_t TraceMemory::defaultBytes() {
   const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGE_SIZE);
-  if (pages <= 0 || size <= 0) return std::uint64_t(4) << 30;
-  return std::uint64_t(pages) * std::uint64_t(size) / 6;
+  std::uint64_t machine = pages > 0 && size > 0 ? std::uint64_t(pages) * std::uint64_t(size) : std::uint64_t(24) << 30;
+  if (const auto limit = cgroupLimit()) machine = std::min(machine, *limit);
+  return std::max<std::uint64_t>(machine / 6, 1);
 }
 
 std::uint64_t mergedBytes(std::uint64_t vertices, std::uint64_t triangles) {

@@ -23,7 +23,7 @@ struct SceneState;
 // clusters of about `clusterTriangles`, each built when a ray first reaches
 // it and dropped, least recently used first, once the built ones pass
 // `bytes` (src/scene/streamed_geometry.hpp). The default is a sixth of the
-// machine's memory: the 50 M-triangle plant (about 2.6 GB) is built whole
+// machine's memory (of a container's cgroup limit when lower): the 50 M-triangle plant (about 2.6 GB) is built whole
 // on a 24 GB machine, the 300 M one streamed.
 struct TraceMemory {
   std::uint64_t bytes = defaultBytes();
