@@ -4,12 +4,14 @@
 // truncated or invalid, which never fails the import.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <memory>
 
 #include "builtin/builtin_scenes.hpp"
 #include "cache/parsed_scene_codec.hpp"
 #include "cache/scene_cache.hpp"
+#include "cache/stamp_index.hpp"
 #include "test_scenes.hpp"
 #include "tsr/sg/geometry.hpp"
 #include "tsr/sg/import/importer.hpp"
@@ -170,6 +172,42 @@ TEST(SceneCache, AnEntryThatCannotBeWrittenLeavesTheImportWhole) {
   std::size_t files = 0;
   for ([[maybe_unused]] const auto& e : fs::directory_iterator(c.dir.path())) ++files;
   EXPECT_EQ(files, 2u) << "the scene and the blocking file, nothing else";
+}
+
+// A file last modified long enough ago is found again by its stamp (its
+// bytes are not hashed); a new modification time makes it hashed again.
+// A file modified just now gets no stamp recorded.
+TEST(SceneCache, AnUnchangedFileIsFoundByItsStamp) {
+  Cached c;
+  const auto stamps = [&] {
+    std::size_t n = 0;
+    for (const auto& e : fs::directory_iterator(c.options.cacheDir)) n += e.path().extension() == ".tsrstamp";
+    return n;
+  };
+  EXPECT_EQ(c.import().first, "stored");
+  EXPECT_EQ(stamps(), 0u) << "modified too recently to be known by its stamp";
+  fs::last_write_time(c.file, fs::file_time_type::clock::now() - std::chrono::hours(1));
+  EXPECT_EQ(c.import().first, "hit");
+  ASSERT_EQ(stamps(), 1u);
+  // Known by the stamp alone: a same-sized file of other bytes with the
+  // recorded stamp's time would be taken for the old one, which is why a
+  // stamp is only recorded for files that settled before they were hashed.
+  const auto recorded = sg::cache::FileStamp::of(c.file);
+  ASSERT_TRUE(recorded);
+  const auto key = sg::cache::recordedKey(c.options.cacheDir, c.file, c.options, *recorded);
+  ASSERT_TRUE(key);
+  EXPECT_EQ(*key, sg::cache::key(readBytes(c.file), c.options));
+  EXPECT_EQ(c.import().first, "hit");
+
+  GltfBuilder b = tinyScene();
+  b.doc["nodes"][0]["name"] = "renamed";
+  b.writeGlb(c.file);
+  fs::last_write_time(c.file, fs::file_time_type::clock::now() - std::chrono::minutes(30));
+  EXPECT_FALSE(sg::cache::recordedKey(c.options.cacheDir, c.file, c.options, *sg::cache::FileStamp::of(c.file)));
+  EXPECT_EQ(c.import().first, "stored");
+  const auto renamed = sg::cache::recordedKey(c.options.cacheDir, c.file, c.options, *sg::cache::FileStamp::of(c.file));
+  ASSERT_TRUE(renamed);
+  EXPECT_NE(*renamed, *key);
 }
 
 TEST(SceneCache, ChangedFileIsConvertedAgain) {

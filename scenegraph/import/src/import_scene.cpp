@@ -7,6 +7,7 @@
 
 #include "builtin/builtin_scenes.hpp"
 #include "cache/scene_cache.hpp"
+#include "cache/stamp_index.hpp"
 #include "gltf/gltf_importer.hpp"
 #include "gltf/gltf_loader.hpp"
 #include "parsed_scene.hpp"
@@ -74,15 +75,22 @@ parsed::Scene parseBuiltin(const std::string& source) {
 // (BuiltinScenes.ImporterVersionPinsWhatTheyMake).
 parsed::Scene parseCached(const std::string& source, const ImportOptions& options, std::string& note) {
   const bool builtin = source.starts_with(kBuiltinPrefix);
-  // The file's bytes are mapped while they are hashed (and parsed on a
-  // miss), not while the kept conversion is read: a hit keeps the entry
-  // mapped as long as the scene's arrays live in it, never the source.
-  const std::string key = builtin ? cache::builtinKey(canonicalBuiltin(source))
-                                  : cache::key(gltf::mapSource(source, options).bytes(), options);
+  // A file unchanged since it was last hashed is known by its stamp
+  // (stamp_index.hpp); else its bytes are mapped while they are hashed (and
+  // parsed on a miss), not while the kept conversion is read: a hit keeps
+  // the entry mapped as long as the scene's arrays live in it, never the
+  // source.
+  const std::optional<cache::FileStamp> stamp = builtin ? std::nullopt : cache::FileStamp::of(source);
+  const std::optional<std::string> recorded =
+      stamp ? cache::recordedKey(options.cacheDir, source, options, *stamp) : std::nullopt;
+  const std::string key = builtin    ? cache::builtinKey(canonicalBuiltin(source))
+                          : recorded ? *recorded
+                                     : cache::key(gltf::mapSource(source, options).bytes(), options);
   const std::filesystem::path entry = cache::entryPath(options.cacheDir, key);
   std::string why;
   if (std::optional<parsed::Scene> kept = cache::load(entry, key, why)) {
     spdlog::info("{}: converted scene read from {}", source, entry.string());
+    if (stamp && !recorded) cache::recordKey(options.cacheDir, source, options, *stamp, key);
     note = "hit";
     return std::move(*kept);
   }
@@ -94,6 +102,7 @@ parsed::Scene parseCached(const std::string& source, const ImportOptions& option
       builtin ? parseBuiltin(source)
               : gltf::parseBytes(file.bytes(), source, std::filesystem::path(source).parent_path().string(), options);
   std::string failed;
+  bool kept = false;
   if (scene.readOtherFiles)
     note = "not stored (the file names external buffers or images)";
   else if (!builtin && cache::key(file.bytes(), options) != key)
@@ -102,8 +111,11 @@ parsed::Scene parseCached(const std::string& source, const ImportOptions& option
     note = "not stored (the file changed while it was read)";
   else if (!cache::store(entry, key, scene, failed))
     note = "not stored (" + failed + ")";
-  else
+  else {
     note = refused ? "rebuilt (" + why + ")" : "stored";
+    kept = true;
+  }
+  if (kept && stamp) cache::recordKey(options.cacheDir, source, options, *stamp, key);
   spdlog::info("{}: converted scene {} in {}", source, note, options.cacheDir);
   return scene;
 }
