@@ -37,35 +37,40 @@ std::uint64_t count(const std::string& source, std::string_view digits, std::uin
   return n;
 }
 
-// The name as the cache keys it: counts without leading zeros or signs
-// ("plant:020000" is "plant:20000"); throws the parser's ImportError.
-std::string canonicalBuiltin(const std::string& source) {
+// A built-in scene's name, read once: which generator and its count (0
+// for those without one). Unknown names and bad counts are ImportErrors.
+struct BuiltinName {
+  std::string_view kind;  // "cornell", "instances:", "plant:", ...
+  std::uint64_t count = 0;
+  // As the cache keys it: the count without leading zeros ("plant:020000"
+  // is "plant:20000").
+  std::string canonical() const {
+    return std::string(kBuiltinPrefix) + std::string(kind) + (kind.ends_with(':') ? std::to_string(count) : "");
+  }
+};
+
+BuiltinName readBuiltinName(const std::string& source) {
   const std::string_view name = std::string_view(source).substr(kBuiltinPrefix.size());
+  for (std::string_view fixed : {"cornell", "cornell-fog", "animated"})
+    if (name == fixed) return {fixed};
   constexpr std::string_view instances = "instances:", plant = "plant:";
   if (name.starts_with(instances))
-    return std::string(kBuiltinPrefix) + std::string(instances) +
-           std::to_string(count(source, name.substr(instances.size()), 1, kMaxInstances, "the instance count"));
+    return {instances, count(source, name.substr(instances.size()), 1, kMaxInstances, "the instance count")};
   if (name.starts_with(plant))
-    return std::string(kBuiltinPrefix) + std::string(plant) +
-           std::to_string(count(source, name.substr(plant.size()), builtin::kPlantMinTriangles,
-                                builtin::kPlantMaxTriangles, "the triangle budget"));
-  return source;
-}
-
-parsed::Scene parseBuiltin(const std::string& source) {
-  const std::string_view name = std::string_view(source).substr(kBuiltinPrefix.size());
-  if (name == "cornell") return builtin::cornell();
-  if (name == "cornell-fog") return builtin::cornellFog();
-  if (name == "animated") return builtin::animated();
-  constexpr std::string_view instances = "instances:";
-  if (name.starts_with(instances))
-    return builtin::instances(count(source, name.substr(instances.size()), 1, kMaxInstances, "the instance count"));
-  constexpr std::string_view plant = "plant:";
-  if (name.starts_with(plant))
-    return builtin::plant(count(source, name.substr(plant.size()), builtin::kPlantMinTriangles,
-                                builtin::kPlantMaxTriangles, "the triangle budget"));
+    return {plant, count(source, name.substr(plant.size()), builtin::kPlantMinTriangles, builtin::kPlantMaxTriangles,
+                         "the triangle budget")};
   throw ImportError(source, "unknown built-in scene; valid names are " + joined(builtinSceneNames()));
 }
+
+parsed::Scene makeBuiltin(const BuiltinName& b) {
+  if (b.kind == "cornell") return builtin::cornell();
+  if (b.kind == "cornell-fog") return builtin::cornellFog();
+  if (b.kind == "animated") return builtin::animated();
+  if (b.kind == "instances:") return builtin::instances(b.count);
+  return builtin::plant(b.count);
+}
+
+parsed::Scene parseBuiltin(const std::string& source) { return makeBuiltin(readBuiltinName(source)); }
 
 // A file through the converted-scene cache (ImportOptions::cacheDir): the
 // kept conversion when its entry checks out, else the file parsed and kept.
@@ -83,7 +88,9 @@ parsed::Scene parseCached(const std::string& source, const ImportOptions& option
   const std::optional<cache::FileStamp> stamp = builtin ? std::nullopt : cache::FileStamp::of(source);
   const std::optional<std::string> recorded =
       stamp ? cache::recordedKey(options.cacheDir, source, options, *stamp) : std::nullopt;
-  const std::string key = builtin    ? cache::builtinKey(canonicalBuiltin(source))
+  const std::optional<BuiltinName> builtinName =
+      builtin ? std::optional<BuiltinName>(readBuiltinName(source)) : std::nullopt;
+  const std::string key = builtin    ? cache::builtinKey(builtinName->canonical())
                           : recorded ? *recorded
                                      : cache::key(gltf::mapSource(source, options).bytes(), options);
   const std::filesystem::path entry = cache::entryPath(options.cacheDir, key);
@@ -99,7 +106,7 @@ parsed::Scene parseCached(const std::string& source, const ImportOptions& option
     spdlog::warn("{}: the converted scene in {} is refused ({}); converting again", source, entry.string(), why);
   const MappedFile file = builtin ? MappedFile() : gltf::mapSource(source, options);
   parsed::Scene scene =
-      builtin ? parseBuiltin(source)
+      builtin ? makeBuiltin(*builtinName)
               : gltf::parseBytes(file.bytes(), source, std::filesystem::path(source).parent_path().string(), options);
   std::string failed;
   bool kept = false;
