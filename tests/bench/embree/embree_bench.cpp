@@ -1,6 +1,7 @@
 // Path tracer rays/s against raw incoherent rtcIntersect1 rays/s on the same
 // scene in the same run: the Cornell box of tests/bench/scenes/make_cornell.py
 // with its ~1M-triangle sphere. Prints the ratio at the end.
+#include "rays_per_second.hpp"
 #include "test_scenes.hpp"
 #include "tsr/embree/rng.hpp"
 
@@ -96,30 +97,13 @@ void BM_RawIntersect1(benchmark::State& state) {
 BENCHMARK(BM_RawIntersect1)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
 BENCHMARK(BM_PathTracer)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
 
-// Console output plus the ratio of the two rays/s figures.
-class RatioReporter : public benchmark::ConsoleReporter {
- public:
-  void ReportRuns(const std::vector<Run>& runs) override {
-    for (const Run& run : runs) {
-      auto it = run.counters.find("rays/s");
-      if (it != run.counters.end()) rates[run.benchmark_name()] = it->second.value;
-    }
-    ConsoleReporter::ReportRuns(runs);
-  }
-  std::map<std::string, double> rates;
-};
-
 }  // namespace
 
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
-  RatioReporter reporter;
+  tsr::bench::RaysPerSecond reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
-  double pt = 0.0, raw = 0.0;
-  for (const auto& [name, rate] : reporter.rates) {
-    if (name.rfind("BM_PathTracer", 0) == 0) pt = rate;
-    if (name.rfind("BM_RawIntersect1", 0) == 0) raw = rate;
-  }
+  const double pt = reporter.of("BM_PathTracer"), raw = reporter.of("BM_RawIntersect1");
   if (pt > 0.0 && raw > 0.0) {
     std::printf("path tracer %.2f Mrays/s, raw rtcIntersect1 %.2f Mrays/s, ratio %.1f %%\n", pt * 1e-6, raw * 1e-6,
                 100.0 * pt / raw);

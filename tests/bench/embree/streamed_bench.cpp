@@ -4,6 +4,7 @@
 // traversing clusters costs, with hardly a build), nine tenths, and a
 // quarter (the rays of every pass reach more than it holds). Prints the
 // ratios to the whole scene's rays/s measured in the same run.
+#include "rays_per_second.hpp"
 #include "test_scenes.hpp"
 
 #include <benchmark/benchmark.h>
@@ -70,32 +71,16 @@ BENCHMARK_CAPTURE(BM_Crowd, streamed_all_held, 0.999999)->Unit(benchmark::kMilli
 BENCHMARK_CAPTURE(BM_Crowd, streamed_nine_tenths, 0.9)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK_CAPTURE(BM_Crowd, streamed_quarter, 0.25)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 
-// Console output plus each streamed run's rays/s over the whole scene's.
-class RatioReporter : public benchmark::ConsoleReporter {
- public:
-  void ReportRuns(const std::vector<Run>& runs) override {
-    ConsoleReporter::ReportRuns(runs);
-    for (const Run& r : runs)
-      if (r.run_type == Run::RT_Iteration) raysPerSecond_[r.benchmark_name()] = r.counters.at("rays/s");
-  }
-  void Finalize() override {
-    ConsoleReporter::Finalize();
-    const auto whole = raysPerSecond_.find("BM_Crowd/whole/min_time:2.000/real_time");
-    if (whole == raysPerSecond_.end()) return;
-    for (const auto& [name, rate] : raysPerSecond_)
-      if (name != whole->first) std::printf("%s: %.2fx the whole scene's rays/s\n", name.c_str(), rate / whole->second);
-  }
-
- private:
-  std::map<std::string, double> raysPerSecond_;
-};
-
 }  // namespace
 
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
-  RatioReporter reporter;
+  tsr::bench::RaysPerSecond reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
+  const double whole = reporter.of("BM_Crowd/whole/");
+  for (const auto& [name, rate] : reporter.rates)
+    if (whole > 0.0 && !name.starts_with("BM_Crowd/whole/"))
+      std::printf("%s: %.2fx the whole scene's rays/s\n", name.c_str(), rate / whole);
   benchmark::Shutdown();
   return 0;
 }
