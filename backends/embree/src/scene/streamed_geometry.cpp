@@ -214,6 +214,7 @@ void StreamedGeometry::partition(RTCScene merged) {
     std::uint64_t code;
     std::uint32_t instance;
     RTCBounds bounds;
+    glm::vec3 centre;
   };
   std::vector<Entry> entries;
   RTCBounds centres = emptyBounds();
@@ -221,16 +222,15 @@ void StreamedGeometry::partition(RTCScene merged) {
     const auto& inst = scene_.instances[id];
     if (!inst || inst->level != Level::Merged) continue;
     const RTCBounds b = worldBounds(scene_.meshes[index(inst->mesh)]->data, inst->transform);
-    entries.push_back({0, id, b});
-    grow(centres, 0.5f * glm::vec3(b.lower_x + b.upper_x, b.lower_y + b.upper_y, b.lower_z + b.upper_z));
+    entries.push_back(
+        {0, id, b, 0.5f * glm::vec3(b.lower_x + b.upper_x, b.lower_y + b.upper_y, b.lower_z + b.upper_z)});
+    grow(centres, entries.back().centre);
   }
   const glm::vec3 lo(centres.lower_x, centres.lower_y, centres.lower_z);
   const glm::vec3 extent =
       glm::max(glm::vec3(centres.upper_x, centres.upper_y, centres.upper_z) - lo, glm::vec3(1e-30f));
   for (Entry& e : entries) {
-    const glm::vec3 c = 0.5f * glm::vec3(e.bounds.lower_x + e.bounds.upper_x, e.bounds.lower_y + e.bounds.upper_y,
-                                         e.bounds.lower_z + e.bounds.upper_z);
-    const glm::vec3 q = glm::clamp((c - lo) / extent, 0.0f, 1.0f) * float(0x1fffff);
+    const glm::vec3 q = glm::clamp((e.centre - lo) / extent, 0.0f, 1.0f) * float(0x1fffff);
     e.code = spread(std::uint64_t(q.x)) | spread(std::uint64_t(q.y)) << 1 | spread(std::uint64_t(q.z)) << 2;
   }
   std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
