@@ -37,16 +37,27 @@ void traceProbe(Tracer& tracer, const RenderSettings& settings, const Irradiance
       const glm::vec2 corner(float(texel % side), float(texel / side));
       const glm::vec3 dir = backend::equalAreaSquareToSphere((corner + sampler.uniform2()) / float(side));
       float distance = farthest;
+      bool throughBoundary = false;  // the first hit is a medium's boundary
+      glm::vec3 straight(0.0f);      // emission of the first surface, seen from its front
       RTCRayHit rh;
       if (tracer.intersect(org, dir, rh)) {
         distance = std::min(rh.ray.tfar, farthest);
         SurfaceHit h;
-        if (tracer.surface(org, dir, rh, h) && glm::dot(h.faceNormal, dir) > 0.0f) ++sums.backFaces;
+        if (tracer.surface(org, dir, rh, h)) {
+          const ResolvedMaterial& mat = *h.instance->material;
+          const float facing = glm::dot(h.faceNormal, dir);
+          if (facing > 0.0f) ++sums.backFaces;
+          throughBoundary = mat.material.type == MaterialType::Interface;
+          if (!throughBoundary && facing < 0.0f && mat.material.isEmissive()) straight = Tracer::emission(mat, h.uv);
+        }
       }
       sums.distance[texel] += glm::vec2(distance, distance * distance);
       const PixelSample s = tracer.tracePath(sampler, org, dir, org, dir);
-      glm::vec3 radiance = s.direct + s.indirect;
-      if (s.hit) radiance -= s.emitted;  // emitters seen straight: the reader's lights
+      // Emitters seen straight are the reader's own lights. Only those: a
+      // lamp seen in a mirror or through glass is light the reader cannot
+      // make (its caustic on the surfaces round the probe). Past a medium's
+      // boundary the path's emission seen without scattering stands in.
+      glm::vec3 radiance = s.direct + s.indirect - (throughBoundary ? s.emitted : straight);
       if (!finite(radiance)) continue;
       radiance = glm::max(radiance, glm::vec3(0.0f));
       const auto cosines = backend::faceCosines(dir);

@@ -55,6 +55,34 @@ TEST(ProbeTracing, FloorUnderALampLightsUpwardAndHidesTheLampItself) {
   }
 }
 
+TEST(ProbeTracing, ALampSeenInAMirrorIsKept) {
+  // A mirror floor under the lamp: looking down, a probe sees the lamp's
+  // image, light the reader cannot make from its lamps (a caustic), so it
+  // stays in the probe; the lamp seen straight is still left out.
+  Scene scene(test::sharedDevice());
+  Material mirror;
+  mirror.type = MaterialType::Mirror;
+  mirror.baseColor = glm::vec3(1.0f);
+  scene.addInstance(scene.addMesh(test::quad({-5, 0, 5}, {5, 0, 5}, {5, 0, -5}, {-5, 0, -5})),
+                    scene.addMaterial(mirror), glm::mat4(1.0f));
+  Material lamp;
+  lamp.baseColor = glm::vec3(0.0f);
+  lamp.emission = glm::vec3(20.0f);
+  scene.addInstance(scene.addMesh(test::quad({-1, 5, -1}, {1, 5, -1}, {1, 5, 1}, {-1, 5, 1})), scene.addMaterial(lamp),
+                    glm::mat4(1.0f));
+  const IrradianceVolume v = traced(scene, {-1, 1, -1}, {1, 2, 1}, 4096);
+  float below = 0.0f, expected = 0.0f;
+  for (std::size_t p = 0; p < v.probeCount(); ++p) {
+    below += v.irradianceAt(p, {0, -1, 0}).x;
+    EXPECT_LT(v.irradianceAt(p, {0, 1, 0}).x, 0.05f) << "the lamp seen straight is the reader's light";
+    // The lamp's image, 2x2 at y = -5, seen from the probe: L A cos cos / r^2.
+    const glm::vec3 to = glm::vec3(0.0f, -5.0f, 0.0f) - v.probePosition(p);
+    const float cosine = -to.y / glm::length(to);
+    expected += 20.0f * 4.0f * cosine * cosine / glm::dot(to, to);
+  }
+  EXPECT_NEAR(below / expected, 1.0f, 0.2f) << below << " against " << expected;
+}
+
 TEST(ProbeTracing, ProbesInsideGeometryAreWeightedOutAndDistancesAreMeasured) {
   Scene scene(test::sharedDevice());
   Material white;

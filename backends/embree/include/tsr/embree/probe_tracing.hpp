@@ -17,7 +17,8 @@ namespace tsr::embree {
 // through every texel of its distance map), traced as camera paths are with
 // `settings` (depth, roulette, sampler, seed). What a path brings back is
 // the radiance arriving at the probe, less an emitter's emission seen
-// straight from it (the reader lights with emitters directly); its first
+// straight from it (the reader lights with emitters directly; an emitter
+// seen in a mirror or through glass stays: its caustic is the probe's); its first
 // hit's distance goes into the distance map, and a probe of which more than
 // a quarter of the first hits are back faces gets weight 0 (it is inside
 // something).
