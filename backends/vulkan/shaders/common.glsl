@@ -61,6 +61,7 @@ layout(set = 0, binding = 0) uniform Frame {
   vec4 volumeMin;
   vec4 volumeMax;
   uvec4 volumeCounts;
+  vec4 objectProbes[4];
 } frame;
 
 layout(std430, set = 0, binding = 1) readonly buffer Instances { Instance instances[]; };

@@ -12,8 +12,13 @@ vec3 environmentLevel(vec2 uv, float level) {
   return texture(environmentMap, vec2(uv.x, (level + v) / ENVIRONMENT_LEVELS)).rgb;
 }
 
+vec2 environmentUv(vec3 d) { return vec2(atan(d.x, -d.z) / (2.0 * PI) + 0.5, acos(clamp(d.y, -1.0, 1.0)) / PI); }
+
+// The environment itself along d, as a mirror shows it where nothing is in the way.
+vec3 environmentRadiance(vec3 d) { return environmentLevel(environmentUv(d), 0.0); }
+
 vec3 prefilteredRadiance(vec3 d, float roughness) {
-  vec2 uv = vec2(atan(d.x, -d.z) / (2.0 * PI) + 0.5, acos(clamp(d.y, -1.0, 1.0)) / PI);
+  vec2 uv = environmentUv(d);
   float level = clamp(roughness, 0.0, 1.0) * (ENVIRONMENT_LEVELS - 1.0);
   float below = floor(level);
   vec3 a = environmentLevel(uv, below);

@@ -201,6 +201,14 @@ bool throughGlass(vec3 p, vec3 dir, float ior, inout vec3 from, inout vec3 along
   return true;
 }
 
+// What a mirror or glass sees along dir from p through its probe: the
+// environment where the probe saw background (in fog, the fog's colour the
+// background was cleared to).
+vec3 probeRadiance(int probe, vec3 p, vec3 dir) {
+  vec4 seen = probeSample(probe, p, dir);
+  return seen.a < 0.5 && !FOG ? environmentRadiance(dir) : seen.rgb;
+}
+
 void main() {
   Material m = materials[pc.material];
   const uint type = MATERIAL_TYPE;
@@ -230,6 +238,7 @@ void main() {
     vec3 e = m.emission.rgb;
     if (EMISSION_TEXTURE) e *= slotTexture(emissionTex, pc.material, EMISSION_SLOT, uv, footprint).rgb;
     outColour = vec4(FOG ? fogged(base + e, worldPos) : base + e, opacity);
+    if (drawingProbeFaces()) outColour.a = probeDistanceAlpha(worldPos);
     return;
   }
 
@@ -302,16 +311,18 @@ void main() {
   } else if (type == DIFFUSE) {
     radiance += base * ambient;
   } else if (type == MIRROR) {
-    radiance += base * (hasProbe() ? probeRadiance(worldPos, mirrored) : prefilteredRadiance(mirrored, 0.0));
-  } else if (type == GLASS && hasProbe()) {
+    int probe = instanceProbe(instances[instanceSlot]);
+    radiance += base * (probe >= 0 ? probeRadiance(probe, worldPos, mirrored) : prefilteredRadiance(mirrored, 0.0));
+  } else if (type == GLASS && instanceProbe(instances[instanceSlot]) >= 0) {
+    int probe = instanceProbe(instances[instanceSlot]);
     // What the probe sees along the mirrored and the refracted direction (one
     // refraction: the way out of the object is not traced), by Fresnel.
     float f = fresnelDielectric(max(co, 0.0), eta);
     vec3 refracted = refract(-wo, n, 1.0 / eta);
     vec3 from = worldPos, along = refracted;
     if (gl_FrontFacing && dot(refracted, refracted) > 0.0) throughGlass(worldPos, refracted, m.params.y, from, along);
-    vec3 through = dot(refracted, refracted) > 0.0 ? probeRadiance(from, along) : vec3(0.0);
-    radiance += f * probeRadiance(worldPos, mirrored) + (1.0 - f) * base * through;
+    vec3 through = dot(refracted, refracted) > 0.0 ? probeRadiance(probe, from, along) : vec3(0.0);
+    radiance += f * probeRadiance(probe, worldPos, mirrored) + (1.0 - f) * base * through;
   } else if (type == CONDUCTOR) {
     vec3 reflected = probeLit ? probePrefiltered(worldPos, mirrored, m.pbr.x) : prefilteredRadiance(mirrored, m.pbr.x);
     radiance += schlick(base, max(co, 0.0)) * reflected;
@@ -342,5 +353,5 @@ void main() {
     radiance += e;
   }
   if (FOG) radiance = fogged(radiance, worldPos);
-  outColour = vec4(radiance, opacity);
+  outColour = vec4(radiance, drawingProbeFaces() ? probeDistanceAlpha(worldPos) : opacity);
 }

@@ -5,7 +5,7 @@
 // (box-projected, "parallax-corrected" cube mapping), which is exact for a
 // room whose walls are its bounds. Needs common.glsl.
 
-bool hasProbe() { return frame.probeCentre.w > 0.0; }
+bool hasProbe() { return frame.probeCentre.w > 0.0; }  // w < 0: the faces are being drawn
 // The probe is also seen in rough reflections.
 bool hasRoughProbe() { return frame.probeCentre.w > 1.5; }
 
@@ -45,10 +45,88 @@ vec2 probeFace(vec3 d, out float layer) {
   return vec2(0.5 + 0.5 * dot(d, right) / w, 0.5 - 0.5 * dot(d, up) / w);
 }
 
-vec3 probeRadiance(vec3 p, vec3 dir) {
+// While the faces are drawn, their alpha holds each texel's distance from
+// the probe's centre (probeDistanceAlpha); the background keeps alpha 0.
+bool drawingProbeFaces() { return frame.probeCentre.w < -0.5; }
+float probeScale() { return max(length(frame.sceneMax.xyz - frame.sceneMin.xyz), 1e-6); }
+float probeDistanceAlpha(vec3 p) { return 1.0 + length(p - frame.cameraPos.xyz) / probeScale(); }
+
+// The probe a mirror or glass instance reflects: its own, drawn from its
+// box's centre (1 + k for frame.objectProbes[k]), else the scene's (0), else
+// none (-1).
+int instanceProbe(Instance inst) {
+  vec3 centre = (inst.model * vec4(inst.positionOffset.xyz + 0.5 * inst.positionScale.xyz, 1.0)).xyz;
+  for (int k = 0; k < 4; ++k) {
+    vec4 o = frame.objectProbes[k];
+    if (o.w > 0.0 && distance(centre, o.xyz) <= 1e-3 * o.w) return k + 1;
+  }
+  return hasProbe() ? 0 : -1;
+}
+
+vec3 probeCentreOf(int probe) { return probe == 0 ? frame.probeCentre.xyz : frame.objectProbes[probe - 1].xyz; }
+
+// Distance from a probe's centre to what it saw towards d (nearest texel:
+// filtering would blend a silhouette's near and far sides); background far.
+float probeDistance(int probe, vec3 d) {
   float layer;
-  vec2 uv = probeFace(boxProjected(p, dir), layer);
-  return texture(reflectionProbe, vec3(clamp(uv, vec2(0.5 / 128.0), vec2(1.0 - 0.5 / 128.0)), layer)).rgb;
+  vec2 uv = probeFace(d, layer);
+  ivec2 texel = clamp(ivec2(uv * 128.0), ivec2(0), ivec2(127));
+  float a = texelFetch(reflectionProbe, ivec3(texel, int(layer) + 6 * probe), 0).a;
+  return a < 0.5 ? 1e30 : (a - 1.0) * probeScale();
+}
+
+// Where the ray from p along dir meets what the probe saw, as a direction
+// from its centre (Szirmay-Kalos et al. 2005, "Approximate ray-tracing on
+// the GPU with distance impostors"): steps along the ray to the bounds'
+// box until a point lies beyond the surface the probe saw in its
+// direction, then false position between the last two points. Exact for
+// what the centre sees; a ray passing behind something the centre sees
+// in front of it stops there. Without a crossing, the box's point.
+vec3 probeTraced(int probe, vec3 p, vec3 dir) {
+  vec3 lo = frame.sceneMin.xyz, hi = frame.sceneMax.xyz;
+  vec3 c = probeCentreOf(probe);
+  if (!(all(greaterThanEqual(p, lo)) && all(lessThanEqual(p, hi)))) return dir;
+  vec3 safe = vec3(abs(dir.x) > 1e-6 ? dir.x : 1e-6, abs(dir.y) > 1e-6 ? dir.y : 1e-6,
+                   abs(dir.z) > 1e-6 ? dir.z : 1e-6);
+  vec3 far = max((hi - p) / safe, (lo - p) / safe);
+  float end = max(min(far.x, min(far.y, far.z)), 0.0);
+  const int STEPS = 16, REFINE = 4;
+  float t0 = 0.0;
+  vec3 d0 = p - c;
+  float f0 = length(d0) - probeDistance(probe, d0);
+  for (int i = 1; i <= STEPS; ++i) {
+    float t1 = end * float(i) / float(STEPS);
+    vec3 d1 = p + dir * t1 - c;
+    float f1 = length(d1) - probeDistance(probe, d1);
+    if (f0 < 0.0 && f1 >= 0.0) {
+      // Refine by false position: the surface between t0 and t1.
+      for (int k = 0; k < REFINE; ++k) {
+        float t = t0 + (t1 - t0) * f0 / (f0 - f1);
+        vec3 d = p + dir * t - c;
+        float f = length(d) - probeDistance(probe, d);
+        if (f < 0.0) {
+          t0 = t;
+          f0 = f;
+        } else {
+          t1 = t;
+          f1 = f;
+        }
+      }
+      return p + dir * (t0 + (t1 - t0) * f0 / (f0 - f1)) - c;
+    }
+    t0 = t1;
+    d0 = d1;
+    f0 = f1;
+  }
+  return p + dir * end - c;
+}
+
+// What probe `probe` (instanceProbe) shows along dir from p; alpha below
+// 0.5 where that is the background (the caller decides what it is).
+vec4 probeSample(int probe, vec3 p, vec3 dir) {
+  float layer;
+  vec2 uv = probeFace(probeTraced(probe, p, dir), layer);
+  return texture(reflectionProbe, vec3(clamp(uv, vec2(0.5 / 128.0), vec2(1.0 - 0.5 / 128.0)), layer + 6.0 * float(probe)));
 }
 
 // Level k >= 1 of the rough levels: faces stacked vertically, level-major.

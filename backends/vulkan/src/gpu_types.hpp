@@ -64,6 +64,10 @@ struct GpuFrame {
   glm::vec4 volumeMin;  // the irradiance volume's box, w: 1 when there is one
   glm::vec4 volumeMax;
   glm::uvec4 volumeCounts;  // probes per axis, probe count
+  // Mirrors' and glass's own reflection probes (Renderer::Impl::objectProbes):
+  // centre of the object's box, w its half diagonal (0: none); probe k's
+  // faces are layers 6 (k + 1) .. 6 (k + 1) + 5 of the probe image.
+  glm::vec4 objectProbes[4];
 };
 
 struct PushConstants {

@@ -222,15 +222,26 @@ void Renderer::renderSharp(Scene& scene, const Camera& camera, const Region& reg
   const std::vector<glm::mat4> shadowViewProj = r.gatherLights(s, settings_);
   r.prepareFrame(s, camera, region, settings_, std::uint32_t(shadowViewProj.size()));
   RenderStats stats;
-  r.updateProbe(s, settings_, r.frameData, stats);
-
   VkCommandBuffer cmd = r.commands->buffer();
-  check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
   VkCommandBufferBeginInfo bi = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  // The shadow maps first, on their own: the probes' faces are drawn with
+  // them. (The frame's descriptor set is bound whole, so the probe's image
+  // must be written into it already.)
+  r.ensureProbeImages();
+  r.writeProbeDescriptor(s, r.probe[r.probeCurrent]);
+  check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
   check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.layout, 0, 1, &r.frameSet, 0, nullptr);
   r.recordShadows(cmd, s, shadowViewProj, stats);
+  check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+  r.commands->submitAndWait("shadows");
+  if (r.shadowsPending) r.shadowsHeld = std::exchange(r.shadowsPending, std::nullopt);
+  r.updateProbe(s, settings_, r.frameData, !shadowViewProj.empty(), stats);
+
+  check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
+  check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.layout, 0, 1, &r.frameSet, 0, nullptr);
   const bool guided = settings_.visibility == Visibility::Guided;
   if (guided)
     r.recordGuided(cmd, s, settings_, !shadowViewProj.empty(), transparentBase, stats);
@@ -240,7 +251,6 @@ void Renderer::renderSharp(Scene& scene, const Camera& camera, const Region& reg
   recordReadback(cmd, t.resolvedColour(), t.resolvedDepth(), t.colourReadback, t.depthReadback, t.width, t.height);
   check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
   r.commands->submitAndWait("frame");
-  if (r.shadowsPending) r.shadowsHeld = std::exchange(r.shadowsPending, std::nullopt);
 
   r.readColour(fb);
   readLinearDepth(t.depthReadback, camera, fb.depth_);

@@ -63,9 +63,13 @@ struct Renderer::Impl {
   Buffer lightBuffer;
   Buffer drawOrderBuffer;
   std::optional<RenderTarget> target;
-  // The reflection probe (reflection_probe.cpp): two six-layer images, one
+  // The reflection probes (reflection_probe.cpp): the scene's, from the
+  // centre of its bounds, and up to kObjectProbes of mirrors and glass
+  // objects, from their own centres; six layers each in two images, one
   // sampled while the other is drawn, and what the current one shows.
   static constexpr std::uint32_t kProbeSize = 128;
+  static constexpr std::uint32_t kObjectProbes = 4;  // GpuFrame::objectProbes
+  static constexpr std::uint32_t kProbeLayers = 6 * (1 + kObjectProbes);
   Image probe[2];
   Image probeDepth;
   std::uint32_t probeCurrent = 0;
@@ -83,10 +87,12 @@ struct Renderer::Impl {
   ProbeUse probeUseHeld = ProbeUse::None;
   ProbeUse probeWanted = ProbeUse::None;  // wantsProbe() of the scene version probeWantedFor
   std::optional<ProbeKey> probeWantedFor;
+  std::vector<glm::vec4> objectProbesHeld, objectProbesWanted;  // objectProbes(), held and of probeWantedFor
   Image probeLevels;     // prefilterProbe() of the held probe (probe_prefilter.hpp)
   Buffer probeReadback;  // its faces, for prefilterProbe()
   GpuFrame frameData{};
-  bool drawingProbe = false;  // drawOpaque leaves out what samples the probe
+  bool drawingProbe = false;       // drawOpaque leaves out what samples the probe
+  bool drawingSceneProbe = false;  // ... and glossy instances inside the scene (hiddenFromProbe)
   static bool reflective(const Material& m) { return m.type == MaterialType::Mirror || m.type == MaterialType::Glass; }
   // Glossy enough for the probe to show in its reflections.
   static bool glossy(const Material& m) {
@@ -153,13 +159,15 @@ struct Renderer::Impl {
   void prepareFrame(const SceneState& s, const Camera& camera, const Region& region, const RenderSettings& settings,
                     std::uint32_t shadowLayers);
   ProbeUse wantsProbe(const SceneState& s) const;
+  static std::vector<glm::vec4> objectProbes(const SceneState& s);
   void prefilterProbeLevels(const SceneState& s);
   void ensureProbeImages();
   void writeProbeDescriptor(const SceneState& s, const Image& image);
   void prepareProbeLayouts(VkCommandBuffer cmd, const Image& into);
   // Draws the probe if it is wanted and stale; leaves the uniform and the
   // descriptors as the frame needs them.
-  void updateProbe(const SceneState& s, const RenderSettings& settings, GpuFrame& frame, RenderStats& stats);
+  void updateProbe(const SceneState& s, const RenderSettings& settings, GpuFrame& frame, bool shadows,
+                   RenderStats& stats);
   void recordShadows(VkCommandBuffer cmd, const SceneState& s, const std::vector<glm::mat4>& shadowViewProj,
                      RenderStats& stats);
   void prepareAttachments(VkCommandBuffer cmd);

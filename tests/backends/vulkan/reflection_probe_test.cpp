@@ -82,6 +82,44 @@ TEST(VulkanReflectionProbe, MirrorShowsTheWallItFaces) {
   EXPECT_GT(fb.colour(int(left.x), int(left.y)).g, 0.8f) << "the wall turned yellow";
 }
 
+// A yellow ball just right of the room's centre hides the green wall, as
+// seen from there, in the direction the mirror's right side reflects: the
+// scene's probe alone (box-projected, or searched along the ray) shows
+// yellow there. The mirror's own probe, drawn from its centre, sees the
+// green wall past it.
+TEST(VulkanReflectionProbe, MirrorReflectsFromItsOwnCentre) {
+  Room room;
+  room.scene.addInstance(room.scene.addMesh(test::uvSphere(16, 32, 0.15f)), room.scene.addMaterial(glowing({1, 1, 0})),
+                         glm::translate(glm::mat4(1.0f), glm::vec3(0.3f, 0.0f, 0.0f)));
+  const Camera cam = Camera::lookAt({0.8f, 0, 1.8f}, {0.8f, 0, 0}, {0, 1, 0}, 0.9f, 1.0f);
+  const Region full = Region::full(96, 96);
+  const FrameBuffer fb = look(room, cam);
+  test::writePng("/tmp/tsr_vk_probe_own_centre.png", fb);
+  const glm::vec2 right = test::project(cam, full, {0.8f + 0.354f, 0, 0.354f});
+  const glm::vec4 r = fb.colour(int(right.x), int(right.y));
+  EXPECT_GT(r.g, 0.8f) << "the green wall";
+  EXPECT_LT(std::max(r.r, r.b), 0.1f) << "not the yellow ball in front of it from the room's centre";
+}
+
+// A yellow ball near the mirror, where its left side's reflection meets it
+// (the view ray, from the camera 1.45 away, leaves that point towards
+// (-0.97, 0, -0.24)): looked up in the direction of the red wall behind it
+// (box-projected) the mirror would show red; followed along the ray
+// through the probe's distances, it shows the ball.
+TEST(VulkanReflectionProbe, MirrorShowsWhatStandsNearIt) {
+  Room room;
+  room.scene.addInstance(room.scene.addMesh(test::uvSphere(16, 32, 0.15f)), room.scene.addMaterial(glowing({1, 1, 0})),
+                         glm::translate(glm::mat4(1.0f), glm::vec3(-0.1f, 0.0f, 0.22f)));
+  const Camera cam = Camera::lookAt({0.8f, 0, 1.8f}, {0.8f, 0, 0}, {0, 1, 0}, 0.9f, 1.0f);
+  const Region full = Region::full(96, 96);
+  const FrameBuffer fb = look(room, cam);
+  test::writePng("/tmp/tsr_vk_probe_near.png", fb);
+  const glm::vec2 left = test::project(cam, full, {0.8f - 0.354f, 0, 0.354f});
+  const glm::vec4 l = fb.colour(int(left.x), int(left.y));
+  EXPECT_GT(std::min(l.r, l.g), 0.8f) << "the yellow ball";
+  EXPECT_LT(l.b, 0.1f);
+}
+
 // A white metal of roughness 0.3 and one of 0.6 in the same room: both
 // reflect the red wall to the left and the green one to the right (the
 // probe, prefiltered), the rougher one mixing more of the other walls in.

@@ -95,7 +95,7 @@ void Renderer::Impl::drawOpaque(VkCommandBuffer cmd, const SceneState& s, const 
       ++i;
       continue;
     }
-    if (drawingProbe && glossy(material)) {  // instance by instance, leaving out what would reflect itself
+    if (drawingSceneProbe && glossy(material)) {  // instance by instance, leaving out what would reflect itself
       const MeshRecord& m = s.meshes[g.mesh];
       for (std::uint32_t k = g.first; k < g.first + g.count; ++k) {
         if (hiddenFromProbe(s, drawOrder[k])) continue;  // draw position k shows drawOrder[k]

@@ -1,4 +1,5 @@
-// The reflection probe: the scene seen from the centre of its bounds as six
+// The reflection probes: the scene seen from the centre of its bounds, and
+// from the centres of its largest mirrors and glass objects, each as six
 // 90-degree faces (shaders/probe.glsl samples them), so mirrors and glass
 // show the room instead of the environment's average. Drawn only when an
 // instance is a Mirror or Glass and the scene changed since the last
@@ -12,6 +13,8 @@
 #include "resources/rendering.hpp"
 
 #include <glm/gtc/constants.hpp>
+
+#include <algorithm>
 
 namespace tsr::vk {
 
@@ -45,6 +48,28 @@ Renderer::Impl::ProbeUse Renderer::Impl::wantsProbe(const SceneState& s) const {
   return anyReflective ? ProbeUse::Mirrors : ProbeUse::None;
 }
 
+// Mirrors and glass objects, the largest first (by their boxes' diagonals),
+// up to kObjectProbes: each gets a probe drawn from its box's centre, which
+// sees what a ball reflects and refracts from where the ball is, whatever
+// stands between it and the scene's centre (builtin:cornell's centre is a
+// hand's breadth in front of the tall block). The shader finds an
+// instance's probe by its centre.
+std::vector<glm::vec4> Renderer::Impl::objectProbes(const SceneState& s) {
+  std::vector<glm::vec4> found;
+  for (const DrawGroup& g : s.opaqueGroups) {
+    if (!reflective(s.materials[g.material].material)) continue;
+    for (std::uint32_t i = g.first; i < g.first + g.count; ++i) {
+      glm::vec3 lo, hi;
+      s.instanceBounds(s.opaqueOrder[i], lo, hi);
+      const float radius = 0.5f * glm::length(hi - lo);
+      if (radius > 0.0f) found.emplace_back(0.5f * (lo + hi), radius);
+    }
+  }
+  std::stable_sort(found.begin(), found.end(), [](const glm::vec4& a, const glm::vec4& b) { return a.w > b.w; });
+  if (found.size() > kObjectProbes) found.resize(kObjectProbes);
+  return found;
+}
+
 bool Renderer::Impl::hiddenFromProbe(const SceneState& s, std::uint32_t slot) {
   glm::vec3 lo, hi;
   s.instanceBounds(slot, lo, hi);
@@ -63,7 +88,7 @@ void Renderer::Impl::ensureProbeImages() {
   for (Image& img : probe) {
     ImageDesc d;
     d.width = d.height = kProbeSize;
-    d.layers = 6;
+    d.layers = kProbeLayers;
     d.arrayView = true;
     d.format = colourFormat(1);
     d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
@@ -145,18 +170,20 @@ void Renderer::Impl::prefilterProbeLevels(const SceneState& s) {
 
 // Called after prepareFrame (which wrote this frame's uniform and
 // descriptors); leaves both as the frame needs them.
-void Renderer::Impl::updateProbe(const SceneState& s, const RenderSettings& settings, GpuFrame& frame,
+void Renderer::Impl::updateProbe(const SceneState& s, const RenderSettings& settings, GpuFrame& frame, bool shadows,
                                  RenderStats& stats) {
   ensureProbeImages();
   const ProbeKey key{&s, s.version, irradianceVersion};
   // Bounds of every instance: once per scene version, not every frame.
   if (probeWantedFor != key) {
     probeWanted = wantsProbe(s);
+    objectProbesWanted = objectProbes(s);
     probeWantedFor = key;
   }
   const ProbeUse wanted = settings.reflectionProbe ? probeWanted : ProbeUse::None;
-  const bool use = wanted != ProbeUse::None;
-  if (use && (probeHeld != key || probeUseHeld != wanted)) {
+  const std::vector<glm::vec4> objects = settings.reflectionProbe ? objectProbesWanted : std::vector<glm::vec4>{};
+  const bool use = wanted != ProbeUse::None || !objects.empty();
+  if (use && (probeHeld != key || probeUseHeld != wanted || objectProbesHeld != objects)) {
     // Draw into the image the shader does not read; the probe flag is off
     // while drawing, so the faces never sample a probe.
     Image& into = probe[1 - probeCurrent];
@@ -165,59 +192,68 @@ void Renderer::Impl::updateProbe(const SceneState& s, const RenderSettings& sett
     const float size = std::max(glm::length(s.sceneMax - s.sceneMin), 1e-3f);
     RenderSettings faceSettings = settings;
     faceSettings.msaaSamples = 1;
-    for (std::uint32_t f = 0; f < 6; ++f) {
-      const Camera camera = Camera::lookAt(centre, centre + kProbeFaceForward[f], kProbeFaceUp[f],
-                                           glm::half_pi<float>(), 1.0f, 1e-3f * size, 4.0f * size);
-      const Region region = Region::full(kProbeSize, kProbeSize);
-      GpuFrame face = frame;
-      const glm::mat4 proj = projection(camera, region);
-      face.viewProj = proj * camera.worldToCamera();
-      face.invViewProj = glm::inverse(face.viewProj);
-      face.cameraPos = glm::vec4(centre, 1.0f);
-      face.viewport = viewportOf(proj, kProbeSize, kProbeSize);
-      face.probeCentre = glm::vec4(0.0f);
-      std::memcpy(frameBuffer.mapped(), &face, sizeof(face));
+    // (first layer, centre) of each probe drawn: the scene's at layer 0.
+    std::vector<std::pair<std::uint32_t, glm::vec3>> views;
+    if (wanted != ProbeUse::None) views.emplace_back(0, centre);
+    for (std::uint32_t k = 0; k < objects.size(); ++k) views.emplace_back(6 * (k + 1), glm::vec3(objects[k]));
+    for (std::size_t v = 0; v < views.size(); ++v) {
+      const auto [firstLayer, from] = views[v];
+      for (std::uint32_t f = 0; f < 6; ++f) {
+        const Camera camera = Camera::lookAt(from, from + kProbeFaceForward[f], kProbeFaceUp[f], glm::half_pi<float>(),
+                                             1.0f, 1e-3f * size, 4.0f * size);
+        const Region region = Region::full(kProbeSize, kProbeSize);
+        GpuFrame face = frame;
+        const glm::mat4 proj = projection(camera, region);
+        face.viewProj = proj * camera.worldToCamera();
+        face.invViewProj = glm::inverse(face.viewProj);
+        face.cameraPos = glm::vec4(from, 1.0f);
+        face.viewport = viewportOf(proj, kProbeSize, kProbeSize);
+        face.probeCentre = glm::vec4(from, -1.0f);  // no probe to sample; alpha holds the distance
+        for (glm::vec4& o : face.objectProbes) o = glm::vec4(0.0f);
+        std::memcpy(frameBuffer.mapped(), &face, sizeof(face));
 
-      VkCommandBuffer cmd = commands->buffer();
-      check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
-      VkCommandBufferBeginInfo bi = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
-      bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-      check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
-      if (f == 0) prepareProbeLayouts(cmd, into);
-      imageBarrier(cmd, probeDepth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                   VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
-                   VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
-                   VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
-      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &frameSet, 0, nullptr);
-      // Alpha 0 marks the background for prefilterProbe().
-      VkClearValue colourClear{};
-      colourClear.color = {{clearColour.r, clearColour.g, clearColour.b, 0.0f}};
-      const VkRenderingAttachmentInfo ca =
-          renderingAttachment(into.layerView(f), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, /*load=*/false, colourClear);
-      VkClearValue depthClear{};
-      depthClear.depthStencil = {0.0f, 0};
-      const VkRenderingAttachmentInfo da =
-          renderingAttachment(probeDepth.view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, /*load=*/false, depthClear,
-                              /*store=*/false);
-      beginRendering(cmd, kProbeSize, kProbeSize, &ca, da);
-      boundPipeline = VK_NULL_HANDLE;
-      boundBlock = boundMaterial = ~0u;
-      RenderStats ignored;
-      drawingProbe = true;
-      drawOpaque(cmd, s, faceSettings, false, VK_NULL_HANDLE, ignored);
-      drawingProbe = false;
-      vkCmdEndRendering(cmd);
-      if (f == 5)
-        imageBarrier(cmd, into.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
-                     VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
-                     VK_ACCESS_SHADER_READ_BIT, 6);
-      check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
-      commands->submitAndWait("reflection probe");
+        VkCommandBuffer cmd = commands->buffer();
+        check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
+        VkCommandBufferBeginInfo bi = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
+        bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+        check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
+        if (v == 0 && f == 0) prepareProbeLayouts(cmd, into);
+        imageBarrier(cmd, probeDepth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                     VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+                     VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+                     VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &frameSet, 0, nullptr);
+        // Alpha 0 marks the background for prefilterProbe().
+        VkClearValue colourClear{};
+        colourClear.color = {{clearColour.r, clearColour.g, clearColour.b, 0.0f}};
+        const VkRenderingAttachmentInfo ca = renderingAttachment(
+            into.layerView(firstLayer + f), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, /*load=*/false, colourClear);
+        VkClearValue depthClear{};
+        depthClear.depthStencil = {0.0f, 0};
+        const VkRenderingAttachmentInfo da = renderingAttachment(
+            probeDepth.view(), VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, /*load=*/false, depthClear, /*store=*/false);
+        beginRendering(cmd, kProbeSize, kProbeSize, &ca, da);
+        boundPipeline = VK_NULL_HANDLE;
+        boundBlock = boundMaterial = ~0u;
+        RenderStats ignored;
+        drawingProbe = true;
+        drawingSceneProbe = firstLayer == 0;
+        drawOpaque(cmd, s, faceSettings, shadows, VK_NULL_HANDLE, ignored);
+        drawingProbe = drawingSceneProbe = false;
+        vkCmdEndRendering(cmd);
+        if (v + 1 == views.size() && f == 5)
+          imageBarrier(cmd, into.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                       VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                       VK_ACCESS_SHADER_READ_BIT, kProbeLayers);
+        check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+        commands->submitAndWait("reflection probe");
+      }
     }
     probeCurrent = 1 - probeCurrent;
     probeHeld = key;
     probeUseHeld = wanted;
+    objectProbesHeld = objects;
     probeCentreHeld = centre;
     if (wanted == ProbeUse::RoughReflections) prefilterProbeLevels(s);
     ++stats.probes;
@@ -230,13 +266,16 @@ void Renderer::Impl::updateProbe(const SceneState& s, const RenderSettings& sett
     imageBarrier(cmd, probe[1 - probeCurrent].handle(), VK_IMAGE_ASPECT_COLOR_BIT,
                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                  VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
-                 VK_ACCESS_SHADER_READ_BIT, 6);
+                 VK_ACCESS_SHADER_READ_BIT, kProbeLayers);
     check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
     commands->submitAndWait("reflection probe layouts");
   }
-  frame.probeCentre = use && probeHeld
+  const bool held = use && probeHeld;
+  frame.probeCentre = held && probeUseHeld != ProbeUse::None
                           ? glm::vec4(probeCentreHeld, probeUseHeld == ProbeUse::RoughReflections ? 2.0f : 1.0f)
                           : glm::vec4(0.0f);
+  for (std::uint32_t k = 0; k < kObjectProbes; ++k)
+    frame.objectProbes[k] = held && k < objectProbesHeld.size() ? objectProbesHeld[k] : glm::vec4(0.0f);
   std::memcpy(frameBuffer.mapped(), &frame, sizeof(frame));
   writeProbeDescriptor(s, probe[probeCurrent]);
 }
@@ -248,12 +287,12 @@ void Renderer::Impl::updateProbe(const SceneState& s, const RenderSettings& sett
 void Renderer::Impl::prepareProbeLayouts(VkCommandBuffer cmd, const Image& into) {
   imageBarrier(cmd, into.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0,
-               VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, 6);
+               VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, kProbeLayers);
   if (probeFresh) {
     const Image& other = &into == &probe[0] ? probe[1] : probe[0];
     imageBarrier(cmd, other.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
-                 VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT, 6);
+                 VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT, kProbeLayers);
     probeFresh = false;
   }
   if (!shadowsHeld)
