@@ -62,6 +62,7 @@ layout(set = 0, binding = 0) uniform Frame {
   vec4 volumeMax;
   uvec4 volumeCounts;
   vec4 objectProbes[4];
+  uvec4 objectProbeSlots;
 } frame;
 
 layout(std430, set = 0, binding = 1) readonly buffer Instances { Instance instances[]; };

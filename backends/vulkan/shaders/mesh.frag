@@ -206,7 +206,7 @@ bool throughGlass(vec3 p, vec3 dir, float ior, inout vec3 from, inout vec3 along
 // background was cleared to).
 vec3 probeRadiance(int probe, vec3 p, vec3 dir) {
   vec4 seen = probeSample(probe, p, dir);
-  return seen.a < 0.5 && !FOG ? environmentRadiance(dir) : seen.rgb;
+  return probeBackground(seen.a) && !FOG ? environmentRadiance(dir) : seen.rgb;
 }
 
 void main() {
@@ -311,10 +311,10 @@ void main() {
   } else if (type == DIFFUSE) {
     radiance += base * ambient;
   } else if (type == MIRROR) {
-    int probe = instanceProbe(instances[instanceSlot]);
+    int probe = instanceProbe(instanceSlot);
     radiance += base * (probe >= 0 ? probeRadiance(probe, worldPos, mirrored) : prefilteredRadiance(mirrored, 0.0));
-  } else if (type == GLASS && instanceProbe(instances[instanceSlot]) >= 0) {
-    int probe = instanceProbe(instances[instanceSlot]);
+  } else if (type == GLASS && instanceProbe(instanceSlot) >= 0) {
+    int probe = instanceProbe(instanceSlot);
     // What the probe sees along the mirrored and the refracted direction (one
     // refraction: the way out of the object is not traced), by Fresnel.
     float f = fresnelDielectric(max(co, 0.0), eta);

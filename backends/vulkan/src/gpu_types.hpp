@@ -65,9 +65,11 @@ struct GpuFrame {
   glm::vec4 volumeMax;
   glm::uvec4 volumeCounts;  // probes per axis, probe count
   // Mirrors' and glass's own reflection probes (Renderer::Impl::objectProbes):
-  // centre of the object's box, w its half diagonal (0: none); probe k's
-  // faces are layers 6 (k + 1) .. 6 (k + 1) + 5 of the probe image.
+  // centre of the object's box, w 1 (0: none), and the instance slot it
+  // belongs to; probe k's faces are layers 6 (k + 1) .. 6 (k + 1) + 5 of the
+  // probe image.
   glm::vec4 objectProbes[4];
+  glm::uvec4 objectProbeSlots;
 };
 
 struct PushConstants {

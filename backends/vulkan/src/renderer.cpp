@@ -179,6 +179,8 @@ void Renderer::setSettings(const RenderSettings& settings) {
   if (settings.visibility == Visibility::Guided && !device_->multiDrawIndirect())
     throw Error("guided visibility needs multiDrawIndirect, which " + device_->name() + " lacks");
   impl_->mainPipeline(settings.msaaSamples, Material{}, settings.shadows);  // fails here, not mid-frame
+  // The probes' faces were drawn with the old settings (shadows, lights, background).
+  if (!(settings == settings_)) impl_->probeHeld.reset();
   settings_ = settings;
 }
 
@@ -233,9 +235,9 @@ void Renderer::renderSharp(Scene& scene, const Camera& camera, const Region& reg
   check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
   check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.layout, 0, 1, &r.frameSet, 0, nullptr);
-  r.recordShadows(cmd, s, shadowViewProj, stats);
+  const bool recorded = r.recordShadows(cmd, s, shadowViewProj, stats);
   check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
-  r.commands->submitAndWait("shadows");
+  if (recorded) r.commands->submitAndWait("shadows");
   if (r.shadowsPending) r.shadowsHeld = std::exchange(r.shadowsPending, std::nullopt);
   r.updateProbe(s, settings_, r.frameData, !shadowViewProj.empty(), stats);
 

@@ -75,7 +75,7 @@ struct Renderer::Impl {
   std::uint32_t probeCurrent = 0;
   bool probeFresh = false;
   struct ProbeKey {
-    const SceneState* scene = nullptr;
+    std::uint64_t scene = 0;  // SceneState::uid
     std::uint64_t version = 0;
     std::uint64_t irradianceVersion = 0;  // the faces' diffuse light reads the irradiance volume
     bool operator==(const ProbeKey&) const = default;
@@ -87,7 +87,13 @@ struct Renderer::Impl {
   ProbeUse probeUseHeld = ProbeUse::None;
   ProbeUse probeWanted = ProbeUse::None;  // wantsProbe() of the scene version probeWantedFor
   std::optional<ProbeKey> probeWantedFor;
-  std::vector<glm::vec4> objectProbesHeld, objectProbesWanted;  // objectProbes(), held and of probeWantedFor
+  struct ObjectProbe {
+    glm::vec3 centre{0.0f};
+    float radius = 0.0f;
+    std::uint32_t slot = 0;  // the instance's
+    bool operator==(const ObjectProbe&) const = default;
+  };
+  std::vector<ObjectProbe> objectProbesHeld, objectProbesWanted;  // objectProbes(), held and of probeWantedFor
   Image probeLevels;     // prefilterProbe() of the held probe (probe_prefilter.hpp)
   Buffer probeReadback;  // its faces, for prefilterProbe()
   GpuFrame frameData{};
@@ -159,7 +165,7 @@ struct Renderer::Impl {
   void prepareFrame(const SceneState& s, const Camera& camera, const Region& region, const RenderSettings& settings,
                     std::uint32_t shadowLayers);
   ProbeUse wantsProbe(const SceneState& s) const;
-  static std::vector<glm::vec4> objectProbes(const SceneState& s);
+  static std::vector<ObjectProbe> objectProbes(const SceneState& s);
   void prefilterProbeLevels(const SceneState& s);
   void ensureProbeImages();
   void writeProbeDescriptor(const SceneState& s, const Image& image);
@@ -168,7 +174,8 @@ struct Renderer::Impl {
   // descriptors as the frame needs them.
   void updateProbe(const SceneState& s, const RenderSettings& settings, GpuFrame& frame, bool shadows,
                    RenderStats& stats);
-  void recordShadows(VkCommandBuffer cmd, const SceneState& s, const std::vector<glm::mat4>& shadowViewProj,
+  // Records what of the shadow maps is stale; false when nothing was.
+  bool recordShadows(VkCommandBuffer cmd, const SceneState& s, const std::vector<glm::mat4>& shadowViewProj,
                      RenderStats& stats);
   void prepareAttachments(VkCommandBuffer cmd);
   void beginMain(VkCommandBuffer cmd, bool load);

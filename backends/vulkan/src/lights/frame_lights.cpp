@@ -98,11 +98,11 @@ bool castsShadowAsSolid(const SceneState& s, std::uint32_t slot) {
 // enough to hide what is behind them. After edits of single instances, only
 // the rectangles they were and are in are drawn again
 // (lights/shadow_update.hpp), from the casters over them.
-void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s,
+bool Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s,
                                    const std::vector<glm::mat4>& shadowViewProj, RenderStats& stats) {
   if (shadowsHeld && shadowsHeld->scene == s.uid && shadowsHeld->version == s.version &&
       shadowsHeld->viewProj == shadowViewProj)
-    return;  // still in SHADER_READ_ONLY_OPTIMAL from that frame
+    return false;  // still in SHADER_READ_ONLY_OPTIMAL from that frame
   // The casters are kept only when there are maps to update partially later.
   ShadowContents now{s.uid, s.version, s.casterEdits, shadowViewProj,
                      shadowViewProj.empty() ? std::vector<ShadowCaster>{} : shadowCasters(s)};
@@ -112,7 +112,7 @@ void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s,
   shadowsHeld.reset();
   shadowsPending = std::move(now);
   if (redraw && std::all_of(redraw->begin(), redraw->end(), [](const VkRect2D& r) { return r.extent.width == 0; }))
-    return;  // no caster changed (the edit was another kind): the maps stay as they are
+    return false;  // no caster changed (the edit was another kind): the maps stay as they are
   // A whole redraw starts from nothing; a partial one keeps the rest.
   const VkImageLayout from = redraw ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED;
   imageBarrier(
@@ -216,6 +216,7 @@ void Renderer::Impl::recordShadows(VkCommandBuffer cmd, const SceneState& s,
                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
                  VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
                  VK_ACCESS_SHADER_READ_BIT, sm.layers());
+  return true;
 }
 
 }  // namespace tsr::vk

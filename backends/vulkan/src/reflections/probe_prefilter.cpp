@@ -63,7 +63,7 @@ std::vector<glm::vec4> prefilterProbe(std::span<const glm::vec4> faces, std::uin
     for (std::uint32_t y = 0; y < size; ++y)
       for (std::uint32_t x = 0; x < size; ++x) {
         const std::size_t i = (std::size_t(f) * size + y) * size + x;
-        const bool background = faces[i].a < 0.5f && !keepClear;
+        const bool background = faces[i].a < -0.5f && !keepClear;  // the faces' clear alpha, -1
         cube.texels[i] = background
                              ? environment.radiance(glm::normalize(probeTexelDirection(f, x + 0.5f, y + 0.5f, size)))
                              : glm::vec3(faces[i]);

@@ -31,7 +31,7 @@ inline const glm::vec3 kProbeFaceUp[6] = {{0, 1, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0
 // faces, in probe.glsl's convention (and the one the probe is drawn with).
 glm::vec3 probeTexelDirection(std::uint32_t face, float x, float y, std::uint32_t size);
 
-// `faces`: six size x size faces of radiance as the probe drew them, alpha 0
+// `faces`: six size x size faces of radiance as the probe drew them, alpha -1
 // where nothing was drawn: there the background shows, read from the
 // environment (or kept as drawn when `keepClear`, e.g. the fog's colour).
 // Returns the levels' kSize x kHeight texels.

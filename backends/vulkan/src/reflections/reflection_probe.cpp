@@ -52,21 +52,42 @@ Renderer::Impl::ProbeUse Renderer::Impl::wantsProbe(const SceneState& s) const {
 // up to kObjectProbes: each gets a probe drawn from its box's centre, which
 // sees what a ball reflects and refracts from where the ball is, whatever
 // stands between it and the scene's centre (builtin:cornell's centre is a
-// hand's breadth in front of the tall block). The shader finds an
-// instance's probe by its centre.
-std::vector<glm::vec4> Renderer::Impl::objectProbes(const SceneState& s) {
-  std::vector<glm::vec4> found;
+// hand's breadth in front of the tall block). Not one whose centre lies
+// inside another opaque instance (a jar round a block): that probe would
+// see the block alone. The shader finds an instance's probe by its slot.
+std::vector<Renderer::Impl::ObjectProbe> Renderer::Impl::objectProbes(const SceneState& s) {
+  std::vector<ObjectProbe> candidates;
   for (const DrawGroup& g : s.opaqueGroups) {
     if (!reflective(s.materials[g.material].material)) continue;
     for (std::uint32_t i = g.first; i < g.first + g.count; ++i) {
       glm::vec3 lo, hi;
       s.instanceBounds(s.opaqueOrder[i], lo, hi);
       const float radius = 0.5f * glm::length(hi - lo);
-      if (radius > 0.0f) found.emplace_back(0.5f * (lo + hi), radius);
+      if (radius > 0.0f) candidates.push_back({0.5f * (lo + hi), radius, s.opaqueOrder[i]});
     }
   }
-  std::stable_sort(found.begin(), found.end(), [](const glm::vec4& a, const glm::vec4& b) { return a.w > b.w; });
-  if (found.size() > kObjectProbes) found.resize(kObjectProbes);
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const ObjectProbe& a, const ObjectProbe& b) { return a.radius > b.radius; });
+  // Each candidate tested costs a pass over the instances: a few at most.
+  if (candidates.size() > 4 * kObjectProbes) candidates.resize(4 * kObjectProbes);
+  const glm::vec3 sceneSize = s.sceneMax - s.sceneMin;
+  auto enclosed = [&](const ObjectProbe& p) {
+    for (const DrawGroup& g : s.opaqueGroups)
+      for (std::uint32_t i = g.first; i < g.first + g.count; ++i) {
+        const std::uint32_t slot = s.opaqueOrder[i];
+        if (slot == p.slot) continue;
+        glm::vec3 lo, hi;
+        s.instanceBounds(slot, lo, hi);
+        const bool room = glm::all(glm::greaterThanEqual(hi - lo, 0.99f * sceneSize));
+        if (!room && glm::all(glm::greaterThan(p.centre, lo)) && glm::all(glm::lessThan(p.centre, hi))) return true;
+      }
+    return false;
+  };
+  std::vector<ObjectProbe> found;
+  for (const ObjectProbe& p : candidates) {
+    if (found.size() == kObjectProbes) break;
+    if (!enclosed(p)) found.push_back(p);
+  }
   return found;
 }
 
@@ -173,7 +194,7 @@ void Renderer::Impl::prefilterProbeLevels(const SceneState& s) {
 void Renderer::Impl::updateProbe(const SceneState& s, const RenderSettings& settings, GpuFrame& frame, bool shadows,
                                  RenderStats& stats) {
   ensureProbeImages();
-  const ProbeKey key{&s, s.version, irradianceVersion};
+  const ProbeKey key{s.uid, s.version, irradianceVersion};
   // Bounds of every instance: once per scene version, not every frame.
   if (probeWantedFor != key) {
     probeWanted = wantsProbe(s);
@@ -181,7 +202,7 @@ void Renderer::Impl::updateProbe(const SceneState& s, const RenderSettings& sett
     probeWantedFor = key;
   }
   const ProbeUse wanted = settings.reflectionProbe ? probeWanted : ProbeUse::None;
-  const std::vector<glm::vec4> objects = settings.reflectionProbe ? objectProbesWanted : std::vector<glm::vec4>{};
+  const std::vector<ObjectProbe> objects = settings.reflectionProbe ? objectProbesWanted : std::vector<ObjectProbe>{};
   const bool use = wanted != ProbeUse::None || !objects.empty();
   if (use && (probeHeld != key || probeUseHeld != wanted || objectProbesHeld != objects)) {
     // Draw into the image the shader does not read; the probe flag is off
@@ -195,7 +216,7 @@ void Renderer::Impl::updateProbe(const SceneState& s, const RenderSettings& sett
     // (first layer, centre) of each probe drawn: the scene's at layer 0.
     std::vector<std::pair<std::uint32_t, glm::vec3>> views;
     if (wanted != ProbeUse::None) views.emplace_back(0, centre);
-    for (std::uint32_t k = 0; k < objects.size(); ++k) views.emplace_back(6 * (k + 1), glm::vec3(objects[k]));
+    for (std::uint32_t k = 0; k < objects.size(); ++k) views.emplace_back(6 * (k + 1), objects[k].centre);
     for (std::size_t v = 0; v < views.size(); ++v) {
       const auto [firstLayer, from] = views[v];
       for (std::uint32_t f = 0; f < 6; ++f) {
@@ -223,9 +244,10 @@ void Renderer::Impl::updateProbe(const SceneState& s, const RenderSettings& sett
                      VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
                      VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &frameSet, 0, nullptr);
-        // Alpha 0 marks the background for prefilterProbe().
+        // Alpha -1 marks the background (geometry's alpha is its distance,
+        // shaders/probe.glsl), for prefilterProbe() and the lookups.
         VkClearValue colourClear{};
-        colourClear.color = {{clearColour.r, clearColour.g, clearColour.b, 0.0f}};
+        colourClear.color = {{clearColour.r, clearColour.g, clearColour.b, -1.0f}};
         const VkRenderingAttachmentInfo ca = renderingAttachment(
             into.layerView(firstLayer + f), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, /*load=*/false, colourClear);
         VkClearValue depthClear{};
@@ -274,8 +296,11 @@ void Renderer::Impl::updateProbe(const SceneState& s, const RenderSettings& sett
   frame.probeCentre = held && probeUseHeld != ProbeUse::None
                           ? glm::vec4(probeCentreHeld, probeUseHeld == ProbeUse::RoughReflections ? 2.0f : 1.0f)
                           : glm::vec4(0.0f);
-  for (std::uint32_t k = 0; k < kObjectProbes; ++k)
-    frame.objectProbes[k] = held && k < objectProbesHeld.size() ? objectProbesHeld[k] : glm::vec4(0.0f);
+  for (std::uint32_t k = 0; k < kObjectProbes; ++k) {
+    const bool has = held && k < objectProbesHeld.size();
+    frame.objectProbes[k] = has ? glm::vec4(objectProbesHeld[k].centre, 1.0f) : glm::vec4(0.0f);
+    frame.objectProbeSlots[k] = has ? objectProbesHeld[k].slot : 0u;
+  }
   std::memcpy(frameBuffer.mapped(), &frame, sizeof(frame));
   writeProbeDescriptor(s, probe[probeCurrent]);
 }

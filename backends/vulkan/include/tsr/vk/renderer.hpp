@@ -40,6 +40,7 @@ struct RenderSettings {
   // tracer (src/post/depth_of_field.hpp); false: a pinhole image.
   bool depthOfField = true;
   glm::vec4 background{0.0f};  // colour and alpha where nothing is drawn
+  bool operator==(const RenderSettings&) const = default;
 };
 
 struct RenderStats {
