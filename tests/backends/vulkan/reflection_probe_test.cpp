@@ -120,6 +120,41 @@ TEST(VulkanReflectionProbe, MirrorShowsWhatStandsNearIt) {
   EXPECT_LT(l.b, 0.1f);
 }
 
+// A mirror ball on a floor lit from straight above, a roof over the floor's
+// left half: the ball's lower left reflects the shadowed floor, its lower
+// right the lit one. The probe's faces are drawn with the shadow maps.
+TEST(VulkanReflectionProbe, MirrorShowsTheShadowsItFaces) {
+  Scene scene(device());
+  Material grey;
+  grey.baseColor = glm::vec3(0.5f);
+  const MaterialId g = scene.addMaterial(grey);
+  scene.addInstance(scene.addMesh(test::groundQuad(0, 0, 3)), g, glm::mat4(1.0f));
+  scene.addInstance(scene.addMesh(test::groundQuad(-1.5f, 0, 1.5f, 2.0f)), g, glm::mat4(1.0f));  // x in [-3, 0]
+  const glm::vec3 centre(0.0f, 0.6f, 0.0f);
+  scene.addInstance(scene.addMesh(test::uvSphere(32, 64, 0.5f)), scene.addMaterial(mirrorMaterial()),
+                    glm::translate(glm::mat4(1.0f), centre));
+  scene.addLight(DirectionalLight{{0, -1, 0}, glm::vec3(3.0f)});
+  const Camera cam = Camera::lookAt({0, 0.8f, 3}, centre, {0, 1, 0}, 0.6f, 1.0f);
+  const Region full = Region::full(96, 96);
+  Renderer renderer(device(), {.shadows = true, .shadowMapSize = 512});
+  FrameBuffer fb(96, 96);
+  renderer.render(scene, cam, full, fb);
+  test::writePng("/tmp/tsr_vk_probe_shadow.png", fb);
+  auto seen = [&](float side) {
+    const glm::vec3 n = glm::normalize(glm::vec3(0.6f * side, -0.5f, 0.62f)), p = centre + 0.5f * n;
+    // Where the view ray, mirrored there, meets the floor: shadowed for side -1.
+    const glm::vec3 v = glm::normalize(p - glm::vec3(0, 0.8f, 3)), r = glm::reflect(v, n);
+    const glm::vec3 floor = p - r * (p.y / r.y);
+    EXPECT_GT(side * floor.x, 0.2f);
+    EXPECT_LT(std::abs(floor.z), 1.4f);
+    const glm::vec2 px = test::project(cam, full, p);
+    return fb.colour(int(px.x), int(px.y)).r;
+  };
+  const float shadowed = seen(-1.0f), lit = seen(1.0f);
+  EXPECT_GT(lit, 0.1f);
+  EXPECT_LT(shadowed, 0.3f * lit) << "the floor under the roof, reflected";
+}
+
 // A white metal of roughness 0.3 and one of 0.6 in the same room: both
 // reflect the red wall to the left and the green one to the right (the
 // probe, prefiltered), the rougher one mixing more of the other walls in.
