@@ -315,8 +315,8 @@ void main() {
     radiance += base * (probe >= 0 ? probeRadiance(probe, worldPos, mirrored) : prefilteredRadiance(mirrored, 0.0));
   } else if (type == GLASS && instanceProbe(instanceSlot) >= 0) {
     int probe = instanceProbe(instanceSlot);
-    // What the probe sees along the mirrored and the refracted direction (one
-    // refraction: the way out of the object is not traced), by Fresnel.
+    // What the probe sees along the mirrored and the refracted direction
+    // (in and out through the ellipsoid inscribed in the box), by Fresnel.
     float f = fresnelDielectric(max(co, 0.0), eta);
     vec3 refracted = refract(-wo, n, 1.0 / eta);
     vec3 from = worldPos, along = refracted;

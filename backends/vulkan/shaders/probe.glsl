@@ -1,9 +1,10 @@
 // Reflection-probe lookups (src/reflections/reflection_probe.cpp draws the faces,
-// src/reflections/probe_prefilter.cpp prefilters them by roughness). A
-// direction from a point inside the scene's bounds is first followed to
-// the bounds' box and looked up from the probe's centre towards that hit
-// (box-projected, "parallax-corrected" cube mapping), which is exact for a
-// room whose walls are its bounds. Needs common.glsl.
+// src/reflections/probe_prefilter.cpp prefilters them by roughness). Mirrors
+// and glass follow a ray through a probe's distances (probeTraced); rough
+// reflections follow it to the bounds' box and look up the scene's probe
+// from its centre towards that hit (box-projected, "parallax-corrected"
+// cube mapping), which is exact for a room whose walls are its bounds.
+// Needs common.glsl.
 
 bool hasProbe() { return frame.probeCentre.w > 0.0; }  // w < 0: the faces are being drawn
 // The probe is also seen in rough reflections.
@@ -12,14 +13,22 @@ bool hasRoughProbe() { return frame.probeCentre.w > 1.5; }
 const float PROBE_LEVELS = 4.0;      // ProbeLevels::kLevels
 const float PROBE_LEVEL_SIZE = 16.0; // ProbeLevels::kSize
 
-vec3 boxProjected(vec3 p, vec3 dir) {
+// How far the ray from p along dir runs to leave the scene's bounds; false
+// when p is outside them.
+bool boundsExit(vec3 p, vec3 dir, out float t) {
   vec3 lo = frame.sceneMin.xyz, hi = frame.sceneMax.xyz;
-  if (!(all(greaterThanEqual(p, lo)) && all(lessThanEqual(p, hi)))) return dir;
+  t = 0.0;
+  if (!(all(greaterThanEqual(p, lo)) && all(lessThanEqual(p, hi)))) return false;
   vec3 safe = vec3(abs(dir.x) > 1e-6 ? dir.x : 1e-6, abs(dir.y) > 1e-6 ? dir.y : 1e-6,
                    abs(dir.z) > 1e-6 ? dir.z : 1e-6);
   vec3 far = max((hi - p) / safe, (lo - p) / safe);
-  float t = min(far.x, min(far.y, far.z));
-  return p + dir * max(t, 0.0) - frame.probeCentre.xyz;
+  t = max(min(far.x, min(far.y, far.z)), 0.0);
+  return true;
+}
+
+vec3 boxProjected(vec3 p, vec3 dir) {
+  float t;
+  return boundsExit(p, dir, t) ? p + dir * t - frame.probeCentre.xyz : dir;
 }
 
 // The face of d's major axis (its layer) and the position on it, with the
@@ -84,17 +93,12 @@ float probeDistance(int probe, vec3 d) {
 // for what the centre sees; a ray passing behind something the centre
 // sees in front of it stops there. Without a crossing, the box's point.
 vec3 probeTraced(int probe, vec3 p, vec3 dir) {
-  vec3 lo = frame.sceneMin.xyz, hi = frame.sceneMax.xyz;
+  float end;
+  if (!boundsExit(p, dir, end)) return dir;
   vec3 c = probeCentreOf(probe);
-  if (!(all(greaterThanEqual(p, lo)) && all(lessThanEqual(p, hi)))) return dir;
-  vec3 safe = vec3(abs(dir.x) > 1e-6 ? dir.x : 1e-6, abs(dir.y) > 1e-6 ? dir.y : 1e-6,
-                   abs(dir.z) > 1e-6 ? dir.z : 1e-6);
-  vec3 far = max((hi - p) / safe, (lo - p) / safe);
-  float end = max(min(far.x, min(far.y, far.z)), 0.0);
   const int STEPS = 8, REFINE = 3;
   float t0 = 0.0;
-  vec3 d0 = p - c;
-  float f0 = length(d0) - probeDistance(probe, d0);
+  float f0 = length(p - c) - probeDistance(probe, p - c);
   for (int i = 1; i <= STEPS; ++i) {
     float t1 = end * float(i) / float(STEPS);
     vec3 d1 = p + dir * t1 - c;
@@ -116,7 +120,6 @@ vec3 probeTraced(int probe, vec3 p, vec3 dir) {
       return p + dir * (t0 + (t1 - t0) * f0 / (f0 - f1)) - c;
     }
     t0 = t1;
-    d0 = d1;
     f0 = f1;
   }
   return p + dir * end - c;

@@ -202,7 +202,8 @@ void Renderer::Impl::updateProbe(const SceneState& s, const RenderSettings& sett
     probeWantedFor = key;
   }
   const ProbeUse wanted = settings.reflectionProbe ? probeWanted : ProbeUse::None;
-  const std::vector<ObjectProbe> objects = settings.reflectionProbe ? objectProbesWanted : std::vector<ObjectProbe>{};
+  static const std::vector<ObjectProbe> kNone;
+  const std::vector<ObjectProbe>& objects = settings.reflectionProbe ? objectProbesWanted : kNone;
   const bool use = wanted != ProbeUse::None || !objects.empty();
   if (use && (probeHeld != key || probeUseHeld != wanted || objectProbesHeld != objects)) {
     // Draw into the image the shader does not read; the probe flag is off
